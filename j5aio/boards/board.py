@@ -1,0 +1,119 @@
+"""The Board base class: a group of components reached through one backend."""
+
+from __future__ import annotations
+
+import logging
+from abc import ABC, abstractmethod
+from typing import TYPE_CHECKING, ClassVar
+
+import anyio
+
+if TYPE_CHECKING:
+    from j5aio.backends.backend import Backend
+    from j5aio.components.component import Component
+
+__all__ = ["Board"]
+
+LOGGER = logging.getLogger(__name__)
+
+
+class Board(ABC):
+    """A physical board: a set of components driven through one backend.
+
+    Every board that has been set up is kept in :attr:`BOARDS` until it is closed, so
+    that :meth:`make_all_safe` can reach all of them when a program stops.
+
+    :param serial_number: the board's serial number, as the backend found it.
+    :param backend: the backend that drives this board.
+    """
+
+    #: A human-friendly name for this kind of board.
+    name: ClassVar[str] = "Board"
+
+    #: Every board that is set up and not yet closed.
+    BOARDS: ClassVar[set[Board]] = set()
+
+    def __init__(self, serial_number: str, backend: Backend) -> None:
+        self._serial_number = serial_number
+        self._backend = backend
+        self._is_set_up = False
+        self._is_closed = False
+
+    @property
+    def serial_number(self) -> str:
+        """The serial number of the board."""
+        return self._serial_number
+
+    @property
+    def firmware_version(self) -> str | None:
+        """The firmware version the board reported, or ``None`` if it has none."""
+        return self._backend.firmware_version
+
+    @property
+    def backend(self) -> Backend:
+        """The backend that drives this board."""
+        return self._backend
+
+    @staticmethod
+    @abstractmethod
+    def supported_components() -> set[type[Component]]:
+        """The component classes on this board; a backend must implement their interfaces."""
+        raise NotImplementedError
+
+    @abstractmethod
+    async def make_safe(self) -> None:
+        """Put every component of the board in its safe state (motors stopped, ...)."""
+        raise NotImplementedError
+
+    async def setup(self) -> None:
+        """Bring the board into its initial state and register it for :meth:`make_all_safe`.
+
+        Runs :meth:`_setup` once, however often it is called. Backends and board groups
+        call it; user code does not need to.
+        """
+        if self._is_set_up:
+            return
+        await self._setup()
+        self._is_set_up = True
+        self._is_closed = False
+        Board.BOARDS.add(self)
+
+    async def _setup(self) -> None:  # noqa: B027 - optional hook
+        """Apply the initial state of the board's components (a hook for subclasses)."""
+
+    async def close(self) -> None:
+        """Release the board's port and forget it. The board is not made safe first."""
+        if self._is_closed:
+            return
+        self._is_closed = True
+        Board.BOARDS.discard(self)
+        await self._backend.close()
+
+    @staticmethod
+    async def make_all_safe() -> list[BaseException]:
+        """Make every set-up board safe, all at once.
+
+        A board that fails to become safe does not stop the others: its error is logged
+        and returned, so that the caller can decide what to do with it.
+
+        :returns: the errors raised by boards that could not be made safe.
+        """
+        failures: list[BaseException] = []
+
+        async def make_one_safe(board: Board) -> None:
+            try:
+                await board.make_safe()
+            except Exception as exc:
+                LOGGER.error("Could not make %s safe: %s", board, exc)
+                failures.append(exc)
+
+        async with anyio.create_task_group() as group:
+            for board in list(Board.BOARDS):
+                group.start_soon(make_one_safe, board)
+        return failures
+
+    def __str__(self) -> str:
+        return f"{self.name} - {self.serial_number}"
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__} serial_number={self.serial_number!r}>"

@@ -1,0 +1,162 @@
+"""BoardGroup: every connected board of one type, found through one backend."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from typing import TYPE_CHECKING, Generic, TypeVar
+
+from j5aio.boards.board import Board
+from j5aio.errors import CommunicationError
+
+if TYPE_CHECKING:
+    from j5aio.backends.backend import Backend
+
+__all__ = ["BoardGroup"]
+
+BoardT = TypeVar("BoardT", bound=Board)
+
+
+class BoardGroup(Generic[BoardT]):
+    """The boards of one type that a backend can reach, ordered by serial number.
+
+    Create one with :meth:`get_board_group`::
+
+        motor_boards = await BoardGroup.get_board_group(MotorBoard, SRV4MotorBoardHardwareBackend)
+        motor_boards["SR0A1B"].motors[0]   # by serial number
+        motor_boards[0]                    # or by position
+
+    :param board_type: the class of board in this group.
+    :param backend_class: the backend that finds and drives the boards.
+    :param ports: explicit ports to attach to as well as discovery (serial backends).
+    """
+
+    def __init__(
+        self,
+        board_type: type[BoardT],
+        backend_class: type[Backend],
+        *,
+        ports: Sequence[str] = (),
+    ) -> None:
+        if not issubclass(backend_class.board, board_type):
+            raise TypeError(
+                f"{backend_class.__name__} drives {backend_class.board.__name__}, not "
+                f"{board_type.__name__}: choose a backend for {board_type.__name__}.",
+            )
+        self._board_type = board_type
+        self._backend_class = backend_class
+        self._ports = tuple(ports)
+        self._boards: dict[str, BoardT] = {}
+
+    @classmethod
+    async def get_board_group(
+        cls,
+        board_type: type[BoardT],
+        backend_class: type[Backend],
+        *,
+        ports: Sequence[str] = (),
+    ) -> BoardGroup[BoardT]:
+        """Find every board of ``board_type`` that ``backend_class`` can reach.
+
+        :param board_type: the class of board wanted, e.g. ``PowerBoard``.
+        :param backend_class: the backend to find and drive them with.
+        :param ports: explicit ports (device paths or pyserial URLs) to attach to, on top
+            of discovery, for unusual adapters and simulators.
+        :returns: the group, ordered by serial number.
+        """
+        group = cls(board_type, backend_class, ports=ports)
+        await group.update_boards()
+        return group
+
+    async def update_boards(self) -> None:
+        """Look for boards again, so that boards connected since are included."""
+        found: list[Board] = list(await self._backend_class.discover())
+        for port in self._ports:
+            found.append(await self._backend_class.attach(port))
+        boards: dict[str, BoardT] = {}
+        for board in sorted(found, key=lambda b: b.serial_number):
+            if not isinstance(board, self._board_type):  # pragma: no cover - backend bug
+                raise TypeError(f"{self._backend_class.__name__} returned {board!r}")
+            await board.setup()
+            boards[board.serial_number] = board
+        self._boards = boards
+
+    def singular(self) -> BoardT:
+        """Return the only board in the group.
+
+        :raises CommunicationError: there is not exactly one board.
+        """
+        if len(self._boards) == 1:
+            return next(iter(self._boards.values()))
+        found = ", ".join(self._boards) or "none"
+        raise CommunicationError(
+            f"expected exactly one {self._board_type.__name__} to be connected, but found "
+            f"{len(self._boards)} ({found}). Check that it is plugged in and powered, or "
+            "pick one by serial number.",
+        )
+
+    async def make_safe(self) -> None:
+        """Make every board in the group safe."""
+        for board in self._boards.values():
+            await board.make_safe()
+
+    @property
+    def backend_class(self) -> type[Backend]:
+        """The backend that finds and drives the boards."""
+        return self._backend_class
+
+    @property
+    def board_type(self) -> type[BoardT]:
+        """The class of board in this group."""
+        return self._board_type
+
+    @property
+    def boards(self) -> list[BoardT]:
+        """The boards, ordered by serial number."""
+        return list(self._boards.values())
+
+    def __len__(self) -> int:
+        return len(self._boards)
+
+    def __iter__(self) -> Iterator[BoardT]:
+        return iter(list(self._boards.values()))
+
+    def __contains__(self, serial_number: object) -> bool:
+        return serial_number in self._boards
+
+    def __getitem__(self, key: str | int) -> BoardT:
+        """Return a board by serial number (``str``) or by position (``int``).
+
+        :raises KeyError: no board has that serial number; the message lists those present.
+        :raises IndexError: the position is out of range.
+        :raises TypeError: the key is neither a string nor an integer.
+        """
+        if isinstance(key, str):
+            try:
+                return self._boards[key]
+            except KeyError:
+                present = ", ".join(self._boards) or "none"
+                raise KeyError(
+                    f"no {self._board_type.__name__} with serial number {key!r}; "
+                    f"connected: {present}",
+                ) from None
+        if isinstance(key, int) and not isinstance(key, bool):
+            boards = self.boards
+            if -len(boards) <= key < len(boards):
+                return boards[key]
+            raise IndexError(
+                f"board index {key} is out of range: there are {len(boards)} "
+                f"{self._board_type.__name__}(s)",
+            )
+        raise TypeError(
+            f"look boards up by serial number (a str) or position (an int), not "
+            f"{type(key).__name__}",
+        )
+
+    def __str__(self) -> str:
+        return f"Group of Boards - [{', '.join(map(str, self._boards.values()))}]"
+
+    def __repr__(self) -> str:
+        return (
+            f"BoardGroup(board_type={self._board_type.__name__}, "
+            f"backend_class={self._backend_class.__name__})"
+        )

@@ -1,0 +1,1 @@
+"""Derived components: components built out of other components."""
