@@ -1,0 +1,274 @@
+"""Serving a board simulator on a pseudo-terminal, so that any program can open it.
+
+:func:`serve_on_pty` makes a pseudo-terminal pair and drives its master side with a
+simulator (anything shaped like
+:class:`~j5aio.backends.hardware.transports.memory.SerialSimulatorLike`): bytes a program
+writes to the slave side go to ``simulator.receive`` and the simulator's answers are
+written back. The slave side's path (``/dev/pts/N``) can be opened as a serial port by
+pyserial, by j5, by ``screen`` or by any other program::
+
+    with serve_on_pty(SBArduinoSimulator()) as server:
+        port = serial.Serial(server.path, 115200, timeout=1)
+
+Opening the slave side resets the simulated board, as opening a real Arduino's port does:
+each time a program opens the port, ``simulator.open()`` is called and the boot output it
+returns is written ``boot_delay * time_scale`` seconds later (and never sooner than
+:data:`OPEN_SETTLE_TIME`, so that the opening program's input flush cannot eat it).
+
+The pseudo-terminal is in raw mode (no echo, no line editing, no CR/LF translation). The
+server runs in a thread of its own, so it works beside synchronous and asynchronous code
+alike; only that thread touches the simulator while the server runs.
+
+For an in-process, in-memory connection use
+:class:`~j5aio.backends.hardware.transports.memory.SimulatorStream` instead.
+
+Pseudo-terminals exist on POSIX systems only.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import logging
+import os
+import select
+import threading
+import time
+import tty
+from collections import deque
+from types import TracebackType
+from typing import Self
+
+from j5aio.backends.hardware.transports.memory import SerialSimulatorLike
+
+__all__ = ["OPEN_SETTLE_TIME", "PtyServer", "serve_on_pty"]
+
+LOGGER = logging.getLogger(__name__)
+
+#: The least time, in seconds, between a program opening the port and the boot output.
+OPEN_SETTLE_TIME = 0.05
+
+#: How often, in seconds, the server looks whether a program has opened the port.
+_IDLE_POLL_INTERVAL = 0.01
+
+
+class PtyServer:
+    """A simulator served on a pseudo-terminal; made and started by :func:`serve_on_pty`.
+
+    Use it as a context manager (sync or async), or call :meth:`close` when done.
+
+    :param simulator: the simulated board to serve.
+    :param time_scale: multiplies the simulator's boot delay; ``0`` makes it (almost)
+        instant.
+    """
+
+    def __init__(self, simulator: SerialSimulatorLike, *, time_scale: float = 1.0) -> None:
+        if time_scale < 0:
+            raise ValueError(f"time_scale must be zero or more, not {time_scale}")
+        self._simulator = simulator
+        self._time_scale = time_scale
+        master, slave = os.openpty()
+        tty.setraw(slave)
+        self._path = os.ttyname(slave)
+        # With the slave closed here, the master reports a hang-up until a program opens
+        # the path: that is how an "open" (a board reset) is noticed.
+        os.close(slave)
+        os.set_blocking(master, False)
+        self._master = master
+        self._wake_read, self._wake_write = os.pipe()
+        self._pending: deque[tuple[float, bytes]] = deque()
+        self._port_open = False
+        self._opened_count = 0
+        self._stopping = False
+        self._closed = False
+        self._thread = threading.Thread(
+            target=self._run, name=f"pty server {self._path}", daemon=True
+        )
+
+    @property
+    def path(self) -> str:
+        """The path of the slave side, to open as a serial port (e.g. ``/dev/pts/4``)."""
+        return self._path
+
+    @property
+    def simulator(self) -> SerialSimulatorLike:
+        """The simulated board being served."""
+        return self._simulator
+
+    @property
+    def opened_count(self) -> int:
+        """How many times a program has opened the port so far."""
+        return self._opened_count
+
+    @property
+    def is_port_open(self) -> bool:
+        """Whether a program has the port open now."""
+        return self._port_open
+
+    @property
+    def is_serving(self) -> bool:
+        """Whether the server thread is running."""
+        return self._thread.is_alive()
+
+    def start(self) -> None:
+        """Start serving in a background thread.
+
+        :raises RuntimeError: the server was started before, or is closed.
+        """
+        if self._closed:
+            raise RuntimeError(f"the server on {self._path} is closed; make a new one")
+        self._thread.start()
+
+    def close(self, timeout: float = 5.0) -> None:
+        """Stop serving and release the pseudo-terminal; idempotent.
+
+        A program that still has the port open then reads end of file or gets an error.
+
+        :param timeout: the longest time to wait for the server thread to stop, in seconds.
+        """
+        if self._closed:
+            return
+        self._closed = True
+        self._stopping = True
+        with contextlib.suppress(OSError):
+            os.write(self._wake_write, b"x")
+        if self._thread.is_alive():
+            self._thread.join(timeout)
+        for fd in (self._master, self._wake_read, self._wake_write):
+            with contextlib.suppress(OSError):
+                os.close(fd)
+
+    def __enter__(self) -> Self:
+        return self
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        self.close()
+
+    async def __aenter__(self) -> Self:
+        return self
+
+    async def __aexit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        self.close()
+
+    def __repr__(self) -> str:
+        state = "serving" if self.is_serving else "stopped"
+        return f"<PtyServer {type(self._simulator).__name__} on {self._path} {state}>"
+
+    # The server thread.
+
+    def _run(self) -> None:
+        poller = select.poll()
+        poller.register(self._wake_read, select.POLLIN)
+        poller.register(self._master, select.POLLIN)
+        while not self._stopping:
+            try:
+                self._step(poller)
+            except Exception:  # a simulator bug must not kill the port silently
+                LOGGER.exception("the simulator on %s failed; still serving", self._path)
+
+    def _step(self, poller: select.poll) -> None:
+        hung_up = self._master_hung_up()
+        if hung_up:
+            if self._port_open:
+                self._port_open = False
+                self._pending.clear()
+            self._sleep(_IDLE_POLL_INTERVAL)
+            return
+        if not self._port_open:
+            self._port_opened()
+        poller.modify(self._master, select.POLLIN | (select.POLLOUT if self._due() else 0))
+        for fd, events in poller.poll(self._poll_timeout_ms()):
+            if fd == self._master and events & select.POLLIN:
+                self._read_master()
+        self._write_due()
+
+    def _master_hung_up(self) -> bool:
+        probe = select.poll()
+        probe.register(self._master, select.POLLIN)
+        events = dict(probe.poll(0)).get(self._master, 0)
+        return bool(events & select.POLLHUP) and not events & select.POLLIN
+
+    def _sleep(self, seconds: float) -> None:
+        # Wait, but wake at once when close() is called.
+        select.select([self._wake_read], [], [], seconds)
+
+    def _port_opened(self) -> None:
+        self._port_open = True
+        self._opened_count += 1
+        self._pending.clear()
+        boot = self._simulator.open()
+        delay = max(OPEN_SETTLE_TIME, self._simulator.boot_delay * self._time_scale)
+        if boot:
+            self._pending.append((time.monotonic() + delay, boot))
+
+    def _read_master(self) -> None:
+        try:
+            data = os.read(self._master, 4096)
+        except BlockingIOError:
+            return
+        except OSError as error:
+            if error.errno != errno.EIO:  # EIO: the program closed the port meanwhile
+                raise
+            return
+        if not data or not self._simulator.connected:
+            return
+        response = self._simulator.receive(data)
+        if response:
+            # Never overtake earlier output (the boot banner, say), as on a real wire.
+            due = max(time.monotonic(), self._pending[-1][0] if self._pending else 0.0)
+            self._pending.append((due, response))
+
+    def _due(self) -> bool:
+        return bool(self._pending) and self._pending[0][0] <= time.monotonic()
+
+    def _poll_timeout_ms(self) -> int:
+        if not self._pending:
+            return 100
+        wait = self._pending[0][0] - time.monotonic()
+        return max(0, min(100, int(wait * 1000) + 1))
+
+    def _write_due(self) -> None:
+        while self._due():
+            due, chunk = self._pending.popleft()
+            try:
+                written = os.write(self._master, chunk)
+            except BlockingIOError:
+                written = 0
+            except OSError as error:
+                if error.errno != errno.EIO:
+                    raise
+                self._pending.clear()
+                return
+            if written < len(chunk):
+                self._pending.appendleft((due, chunk[written:]))
+                return
+
+
+def serve_on_pty(simulator: SerialSimulatorLike, *, time_scale: float = 1.0) -> PtyServer:
+    """Serve ``simulator`` on a new pseudo-terminal and return the running server.
+
+    Open :attr:`PtyServer.path` as a serial port to talk to the simulated board; close
+    the server (or leave its ``with`` block) to stop::
+
+        with serve_on_pty(simulator) as server:
+            print(server.path)
+
+    :param simulator: the simulated board to serve.
+    :param time_scale: multiplies the simulator's boot delay; ``0`` makes it (almost)
+        instant.
+    :raises ValueError: ``time_scale`` is negative.
+    :raises OSError: no pseudo-terminal could be made.
+    """
+    server = PtyServer(simulator, time_scale=time_scale)
+    server.start()
+    return server

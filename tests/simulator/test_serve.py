@@ -1,0 +1,186 @@
+"""Tests of serving a simulator on a pseudo-terminal."""
+
+from __future__ import annotations
+
+import logging
+import os
+import time
+from collections.abc import Callable
+
+import pytest
+import serial
+
+from j5aio.simulator.serve import OPEN_SETTLE_TIME, PtyServer, serve_on_pty
+
+
+class FakeSimulator:
+    """A tiny simulator: replies ``ok:<bytes>`` and counts opens."""
+
+    baudrate = 115200
+
+    def __init__(self, boot: bytes = b"# Booted\r\n", boot_delay: float = 0.0) -> None:
+        self.boot = boot
+        self.boot_delay = boot_delay
+        self.connected = True
+        self.opens = 0
+        self.received: list[bytes] = []
+        self.fail = False
+
+    def open(self) -> bytes:
+        self.opens += 1
+        return self.boot
+
+    def receive(self, data: bytes) -> bytes:
+        if self.fail:
+            self.fail = False
+            raise RuntimeError("simulator bug")
+        self.received.append(data)
+        return b"ok:" + data
+
+
+def open_port(path: str, timeout: float = 2.0) -> serial.Serial:
+    return serial.Serial(path, 115200, timeout=timeout)
+
+
+def wait_for(condition: Callable[[], bool], timeout: float = 2.0) -> None:
+    deadline = time.monotonic() + timeout
+    while not condition():
+        if time.monotonic() > deadline:
+            raise AssertionError("condition not reached")
+        time.sleep(0.005)
+
+
+def test_boot_output_appears_after_the_port_is_opened() -> None:
+    simulator = FakeSimulator(boot_delay=0.15)
+    with serve_on_pty(simulator) as server:
+        assert os.path.exists(server.path)
+        assert server.is_serving
+        time.sleep(0.05)
+        assert simulator.opens == 0  # nothing happens until a program opens the port
+        started = time.monotonic()
+        with open_port(server.path) as port:
+            assert port.readline() == b"# Booted\r\n"
+            assert time.monotonic() - started >= 0.15
+        assert simulator.opens == 1
+
+
+def test_time_scale_shortens_the_boot_delay_but_not_below_the_settle_time() -> None:
+    simulator = FakeSimulator(boot_delay=5.0)
+    with serve_on_pty(simulator, time_scale=0) as server:
+        started = time.monotonic()
+        with open_port(server.path) as port:
+            assert port.readline() == b"# Booted\r\n"
+        elapsed = time.monotonic() - started
+    assert OPEN_SETTLE_TIME <= elapsed < 1.0
+
+
+def test_requests_reach_the_simulator_and_replies_come_back() -> None:
+    simulator = FakeSimulator(boot=b"")
+    with serve_on_pty(simulator, time_scale=0) as server, open_port(server.path) as port:
+        port.write(b"PIN:2:DIGITAL:GET?\n")
+        assert port.read(22) == b"ok:PIN:2:DIGITAL:GET?\n"
+    assert b"".join(simulator.received) == b"PIN:2:DIGITAL:GET?\n"
+
+
+def test_the_port_is_raw_no_echo_and_no_newline_translation() -> None:
+    simulator = FakeSimulator(boot=b"")
+    with serve_on_pty(simulator, time_scale=0) as server:
+        fd = os.open(server.path, os.O_RDWR | os.O_NOCTTY)
+        try:
+            os.write(fd, b"a\r\x03\x04b\n")
+            wait_for(lambda: len(b"".join(simulator.received)) >= 6)
+            time.sleep(0.05)
+            reply = b""
+            while len(reply) < 9:
+                reply += os.read(fd, 100)
+        finally:
+            os.close(fd)
+    assert b"".join(simulator.received) == b"a\r\x03\x04b\n"
+    assert reply == b"ok:a\r\x03\x04b\n"
+
+
+def test_each_open_resets_the_board_and_replays_the_boot_output() -> None:
+    simulator = FakeSimulator()
+    with serve_on_pty(simulator, time_scale=0) as server:
+        for expected in (1, 2):
+            with open_port(server.path) as port:
+                assert port.readline() == b"# Booted\r\n"
+                assert server.is_port_open
+            wait_for(lambda: not server.is_port_open)
+            assert server.opened_count == expected
+    assert simulator.opens == 2
+
+
+def test_a_large_reply_is_written_in_full() -> None:
+    simulator = FakeSimulator(boot=b"")
+    payload = bytes(range(256)) * 64
+    with serve_on_pty(simulator, time_scale=0) as server, open_port(server.path) as port:
+        port.write(payload)
+        assert port.read(len(payload) + 3) == b"ok:" + payload
+
+
+def test_a_disconnected_simulator_answers_nothing() -> None:
+    simulator = FakeSimulator(boot=b"")
+    simulator.connected = False
+    with serve_on_pty(simulator, time_scale=0) as server, open_port(server.path, 0.2) as port:
+        port.write(b"hello\n")
+        assert port.read(10) == b""
+    assert simulator.received == []
+
+
+def test_a_failing_simulator_is_logged_and_serving_continues(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    simulator = FakeSimulator(boot=b"")
+    simulator.fail = True
+    with (
+        caplog.at_level(logging.ERROR, logger="j5aio.simulator.serve"),
+        serve_on_pty(simulator, time_scale=0) as server,
+        open_port(server.path) as port,
+    ):
+        port.write(b"first\n")
+        wait_for(lambda: "simulator bug" in caplog.text)
+        port.write(b"second\n")
+        assert port.read(10) == b"ok:second\n"
+    assert "failed; still serving" in caplog.text
+
+
+async def test_serves_inside_async_code_as_an_async_context_manager() -> None:
+    simulator = FakeSimulator()
+    async with serve_on_pty(simulator, time_scale=0) as server:
+        with open_port(server.path) as port:
+            assert port.readline() == b"# Booted\r\n"
+    assert not server.is_serving
+
+
+def test_close_is_idempotent_and_a_closed_server_cannot_start() -> None:
+    server = serve_on_pty(FakeSimulator())
+    assert "serving" in repr(server)
+    server.close()
+    server.close()
+    assert not server.is_serving
+    assert "stopped" in repr(server)
+    with pytest.raises(RuntimeError, match="closed"):
+        server.start()
+
+
+def test_a_program_still_connected_when_the_server_closes_sees_the_end() -> None:
+    server = serve_on_pty(FakeSimulator(boot=b""), time_scale=0)
+    port = open_port(server.path, 0.5)
+    try:
+        server.close()
+        with pytest.raises(serial.SerialException):
+            port.read(1)
+    finally:
+        port.close()
+
+
+def test_negative_time_scale_is_refused() -> None:
+    with pytest.raises(ValueError, match="time_scale must be zero or more, not -1"):
+        PtyServer(FakeSimulator(), time_scale=-1)
+
+
+def test_the_simulator_is_exposed() -> None:
+    simulator = FakeSimulator()
+    with serve_on_pty(simulator) as server:
+        assert server.simulator is simulator
