@@ -114,9 +114,13 @@ def test_each_open_resets_the_board_and_replays_the_boot_output() -> None:
 def test_a_large_reply_is_written_in_full() -> None:
     simulator = FakeSimulator(boot=b"")
     payload = bytes(range(256)) * 64
-    with serve_on_pty(simulator, time_scale=0) as server, open_port(server.path) as port:
+    with serve_on_pty(simulator, time_scale=0) as server, open_port(server.path, 0.3) as port:
         port.write(payload)
-        assert port.read(len(payload) + 3) == b"ok:" + payload
+        reply = b""
+        while chunk := port.read(100_000):
+            reply += chunk
+    assert b"".join(simulator.received) == payload
+    assert reply == b"".join(b"ok:" + chunk for chunk in simulator.received)
 
 
 def test_a_disconnected_simulator_answers_nothing() -> None:
