@@ -1,0 +1,64 @@
+"""Transports: how bytes reach a board.
+
+* :class:`ByteStream` — the seam every transport implements (:mod:`.stream`).
+* :func:`open_serial_stream` — serial ports and pyserial URLs (:mod:`.serial_stream`).
+* :func:`memory_stream_pair`, :class:`SimulatorStream` — in memory (:mod:`.memory`).
+* :class:`SerialLink` — serialised, cancellation-safe requests over a stream
+  (:mod:`.serial_link`), with reply readers from :mod:`.readers`.
+* :class:`USBLink` — ordered USB control transfers on a worker thread (:mod:`.usb_link`).
+* :func:`list_serial_ports`, :func:`match_ports`, :func:`find_usb_devices` — discovery
+  (:mod:`.discovery`).
+* :data:`TRACE` — the log level of wire traffic (:mod:`.trace`).
+"""
+
+from __future__ import annotations
+
+from .discovery import (
+    FTDI_VENDOR_ID,
+    PortInfo,
+    find_port,
+    find_usb_devices,
+    list_serial_ports,
+    match_ports,
+)
+from .memory import MemoryStream, SerialSimulatorLike, SimulatorStream, memory_stream_pair
+from .readers import (
+    ReplyReader,
+    line_starts_with,
+    read_exactly,
+    read_line,
+    read_lines_until,
+)
+from .serial_link import SerialLink
+from .serial_stream import SerialStream, open_serial_stream
+from .stream import ByteStream
+from .trace import TRACE, wire_logger
+from .usb_link import USBDeviceLike, USBDisconnectionError, USBLink, USBTransferTimeoutError
+
+__all__ = [
+    "FTDI_VENDOR_ID",
+    "TRACE",
+    "ByteStream",
+    "MemoryStream",
+    "PortInfo",
+    "ReplyReader",
+    "SerialLink",
+    "SerialSimulatorLike",
+    "SerialStream",
+    "SimulatorStream",
+    "USBDeviceLike",
+    "USBDisconnectionError",
+    "USBLink",
+    "USBTransferTimeoutError",
+    "find_port",
+    "find_usb_devices",
+    "line_starts_with",
+    "list_serial_ports",
+    "match_ports",
+    "memory_stream_pair",
+    "open_serial_stream",
+    "read_exactly",
+    "read_line",
+    "read_lines_until",
+    "wire_logger",
+]

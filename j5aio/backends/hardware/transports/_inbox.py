@@ -1,0 +1,80 @@
+"""A receive buffer fed by callbacks and drained by one awaiting reader (internal).
+
+Streams whose bytes arrive through callbacks (asyncio protocols, an in-memory peer) put
+them here; :meth:`Inbox.take` waits for them. Feeding is synchronous and needs no async
+context, so asyncio protocol callbacks may call :meth:`Inbox.feed` and
+:meth:`Inbox.finish`. Waiting is cancel-safe: bytes are only removed from the buffer when
+they are returned.
+"""
+
+from __future__ import annotations
+
+import copy
+
+import anyio
+import anyio.lowlevel
+
+from j5aio.errors import CommunicationError
+
+__all__ = ["Inbox", "fresh_copy"]
+
+
+def fresh_copy(error: CommunicationError) -> CommunicationError:
+    """Return a copy of ``error`` with its cause, to raise again without piling up tracebacks."""
+    again = copy.copy(error)
+    again.__cause__ = error.__cause__
+    return again
+
+
+class Inbox:
+    """Bytes received but not yet read, plus the reason the stream ended, if it has."""
+
+    def __init__(self) -> None:
+        self._buffer = bytearray()
+        self._error: CommunicationError | None = None
+        self._wakeup: anyio.Event | None = None
+
+    @property
+    def ended(self) -> bool:
+        """Whether :meth:`finish` has been called."""
+        return self._error is not None
+
+    def __len__(self) -> int:
+        return len(self._buffer)
+
+    def feed(self, data: bytes) -> None:
+        """Append received bytes and wake the reader; ignored once ended."""
+        if self._error is None and data:
+            self._buffer += data
+            self._wake()
+
+    def finish(self, error: CommunicationError, *, discard: bool = False) -> None:
+        """End the stream: once the buffer is empty, :meth:`take` raises ``error``.
+
+        With ``discard`` the bytes still buffered are dropped, so ``error`` is raised at
+        once. Only the first call has an effect.
+        """
+        if self._error is None:
+            self._error = error
+            if discard:
+                self._buffer.clear()
+            self._wake()
+
+    async def take(self, max_bytes: int) -> bytes:
+        """Return 1 to ``max_bytes`` buffered bytes, waiting for some to arrive."""
+        if max_bytes < 1:
+            raise ValueError(f"max_bytes must be at least 1, not {max_bytes}")
+        await anyio.lowlevel.checkpoint()
+        while not self._buffer:
+            if self._error is not None:
+                raise fresh_copy(self._error)
+            if self._wakeup is None or self._wakeup.is_set():
+                self._wakeup = anyio.Event()
+            await self._wakeup.wait()
+        data = bytes(self._buffer[:max_bytes])
+        del self._buffer[:max_bytes]
+        return data
+
+    def _wake(self) -> None:
+        if self._wakeup is not None:
+            self._wakeup.set()

@@ -1,0 +1,241 @@
+"""In-memory byte streams: a back-to-back pair, and a stream to a board simulator.
+
+:func:`memory_stream_pair` connects two :class:`~.stream.ByteStream` ends: what one sends,
+the other receives. :class:`SimulatorStream` connects the host to a board simulator (any
+object shaped like :class:`SerialSimulatorLike`), which is how the simulated environment
+runs the real hardware backends and protocol codecs without hardware.
+"""
+
+from __future__ import annotations
+
+import time
+from collections import deque
+from typing import Protocol, runtime_checkable
+
+import anyio
+import anyio.lowlevel
+
+from j5aio.errors import BoardDisconnectionError
+
+from ._inbox import Inbox
+from .stream import ByteStream
+
+__all__ = ["MemoryStream", "SerialSimulatorLike", "SimulatorStream", "memory_stream_pair"]
+
+
+class MemoryStream(ByteStream):
+    """One end of an in-memory pair made by :func:`memory_stream_pair`."""
+
+    def __init__(self, name: str) -> None:
+        self._name = name
+        self._inbox = Inbox()
+        self._peer: MemoryStream | None = None
+        self._closed = False
+
+    @property
+    def name(self) -> str:
+        """The name given to this end."""
+        return self._name
+
+    @property
+    def is_closed(self) -> bool:
+        """Whether this end has been closed."""
+        return self._closed
+
+    async def send(self, data: bytes) -> None:
+        """Deliver ``data`` to the other end.
+
+        :raises BoardDisconnectionError: either end has been closed.
+        """
+        await anyio.lowlevel.checkpoint()
+        if self._closed:
+            raise BoardDisconnectionError(f"{self._name}: the stream is closed")
+        peer = self._peer
+        if peer is None or peer._closed:
+            raise BoardDisconnectionError(f"{self._name}: the other end has gone away")
+        peer._inbox.feed(data)
+
+    async def receive(self, max_bytes: int = 4096) -> bytes:
+        """Return bytes sent by the other end; see :meth:`ByteStream.receive`."""
+        return await self._inbox.take(max_bytes)
+
+    def close_now(self) -> None:
+        """Close this end; the other end then receives what was already sent, then EOF."""
+        if self._closed:
+            return
+        self._closed = True
+        self._inbox.finish(
+            BoardDisconnectionError(f"{self._name}: the stream is closed"), discard=True
+        )
+        if self._peer is not None:
+            self._peer._inbox.finish(
+                BoardDisconnectionError(f"{self._peer._name}: the other end has gone away")
+            )
+
+
+def memory_stream_pair(
+    name_a: str = "memory-a", name_b: str = "memory-b"
+) -> tuple[MemoryStream, MemoryStream]:
+    """Return two streams connected back to back: bytes sent to one are received by the other.
+
+    Closing one end lets the other read what was already sent and then get
+    :class:`~j5aio.errors.BoardDisconnectionError`.
+    """
+    a, b = MemoryStream(name_a), MemoryStream(name_b)
+    a._peer, b._peer = b, a
+    return a, b
+
+
+@runtime_checkable
+class SerialSimulatorLike(Protocol):
+    """The shape of a board simulator that speaks a serial protocol.
+
+    The simulators in :mod:`j5aio.simulator` have this shape; so may a team's own.
+    """
+
+    @property
+    def baudrate(self) -> int:
+        """The baud rate the simulated board's UART runs at."""
+        ...
+
+    @property
+    def boot_delay(self) -> float:
+        """Seconds between opening the port and the boot output appearing."""
+        ...
+
+    @property
+    def connected(self) -> bool:
+        """Whether the simulated board is still plugged in."""
+        ...
+
+    def open(self) -> bytes:
+        """Handle the host opening the port; return the boot output (may be empty)."""
+        ...
+
+    def receive(self, data: bytes) -> bytes:
+        """Handle bytes written by the host; return the board's response (may be empty)."""
+        ...
+
+
+class SimulatorStream(ByteStream):
+    """A byte stream whose far end is a board simulator.
+
+    The simulator's :meth:`~SerialSimulatorLike.open` is called when the stream is
+    made; its boot output appears after ``boot_delay * time_scale`` seconds. Every
+    :meth:`send` goes to the simulator's :meth:`~SerialSimulatorLike.receive` at once,
+    and its response is queued to be received, in order, never ahead of earlier output.
+
+    :param simulator: the simulated board.
+    :param name: the name used in errors and logs; defaults to the simulator's class name.
+    :param time_scale: multiplies every simulated delay; ``0`` makes them all instant.
+    :param uart_timing: if true, delay each transfer by the time a UART at the
+        simulator's baud rate takes (10 bit times a byte), request and response both.
+    :param poll_interval: how often a waiting :meth:`receive` checks that the board is
+        still connected, in seconds.
+    """
+
+    def __init__(
+        self,
+        simulator: SerialSimulatorLike,
+        *,
+        name: str | None = None,
+        time_scale: float = 1.0,
+        uart_timing: bool = False,
+        poll_interval: float = 0.02,
+    ) -> None:
+        if time_scale < 0:
+            raise ValueError(f"time_scale must not be negative, not {time_scale}")
+        self._simulator = simulator
+        self._name = name if name is not None else f"simulated {type(simulator).__name__}"
+        self._time_scale = time_scale
+        self._uart_timing = uart_timing
+        self._poll_interval = poll_interval
+        self._closed = False
+        # Output not yet received: (monotonic time it becomes visible, bytes), in order.
+        self._pending: deque[tuple[float, bytes]] = deque()
+        self._last_due = time.monotonic()
+        self._wakeup: anyio.Event | None = None
+        self._queue_output(simulator.open(), after=simulator.boot_delay * time_scale)
+
+    @property
+    def name(self) -> str:
+        """The name of the simulated board, as used in errors and logs."""
+        return self._name
+
+    @property
+    def is_closed(self) -> bool:
+        """Whether this stream has been closed."""
+        return self._closed
+
+    @property
+    def simulator(self) -> SerialSimulatorLike:
+        """The simulated board at the far end."""
+        return self._simulator
+
+    async def send(self, data: bytes) -> None:
+        """Hand ``data`` to the simulator and queue its response.
+
+        :raises BoardDisconnectionError: the simulated board is disconnected, or the
+            stream is closed.
+        """
+        await anyio.lowlevel.checkpoint()
+        self._check_usable()
+        response = self._simulator.receive(data)
+        self._queue_output(response, after=self._wire_time(data))
+
+    async def receive(self, max_bytes: int = 4096) -> bytes:
+        """Return the simulator's output once it is due; see :meth:`ByteStream.receive`."""
+        if max_bytes < 1:
+            raise ValueError(f"max_bytes must be at least 1, not {max_bytes}")
+        await anyio.lowlevel.checkpoint()
+        while True:
+            self._check_usable()
+            now = time.monotonic()
+            if self._pending and self._pending[0][0] <= now:
+                return self._take_due(now, max_bytes)
+            wait = self._poll_interval
+            if self._pending:
+                wait = min(wait, self._pending[0][0] - now)
+            self._wakeup = anyio.Event()
+            with anyio.move_on_after(wait):
+                await self._wakeup.wait()
+
+    def close_now(self) -> None:
+        """Close the stream; a waiting :meth:`receive` is woken and raises."""
+        self._closed = True
+        self._pending.clear()
+        if self._wakeup is not None:
+            self._wakeup.set()
+
+    def _check_usable(self) -> None:
+        if self._closed:
+            raise BoardDisconnectionError(f"{self._name}: the stream is closed")
+        if not self._simulator.connected:
+            self._pending.clear()
+            raise BoardDisconnectionError(
+                f"{self._name}: the simulated board has been disconnected"
+            )
+
+    def _wire_time(self, data: bytes) -> float:
+        if not self._uart_timing or not data:
+            return 0.0
+        return len(data) * 10 / self._simulator.baudrate * self._time_scale
+
+    def _queue_output(self, data: bytes, *, after: float) -> None:
+        # Output never overtakes earlier output, as on a real wire.
+        due = max(self._last_due, time.monotonic() + after) + self._wire_time(data)
+        self._last_due = due
+        if data:
+            self._pending.append((due, data))
+            if self._wakeup is not None:
+                self._wakeup.set()
+
+    def _take_due(self, now: float, max_bytes: int) -> bytes:
+        taken = bytearray()
+        while self._pending and self._pending[0][0] <= now and len(taken) < max_bytes:
+            due, chunk = self._pending.popleft()
+            room = max_bytes - len(taken)
+            taken += chunk[:room]
+            if len(chunk) > room:
+                self._pending.appendleft((due, chunk[room:]))
+        return bytes(taken)

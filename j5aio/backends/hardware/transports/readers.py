@@ -1,0 +1,220 @@
+r"""Reply readers: how a :class:`~.serial_link.SerialLink` knows a reply has ended.
+
+A reader looks at the bytes received so far and either says "not complete yet" or returns
+the parsed reply and how many bytes it used. Readers hold no state, so one instance can
+be kept at module level and shared::
+
+    STATUS = read_lines_until(line_starts_with(b"+", b"-"))   # SB Arduino 2019
+    reply = await link.exchange(b"R 2\n", STATUS, timeout=1.25)
+
+    line = await link.exchange(b"v", read_line(), timeout=0.5)    # Ruggeduino
+    version = await link.exchange(b"\x01", read_line(), timeout=0.25)  # motor fw 3
+"""
+
+from __future__ import annotations
+
+import abc
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Generic, TypeVar
+
+from j5aio.errors import UnexpectedReplyError
+
+__all__ = [
+    "ExactReader",
+    "LineReader",
+    "LinesUntilReader",
+    "ReplyReader",
+    "line_starts_with",
+    "read_exactly",
+    "read_line",
+    "read_lines_until",
+]
+
+T_co = TypeVar("T_co", covariant=True)
+
+#: The longest line readers accept by default, in bytes, terminator included.
+DEFAULT_MAX_LINE = 4096
+
+
+class ReplyReader(abc.ABC, Generic[T_co]):
+    """Decides where a reply ends, and parses it."""
+
+    @abc.abstractmethod
+    def parse(self, buffer: bytes | bytearray) -> tuple[T_co, int] | None:
+        """Parse a reply at the start of ``buffer``.
+
+        :returns: ``(reply, bytes_used)`` if ``buffer`` starts with a complete reply, or
+            ``None`` if more bytes are needed.
+        :raises UnexpectedReplyError: ``buffer`` cannot start a valid reply (for
+            example, a line longer than allowed).
+        """
+
+    @abc.abstractmethod
+    def describe(self) -> str:
+        """Say in a few words what this reader waits for, for error messages."""
+
+
+def _split_line(
+    buffer: bytes | bytearray, start: int, terminator: bytes, max_length: int
+) -> tuple[bytes, int] | None:
+    """Find the line starting at ``start``: return (line with terminator, end) or None."""
+    end = buffer.find(terminator, start)
+    if end < 0:
+        if len(buffer) - start > max_length:
+            raise UnexpectedReplyError(
+                f"received {len(buffer) - start} bytes without a line ending "
+                f"{terminator!r} (longest line allowed is {max_length} bytes)"
+            )
+        return None
+    end += len(terminator)
+    if end - start > max_length:
+        raise UnexpectedReplyError(
+            f"received a line of {end - start} bytes (longest allowed is {max_length})"
+        )
+    return bytes(buffer[start:end]), end
+
+
+def _strip_line(line: bytes, terminator: bytes) -> bytes:
+    line = line[: -len(terminator)]
+    if terminator == b"\n" and line.endswith(b"\r"):
+        line = line[:-1]
+    return line
+
+
+@dataclass(frozen=True)
+class LineReader(ReplyReader[bytes]):
+    """One line; see :func:`read_line`."""
+
+    terminator: bytes = b"\n"
+    keep_ends: bool = False
+    max_length: int = DEFAULT_MAX_LINE
+
+    def __post_init__(self) -> None:
+        if not self.terminator:
+            raise ValueError("the line terminator must not be empty")
+
+    def parse(self, buffer: bytes | bytearray) -> tuple[bytes, int] | None:
+        """Return the first line of ``buffer``, if it is complete."""
+        found = _split_line(buffer, 0, self.terminator, self.max_length)
+        if found is None:
+            return None
+        line, end = found
+        return (line if self.keep_ends else _strip_line(line, self.terminator)), end
+
+    def describe(self) -> str:
+        """Describe this reader."""
+        return f"a line ending {self.terminator!r}"
+
+
+@dataclass(frozen=True)
+class ExactReader(ReplyReader[bytes]):
+    """A fixed number of bytes; see :func:`read_exactly`."""
+
+    count: int
+
+    def __post_init__(self) -> None:
+        if self.count < 1:
+            raise ValueError(f"the byte count must be at least 1, not {self.count}")
+
+    def parse(self, buffer: bytes | bytearray) -> tuple[bytes, int] | None:
+        """Return the first :attr:`count` bytes of ``buffer``, once there are enough."""
+        if len(buffer) < self.count:
+            return None
+        return bytes(buffer[: self.count]), self.count
+
+    def describe(self) -> str:
+        """Describe this reader."""
+        return f"{self.count} bytes"
+
+
+@dataclass(frozen=True)
+class LinesUntilReader(ReplyReader[list[bytes]]):
+    """Lines up to and including one that satisfies a predicate; see :func:`read_lines_until`."""
+
+    predicate: Callable[[bytes], bool]
+    terminator: bytes = b"\n"
+    keep_ends: bool = False
+    max_lines: int = 64
+    max_length: int = DEFAULT_MAX_LINE
+
+    def __post_init__(self) -> None:
+        if not self.terminator:
+            raise ValueError("the line terminator must not be empty")
+        if self.max_lines < 1:
+            raise ValueError(f"max_lines must be at least 1, not {self.max_lines}")
+
+    def parse(self, buffer: bytes | bytearray) -> tuple[list[bytes], int] | None:
+        """Return the lines of ``buffer`` up to the final one, once it has arrived."""
+        lines: list[bytes] = []
+        position = 0
+        while True:
+            found = _split_line(buffer, position, self.terminator, self.max_length)
+            if found is None:
+                return None
+            raw, position = found
+            stripped = _strip_line(raw, self.terminator)
+            lines.append(raw if self.keep_ends else stripped)
+            if self.predicate(stripped):
+                return lines, position
+            if len(lines) >= self.max_lines:
+                raise UnexpectedReplyError(
+                    f"received {len(lines)} lines without the final line of the reply"
+                )
+
+    def describe(self) -> str:
+        """Describe this reader."""
+        name = getattr(self.predicate, "__name__", repr(self.predicate))
+        return f"lines ending {self.terminator!r} until one satisfies {name}"
+
+
+def read_line(
+    terminator: bytes = b"\n", *, keep_ends: bool = False, max_length: int = DEFAULT_MAX_LINE
+) -> LineReader:
+    r"""Read one line.
+
+    :param terminator: the bytes that end the line.
+    :param keep_ends: keep the terminator. Without it, the terminator is removed, and
+        for ``b"\n"`` a ``b"\r"`` before it too.
+    :param max_length: the longest line accepted, terminator included; more bytes
+        without a terminator raise :class:`~j5aio.errors.UnexpectedReplyError`.
+    """
+    return LineReader(terminator, keep_ends, max_length)
+
+
+def read_exactly(count: int) -> ExactReader:
+    """Read exactly ``count`` bytes."""
+    return ExactReader(count)
+
+
+def read_lines_until(
+    predicate: Callable[[bytes], bool],
+    *,
+    terminator: bytes = b"\n",
+    keep_ends: bool = False,
+    max_lines: int = 64,
+    max_length: int = DEFAULT_MAX_LINE,
+) -> LinesUntilReader:
+    r"""Read lines until one satisfies ``predicate``; return them all, that one included.
+
+    ``predicate`` is called with each line without its terminator (and without a
+    ``b"\r"`` before a ``b"\n"``). More than ``max_lines`` lines without the final one
+    raise :class:`~j5aio.errors.UnexpectedReplyError`.
+    """
+    return LinesUntilReader(predicate, terminator, keep_ends, max_lines, max_length)
+
+
+def line_starts_with(*prefixes: bytes) -> Callable[[bytes], bool]:
+    """Return a predicate for :func:`read_lines_until`: the line starts with a prefix.
+
+    ``line_starts_with(b"+", b"-")`` finds the status line that ends an SB Arduino
+    (2019) reply.
+    """
+    if not prefixes:
+        raise ValueError("give at least one prefix")
+
+    def starts_with_prefix(line: bytes) -> bool:
+        return line.startswith(prefixes)
+
+    starts_with_prefix.__name__ = f"line_starts_with{prefixes!r}"
+    return starts_with_prefix

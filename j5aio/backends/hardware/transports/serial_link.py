@@ -1,0 +1,389 @@
+"""One :class:`SerialLink` per open port: serialised requests, replies never mixed up.
+
+Design
+======
+
+**Who reads.** The link has no reader task. It keeps a buffer of received bytes and pulls
+from its :class:`~.stream.ByteStream` only while a caller holds the link's lock and waits
+for a reply (an :meth:`~SerialLink.exchange`, a :meth:`~SerialLink.read_line`, a
+:meth:`~SerialLink.drain`). This is enough because every stream buffers what arrives on
+its own side (the asyncio protocol, the in-memory inbox), so nothing is lost between
+requests, and the protocols driven through it (SR, SB, Ruggeduino) only ever speak in
+reply to the host, apart from a boot banner which is read on purpose. Without a task the
+link needs no task group, no start-up and no owner: it can be made anywhere, used from
+any task, and closed synchronously with :meth:`~SerialLink.close_now` (in ``atexit``,
+say). A reader task would only add a second place where bytes wait.
+
+**Serialisation.** One :class:`anyio.Lock` (FIFO) per link: sends, exchanges, plain reads
+and drains run one at a time, in the order they asked.
+
+**Cancellation.** The trap: a request cancelled after its bytes were written leaves its
+reply on the line, and the next request reads it. So the whole of an exchange (write the
+request, read the reply) runs inside ``anyio.CancelScope(shield=True)``, with the timeout
+*inside* the shield. A caller that is cancelled part way still has its exchange complete
+and consume its own reply; the cancellation takes effect once the exchange is over (at
+worst ``timeout`` later; plus the bounded drain described next). Cancelling a caller
+that is still waiting for the lock is immediate and sends nothing.
+
+**Timeouts and the dirty flag.** A timeout is the only way an exchange can end while its
+reply may still be coming. After a timeout (or any exchange that did not finish: a stream
+error, an unparseable reply, an asyncio ``Task.cancel`` that broke through the shield)
+the link is marked *dirty*. The next exchange first discards input until the line has
+been quiet for ``quiet_time`` (default 20 ms), for at most ``drain_limit`` (then it raises
+:class:`~j5aio.errors.CommunicationError` and stays dirty). Bytes left in the link's
+buffer when an exchange starts (the rest of a boot banner, extra bytes after a reply)
+are never a reply to the new request: they are discarded, and extra bytes after a reply
+mark the link dirty.
+
+**Cancel through anyio.** ``asyncio.Task.cancel()`` breaks through anyio shields. Cancel
+tasks that use a link through anyio cancel scopes (``move_on_after``, ``fail_after``,
+task groups). If a shielded exchange is torn anyway, the link is marked dirty, so the
+torn exchange's reply is drained rather than taken by the next caller (as long as it
+arrives within the quiet time of the next exchange's drain).
+
+**Errors.** A timeout raises :class:`~j5aio.errors.CommunicationTimeoutError` naming the
+port and what was sent; a vanished port raises
+:class:`~j5aio.errors.BoardDisconnectionError`; a reply a reader cannot parse raises
+:class:`~j5aio.errors.UnexpectedReplyError`; a stray ``OSError`` or anyio stream error
+from a stream is wrapped in :class:`~j5aio.errors.CommunicationError`.
+
+**Wire log.** Every chunk sent and received is logged at
+:data:`~.trace.TRACE` on ``j5aio.wire.<port>``.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from types import TracebackType
+from typing import TypeVar
+
+import anyio
+
+from j5aio.errors import (
+    BoardDisconnectionError,
+    CommunicationError,
+    CommunicationTimeoutError,
+    UnexpectedReplyError,
+)
+
+from .readers import ReplyReader, read_line
+from .stream import ByteStream
+from .trace import log_wire, wire_logger
+
+__all__ = ["SerialLink"]
+
+T = TypeVar("T")
+
+_log = logging.getLogger(__name__)
+
+_DISCONNECTION_ERRORS = (anyio.EndOfStream, anyio.BrokenResourceError, anyio.ClosedResourceError)
+
+
+def _check_duration(name: str, value: float) -> float:
+    if not value > 0 or math.isnan(value):
+        raise ValueError(f"{name} must be a positive number of seconds, not {value!r}")
+    return value
+
+
+def _preview(data: bytes | bytearray, limit: int = 80) -> str:
+    shown = repr(bytes(data[:limit]))
+    return shown + (f" (+{len(data) - limit} more bytes)" if len(data) > limit else "")
+
+
+class SerialLink:
+    """Requests and replies over one :class:`~.stream.ByteStream`, safely serialised.
+
+    :param stream: the open stream to the board; the link owns it and closes it.
+    :param name: the port name for errors and the wire log; defaults to the stream's.
+    :param default_timeout: seconds to wait when a call gives no timeout.
+    :param quiet_time: seconds of silence that count as "the line is quiet" when
+        draining a dirty link.
+    :param drain_limit: the longest a drain may take before giving up, in seconds.
+    :param chunk_size: the most bytes asked of the stream at once.
+    """
+
+    def __init__(
+        self,
+        stream: ByteStream,
+        *,
+        name: str | None = None,
+        default_timeout: float = 1.0,
+        quiet_time: float = 0.02,
+        drain_limit: float = 0.5,
+        chunk_size: int = 4096,
+    ) -> None:
+        self._stream = stream
+        self._name = name if name is not None else stream.name
+        self._default_timeout = _check_duration("default_timeout", default_timeout)
+        self._quiet_time = _check_duration("quiet_time", quiet_time)
+        self._drain_limit = _check_duration("drain_limit", drain_limit)
+        if chunk_size < 1:
+            raise ValueError(f"chunk_size must be at least 1, not {chunk_size}")
+        self._chunk_size = chunk_size
+        self._lock = anyio.Lock()
+        self._buffer = bytearray()
+        self._dirty = False
+        self._closed = False
+        self._wire = wire_logger(self._name)
+
+    # -- state ---------------------------------------------------------------------------
+
+    @property
+    def name(self) -> str:
+        """The port name used in errors and the wire log."""
+        return self._name
+
+    @property
+    def stream(self) -> ByteStream:
+        """The stream this link reads and writes."""
+        return self._stream
+
+    @property
+    def is_closed(self) -> bool:
+        """Whether the link has been closed."""
+        return self._closed
+
+    @property
+    def is_dirty(self) -> bool:
+        """Whether the next exchange will first drain input until the line is quiet."""
+        return self._dirty
+
+    @property
+    def buffered(self) -> bytes:
+        """Bytes received but not yet read (a copy, for inspection)."""
+        return bytes(self._buffer)
+
+    def mark_dirty(self) -> None:
+        """Make the next exchange drain input first.
+
+        Call it when a reply made no sense, so that whatever else the board sends is not
+        taken as the reply to the next request.
+        """
+        self._dirty = True
+
+    # -- requests ------------------------------------------------------------------------
+
+    async def send(self, data: bytes, *, timeout: float | None = None) -> None:
+        """Send ``data`` with no reply expected (for example a motor speed command).
+
+        Serialised with the exchanges, and shielded like them: a cancelled caller never
+        leaves a command half sent.
+
+        :raises CommunicationTimeoutError: the bytes could not be sent in time.
+        :raises BoardDisconnectionError: the port has gone or the link is closed.
+        """
+        seconds = self._timeout(timeout)
+        data = bytes(data)
+        async with self._lock:
+            with anyio.CancelScope(shield=True):
+                self._check_open()
+                finished = False
+                try:
+                    with anyio.move_on_after(seconds):
+                        await self._write(data)
+                        finished = True
+                        return
+                    raise CommunicationTimeoutError(
+                        f"{self._name}: could not send {_preview(data)} within {seconds} s"
+                    )
+                finally:
+                    if not finished:
+                        self._dirty = True
+
+    async def exchange(
+        self, request: bytes, reader: ReplyReader[T], *, timeout: float | None = None
+    ) -> T:
+        """Send ``request`` and return the reply that ``reader`` parses.
+
+        The exchange is shielded from cancellation, with ``timeout`` applying inside the
+        shield, so a cancelled caller's exchange still completes and consumes its reply.
+        If the link is dirty, input is first drained until the line is quiet (this does
+        not count towards ``timeout``).
+
+        :param request: the bytes to send; ``b""`` only reads a reply.
+        :param reader: where the reply ends, e.g. :func:`~.readers.read_line`.
+        :param timeout: seconds allowed for sending and the whole reply; defaults to
+            the link's ``default_timeout``.
+        :raises CommunicationTimeoutError: no complete reply in time; the link becomes dirty.
+        :raises UnexpectedReplyError: ``reader`` could not parse what arrived.
+        :raises BoardDisconnectionError: the port has gone or the link is closed.
+        :raises CommunicationError: the line never went quiet while draining.
+        """
+        seconds = self._timeout(timeout)
+        request = bytes(request)
+        async with self._lock:
+            with anyio.CancelScope(shield=True):
+                reply = await self._exchange_locked(request, reader, seconds)
+        return reply
+
+    async def read(self, reader: ReplyReader[T], *, timeout: float | None = None) -> T:
+        """Read what ``reader`` parses without sending anything (a boot banner, say).
+
+        Not shielded: cancelling it loses nothing, since bytes stay buffered until a
+        complete reply is parsed. Bytes left over stay buffered for the next read.
+
+        :raises CommunicationTimeoutError: nothing complete arrived in time.
+        """
+        seconds = self._timeout(timeout)
+        async with self._lock:
+            self._check_open()
+            with anyio.move_on_after(seconds):
+                return await self._read_reply(reader, b"")
+            raise CommunicationTimeoutError(
+                f"{self._name}: nothing matching {reader.describe()} arrived within "
+                f"{seconds} s (received so far: {_preview(self._buffer)})"
+            )
+
+    async def read_line(self, *, timeout: float | None = None, terminator: bytes = b"\n") -> bytes:
+        """Read one line without sending anything; see :meth:`read` and :func:`.read_line`."""
+        return await self.read(read_line(terminator), timeout=timeout)
+
+    async def drain(self, quiet_time: float | None = None, *, limit: float | None = None) -> int:
+        """Discard input until the line has been quiet for ``quiet_time`` seconds.
+
+        Also clears the dirty mark. Returns how many bytes were discarded.
+
+        :param quiet_time: seconds of silence to wait for; defaults to the link's.
+        :param limit: the most seconds to spend; defaults to the link's ``drain_limit``.
+        :raises CommunicationError: the line was still busy after ``limit`` seconds.
+        """
+        quiet = self._quiet_time if quiet_time is None else quiet_time
+        bound = self._drain_limit if limit is None else limit
+        _check_duration("quiet_time", quiet)
+        _check_duration("limit", bound)
+        async with self._lock:
+            self._check_open()
+            return await self._drain_locked(quiet, bound)
+
+    # -- closing -------------------------------------------------------------------------
+
+    def close_now(self) -> None:
+        """Close the link and its stream at once, synchronously; idempotent.
+
+        Waiting callers get :class:`~j5aio.errors.BoardDisconnectionError`.
+        """
+        self._closed = True
+        self._stream.close_now()
+
+    async def aclose(self) -> None:
+        """Close the link and its stream, letting queued output go first; idempotent."""
+        self._closed = True
+        with anyio.CancelScope(shield=True):
+            await self._stream.aclose()
+
+    async def __aenter__(self) -> SerialLink:
+        return self
+
+    async def __aexit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        await self.aclose()
+
+    def __repr__(self) -> str:
+        state = "closed" if self._closed else ("dirty" if self._dirty else "open")
+        return f"<SerialLink {self._name!r} {state}>"
+
+    # -- internals (all called with the lock held) -------------------------------------
+
+    def _timeout(self, timeout: float | None) -> float:
+        if timeout is None:
+            return self._default_timeout
+        return _check_duration("timeout", timeout)
+
+    def _check_open(self) -> None:
+        if self._closed:
+            raise BoardDisconnectionError(f"{self._name}: the link is closed")
+
+    async def _exchange_locked(self, request: bytes, reader: ReplyReader[T], seconds: float) -> T:
+        self._check_open()
+        finished = False
+        try:
+            if self._dirty:
+                await self._drain_locked(self._quiet_time, self._drain_limit)
+            if self._buffer:
+                _log.debug("%s: discarding stale input %s", self._name, _preview(self._buffer))
+                self._buffer.clear()
+            with anyio.move_on_after(seconds):
+                await self._write(request)
+                reply = await self._read_reply(reader, request)
+                finished = True
+                if self._buffer:
+                    _log.debug(
+                        "%s: reply to %r followed by %s; the next exchange drains first",
+                        self._name,
+                        request,
+                        _preview(self._buffer),
+                    )
+                    self._dirty = True
+                return reply
+            raise CommunicationTimeoutError(
+                f"{self._name}: no complete reply ({reader.describe()}) to {_preview(request)} "
+                f"within {seconds} s (received so far: {_preview(self._buffer)})"
+            )
+        finally:
+            if not finished:
+                self._dirty = True
+
+    async def _read_reply(self, reader: ReplyReader[T], request: bytes) -> T:
+        while True:
+            try:
+                parsed = reader.parse(self._buffer)
+            except UnexpectedReplyError as exc:
+                about = f" to {_preview(request)}" if request else ""
+                raise UnexpectedReplyError(f"{self._name}: bad reply{about}: {exc}") from exc
+            if parsed is not None:
+                reply, used = parsed
+                del self._buffer[:used]
+                return reply
+            self._buffer += await self._receive()
+
+    async def _drain_locked(self, quiet: float, bound: float) -> int:
+        discarded = len(self._buffer)
+        self._buffer.clear()
+        deadline = anyio.current_time() + bound
+        while True:
+            with anyio.move_on_after(quiet) as silence:
+                discarded += len(await self._receive())
+            if silence.cancelled_caught:
+                break
+            if anyio.current_time() >= deadline:
+                self._dirty = True
+                raise CommunicationError(
+                    f"{self._name}: the board kept sending for {bound} s; could not find a "
+                    f"quiet moment to start the next request (discarded {discarded} bytes)"
+                )
+        if discarded:
+            _log.debug("%s: drained %d bytes of stale input", self._name, discarded)
+        self._dirty = False
+        return discarded
+
+    async def _write(self, data: bytes) -> None:
+        log_wire(self._wire, "->", data)
+        if not data:
+            return
+        try:
+            await self._stream.send(data)
+        except CommunicationError:
+            raise
+        except _DISCONNECTION_ERRORS as exc:
+            raise BoardDisconnectionError(f"{self._name}: the port has gone ({exc!r})") from exc
+        except OSError as exc:
+            raise CommunicationError(
+                f"{self._name}: sending {_preview(data)} failed: {exc}"
+            ) from exc
+
+    async def _receive(self) -> bytes:
+        try:
+            chunk = await self._stream.receive(self._chunk_size)
+        except CommunicationError:
+            raise
+        except _DISCONNECTION_ERRORS as exc:
+            raise BoardDisconnectionError(f"{self._name}: the port has gone ({exc!r})") from exc
+        except OSError as exc:
+            raise CommunicationError(f"{self._name}: reading failed: {exc}") from exc
+        log_wire(self._wire, "<-", chunk)
+        return chunk

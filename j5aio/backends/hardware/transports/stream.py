@@ -1,0 +1,98 @@
+"""The byte-stream seam: the one interface every transport above it depends on.
+
+A :class:`ByteStream` moves bytes to and from one board. Serial ports
+(:mod:`.serial_stream`), in-memory pairs and board simulators (:mod:`.memory`) and the
+fault-injecting fakes in :mod:`j5aio.testing.transports` all implement it, so that
+:class:`~.serial_link.SerialLink` and every backend above it never know which library, if
+any, carries the bytes. Replacing pyserial-asyncio-fast with another serial library means
+writing one new ``ByteStream``.
+
+The contract that implementations keep:
+
+* :meth:`ByteStream.receive` returns at least one byte. It raises
+  :class:`~j5aio.errors.BoardDisconnectionError` once the far end has gone (after any
+  bytes that arrived before that were returned) and once the stream has been closed.
+* Failures are reported as :class:`~j5aio.errors.CommunicationError` (or a subclass),
+  never as the exception of an underlying library.
+* :meth:`ByteStream.receive` is cancel-safe: when it is cancelled, no byte is lost; bytes
+  not yet returned stay for the next call.
+* :meth:`ByteStream.close_now` closes synchronously, without an executor or a running
+  event loop, so that it works inside ``atexit`` handlers. Call it from the thread that
+  runs the event loop, or after that loop has stopped.
+"""
+
+from __future__ import annotations
+
+import abc
+from types import TracebackType
+
+import anyio.lowlevel
+
+__all__ = ["ByteStream"]
+
+
+class ByteStream(abc.ABC):
+    """A bidirectional stream of bytes to one board.
+
+    Use it as an async context manager, or close it with :meth:`aclose` or
+    :meth:`close_now`.
+    """
+
+    @property
+    @abc.abstractmethod
+    def name(self) -> str:
+        """A human name for the far end, such as the port path; used in errors and logs."""
+
+    @property
+    @abc.abstractmethod
+    def is_closed(self) -> bool:
+        """Whether this stream has been closed from this side."""
+
+    @abc.abstractmethod
+    async def send(self, data: bytes) -> None:
+        """Send ``data`` to the far end.
+
+        :raises BoardDisconnectionError: the far end has gone or the stream is closed.
+        :raises CommunicationError: the bytes could not be sent.
+        """
+
+    @abc.abstractmethod
+    async def receive(self, max_bytes: int = 4096) -> bytes:
+        """Return between 1 and ``max_bytes`` bytes, waiting until at least one arrives.
+
+        :raises BoardDisconnectionError: the far end has gone (end of stream) or the
+            stream is closed.
+        :raises CommunicationError: reading failed.
+        """
+
+    @abc.abstractmethod
+    def close_now(self) -> None:
+        """Close the stream at once, synchronously; idempotent.
+
+        A task waiting in :meth:`receive` is woken and gets
+        :class:`~j5aio.errors.BoardDisconnectionError`.
+        """
+
+    async def aclose(self) -> None:
+        """Close the stream; idempotent.
+
+        The default closes at once with :meth:`close_now`; implementations with an output
+        buffer may first let it drain for a bounded time.
+        """
+        self.close_now()
+        await anyio.lowlevel.checkpoint()
+
+    async def __aenter__(self) -> ByteStream:
+        return self
+
+    async def __aexit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        await self.aclose()
+
+    def __repr__(self) -> str:
+        state = "closed" if self.is_closed else "open"
+        return f"<{type(self).__name__} {self.name!r} {state}>"

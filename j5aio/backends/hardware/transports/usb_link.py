@@ -1,0 +1,399 @@
+"""One :class:`USBLink` per USB device: blocking pyusb transfers on one worker thread.
+
+libusb calls block, so each device gets one dedicated thread that runs its transfers in
+the order they were asked for (measured: cheaper than ``anyio.to_thread`` per transfer,
+and ordered, which a thread pool is not).
+
+Cancellation: a transfer is a job on the thread's queue with its own future.
+
+* A caller cancelled while its job is still queued removes it: the transfer never runs.
+* A caller cancelled once its job has started is released at once; the transfer
+  completes on the thread and its result is dropped.
+* Results travel only through the job's own future, so they never reach another caller.
+
+Errors: a pyusb error becomes :class:`~j5aio.errors.USBCommunicationError` naming the
+board, with the pyusb exception kept as ``usb_error``. errno 19 (``ENODEV``: unplugged)
+becomes :class:`USBDisconnectionError`, which is also a
+:class:`~j5aio.errors.BoardDisconnectionError`; a pyusb timeout becomes
+:class:`USBTransferTimeoutError`, also a :class:`~j5aio.errors.CommunicationTimeoutError`.
+Callers may name what an errno means for one transfer (``errors={32: "..."}``).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import enum
+import errno
+import logging
+import queue
+import threading
+from collections.abc import Callable, Mapping
+from types import TracebackType
+from typing import Any, Generic, Protocol, TypeVar
+
+import usb.core
+import usb.util
+
+from j5aio.errors import (
+    BoardDisconnectionError,
+    CommunicationTimeoutError,
+    UnexpectedReplyError,
+    USBCommunicationError,
+)
+
+from .trace import log_wire, wire_logger
+
+__all__ = [
+    "CONTROL_REQUEST",
+    "READ_REQUEST_TYPE",
+    "WRITE_REQUEST_TYPE",
+    "USBDeviceLike",
+    "USBDisconnectionError",
+    "USBLink",
+    "USBTransferTimeoutError",
+]
+
+_log = logging.getLogger(__name__)
+
+#: bmRequestType of an SR board's vendor read (device to host).
+READ_REQUEST_TYPE = 0x80
+#: bmRequestType of an SR board's vendor write (host to device).
+WRITE_REQUEST_TYPE = 0x00
+#: bRequest that SR USB boards answer.
+CONTROL_REQUEST = 64
+
+T = TypeVar("T")
+
+
+class USBDisconnectionError(USBCommunicationError, BoardDisconnectionError):
+    """A USB board has gone away (pyusb errno 19, ``ENODEV``), or its link is closed."""
+
+
+class USBTransferTimeoutError(USBCommunicationError, CommunicationTimeoutError):
+    """A USB transfer did not complete within its timeout."""
+
+
+class USBDeviceLike(Protocol):
+    """The part of a pyusb ``usb.core.Device`` that :class:`USBLink` uses."""
+
+    @property
+    def idVendor(self) -> int:  # noqa: N802 - pyusb's name
+        """The USB vendor ID."""
+        ...
+
+    @property
+    def idProduct(self) -> int:  # noqa: N802 - pyusb's name
+        """The USB product ID."""
+        ...
+
+    @property
+    def serial_number(self) -> str | None:
+        """The serial number string (reading it talks to the device)."""
+        ...
+
+    def ctrl_transfer(
+        self,
+        bmRequestType: int,  # noqa: N803 - pyusb's name
+        bRequest: int,  # noqa: N803
+        wValue: int = 0,  # noqa: N803
+        wIndex: int = 0,  # noqa: N803
+        data_or_wLength: Any = None,  # noqa: N803
+        timeout: int | None = None,
+    ) -> Any:
+        """Run a control transfer: return the data read, or the number of bytes written."""
+        ...
+
+
+class _State(enum.Enum):
+    QUEUED = enum.auto()
+    RUNNING = enum.auto()
+    WITHDRAWN = enum.auto()
+
+
+class _Job(Generic[T]):
+    """One transfer waiting for, or running on, the worker thread."""
+
+    def __init__(
+        self, work: Callable[[], T], loop: asyncio.AbstractEventLoop, future: asyncio.Future[Any]
+    ) -> None:
+        self.work = work
+        self.loop = loop
+        self.future = future
+        self._state = _State.QUEUED
+        self._lock = threading.Lock()
+
+    def start(self) -> bool:
+        """Claim the job for the thread; False if its caller has withdrawn it."""
+        with self._lock:
+            if self._state is _State.WITHDRAWN:
+                return False
+            self._state = _State.RUNNING
+            return True
+
+    def withdraw(self) -> None:
+        """Stop the job from running, if it has not started."""
+        with self._lock:
+            if self._state is _State.QUEUED:
+                self._state = _State.WITHDRAWN
+
+    def finish(self, outcome: tuple[bool, Any]) -> None:
+        """Hand ``(succeeded, value_or_exception)`` to the waiting caller, if any."""
+        _post(self.loop, self.future, outcome)
+
+
+def _resolve(future: asyncio.Future[Any], outcome: Any) -> None:
+    if not future.done():
+        future.set_result(outcome)
+
+
+def _post(loop: asyncio.AbstractEventLoop, future: asyncio.Future[Any], outcome: Any) -> None:
+    """Resolve ``future`` from another thread; nothing happens if its loop has closed."""
+    with contextlib.suppress(RuntimeError):
+        loop.call_soon_threadsafe(_resolve, future, outcome)
+
+
+class USBLink:
+    """Ordered transfers to one USB device on a dedicated worker thread.
+
+    :param device: the pyusb device (or a stand-in with the same shape).
+    :param board_name: how errors name the board, e.g. ``"Power Board SRABC1"``.
+    :param timeout_ms: the timeout of each transfer, passed to pyusb, in milliseconds.
+    """
+
+    def __init__(self, device: USBDeviceLike, *, board_name: str, timeout_ms: int = 1000) -> None:
+        if timeout_ms < 1:
+            raise ValueError(f"timeout_ms must be at least 1, not {timeout_ms}")
+        self._device = device
+        self._board_name = board_name
+        self._timeout_ms = timeout_ms
+        self._closed = False
+        self._stopped = False
+        self._stop_waiters: list[tuple[asyncio.AbstractEventLoop, asyncio.Future[Any]]] = []
+        # Guards _closed, _stopped and _stop_waiters, so that no job is queued behind
+        # the stop sentinel even if close_now runs on another thread.
+        self._state_lock = threading.Lock()
+        self._jobs: queue.SimpleQueue[_Job[Any] | None] = queue.SimpleQueue()
+        self._wire = wire_logger(f"usb:{board_name}")
+        self._thread = threading.Thread(
+            target=self._run, name=f"j5aio USB {board_name}", daemon=True
+        )
+        self._thread.start()
+
+    @property
+    def board_name(self) -> str:
+        """The name errors give the board."""
+        return self._board_name
+
+    @property
+    def device(self) -> USBDeviceLike:
+        """The device this link drives."""
+        return self._device
+
+    @property
+    def is_closed(self) -> bool:
+        """Whether the link has been closed."""
+        return self._closed
+
+    @property
+    def thread(self) -> threading.Thread:
+        """The worker thread (exposed so that tests can check it has stopped)."""
+        return self._thread
+
+    # -- transfers -----------------------------------------------------------------------
+
+    async def control_read(
+        self,
+        w_index: int,
+        length: int,
+        *,
+        w_value: int = 0,
+        exact: bool = True,
+        errors: Mapping[int, str] | None = None,
+    ) -> bytes:
+        """Read ``length`` bytes with a vendor control transfer (0x80, request 64).
+
+        :param exact: raise :class:`~j5aio.errors.UnexpectedReplyError` if fewer bytes
+            arrive.
+        :param errors: messages for specific errnos of this transfer.
+        """
+        description = f"reading {length} bytes from wIndex {w_index} (wValue {w_value})"
+
+        def transfer() -> bytes:
+            data = self._device.ctrl_transfer(
+                READ_REQUEST_TYPE, CONTROL_REQUEST, w_value, w_index, length, self._timeout_ms
+            )
+            return bytes(data)
+
+        reply = await self.call(transfer, description=description, errors=errors)
+        log_wire(self._wire, f"<- wIndex={w_index} wValue={w_value}", reply)
+        if exact and len(reply) != length:
+            raise UnexpectedReplyError(
+                f"{self._board_name}: {description} returned {len(reply)} bytes"
+            )
+        return reply
+
+    async def control_write(
+        self,
+        w_index: int,
+        w_value: int,
+        data: bytes = b"",
+        *,
+        errors: Mapping[int, str] | None = None,
+    ) -> None:
+        """Write with a vendor control transfer (0x00, request 64).
+
+        :param errors: messages for specific errnos of this transfer, such as
+            ``{32: "the piezo queue is full: buzzing too fast"}``.
+        """
+        payload = bytes(data)
+        description = f"writing wIndex {w_index} wValue {w_value} data {payload!r}"
+        log_wire(self._wire, f"-> wIndex={w_index} wValue={w_value}", payload)
+
+        def transfer() -> int:
+            written: int = self._device.ctrl_transfer(
+                WRITE_REQUEST_TYPE, CONTROL_REQUEST, w_value, w_index, payload, self._timeout_ms
+            )
+            return written
+
+        written = await self.call(transfer, description=description, errors=errors)
+        if written != len(payload):
+            raise USBCommunicationError(
+                f"{self._board_name}: {description} wrote only {written} bytes"
+            )
+
+    async def read_serial_number(self) -> str | None:
+        """Read the device's serial number string (a transfer, so on the worker thread)."""
+        return await self.call(
+            lambda: self._device.serial_number, description="reading the serial number"
+        )
+
+    async def call(
+        self,
+        work: Callable[[], T],
+        *,
+        description: str,
+        errors: Mapping[int, str] | None = None,
+    ) -> T:
+        """Run ``work`` on the worker thread, after every transfer asked for before it.
+
+        Any pyusb transfer may be run this way. Exceptions that ``work`` raises become
+        :class:`~j5aio.errors.USBCommunicationError` (or one of the subclasses above).
+
+        :param description: what ``work`` does, for error messages.
+        :param errors: messages for specific errnos.
+        """
+        loop = asyncio.get_running_loop()
+        future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
+        job = _Job(work, loop, future)
+        with self._state_lock:
+            if self._closed:
+                raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
+            self._jobs.put(job)
+        try:
+            succeeded, value = await future
+        except BaseException:
+            job.withdraw()
+            raise
+        if succeeded:
+            result: T = value
+            return result
+        raise self._translate(value, description, errors or {}) from value
+
+    # -- closing -------------------------------------------------------------------------
+
+    def close_now(self, timeout: float = 2.0) -> None:
+        """Stop the worker thread once the transfers already asked for are done.
+
+        Synchronous (no event loop or executor needed, so it works in ``atexit``);
+        waits up to ``timeout`` seconds for the thread. Idempotent.
+        """
+        self._request_stop()
+        if threading.current_thread() is not self._thread:
+            self._thread.join(timeout)
+
+    async def aclose(self) -> None:
+        """Stop the worker thread once the transfers already asked for are done."""
+        loop = asyncio.get_running_loop()
+        stopped: asyncio.Future[Any] = loop.create_future()
+        with self._state_lock:
+            if self._stopped:
+                return
+            self._stop_waiters.append((loop, stopped))
+        self._request_stop()
+        await stopped
+
+    def _request_stop(self) -> None:
+        with self._state_lock:
+            if self._closed:
+                return
+            self._closed = True
+            self._jobs.put(None)
+
+    async def __aenter__(self) -> USBLink:
+        return self
+
+    async def __aexit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        await self.aclose()
+
+    def __repr__(self) -> str:
+        state = "closed" if self._closed else "open"
+        return f"<USBLink {self._board_name!r} {state}>"
+
+    # -- internals -----------------------------------------------------------------------
+
+    def _run(self) -> None:
+        while True:
+            job = self._jobs.get()
+            if job is None:
+                break
+            if not job.start():
+                continue
+            try:
+                outcome: tuple[bool, Any] = (True, job.work())
+            except Exception as exc:
+                outcome = (False, exc)
+            job.finish(outcome)
+        self._release_device()
+        with self._state_lock:
+            self._stopped = True
+            waiters, self._stop_waiters = self._stop_waiters, []
+        for loop, future in waiters:
+            _post(loop, future, None)
+
+    def _release_device(self) -> None:
+        if isinstance(self._device, usb.core.Device):
+            try:
+                usb.util.dispose_resources(self._device)
+            except Exception as exc:  # pragma: no cover - depends on libusb
+                _log.debug("%s: releasing the device failed: %r", self._board_name, exc)
+
+    def _translate(
+        self, exc: BaseException, description: str, errors: Mapping[int, str]
+    ) -> USBCommunicationError:
+        code = getattr(exc, "errno", None)
+        detail = getattr(exc, "strerror", None) or str(exc) or type(exc).__name__
+        custom = errors.get(code) if isinstance(code, int) else None
+        if code == errno.ENODEV:
+            return USBDisconnectionError(
+                f"{self._board_name}: {custom}"
+                if custom
+                else f"{self._board_name} has been disconnected ({description}: {detail}). "
+                "Check its USB cable and power, then run the program again.",
+                exc,
+            )
+        if isinstance(exc, usb.core.USBTimeoutError) or code == errno.ETIMEDOUT:
+            return USBTransferTimeoutError(
+                f"{self._board_name}: {custom}"
+                if custom
+                else f"{self._board_name} did not answer in time ({description}: {detail})",
+                exc,
+            )
+        if custom:
+            return USBCommunicationError(f"{self._board_name}: {custom}", exc)
+        return USBCommunicationError(f"{self._board_name}: {description} failed: {detail}", exc)
