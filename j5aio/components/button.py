@@ -4,9 +4,13 @@ from __future__ import annotations
 
 from abc import abstractmethod
 
+import anyio
+
+from j5aio.components._checks import check_timeout
+from j5aio.components._identified import IdentifiedComponent
 from j5aio.components.component import Interface
 
-__all__ = ["ButtonInterface"]
+__all__ = ["Button", "ButtonInterface"]
 
 
 class ButtonInterface(Interface):
@@ -24,3 +28,37 @@ class ButtonInterface(Interface):
         Must be cancellable: the component applies any timeout by cancelling this call.
         """
         raise NotImplementedError
+
+
+class Button(IdentifiedComponent[ButtonInterface]):
+    """A button the user can press, such as the start button of a robot.
+
+    :param identifier: the number of the button on its board.
+    :param backend: the backend that reads the button.
+    """
+
+    __slots__ = ()
+
+    @classmethod
+    def interface_class(cls) -> type[ButtonInterface]:
+        """The interface a backend implements to read buttons: :class:`ButtonInterface`."""
+        return ButtonInterface
+
+    async def get_is_pressed(self) -> bool:
+        """Return ``True`` if the button is held down right now."""
+        return await self._backend.get_button_state(self._identifier)
+
+    async def wait_until_pressed(self, timeout: float | None = None) -> None:
+        """Wait until the button is pressed.
+
+        Other tasks keep running while this one waits, and the wait can be cancelled.
+
+        :param timeout: give up after this many seconds; ``None`` (the default) waits
+            for as long as it takes.
+        :raises TimeoutError: ``timeout`` seconds passed before the button was pressed.
+        :raises TypeError: ``timeout`` is not ``None`` or a number.
+        :raises ValueError: ``timeout`` is negative or NaN.
+        """
+        limit = check_timeout(timeout)
+        with anyio.fail_after(limit):
+            await self._backend.wait_until_button_pressed(self._identifier)

@@ -5,9 +5,11 @@ from __future__ import annotations
 from abc import abstractmethod
 from enum import Enum
 
+from j5aio.components._checks import check_number
+from j5aio.components._identified import IdentifiedComponent
 from j5aio.components.component import Interface
 
-__all__ = ["MotorInterface", "MotorSpecialState", "MotorState"]
+__all__ = ["Motor", "MotorInterface", "MotorSpecialState", "MotorState"]
 
 
 class MotorSpecialState(Enum):
@@ -33,3 +35,45 @@ class MotorInterface(Interface):
     async def set_motor_state(self, identifier: int, power: MotorState) -> None:
         """Set motor ``identifier`` to ``power`` (already validated by the component)."""
         raise NotImplementedError
+
+
+class Motor(IdentifiedComponent[MotorInterface]):
+    """A DC motor, driven at a power between full reverse (-1) and full forward (1).
+
+    ``await motor.set_power(0.5)`` drives forward at half power, ``-1`` drives backwards
+    at full power, ``0`` stops driving. ``MotorSpecialState.BRAKE`` holds the motor
+    still and ``MotorSpecialState.COAST`` lets it spin freely.
+
+    :param identifier: the number of the motor on its board.
+    :param backend: the backend that drives the motor.
+    """
+
+    __slots__ = ()
+
+    @classmethod
+    def interface_class(cls) -> type[MotorInterface]:
+        """The interface a backend implements to drive motors: :class:`MotorInterface`."""
+        return MotorInterface
+
+    async def get_power(self) -> MotorState:
+        """Return the motor's power in [-1, 1], or its :class:`MotorSpecialState`."""
+        return await self._backend.get_motor_state(self._identifier)
+
+    async def set_power(self, power: MotorState) -> None:
+        """Drive the motor at ``power``.
+
+        :param power: a number between -1 (full reverse) and 1 (full forward), or
+            ``MotorSpecialState.BRAKE`` / ``MotorSpecialState.COAST``.
+        :raises TypeError: ``power`` is neither a number nor a special state (a bool
+            is refused too).
+        :raises ValueError: ``power`` is outside [-1, 1], or NaN.
+        """
+        if not isinstance(power, MotorSpecialState):
+            power = check_number(
+                power,
+                name="motor power",
+                low=-1.0,
+                high=1.0,
+                allowed="a float between -1 and 1, or MotorSpecialState.BRAKE / COAST",
+            )
+        await self._backend.set_motor_state(self._identifier, power)

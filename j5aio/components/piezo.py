@@ -2,13 +2,18 @@
 
 from __future__ import annotations
 
+import math
 from abc import abstractmethod
 from datetime import timedelta
 from enum import Enum
 
+import anyio
+
+from j5aio.components._checks import describe
+from j5aio.components._identified import IdentifiedComponent
 from j5aio.components.component import Interface
 
-__all__ = ["Note", "PiezoInterface", "Pitch"]
+__all__ = ["Duration", "Note", "Piezo", "PiezoInterface", "Pitch"]
 
 
 class Note(float, Enum):
@@ -48,3 +53,98 @@ class PiezoInterface(Interface):
         Returns once the board has accepted the note, not when it has finished playing.
         """
         raise NotImplementedError
+
+
+Duration = int | float | timedelta
+"""How long to buzz: a number of seconds, or a :class:`datetime.timedelta`."""
+
+_DURATION_ALLOWED = "a number of seconds greater than zero, or a datetime.timedelta"
+_PITCH_ALLOWED = "a frequency in hertz greater than zero (an int or a float), or a Note"
+
+
+class Piezo(IdentifiedComponent[PiezoInterface]):
+    """A piezo sounder: a buzzer that plays one pitch at a time.
+
+    ``await piezo.buzz(0.5, Note.A6)`` plays an A for half a second.
+
+    :param identifier: the number of the piezo on its board.
+    :param backend: the backend that drives the piezo.
+    """
+
+    __slots__ = ()
+
+    @classmethod
+    def interface_class(cls) -> type[PiezoInterface]:
+        """The interface a backend implements to drive piezos: :class:`PiezoInterface`."""
+        return PiezoInterface
+
+    async def buzz(self, duration: Duration, pitch: Pitch, *, blocking: bool = False) -> None:
+        """Play ``pitch`` for ``duration``.
+
+        By default this returns as soon as the board has accepted the note, while the
+        note is still playing. With ``blocking=True`` it also waits until the note has
+        finished.
+
+        :param duration: how long to play: a number of seconds, or a ``timedelta``.
+        :param pitch: the frequency in hertz, or a :class:`Note` such as ``Note.A6``.
+        :param blocking: wait until the note has finished before returning.
+        :raises TypeError: ``duration`` or ``pitch`` has the wrong type (a bool is refused).
+        :raises ValueError: ``duration`` or ``pitch`` is zero, negative, NaN or infinite.
+        :raises NotSupportedByHardwareError: (from the backend) the board cannot play
+            this note, for example because it is too long.
+        """
+        length = self._as_timedelta(duration)
+        self.verify_duration(length)
+        self.verify_pitch(pitch)
+        frequency = pitch if isinstance(pitch, Note) else float(pitch)
+        await self._backend.buzz(self._identifier, length, frequency)
+        if blocking:
+            await anyio.sleep(length.total_seconds())
+
+    @staticmethod
+    def verify_pitch(pitch: Pitch) -> None:
+        """Check that ``pitch`` is a frequency a piezo can play.
+
+        :raises TypeError: ``pitch`` is not an int, a float or a :class:`Note` (a bool
+            is refused too).
+        :raises ValueError: ``pitch`` is zero, negative, NaN or infinite.
+        """
+        if isinstance(pitch, bool) or not isinstance(pitch, int | float):
+            raise TypeError(f"piezo pitch must be {_PITCH_ALLOWED}; got {describe(pitch)}")
+        try:
+            valid = math.isfinite(pitch) and pitch > 0
+        except OverflowError:  # an int too large to be a float
+            valid = False
+        if not valid:
+            raise ValueError(f"piezo pitch must be {_PITCH_ALLOWED}; got {pitch!r}")
+
+    @staticmethod
+    def verify_duration(duration: timedelta) -> None:
+        """Check that ``duration`` is a length of time a piezo can play for.
+
+        :raises TypeError: ``duration`` is not a ``datetime.timedelta``.
+        :raises ValueError: ``duration`` is zero or negative.
+        """
+        if not isinstance(duration, timedelta):
+            raise TypeError(
+                f"piezo duration must be a datetime.timedelta; got {describe(duration)}",
+            )
+        if duration <= timedelta(0):
+            raise ValueError(f"piezo duration must be greater than zero; got {duration!r}")
+
+    @staticmethod
+    def _as_timedelta(duration: Duration) -> timedelta:
+        """Turn a number of seconds into a timedelta; leave a timedelta as it is."""
+        if isinstance(duration, timedelta):
+            return duration
+        if isinstance(duration, bool) or not isinstance(duration, int | float):
+            raise TypeError(
+                f"piezo duration must be {_DURATION_ALLOWED}; got {describe(duration)}",
+            )
+        try:
+            return timedelta(seconds=duration)
+        except (OverflowError, ValueError):  # infinite, NaN, or too long
+            raise ValueError(
+                f"piezo duration must be {_DURATION_ALLOWED}; got {duration!r}, "
+                "which is not a finite length of time a timedelta can hold",
+            ) from None
