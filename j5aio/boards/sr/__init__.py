@@ -1,0 +1,1 @@
+"""Boards made by Student Robotics."""

@@ -1,0 +1,15 @@
+"""The version 4 boards of Student Robotics."""
+
+from j5aio.boards.sr.v4.motor_board import MotorBoard
+from j5aio.boards.sr.v4.power_board import PowerBoard, PowerOutputGroup, PowerOutputPosition
+from j5aio.boards.sr.v4.ruggeduino import Ruggeduino
+from j5aio.boards.sr.v4.servo_board import ServoBoard
+
+__all__ = [
+    "MotorBoard",
+    "PowerBoard",
+    "PowerOutputGroup",
+    "PowerOutputPosition",
+    "Ruggeduino",
+    "ServoBoard",
+]
