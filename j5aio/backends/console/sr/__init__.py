@@ -1,0 +1,1 @@
+"""Console backends of the Student Robotics boards."""
