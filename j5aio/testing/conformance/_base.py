@@ -1,0 +1,131 @@
+"""What every conformance suite shares: the subject under test and the suite base class."""
+
+from __future__ import annotations
+
+import abc
+from collections.abc import AsyncIterator, Awaitable, Callable, Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass
+from typing import Any, ClassVar, Generic, TypeVar
+
+import anyio
+import pytest
+import pytest_asyncio
+
+from j5aio.backends.backend import Backend
+
+__all__ = ["InterfaceConformance", "Subject", "SubjectT"]
+
+
+@dataclass(kw_only=True)
+class Subject:
+    """A backend handed to a conformance suite, with what the suite needs to know about it.
+
+    Each interface's suite has its own subclass that adds hooks: ways for the suite to
+    *observe* what the board did (read a simulator's state) and to *feed* it inputs (press
+    a simulated button, answer a console prompt). A hook left as ``None`` makes the tests
+    that need it skip, saying which hook to give.
+
+    :param backend: the backend instance under test.
+    :param identifiers: the identifiers of the components of this interface that the
+        board has.
+    :param invalid_identifiers: identifiers the board does not have; the suite checks that
+        each is refused. Defaults to one past the largest identifier, and ``-1``.
+    :param traffic: returns every byte the backend has sent to its board so far (for
+        example :attr:`RecordingStream.sent <j5aio.testing.transports.RecordingStream>`);
+        when given, the suite checks that refused calls send nothing.
+    :param cleanup: awaited after each test; when ``None``, the backend's ``close()``
+        is awaited instead.
+    """
+
+    backend: Any
+    identifiers: Sequence[int] = ()
+    invalid_identifiers: Sequence[int] | None = None
+    traffic: Callable[[], bytes] | None = None
+    cleanup: Callable[[], Awaitable[None]] | None = None
+
+    def bad_identifiers(self) -> list[int]:
+        """The identifiers the suite expects the backend to refuse."""
+        if self.invalid_identifiers is not None:
+            return list(self.invalid_identifiers)
+        return [max(self.identifiers, default=-1) + 1, -1]
+
+    def sent_so_far(self) -> bytes | None:
+        """Return what the backend has sent so far, or ``None`` without a traffic hook."""
+        return None if self.traffic is None else bytes(self.traffic())
+
+    async def aclose(self) -> None:
+        """Release the backend after a test."""
+        if self.cleanup is not None:
+            await self.cleanup()
+        elif isinstance(self.backend, Backend):
+            await self.backend.close()
+
+
+SubjectT = TypeVar("SubjectT", bound=Subject)
+
+
+def require(hook: Callable[..., Any] | None, name: str) -> Callable[..., Any]:
+    """Return ``hook``, or skip the running test because the subject lacks it."""
+    if hook is None:
+        pytest.skip(f"needs the {name!r} hook of the subject; give it to test this")
+    return hook
+
+
+class InterfaceConformance(abc.ABC, Generic[SubjectT]):
+    """The base of every conformance suite.
+
+    Subclass a suite in a class whose name starts with ``Test`` and implement
+    :meth:`make_backend`; pytest then collects every test of the suite for your backend.
+    A fresh backend is made for each test and released afterwards. Tests that your
+    subject gives no hook for are skipped, saying which hook would enable them.
+
+    To use pytest fixtures while making the backend, add an autouse fixture to your
+    class that stores what it needs on ``self``; it runs before :meth:`make_backend`.
+    """
+
+    #: Seconds any one test may spend awaiting the backend before it counts as a hang.
+    call_timeout: ClassVar[float] = 5.0
+
+    #: The exceptions a backend may raise for an identifier its board does not have.
+    bad_identifier_errors: ClassVar[tuple[type[BaseException], ...]] = (ValueError, LookupError)
+
+    @abc.abstractmethod
+    async def make_backend(self) -> SubjectT:
+        """Make a fresh backend to test, and describe it."""
+        raise NotImplementedError
+
+    @pytest_asyncio.fixture
+    async def subject(self) -> AsyncIterator[SubjectT]:
+        """The subject of one test: made by :meth:`make_backend`, released afterwards."""
+        with anyio.fail_after(self.call_timeout):
+            made = await self.make_backend()
+        try:
+            yield made
+        finally:
+            with anyio.fail_after(self.call_timeout):
+                await made.aclose()
+
+    @contextmanager
+    def bounded(self) -> Iterator[None]:
+        """Fail the test if the block takes longer than :attr:`call_timeout`."""
+        with anyio.fail_after(self.call_timeout):
+            yield
+
+    async def assert_refused(
+        self, subject: Subject, call: Callable[[int], Awaitable[Any]], what: str,
+    ) -> None:
+        """Check that ``call`` refuses every bad identifier, sending nothing to the board."""
+        allowed = " or ".join(error.__name__ for error in self.bad_identifier_errors)
+        for identifier in subject.bad_identifiers():
+            before = subject.sent_so_far()
+            try:
+                with self.bounded():
+                    await call(identifier)
+            except self.bad_identifier_errors:
+                pass
+            else:
+                pytest.fail(f"{what} accepted bad identifier {identifier}; expected {allowed}")
+            assert subject.sent_so_far() == before, (
+                f"{what} with bad identifier {identifier} sent bytes to the board"
+            )
