@@ -1,0 +1,74 @@
+"""Board simulators that speak each board's wire protocol, byte for byte.
+
+Each simulator is written from the protocol description alone (``protocols.md``), so that
+it checks the host code rather than mirroring it. They are synchronous state machines with
+no clock; transports wrap them.
+
+Serial boards (:class:`SerialBoardSimulator`):
+
+- :class:`SRMotorBoardFw3Simulator`: SR Motor Board v4, firmware 3, binary, 1 Mbaud.
+- :class:`SRRuggeduinoSimulator`: SR Ruggeduino single-character firmware 1 or 2.
+- :class:`SBArduinoSimulator`: SourceBots Arduino, 2019 line protocol (2019.6.0 / 2019.8.0).
+
+USB control-transfer boards (:class:`UsbBoardSimulator`, shaped like a pyusb device):
+
+- :class:`SRPowerBoardFw3Simulator`: SR Power Board v4, firmware 3.
+- :class:`SRServoBoardFw2Simulator`: SR Servo Board v4, firmware 2.
+
+:data:`SERIAL_SIMULATORS` maps a command-line name to a factory taking a serial number.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from types import MappingProxyType
+from typing import Final, Protocol
+
+from .arduino_base import ARDUINO_UNO_R3, ArduinoBoardSimulator, UsbIdentity
+from .arduino_pins import ArduinoUnoPins, PinMode
+from .base import SerialBoardSimulator, SimulatorUnpluggedError, UsbBoardSimulator
+from .sb_arduino_2019 import SBArduinoFirmware, SBArduinoSimulator
+from .sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
+from .sr_power_fw3 import PiezoNote, SRPowerBoardFw3Simulator
+from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
+from .sr_servo_fw2 import SRServoBoardFw2Simulator
+
+__all__ = [
+    "ARDUINO_UNO_R3",
+    "SERIAL_SIMULATORS",
+    "ArduinoBoardSimulator",
+    "ArduinoUnoPins",
+    "MotorMode",
+    "MotorOutput",
+    "PiezoNote",
+    "PinMode",
+    "SBArduinoFirmware",
+    "SBArduinoSimulator",
+    "SRMotorBoardFw3Simulator",
+    "SRPowerBoardFw3Simulator",
+    "SRRuggeduinoSimulator",
+    "SRServoBoardFw2Simulator",
+    "SerialBoardSimulator",
+    "SerialSimulatorFactory",
+    "SimulatorUnpluggedError",
+    "UsbBoardSimulator",
+    "UsbIdentity",
+]
+
+
+class SerialSimulatorFactory(Protocol):
+    """Makes a serial board simulator with the given USB serial number."""
+
+    def __call__(self, serial_number: str) -> SerialBoardSimulator:
+        """Make the simulator."""
+        ...
+
+
+#: Serial board simulators by command-line name (``python -m j5aio simulate <name>``).
+SERIAL_SIMULATORS: Final[Mapping[str, SerialSimulatorFactory]] = MappingProxyType(
+    {
+        "sr-motor": SRMotorBoardFw3Simulator,
+        "sr-ruggeduino": SRRuggeduinoSimulator,
+        "sb-arduino": SBArduinoSimulator,
+    }
+)

@@ -1,0 +1,179 @@
+r"""Simulator of the SR Motor Board v4 running firmware 3 (binary protocol, 1 Mbaud).
+
+Protocol (protocols.md §2A). The firmware feeds each received byte to a three-state
+machine:
+
+- idle: ``0x00`` no-op (resynchronises), ``0x01`` replies ``MCV4B:3\n``, ``0x02`` / ``0x03``
+  wait for a speed byte for motor 0 / 1, ``0x04`` replies ``Entering bootloader\n`` and
+  resets into the STM32 ROM bootloader (silent from then on), anything else is ignored.
+- waiting for a speed byte ``b`` (any byte, back to idle afterwards): 0 is ignored,
+  1 coasts, 2 brakes, otherwise ``s = b - 128`` drives the motor, forwards when s >= 0,
+  with a PWM compare of ``|s| * 20`` against a period of 2000, so full duty from |s| >= 100.
+
+The board does not reset when its port is opened and prints nothing at boot; the motors
+start (and come back from a reset) coasting, with the driver disabled.
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass
+from typing import ClassVar, Final
+
+from .base import SerialBoardSimulator
+
+__all__ = ["MotorMode", "MotorOutput", "SRMotorBoardFw3Simulator"]
+
+_CMD_VERSION: Final = 0x01
+_CMD_MOTOR0: Final = 0x02
+_CMD_MOTOR1: Final = 0x03
+_CMD_BOOTLOADER: Final = 0x04
+
+_SPEED_IGNORED: Final = 0
+_SPEED_COAST: Final = 1
+_SPEED_BRAKE: Final = 2
+_SPEED_ZERO: Final = 128
+
+_COMPARE_PER_STEP: Final = 20
+_PWM_PERIOD: Final = 2000
+_FULL_DUTY_STEPS: Final = _PWM_PERIOD // _COMPARE_PER_STEP
+
+_VERSION_REPLY: Final = b"MCV4B:3\n"
+_BOOTLOADER_REPLY: Final = b"Entering bootloader\n"
+
+
+class MotorMode(enum.Enum):
+    """What a motor driver is doing."""
+
+    COAST = "coast"
+    """Driver disabled: the outputs float."""
+    BRAKE = "brake"
+    """Driver enabled with both half-bridges low."""
+    FORWARD = "forward"
+    """Driving forwards with some duty."""
+    REVERSE = "reverse"
+    """Driving in reverse with some duty."""
+
+
+@dataclass(frozen=True)
+class MotorOutput:
+    """The state of one motor output: its mode and, when driving, the speed step |s|."""
+
+    mode: MotorMode
+    steps: int = 0
+    """|s| from the speed byte (0-127); the PWM compare value is ``steps * 20``."""
+
+    @property
+    def duty(self) -> float:
+        """The PWM duty cycle 0.0-1.0 (0 unless driving; saturates at |s| >= 100)."""
+        if self.mode in (MotorMode.COAST, MotorMode.BRAKE):
+            return 0.0
+        return min(self.steps, _FULL_DUTY_STEPS) / _FULL_DUTY_STEPS
+
+    @property
+    def duty_percent(self) -> int:
+        """The PWM duty cycle as a whole percentage."""
+        return round(self.duty * 100)
+
+    @property
+    def power(self) -> float:
+        """The signed duty: positive forwards, negative in reverse, 0 when coasting or braking."""
+        return -self.duty if self.mode is MotorMode.REVERSE else self.duty
+
+
+COAST: Final = MotorOutput(MotorMode.COAST)
+BRAKE: Final = MotorOutput(MotorMode.BRAKE)
+
+
+class _Parser(enum.Enum):
+    IDLE = enum.auto()
+    SPEED0 = enum.auto()
+    SPEED1 = enum.auto()
+
+
+class SRMotorBoardFw3Simulator(SerialBoardSimulator):
+    """An SR Motor Board v4 with firmware 3 behind its FTDI FT232R USB-serial adapter."""
+
+    baudrate: ClassVar[int] = 1_000_000
+    boot_delay: ClassVar[float] = 0.0
+    resets_on_open: ClassVar[bool] = False
+    powered_by_usb: ClassVar[bool] = False
+    #: The firmware version this board reports.
+    version: ClassVar[int] = 3
+    #: Number of motor outputs.
+    MOTOR_COUNT: ClassVar[int] = 2
+
+    def __init__(self, serial_number: str) -> None:
+        super().__init__(
+            serial_number,
+            usb_vid=0x0403,
+            usb_pid=0x6001,
+            manufacturer="Student Robotics",
+            product="MCV4B",
+        )
+        self._motors = [COAST] * self.MOTOR_COUNT
+        self._parser = _Parser.IDLE
+        self._in_bootloader = False
+        self._boot()
+
+    @property
+    def motors(self) -> tuple[MotorOutput, ...]:
+        """The state of each motor output."""
+        return tuple(self._motors)
+
+    @property
+    def in_bootloader(self) -> bool:
+        """Whether the board has reset into the ROM bootloader (and stopped listening)."""
+        return self._in_bootloader
+
+    @property
+    def awaiting_speed(self) -> int | None:
+        """The motor whose speed byte the parser is waiting for, or None when idle."""
+        return {_Parser.IDLE: None, _Parser.SPEED0: 0, _Parser.SPEED1: 1}[self._parser]
+
+    def _boot(self) -> bytes:
+        self._motors = [COAST] * self.MOTOR_COUNT
+        self._parser = _Parser.IDLE
+        self._in_bootloader = False
+        return b""
+
+    def _process(self, data: bytes) -> bytes:
+        emitted = bytearray()
+        for byte in data:
+            if self._in_bootloader:
+                break
+            emitted += self._step(byte)
+        return bytes(emitted)
+
+    def _step(self, byte: int) -> bytes:
+        if self._parser is _Parser.IDLE:
+            return self._command(byte)
+        motor = 0 if self._parser is _Parser.SPEED0 else 1
+        self._parser = _Parser.IDLE
+        if byte != _SPEED_IGNORED:
+            self._motors[motor] = self._decode_speed(byte)
+        return b""
+
+    def _command(self, byte: int) -> bytes:
+        if byte == _CMD_VERSION:
+            return _VERSION_REPLY
+        if byte == _CMD_MOTOR0:
+            self._parser = _Parser.SPEED0
+        elif byte == _CMD_MOTOR1:
+            self._parser = _Parser.SPEED1
+        elif byte == _CMD_BOOTLOADER:
+            # The MCU resets into ROM: the driver enables are released, the motors coast.
+            self._motors = [COAST] * self.MOTOR_COUNT
+            self._in_bootloader = True
+            return _BOOTLOADER_REPLY
+        return b""
+
+    @staticmethod
+    def _decode_speed(byte: int) -> MotorOutput:
+        if byte == _SPEED_COAST:
+            return COAST
+        if byte == _SPEED_BRAKE:
+            return BRAKE
+        speed = byte - _SPEED_ZERO
+        mode = MotorMode.FORWARD if speed >= 0 else MotorMode.REVERSE
+        return MotorOutput(mode, abs(speed))

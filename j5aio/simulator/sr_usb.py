@@ -1,0 +1,62 @@
+"""The control-request convention shared by the SR v4 USB firmwares (power fw 3, servo fw 2).
+
+Both firmwares (libopencm3 on an STM32F1) register one handler for *standard* requests to
+the *device* recipient and answer only ``bRequest == 64``; the command is in ``wIndex``, a
+parameter in ``wValue``, and bit 7 of ``bmRequestType`` gives the direction. Anything else
+is stalled. Data stages go through one 128-byte control buffer, which keeps what the last
+transfer left in it.
+"""
+
+from __future__ import annotations
+
+from abc import abstractmethod
+
+from .base import UsbBoardSimulator
+from .usb_support import CONTROL_BUFFER_SIZE, UsbStall
+
+__all__ = ["SR_REQUEST", "SRUsbBoardSimulator"]
+
+#: The only bRequest the SR firmwares answer.
+SR_REQUEST = 64
+
+_TYPE_AND_RECIPIENT_MASK = 0x7F
+
+
+class SRUsbBoardSimulator(UsbBoardSimulator):
+    """A board speaking the SR "request 64" control-transfer convention."""
+
+    def __init__(
+        self, serial_number: str | None, *, manufacturer: str | None, product: str | None
+    ) -> None:
+        super().__init__(serial_number, manufacturer=manufacturer, product=product)
+        self._control_buffer = bytearray(CONTROL_BUFFER_SIZE)
+
+    @staticmethod
+    def _check_request(request_type: int, request: int) -> None:
+        if request != SR_REQUEST or request_type & _TYPE_AND_RECIPIENT_MASK:
+            raise UsbStall()
+
+    def _control_in(
+        self, request_type: int, request: int, value: int, index: int, length: int
+    ) -> bytes:
+        self._check_request(request_type, request)
+        reply = self._read(index, length)
+        self._control_buffer[: len(reply)] = reply
+        return reply
+
+    def _control_out(
+        self, request_type: int, request: int, value: int, index: int, data: bytes
+    ) -> None:
+        self._check_request(request_type, request)
+        if len(data) > CONTROL_BUFFER_SIZE:
+            raise UsbStall()
+        self._control_buffer[: len(data)] = data
+        self._write(value, index, data)
+
+    @abstractmethod
+    def _read(self, command: int, length: int) -> bytes:
+        """Answer read command ``command`` (wIndex) with room for ``length`` bytes."""
+
+    @abstractmethod
+    def _write(self, value: int, command: int, data: bytes) -> None:
+        """Carry out write command ``command`` (wIndex) with parameter ``value`` (wValue)."""
