@@ -1,0 +1,60 @@
+import math
+from fractions import Fraction
+
+import pytest
+
+import j5aio.components as components
+from j5aio.components import Component, Interface
+from j5aio.components._checks import check_bool, check_number, check_timeout
+
+
+def test_check_number_returns_a_float_for_any_real_number() -> None:
+    value = check_number(Fraction(1, 2), name="x", low=0, high=1, allowed="between 0 and 1")
+    assert value == 0.5
+    assert type(value) is float
+
+
+def test_check_number_messages_name_the_quantity_the_range_and_the_value() -> None:
+    with pytest.raises(ValueError) as too_big:
+        check_number(3, name="speed", low=0, high=1, allowed="between 0 and 1")
+    assert str(too_big.value) == "speed must be between 0 and 1; got 3"
+    with pytest.raises(TypeError) as wrong:
+        check_number("3", name="speed", low=0, high=1, allowed="between 0 and 1")
+    assert str(wrong.value) == "speed must be between 0 and 1; got '3' (a str)"
+
+
+def test_check_bool() -> None:
+    assert check_bool(False, name="x", allowed="a bool") is False
+    with pytest.raises(TypeError, match=r"^x must be a bool; got 0 \(a int\)$"):
+        check_bool(0, name="x", allowed="a bool")
+
+
+def test_check_timeout() -> None:
+    assert check_timeout(None) is None
+    assert check_timeout(2) == 2.0
+    assert check_timeout(math.inf) == math.inf
+    with pytest.raises(ValueError):
+        check_timeout(-1)
+    with pytest.raises(TypeError):
+        check_timeout(False)
+
+
+def test_every_public_name_is_exported() -> None:
+    for name in components.__all__:
+        assert hasattr(components, name), name
+    assert sorted(components.__all__) == sorted(set(components.__all__))
+
+
+def test_every_component_names_an_exported_interface() -> None:
+    exported = [getattr(components, name) for name in components.__all__]
+    classes = [c for c in exported if isinstance(c, type) and issubclass(c, Component)]
+    concrete = [c for c in classes if not getattr(c, "__abstractmethods__", None)]
+    assert {c.__name__ for c in concrete} == {
+        "LED", "RGBLED", "BatterySensor", "Button", "GPIOPin", "Motor", "Piezo",
+        "PowerOutput", "Servo", "StringCommandComponent", "UltrasoundSensor",
+    }
+    for component in concrete:
+        interface = component.interface_class()
+        assert issubclass(interface, Interface)
+        assert interface in exported
+        assert component.__doc__

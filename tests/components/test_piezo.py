@@ -1,0 +1,156 @@
+import math
+from datetime import timedelta
+
+import anyio
+import pytest
+from component_fakes import RecordingBackend
+
+from j5aio.components import Note, Piezo, PiezoInterface
+
+
+@pytest.mark.parametrize(
+    ("duration", "expected"),
+    [
+        (0.5, timedelta(milliseconds=500)),
+        (2, timedelta(seconds=2)),
+        (timedelta(milliseconds=20), timedelta(milliseconds=20)),
+    ],
+)
+async def test_buzz_sends_the_duration_as_a_timedelta(
+    duration: float | timedelta, expected: timedelta,
+) -> None:
+    backend = RecordingBackend()
+    await Piezo(1, backend).buzz(duration, 440.0)
+    assert backend.calls == [("buzz", (1, expected, 440.0))]
+
+
+async def test_buzz_sends_an_int_pitch_as_a_float() -> None:
+    backend = RecordingBackend()
+    await Piezo(0, backend).buzz(1, 440)
+    [(_, (_, _, pitch))] = backend.calls
+    assert type(pitch) is float
+    assert pitch == 440.0
+
+
+async def test_buzz_sends_a_note_as_the_note() -> None:
+    backend = RecordingBackend()
+    await Piezo(0, backend).buzz(1, Note.A6)
+    [(_, (_, _, pitch))] = backend.calls
+    assert pitch is Note.A6
+    assert pitch == 1760.0
+
+
+def test_note_values_are_those_of_j5() -> None:
+    assert Note.C6 == 1047.0
+    assert Note.B7 == 3951.1
+    assert Note.C8 == 4186.0
+    assert len(Note) == 15
+    assert str(Note.D7) == "D7"
+
+
+@pytest.mark.parametrize("duration", [True, "1", None, [1]])
+async def test_buzz_refuses_a_duration_of_the_wrong_type(duration: object) -> None:
+    backend = RecordingBackend()
+    with pytest.raises(
+        TypeError,
+        match=r"^piezo duration must be a number of seconds greater than zero, "
+        r"or a datetime.timedelta; got",
+    ):
+        await Piezo(0, backend).buzz(duration, Note.A6)  # type: ignore[arg-type]
+    assert backend.calls == []
+
+
+@pytest.mark.parametrize(
+    "duration", [0, -1, 0.0, timedelta(0), timedelta(seconds=-1), 1e-9],
+)
+async def test_buzz_refuses_a_duration_that_is_not_positive(
+    duration: float | timedelta,
+) -> None:
+    backend = RecordingBackend()
+    with pytest.raises(ValueError, match=r"^piezo duration must be greater than zero; got"):
+        await Piezo(0, backend).buzz(duration, Note.A6)
+    assert backend.calls == []
+
+
+@pytest.mark.parametrize("duration", [math.nan, math.inf, -math.inf, 1e20, 10**400])
+async def test_buzz_refuses_a_duration_that_is_not_a_finite_time(duration: float) -> None:
+    backend = RecordingBackend()
+    with pytest.raises(ValueError, match=r"not a finite length of time"):
+        await Piezo(0, backend).buzz(duration, Note.A6)
+    assert backend.calls == []
+
+
+@pytest.mark.parametrize("pitch", [True, "A6", None, "1760"])
+async def test_buzz_refuses_a_pitch_of_the_wrong_type(pitch: object) -> None:
+    backend = RecordingBackend()
+    with pytest.raises(
+        TypeError,
+        match=r"^piezo pitch must be a frequency in hertz greater than zero \(an int or a "
+        r"float\), or a Note; got",
+    ):
+        await Piezo(0, backend).buzz(1, pitch)  # type: ignore[arg-type]
+    assert backend.calls == []
+
+
+@pytest.mark.parametrize("pitch", [0, -440, 0.0, math.nan, math.inf, 10**400])
+async def test_buzz_refuses_a_pitch_that_is_not_positive_and_finite(pitch: float) -> None:
+    backend = RecordingBackend()
+    with pytest.raises(ValueError, match=r"^piezo pitch must be .*; got"):
+        await Piezo(0, backend).buzz(1, pitch)
+    assert backend.calls == []
+
+
+def test_verify_duration_checks_type_and_sign() -> None:
+    Piezo.verify_duration(timedelta(seconds=1))
+    with pytest.raises(TypeError, match=r"must be a datetime.timedelta; got 1 \(a int\)"):
+        Piezo.verify_duration(1)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=r"greater than zero"):
+        Piezo.verify_duration(timedelta(0))
+
+
+def test_verify_pitch_checks_type_and_sign() -> None:
+    Piezo.verify_pitch(Note.C6)
+    Piezo.verify_pitch(1.5)
+    Piezo.verify_pitch(300)
+    with pytest.raises(TypeError):
+        Piezo.verify_pitch(False)
+    with pytest.raises(ValueError):
+        Piezo.verify_pitch(-1.0)
+
+
+async def test_buzz_without_blocking_does_not_sleep(monkeypatch: pytest.MonkeyPatch) -> None:
+    sleeps: list[float] = []
+
+    async def fake_sleep(delay: float) -> None:
+        sleeps.append(delay)
+
+    monkeypatch.setattr(anyio, "sleep", fake_sleep)
+    await Piezo(0, RecordingBackend()).buzz(0.25, Note.C6)
+    assert sleeps == []
+
+
+async def test_blocking_buzz_sleeps_for_the_duration_after_the_backend_accepted(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    backend = RecordingBackend()
+    events: list[object] = []
+
+    async def fake_sleep(delay: float) -> None:
+        events.append(("sleep", delay, len(backend.calls)))
+
+    monkeypatch.setattr(anyio, "sleep", fake_sleep)
+    await Piezo(0, backend).buzz(timedelta(milliseconds=250), Note.C6, blocking=True)
+    assert events == [("sleep", 0.25, 1)]
+
+
+async def test_blocking_buzz_waits_and_can_be_cancelled() -> None:
+    backend = RecordingBackend()
+    with anyio.move_on_after(0.01) as scope:
+        await Piezo(0, backend).buzz(30, Note.C6, blocking=True)
+    assert scope.cancelled_caught
+    assert backend.names() == ["buzz"]
+
+
+def test_identifier_and_interface() -> None:
+    assert Piezo(3, RecordingBackend()).identifier == 3
+    assert Piezo.interface_class() is PiezoInterface
