@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import logging
 import os
+import signal
+import subprocess
+import sys
 import time
 from collections.abc import Callable
 
@@ -188,3 +191,41 @@ def test_the_simulator_is_exposed() -> None:
     simulator = FakeSimulator()
     with serve_on_pty(simulator) as server:
         assert server.simulator is simulator
+
+
+def exchange(port: serial.Serial, command: bytes) -> list[bytes]:
+    """Send an SB Arduino command; return its reply lines, up to the final ``+``/``-`` line."""
+    port.write(command)
+    lines = [port.readline()]
+    while not lines[-1].startswith((b"+", b"-")):
+        assert lines[-1], f"no complete reply to {command!r}: {lines!r}"
+        lines.append(port.readline())
+    return lines
+
+
+def test_the_command_line_serves_an_sb_arduino_that_pyserial_can_drive() -> None:
+    command = [sys.executable, "-m", "j5aio", "simulate", "sb-arduino", "--pty"]
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert process.stdout is not None
+        path = process.stdout.readline().strip()
+        assert path.startswith("/dev/")
+        with serial.Serial(path, 115200, timeout=5) as port:
+            # Opening the port resets the board, as on a real Arduino: it boots first.
+            assert port.readline() == b"# Booted\n"
+            port.readline()  # the version comment printed at boot
+            version = exchange(port, b"V\n")
+            assert version[0] == b"# V\n"  # the firmware echoes each command
+            assert version[1].startswith(b"> SBDuino GPIO v2019")
+            assert version[-1] == b"+ OK\r\n"
+            assert exchange(port, b"W 7 H\n") == [b"# W 7 H\n", b"+ OK\r\n"]
+            assert exchange(port, b"R 7\n") == [b"# R 7\n", b"> H\r\n", b"+ OK\r\n"]
+        process.send_signal(signal.SIGINT)
+        _, errors = process.communicate(timeout=10)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+    assert process.returncode == 0
+    assert f"on {path}" in errors
+    assert "Stopped." in errors
