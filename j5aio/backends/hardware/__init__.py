@@ -1,0 +1,22 @@
+"""Backends that drive real boards, and the hardware environment.
+
+``HARDWARE_ENVIRONMENT`` (from :mod:`.env`) maps every supported board to its backend.
+It is loaded on first use, so importing the transports alone stays light.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from j5aio.backends.hardware.env import HARDWARE_ENVIRONMENT
+
+__all__ = ["HARDWARE_ENVIRONMENT"]
+
+
+def __getattr__(name: str) -> Any:
+    if name == "HARDWARE_ENVIRONMENT":
+        from j5aio.backends.hardware.env import HARDWARE_ENVIRONMENT
+
+        return HARDWARE_ENVIRONMENT
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

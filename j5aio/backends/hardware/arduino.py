@@ -1,0 +1,108 @@
+"""The base of the Arduino Uno serial backends: pins and the LED, over the shared pin rules.
+
+Subclasses say how a pin's remembered state is sent to the board and how pins are read;
+this class applies :mod:`.arduino_pins` so that every Arduino board refuses the same
+things with the same errors.
+"""
+
+from __future__ import annotations
+
+from abc import abstractmethod
+from typing import ClassVar
+
+from j5aio.backends.hardware.arduino_pins import LED_PIN, ArduinoPins
+from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
+from j5aio.backends.hardware.transports.serial_link import SerialLink
+from j5aio.components.gpio_pin import GPIOPinInterface, GPIOPinMode
+from j5aio.components.led import LEDInterface
+from j5aio.errors import NotSupportedByHardwareError
+
+__all__ = ["ARDUINO_USB_IDS", "ArduinoHardwareBackend"]
+
+#: Arduino Uno R3 (arduino.cc and arduino.org), CH340 clone, CP210x and Ruggeduino.
+ARDUINO_USB_IDS: frozenset[tuple[int, int]] = frozenset(
+    {
+        (0x2341, 0x0043),
+        (0x2A03, 0x0043),
+        (0x1A86, 0x7523),
+        (0x10C4, 0xEA60),
+        (0x16D0, 0x0613),
+    },
+)
+
+
+class ArduinoHardwareBackend(GPIOPinInterface, LEDInterface, SerialHardwareBackend):
+    """Pins 2-13 (digital), 14-19 (analogue) and LED 0 (pin 13) of an Arduino Uno."""
+
+    USB_IDS: ClassVar[frozenset[tuple[int, int]]] = ARDUINO_USB_IDS
+    DEFAULT_TIMEOUT: ClassVar[float] = 1.25
+    SKIP_PORTS_WITHOUT_SERIAL: ClassVar[bool] = True
+    #: How many analogue pins the firmware reads, from A0.
+    ANALOGUE_CHANNELS: ClassVar[int] = 6
+
+    def __init__(self, link: SerialLink, *, port: str) -> None:
+        super().__init__(link, port=port)
+        self._pins = ArduinoPins(self.board.name)
+
+    @abstractmethod
+    async def _apply_pin(self, identifier: int, *, mode_changed: bool) -> None:
+        """Send the remembered mode and level of digital pin ``identifier`` to the board."""
+
+    @abstractmethod
+    async def _read_digital(self, identifier: int) -> bool:
+        """Read the level of digital input ``identifier``."""
+
+    @abstractmethod
+    async def _read_analogue(self, identifier: int) -> float:
+        """Read the voltage on analogue pin ``identifier``."""
+
+    async def set_gpio_pin_mode(self, identifier: int, pin_mode: GPIOPinMode) -> None:
+        """Put a pin in ``pin_mode``; an output starts at the level last written to it."""
+        if self._pins.check_mode(identifier, pin_mode):
+            state = self._pins.digital(identifier)
+            state.mode = pin_mode
+            await self._apply_pin(identifier, mode_changed=True)
+
+    async def get_gpio_pin_mode(self, identifier: int) -> GPIOPinMode:
+        """Return the mode last set on a pin (the board cannot report it)."""
+        return self._pins.mode(identifier)
+
+    async def write_gpio_pin_digital_state(self, identifier: int, state: bool) -> None:
+        """Drive an output pin high or low."""
+        pin = self._pins.output(identifier, "write to it")
+        pin.level = state
+        await self._apply_pin(identifier, mode_changed=False)
+
+    async def get_gpio_pin_digital_state(self, identifier: int) -> bool:
+        """Return the level last written to an output pin."""
+        return self._pins.output(identifier, "read back its last written level").level
+
+    async def read_gpio_pin_digital_state(self, identifier: int) -> bool:
+        """Read the level of an input pin."""
+        self._pins.check_input(identifier)
+        return await self._read_digital(identifier)
+
+    async def read_gpio_pin_analogue_value(self, identifier: int) -> float:
+        """Read the voltage on an analogue pin, in volts."""
+        self._pins.check_analogue(identifier, self.ANALOGUE_CHANNELS)
+        return await self._read_analogue(identifier)
+
+    async def write_gpio_pin_dac_value(self, identifier: int, scaled_value: float) -> None:
+        """Refuse: the Uno has no DAC."""
+        raise NotSupportedByHardwareError(f"{self.board.name} has no DAC (analogue output)")
+
+    async def write_gpio_pin_pwm_value(self, identifier: int, duty_cycle: float) -> None:
+        """Refuse: the firmware has no PWM command."""
+        raise NotSupportedByHardwareError(
+            f"{self.board.name}'s firmware has no PWM output command",
+        )
+
+    async def get_led_state(self, identifier: int) -> bool:
+        """Return the level last written to the LED (pin 13, which must be an output)."""
+        ArduinoPins.check_led(identifier, self.board.name)
+        return await self.get_gpio_pin_digital_state(LED_PIN)
+
+    async def set_led_state(self, identifier: int, state: bool) -> None:
+        """Light or clear the LED (pin 13, which must be an output)."""
+        ArduinoPins.check_led(identifier, self.board.name)
+        await self.write_gpio_pin_digital_state(LED_PIN, state)

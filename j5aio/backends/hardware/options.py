@@ -1,0 +1,39 @@
+"""How hardware discovery finds ports and devices: real ones, or stand-ins for tests."""
+
+from __future__ import annotations
+
+from collections.abc import Awaitable, Callable, Iterable
+from dataclasses import dataclass
+
+from j5aio.backends.hardware.transports.discovery import ComPortLike, USBFinder
+from j5aio.backends.hardware.transports.stream import ByteStream
+
+__all__ = ["DiscoveryOptions", "StreamOpener"]
+
+StreamOpener = Callable[[str, int], Awaitable[ByteStream]]
+"""Opens a port (path or URL) at a baud rate; :func:`open_serial_stream` by default."""
+
+
+@dataclass(frozen=True)
+class DiscoveryOptions:
+    """Where discovery looks for boards, and how patiently it waits for them.
+
+    Every field has the real thing as its default, so ``DiscoveryOptions()`` is what
+    ``discover()`` uses on a robot.
+    """
+
+    #: Lists the serial ports; pyserial's ``comports`` when ``None``.
+    port_source: Callable[[], Iterable[ComPortLike]] | None = None
+    #: Finds USB devices by vendor and product; pyusb's ``usb.core.find`` when ``None``.
+    usb_finder: USBFinder | None = None
+    #: Opens a serial port; ``open_serial_stream`` when ``None``.
+    opener: StreamOpener | None = None
+    #: Multiplies the waits for a board to boot (1 on real hardware; less for a
+    #: simulated board that boots faster).
+    time_scale: float = 1.0
+    #: Log a board that fails its handshake and carry on, rather than raise.
+    skip_failures: bool = False
+
+    def __post_init__(self) -> None:
+        if not self.time_scale >= 0:
+            raise ValueError(f"time_scale must be a number >= 0, not {self.time_scale!r}")

@@ -1,0 +1,67 @@
+"""Which board holds each open port or USB device, so none is opened twice.
+
+Discovery and ``attach`` go through :func:`claim`: a port that a live backend already
+holds gives back that backend's board instead of being opened again, and two tasks
+opening the same port at once end up with the same board. A backend calls
+:func:`release` when it closes or finds its port gone.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Awaitable, Callable
+
+import anyio
+
+from j5aio.boards.board import Board
+from j5aio.errors import CommunicationError
+
+__all__ = ["PortInUseError", "claim", "holder", "release"]
+
+_boards: dict[str, Board] = {}
+_opening: dict[str, anyio.Event] = {}
+
+
+class PortInUseError(CommunicationError):
+    """The port is held by a backend of another kind (say, a Ruggeduino backend)."""
+
+
+def holder(key: str) -> Board | None:
+    """Return the board holding ``key`` (a port path or USB device key), if any."""
+    return _boards.get(key)
+
+
+async def claim(key: str, backend_class: type, connect: Callable[[], Awaitable[Board]]) -> Board:
+    """Return the board on ``key``, connecting it with ``connect`` unless it is already held.
+
+    :raises PortInUseError: a backend that is not a ``backend_class`` holds ``key``.
+    """
+    while (opening := _opening.get(key)) is not None:
+        await opening.wait()
+    existing = _boards.get(key)
+    if existing is not None:
+        if isinstance(existing.backend, backend_class):
+            return existing
+        raise PortInUseError(
+            f"{key} is already in use by {existing} ({type(existing.backend).__name__}); "
+            f"close that board before opening the port as a {backend_class.__name__}",
+        )
+    done = _opening[key] = anyio.Event()
+    try:
+        board = await connect()
+        _boards[key] = board
+        return board
+    finally:
+        del _opening[key]
+        done.set()
+
+
+def release(key: str, backend: object) -> None:
+    """Forget ``key`` if the board holding it is driven by ``backend``."""
+    board = _boards.get(key)
+    if board is not None and board.backend is backend:
+        del _boards[key]
+
+
+def clear() -> None:
+    """Forget every port (for tests; does not close anything)."""
+    _boards.clear()

@@ -1,0 +1,150 @@
+"""The hardware backend of the SourceBots Arduino, 2019 line protocol (2019.6.0 and later).
+
+Handshake: the board reboots when the port opens; lines are read until the first
+non-empty one, which must be ``# Booted``, then the version line
+(``# SBDuino GPIO v2019.8.0``), all within 33 s times the time scale. The pins' initial
+modes are then applied by the board's ``setup()``.
+"""
+
+from __future__ import annotations
+
+from datetime import timedelta
+from typing import ClassVar
+
+import anyio
+
+from j5aio.backends.hardware.arduino import ArduinoHardwareBackend
+from j5aio.backends.hardware.arduino_pins import DIGITAL_PINS
+from j5aio.backends.hardware.sb import arduino_2019_codec as codec
+from j5aio.backends.hardware.serial_backend import scaled
+from j5aio.backends.hardware.transports.readers import read_lines_until
+from j5aio.backends.hardware.transports.serial_link import SerialLink
+from j5aio.boards.sb.arduino import SBArduinoBoard
+from j5aio.components.derived.ultrasound import UltrasoundInterface
+from j5aio.components.gpio_pin import GPIOPinMode
+from j5aio.components.servo import ServoInterface, ServoPosition
+from j5aio.errors import (
+    CommunicationTimeoutError,
+    NotSupportedByHardwareError,
+    UnexpectedReplyError,
+)
+
+__all__ = ["SBArduinoHardwareBackend"]
+
+_REPLY = read_lines_until(codec.is_final_line)
+
+
+class SBArduinoHardwareBackend(ServoInterface, UltrasoundInterface, ArduinoHardwareBackend):
+    """Drives a SourceBots Arduino over the 2019 line protocol."""
+
+    board = SBArduinoBoard
+
+    ANALOGUE_CHANNELS: ClassVar[int] = codec.ANALOGUE_CHANNELS
+    #: The longest wait for ``# Booted`` and the version line (j5 allowed about 33 s).
+    BOOT_TIMEOUT: ClassVar[float] = 33.0
+    #: The longest wait for an ultrasound reading (the firmware's ``pulseIn`` can take
+    #: over a second with no echo).
+    ULTRASOUND_TIMEOUT: ClassVar[float] = 3.0
+
+    def __init__(self, link: SerialLink, *, port: str) -> None:
+        super().__init__(link, port=port)
+        self._servos: list[ServoPosition] = [None] * codec.SERVO_COUNT
+
+    async def _handshake(self, *, time_scale: float) -> None:
+        limit = scaled(self.BOOT_TIMEOUT, time_scale)
+        try:
+            with anyio.fail_after(limit):
+                line = b""
+                while not line.strip():
+                    line = await self._link.read_line(timeout=limit)
+                if line.rstrip() != codec.BOOT_LINE.encode():
+                    raise UnexpectedReplyError(
+                        f"{self.board.name} on {self.port} did not boot as expected: its "
+                        f"first line was {line!r}, not {codec.BOOT_LINE!r}",
+                    )
+                version_line = await self._link.read_line(timeout=limit)
+        except (TimeoutError, CommunicationTimeoutError):
+            raise CommunicationTimeoutError(
+                f"{self.board.name} on {self.port} did not finish booting within {limit:g} s: "
+                "is it powered, and does opening the port reset it?",
+            ) from None
+        version = codec.parse_version_line(version_line)
+        codec.check_version(version)
+        self._firmware_version = version
+
+    async def _command(self, request: bytes, timeout: float | None = None) -> codec.Reply:
+        """Send a request and return the data of its reply."""
+        return codec.parse_reply(await self._exchange(request, _REPLY, timeout))
+
+    async def _apply_pin(self, identifier: int, *, mode_changed: bool) -> None:
+        state = self._pins.digital(identifier)
+        await self._command(codec.encode_pin_state(identifier, state.mode, state.level))
+
+    async def _read_digital(self, identifier: int) -> bool:
+        return codec.parse_digital(await self._command(codec.encode_digital_read(identifier)))
+
+    async def _read_analogue(self, identifier: int) -> float:
+        return codec.parse_analogue(await self._command(codec.encode_analogue_read()), identifier)
+
+    # -- servos -------------------------------------------------------------------------
+
+    def _check_servo(self, identifier: int) -> None:
+        if identifier not in range(codec.SERVO_COUNT):
+            raise ValueError(
+                f"{self.board.name} has servos 0 to {codec.SERVO_COUNT - 1}, not {identifier!r}",
+            )
+
+    async def get_servo_position(self, identifier: int) -> ServoPosition:
+        """Return the position last set on a servo (the board cannot report it)."""
+        self._check_servo(identifier)
+        return self._servos[identifier]
+
+    async def set_servo_position(self, identifier: int, position: ServoPosition) -> None:
+        """Move a servo (``S``; firmware 2019.6.0 with the servo shield only)."""
+        self._check_servo(identifier)
+        request = codec.encode_servo(identifier, position)
+        await self._command(request)
+        self._servos[identifier] = position
+
+    # -- ultrasound ---------------------------------------------------------------------
+
+    def _check_ultrasound_pins(self, trigger: int, echo: int) -> None:
+        for pin in (trigger, echo):
+            if pin not in DIGITAL_PINS:
+                raise NotSupportedByHardwareError(
+                    f"{self.board.name} drives ultrasound sensors on digital pins "
+                    f"{DIGITAL_PINS.start} to {DIGITAL_PINS.stop - 1} only, not pin {pin}",
+                )
+
+    def _ultrasound_done(self, trigger: int, echo: int) -> None:
+        """Remember the modes the firmware left the pins in: trigger low output, echo input."""
+        trigger_state = self._pins.digital(trigger)
+        trigger_state.mode = GPIOPinMode.DIGITAL_OUTPUT
+        trigger_state.level = False
+        self._pins.digital(echo).mode = GPIOPinMode.DIGITAL_INPUT
+
+    async def _ultrasound(self, trigger: int, echo: int, *, distance: bool) -> codec.Reply:
+        self._check_ultrasound_pins(trigger, echo)
+        request = codec.encode_ultrasound(trigger, echo, distance=distance)
+        try:
+            return await self._command(request, self.ULTRASOUND_TIMEOUT)
+        finally:
+            self._ultrasound_done(trigger, echo)
+
+    async def get_ultrasound_pulse(
+        self,
+        trigger_pin_identifier: int,
+        echo_pin_identifier: int,
+    ) -> timedelta | None:
+        """Return the echo time of an ultrasound sensor (``T``), or ``None`` with no echo."""
+        reply = await self._ultrasound(trigger_pin_identifier, echo_pin_identifier, distance=False)
+        return codec.parse_ultrasound_pulse(reply)
+
+    async def get_ultrasound_distance(
+        self,
+        trigger_pin_identifier: int,
+        echo_pin_identifier: int,
+    ) -> float | None:
+        """Return the distance in metres (``U``), or ``None`` with no echo."""
+        reply = await self._ultrasound(trigger_pin_identifier, echo_pin_identifier, distance=True)
+        return codec.parse_ultrasound_distance(reply)

@@ -1,0 +1,266 @@
+r"""The SourceBots Arduino 2019 line protocol (firmware 2019.6.0 and later): pure encode and parse.
+
+A request is a line, ``<letter> <args…>\n``. The board echoes it as ``# <command>``,
+then sends zero or more ``> <data>`` lines and ends with ``+ OK`` or ``- Error…``. On
+reset it prints ``# Booted`` and a version line ``# SBDuino GPIO v2019.8.0``.
+
+This module does no I/O: the hardware backend and the SB Arduino simulator both use it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from datetime import timedelta
+from typing import Final
+
+from j5aio.components.gpio_pin import GPIOPinMode
+from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
+
+__all__ = [
+    "ANALOGUE_CHANNELS",
+    "BOARD_NAME",
+    "BOOT_LINE",
+    "MINIMUM_VERSION",
+    "SERVO_COUNT",
+    "SUPPORTED_VERSIONS",
+    "ArduinoError",
+    "Reply",
+    "check_version",
+    "encode_analogue_read",
+    "encode_command",
+    "encode_digital_read",
+    "encode_pin_state",
+    "encode_servo",
+    "encode_ultrasound",
+    "is_final_line",
+    "parse_analogue",
+    "parse_digital",
+    "parse_reply",
+    "parse_ultrasound_distance",
+    "parse_ultrasound_pulse",
+    "parse_version_line",
+    "servo_level",
+]
+
+#: The board's name in errors.
+BOARD_NAME: Final = "SourceBots Arduino"
+#: The first line the board prints after a reset.
+BOOT_LINE: Final = "# Booted"
+#: The oldest firmware this codec speaks.
+MINIMUM_VERSION: Final = (2019, 6, 0)
+#: How the supported versions are described in errors.
+SUPPORTED_VERSIONS: Final = ("2019.6.0 or later (three numbers)",)
+#: Analogue channels reported by ``A``: A0 to A3.
+ANALOGUE_CHANNELS: Final = 4
+#: Servo channels of the 2019.6.0 servo shield.
+SERVO_COUNT: Final = 16
+
+_FIRST_ANALOGUE_PIN = 14
+_ADC_STEPS = 1024
+_ADC_REFERENCE = 5.0
+_SERVO_MIN = 150
+_SERVO_MAX = 550
+
+
+class ArduinoError(CommunicationError):
+    """The Arduino answered a command with ``- Error…``."""
+
+
+@dataclass(frozen=True)
+class Reply:
+    """A successful reply: the data of its ``>`` lines, in order."""
+
+    data: tuple[str, ...]
+
+
+def encode_command(letter: str, *args: object) -> bytes:
+    r"""Return the request line: the letter and the arguments, space separated, then ``\n``.
+
+    :raises ValueError: ``letter`` is not exactly one character.
+    """
+    if len(letter) != 1:
+        raise ValueError(f"an SB Arduino command is one character, not {letter!r}")
+    return (" ".join([letter, *map(str, args)]) + "\n").encode("ascii")
+
+
+def encode_pin_state(pin: int, mode: GPIOPinMode, state: bool) -> bytes:
+    """Return the ``W`` request that applies ``mode`` (and, for an output, ``state``).
+
+    ``Z`` is an input, ``P`` an input with pull-up, ``H``/``L`` an output driven high/low.
+
+    :raises ValueError: ``mode`` is not a digital mode.
+    """
+    if mode is GPIOPinMode.DIGITAL_INPUT:
+        letter = "Z"
+    elif mode is GPIOPinMode.DIGITAL_INPUT_PULLUP:
+        letter = "P"
+    elif mode is GPIOPinMode.DIGITAL_OUTPUT:
+        letter = "H" if state else "L"
+    else:
+        raise ValueError(
+            "the SB Arduino sets DIGITAL_INPUT, DIGITAL_INPUT_PULLUP or DIGITAL_OUTPUT, "
+            f"not {mode!r}",
+        )
+    return encode_command("W", pin, letter)
+
+
+def encode_digital_read(pin: int) -> bytes:
+    """Return the ``R`` request that reads ``pin``."""
+    return encode_command("R", pin)
+
+
+def encode_analogue_read() -> bytes:
+    """Return the ``A`` request, which reads A0 to A3 at once."""
+    return encode_command("A")
+
+
+def encode_ultrasound(trigger: int, echo: int, *, distance: bool) -> bytes:
+    """Return the ``U`` (distance in mm) or ``T`` (echo time in µs) request."""
+    return encode_command("U" if distance else "T", trigger, echo)
+
+
+def servo_level(position: float | None) -> int:
+    """Return the servo shield's width for ``position``: ``150 + int(400 x (p + 1) / 2)``.
+
+    ``None`` (unpowered) is 0.
+
+    :raises ValueError: ``position`` is outside [-1, 1].
+    """
+    if position is None:
+        return 0
+    if not -1 <= position <= 1:
+        raise ValueError(f"a servo position must be between -1 and 1, not {position}")
+    return _SERVO_MIN + int((_SERVO_MAX - _SERVO_MIN) * (position + 1) / 2)
+
+
+def encode_servo(servo: int, position: float | None) -> bytes:
+    """Return the ``S`` request that moves ``servo`` (firmware 2019.6.0 only)."""
+    return encode_command("S", servo, servo_level(position))
+
+
+def is_final_line(line: bytes) -> bool:
+    """Whether ``line`` ends a reply (it starts with ``+`` or ``-``)."""
+    return line.startswith((b"+", b"-"))
+
+
+def parse_reply(lines: list[bytes]) -> Reply:
+    """Return the data of a reply's lines, the final ``+``/``-`` line included.
+
+    ``#`` lines (the echo) are skipped.
+
+    :raises ArduinoError: the board reported an error.
+    :raises UnexpectedReplyError: a line that fits no kind of reply line.
+    """
+    data: list[str] = []
+    for raw in lines:
+        line = raw.decode("ascii", errors="replace").strip()
+        code, _, rest = line.partition(" ")
+        if code == "#":
+            continue
+        if code == ">":
+            data.append(rest.strip())
+        elif code == "+":
+            return Reply(tuple(data))
+        elif code.startswith("-"):
+            raise ArduinoError(f"the SB Arduino reported an error: {line.lstrip('- ')}")
+        else:
+            raise UnexpectedReplyError(f"the SB Arduino sent an unrecognised line: {line!r}")
+    raise UnexpectedReplyError(f"the SB Arduino's reply has no final '+' or '-' line: {lines!r}")
+
+
+def _single(reply: Reply, what: str) -> str:
+    if len(reply.data) != 1:
+        raise UnexpectedReplyError(
+            f"expected one '>' line from the SB Arduino {what}, got {list(reply.data)!r}",
+        )
+    return reply.data[0]
+
+
+def parse_digital(reply: Reply) -> bool:
+    """Return the level in an ``R`` reply (``H`` → True, ``L`` → False).
+
+    :raises UnexpectedReplyError: not exactly one ``H``/``L`` data line.
+    """
+    value = _single(reply, "pin read")
+    if value == "H":
+        return True
+    if value == "L":
+        return False
+    raise UnexpectedReplyError(f"expected 'H' or 'L' from the SB Arduino pin read, got {value!r}")
+
+
+def parse_analogue(reply: Reply, pin: int) -> float:
+    """Return the voltage of analogue ``pin`` (14…17) from an ``A`` reply: ``value / 1024 x 5``.
+
+    :raises UnexpectedReplyError: the reply has no line for that channel, or it is malformed.
+    """
+    wanted = f"a{pin - _FIRST_ANALOGUE_PIN}"
+    for item in reply.data:
+        name, _, reading = item.partition(" ")
+        if name == wanted:
+            try:
+                return int(reading) / _ADC_STEPS * _ADC_REFERENCE
+            except ValueError:
+                raise UnexpectedReplyError(
+                    f"expected a number for {wanted} from the SB Arduino, got {reading!r}",
+                ) from None
+    raise UnexpectedReplyError(
+        f"the SB Arduino's analogue reply has no reading for {wanted}: {list(reply.data)!r}",
+    )
+
+
+def _number(reply: Reply, what: str) -> float:
+    value = _single(reply, what)
+    try:
+        return float(value)
+    except ValueError:
+        raise UnexpectedReplyError(
+            f"expected a number from the SB Arduino {what}, got {value!r}",
+        ) from None
+
+
+def parse_ultrasound_pulse(reply: Reply) -> timedelta | None:
+    """Return the echo time of a ``T`` reply, or ``None`` when no echo came (0).
+
+    :raises UnexpectedReplyError: the reply is not one number.
+    """
+    microseconds = _number(reply, "ultrasound pulse")
+    return None if microseconds == 0 else timedelta(microseconds=microseconds)
+
+
+def parse_ultrasound_distance(reply: Reply) -> float | None:
+    """Return the distance in metres of a ``U`` reply, or ``None`` when no echo came (0).
+
+    :raises UnexpectedReplyError: the reply is not one number.
+    """
+    millimetres = _number(reply, "ultrasound distance")
+    return None if millimetres == 0 else millimetres / 1000
+
+
+def parse_version_line(line: bytes) -> str:
+    """Return the version in the boot version line: the text after its first ``v``.
+
+    :raises UnexpectedReplyError: the line has no ``v``.
+    """
+    text = line.decode("ascii", errors="replace").strip()
+    _, separator, version = text.partition("v")
+    if not separator:
+        raise UnexpectedReplyError(
+            f"expected a version line like '# SBDuino GPIO v2019.8.0', got {text!r}",
+        )
+    return version
+
+
+def check_version(version: str) -> tuple[int, int, int]:
+    """Return ``version`` as three numbers if this codec supports it.
+
+    :raises UnsupportedFirmwareError: not three integers, or older than 2019.6.0.
+    """
+    parts = version.split(".")
+    try:
+        numbers = tuple(int(part) for part in parts)
+    except ValueError:
+        numbers = ()
+    if len(numbers) != 3 or numbers < MINIMUM_VERSION:
+        raise UnsupportedFirmwareError(BOARD_NAME, version, SUPPORTED_VERSIONS)
+    return numbers[0], numbers[1], numbers[2]

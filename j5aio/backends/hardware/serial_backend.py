@@ -1,0 +1,281 @@
+"""The base of every backend that reaches its board through a serial port.
+
+A serial backend can be made three ways, all ending in the same handshake:
+
+* :meth:`SerialHardwareBackend.discover` lists the serial ports, keeps those whose USB
+  identity matches the board, opens each and runs the handshake;
+* :meth:`SerialHardwareBackend.attach` opens one explicit port (a device path, a
+  pseudo-terminal or a pyserial URL) with no discovery;
+* :meth:`SerialHardwareBackend.from_stream` runs the handshake over a stream that is
+  already open. This is the seam the simulated environment uses: it hands over a
+  :class:`~j5aio.backends.hardware.transports.memory.SimulatorStream`.
+
+Ports are claimed in :mod:`.registry`, so a port that a live backend holds is never
+opened twice. Every failure is a :class:`~j5aio.errors.CommunicationError`.
+"""
+
+from __future__ import annotations
+
+import logging
+from abc import abstractmethod
+from collections.abc import Sequence
+from typing import ClassVar, TypeVar
+
+import anyio
+import anyio.to_thread
+
+from j5aio.backends.backend import Backend
+from j5aio.backends.hardware import registry
+from j5aio.backends.hardware.options import DiscoveryOptions, StreamOpener
+from j5aio.backends.hardware.transports.discovery import (
+    PortInfo,
+    find_port,
+    list_serial_ports,
+    match_ports,
+)
+from j5aio.backends.hardware.transports.readers import ReplyReader
+from j5aio.backends.hardware.transports.serial_link import SerialLink
+from j5aio.backends.hardware.transports.serial_stream import open_serial_stream
+from j5aio.backends.hardware.transports.stream import ByteStream
+from j5aio.boards.board import Board
+from j5aio.errors import BoardDisconnectionError, DeviceMissingSerialNumberError
+
+__all__ = ["SerialHardwareBackend", "scaled"]
+
+_log = logging.getLogger(__name__)
+
+T = TypeVar("T")
+
+#: The shortest wait a time scale can produce, so that a zero scale still lets an
+#: instantly ready simulator answer.
+MINIMUM_WAIT = 0.005
+
+
+def scaled(seconds: float, time_scale: float) -> float:
+    """Return ``seconds x time_scale``, but never less than :data:`MINIMUM_WAIT`."""
+    return max(seconds * time_scale, MINIMUM_WAIT)
+
+
+class SerialHardwareBackend(Backend):
+    """A backend that drives one board through one serial port.
+
+    Subclasses set the class attributes that describe the board and implement
+    :meth:`_handshake`.
+
+    :param link: the link to the board's port; the backend owns and closes it.
+    :param port: the port's path or URL.
+    """
+
+    #: The line speed of the board's UART.
+    BAUDRATE: ClassVar[int] = 115_200
+    #: Seconds to wait for a reply.
+    DEFAULT_TIMEOUT: ClassVar[float] = 0.25
+    #: The USB (vendor, product) IDs of the board's USB-serial adapter.
+    USB_IDS: ClassVar[frozenset[tuple[int, int]]] = frozenset()
+    #: The USB manufacturer string the board must report, if it is checked.
+    USB_MANUFACTURER: ClassVar[str | None] = None
+    #: The USB product string the board must report, if it is checked.
+    USB_PRODUCT: ClassVar[str | None] = None
+    #: Skip a port without a USB serial number (with a warning) instead of raising.
+    SKIP_PORTS_WITHOUT_SERIAL: ClassVar[bool] = False
+
+    def __init__(self, link: SerialLink, *, port: str) -> None:
+        self._link = link
+        self._port = port
+        self._firmware_version: str | None = None
+
+    @property
+    def port(self) -> str:
+        """The path or URL of the board's port."""
+        return self._port
+
+    @property
+    def link(self) -> SerialLink:
+        """The link to the board (for tools and tests)."""
+        return self._link
+
+    @property
+    def firmware_version(self) -> str | None:
+        """The firmware version the board reported during the handshake."""
+        return self._firmware_version
+
+    # -- making a backend ---------------------------------------------------------------
+
+    @classmethod
+    async def from_stream(
+        cls,
+        stream: ByteStream,
+        *,
+        port: str,
+        serial_number: str,
+        time_scale: float = 1.0,
+    ) -> Board:
+        """Run the handshake over an open ``stream`` and return the board (not yet set up).
+
+        The backend owns ``stream`` from now on, and closes it if the handshake fails.
+
+        :param port: the port's name, for errors and the wire log.
+        :param serial_number: the serial number to give the board.
+        :param time_scale: multiplies the waits for the board to boot.
+        :raises CommunicationError: the board did not answer as it should.
+        :raises UnsupportedFirmwareError: the board runs firmware this backend cannot drive.
+        """
+        link = SerialLink(stream, name=port, default_timeout=cls.DEFAULT_TIMEOUT)
+        backend = cls(link, port=port)
+        try:
+            await backend._handshake(time_scale=time_scale)
+        except BaseException:
+            await link.aclose()
+            raise
+        return cls.board(serial_number, backend)
+
+    @classmethod
+    async def attach(
+        cls,
+        port: str,
+        *,
+        time_scale: float = 1.0,
+        opener: StreamOpener | None = None,
+    ) -> Board:
+        """Open the board on ``port`` without discovery and return it (not yet set up).
+
+        The serial number is the port's USB serial number if the system lists the port
+        with one, and otherwise ``port`` itself. A port this backend already holds gives
+        back the same board.
+
+        :param port: a device path (a pseudo-terminal works) or a pyserial URL.
+        :param time_scale: multiplies the waits for the board to boot.
+        :param opener: opens the port; :func:`open_serial_stream` by default.
+        :raises PortInUseError: another kind of backend holds the port.
+        :raises CommunicationError: the port could not be opened, or the board did not
+            answer as it should.
+        """
+
+        async def connect() -> Board:
+            found = await anyio.to_thread.run_sync(find_port, port)
+            serial_number = found.serial_number if found and found.serial_number else port
+            return await cls._open(port, serial_number, opener, time_scale)
+
+        return await registry.claim(port, cls, connect)
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Open every port whose USB identity matches this board and return the boards.
+
+        Boards are opened concurrently. A port this backend already holds gives back its
+        board; a port held by another kind of backend is skipped.
+
+        :param options: stand-in port lists and openers, a time scale, and whether a
+            failing board is skipped; the real thing by default.
+        :raises DeviceMissingSerialNumberError: a matching port has no serial number.
+        :raises CommunicationError: a board failed its handshake (unless skipped).
+        """
+        options = options or DiscoveryOptions()
+        ports = await anyio.to_thread.run_sync(list_serial_ports, options.port_source)
+        matched = match_ports(ports, set(cls.USB_IDS), cls.USB_MANUFACTURER, cls.USB_PRODUCT)
+        wanted = [port for port in matched if cls._has_serial_number(port)]
+        results: dict[str, Board | Exception] = {}
+
+        async def connect_one(port: PortInfo) -> None:
+            serial_number = port.serial_number or port.device
+
+            async def connect() -> Board:
+                return await cls._open(
+                    port.device,
+                    serial_number,
+                    options.opener,
+                    options.time_scale,
+                )
+
+            try:
+                results[port.device] = await registry.claim(port.device, cls, connect)
+            except registry.PortInUseError as exc:
+                _log.info("Skipping %s: %s", port.device, exc)
+            except Exception as exc:
+                results[port.device] = exc
+
+        async with anyio.create_task_group() as group:
+            for port in wanted:
+                group.start_soon(connect_one, port)
+        return cls._collect(results, skip_failures=options.skip_failures)
+
+    @classmethod
+    def _has_serial_number(cls, port: PortInfo) -> bool:
+        if port.serial_number:
+            return True
+        message = (
+            f"Found a {cls.board.name} on {port.device} that reports no USB serial number, "
+            "so it cannot be told apart from other boards"
+        )
+        if cls.SKIP_PORTS_WITHOUT_SERIAL:
+            _log.warning("%s; skipping it.", message)
+            return False
+        raise DeviceMissingSerialNumberError(
+            f"{message}. Its USB-serial adapter may need reprogramming; ask your kit supplier.",
+        )
+
+    @staticmethod
+    def _collect(results: dict[str, Board | Exception], *, skip_failures: bool) -> list[Board]:
+        boards = [item for item in results.values() if isinstance(item, Board)]
+        failures = [(port, item) for port, item in results.items() if isinstance(item, Exception)]
+        for port, failure in failures:
+            _log.warning("Could not connect to the board on %s: %s", port, failure)
+        if failures and not skip_failures:
+            raise failures[0][1]
+        return sorted(boards, key=lambda board: board.serial_number)
+
+    @classmethod
+    async def _open(
+        cls,
+        port: str,
+        serial_number: str,
+        opener: StreamOpener | None,
+        time_scale: float,
+    ) -> Board:
+        if opener is None:
+            stream: ByteStream = await open_serial_stream(port, cls.BAUDRATE)
+        else:
+            stream = await opener(port, cls.BAUDRATE)
+        return await cls.from_stream(
+            stream,
+            port=port,
+            serial_number=serial_number,
+            time_scale=time_scale,
+        )
+
+    @abstractmethod
+    async def _handshake(self, *, time_scale: float) -> None:
+        """Check the board and its firmware version; set :attr:`_firmware_version`."""
+
+    # -- talking to the board -----------------------------------------------------------
+
+    async def _exchange(
+        self, request: bytes, reader: ReplyReader[T], timeout: float | None = None
+    ) -> T:
+        """Send ``request`` and return the reply; forget the port if it has gone."""
+        try:
+            return await self._link.exchange(request, reader, timeout=timeout)
+        except BoardDisconnectionError:
+            self._forget()
+            raise
+
+    async def _send(self, data: bytes) -> None:
+        """Send ``data`` expecting no reply; forget the port if it has gone."""
+        try:
+            await self._link.send(data)
+        except BoardDisconnectionError:
+            self._forget()
+            raise
+
+    def _forget(self) -> None:
+        """Close the link at once and free the port, so that rediscovery opens it afresh."""
+        registry.release(self._port, self)
+        self._link.close_now()
+
+    async def close(self) -> None:
+        """Close the port and free it for rediscovery."""
+        registry.release(self._port, self)
+        await self._link.aclose()
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__} port={self._port!r}>"

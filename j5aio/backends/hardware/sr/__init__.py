@@ -1,0 +1,1 @@
+"""Hardware backends for Student Robotics boards."""

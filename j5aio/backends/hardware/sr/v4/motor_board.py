@@ -1,0 +1,63 @@
+r"""The hardware backend of the SR v4 Motor Board, firmware 3 (binary protocol at 1 Mbaud).
+
+Handshake: ``00 01`` (a resync byte, which the firmware ignores when idle and which
+swallows a half-sent speed command, then the version query), answered ``MCV4B:3\n``;
+then both motors are braked: ``02 02 03 02``. The board cannot be read back, so the
+motor states are the ones last sent.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
+from j5aio.backends.hardware.sr.v4 import motor_fw3_codec as codec
+from j5aio.backends.hardware.transports.readers import read_line
+from j5aio.backends.hardware.transports.serial_link import SerialLink
+from j5aio.boards.sr.v4.motor_board import MotorBoard
+from j5aio.components.motor import MotorInterface, MotorSpecialState, MotorState
+from j5aio.errors import UnsupportedFirmwareError
+
+__all__ = ["SRV4MotorBoardHardwareBackend"]
+
+_VERSION_LINE = read_line(max_length=64)
+
+
+class SRV4MotorBoardHardwareBackend(MotorInterface, SerialHardwareBackend):
+    """Drives an SR v4 Motor Board running firmware 3."""
+
+    board = MotorBoard
+
+    BAUDRATE: ClassVar[int] = codec.BAUDRATE
+    DEFAULT_TIMEOUT: ClassVar[float] = 0.25
+    USB_IDS: ClassVar[frozenset[tuple[int, int]]] = frozenset({(0x0403, 0x6001)})
+    USB_MANUFACTURER: ClassVar[str | None] = "Student Robotics"
+    USB_PRODUCT: ClassVar[str | None] = "MCV4B"
+
+    def __init__(self, link: SerialLink, *, port: str) -> None:
+        super().__init__(link, port=port)
+        self._states: list[MotorState] = [MotorSpecialState.BRAKE] * codec.MOTOR_COUNT
+
+    async def _handshake(self, *, time_scale: float) -> None:
+        line = await self._exchange(codec.RESYNC_AND_VERSION_QUERY, _VERSION_LINE)
+        version = codec.parse_version_reply(line)
+        if version not in codec.SUPPORTED_VERSIONS:
+            raise UnsupportedFirmwareError(self.board.name, version, codec.SUPPORTED_VERSIONS)
+        self._firmware_version = version
+        for motor in range(codec.MOTOR_COUNT):
+            await self.set_motor_state(motor, MotorSpecialState.BRAKE)
+
+    def _check_motor(self, identifier: int) -> None:
+        if identifier not in range(codec.MOTOR_COUNT):
+            raise ValueError(f"{self.board.name} has motors 0 and 1, not {identifier!r}")
+
+    async def get_motor_state(self, identifier: int) -> MotorState:
+        """Return the state last sent to a motor (the board cannot report it)."""
+        self._check_motor(identifier)
+        return self._states[identifier]
+
+    async def set_motor_state(self, identifier: int, power: MotorState) -> None:
+        """Set a motor to a power in [-1, 1] (``round(p x 125) + 128``), BRAKE or COAST."""
+        self._check_motor(identifier)
+        await self._send(codec.encode_motor_command(identifier, power))
+        self._states[identifier] = power

@@ -1,0 +1,136 @@
+"""The hardware backend of the SR v4 Power Board, firmware 3 (USB control transfers).
+
+Handshake: one read of ``wIndex`` 9 (4 bytes), which must be 3. The outputs and LEDs
+cannot be read back, so their states are the ones last written (all off at first).
+"""
+
+from __future__ import annotations
+
+from datetime import timedelta
+from typing import ClassVar
+
+import anyio
+
+from j5aio.backends.hardware.sr.v4 import power_fw3_codec as codec
+from j5aio.backends.hardware.transports.usb_link import USBLink
+from j5aio.backends.hardware.usb_backend import USBHardwareBackend
+from j5aio.boards.sr.v4.power_board import PowerBoard
+from j5aio.components.battery_sensor import BatterySensorInterface
+from j5aio.components.button import ButtonInterface
+from j5aio.components.led import LEDInterface
+from j5aio.components.piezo import PiezoInterface
+from j5aio.components.power_output import PowerOutputInterface
+from j5aio.errors import UnsupportedFirmwareError
+
+__all__ = ["SRV4PowerBoardHardwareBackend"]
+
+_PIEZO_ERRORS = {
+    32: "the piezo queue is full: buzz commands were sent too quickly (the board holds "
+    f"{codec.PIEZO_QUEUE_LENGTH} notes). Wait for notes to finish, or buzz with blocking=True",
+}
+
+
+class SRV4PowerBoardHardwareBackend(
+    PowerOutputInterface,
+    PiezoInterface,
+    ButtonInterface,
+    BatterySensorInterface,
+    LEDInterface,
+    USBHardwareBackend,
+):
+    """Drives an SR v4 Power Board running firmware 3."""
+
+    board = PowerBoard
+    VID: ClassVar[int] = codec.VID
+    PID: ClassVar[int] = codec.PID
+
+    #: How often :meth:`wait_until_button_pressed` reads the button, in seconds.
+    BUTTON_POLL_INTERVAL: ClassVar[float] = 0.05
+
+    def __init__(self, link: USBLink, *, key: str) -> None:
+        super().__init__(link, key=key)
+        self._outputs = [False] * codec.OUTPUT_COUNT
+        self._leds = [False, False]
+
+    async def _handshake(self) -> None:
+        version = str(codec.parse_u32(await self._read_command(codec.FIRMWARE_VERSION)))
+        if version not in codec.SUPPORTED_VERSIONS:
+            raise UnsupportedFirmwareError(self.board.name, version, codec.SUPPORTED_VERSIONS)
+        self._firmware_version = version
+
+    async def _read_command(self, command: codec.ReadCommand) -> bytes:
+        return await self._read(command.index, command.length)
+
+    def _check_single(self, identifier: int, what: str) -> None:
+        if identifier != 0:
+            raise ValueError(f"{self.board.name} has only {what} 0, not {identifier!r}")
+
+    # -- power outputs ------------------------------------------------------------------
+
+    def _check_output(self, identifier: int) -> None:
+        codec.output_current_read(identifier)  # raises ValueError for a bad output
+
+    async def get_power_output_enabled(self, identifier: int) -> bool:
+        """Return whether an output was last switched on (the board cannot report it)."""
+        self._check_output(identifier)
+        return self._outputs[identifier]
+
+    async def set_power_output_enabled(self, identifier: int, enabled: bool) -> None:
+        """Switch an output on or off."""
+        self._check_output(identifier)
+        await self._write(identifier, int(enabled))
+        self._outputs[identifier] = enabled
+
+    async def get_power_output_current(self, identifier: int) -> float:
+        """Read the current an output draws, in amperes."""
+        command = codec.output_current_read(identifier)
+        return codec.parse_u32(await self._read_command(command)) / 1000
+
+    # -- piezo --------------------------------------------------------------------------
+
+    async def buzz(self, identifier: int, duration: timedelta, pitch: float) -> None:
+        """Queue a note on the piezo (it plays after the notes already queued).
+
+        :raises NotSupportedByHardwareError: over 65535 Hz or 65535 ms.
+        :raises CommunicationError: the board's queue of notes is full.
+        """
+        self._check_single(identifier, "piezo")
+        note = codec.encode_piezo_note(duration, pitch)
+        await self._write(codec.PIEZO_WRITE, 0, note, errors=_PIEZO_ERRORS)
+
+    # -- start button -------------------------------------------------------------------
+
+    async def get_button_state(self, identifier: int) -> bool:
+        """Return whether the start button is held down now (it is not latched)."""
+        self._check_single(identifier, "button")
+        return codec.parse_u32(await self._read_command(codec.BUTTON)) != 0
+
+    async def wait_until_button_pressed(self, identifier: int) -> None:
+        """Return once the start button is seen pressed (it is read every 50 ms)."""
+        while not await self.get_button_state(identifier):  # noqa: ASYNC110 - polling a board
+            await anyio.sleep(self.BUTTON_POLL_INTERVAL)
+
+    # -- battery ------------------------------------------------------------------------
+
+    async def get_battery_sensor_voltage(self, identifier: int) -> float:
+        """Read the battery voltage, in volts."""
+        self._check_single(identifier, "battery sensor")
+        return codec.parse_battery(await self._read_command(codec.BATTERY)).voltage
+
+    async def get_battery_sensor_current(self, identifier: int) -> float:
+        """Read the battery current, in amperes."""
+        self._check_single(identifier, "battery sensor")
+        return codec.parse_battery(await self._read_command(codec.BATTERY)).current
+
+    # -- LEDs ---------------------------------------------------------------------------
+
+    async def get_led_state(self, identifier: int) -> bool:
+        """Return the state last written to an LED (the board cannot report it)."""
+        codec.led_write_index(identifier)
+        return self._leds[identifier]
+
+    async def set_led_state(self, identifier: int, state: bool) -> None:
+        """Light (``True``) or clear LED 0 (run) or 1 (error)."""
+        index = codec.led_write_index(identifier)
+        await self._write(index, int(state))
+        self._leds[identifier] = state

@@ -1,0 +1,70 @@
+"""The hardware backend of the SR v4 Servo Board, firmware 2 (USB control transfers).
+
+Handshake: read ``wIndex`` 9 (must be 2), write ``wIndex`` 12 once to start the pulse
+generator, then centre all 12 servos (``wIndex`` 0…11, ``wValue`` 0). Positions cannot
+be read back, so they are the ones last written.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+from j5aio.backends.hardware.sr.v4 import servo_fw2_codec as codec
+from j5aio.backends.hardware.transports.usb_link import USBLink
+from j5aio.backends.hardware.usb_backend import USBHardwareBackend
+from j5aio.boards.sr.v4.servo_board import ServoBoard
+from j5aio.components.servo import ServoInterface, ServoPosition
+from j5aio.errors import NotSupportedByHardwareError, UnsupportedFirmwareError
+
+__all__ = ["SRV4ServoBoardHardwareBackend"]
+
+_POWER_HINT = (
+    "the servo board did not answer; is it powered from 12 V as well as USB? (It needs "
+    "its 12 V supply to start.)"
+)
+_HANDSHAKE_ERRORS = {
+    5: _POWER_HINT,
+    110: _POWER_HINT,
+    32: "the servo board refused the version request; it may run firmware other than version 2",
+}
+
+
+class SRV4ServoBoardHardwareBackend(ServoInterface, USBHardwareBackend):
+    """Drives an SR v4 Servo Board running firmware 2."""
+
+    board = ServoBoard
+    VID: ClassVar[int] = codec.VID
+    PID: ClassVar[int] = codec.PID
+
+    def __init__(self, link: USBLink, *, key: str) -> None:
+        super().__init__(link, key=key)
+        self._positions: list[ServoPosition] = [0.0] * codec.SERVO_COUNT
+
+    async def _handshake(self) -> None:
+        command = codec.FIRMWARE_VERSION
+        reply = await self._read(command.index, command.length, errors=_HANDSHAKE_ERRORS)
+        version = str(codec.parse_u32(reply))
+        if version not in codec.SUPPORTED_VERSIONS:
+            raise UnsupportedFirmwareError(self.board.name, version, codec.SUPPORTED_VERSIONS)
+        self._firmware_version = version
+        await self._write(codec.INIT_WRITE, 0, errors=_HANDSHAKE_ERRORS)
+        for servo in range(codec.SERVO_COUNT):
+            await self.set_servo_position(servo, 0.0)
+
+    async def get_servo_position(self, identifier: int) -> ServoPosition:
+        """Return the position last written to a servo (the board cannot report it)."""
+        return self._positions[codec.servo_write_index(identifier)]
+
+    async def set_servo_position(self, identifier: int, position: ServoPosition) -> None:
+        """Move a servo to ``round(position x 100)`` on the board's -100…100 scale.
+
+        :raises NotSupportedByHardwareError: ``None``: the board cannot unpower a servo.
+        """
+        index = codec.servo_write_index(identifier)
+        if position is None:
+            raise NotSupportedByHardwareError(
+                f"{self.board.name} cannot unpower a servo (position None); give a "
+                "position between -1 and 1",
+            )
+        await self._write(index, codec.encode_position(position))
+        self._positions[index] = position

@@ -1,0 +1,172 @@
+"""The base of every backend that drives its board with USB control transfers.
+
+:meth:`USBHardwareBackend.discover` finds the devices by vendor and product ID, and
+:meth:`USBHardwareBackend.from_usb_device` (the seam the simulated environment uses,
+with a simulated device) reads the serial number, runs the handshake and returns the
+board. Each device is driven through one :class:`~.transports.usb_link.USBLink`, whose
+worker thread runs its transfers in order. A device a live backend holds is never
+opened twice (see :mod:`.registry`).
+"""
+
+from __future__ import annotations
+
+import functools
+import logging
+from abc import abstractmethod
+from collections.abc import Mapping, Sequence
+from typing import ClassVar
+
+import anyio
+import anyio.to_thread
+
+from j5aio.backends.backend import Backend
+from j5aio.backends.hardware import registry
+from j5aio.backends.hardware.options import DiscoveryOptions
+from j5aio.backends.hardware.transports.discovery import find_usb_devices
+from j5aio.backends.hardware.transports.usb_link import USBDeviceLike, USBLink
+from j5aio.boards.board import Board
+from j5aio.errors import BoardDisconnectionError, DeviceMissingSerialNumberError
+
+__all__ = ["USBHardwareBackend", "device_key"]
+
+_log = logging.getLogger(__name__)
+
+
+def device_key(device: USBDeviceLike) -> str:
+    """Return the registry key of ``device``: its bus and address, when it has them."""
+    bus = getattr(device, "bus", None)
+    address = getattr(device, "address", None)
+    ids = f"{device.idVendor:04x}:{device.idProduct:04x}"
+    if bus is not None and address is not None:
+        return f"usb:{ids}@{bus}.{address}"
+    return f"usb:{ids}#{id(device)}"
+
+
+class USBHardwareBackend(Backend):
+    """A backend that drives one board through USB control transfers.
+
+    :param link: the link to the device; the backend owns and closes it.
+    :param key: the device's key in the registry of open devices.
+    """
+
+    #: The USB vendor ID of the board.
+    VID: ClassVar[int]
+    #: The USB product ID of the board.
+    PID: ClassVar[int]
+
+    def __init__(self, link: USBLink, *, key: str) -> None:
+        self._link = link
+        self._key = key
+        self._firmware_version: str | None = None
+
+    @property
+    def link(self) -> USBLink:
+        """The link to the device (for tools and tests)."""
+        return self._link
+
+    @property
+    def port(self) -> str:
+        """A name for the device's place on the bus (its registry key)."""
+        return self._key
+
+    @property
+    def firmware_version(self) -> str | None:
+        """The firmware version the board reported during the handshake."""
+        return self._firmware_version
+
+    @classmethod
+    async def from_usb_device(cls, device: USBDeviceLike) -> Board:
+        """Read the serial number, run the handshake and return the board (not yet set up).
+
+        :param device: a pyusb device, or a stand-in with the same shape (a simulator).
+        :raises DeviceMissingSerialNumberError: the device reports no serial number.
+        :raises UnsupportedFirmwareError: the board runs firmware this backend cannot drive.
+        :raises CommunicationError: a transfer failed.
+        """
+        link = USBLink(device, board_name=cls.board.name)
+        try:
+            serial_number = await link.read_serial_number()
+            if not serial_number:
+                raise DeviceMissingSerialNumberError(
+                    f"Found a {cls.board.name} that reports no USB serial number, so it "
+                    "cannot be told apart from other boards; its firmware may need to be "
+                    "reinstalled.",
+                )
+            backend = cls(link, key=device_key(device))
+            await backend._handshake()
+        except BaseException:
+            with anyio.CancelScope(shield=True):
+                await link.aclose()
+            raise
+        return cls.board(serial_number, backend)
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Find every connected board of this kind and return them (not yet set up).
+
+        A device this backend already holds gives back its board.
+
+        :param options: a stand-in USB finder, and whether a failing board is skipped.
+        :raises CommunicationError: the bus could not be scanned, or a board failed its
+            handshake (unless skipped).
+        """
+        options = options or DiscoveryOptions()
+        find = functools.partial(find_usb_devices, cls.VID, cls.PID, finder=options.usb_finder)
+        devices = await anyio.to_thread.run_sync(find)
+        boards: list[Board] = []
+        for device in devices:
+            try:
+                board = await registry.claim(
+                    device_key(device),
+                    cls,
+                    functools.partial(cls.from_usb_device, device),
+                )
+            except registry.PortInUseError as exc:  # pragma: no cover - one backend per VID:PID
+                _log.info("Skipping a USB device: %s", exc)
+                continue
+            except Exception as exc:
+                if not options.skip_failures:
+                    raise
+                _log.warning("Could not connect to a %s: %s", cls.board.name, exc)
+                continue
+            boards.append(board)
+        return sorted(boards, key=lambda board: board.serial_number)
+
+    @abstractmethod
+    async def _handshake(self) -> None:
+        """Check the firmware version (set :attr:`_firmware_version`) and initialise."""
+
+    async def _read(
+        self, index: int, length: int, errors: Mapping[int, str] | None = None
+    ) -> bytes:
+        """Read ``length`` bytes from command ``index``; forget the device if it has gone."""
+        try:
+            return await self._link.control_read(index, length, errors=errors)
+        except BoardDisconnectionError:
+            self._forget()
+            raise
+
+    async def _write(
+        self,
+        index: int,
+        value: int,
+        data: bytes = b"",
+        errors: Mapping[int, str] | None = None,
+    ) -> None:
+        """Write command ``index`` with ``value`` and ``data``; forget the device if gone."""
+        try:
+            await self._link.control_write(index, value, data, errors=errors)
+        except BoardDisconnectionError:
+            self._forget()
+            raise
+
+    def _forget(self) -> None:
+        registry.release(self._key, self)
+
+    async def close(self) -> None:
+        """Stop the device's worker thread and free it for rediscovery."""
+        self._forget()
+        await self._link.aclose()
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__} {self._key}>"
