@@ -1,5 +1,176 @@
 """The j5aio pytest plugin: fixtures for people who test robot backends.
 
 Registered through the ``pytest11`` entry point, so installing j5aio makes its fixtures
-available in every test suite.
+available in every test suite, sync tests and async tests alike:
+
+``j5aio_sim_kit``
+    A fresh simulated kit with every board found and set up
+    (an :class:`~j5aio.testing.simkit.OpenSimulatedKit`); the boards are closed and
+    unregistered afterwards. Choose the boards with the ``j5aio_kit`` marker, whose
+    keyword arguments are those of :class:`~j5aio.simulator.kit.KitConfig`::
+
+        @pytest.mark.j5aio_kit(motor_boards=1, power_boards=0)
+        async def test_drive(j5aio_sim_kit):
+            ...
+
+``j5aio_pty_simulator``
+    A factory: ``j5aio_pty_simulator("sb-arduino")`` serves a board simulator (by name,
+    see :data:`~j5aio.simulator.SERIAL_SIMULATORS`, or a simulator object) on a
+    pseudo-terminal and returns the path to open; every server is stopped afterwards.
+
+``j5aio_faulty_stream``
+    A factory: ``j5aio_faulty_stream(stream, schedule={2: Fault.drop()})`` wraps a byte
+    stream in a :class:`~j5aio.testing.transports.FaultyStream`; every stream it made is
+    closed afterwards.
+
+``j5aio_clean_boards``
+    Empties :attr:`Board.BOARDS <j5aio.boards.board.Board.BOARDS>` after the test, so
+    that boards a test set up do not leak into the next one.
 """
+
+from __future__ import annotations
+
+from collections.abc import AsyncIterator, Iterable, Iterator, Mapping
+from typing import TYPE_CHECKING
+
+import pytest
+import pytest_asyncio
+
+if TYPE_CHECKING:
+    from j5aio.backends.hardware.transports.memory import SerialSimulatorLike
+    from j5aio.backends.hardware.transports.stream import ByteStream
+    from j5aio.simulator.serve import PtyServer
+    from j5aio.testing.simkit import OpenSimulatedKit
+    from j5aio.testing.transports import Fault, FaultyStream
+
+__all__ = [
+    "FaultyStreamFactory",
+    "PtySimulatorFactory",
+    "j5aio_clean_boards",
+    "j5aio_faulty_stream",
+    "j5aio_pty_simulator",
+    "j5aio_sim_kit",
+    "pytest_configure",
+]
+
+KIT_MARKER = "j5aio_kit"
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """Register the plugin's marker."""
+    config.addinivalue_line(
+        "markers",
+        f"{KIT_MARKER}(**counts): the boards of the j5aio_sim_kit fixture's kit, as the "
+        "keyword arguments of j5aio.simulator.kit.KitConfig",
+    )
+
+
+@pytest.fixture
+def j5aio_clean_boards() -> Iterator[None]:
+    """Empty ``Board.BOARDS`` after the test."""
+    from j5aio.boards.board import Board
+
+    yield
+    Board.BOARDS.clear()
+
+
+@pytest_asyncio.fixture
+async def j5aio_sim_kit(request: pytest.FixtureRequest) -> AsyncIterator[OpenSimulatedKit]:
+    """A fresh simulated kit, its boards set up; closed and unregistered afterwards."""
+    from j5aio.simulator.kit import KitConfig
+    from j5aio.testing.simkit import open_simulated_kit
+
+    marker = request.node.get_closest_marker(KIT_MARKER)
+    config = KitConfig(**marker.kwargs) if marker is not None else None
+    async with open_simulated_kit(config) as sim:
+        yield sim
+
+
+class PtySimulatorFactory:
+    """Serves board simulators on pseudo-terminals for one test; see ``j5aio_pty_simulator``."""
+
+    def __init__(self) -> None:
+        #: Every server started, in order.
+        self.servers: list[PtyServer] = []
+
+    def __call__(
+        self,
+        simulator: str | SerialSimulatorLike,
+        *,
+        serial_number: str = "SIM0",
+        time_scale: float = 0.0,
+    ) -> str:
+        """Serve ``simulator`` on a new pseudo-terminal and return the path to open.
+
+        :param simulator: a simulator, or the name of one in
+            :data:`~j5aio.simulator.SERIAL_SIMULATORS` (``"sr-motor"``, ...).
+        :param serial_number: the serial number of a simulator made by name.
+        :param time_scale: multiplies the simulator's boot delay; ``0``: boot at once.
+        :raises ValueError: no simulator has that name (the message lists them).
+        """
+        from j5aio.simulator import SERIAL_SIMULATORS
+        from j5aio.simulator.serve import serve_on_pty
+
+        if isinstance(simulator, str):
+            try:
+                factory = SERIAL_SIMULATORS[simulator]
+            except KeyError:
+                names = ", ".join(sorted(SERIAL_SIMULATORS))
+                raise ValueError(
+                    f"no simulator is called {simulator!r}; choose one of {names}",
+                ) from None
+            simulator = factory(serial_number)
+        server = serve_on_pty(simulator, time_scale=time_scale)
+        self.servers.append(server)
+        return server.path
+
+    def close(self) -> None:
+        """Stop every server started."""
+        while self.servers:
+            self.servers.pop().close()
+
+
+@pytest.fixture
+def j5aio_pty_simulator() -> Iterator[PtySimulatorFactory]:
+    """Factory: serve a simulator on a pseudo-terminal, get its path; stopped afterwards."""
+    factory = PtySimulatorFactory()
+    try:
+        yield factory
+    finally:
+        factory.close()
+
+
+class FaultyStreamFactory:
+    """Wraps streams in :class:`FaultyStream` for one test; see ``j5aio_faulty_stream``."""
+
+    def __init__(self) -> None:
+        #: Every stream made, in order.
+        self.streams: list[FaultyStream] = []
+
+    def __call__(
+        self,
+        inner: ByteStream,
+        *,
+        schedule: Mapping[int, Fault | Iterable[Fault]] | None = None,
+    ) -> FaultyStream:
+        """Wrap ``inner`` in a :class:`FaultyStream` with the given fault ``schedule``."""
+        from j5aio.testing.transports import FaultyStream
+
+        stream = FaultyStream(inner, schedule=schedule)
+        self.streams.append(stream)
+        return stream
+
+    def close(self) -> None:
+        """Close every stream made (and so the streams they wrap)."""
+        while self.streams:
+            self.streams.pop().close_now()
+
+
+@pytest.fixture
+def j5aio_faulty_stream() -> Iterator[FaultyStreamFactory]:
+    """Factory: wrap a byte stream in a FaultyStream; every one is closed afterwards."""
+    factory = FaultyStreamFactory()
+    try:
+        yield factory
+    finally:
+        factory.close()
