@@ -16,7 +16,13 @@ from j5aio.components.gpio_pin import (
     PinMode,
 )
 from j5aio.components.led import LED, LEDInterface
-from j5aio.components.motor import Motor, MotorInterface, MotorSpecialState, MotorState
+from j5aio.components.motor import (
+    Motor,
+    MotorInterface,
+    MotorSpecialState,
+    MotorState,
+    check_motor_state,
+)
 from j5aio.components.piezo import Duration, Note, Piezo, PiezoInterface, Pitch
 from j5aio.components.power_output import PowerOutput, PowerOutputGroup, PowerOutputInterface
 from j5aio.components.rgb_led import RGBLED, RGBChannel, RGBColour, RGBLEDInterface
@@ -64,4 +70,5 @@ __all__ = [
     "StringCommandComponentInterface",
     "UltrasoundInterface",
     "UltrasoundSensor",
+    "check_motor_state",
 ]

@@ -85,6 +85,13 @@ _DIGITAL_INPUTS = frozenset({
 })
 
 
+def _check_fraction(value: object, name: str, meaning: str) -> float:
+    """Return ``value`` as a float if it is in [0, 1]; ``meaning`` says what it stands for."""
+    return check_number(
+        value, name=name, low=0.0, high=1.0, allowed=f"a float between 0 and 1 ({meaning})",
+    )
+
+
 def _is_pin_mode(mode: object) -> TypeGuard[PinMode]:
     """Tell whether ``mode`` is a hardware mode or a firmware mode."""
     if isinstance(mode, GPIOPinMode):
@@ -245,12 +252,8 @@ class GPIOPin(IdentifiedComponent[GPIOPinInterface]):
         :raises ValueError: ``value`` is outside [0, 1], or NaN.
         :raises BadGPIOPinModeError: the pin is not in ``ANALOGUE_OUTPUT`` mode.
         """
-        scaled = check_number(
-            value,
-            name="an analogue output value",
-            low=0.0,
-            high=1.0,
-            allowed="a float between 0 and 1 (the fraction of the full voltage)",
+        scaled = _check_fraction(
+            value, "an analogue output value", "the fraction of the full voltage",
         )
         await self._require_mode("analogue_write", {GPIOPinMode.ANALOGUE_OUTPUT})
         await self._backend.write_gpio_pin_dac_value(self._identifier, scaled)
@@ -263,13 +266,7 @@ class GPIOPin(IdentifiedComponent[GPIOPinInterface]):
         :raises ValueError: ``duty_cycle`` is outside [0, 1], or NaN.
         :raises BadGPIOPinModeError: the pin is not in ``PWM_OUTPUT`` mode.
         """
-        duty = check_number(
-            duty_cycle,
-            name="a PWM duty cycle",
-            low=0.0,
-            high=1.0,
-            allowed="a float between 0 (always low) and 1 (always high)",
-        )
+        duty = _check_fraction(duty_cycle, "a PWM duty cycle", "the fraction of time it is high")
         await self._require_mode("pwm_write", {GPIOPinMode.PWM_OUTPUT})
         await self._backend.write_gpio_pin_pwm_value(self._identifier, duty)
 

@@ -9,7 +9,7 @@ from j5aio.components._checks import check_number
 from j5aio.components._identified import IdentifiedComponent
 from j5aio.components.component import Interface
 
-__all__ = ["Motor", "MotorInterface", "MotorSpecialState", "MotorState"]
+__all__ = ["Motor", "MotorInterface", "MotorSpecialState", "MotorState", "check_motor_state"]
 
 
 class MotorSpecialState(Enum):
@@ -68,12 +68,26 @@ class Motor(IdentifiedComponent[MotorInterface]):
             is refused too).
         :raises ValueError: ``power`` is outside [-1, 1], or NaN.
         """
-        if not isinstance(power, MotorSpecialState):
-            power = check_number(
-                power,
-                name="motor power",
-                low=-1.0,
-                high=1.0,
-                allowed="a float between -1 and 1, or MotorSpecialState.BRAKE / COAST",
-            )
-        await self._backend.set_motor_state(self._identifier, power)
+        await self._backend.set_motor_state(self._identifier, check_motor_state(power))
+
+
+def check_motor_state(power: object, *, name: str = "motor power") -> MotorState:
+    """Return ``power`` if a motor can be set to it, with an int turned into a float.
+
+    Boards use this to check a motor state they are given, such as a safe state.
+
+    :param power: the value to check.
+    :param name: what the value is, for the error message.
+    :raises TypeError: ``power`` is neither a number nor a :class:`MotorSpecialState`
+        (a bool is refused too).
+    :raises ValueError: ``power`` is outside [-1, 1], or NaN.
+    """
+    if isinstance(power, MotorSpecialState):
+        return power
+    return check_number(
+        power,
+        name=name,
+        low=-1.0,
+        high=1.0,
+        allowed="a float between -1 and 1, or MotorSpecialState.BRAKE / COAST",
+    )

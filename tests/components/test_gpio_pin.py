@@ -259,7 +259,9 @@ async def test_analogue_write_refuses_a_value_outside_0_to_1(value: float) -> No
 async def test_pwm_write_refuses_a_value_outside_0_to_1(value: float) -> None:
     backend = RecordingBackend()
     pin = make_pin(backend, GPIOPinMode.PWM_OUTPUT)
-    with pytest.raises(ValueError, match=r"^a PWM duty cycle must be a float between 0 \(always"):
+    with pytest.raises(
+        ValueError, match=r"^a PWM duty cycle must be a float between 0 and 1 \(the fraction of",
+    ):
         await pin.pwm_write(value)
     assert backend.calls == []
 

@@ -3,7 +3,7 @@ import math
 import pytest
 from component_fakes import RecordingBackend
 
-from j5aio.components import Motor, MotorInterface, MotorSpecialState
+from j5aio.components import Motor, MotorInterface, MotorSpecialState, check_motor_state
 
 ALLOWED = r"a float between -1 and 1, or MotorSpecialState\.BRAKE / COAST"
 
@@ -71,3 +71,12 @@ async def test_set_power_refuses_a_power_of_the_wrong_type(power: object) -> Non
 def test_identifier_and_interface() -> None:
     assert Motor(5, RecordingBackend()).identifier == 5
     assert Motor.interface_class() is MotorInterface
+
+
+def test_check_motor_state_names_the_value_it_checks() -> None:
+    assert check_motor_state(MotorSpecialState.BRAKE) is MotorSpecialState.BRAKE
+    assert check_motor_state(-1) == -1.0
+    with pytest.raises(ValueError, match=f"^safe_state must be {ALLOWED}; got 3$"):
+        check_motor_state(3, name="safe_state")
+    with pytest.raises(TypeError, match=r"^safe_state must be"):
+        check_motor_state(None, name="safe_state")
