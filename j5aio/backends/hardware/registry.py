@@ -15,7 +15,7 @@ import anyio
 from j5aio.boards.board import Board
 from j5aio.errors import CommunicationError
 
-__all__ = ["PortInUseError", "claim", "holder", "release"]
+__all__ = ["PortInUseError", "claim", "held", "holder", "release"]
 
 _boards: dict[str, Board] = {}
 _opening: dict[str, anyio.Event] = {}
@@ -23,6 +23,11 @@ _opening: dict[str, anyio.Event] = {}
 
 class PortInUseError(CommunicationError):
     """The port is held by a backend of another kind (say, a Ruggeduino backend)."""
+
+
+def held() -> frozenset[str]:
+    """Return the keys of every port and device held now."""
+    return frozenset(_boards)
 
 
 def holder(key: str) -> Board | None:

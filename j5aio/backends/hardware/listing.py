@@ -1,0 +1,94 @@
+"""List the boards connected to this computer (``python -m j5aio list``).
+
+:func:`find_boards` runs every backend of the hardware environment's discovery, notes
+each board's kind, serial number, firmware version and port, and closes again the
+boards it opened (a board that a running robot already holds is reported and left
+alone). :func:`format_boards` turns the list into text for people.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Final
+
+import anyio
+
+from j5aio.backends.hardware import registry
+from j5aio.backends.hardware.env import HARDWARE_BACKENDS
+from j5aio.backends.hardware.options import DiscoveryOptions
+from j5aio.boards.board import Board
+
+__all__ = ["LISTING_TIME_SCALE", "FoundBoard", "find_boards", "format_boards"]
+
+#: Listing waits this fraction of the usual time for an Arduino to boot (about 5 s
+#: instead of 33 s), so that an Arduino of one kind is soon tried as the other kind.
+LISTING_TIME_SCALE: Final = 0.15
+
+
+@dataclass(frozen=True)
+class FoundBoard:
+    """A board found by :func:`find_boards`."""
+
+    #: The kind of board, e.g. ``"Student Robotics v4 Motor Board"``.
+    board_type: str
+    #: The board's serial number.
+    serial_number: str
+    #: The firmware version it reported, if it has one.
+    firmware_version: str | None
+    #: The serial port, or the USB bus position, it was found on.
+    port: str
+
+
+async def find_boards(*, options: DiscoveryOptions | None = None) -> list[FoundBoard]:
+    """Return every board the hardware environment finds, one backend after another.
+
+    A board that fails its handshake is logged and left out rather than stopping the
+    listing.
+
+    :param options: stand-in port lists and USB finders for tests; by default the real
+        ones, with :data:`LISTING_TIME_SCALE` and failing boards skipped.
+    """
+    if options is None:
+        options = DiscoveryOptions(time_scale=LISTING_TIME_SCALE, skip_failures=True)
+    else:
+        options = dataclasses.replace(options, skip_failures=True)
+    held_before = registry.held()
+    found: list[FoundBoard] = []
+    opened: list[Board] = []
+    try:
+        for backend in HARDWARE_BACKENDS:
+            for board in await backend.discover(options=options):
+                port = str(getattr(board.backend, "port", ""))
+                found.append(
+                    FoundBoard(board.name, board.serial_number, board.firmware_version, port),
+                )
+                if port not in held_before:
+                    opened.append(board)
+    finally:
+        with anyio.CancelScope(shield=True):
+            for board in opened:
+                await board.close()
+    return found
+
+
+def format_boards(boards: Sequence[FoundBoard]) -> str:
+    """Return a table of ``boards`` for people, or a plain sentence when there are none."""
+    if not boards:
+        return (
+            "No boards found. Check that each board is plugged in by USB and powered, "
+            "then try again."
+        )
+    headings = ("Board", "Serial number", "Firmware", "Port")
+    rows = [
+        (board.board_type, board.serial_number, board.firmware_version or "-", board.port)
+        for board in boards
+    ]
+    widths = [max(len(row[column]) for row in [headings, *rows]) for column in range(4)]
+    lines = [
+        "  ".join(cell.ljust(width) for cell, width in zip(row, widths, strict=True)).rstrip()
+        for row in [headings, *rows]
+    ]
+    count = f"{len(boards)} board{'s' if len(boards) != 1 else ''} found."
+    return "\n".join([*lines, count])
