@@ -39,9 +39,15 @@ class BatterySensor(IdentifiedComponent[BatterySensorInterface]):
         return BatterySensorInterface
 
     async def get_voltage(self) -> float:
-        """Return the battery's voltage, in volts."""
+        """Return the battery's voltage, in volts.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         return await self._backend.get_battery_sensor_voltage(self._identifier)
 
     async def get_current(self) -> float:
-        """Return the current drawn from the battery, in amps."""
+        """Return the current drawn from the battery, in amps.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         return await self._backend.get_battery_sensor_current(self._identifier)

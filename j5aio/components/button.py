@@ -45,7 +45,10 @@ class Button(IdentifiedComponent[ButtonInterface]):
         return ButtonInterface
 
     async def get_is_pressed(self) -> bool:
-        """Return ``True`` if the button is held down right now."""
+        """Return ``True`` if the button is held down right now.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         return await self._backend.get_button_state(self._identifier)
 
     async def wait_until_pressed(self, timeout: float | None = None) -> None:
@@ -58,6 +61,7 @@ class Button(IdentifiedComponent[ButtonInterface]):
         :raises TimeoutError: ``timeout`` seconds passed before the button was pressed.
         :raises TypeError: ``timeout`` is not ``None`` or a number.
         :raises ValueError: ``timeout`` is negative or NaN.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         limit = check_timeout(timeout)
         with anyio.fail_after(limit):

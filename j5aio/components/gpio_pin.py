@@ -186,6 +186,8 @@ class GPIOPin(IdentifiedComponent[GPIOPinInterface]):
         """Put the pin in its initial mode.
 
         The board calls this when it is set up; calling it again does nothing.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         if self._is_set_up:
             return
@@ -193,7 +195,13 @@ class GPIOPin(IdentifiedComponent[GPIOPinInterface]):
         self._is_set_up = True
 
     async def get_mode(self) -> PinMode:
-        """Return the pin's hardware mode, as the backend reports it."""
+        """Return the pin's hardware mode, as the backend reports it.
+
+        As in j5, a firmware mode set with :meth:`set_mode` is not reported here: the
+        board only knows the pin's hardware mode.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         return await self._backend.get_gpio_pin_mode(self._identifier)
 
     async def set_mode(self, mode: PinMode) -> None:
@@ -205,6 +213,7 @@ class GPIOPin(IdentifiedComponent[GPIOPinInterface]):
         :raises TypeError: ``mode`` is neither a :class:`GPIOPinMode` nor a derived
             component class.
         :raises NotSupportedByComponentError: this pin does not support ``mode``.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         self._check_mode(mode)
         if isinstance(mode, GPIOPinMode):
@@ -215,6 +224,7 @@ class GPIOPin(IdentifiedComponent[GPIOPinInterface]):
 
         :raises TypeError: ``state`` is not a bool.
         :raises BadGPIOPinModeError: the pin is not in ``DIGITAL_OUTPUT`` mode.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         check_bool(state, name="a digital pin state", allowed="True (high) or False (low)")
         await self._require_mode("digital_write", {GPIOPinMode.DIGITAL_OUTPUT})
@@ -224,6 +234,7 @@ class GPIOPin(IdentifiedComponent[GPIOPinInterface]):
         """Return the level last written with :meth:`digital_write`, without reading the pin.
 
         :raises BadGPIOPinModeError: the pin is not in ``DIGITAL_OUTPUT`` mode.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         await self._require_mode("get_last_digital_write", {GPIOPinMode.DIGITAL_OUTPUT})
         return await self._backend.get_gpio_pin_digital_state(self._identifier)
@@ -232,6 +243,7 @@ class GPIOPin(IdentifiedComponent[GPIOPinInterface]):
         """Read the pin: ``True`` if it is high, ``False`` if it is low.
 
         :raises BadGPIOPinModeError: the pin is not in one of the digital input modes.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         await self._require_mode("digital_read", _DIGITAL_INPUTS)
         return await self._backend.read_gpio_pin_digital_state(self._identifier)
@@ -240,6 +252,7 @@ class GPIOPin(IdentifiedComponent[GPIOPinInterface]):
         """Read the voltage on the pin, in volts.
 
         :raises BadGPIOPinModeError: the pin is not in ``ANALOGUE_INPUT`` mode.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         await self._require_mode("analogue_read", {GPIOPinMode.ANALOGUE_INPUT})
         return await self._backend.read_gpio_pin_analogue_value(self._identifier)
@@ -251,6 +264,7 @@ class GPIOPin(IdentifiedComponent[GPIOPinInterface]):
         :raises TypeError: ``value`` is not a number (or is a bool).
         :raises ValueError: ``value`` is outside [0, 1], or NaN.
         :raises BadGPIOPinModeError: the pin is not in ``ANALOGUE_OUTPUT`` mode.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         scaled = _check_fraction(
             value, "an analogue output value", "the fraction of the full voltage",
@@ -265,6 +279,7 @@ class GPIOPin(IdentifiedComponent[GPIOPinInterface]):
         :raises TypeError: ``duty_cycle`` is not a number (or is a bool).
         :raises ValueError: ``duty_cycle`` is outside [0, 1], or NaN.
         :raises BadGPIOPinModeError: the pin is not in ``PWM_OUTPUT`` mode.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         duty = _check_fraction(duty_cycle, "a PWM duty cycle", "the fraction of time it is high")
         await self._require_mode("pwm_write", {GPIOPinMode.PWM_OUTPUT})

@@ -42,13 +42,17 @@ class LED(IdentifiedComponent[LEDInterface]):
         return LEDInterface
 
     async def get_state(self) -> bool:
-        """Return ``True`` if the LED is lit, ``False`` if it is dark."""
+        """Return ``True`` if the LED is lit, ``False`` if it is dark.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         return await self._backend.get_led_state(self._identifier)
 
     async def set_state(self, state: bool) -> None:
         """Light the LED (``True``) or darken it (``False``).
 
         :raises TypeError: ``state`` is not a bool; ``1`` and ``0`` are refused as well.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         check_bool(state, name="LED state", allowed="True (on) or False (off)")
         await self._backend.set_led_state(self._identifier, state)

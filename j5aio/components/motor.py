@@ -56,7 +56,10 @@ class Motor(IdentifiedComponent[MotorInterface]):
         return MotorInterface
 
     async def get_power(self) -> MotorState:
-        """Return the motor's power in [-1, 1], or its :class:`MotorSpecialState`."""
+        """Return the motor's power in [-1, 1], or its :class:`MotorSpecialState`.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         return await self._backend.get_motor_state(self._identifier)
 
     async def set_power(self, power: MotorState) -> None:
@@ -67,6 +70,7 @@ class Motor(IdentifiedComponent[MotorInterface]):
         :raises TypeError: ``power`` is neither a number nor a special state (a bool
             is refused too).
         :raises ValueError: ``power`` is outside [-1, 1], or NaN.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         await self._backend.set_motor_state(self._identifier, check_motor_state(power))
 

@@ -92,6 +92,7 @@ class Piezo(IdentifiedComponent[PiezoInterface]):
         :raises ValueError: ``duration`` or ``pitch`` is zero, negative, NaN or infinite.
         :raises NotSupportedByHardwareError: (from the backend) the board cannot play
             this note, for example because it is too long.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         length = self._as_timedelta(duration)
         self.verify_duration(length)

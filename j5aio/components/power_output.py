@@ -47,19 +47,26 @@ class PowerOutput(IdentifiedComponent[PowerOutputInterface]):
         return PowerOutputInterface
 
     async def get_is_enabled(self) -> bool:
-        """Return ``True`` if the output is switched on."""
+        """Return ``True`` if the output is switched on.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         return await self._backend.get_power_output_enabled(self._identifier)
 
     async def set_is_enabled(self, enabled: bool) -> None:
         """Switch the output on (``True``) or off (``False``).
 
         :raises TypeError: ``enabled`` is not a bool; ``1`` and ``0`` are refused as well.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         check_bool(enabled, name="power output state", allowed="True (on) or False (off)")
         await self._backend.set_power_output_enabled(self._identifier, enabled)
 
     async def get_current(self) -> float:
-        """Return the current drawn from the output, in amps."""
+        """Return the current drawn from the output, in amps.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         return await self._backend.get_power_output_current(self._identifier)
 
 
@@ -83,7 +90,11 @@ class PowerOutputGroup(Generic[K]):
     async def power_on(self) -> None:
         """Switch on every output in the group, one after another.
 
-        Every output is tried even if one fails; see :meth:`power_off` for the errors.
+        Every output is tried even if one fails, so one broken output does not leave the
+        others off.
+
+        :raises CommunicationError: an output's board did not answer properly (when
+            several outputs fail, an ``ExceptionGroup`` of their errors).
         """
         await self._switch_all(True)
 
@@ -93,8 +104,8 @@ class PowerOutputGroup(Generic[K]):
         Every output is tried even if one fails, so one broken output does not leave the
         others on.
 
-        :raises Exception: the error of the one output that failed, or an
-            ``ExceptionGroup`` of the errors if several failed.
+        :raises CommunicationError: an output's board did not answer properly (when
+            several outputs fail, an ``ExceptionGroup`` of their errors).
         """
         await self._switch_all(False)
 

@@ -64,7 +64,10 @@ class RGBLED(IdentifiedComponent[RGBLEDInterface]):
         return RGBLEDInterface
 
     async def get_red(self) -> float:
-        """Return the brightness of the red channel, between 0 and 1."""
+        """Return the brightness of the red channel, between 0 and 1.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         return await self._get_channel(RGBChannel.RED)
 
     async def set_red(self, duty_cycle: float) -> None:
@@ -72,11 +75,15 @@ class RGBLED(IdentifiedComponent[RGBLEDInterface]):
 
         :raises TypeError: ``duty_cycle`` is not a number (or is a bool).
         :raises ValueError: ``duty_cycle`` is outside [0, 1], or NaN.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         await self._set_channel(RGBChannel.RED, duty_cycle)
 
     async def get_green(self) -> float:
-        """Return the brightness of the green channel, between 0 and 1."""
+        """Return the brightness of the green channel, between 0 and 1.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         return await self._get_channel(RGBChannel.GREEN)
 
     async def set_green(self, duty_cycle: float) -> None:
@@ -84,11 +91,15 @@ class RGBLED(IdentifiedComponent[RGBLEDInterface]):
 
         :raises TypeError: ``duty_cycle`` is not a number (or is a bool).
         :raises ValueError: ``duty_cycle`` is outside [0, 1], or NaN.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         await self._set_channel(RGBChannel.GREEN, duty_cycle)
 
     async def get_blue(self) -> float:
-        """Return the brightness of the blue channel, between 0 and 1."""
+        """Return the brightness of the blue channel, between 0 and 1.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         return await self._get_channel(RGBChannel.BLUE)
 
     async def set_blue(self, duty_cycle: float) -> None:
@@ -96,11 +107,15 @@ class RGBLED(IdentifiedComponent[RGBLEDInterface]):
 
         :raises TypeError: ``duty_cycle`` is not a number (or is a bool).
         :raises ValueError: ``duty_cycle`` is outside [0, 1], or NaN.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         await self._set_channel(RGBChannel.BLUE, duty_cycle)
 
     async def get_colour(self) -> RGBColour:
-        """Return the colour as a (red, green, blue) tuple of brightnesses in [0, 1]."""
+        """Return the colour as a (red, green, blue) tuple of brightnesses in [0, 1].
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         red, green, blue = [await self._get_channel(channel) for channel in RGBChannel]
         return (red, green, blue)
 
@@ -112,6 +127,7 @@ class RGBLED(IdentifiedComponent[RGBLEDInterface]):
         :raises TypeError: ``colour`` is not a tuple or list of three numbers.
         :raises ValueError: ``colour`` does not have three values, or one of them is
             outside [0, 1] or NaN.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         allowed = f"a (red, green, blue) tuple, each {_DUTY_ALLOWED}"
         if not isinstance(colour, tuple | list):

@@ -46,7 +46,10 @@ class Servo(IdentifiedComponent[ServoInterface]):
         return ServoInterface
 
     async def get_position(self) -> ServoPosition:
-        """Return the servo's position in [-1, 1], or ``None`` if it is unpowered."""
+        """Return the servo's position in [-1, 1], or ``None`` if it is unpowered.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         return await self._backend.get_servo_position(self._identifier)
 
     async def set_position(self, position: ServoPosition) -> None:
@@ -58,6 +61,7 @@ class Servo(IdentifiedComponent[ServoInterface]):
         :raises ValueError: ``position`` is outside [-1, 1], or NaN.
         :raises NotSupportedByHardwareError: (from the backend) the board cannot unpower
             a servo.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         if position is not None:
             position = check_number(

@@ -42,6 +42,7 @@ class StringCommandComponent(IdentifiedComponent[StringCommandComponentInterface
 
         :raises TypeError: ``command`` is not a str.
         :raises ValueError: ``command`` is empty.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         if not isinstance(command, str):
             raise TypeError(f"a command must be a non-empty str; got {describe(command)}")

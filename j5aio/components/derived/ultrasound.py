@@ -83,7 +83,10 @@ class UltrasoundSensor(DerivedComponent):
         return UltrasoundInterface
 
     async def pulse(self) -> timedelta | None:
-        """Send a pulse and return how long its echo took, or ``None`` if none came back."""
+        """Send a pulse and return how long its echo took, or ``None`` if none came back.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
         return await self._backend.get_ultrasound_pulse(
             self._gpio_trigger.identifier, self._gpio_echo.identifier,
         )
@@ -95,6 +98,7 @@ class UltrasoundSensor(DerivedComponent):
 
         :raises NotSupportedByComponentError: the sensor was made with
             ``distance_mode=False``; use :meth:`pulse` instead.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         if not self._distance_mode:
             raise NotSupportedByComponentError(
