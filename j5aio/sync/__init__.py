@@ -1,0 +1,32 @@
+"""The synchronous face of j5aio, for first-time students and for j5 programs.
+
+Every class here wraps its async twin from the core and blocks until the board has
+answered, exactly like j5. A program written for j5 runs with only its import line
+changed::
+
+    from j5aio.sync import BaseRobot, BoardGroup
+    from j5aio.boards.sr.v4 import PowerBoard
+    from j5aio.backends.console.sr.v4 import SRV4PowerBoardConsoleBackend
+
+    class MyRobot(BaseRobot):
+        def __init__(self) -> None:
+            self.power_board = BoardGroup.get_board_group(
+                PowerBoard, SRV4PowerBoardConsoleBackend,
+            ).singular()
+
+    robot = MyRobot()
+    robot.power_board.outputs[0].is_enabled = True
+
+An ``await x.get_power()`` / ``await x.set_power(v)`` pair of the core is the property
+``x.power`` here; every other coroutine is a method of the same name that blocks. When
+the program ends, however it ends (normally, by an exception, Ctrl-C or SIGTERM), every
+board is made safe and its port closed. The wrappers are generated from the core by
+``tools/gen_sync.py``.
+"""
+
+from j5aio.sync import _generated
+from j5aio.sync._generated import *  # noqa: F403
+from j5aio.sync._runtime import shutdown
+
+__all__ = ["shutdown"]
+__all__ += _generated.__all__

@@ -1,0 +1,176 @@
+"""Turning core objects into their sync wrappers, and back.
+
+The generated facade registers one wrapper class per core class. :func:`wrap` finds the
+wrapper of a core object (the same wrapper every time, so ``board.motors[0] is
+board.motors[0]``), and wraps the items of mappings, sequences, sets and iterators of core
+objects lazily. :func:`unwrap` does the reverse for arguments.
+"""
+
+from __future__ import annotations
+
+import weakref
+from collections.abc import Iterator, Mapping, Sequence, Set
+from typing import Any, TypeVar
+
+__all__ = [
+    "SyncWrapper",
+    "WrappedMapping",
+    "WrappedSequence",
+    "adopt",
+    "adopt_into",
+    "register",
+    "unwrap",
+    "wrap",
+]
+
+K = TypeVar("K")
+W = TypeVar("W", bound="SyncWrapper")
+V = TypeVar("V")
+
+#: core class -> wrapper class (subclasses of a registered class are added on first use).
+_WRAPPER_CLASSES: dict[type, type[SyncWrapper] | None] = {}
+#: id(core object) -> its wrapper. The wrapper keeps its core object (and so the id) alive,
+#: and the entry goes when the wrapper does, so an id is never looked up for a new object.
+_WRAPPERS: weakref.WeakValueDictionary[int, SyncWrapper] = weakref.WeakValueDictionary()
+
+_LEAVES = (str, bytes, bytearray, int, float, type(None))
+
+
+class SyncWrapper:
+    """The base class of every generated sync wrapper: it holds one core object."""
+
+    __slots__ = ("__weakref__", "_core")
+
+    _core: Any
+
+    @classmethod
+    def _from_core(cls, core: Any) -> Any:
+        wrapper = object.__new__(cls)
+        wrapper._core = core
+        return wrapper
+
+    def __str__(self) -> str:
+        return str(self._core)
+
+    def __repr__(self) -> str:
+        return f"<sync {self._core!r}>"
+
+
+def register(core_class: type, wrapper_class: type[SyncWrapper]) -> None:
+    """Use ``wrapper_class`` for instances of ``core_class`` (and its unregistered subclasses)."""
+    _WRAPPER_CLASSES[core_class] = wrapper_class
+
+
+def adopt(cls: type[W], core: Any) -> W:
+    """Return a new ``cls`` wrapping ``core``, remembered as ``core``'s wrapper."""
+    wrapper: W = cls._from_core(core)
+    _WRAPPERS[id(core)] = wrapper
+    return wrapper
+
+
+def adopt_into(wrapper: SyncWrapper, core: Any) -> None:
+    """Make ``wrapper`` (being constructed) the wrapper of the new core object ``core``."""
+    wrapper._core = core
+    _WRAPPERS[id(core)] = wrapper
+
+
+def _wrapper_class_of(cls: type) -> type[SyncWrapper] | None:
+    try:
+        return _WRAPPER_CLASSES[cls]
+    except KeyError:
+        pass
+    found: type[SyncWrapper] | None = None
+    for base in cls.__mro__[1:]:
+        found = _WRAPPER_CLASSES.get(base)
+        if found is not None:
+            break
+    _WRAPPER_CLASSES[cls] = found
+    return found
+
+
+def wrap(obj: Any) -> Any:
+    """Return the sync face of ``obj``: its wrapper, a wrapping view, or ``obj`` itself."""
+    if isinstance(obj, _LEAVES):
+        return obj
+    wrapper = _WRAPPERS.get(id(obj))
+    if wrapper is not None:
+        return wrapper
+    wrapper_class = _wrapper_class_of(type(obj))
+    if wrapper_class is not None:
+        return _WRAPPERS.setdefault(id(obj), wrapper_class._from_core(obj))
+    if isinstance(obj, type):
+        return obj
+    if isinstance(obj, list):
+        return [wrap(item) for item in obj]
+    if isinstance(obj, tuple):
+        return tuple(wrap(item) for item in obj)
+    if isinstance(obj, Mapping):
+        return WrappedMapping(obj)
+    if isinstance(obj, Sequence):
+        return WrappedSequence(obj)
+    if isinstance(obj, set):
+        return {wrap(item) for item in obj}
+    if isinstance(obj, Set):
+        return frozenset(wrap(item) for item in obj)
+    if isinstance(obj, Iterator):
+        return (wrap(item) for item in obj)
+    return obj
+
+
+def unwrap(obj: Any) -> Any:
+    """Return the core object behind a wrapper (or a container of them); others unchanged."""
+    if isinstance(obj, SyncWrapper):
+        return obj._core
+    if isinstance(obj, WrappedMapping | WrappedSequence):
+        return obj._core
+    if isinstance(obj, list):
+        return [unwrap(item) for item in obj]
+    if isinstance(obj, tuple):
+        return tuple(unwrap(item) for item in obj)
+    if isinstance(obj, dict):
+        return {key: unwrap(value) for key, value in obj.items()}
+    return obj
+
+
+class WrappedMapping(Mapping[K, V]):
+    """A read-only view of a core mapping whose values are shown as sync wrappers."""
+
+    __slots__ = ("_core",)
+
+    def __init__(self, core: Mapping[K, Any]) -> None:
+        self._core = core
+
+    def __getitem__(self, key: K) -> V:
+        return wrap(self._core[key])  # type: ignore[no-any-return]
+
+    def __iter__(self) -> Iterator[K]:
+        return iter(self._core)
+
+    def __len__(self) -> int:
+        return len(self._core)
+
+    def __repr__(self) -> str:
+        return f"<sync {self._core!r}>"
+
+
+class WrappedSequence(Sequence[V]):
+    """A read-only view of a core sequence whose items are shown as sync wrappers."""
+
+    __slots__ = ("_core",)
+
+    def __init__(self, core: Sequence[Any]) -> None:
+        self._core = core
+
+    def __getitem__(self, index: Any) -> Any:
+        if isinstance(index, slice):
+            return [wrap(item) for item in self._core[index]]
+        return wrap(self._core[index])
+
+    def __iter__(self) -> Iterator[V]:
+        return (wrap(item) for item in self._core)
+
+    def __len__(self) -> int:
+        return len(self._core)
+
+    def __repr__(self) -> str:
+        return f"<sync {self._core!r}>"

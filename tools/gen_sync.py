@@ -1,0 +1,888 @@
+"""Generate the typed sync facade of j5aio (``j5aio/sync/_generated.py``).
+
+Run ``python tools/gen_sync.py`` after changing a public async class; ``--check`` only
+reports whether the committed module is up to date.
+
+The generator imports the async core and reads its public classes by introspection:
+
+* every class defined in :mod:`j5aio.components` and :mod:`j5aio.boards` (except enums,
+  interfaces and exceptions), plus :class:`~j5aio.backends.environment.Environment` and
+  :class:`~j5aio.robot.BaseRobot`;
+* every module-level :class:`~j5aio.backends.environment.Environment` object in
+  :mod:`j5aio.backends`.
+
+For each class it writes a wrapper class with ``__slots__`` that holds the core object and
+follows the naming convention: a ``get_x`` / ``set_x`` coroutine pair becomes the
+read-write property ``x``, a lone ``get_x`` (with no required argument) a read-only
+property, every other coroutine a blocking method of the same name; plain methods,
+properties and class constants are forwarded. Anything that returns a core object returns
+its wrapper instead, and a function whose signature uses a type variable bound to a
+wrapped class (``get_board_group``) gets one ``@overload`` per wrapped class, so that the
+type checker knows the exact wrapper it returns.
+"""
+
+from __future__ import annotations
+
+import argparse
+import ast
+import enum
+import importlib
+import inspect
+import math
+import pkgutil
+import re
+import sys
+import textwrap
+import types
+import typing
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+__all__ = ["OUTPUT", "Discovery", "discover", "generate", "main", "render_module"]
+
+ROOT = Path(__file__).resolve().parent.parent
+OUTPUT = ROOT / "j5aio" / "sync" / "_generated.py"
+
+#: Packages whose classes are wrapped.
+WRAPPED_PACKAGES = ("j5aio.components", "j5aio.boards")
+#: Extra modules whose named classes are wrapped.
+EXTRA_CLASSES = (("j5aio.backends.environment", "Environment"), ("j5aio.robot", "BaseRobot"))
+#: Package searched for module-level Environment objects.
+ENVIRONMENT_PACKAGE = "j5aio.backends"
+#: Packages never imported by discovery (hardware needs optional libraries at import).
+SKIPPED_PACKAGES = ("j5aio.sync",)
+
+#: Dunder methods forwarded when a core class defines them.
+FORWARDED_DUNDERS = ("__getitem__", "__iter__", "__len__", "__contains__", "__bool__")
+
+LINE_LENGTH = 100
+
+_NONE_TYPE = type(None)
+
+
+# --------------------------------------------------------------------------- discovery
+
+
+@dataclass
+class Discovery:
+    """What the generator wraps: core classes (bases first) and environment objects."""
+
+    classes: list[type] = field(default_factory=list)
+    environments: dict[str, tuple[str, str]] = field(default_factory=dict)
+    """Exported name -> (module, attribute) of each environment object."""
+
+
+def _walk(package_name: str) -> list[types.ModuleType]:
+    package = importlib.import_module(package_name)
+    modules = [package]
+    for info in pkgutil.walk_packages(package.__path__, package_name + "."):
+        if info.name.startswith(SKIPPED_PACKAGES):
+            continue
+        modules.append(importlib.import_module(info.name))
+    return modules
+
+
+def _is_wrappable(cls: type) -> bool:
+    from j5aio.backends.backend import Backend
+    from j5aio.components.component import Interface
+
+    return not (
+        issubclass(cls, enum.Enum | Interface | BaseException | Backend)
+        or cls.__name__.startswith("_")
+    )
+
+
+def discover() -> Discovery:
+    """Find the classes and environment objects of the installed j5aio."""
+    from j5aio.backends.environment import Environment
+
+    found: dict[type, None] = {}
+    for package in WRAPPED_PACKAGES:
+        for module in _walk(package):
+            for obj in vars(module).values():
+                if (
+                    inspect.isclass(obj)
+                    and obj.__module__ == module.__name__
+                    and _is_wrappable(obj)
+                ):
+                    found[obj] = None
+    for module_name, class_name in EXTRA_CLASSES:
+        found[getattr(importlib.import_module(module_name), class_name)] = None
+    discovery = Discovery(classes=_bases_first(found))
+
+    seen: dict[int, str] = {}
+    for module in _walk(ENVIRONMENT_PACKAGE):
+        for name, obj in sorted(vars(module).items()):
+            if isinstance(obj, Environment) and not name.startswith("_") and id(obj) not in seen:
+                if name in discovery.environments:
+                    raise RuntimeError(f"two environments are both called {name}")
+                seen[id(obj)] = name
+                discovery.environments[name] = (module.__name__, name)
+    return discovery
+
+
+def _bases_first(classes: Iterable[type]) -> list[type]:
+    ordered: list[type] = []
+    pending = sorted(classes, key=lambda c: (len(c.__mro__), c.__module__, c.__qualname__))
+    placed: set[type] = set()
+    while pending:
+        for cls in pending:
+            if all(base in placed or base not in pending for base in cls.__mro__[1:]):
+                ordered.append(cls)
+                placed.add(cls)
+                pending.remove(cls)
+                break
+    return ordered
+
+
+# --------------------------------------------------------------------------- type hints
+
+
+class _Namespace:
+    """Resolves annotations, including names imported only under ``TYPE_CHECKING``."""
+
+    def __init__(self) -> None:
+        self._universe: dict[str, Any] = {}
+        clashes: set[str] = set()
+        for name, module in sorted(sys.modules.items()):
+            if not (name == "j5aio" or name.startswith("j5aio.")) or module is None:
+                continue
+            for attr, obj in vars(module).items():
+                if attr.startswith("__") or isinstance(obj, types.ModuleType):
+                    continue
+                known = self._universe.get(attr)
+                if known is None:
+                    self._universe[attr] = obj
+                elif known is not obj:
+                    clashes.add(attr)
+        for attr in clashes:
+            del self._universe[attr]
+
+    def hints(self, obj: Any, module_name: str) -> dict[str, Any]:
+        module = sys.modules[module_name]
+        namespace = {**self._universe, **vars(module)}
+        return typing.get_type_hints(obj, globalns=namespace, localns=None)
+
+
+# --------------------------------------------------------------------------- rendering
+
+
+@dataclass
+class _Member:
+    name: str
+    code: str
+
+
+class _Renderer:
+    def __init__(self, discovery: Discovery) -> None:
+        self.discovery = discovery
+        self.wrapped: dict[type, str] = {}
+        for cls in discovery.classes:
+            if cls.__name__ in self.wrapped.values():
+                raise RuntimeError(f"two wrapped classes are called {cls.__name__}")
+            self.wrapped[cls] = cls.__name__
+        self.module_aliases: dict[str, str] = {}
+        self.name_imports: dict[str, str] = {}  # name -> module
+        self.typevars: dict[typing.TypeVar, str] = {}
+        self.typevar_defs: dict[str, str] = {}
+        self.namespace = _Namespace()
+        self.used_typing: set[str] = set()
+
+    # --- references ---------------------------------------------------------------
+
+    def module_ref(self, module_name: str) -> str:
+        alias = self.module_aliases.get(module_name)
+        if alias is None:
+            parts = module_name.split(".")
+            alias = "_" + "_".join(p.strip("_") for p in parts[1:])
+            self.module_aliases[module_name] = alias
+        return alias
+
+    def core_ref(self, cls: type) -> str:
+        return f"{self.module_ref(cls.__module__)}.{cls.__qualname__}"
+
+    def name_ref(self, obj: Any) -> str:
+        module: str = obj.__module__
+        name: str = obj.__qualname__
+        if module == "builtins":
+            return name
+        top = name.split(".")[0]
+        if module.startswith("j5aio") or top in self.wrapped.values():
+            return f"{self.module_ref(module)}.{name}"
+        known = self.name_imports.get(top)
+        if known is not None and known != module:
+            return f"{self.module_ref(module)}.{name}"
+        self.name_imports[top] = module
+        return name
+
+    def typing_ref(self, name: str) -> str:
+        self.used_typing.add(name)
+        return name
+
+    def typevar_ref(self, var: typing.TypeVar) -> str:
+        name = self.typevars.get(var)
+        if name is not None:
+            return name
+        bound = var.__bound__
+        wrapped_bound = self.is_wrapped_class(bound)
+        name = var.__name__
+        while name in self.typevar_defs:
+            name += "_"
+        self.typevars[var] = name
+        args = [f'"{name}"']
+        if bound is not None:
+            args.append(f'bound="{self.render(bound)}"')
+        if var.__covariant__ or wrapped_bound:
+            args.append("covariant=True")
+        elif var.__contravariant__:
+            args.append("contravariant=True")
+        self.typevar_defs[name] = f"{name} = {self.typing_ref('TypeVar')}({', '.join(args)})"
+        return name
+
+    def is_wrapped_class(self, obj: Any) -> bool:
+        return inspect.isclass(obj) and obj in self.wrapped
+
+    def wrapped_typevar(self, var: Any) -> bool:
+        return isinstance(var, typing.TypeVar) and self.is_wrapped_class(var.__bound__)
+
+    # --- types --------------------------------------------------------------------
+
+    def render(
+        self, tp: Any, *, in_type: bool = False, subst: Mapping[Any, Any] | None = None,
+    ) -> str:
+        subst = subst or {}
+        if tp is None or tp is _NONE_TYPE:
+            return "None"
+        if tp is Any:
+            return self.typing_ref("Any")
+        if tp is Ellipsis:
+            return "..."
+        if tp is typing.Generic:
+            return self.typing_ref("Generic")
+        if isinstance(tp, typing.TypeVar):
+            if tp in subst:
+                return self.render(subst[tp], in_type=in_type)
+            if in_type and self.wrapped_typevar(tp):
+                return self.render(tp.__bound__, in_type=True)
+            return self.typevar_ref(tp)
+        if isinstance(tp, list):
+            return "[" + ", ".join(self.render(a, in_type=in_type, subst=subst) for a in tp) + "]"
+        origin = typing.get_origin(tp)
+        args = typing.get_args(tp)
+        if origin is typing.Union or isinstance(tp, types.UnionType):
+            return " | ".join(self.render(a, in_type=in_type, subst=subst) for a in args)
+        if origin is typing.ClassVar:
+            return self.render(args[0], in_type=in_type, subst=subst)
+        if origin is typing.Literal:
+            return f"{self.typing_ref('Literal')}[{', '.join(map(repr, args))}]"
+        if origin is type:
+            return f"type[{self.render(args[0], in_type=True, subst=subst)}]"
+        if origin is not None:
+            head = self.render(origin, in_type=in_type)
+            if not args:
+                return head
+            inner = ", ".join(self.render(a, in_type=in_type, subst=subst) for a in args)
+            return f"{head}[{inner}]"
+        if inspect.isclass(tp):
+            if tp in self.wrapped and not in_type:
+                return self.wrapped[tp]
+            if tp in self.wrapped:
+                return self.core_ref(tp)
+            if tp.__module__ == "typing":
+                return self.typing_ref(tp.__name__)
+            return self.name_ref(tp)
+        if tp is typing.Self:
+            return self.typing_ref("Self")
+        raise TypeError(f"cannot render the annotation {tp!r}")
+
+    def mentions_wrapped(self, tp: Any, *, in_type: bool = False) -> bool:
+        """Whether a value of type ``tp`` may hold core objects that need wrapping."""
+        if isinstance(tp, typing.TypeVar):
+            return not in_type and self.wrapped_typevar(tp)
+        origin = typing.get_origin(tp)
+        if origin is type:
+            return False
+        if origin is not None:
+            return self.is_wrapped_class(origin) or any(
+                self.mentions_wrapped(a, in_type=in_type) for a in typing.get_args(tp)
+            )
+        if isinstance(tp, types.UnionType):
+            return any(self.mentions_wrapped(a) for a in typing.get_args(tp))
+        return self.is_wrapped_class(tp)
+
+    def wrapped_typevars_in_types(self, tp: Any, found: set[typing.TypeVar]) -> None:
+        if isinstance(tp, typing.TypeVar):
+            if self.wrapped_typevar(tp):
+                found.add(tp)
+            return
+        for arg in typing.get_args(tp):
+            self.wrapped_typevars_in_types(arg, found)
+
+    # --- values -------------------------------------------------------------------
+
+    def render_default(self, value: Any) -> str:
+        if isinstance(value, enum.Enum):
+            return f"{self.name_ref(type(value))}.{value.name}"
+        if value is None or isinstance(value, bool | int | str | bytes):
+            return repr(value)
+        if isinstance(value, float):
+            return repr(value) if math.isfinite(value) else f'float("{value}")'
+        if isinstance(value, tuple):
+            items = [self.render_default(v) for v in value]
+            return "(" + ", ".join(items) + ("," if len(items) == 1 else "") + ")"
+        if isinstance(value, frozenset | set):
+            items = sorted(self.render_default(v) for v in value)
+            inner = "{" + ", ".join(items) + "}" if items else ""
+            return f"{type(value).__name__}({inner})"
+        raise TypeError(f"cannot render the default value {value!r}")
+
+
+def _docstring(doc: str | None, indent: str, fallback: str) -> list[str]:
+    text = (doc or fallback).strip()
+    quote = '"""'
+    prefix = "r" if "\\" in text else ""
+    text = text.replace('"""', '\\"\\"\\"')
+    lines = text.splitlines()
+    if len(lines) == 1:
+        return [f"{indent}{prefix}{quote}{lines[0]}{quote}"]
+    body = [f"{indent}{prefix}{quote}{lines[0]}"]
+    body += [f"{indent}{line}".rstrip() for line in lines[1:]]
+    body.append(f"{indent}{quote}")
+    return body
+
+
+def _is_coroutine_function(obj: Any) -> bool:
+    return inspect.iscoroutinefunction(obj) or inspect.iscoroutinefunction(
+        getattr(obj, "__wrapped__", None),
+    )
+
+
+def _required_params(func: Callable[..., Any]) -> list[inspect.Parameter]:
+    params = list(inspect.signature(func).parameters.values())[1:]
+    return [
+        p
+        for p in params
+        if p.default is p.empty and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)
+    ]
+
+
+def _getter_property_name(name: str, func: Any) -> str | None:
+    if (
+        inspect.isfunction(func)
+        and name.startswith("get_")
+        and name.isidentifier()
+        and _is_coroutine_function(func)
+        and not _required_params(func)
+    ):
+        return name[4:]
+    return None
+
+
+def _is_setter(func: Any) -> bool:
+    if not (inspect.isfunction(func) and _is_coroutine_function(func)):
+        return False
+    params = list(inspect.signature(func).parameters.values())[1:]
+    positional = [p for p in params if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+    return len(_required_params(func)) == 1 and len(positional) >= 1
+
+
+class _ClassWriter:
+    """Writes the wrapper class of one core class."""
+
+    def __init__(self, renderer: _Renderer, cls: type) -> None:
+        self.r = renderer
+        self.cls = cls
+        self.module = cls.__module__
+
+    # --- helpers ------------------------------------------------------------------
+
+    def hints(self, obj: Any) -> dict[str, Any]:
+        return self.r.namespace.hints(obj, getattr(obj, "__module__", None) or self.module)
+
+    def signature(
+        self,
+        func: Callable[..., Any],
+        *,
+        skip_first: bool,
+        subst: Mapping[Any, Any] | None = None,
+        drop_params: bool = False,
+    ) -> tuple[list[str], list[str], Any]:
+        """Return (parameter declarations, call arguments, return annotation)."""
+        sig = inspect.signature(func)
+        hints = self.hints(func)
+        decls: list[str] = []
+        call: list[str] = []
+        params = list(sig.parameters.values())
+        if skip_first:
+            params = params[1:]
+        star_done = False
+        saw_positional_only = False
+        for param in params:
+            if param.kind is param.POSITIONAL_ONLY:
+                saw_positional_only = True
+            elif saw_positional_only:
+                decls.append("/")
+                saw_positional_only = False
+            annotation = hints.get(param.name, Any)
+            rendered = self.r.render(annotation, subst=subst)
+            text = f"{param.name}: {rendered}"
+            if param.default is not param.empty:
+                text += f" = {self.r.render_default(param.default)}"
+            value = param.name
+            if self.r.mentions_wrapped(annotation):
+                value = f"_unwrap({param.name})"
+            if param.kind is param.VAR_POSITIONAL:
+                decls.append(f"*{param.name}: {rendered}")
+                call.append(f"*{value}")
+                star_done = True
+            elif param.kind is param.VAR_KEYWORD:
+                decls.append(f"**{param.name}: {rendered}")
+                call.append(f"**{value}")
+            elif param.kind is param.KEYWORD_ONLY:
+                if not star_done:
+                    decls.append("*")
+                    star_done = True
+                decls.append(text)
+                call.append(f"{param.name}={value}")
+            else:
+                decls.append(text)
+                call.append(value)
+        if saw_positional_only:
+            decls.append("/")
+        return decls, call, hints.get("return", Any)
+
+    def def_line(self, indent: str, name: str, params: list[str], returns: str) -> list[str]:
+        one = f"{indent}def {name}({', '.join(params)}) -> {returns}:"
+        if len(one) <= LINE_LENGTH:
+            return [one]
+        lines = [f"{indent}def {name}("]
+        lines += [f"{indent}    {p}," for p in params]
+        lines.append(f"{indent}) -> {returns}:")
+        return lines
+
+    def result_expr(self, expr: str, returns: Any, subst: Mapping[Any, Any] | None) -> str:
+        if self.r.mentions_wrapped(returns):
+            rendered = self.r.render(returns, subst=subst)
+            return f'{self.r.typing_ref("cast")}("{rendered}", _wrap({expr}))'
+        return expr
+
+    def body_line(self, indent: str, expr: str, returns: Any) -> str:
+        if returns is None or returns is _NONE_TYPE:
+            return f"{indent}{expr}"
+        return f"{indent}return {expr}"
+
+    def wrapped_typevar_choices(self, var: typing.TypeVar) -> list[type]:
+        bound: type = var.__bound__  # type: ignore[assignment]
+        choices = [c for c in self.r.wrapped if issubclass(c, bound)]
+        return sorted(choices, key=lambda c: (-len(c.__mro__), c.__name__))
+
+    # --- members ------------------------------------------------------------------
+
+    def function(
+        self,
+        name: str,
+        func: Callable[..., Any],
+        *,
+        kind: str,
+        is_coroutine: bool,
+        doc_source: Any,
+    ) -> list[str]:
+        """A method, static method or class method."""
+        skip_first = kind != "static"
+        first = {"instance": ["self"], "class": ["cls"], "static": []}[kind]
+        target = {
+            "instance": f"self._core.{name}",
+            "class": f"{self.r.core_ref(self.cls)}.{name}",
+            "static": f"{self.r.core_ref(self.cls)}.{name}",
+        }[kind]
+        decorator = {"instance": [], "class": ["@classmethod"], "static": ["@staticmethod"]}[
+            kind
+        ]
+        hints = self.hints(func)
+        found: set[typing.TypeVar] = set()
+        for key, annotation in hints.items():
+            if key != "return":
+                self.r.wrapped_typevars_in_types(annotation, found)
+        lines: list[str] = []
+        doc = _docstring(inspect.getdoc(doc_source), "        ", f"Call ``{name}``.")
+        if found:
+            variables = sorted(found, key=lambda v: v.__name__)
+            if len(variables) != 1:
+                raise TypeError(f"{self.cls.__name__}.{name}: several wrapped type variables")
+            var = variables[0]
+            for choice in self.wrapped_typevar_choices(var):
+                decls, _call, returns = self.signature(
+                    func, skip_first=skip_first, subst={var: choice},
+                )
+                lines.append(f"    @{self.r.typing_ref('overload')}")
+                lines += [f"    {d}" for d in decorator]
+                lines += self.def_line(
+                    "    ", name, first + decls, self.r.render(returns, subst={var: choice}),
+                )
+                lines.append("        ...")
+                lines.append("")
+            subst: dict[Any, Any] = {var: var.__bound__}
+        else:
+            subst = {}
+        decls, call, returns = self.signature(func, skip_first=skip_first, subst=subst)
+        expr = f"{target}({', '.join(call)})"
+        if is_coroutine:
+            expr = f"_call({', '.join([target, *call])})"
+        lines += [f"    {d}" for d in decorator]
+        lines += self.def_line("    ", name, first + decls, self.r.render(returns, subst=subst))
+        lines += doc
+        lines.append(self.body_line("        ", self.result_expr(expr, returns, subst), returns))
+        return lines
+
+    def getter_property(self, prop: str, getter: Any, setter: Any | None) -> list[str]:
+        returns = self.hints(getter).get("return", Any)
+        doc = inspect.getdoc(getter) or f"The {prop}."
+        if setter is not None and inspect.getdoc(setter):
+            doc += "\n\nSetting it: " + inspect.getdoc(setter)  # type: ignore[operator]
+        lines = ["    @property"]
+        lines += self.def_line("    ", prop, ["self"], self.r.render(returns))
+        lines += _docstring(doc, "        ", "")
+        expr = self.result_expr(f"_call(self._core.get_{prop})", returns, None)
+        lines.append(f"        return {expr}")
+        if setter is not None:
+            param = _required_params(setter)[0]
+            annotation = self.hints(setter).get(param.name, Any)
+            value = f"_unwrap({param.name})" if self.r.mentions_wrapped(annotation) else param.name
+            lines.append("")
+            lines.append(f"    @{prop}.setter")
+            lines += self.def_line(
+                "    ", prop, ["self", f"{param.name}: {self.r.render(annotation)}"], "None",
+            )
+            lines.append(f"        _call(self._core.set_{prop}, {value})")
+        return lines
+
+    def plain_property(self, name: str, prop: property) -> list[str]:
+        returns = self.hints(prop.fget).get("return", Any)
+        lines = ["    @property"]
+        lines += self.def_line("    ", name, ["self"], self.r.render(returns))
+        lines += _docstring(inspect.getdoc(prop), "        ", f"The {name}.")
+        lines.append(f"        return {self.result_expr(f'self._core.{name}', returns, None)}")
+        if prop.fset is not None:
+            params = list(inspect.signature(prop.fset).parameters.values())
+            value_name = params[1].name
+            annotation = self.hints(prop.fset).get(value_name, Any)
+            value = f"_unwrap({value_name})" if self.r.mentions_wrapped(annotation) else value_name
+            lines.append("")
+            lines.append(f"    @{name}.setter")
+            lines += self.def_line(
+                "    ", name, ["self", f"{value_name}: {self.r.render(annotation)}"], "None",
+            )
+            lines.append(f"        self._core.{name} = {value}")
+        return lines
+
+    def instance_attribute(self, name: str, annotation: Any) -> list[str]:
+        lines = ["    @property"]
+        lines += self.def_line("    ", name, ["self"], self.r.render(annotation))
+        lines += _docstring(None, "        ", f"The ``{name}`` of the wrapped object.")
+        lines.append(f"        return {self.result_expr(f'self._core.{name}', annotation, None)}")
+        return lines
+
+    def class_constant(self, name: str, annotation: Any) -> list[str]:
+        rendered = self.r.render(annotation)
+        ref = f"{self.r.core_ref(self.cls)}.{name}"
+        return [f"    {name}: {self.r.typing_ref('ClassVar')}[{rendered}] = {ref}"]
+
+    def class_annotations(self) -> dict[str, Any]:
+        annotations: dict[str, Any] = {}
+        for klass in reversed(self.cls.__mro__):
+            own = inspect.get_annotations(klass)
+            if not own:
+                continue
+            hints = self.r.namespace.hints(klass, klass.__module__)
+            for key in own:
+                if key in hints:
+                    annotations[key] = hints[key]
+        return annotations
+
+    def init_attributes(self) -> dict[str, Any]:
+        """Public attributes that ``__init__`` assigns, with their types."""
+        init = self.cls.__dict__.get("__init__")
+        if init is None:
+            return {}
+        try:
+            tree = ast.parse(textwrap.dedent(inspect.getsource(init)))
+        except (OSError, TypeError):  # pragma: no cover - source always available here
+            return {}
+        param_hints = self.hints(init)
+        found: dict[str, Any] = {}
+        module_ns = {**self.r.namespace._universe, **vars(sys.modules[self.module])}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.AnnAssign):
+                target = node.target
+                if (
+                    isinstance(target, ast.Attribute)
+                    and isinstance(target.value, ast.Name)
+                    and target.value.id == "self"
+                    and not target.attr.startswith("_")
+                ):
+                    found[target.attr] = eval(  # our own annotations, from our own source
+                        ast.unparse(node.annotation), module_ns,
+                    )
+            elif isinstance(node, ast.Assign) and len(node.targets) == 1:
+                assigned = node.targets[0]
+                if (
+                    isinstance(assigned, ast.Attribute)
+                    and isinstance(assigned.value, ast.Name)
+                    and assigned.value.id == "self"
+                    and not assigned.attr.startswith("_")
+                    and isinstance(node.value, ast.Name)
+                    and node.value.id in param_hints
+                ):
+                    found[assigned.attr] = param_hints[node.value.id]
+        return found
+
+    # --- the class ----------------------------------------------------------------
+
+    def bases(self) -> list[str]:
+        bases: list[str] = []
+        for base in self.cls.__dict__.get("__orig_bases__", self.cls.__bases__):
+            origin = typing.get_origin(base) or base
+            if (
+                origin in self.r.wrapped
+                or origin is typing.Generic
+                or getattr(origin, "__module__", "") == "collections.abc"
+            ):
+                bases.append(self.r.render(base))
+        if not any(
+            (typing.get_origin(b) or b) in self.r.wrapped
+            for b in self.cls.__dict__.get("__orig_bases__", self.cls.__bases__)
+        ):
+            bases.insert(0, "_SyncWrapper")
+        return bases
+
+    def core_annotation(self) -> str:
+        params = getattr(self.cls, "__parameters__", ())
+        ref = self.r.core_ref(self.cls)
+        if params:
+            ref += "[" + ", ".join(self.r.typing_ref("Any") for _ in params) + "]"
+        return ref
+
+    def members(self) -> list[_Member]:
+        cls = self.cls
+        own = cls.__dict__
+        members: list[_Member] = []
+        done: set[str] = set()
+        names = [n for n in own if not n.startswith("_") or n in FORWARDED_DUNDERS]
+
+        properties: dict[str, tuple[Any, Any]] = {}
+        for name in names:
+            raw = own[name]
+            if (
+                name.startswith(("get_", "set_"))
+                and inspect.isfunction(raw)
+                and _is_coroutine_function(raw)
+            ):
+                prop = name[4:]
+                getter = inspect.getattr_static(cls, f"get_{prop}", None)
+                setter = inspect.getattr_static(cls, f"set_{prop}", None)
+                if _getter_property_name(f"get_{prop}", getter) is None:
+                    continue
+                if setter is not None and not _is_setter(setter):
+                    setter = None
+                if inspect.getattr_static(cls, prop, None) is not None:
+                    continue  # an attribute of that name exists: keep the methods
+                properties[prop] = (getter, setter)
+                done.add(f"get_{prop}")
+                if setter is not None:
+                    done.add(f"set_{prop}")
+        for prop, (getter, setter) in properties.items():
+            members.append(_Member(prop, "\n".join(self.getter_property(prop, getter, setter))))
+
+        annotations = self.class_annotations()
+        for name in names:
+            if name in done:
+                continue
+            raw = own[name]
+            if isinstance(raw, staticmethod | classmethod):
+                func = raw.__func__
+                kind = "static" if isinstance(raw, staticmethod) else "class"
+                code = self.function(
+                    name,
+                    func,
+                    kind=kind,
+                    is_coroutine=_is_coroutine_function(func),
+                    doc_source=getattr(cls, name),
+                )
+            elif isinstance(raw, property):
+                code = self.plain_property(name, raw)
+            elif inspect.isfunction(raw):
+                code = self.function(
+                    name,
+                    raw,
+                    kind="instance",
+                    is_coroutine=_is_coroutine_function(raw),
+                    doc_source=getattr(cls, name),
+                )
+            elif inspect.isclass(raw):
+                code = [f"    {name} = {self.r.core_ref(cls)}.{name}"]
+            elif name in annotations:
+                if self.r.mentions_wrapped(annotations[name]):
+                    continue
+                code = self.class_constant(name, annotations[name])
+            elif isinstance(raw, bool | int | float | str):
+                code = self.class_constant(name, type(raw))
+            else:
+                continue
+            members.append(_Member(name, "\n".join(code)))
+        for name, annotation in self.init_attributes().items():
+            if name not in own:
+                members.append(_Member(name, "\n".join(self.instance_attribute(name, annotation))))
+        return members
+
+    def constructor(self) -> list[str]:
+        cls = self.cls
+        if "__new__" in cls.__dict__:
+            return [
+                "    def __new__(cls, *args: Any, **kwargs: Any) -> Self:",
+                f"        return _adopt(cls, {self.r.core_ref(cls)}())",
+            ]
+        init = cls.__dict__.get("__init__")
+        parameters: tuple[Any, ...] = getattr(cls, "__parameters__", ())
+        if (
+            init is None
+            or inspect.isabstract(cls)
+            or any(self.r.wrapped_typevar(p) for p in parameters)
+        ):
+            return []
+        decls, call, _ = self.signature(init, skip_first=True)
+        lines = self.def_line("    ", "__init__", ["self", *decls], "None")
+        lines.append(f"        _adopt_into(self, {self.r.core_ref(cls)}({', '.join(call)}))")
+        return lines
+
+    def write(self, inherited: Mapping[str, str]) -> tuple[list[str], dict[str, str]]:
+        cls = self.cls
+        name = self.r.wrapped[cls]
+        lines = [f"class {name}({', '.join(self.bases())}):"]
+        lines += _docstring(inspect.getdoc(cls), "    ", f"The sync face of {cls.__name__}.")
+        lines.append("")
+        lines.append("    __slots__ = ()")
+        lines.append("")
+        lines.append(f"    _core: {self.core_annotation()}")
+        constructor = self.constructor()
+        if constructor:
+            lines.append("")
+            lines += constructor
+        table = dict(inherited)
+        for member in self.members():
+            if table.get(member.name) == member.code:
+                continue
+            table[member.name] = member.code
+            lines.append("")
+            lines += member.code.splitlines()
+        return lines, table
+
+
+# --------------------------------------------------------------------------- module
+
+
+HEADER = '''"""The sync facade's wrapper classes. GENERATED by tools/gen_sync.py: do not edit.
+
+Regenerate with ``python tools/gen_sync.py`` whenever a public async class changes; a test
+fails while this file is stale. Every wrapper holds one core object and calls it through
+the portal (:mod:`j5aio.sync._runtime`); no wrapper contains logic of its own.
+"""
+
+# ruff: noqa: E501
+
+from __future__ import annotations
+'''
+
+
+def render_module(discovery: Discovery) -> str:
+    """Return the source of the generated module for ``discovery``."""
+    renderer = _Renderer(discovery)
+    bodies: list[str] = []
+    tables: dict[type, dict[str, str]] = {}
+    for cls in discovery.classes:
+        inherited: dict[str, str] = {}
+        for base in reversed(cls.__mro__[1:]):
+            inherited.update(tables.get(base, {}))
+        lines, table = _ClassWriter(renderer, cls).write(inherited)
+        tables[cls] = table
+        bodies.append("\n".join(lines))
+
+    registrations = [
+        f"_register({renderer.core_ref(cls)}, {renderer.wrapped[cls]})"
+        for cls in discovery.classes
+    ]
+    environment_lines: list[str] = []
+    for name, (module, attribute) in discovery.environments.items():
+        ref = f"{renderer.module_ref(module)}.{attribute}"
+        environment_lines.append(f'{name}: Final[Environment] = cast("Environment", _wrap({ref}))')
+        environment_lines.append(f'"""The sync face of ``{module}.{attribute}``."""')
+    renderer.used_typing.update({"Any", "Final", "Self", "cast"})
+
+    exported = sorted(
+        [*renderer.wrapped.values(), *discovery.environments],
+        key=lambda n: (0 if n.isupper() else 1 if n[0].isupper() else 2, n),
+    )
+    out = [HEADER]
+    by_module: dict[str, set[str]] = {"typing": set(renderer.used_typing)}
+    for name, module in renderer.name_imports.items():
+        by_module.setdefault(module, set()).add(name)
+    for module, names in sorted(by_module.items()):
+        out.append(f"from {module} import {', '.join(sorted(names))}")
+    out.append("")
+    for module, alias in sorted(renderer.module_aliases.items()):
+        out.append(f"import {module} as {alias}")
+    out.append("from j5aio.sync._runtime import call as _call")
+    out.append("from j5aio.sync._wrapping import SyncWrapper as _SyncWrapper")
+    out.append("from j5aio.sync._wrapping import adopt as _adopt")
+    out.append("from j5aio.sync._wrapping import adopt_into as _adopt_into")
+    out.append("from j5aio.sync._wrapping import register as _register")
+    out.append("from j5aio.sync._wrapping import unwrap as _unwrap")
+    out.append("from j5aio.sync._wrapping import wrap as _wrap")
+    out.append("")
+    out.append("__all__ = [")
+    out += [f'    "{name}",' for name in exported]
+    out.append("]")
+    out.append("")
+    out += list(renderer.typevar_defs.values())
+    for body in bodies:
+        out.append("")
+        out.append("")
+        out.append(body)
+    out.append("")
+    out.append("")
+    out += registrations
+    if environment_lines:
+        out.append("")
+        out += environment_lines
+    source = "\n".join(out) + "\n"
+    return re.sub(r"\n{4,}", "\n\n\n", source)
+
+
+def generate() -> str:
+    """Discover the core classes and return the source of the generated module."""
+    return render_module(discover())
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Write (or with ``--check``, only compare) the generated module."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--check", action="store_true", help="fail if the module is stale")
+    parser.add_argument("--output", type=Path, default=OUTPUT, help="where to write it")
+    options = parser.parse_args(argv)
+    source = generate()
+    current = options.output.read_text(encoding="utf-8") if options.output.exists() else None
+    if options.check:
+        if current != source:
+            print(f"{options.output} is stale: run python tools/gen_sync.py", file=sys.stderr)
+            return 1
+        return 0
+    if current != source:
+        options.output.write_text(source, encoding="utf-8")
+        print(f"wrote {options.output}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.path.insert(0, str(ROOT))
+    raise SystemExit(main())
