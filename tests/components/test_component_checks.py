@@ -2,6 +2,8 @@ import math
 from fractions import Fraction
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 import j5aio.components as components
 from j5aio.components import Component, Interface
@@ -58,3 +60,18 @@ def test_every_component_names_an_exported_interface() -> None:
         assert issubclass(interface, Interface)
         assert interface in exported
         assert component.__doc__
+
+
+@given(st.floats(allow_nan=True, allow_infinity=True) | st.integers())
+def test_check_number_accepts_exactly_the_numbers_in_range(value: float) -> None:
+    if -1 <= value <= 1:
+        assert check_number(value, name="x", low=-1, high=1, allowed="in [-1, 1]") == value
+    else:
+        with pytest.raises(ValueError, match=r"^x must be in \[-1, 1\]; got "):
+            check_number(value, name="x", low=-1, high=1, allowed="in [-1, 1]")
+
+
+@given(st.none() | st.booleans() | st.text() | st.binary() | st.lists(st.floats()))
+def test_check_number_refuses_every_non_number(value: object) -> None:
+    with pytest.raises(TypeError, match=r"^x must be a number; got .* \(a \w+\)$"):
+        check_number(value, name="x", low=0, high=1, allowed="a number")
