@@ -1,0 +1,58 @@
+import struct
+from datetime import timedelta
+
+import pytest
+
+from j5aio.backends.hardware.sr.v4 import power_fw3_codec as codec
+from j5aio.errors import NotSupportedByHardwareError, UnexpectedReplyError
+
+
+def test_read_commands() -> None:
+    assert codec.FIRMWARE_VERSION == codec.ReadCommand(9, 4)
+    assert codec.BATTERY == codec.ReadCommand(7, 8)
+    assert codec.BUTTON == codec.ReadCommand(8, 4)
+    assert codec.output_current_read(5) == codec.ReadCommand(5, 4)
+    with pytest.raises(ValueError, match="outputs 0 to 5"):
+        codec.output_current_read(6)
+
+
+def test_led_indices() -> None:
+    assert codec.led_write_index(0) == 6
+    assert codec.led_write_index(1) == 7
+    with pytest.raises(ValueError, match="LEDs 0"):
+        codec.led_write_index(2)
+
+
+def test_parse_u32() -> None:
+    assert codec.parse_u32(b"\x03\x00\x00\x00") == 3
+    assert codec.parse_u32(struct.pack("<I", 123456)) == 123456
+    with pytest.raises(UnexpectedReplyError, match="4-byte"):
+        codec.parse_u32(b"\x03\x00")
+
+
+def test_parse_battery_current_first() -> None:
+    reading = codec.parse_battery(struct.pack("<II", 1500, 12345))
+    assert reading == codec.BatteryReading(current_ma=1500, voltage_mv=12345)
+    assert reading.current == 1.5
+    assert reading.voltage == 12.345
+    with pytest.raises(UnexpectedReplyError, match="8-byte"):
+        codec.parse_battery(b"\x00" * 4)
+
+
+def test_piezo_note_rounds_half_to_even() -> None:
+    assert codec.encode_piezo_note(timedelta(milliseconds=100), 440.5) == struct.pack(
+        "<HH", 440, 100
+    )
+    assert codec.encode_piezo_note(timedelta(microseconds=2500), 1047.0) == struct.pack(
+        "<HH", 1047, 2
+    )
+
+
+def test_piezo_limits() -> None:
+    codec.encode_piezo_note(timedelta(milliseconds=65535), 65535)
+    with pytest.raises(NotSupportedByHardwareError, match="65535 ms"):
+        codec.encode_piezo_note(timedelta(milliseconds=65536), 440)
+    with pytest.raises(NotSupportedByHardwareError, match="65535 Hz"):
+        codec.encode_piezo_note(timedelta(seconds=1), 65536)
+    with pytest.raises(ValueError, match="positive"):
+        codec.encode_piezo_note(timedelta(seconds=-1), 440)
