@@ -19,6 +19,7 @@ event loop, between awaits.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Iterator
 from dataclasses import dataclass, fields
 from typing import Final
@@ -35,6 +36,8 @@ __all__ = ["KitConfig", "SimulatedKit", "current_kit", "use_kit"]
 #: The most boards of one kind a simulated kit may have.
 MAX_BOARDS_OF_A_KIND: Final = 99
 
+_kit_numbers = itertools.count(1)
+
 
 @dataclass(frozen=True)
 class KitConfig:
@@ -45,8 +48,9 @@ class KitConfig:
     :param servo_boards: SR v4 servo boards (firmware 2, USB).
     :param sb_arduinos: SourceBots Arduinos (2019 firmware, serial).
     :param ruggeduinos: SR Ruggeduinos (firmware 1, serial).
-    :param time_scale: multiplies every simulated delay (an Arduino's boot after its port
-        opens, say): ``1.0`` is as slow as the real boards, ``0`` (the default) instant.
+    :param time_scale: multiplies the time a board takes to boot when its port opens (an
+        Arduino's 1.5 s): ``1.0`` is as slow as the real boards, ``0`` (the default)
+        instant. Other time (a piezo note playing) passes at the real rate.
     :raises TypeError: a count is not an int, or ``time_scale`` not a number.
     :raises ValueError: a count is outside 0 to 99, or ``time_scale`` is negative.
     """
@@ -81,14 +85,15 @@ class SimulatedKit:
     Serial numbers are distinct and sort in board order, so that ``kit.motor_boards[i]``
     is the board a robot sees as ``robot.motor_boards[i]``: ``SIMPB0`` for the first power
     board, ``SIMMB0`` and ``SIMMB1`` for motor boards, ``SIMSB0`` for a servo board,
-    ``SIMSBA0`` for a SourceBots Arduino and ``SIMRD0`` for a Ruggeduino (two digits from
-    the tenth board of a kind on).
+    ``SIMSBA0`` for a SourceBots Arduino and ``SIMRD0`` for a Ruggeduino (``SIMMB00`` to
+    ``SIMMB11`` in a kit of twelve motor boards).
 
     :param config: the boards to make; the default kit if omitted.
     """
 
     def __init__(self, config: KitConfig | None = None) -> None:
         self._config = config if config is not None else KitConfig()
+        self._name = f"kit{next(_kit_numbers)}"
         c = self._config
         self._power_boards = tuple(
             SRPowerBoardFw3Simulator(_serial("SIMPB", i, c.power_boards))
@@ -113,6 +118,11 @@ class SimulatedKit:
     def config(self) -> KitConfig:
         """The configuration this kit was made from."""
         return self._config
+
+    @property
+    def name(self) -> str:
+        """A name unique to this kit in the program (``kit1``, ``kit2``...), used in port names."""
+        return self._name
 
     @property
     def time_scale(self) -> float:
@@ -162,7 +172,7 @@ class SimulatedKit:
         return len(self.usb_simulators()) + len(self.serial_simulators())
 
     def __repr__(self) -> str:
-        return f"SimulatedKit({self._config!r})"
+        return f"<SimulatedKit {self._name} {self._config!r}>"
 
 
 def _serial(prefix: str, index: int, count: int) -> str:

@@ -64,7 +64,13 @@ def test_boards_are_grouped_by_how_they_connect() -> None:
 def test_an_empty_kit_is_allowed() -> None:
     kit = SimulatedKit(KitConfig(0, 0, 0, 0, 0))
     assert len(kit) == 0
-    assert "SimulatedKit(KitConfig(power_boards=0" in repr(kit)
+    assert f"<SimulatedKit {kit.name} KitConfig(power_boards=0" in repr(kit)
+
+
+def test_each_kit_has_its_own_name() -> None:
+    names = {SimulatedKit().name for _ in range(3)}
+    assert len(names) == 3
+    assert all(name.startswith("kit") for name in names)
 
 
 @pytest.mark.parametrize("field", ["power_boards", "motor_boards", "sb_arduinos"])

@@ -1,0 +1,286 @@
+"""SIMULATED_ENVIRONMENT: the hardware backends, connected to the simulated kit.
+
+Each backend here *is* a hardware backend (a subclass of it) whose discovery looks at the
+boards of :func:`~j5aio.simulator.kit.current_kit` instead of the computer's serial ports
+and USB bus. Discovery, handshakes, protocol codecs and transports are the real ones:
+
+- a serial board (motor board, Arduino) appears as a port named
+  ``sim://<kit name>/<serial number>`` with its USB identity, and opening it gives a
+  :class:`~j5aio.backends.hardware.transports.memory.SimulatorStream` to its simulator;
+- a USB board (power board, servo board) is found as its simulator, which has the shape
+  of a pyusb device, wrapped by :class:`SimulatedUSBDevice`.
+
+So a program run on the simulated kit sends the same bytes as on a robot::
+
+    from j5aio.kit import KitRobot
+    from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+    from j5aio.simulator.kit import KitConfig, use_kit
+
+    kit = use_kit(KitConfig(motor_boards=1))
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+        await robot.motor_boards[0].motors[0].set_power(0.5)
+        print(kit.motor_boards[0].motors[0])    # what the simulated board now does
+
+Unplugged simulators (``simulator.unplug()``) are not found, as on a real bus.
+"""
+
+from __future__ import annotations
+
+import time
+import weakref
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from j5aio.backends.environment import Environment
+from j5aio.backends.hardware.options import DiscoveryOptions
+from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
+from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
+from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
+from j5aio.backends.hardware.transports.memory import SimulatorStream
+from j5aio.backends.hardware.transports.stream import ByteStream
+from j5aio.boards.board import Board
+
+from .base import SerialBoardSimulator, UsbBoardSimulator
+from .kit import SimulatedKit, current_kit
+from .sb_arduino_2019 import SBArduinoSimulator
+from .sr_motor_fw3 import SRMotorBoardFw3Simulator
+from .sr_power_fw3 import SRPowerBoardFw3Simulator
+from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
+from .sr_servo_fw2 import SRServoBoardFw2Simulator
+
+__all__ = [
+    "SIMULATED_BACKENDS",
+    "SIMULATED_ENVIRONMENT",
+    "SBArduinoSimulatedBackend",
+    "SRV4MotorBoardSimulatedBackend",
+    "SRV4PowerBoardSimulatedBackend",
+    "SRV4RuggeduinoSimulatedBackend",
+    "SRV4ServoBoardSimulatedBackend",
+    "SimulatedPort",
+    "SimulatedUSBDevice",
+    "port_name",
+    "serial_discovery_options",
+    "usb_discovery_options",
+]
+
+
+def port_name(kit: SimulatedKit, simulator: SerialBoardSimulator) -> str:
+    """Return the name a serial simulator's port has in ``kit``."""
+    return f"sim://{kit.name}/{simulator.serial_number}"
+
+
+@dataclass
+class SimulatedPort:
+    """What the simulated kit's port list shows for one serial board (like pyserial's)."""
+
+    device: str
+    vid: int | None
+    pid: int | None
+    serial_number: str | None
+    manufacturer: str | None
+    product: str | None
+    description: str
+
+
+# Piezo time on each simulated power board: when its notes last moved on.
+_piezo_clocks: weakref.WeakKeyDictionary[SRPowerBoardFw3Simulator, float] = (
+    weakref.WeakKeyDictionary()
+)
+
+
+class SimulatedUSBDevice:
+    """A USB board simulator as discovery finds it, standing in for a pyusb device.
+
+    Every attribute is the simulator's, with two additions: ``bus`` and ``address`` name
+    its place in the kit (so that finding it again gives back the same board), and each
+    transfer first lets the real time since the last one pass on a power board's piezo,
+    so that queued notes finish playing.
+
+    :param simulator: the simulated board.
+    :param kit: the kit it belongs to.
+    """
+
+    def __init__(self, simulator: UsbBoardSimulator, kit: SimulatedKit) -> None:
+        self._simulator = simulator
+        #: The kit's name, in place of a USB bus number.
+        self.bus = kit.name
+        #: The board's serial number, in place of a USB address.
+        self.address = simulator.serial_number
+
+    @property
+    def simulator(self) -> UsbBoardSimulator:
+        """The simulated board."""
+        return self._simulator
+
+    @property
+    def idVendor(self) -> int:  # noqa: N802 - pyusb's name
+        """The USB vendor ID."""
+        return self._simulator.idVendor
+
+    @property
+    def idProduct(self) -> int:  # noqa: N802 - pyusb's name
+        """The USB product ID."""
+        return self._simulator.idProduct
+
+    @property
+    def serial_number(self) -> str | None:
+        """The USB serial number string."""
+        return self._simulator.serial_number
+
+    def ctrl_transfer(
+        self,
+        bmRequestType: int,  # noqa: N803 - pyusb's names
+        bRequest: int,  # noqa: N803
+        wValue: int = 0,  # noqa: N803
+        wIndex: int = 0,  # noqa: N803
+        data_or_wLength: Any = None,  # noqa: N803
+        timeout: int | None = None,
+    ) -> Any:
+        """Do a control transfer on the simulator, after letting time pass on it."""
+        self._let_time_pass()
+        return self._simulator.ctrl_transfer(
+            bmRequestType, bRequest, wValue, wIndex, data_or_wLength, timeout
+        )
+
+    def _let_time_pass(self) -> None:
+        simulator = self._simulator
+        if not isinstance(simulator, SRPowerBoardFw3Simulator):
+            return
+        now = time.monotonic()
+        last = _piezo_clocks.get(simulator, now)
+        elapsed_ms = int((now - last) * 1000)
+        if elapsed_ms > 0 or simulator not in _piezo_clocks:
+            simulator.advance_piezo(elapsed_ms)
+            _piezo_clocks[simulator] = last + elapsed_ms / 1000
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._simulator, name)
+
+    def __repr__(self) -> str:
+        return f"<SimulatedUSBDevice {type(self._simulator).__name__} {self.address}>"
+
+
+def serial_discovery_options(
+    kit: SimulatedKit, simulator_type: type[SerialBoardSimulator]
+) -> DiscoveryOptions:
+    """Return discovery options that find the plugged-in ``simulator_type`` boards of ``kit``.
+
+    Each board is listed as a :class:`SimulatedPort`; opening it gives a
+    :class:`SimulatorStream` to the simulator, with the kit's time scale.
+    """
+    simulators = {
+        port_name(kit, simulator): simulator
+        for simulator in kit.serial_simulators()
+        if isinstance(simulator, simulator_type)
+    }
+
+    def list_ports() -> list[SimulatedPort]:
+        return [
+            SimulatedPort(
+                device=name,
+                vid=simulator.usb_vid,
+                pid=simulator.usb_pid,
+                serial_number=simulator.serial_number,
+                manufacturer=simulator.manufacturer,
+                product=simulator.product,
+                description=f"simulated {type(simulator).__name__}",
+            )
+            for name, simulator in simulators.items()
+            if simulator.connected
+        ]
+
+    async def open_port(port: str, baudrate: int) -> ByteStream:
+        return SimulatorStream(simulators[port], name=port, time_scale=kit.time_scale)
+
+    return DiscoveryOptions(port_source=list_ports, opener=open_port, time_scale=kit.time_scale)
+
+
+def usb_discovery_options(
+    kit: SimulatedKit, simulator_type: type[UsbBoardSimulator]
+) -> DiscoveryOptions:
+    """Return discovery options that find the plugged-in ``simulator_type`` boards of ``kit``."""
+
+    def find(*, find_all: bool, idVendor: int, idProduct: int) -> list[SimulatedUSBDevice]:  # noqa: N803
+        return [
+            SimulatedUSBDevice(simulator, kit)
+            for simulator in kit.usb_simulators()
+            if isinstance(simulator, simulator_type)
+            and simulator.connected
+            and (simulator.idVendor, simulator.idProduct) == (idVendor, idProduct)
+        ]
+
+    return DiscoveryOptions(usb_finder=find, time_scale=kit.time_scale)
+
+
+class SRV4PowerBoardSimulatedBackend(SRV4PowerBoardHardwareBackend):
+    """The SR v4 power board hardware backend, finding the simulated kit's power boards."""
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Find the power boards of the current simulated kit (or where ``options`` say)."""
+        return await super().discover(
+            options=options or usb_discovery_options(current_kit(), SRPowerBoardFw3Simulator)
+        )
+
+
+class SRV4ServoBoardSimulatedBackend(SRV4ServoBoardHardwareBackend):
+    """The SR v4 servo board hardware backend, finding the simulated kit's servo boards."""
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Find the servo boards of the current simulated kit (or where ``options`` say)."""
+        return await super().discover(
+            options=options or usb_discovery_options(current_kit(), SRServoBoardFw2Simulator)
+        )
+
+
+class SRV4MotorBoardSimulatedBackend(SRV4MotorBoardHardwareBackend):
+    """The SR v4 motor board hardware backend, finding the simulated kit's motor boards."""
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Find the motor boards of the current simulated kit (or where ``options`` say)."""
+        return await super().discover(
+            options=options or serial_discovery_options(current_kit(), SRMotorBoardFw3Simulator)
+        )
+
+
+class SBArduinoSimulatedBackend(SBArduinoHardwareBackend):
+    """The SourceBots Arduino hardware backend, finding the simulated kit's Arduinos."""
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Find the SourceBots Arduinos of the current simulated kit (or where ``options`` say)."""
+        return await super().discover(
+            options=options or serial_discovery_options(current_kit(), SBArduinoSimulator)
+        )
+
+
+class SRV4RuggeduinoSimulatedBackend(SRV4RuggeduinoHardwareBackend):
+    """The Ruggeduino hardware backend, finding the simulated kit's Ruggeduinos."""
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Find the Ruggeduinos of the current simulated kit (or where ``options`` say)."""
+        return await super().discover(
+            options=options or serial_discovery_options(current_kit(), SRRuggeduinoSimulator)
+        )
+
+
+#: Every simulated backend.
+SIMULATED_BACKENDS = (
+    SRV4PowerBoardSimulatedBackend,
+    SRV4MotorBoardSimulatedBackend,
+    SRV4ServoBoardSimulatedBackend,
+    SBArduinoSimulatedBackend,
+    SRV4RuggeduinoSimulatedBackend,
+)
+
+#: The simulated kit: the hardware backends, talking to the boards of
+#: :func:`~j5aio.simulator.kit.current_kit`.
+SIMULATED_ENVIRONMENT = Environment("SimulatedEnvironment")
+for _backend in SIMULATED_BACKENDS:
+    SIMULATED_ENVIRONMENT.register_backend(_backend)
