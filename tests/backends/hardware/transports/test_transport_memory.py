@@ -1,0 +1,261 @@
+"""Tests of the in-memory streams, the simulator stream and the receive inbox."""
+
+from __future__ import annotations
+
+import time
+
+import anyio
+import pytest
+
+from j5aio.backends.hardware.transports import (
+    ByteStream,
+    SerialSimulatorLike,
+    SimulatorStream,
+    memory_stream_pair,
+)
+from j5aio.backends.hardware.transports._inbox import Inbox, fresh_copy
+from j5aio.errors import BoardDisconnectionError, CommunicationError
+
+
+class EchoSimulator:
+    """A stand-in board simulator: boots with a banner, answers ``x`` with ``X``."""
+
+    def __init__(
+        self, *, banner: bytes = b"# Booted\n", boot_delay: float = 0.0, baudrate: int = 115200
+    ) -> None:
+        self.baudrate = baudrate
+        self.boot_delay = boot_delay
+        self.banner = banner
+        self.opened = 0
+        self.received: list[bytes] = []
+        self._connected = True
+
+    @property
+    def connected(self) -> bool:
+        return self._connected
+
+    def unplug(self) -> None:
+        self._connected = False
+
+    def open(self) -> bytes:
+        self.opened += 1
+        return self.banner
+
+    def receive(self, data: bytes) -> bytes:
+        self.received.append(data)
+        return data.upper()
+
+
+# -- memory pair -------------------------------------------------------------------------
+
+
+async def test_pair_delivers_bytes_both_ways() -> None:
+    a, b = memory_stream_pair("host", "board")
+    await a.send(b"hello")
+    assert await b.receive() == b"hello"
+    await b.send(b"world")
+    assert await a.receive() == b"world"
+    assert (a.name, b.name) == ("host", "board")
+    assert isinstance(a, ByteStream)
+
+
+async def test_receive_returns_at_most_max_bytes_and_keeps_the_rest() -> None:
+    a, b = memory_stream_pair()
+    await a.send(b"abcdef")
+    assert await b.receive(4) == b"abcd"
+    assert await b.receive(4) == b"ef"
+
+
+async def test_receive_waits_for_data() -> None:
+    a, b = memory_stream_pair()
+    async with anyio.create_task_group() as tg:
+        tg.start_soon(b.receive)
+        await anyio.sleep(0.01)
+        await a.send(b"x")
+    # The receive above finished, or the task group would not have exited.
+
+
+async def test_receive_rejects_a_max_bytes_below_one() -> None:
+    a, _ = memory_stream_pair()
+    with pytest.raises(ValueError, match="max_bytes"):
+        await a.receive(0)
+
+
+async def test_closing_one_end_gives_the_other_what_was_sent_then_eof() -> None:
+    a, b = memory_stream_pair()
+    await a.send(b"last words")
+    await a.aclose()
+    assert a.is_closed and not b.is_closed
+    assert await b.receive() == b"last words"
+    with pytest.raises(BoardDisconnectionError, match="other end has gone"):
+        await b.receive()
+    with pytest.raises(BoardDisconnectionError, match="other end has gone"):
+        await b.send(b"anyone?")
+
+
+async def test_a_closed_end_refuses_to_send_and_receive() -> None:
+    a, b = memory_stream_pair()
+    await b.send(b"unread")
+    a.close_now()
+    a.close_now()  # idempotent
+    with pytest.raises(BoardDisconnectionError, match="closed"):
+        await a.send(b"x")
+    with pytest.raises(BoardDisconnectionError, match="closed"):
+        await a.receive()
+    assert "closed" in repr(a)
+
+
+async def test_close_now_wakes_a_waiting_receive() -> None:
+    a, _ = memory_stream_pair()
+    with anyio.fail_after(1):
+        async with anyio.create_task_group() as tg:
+
+            async def close_soon() -> None:
+                await anyio.sleep(0.01)
+                a.close_now()
+
+            tg.start_soon(close_soon)
+            with pytest.raises(BoardDisconnectionError):
+                await a.receive()
+
+
+async def test_async_context_manager_closes() -> None:
+    a, _ = memory_stream_pair()
+    async with a as stream:
+        assert stream is a
+        assert "open" in repr(a)
+    assert a.is_closed
+
+
+async def test_a_cancelled_receive_loses_nothing() -> None:
+    a, b = memory_stream_pair()
+    with anyio.move_on_after(0.01):
+        await b.receive()
+    await a.send(b"kept")
+    assert await b.receive() == b"kept"
+
+
+# -- inbox -------------------------------------------------------------------------------
+
+
+async def test_inbox_ignores_bytes_after_it_has_ended() -> None:
+    inbox = Inbox()
+    inbox.feed(b"ab")
+    inbox.finish(CommunicationError("done"))
+    inbox.feed(b"ignored")
+    inbox.finish(CommunicationError("second reason is ignored"))
+    assert inbox.ended
+    assert len(inbox) == 2
+    assert await inbox.take(10) == b"ab"
+    with pytest.raises(CommunicationError, match="done"):
+        await inbox.take(10)
+
+
+def test_fresh_copy_keeps_the_cause() -> None:
+    cause = OSError("underneath")
+    error = BoardDisconnectionError("gone")
+    error.__cause__ = cause
+    again = fresh_copy(error)
+    assert again is not error
+    assert type(again) is BoardDisconnectionError
+    assert again.args == error.args
+    assert again.__cause__ is cause
+
+
+# -- simulator stream --------------------------------------------------------------------
+
+
+def test_echo_simulator_has_the_simulator_shape() -> None:
+    assert isinstance(EchoSimulator(), SerialSimulatorLike)
+
+
+async def test_simulator_stream_opens_the_simulator_and_emits_its_banner() -> None:
+    simulator = EchoSimulator()
+    stream = SimulatorStream(simulator)
+    assert simulator.opened == 1
+    assert stream.simulator is simulator
+    assert stream.name == "simulated EchoSimulator"
+    assert await stream.receive() == b"# Booted\n"
+
+
+async def test_simulator_stream_passes_requests_and_queues_responses() -> None:
+    simulator = EchoSimulator(banner=b"")
+    stream = SimulatorStream(simulator, name="sim")
+    await stream.send(b"ping\n")
+    assert simulator.received == [b"ping\n"]
+    assert await stream.receive(2) == b"PI"
+    assert await stream.receive() == b"NG\n"
+    assert stream.name == "sim"
+
+
+async def test_boot_output_appears_after_the_scaled_boot_delay() -> None:
+    simulator = EchoSimulator(boot_delay=2.0)
+    stream = SimulatorStream(simulator, time_scale=0.02)  # 40 ms
+    await stream.send(b"early\n")  # answered only after the banner, as on a wire
+    start = time.monotonic()
+    assert await stream.receive() == b"# Booted\nEARLY\n"
+    assert time.monotonic() - start >= 0.03
+
+
+async def test_time_scale_zero_makes_the_boot_instant() -> None:
+    stream = SimulatorStream(EchoSimulator(boot_delay=5.0), time_scale=0)
+    with anyio.fail_after(0.5):
+        assert await stream.receive() == b"# Booted\n"
+
+
+async def test_uart_timing_delays_by_the_time_on_the_wire() -> None:
+    simulator = EchoSimulator(banner=b"", baudrate=10_000)  # 1 ms a byte
+    stream = SimulatorStream(simulator, uart_timing=True)
+    start = time.monotonic()
+    await stream.send(b"0123456789")
+    assert await stream.receive() == b"0123456789"
+    assert time.monotonic() - start >= 0.018  # 10 bytes there and 10 back
+
+
+async def test_a_disconnected_simulator_raises_on_send_and_receive() -> None:
+    simulator = EchoSimulator(banner=b"")
+    stream = SimulatorStream(simulator)
+    simulator.unplug()
+    with pytest.raises(BoardDisconnectionError, match="disconnected"):
+        await stream.send(b"x")
+    with pytest.raises(BoardDisconnectionError, match="disconnected"):
+        await stream.receive()
+
+
+async def test_unplugging_wakes_a_waiting_receive_promptly() -> None:
+    simulator = EchoSimulator(banner=b"")
+    stream = SimulatorStream(simulator, poll_interval=0.005)
+    with anyio.fail_after(1):
+        async with anyio.create_task_group() as tg:
+
+            async def unplug_soon() -> None:
+                await anyio.sleep(0.02)
+                simulator.unplug()
+
+            tg.start_soon(unplug_soon)
+            with pytest.raises(BoardDisconnectionError):
+                await stream.receive()
+
+
+async def test_closing_a_simulator_stream_wakes_a_waiting_receive() -> None:
+    stream = SimulatorStream(EchoSimulator(banner=b""))
+    with anyio.fail_after(1):
+        async with anyio.create_task_group() as tg:
+
+            async def close_soon() -> None:
+                await anyio.sleep(0.01)
+                await stream.aclose()
+
+            tg.start_soon(close_soon)
+            with pytest.raises(BoardDisconnectionError, match="closed"):
+                await stream.receive()
+    assert stream.is_closed
+    with pytest.raises(BoardDisconnectionError, match="closed"):
+        await stream.send(b"x")
+
+
+async def test_simulator_stream_validates_its_arguments() -> None:
+    with pytest.raises(ValueError, match="time_scale"):
+        SimulatorStream(EchoSimulator(), time_scale=-1)
+    with pytest.raises(ValueError, match="max_bytes"):
+        await SimulatorStream(EchoSimulator()).receive(0)

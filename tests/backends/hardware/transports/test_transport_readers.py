@@ -1,0 +1,86 @@
+"""Tests of the reply readers."""
+
+from __future__ import annotations
+
+import pytest
+
+from j5aio.backends.hardware.transports import (
+    line_starts_with,
+    read_exactly,
+    read_line,
+    read_lines_until,
+)
+from j5aio.errors import UnexpectedReplyError
+
+
+def test_read_line_waits_for_the_terminator() -> None:
+    reader = read_line()
+    assert reader.parse(b"") is None
+    assert reader.parse(b"partial") is None
+    assert reader.parse(b"one\ntwo\n") == (b"one", 4)
+
+
+def test_read_line_strips_crlf_unless_asked_to_keep_ends() -> None:
+    assert read_line().parse(b"+ OK\r\nrest") == (b"+ OK", 6)
+    assert read_line(keep_ends=True).parse(bytearray(b"+ OK\r\n")) == (b"+ OK\r\n", 6)
+
+
+def test_read_line_with_another_terminator() -> None:
+    reader = read_line(b"\r")
+    assert reader.parse(b"abc\r\n") == (b"abc", 4)
+    assert "b'\\r'" in reader.describe()
+
+
+def test_read_line_rejects_overlong_lines() -> None:
+    reader = read_line(max_length=8)
+    with pytest.raises(UnexpectedReplyError, match="without a line ending"):
+        reader.parse(b"123456789")
+    with pytest.raises(UnexpectedReplyError, match="a line of 10 bytes"):
+        reader.parse(b"123456789\n")
+    assert reader.parse(b"1234567\n") == (b"1234567", 8)
+
+
+def test_readers_validate_their_arguments() -> None:
+    with pytest.raises(ValueError, match="terminator"):
+        read_line(b"")
+    with pytest.raises(ValueError, match="at least 1"):
+        read_exactly(0)
+    with pytest.raises(ValueError, match="terminator"):
+        read_lines_until(bool, terminator=b"")
+    with pytest.raises(ValueError, match="max_lines"):
+        read_lines_until(bool, max_lines=0)
+    with pytest.raises(ValueError, match="prefix"):
+        line_starts_with()
+
+
+def test_read_exactly() -> None:
+    reader = read_exactly(3)
+    assert reader.parse(b"ab") is None
+    assert reader.parse(b"abcd") == (b"abc", 3)
+    assert reader.describe() == "3 bytes"
+
+
+def test_read_lines_until_a_status_line() -> None:
+    reader = read_lines_until(line_starts_with(b"+", b"-"))
+    reply = b"# R 2\r\n> H\r\n+ OK\r\nnext"
+    assert reader.parse(reply[:12]) is None
+    assert reader.parse(reply) == ([b"# R 2", b"> H", b"+ OK"], len(reply) - 4)
+    assert "line_starts_with" in reader.describe()
+
+
+def test_read_lines_until_can_keep_line_ends() -> None:
+    reader = read_lines_until(lambda line: line == b"end", keep_ends=True)
+    assert reader.parse(b"a\r\nend\r\n") == ([b"a\r\n", b"end\r\n"], 8)
+
+
+def test_read_lines_until_gives_up_after_max_lines() -> None:
+    reader = read_lines_until(line_starts_with(b"+"), max_lines=2)
+    with pytest.raises(UnexpectedReplyError, match="2 lines"):
+        reader.parse(b"> 1\n> 2\n> 3\n+ OK\n")
+
+
+def test_line_starts_with_names_itself() -> None:
+    predicate = line_starts_with(b"+")
+    assert predicate(b"+ OK")
+    assert not predicate(b"- Error")
+    assert "line_starts_with" in predicate.__name__

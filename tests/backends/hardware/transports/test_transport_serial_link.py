@@ -1,0 +1,658 @@
+"""Tests of SerialLink: serialised, shielded exchanges with timeouts and dirty draining."""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import random
+from collections.abc import AsyncIterator, Callable
+from dataclasses import dataclass, field
+
+import anyio
+import anyio.abc
+import anyio.lowlevel
+import pytest
+
+from j5aio.backends.hardware.transports import (
+    TRACE,
+    ByteStream,
+    MemoryStream,
+    SerialLink,
+    line_starts_with,
+    memory_stream_pair,
+    read_exactly,
+    read_line,
+    read_lines_until,
+)
+from j5aio.errors import (
+    BoardDisconnectionError,
+    CommunicationError,
+    CommunicationTimeoutError,
+    UnexpectedReplyError,
+)
+from j5aio.testing.transports import FaultyStream, RecordingStream
+
+Responder = Callable[[bytes], bytes | None]
+
+
+@dataclass
+class LinePeer:
+    """A board on the far side of a memory pair that answers each line it receives."""
+
+    stream: MemoryStream
+    respond: Responder
+    delay: Callable[[], float] = lambda: 0.0
+    lines: list[bytes] = field(default_factory=list)
+
+    async def run(self) -> None:
+        buffer = bytearray()
+        try:
+            while True:
+                buffer += await self.stream.receive()
+                while b"\n" in buffer:
+                    line, _, rest = bytes(buffer).partition(b"\n")
+                    buffer = bytearray(rest)
+                    self.lines.append(line)
+                    reply = self.respond(line)
+                    pause = self.delay()
+                    if pause:
+                        await anyio.sleep(pause)
+                    if reply:
+                        await self.stream.send(reply)
+        except BoardDisconnectionError:
+            pass
+
+
+def upper(line: bytes) -> bytes:
+    return line.upper() + b"\r\n"
+
+
+@pytest.fixture
+async def peer_pair() -> AsyncIterator[tuple[MemoryStream, MemoryStream]]:
+    host, board = memory_stream_pair("host", "board")
+    yield host, board
+    host.close_now()
+    board.close_now()
+
+
+async def start_peer(
+    tg: anyio.abc.TaskGroup, board: MemoryStream, respond: Responder = upper, **kwargs: object
+) -> LinePeer:
+    peer = LinePeer(board, respond, **kwargs)  # type: ignore[arg-type]
+    tg.start_soon(peer.run)
+    return peer
+
+
+# -- the basics --------------------------------------------------------------------------
+
+
+async def test_exchange_sends_and_returns_the_parsed_reply(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    async with anyio.create_task_group() as tg:
+        peer = await start_peer(tg, board)
+        assert await link.exchange(b"v\n", read_line(), timeout=1) == b"V"
+        assert peer.lines == [b"v"]
+        tg.cancel_scope.cancel()
+    assert link.name == "host" and link.stream is host
+    assert not link.is_dirty and not link.is_closed
+    assert repr(link) == "<SerialLink 'host' open>"
+
+
+async def test_exchange_with_a_multi_line_reply() -> None:
+    host, board = memory_stream_pair()
+    link = SerialLink(host, name="arduino")
+
+    def sb_arduino(line: bytes) -> bytes:
+        return b"# " + line + b"\r\n> H\r\n+ OK\r\n"
+
+    async with anyio.create_task_group() as tg:
+        await start_peer(tg, board, sb_arduino)
+        reply = await link.exchange(
+            b"R 2\n", read_lines_until(line_starts_with(b"+", b"-")), timeout=1
+        )
+        assert reply == [b"# R 2", b"> H", b"+ OK"]
+        tg.cancel_scope.cancel()
+
+
+async def test_exchange_of_exact_bytes_and_an_empty_request() -> None:
+    host, board = memory_stream_pair()
+    link = SerialLink(host)
+    await board.send(b"\x01\x02\x03")
+    assert await link.exchange(b"", read_exactly(3), timeout=1) == b"\x01\x02\x03"
+
+
+async def test_send_has_no_reply(peer_pair: tuple[MemoryStream, MemoryStream]) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    await link.send(b"\x02\xfd")
+    assert await board.receive() == b"\x02\xfd"
+
+
+async def test_read_line_reads_a_banner_and_keeps_the_rest_for_the_next_read() -> None:
+    host, board = memory_stream_pair()
+    link = SerialLink(host)
+    await board.send(b"# Booted\r\n# SBDuino GPIO v2019.8.0\r\n")
+    assert await link.read_line(timeout=1) == b"# Booted"
+    assert link.buffered == b"# SBDuino GPIO v2019.8.0\r\n"
+    assert await link.read_line(timeout=1) == b"# SBDuino GPIO v2019.8.0"
+
+
+async def test_read_times_out_without_marking_the_link_dirty() -> None:
+    host, board = memory_stream_pair()
+    link = SerialLink(host)
+    await board.send(b"half a li")
+    with pytest.raises(CommunicationTimeoutError, match="half a li"):
+        await link.read_line(timeout=0.02)
+    assert not link.is_dirty
+    await board.send(b"ne\n")
+    assert await link.read_line(timeout=1) == b"half a line"
+
+
+async def test_read_reports_unparseable_input() -> None:
+    host, board = memory_stream_pair()
+    link = SerialLink(host)
+    await board.send(b"x" * 100)
+    with pytest.raises(UnexpectedReplyError, match="memory-a: bad reply: received 100 bytes"):
+        await link.read(read_line(max_length=10), timeout=1)
+
+
+async def test_stale_input_is_never_taken_as_a_reply(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    async with anyio.create_task_group() as tg:
+        await board.send(b"banner one\nbanner two\n")
+        assert await link.read_line(timeout=1) == b"banner one"
+        await start_peer(tg, board)
+        assert await link.exchange(b"q\n", read_line(), timeout=1) == b"Q"
+        tg.cancel_scope.cancel()
+
+
+async def test_bytes_after_a_reply_make_the_link_dirty(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host, quiet_time=0.01)
+    async with anyio.create_task_group() as tg:
+        await start_peer(tg, board, lambda line: line + b"\nsurprise\n")
+        assert await link.exchange(b"a\n", read_line(), timeout=1) == b"a"
+        assert link.is_dirty
+        assert await link.exchange(b"b\n", read_line(), timeout=1) == b"b"
+        tg.cancel_scope.cancel()
+
+
+async def test_requests_are_served_in_fifo_order(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    replies: dict[int, bytes] = {}
+    async with anyio.create_task_group() as tg:
+        peer = await start_peer(tg, board, upper, delay=lambda: 0.001)
+
+        async def ask(n: int) -> None:
+            replies[n] = await link.exchange(b"r%d\n" % n, read_line(), timeout=1)
+
+        async with anyio.create_task_group() as askers:
+            for n in range(20):
+                askers.start_soon(ask, n)
+        assert peer.lines == [b"r%d" % n for n in range(20)]
+        assert replies == {n: b"R%d" % n for n in range(20)}
+        tg.cancel_scope.cancel()
+
+
+# -- validation and closing ----------------------------------------------------------------
+
+
+def test_link_validates_its_settings() -> None:
+    host, _ = memory_stream_pair()
+    for bad in ({"default_timeout": 0}, {"quiet_time": -1}, {"drain_limit": float("nan")}):
+        with pytest.raises(ValueError, match="positive"):
+            SerialLink(host, **bad)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="chunk_size"):
+        SerialLink(host, chunk_size=0)
+
+
+async def test_calls_validate_their_timeouts() -> None:
+    host, _ = memory_stream_pair()
+    link = SerialLink(host)
+    with pytest.raises(ValueError, match="timeout"):
+        await link.exchange(b"x", read_line(), timeout=0)
+    with pytest.raises(ValueError, match="quiet_time"):
+        await link.drain(0)
+    with pytest.raises(ValueError, match="limit"):
+        await link.drain(limit=-1)
+
+
+async def test_a_closed_link_refuses_every_call() -> None:
+    host, _ = memory_stream_pair()
+    async with SerialLink(host) as link:
+        pass
+    assert link.is_closed and host.is_closed
+    assert repr(link) == "<SerialLink 'memory-a' closed>"
+    with pytest.raises(BoardDisconnectionError, match="link is closed"):
+        await link.exchange(b"x\n", read_line(), timeout=1)
+    with pytest.raises(BoardDisconnectionError, match="link is closed"):
+        await link.send(b"x")
+    with pytest.raises(BoardDisconnectionError, match="link is closed"):
+        await link.read_line(timeout=1)
+    with pytest.raises(BoardDisconnectionError, match="link is closed"):
+        await link.drain()
+    link.close_now()  # idempotent
+
+
+async def test_close_now_ends_a_waiting_exchange() -> None:
+    host, _ = memory_stream_pair()
+    link = SerialLink(host)
+    with anyio.fail_after(1):
+        async with anyio.create_task_group() as tg:
+
+            async def close_soon() -> None:
+                await anyio.sleep(0.01)
+                link.close_now()
+
+            tg.start_soon(close_soon)
+            with pytest.raises(BoardDisconnectionError):
+                await link.exchange(b"x\n", read_line(), timeout=5)
+    assert link.is_dirty
+
+
+# -- timeouts and the dirty drain ----------------------------------------------------------
+
+
+async def test_timeout_names_the_port_and_the_request_and_marks_dirty(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host, name="/dev/ttyACM0")
+    with pytest.raises(CommunicationTimeoutError) as caught:
+        await link.exchange(b"*IDN?\n", read_line(), timeout=0.02)
+    message = str(caught.value)
+    assert "/dev/ttyACM0" in message and "*IDN?" in message and "0.02 s" in message
+    assert isinstance(caught.value, CommunicationError)
+    assert link.is_dirty
+    assert "dirty" in repr(link)
+
+
+async def test_a_late_reply_is_drained_before_the_next_exchange(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host, quiet_time=0.05)
+    delays = iter([0.03, 0.0])
+    async with anyio.create_task_group() as tg:
+        await start_peer(tg, board, upper, delay=lambda: next(delays))
+        with pytest.raises(CommunicationTimeoutError):
+            await link.exchange(b"slow\n", read_line(), timeout=0.02)
+        # The reply to "slow" arrives about 10 ms late, during the next exchange's drain.
+        assert await link.exchange(b"fast\n", read_line(), timeout=1) == b"FAST"
+        assert not link.is_dirty
+        tg.cancel_scope.cancel()
+
+
+async def test_drain_discards_and_counts() -> None:
+    host, board = memory_stream_pair()
+    link = SerialLink(host)
+    await board.send(b"old noise")
+    link.mark_dirty()
+    assert await link.drain(0.01) == 9
+    assert not link.is_dirty
+    assert await link.drain(0.01) == 0
+
+
+async def test_a_line_that_never_goes_quiet_fails_the_drain() -> None:
+    host, board = memory_stream_pair()
+    link = SerialLink(host, quiet_time=0.02, drain_limit=0.05)
+    link.mark_dirty()
+
+    async def chatter() -> None:
+        while True:
+            await board.send(b"spam")
+            await anyio.sleep(0.002)
+
+    async with anyio.create_task_group() as tg:
+        tg.start_soon(chatter)
+        with pytest.raises(CommunicationError, match="kept sending"):
+            await link.exchange(b"x\n", read_line(), timeout=1)
+        assert link.is_dirty
+        tg.cancel_scope.cancel()
+
+
+async def test_a_send_that_cannot_complete_in_time_times_out() -> None:
+    class StuckStream(MemoryStream):
+        async def send(self, data: bytes) -> None:
+            await anyio.sleep_forever()
+
+    link = SerialLink(StuckStream("stuck"))
+    with pytest.raises(CommunicationTimeoutError, match="could not send"):
+        await link.send(b"\x02\x02", timeout=0.02)
+    assert link.is_dirty
+
+
+# -- failures of the stream ----------------------------------------------------------------
+
+
+async def test_the_port_disappearing_mid_exchange_raises_board_disconnection() -> None:
+    host, board = memory_stream_pair()
+    link = SerialLink(host)
+    async with anyio.create_task_group() as tg:
+
+        async def unplug() -> None:
+            await board.receive()
+            board.close_now()
+
+        tg.start_soon(unplug)
+        with pytest.raises(BoardDisconnectionError, match="gone away"):
+            await link.exchange(b"x\n", read_line(), timeout=1)
+    with pytest.raises(BoardDisconnectionError):
+        await link.exchange(b"y\n", read_line(), timeout=1)
+
+
+class BrokenStream(MemoryStream):
+    """A stream that fails with foreign exceptions."""
+
+    def __init__(self, error: BaseException, *, on_send: bool) -> None:
+        super().__init__("broken")
+        self.error = error
+        self.on_send = on_send
+
+    async def send(self, data: bytes) -> None:
+        if self.on_send:
+            raise self.error
+
+    async def receive(self, max_bytes: int = 4096) -> bytes:
+        raise self.error
+
+
+@pytest.mark.parametrize("on_send", [True, False])
+async def test_os_errors_from_a_stream_become_communication_errors(on_send: bool) -> None:
+    link = SerialLink(BrokenStream(OSError(5, "Input/output error"), on_send=on_send))
+    with pytest.raises(CommunicationError, match="Input/output error") as caught:
+        await link.exchange(b"x\n", read_line(), timeout=1)
+    assert not isinstance(caught.value, BoardDisconnectionError)
+    assert isinstance(caught.value.__cause__, OSError)
+
+
+@pytest.mark.parametrize("on_send", [True, False])
+@pytest.mark.parametrize(
+    "error", [anyio.EndOfStream(), anyio.BrokenResourceError(), anyio.ClosedResourceError()]
+)
+async def test_anyio_stream_errors_become_board_disconnection(
+    error: Exception, on_send: bool
+) -> None:
+    link = SerialLink(BrokenStream(error, on_send=on_send))
+    with pytest.raises(BoardDisconnectionError, match="has gone"):
+        await link.exchange(b"x\n", read_line(), timeout=1)
+
+
+async def test_other_exceptions_from_a_stream_are_not_hidden() -> None:
+    link = SerialLink(BrokenStream(AssertionError("script broken"), on_send=True))
+    with pytest.raises(AssertionError, match="script broken"):
+        await link.exchange(b"x\n", read_line(), timeout=1)
+
+
+async def test_a_corrupted_reply_is_returned_as_it_came() -> None:
+    host, board = memory_stream_pair()
+    faulty = FaultyStream(host)
+    link = SerialLink(faulty)
+    async with anyio.create_task_group() as tg:
+        await start_peer(tg, board, lambda line: b"+ OK\n")
+        faulty.corrupt_next_reply()
+        assert await link.exchange(b"x\n", read_line(), timeout=1) == b"\xd4 OK"
+        assert await link.exchange(b"y\n", read_line(), timeout=1) == b"+ OK"
+        tg.cancel_scope.cancel()
+
+
+async def test_a_reply_with_a_corrupted_terminator_times_out_then_recovers() -> None:
+    host, board = memory_stream_pair()
+    faulty = FaultyStream(host)
+    link = SerialLink(faulty, quiet_time=0.01)
+    async with anyio.create_task_group() as tg:
+        await start_peer(tg, board, lambda line: line + b"\n")
+        faulty.corrupt_next_reply(lambda reply: reply.replace(b"\n", b"?"))
+        with pytest.raises(CommunicationTimeoutError, match=r"received so far: b'first\?'"):
+            await link.exchange(b"first\n", read_line(), timeout=0.03)
+        assert await link.exchange(b"second\n", read_line(), timeout=1) == b"second"
+        tg.cancel_scope.cancel()
+
+
+async def test_a_garbage_reply_raises_unexpected_reply_and_marks_dirty() -> None:
+    host, board = memory_stream_pair()
+    link = SerialLink(host, quiet_time=0.01)
+    async with anyio.create_task_group() as tg:
+        await start_peer(tg, board, lambda line: b"\xff" * 64 + b"\n")
+        with pytest.raises(UnexpectedReplyError, match=r"bad reply to b'x\\n'"):
+            await link.exchange(b"x\n", read_line(max_length=16), timeout=1)
+        assert link.is_dirty
+        tg.cancel_scope.cancel()
+
+
+# -- the wire log --------------------------------------------------------------------------
+
+
+async def test_wire_bytes_are_logged_at_trace(caplog: pytest.LogCaptureFixture) -> None:
+    host, board = memory_stream_pair()
+    link = SerialLink(host, name="/dev/ttyACM9")
+    caplog.set_level(TRACE, logger="j5aio.wire")
+    await board.send(b"hi\n")
+    await link.exchange(b"ping\n", read_line(), timeout=1)
+    records = [r for r in caplog.records if r.name == "j5aio.wire./dev/ttyACM9"]
+    assert [r.levelname for r in records] == ["TRACE", "TRACE"]
+    assert [r.getMessage() for r in records] == ["-> b'ping\\n'", "<- b'hi\\n'"]
+
+
+async def test_draining_and_discarding_are_logged_at_debug(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    host, board = memory_stream_pair()
+    link = SerialLink(host, quiet_time=0.01)
+    caplog.set_level(logging.DEBUG, logger="j5aio.backends.hardware.transports.serial_link")
+    await board.send(b"one\ntwo\n")
+    await link.read_line(timeout=1)
+    with pytest.raises(CommunicationTimeoutError):
+        await link.exchange(b"x\n", read_line(), timeout=0.01)
+    await board.send(b"late\n")
+    with pytest.raises(CommunicationTimeoutError):
+        await link.exchange(b"y\n", read_line(), timeout=0.01)
+    text = caplog.text
+    assert "discarding stale input b'two\\n'" in text
+    assert "drained 5 bytes" in text
+
+
+# -- cancellation ----------------------------------------------------------------------------
+
+
+async def test_a_caller_cancelled_mid_exchange_still_consumes_its_reply(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    async with anyio.create_task_group() as tg:
+        peer = await start_peer(tg, board, upper, delay=lambda: 0.03)
+        with anyio.move_on_after(0.01) as scope:
+            await link.exchange(b"first\n", read_line(), timeout=1)
+            await anyio.lowlevel.checkpoint()
+        assert scope.cancelled_caught
+        assert peer.lines == [b"first"]
+        assert not link.is_dirty and link.buffered == b""
+        assert await link.exchange(b"second\n", read_line(), timeout=1) == b"SECOND"
+        tg.cancel_scope.cancel()
+
+
+async def test_a_caller_cancelled_while_waiting_for_the_lock_sends_nothing(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    async with anyio.create_task_group() as tg:
+        peer = await start_peer(tg, board, upper, delay=lambda: 0.03)
+        tg.start_soon(link.exchange, b"first\n", read_line())
+        await anyio.sleep(0.005)
+        with anyio.move_on_after(0.005) as scope:
+            await link.exchange(b"never\n", read_line(), timeout=1)
+        assert scope.cancelled_caught
+        assert await link.exchange(b"third\n", read_line(), timeout=1) == b"THIRD"
+        assert peer.lines == [b"first", b"third"]
+        tg.cancel_scope.cancel()
+
+
+async def test_native_task_cancel_that_tears_an_exchange_marks_the_link_dirty(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host, quiet_time=0.02)
+    async with anyio.create_task_group() as tg:
+        await start_peer(tg, board, upper, delay=lambda: 0.01)
+        task = asyncio.ensure_future(link.exchange(b"torn\n", read_line(), timeout=1))
+        await anyio.sleep(0.002)
+        task.cancel()  # asyncio-native: breaks through the anyio shield
+        with pytest.raises(asyncio.CancelledError):
+            await task
+        assert link.is_dirty
+        # The torn exchange's reply arrives ~8 ms later and is drained, not taken.
+        assert await link.exchange(b"next\n", read_line(), timeout=1) == b"NEXT"
+        tg.cancel_scope.cancel()
+
+
+@dataclass
+class StressResult:
+    """What a cancellation stress run observed."""
+
+    attempts: int = 0
+    cancelled_waiting: int = 0  # cancelled before its exchange began: nothing was sent
+    cancelled_mid_exchange: int = 0  # cancelled after its exchange began (shield held)
+    timeouts: int = 0
+    replies: int = 0
+    strays: int = 0  # replies that answered another request
+
+    @property
+    def cancellations(self) -> int:
+        return self.cancelled_waiting + self.cancelled_mid_exchange
+
+
+def sequence_peer(rng: random.Random, max_delay: float) -> tuple[Responder, Callable[[], float]]:
+    def respond(line: bytes) -> bytes:
+        assert line.startswith(b"REQ ")
+        return b"REP " + line[4:] + b"\n"
+
+    return respond, lambda: rng.uniform(0, max_delay)
+
+
+async def stress(
+    link: SerialLink,
+    rng: random.Random,
+    *,
+    workers: int,
+    per_worker: int,
+    max_deadline: float,
+    timeout: float,
+) -> StressResult:
+    result = StressResult()
+
+    async def worker(worker_id: int) -> None:
+        for n in range(per_worker):
+            tag = b"%d.%d" % (worker_id, n)
+            result.attempts += 1
+            got_reply = False
+            with anyio.move_on_after(rng.uniform(0, max_deadline)) as scope:
+                try:
+                    reply = await link.exchange(b"REQ " + tag + b"\n", read_line(), timeout=timeout)
+                except CommunicationTimeoutError:
+                    result.timeouts += 1
+                    result.cancelled_mid_exchange += scope.cancel_called
+                    continue
+                got_reply = True
+                result.replies += 1
+                result.strays += reply != b"REP " + tag
+                # The deadline passed while the (shielded) exchange ran: its caller was
+                # cancelled mid-exchange, and the exchange still consumed its own reply.
+                result.cancelled_mid_exchange += scope.cancel_called
+                await anyio.lowlevel.checkpoint()  # the caller moves on to other work
+            if scope.cancelled_caught and not got_reply:
+                result.cancelled_waiting += 1
+
+    async with anyio.create_task_group() as tg:
+        for worker_id in range(workers):
+            tg.start_soon(worker, worker_id)
+    return result
+
+
+async def test_thousands_of_random_cancellations_leave_no_stray_reply() -> None:
+    rng = random.Random(20240611)
+    host, board = memory_stream_pair()
+    recording = RecordingStream(host)
+    link = SerialLink(recording)
+    respond, delay = sequence_peer(rng, max_delay=0.002)
+    async with anyio.create_task_group() as tg:
+        peer = await start_peer(tg, board, respond, delay=delay)
+        result = await stress(
+            link, rng, workers=4, per_worker=1000, max_deadline=0.004, timeout=1.0
+        )
+        # One last uncancelled exchange proves the line is clean.
+        assert await link.exchange(b"REQ final\n", read_line(), timeout=1) == b"REP final"
+        tg.cancel_scope.cancel()
+    print(
+        f"\nstress: {result.attempts} exchanges, {result.cancellations} cancelled "
+        f"({result.cancelled_mid_exchange} mid-exchange, {result.cancelled_waiting} while "
+        f"queued), {result.replies} replies, {result.strays} strays"
+    )
+    assert result.strays == 0
+    assert result.timeouts == 0
+    assert result.cancellations >= 2000
+    assert result.cancelled_mid_exchange >= 500
+    # Every request on the wire got exactly its own reply, and all were consumed.
+    assert len(peer.lines) == result.replies + 1
+    assert recording.received.count(b"REP ") == len(peer.lines)
+    assert link.buffered == b"" and not link.is_dirty
+
+
+async def test_random_cancellations_and_timeouts_leave_no_stray_reply() -> None:
+    rng = random.Random(7)
+    host, board = memory_stream_pair()
+    link = SerialLink(host, quiet_time=0.03)
+    # Replies take up to 4 ms; exchanges time out after 2 ms: many replies come late,
+    # and the dirty drain must swallow every one of them.
+    respond, delay = sequence_peer(rng, max_delay=0.004)
+    async with anyio.create_task_group() as tg:
+        await start_peer(tg, board, respond, delay=delay)
+        result = await stress(
+            link, rng, workers=3, per_worker=200, max_deadline=0.02, timeout=0.002
+        )
+        tg.cancel_scope.cancel()
+    print(f"\nstress with timeouts: {result}")
+    assert result.strays == 0
+    assert result.timeouts >= 30
+    assert result.replies >= 30
+    assert result.cancellations >= 100
+
+
+async def test_the_stress_detects_strays_when_the_exchange_is_not_shielded() -> None:
+    """Control experiment: the same workload through a naive exchange does leave strays."""
+    rng = random.Random(3)
+    host, board = memory_stream_pair()
+    respond, delay = sequence_peer(rng, max_delay=0.002)
+    buffer = bytearray()
+    lock = anyio.Lock()
+    strays = 0
+
+    async def naive_exchange(stream: ByteStream, request: bytes) -> bytes:
+        async with lock:
+            await stream.send(request)
+            while b"\n" not in buffer:
+                buffer.extend(await stream.receive())
+            line, _, rest = bytes(buffer).partition(b"\n")
+            buffer[:] = rest
+            return line
+
+    async with anyio.create_task_group() as tg:
+        await start_peer(tg, board, respond, delay=delay)
+        for n in range(300):
+            with anyio.move_on_after(rng.uniform(0, 0.003)):
+                reply = await naive_exchange(host, b"REQ %d\n" % n)
+                strays += reply != b"REP %d" % n
+        tg.cancel_scope.cancel()
+    assert strays > 0

@@ -1,0 +1,403 @@
+"""Tests of serial streams: a real pseudo-terminal, pyserial URLs, and opening errors."""
+
+from __future__ import annotations
+
+import asyncio
+import errno
+import logging
+import os
+import socket
+import sys
+import threading
+import tty
+from collections.abc import AsyncIterator, Callable, Iterator
+from typing import Any
+
+import anyio
+import pytest
+import serial
+
+from j5aio.backends.hardware.transports import (
+    ByteStream,
+    PortInfo,
+    SerialLink,
+    SerialStream,
+    line_starts_with,
+    open_serial_stream,
+    read_line,
+    read_lines_until,
+)
+from j5aio.backends.hardware.transports import serial_stream as serial_stream_module
+from j5aio.errors import BoardDisconnectionError, CommunicationError
+
+pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="needs POSIX pseudo-terminals")
+
+
+class PtyBoard:
+    """A board on the master side of a pseudo-terminal, answering lines in the event loop."""
+
+    def __init__(self) -> None:
+        self.master, self.slave = os.openpty()
+        tty.setraw(self.slave)
+        os.set_blocking(self.master, False)
+        self.path = os.ttyname(self.slave)
+        self.received = bytearray()
+        self.respond: Callable[[bytes], bytes] | None = None
+        self._buffer = bytearray()
+        self._loop: asyncio.AbstractEventLoop | None = None
+
+    def answer_lines(self, respond: Callable[[bytes], bytes]) -> None:
+        """Start answering each line written to the port with ``respond(line)``."""
+        self.respond = respond
+        self._loop = asyncio.get_running_loop()
+        self._loop.add_reader(self.master, self._readable)
+
+    def _readable(self) -> None:
+        try:
+            data = os.read(self.master, 4096)
+        except OSError:
+            return
+        self.received += data
+        self._buffer += data
+        while self.respond is not None and b"\n" in self._buffer:
+            line, _, rest = bytes(self._buffer).partition(b"\n")
+            self._buffer = bytearray(rest)
+            reply = self.respond(line)
+            if reply:
+                os.write(self.master, reply)
+
+    def write(self, data: bytes) -> None:
+        os.write(self.master, data)
+
+    def unplug(self) -> None:
+        """Close the master side: the port vanishes, as when a USB adapter is pulled."""
+        if self._loop is not None:
+            self._loop.remove_reader(self.master)
+            self._loop = None
+        if self.master >= 0:
+            os.close(self.master)
+            self.master = -1
+
+    def close(self) -> None:
+        self.unplug()
+        os.close(self.slave)
+
+
+@pytest.fixture
+def board() -> Iterator[PtyBoard]:
+    pty_board = PtyBoard()
+    yield pty_board
+    pty_board.close()
+
+
+@pytest.fixture
+async def stream(board: PtyBoard) -> AsyncIterator[SerialStream]:
+    opened = await open_serial_stream(board.path, 115200)
+    yield opened
+    opened.close_now()
+
+
+def sb_arduino(line: bytes) -> bytes:
+    return b"# " + line + b"\r\n> H\r\n+ OK\r\n"
+
+
+# -- a real pseudo-terminal ----------------------------------------------------------------
+
+
+async def test_lines_are_exchanged_through_a_pty(board: PtyBoard, stream: SerialStream) -> None:
+    assert isinstance(stream, ByteStream)
+    assert stream.name == board.path
+    assert stream.serial.is_open
+    board.answer_lines(lambda line: line[::-1] + b"\n")
+    link = SerialLink(stream)
+    assert await link.exchange(b"hello\n", read_line(), timeout=1) == b"olleh"
+    assert await link.exchange(b"abc\n", read_line(), timeout=1) == b"cba"
+    assert board.received == b"hello\nabc\n"
+
+
+async def test_banner_then_multi_line_replies_through_a_pty(board: PtyBoard) -> None:
+    async with SerialLink(await open_serial_stream(board.path, 115200)) as link:
+        # The board boots when the port opens (opening discards older input).
+        board.write(b"# Booted\r\n# SBDuino GPIO v2019.8.0\r\n")
+        assert await link.read_line(timeout=1) == b"# Booted"
+        assert await link.read_line(timeout=1) == b"# SBDuino GPIO v2019.8.0"
+        board.answer_lines(sb_arduino)
+        status = read_lines_until(line_starts_with(b"+", b"-"))
+        assert await link.exchange(b"R 2\n", status, timeout=1) == [b"# R 2", b"> H", b"+ OK"]
+    assert link.stream.is_closed
+
+
+async def test_a_large_write_waits_for_the_port_to_take_it(
+    board: PtyBoard, stream: SerialStream
+) -> None:
+    chunk = bytes(range(256)) * 64  # 16 KiB
+    total = 48 * len(chunk)  # well past the transport's 64 KiB high-water mark
+    got = bytearray()
+    stop = threading.Event()
+
+    def slow_reader() -> None:
+        while not stop.is_set() and len(got) < total:
+            try:
+                got.extend(os.read(board.master, 65536))
+            except BlockingIOError:
+                stop.wait(0.002)
+
+    reader = threading.Thread(target=slow_reader)
+    paused: list[bool] = []
+    with anyio.fail_after(10):
+        reader.start()
+        for _ in range(48):
+            await stream.send(chunk)
+            paused.append(stream._write_paused)  # type: ignore[attr-defined]
+        await stream.aclose()  # waits for the output buffer to drain
+    reader.join(5)
+    stop.set()
+    assert len(got) == total
+    assert bytes(got[: len(chunk)]) == chunk
+    assert any(paused), "the transport never applied back-pressure"
+
+
+async def test_the_port_vanishing_mid_exchange_raises_board_disconnection(
+    board: PtyBoard, stream: SerialStream
+) -> None:
+    link = SerialLink(stream)
+
+    async def unplug_soon() -> None:
+        await anyio.sleep(0.02)
+        board.unplug()
+
+    with anyio.fail_after(2):
+        async with anyio.create_task_group() as tg:
+            tg.start_soon(unplug_soon)
+            with pytest.raises(BoardDisconnectionError, match="gone away") as caught:
+                await link.exchange(b"anyone?\n", read_line(), timeout=1)
+    assert isinstance(caught.value.__cause__, serial.SerialException)
+    with pytest.raises(BoardDisconnectionError, match="gone away"):
+        await stream.send(b"x")
+    stream.close_now()  # closing after a failure is quiet
+
+
+async def test_close_now_is_synchronous_and_wakes_a_reader(
+    board: PtyBoard, stream: SerialStream
+) -> None:
+    async def close_soon() -> None:
+        await anyio.sleep(0.01)
+        stream.close_now()
+
+    with anyio.fail_after(1):
+        async with anyio.create_task_group() as tg:
+            tg.start_soon(close_soon)
+            with pytest.raises(BoardDisconnectionError, match="closed"):
+                await stream.receive()
+    assert stream.is_closed and not stream.serial.is_open
+    with pytest.raises(BoardDisconnectionError, match="closed"):
+        await stream.send(b"x")
+    stream.close_now()
+    await stream.aclose()
+
+
+def test_close_now_works_after_the_event_loop_has_gone(board: PtyBoard) -> None:
+    """As in an ``atexit`` handler: no running loop, no executor."""
+
+    async def open_it() -> SerialStream:
+        return await open_serial_stream(board.path, 115200)
+
+    opened = anyio.run(open_it)
+    opened.close_now()
+    assert not opened.serial.is_open
+
+
+async def test_low_latency_failure_on_a_pty_is_only_logged(
+    board: PtyBoard, caplog: pytest.LogCaptureFixture
+) -> None:
+    caplog.set_level(logging.DEBUG, logger="j5aio.backends.hardware.transports.serial_stream")
+    opened = await open_serial_stream(board.path, 115200, low_latency=True)
+    opened.close_now()
+    if sys.platform.startswith("linux"):
+        assert "could not set low-latency mode" in caplog.text
+
+
+async def test_low_latency_is_asked_for_ftdi_ports_only(
+    board: PtyBoard, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(sys, "platform", "linux")
+    asked: list[bool] = []
+    monkeypatch.setattr(
+        serial.Serial, "set_low_latency_mode", lambda self, on: asked.append(on), raising=False
+    )
+    ftdi = PortInfo(board.path, vid=0x0403, pid=0x6001)
+    monkeypatch.setattr("j5aio.backends.hardware.transports.discovery.find_port", lambda d: ftdi)
+    (await open_serial_stream(board.path)).close_now()
+    assert asked == [True]
+    (await open_serial_stream(board.path, low_latency=False)).close_now()
+    assert asked == [True]
+    other = PortInfo(board.path, vid=0x1BDA, pid=0x0011)
+    monkeypatch.setattr("j5aio.backends.hardware.transports.discovery.find_port", lambda d: other)
+    (await open_serial_stream(board.path)).close_now()
+    assert asked == [True]
+
+
+def test_low_latency_helper_on_other_platforms(
+    monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
+) -> None:
+    caplog.set_level(logging.DEBUG, logger="j5aio.backends.hardware.transports.serial_stream")
+    request = serial_stream_module._request_low_latency
+    port = serial.serial_for_url("loop://", do_not_open=True)
+    monkeypatch.setattr(sys, "platform", "darwin")
+    request(port, "loop://", True)
+    assert "only available on Linux" in caplog.text
+    request(port, "loop://", None)  # auto: nothing to do off Linux
+    monkeypatch.setattr(sys, "platform", "linux")
+    request(port, "loop://", True)
+    assert "has no low-latency mode" in caplog.text
+
+
+def test_ftdi_detection_survives_a_failing_port_list(monkeypatch: pytest.MonkeyPatch) -> None:
+    def broken(device: str) -> PortInfo | None:
+        raise CommunicationError("no sysfs")
+
+    monkeypatch.setattr("j5aio.backends.hardware.transports.discovery.find_port", broken)
+    assert not serial_stream_module._is_ftdi("/dev/ttyUSB0")
+
+
+async def test_a_failure_after_opening_closes_the_port(
+    board: PtyBoard, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    def explode(port: Any, url: str, low_latency: bool | None) -> None:
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(serial_stream_module, "_request_low_latency", explode)
+    with pytest.raises(RuntimeError, match="boom"):
+        await open_serial_stream(board.path)
+
+    monkeypatch.undo()
+    closed: list[bool] = []
+    original_close = serial.Serial.close
+
+    def track_close(self: serial.Serial) -> None:
+        closed.append(True)
+        original_close(self)
+
+    async def attach_fails(self: Any) -> None:
+        raise RuntimeError("attach failed")
+
+    monkeypatch.setattr(serial.Serial, "close", track_close)
+    monkeypatch.setattr(serial_stream_module._EventSerialStream, "_attach", attach_fails)
+    with pytest.raises(RuntimeError, match="attach failed"):
+        await open_serial_stream(board.path)
+    assert closed == [True]
+
+
+# -- opening errors ------------------------------------------------------------------------
+
+
+async def test_a_missing_port_says_what_to_check(tmp_path: Any) -> None:
+    missing = str(tmp_path / "ttyACM99")
+    with pytest.raises(BoardDisconnectionError) as caught:
+        await open_serial_stream(missing)
+    message = str(caught.value)
+    assert missing in message and "plugged in" in message
+    assert isinstance(caught.value.__cause__, serial.SerialException)
+
+
+@pytest.mark.parametrize(
+    ("code", "kind", "text"),
+    [
+        (errno.ENOENT, BoardDisconnectionError, "no such port"),
+        (errno.ENXIO, BoardDisconnectionError, "no such port"),
+        (errno.EACCES, CommunicationError, "dialout"),
+        (errno.EBUSY, CommunicationError, "in use"),
+        (errno.EIO, CommunicationError, "Check that the board"),
+    ],
+)
+async def test_open_errors_are_explained(
+    monkeypatch: pytest.MonkeyPatch, code: int, kind: type[CommunicationError], text: str
+) -> None:
+    def failing_serial_for_url(url: str, *args: Any, **kwargs: Any) -> Any:
+        raise serial.SerialException(code, f"could not open port {url}: [Errno {code}]")
+
+    monkeypatch.setattr(serial, "serial_for_url", failing_serial_for_url)
+    with pytest.raises(kind, match=text) as caught:
+        await open_serial_stream("/dev/ttyACM7")
+    assert "/dev/ttyACM7" in str(caught.value)
+
+
+async def test_an_unknown_url_scheme_is_a_value_error() -> None:
+    with pytest.raises(ValueError, match="not known"):
+        await open_serial_stream("nonsense://here")
+
+
+# -- pyserial URLs -------------------------------------------------------------------------
+
+
+async def test_loop_url_is_polled() -> None:
+    stream = await open_serial_stream("loop://", 115200, poll_interval=0.0005)
+    link = SerialLink(stream)
+    assert await link.exchange(b"echo me\n", read_line(), timeout=1) == b"echo me"
+    assert type(stream).__name__ == "_PolledSerialStream"
+    with pytest.raises(ValueError, match="max_bytes"):
+        await stream.receive(0)
+    await link.aclose()
+    assert stream.is_closed and not stream.serial.is_open
+    with pytest.raises(BoardDisconnectionError, match="closed"):
+        await stream.receive()
+    with pytest.raises(BoardDisconnectionError, match="closed"):
+        await stream.send(b"x")
+
+
+async def test_a_polled_port_that_fails_raises_board_disconnection() -> None:
+    stream = await open_serial_stream("loop://", name="loopback")
+    stream.serial.close()  # the handler fails underneath us
+    with pytest.raises(BoardDisconnectionError, match="loopback: the port has gone away"):
+        await stream.receive()
+    with pytest.raises(BoardDisconnectionError, match="loopback: the port has gone away"):
+        await stream.send(b"x")
+    stream.close_now()
+
+
+async def test_a_polled_port_retries_partial_writes(monkeypatch: pytest.MonkeyPatch) -> None:
+    stream = await open_serial_stream("loop://", poll_interval=0.0005)
+    writes: list[bytes] = []
+
+    def write_two_bytes(data: Any) -> int:
+        writes.append(bytes(data[:2]))
+        return 2
+
+    monkeypatch.setattr(stream.serial, "write", write_two_bytes)
+    await stream.send(b"abcde")
+    assert writes == [b"ab", b"cd", b"e"]
+    stream.close_now()
+
+
+async def test_socket_url_through_the_event_loop() -> None:
+    async def echo(reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        while line := await reader.readline():
+            writer.write(b"got " + line)
+            await writer.drain()
+        writer.close()
+
+    server = await asyncio.start_server(echo, "127.0.0.1", 0)
+    port = server.sockets[0].getsockname()[1]
+    try:
+        stream = await open_serial_stream(f"socket://127.0.0.1:{port}")
+        async with SerialLink(stream) as link:
+            assert await link.exchange(b"ping\n", read_line(), timeout=2) == b"got ping"
+            assert link.name == f"socket://127.0.0.1:{port}"
+    finally:
+        server.close()
+        await server.wait_closed()
+
+
+def test_the_file_descriptor_probe() -> None:
+    class NoFileno:
+        pass
+
+    class BrokenFileno:
+        def fileno(self) -> int:
+            raise OSError("not open")
+
+    probe = serial_stream_module._has_file_descriptor
+    assert not probe(NoFileno())  # type: ignore[arg-type]
+    assert not probe(BrokenFileno())  # type: ignore[arg-type]
+    with socket.socket() as sock:
+        assert probe(sock)  # type: ignore[arg-type]
