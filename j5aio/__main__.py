@@ -157,11 +157,13 @@ def _list(args: argparse.Namespace) -> int:
     import anyio
 
     from j5aio.backends.hardware.listing import find_boards, format_boards
+    from j5aio.errors import CommunicationError
 
-    boards = anyio.run(find_boards)
-    if not boards:
-        print("No boards found. Check that they are plugged in by USB and powered on.")
-        return 0
+    try:
+        boards = anyio.run(find_boards)
+    except CommunicationError as error:
+        print(f"j5aio: could not look for boards: {error}", file=sys.stderr)
+        return 1
     print(format_boards(boards))
     return 0
 
@@ -169,8 +171,8 @@ def _list(args: argparse.Namespace) -> int:
 def _demo(args: argparse.Namespace) -> int:
     from j5aio.demo import DEFAULT_SECONDS, run_demo
 
-    run_demo(args.seconds if args.seconds is not None else DEFAULT_SECONDS)
-    return 0
+    braked = run_demo(args.seconds if args.seconds is not None else DEFAULT_SECONDS)
+    return 0 if braked else 1
 
 
 def _run(args: argparse.Namespace) -> int:

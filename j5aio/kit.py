@@ -20,6 +20,7 @@ from j5aio.boards.board_group import BoardGroup
 from j5aio.boards.sb import SBArduinoBoard
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
 from j5aio.environments import get_default_environment, hint_no_hardware
+from j5aio.errors import CommunicationError
 from j5aio.robot import BaseRobot
 
 __all__ = ["KitRobot"]
@@ -66,13 +67,23 @@ class KitRobot(BaseRobot):
         return self._environment
 
     async def setup(self) -> None:
-        """Find every board of the kit, then the power board."""
+        """Find every board of the kit, then the power board.
+
+        :raises CommunicationError: there is not exactly one power board, or a board
+            could not be reached. When the hardware was looked at only by default and
+            nothing was found, one line says how to run on the simulated kit instead.
+        """
         environment = self.environment
-        self.power_boards = await environment.get_board_group(PowerBoard)
-        self.motor_boards = await environment.get_board_group(MotorBoard)
-        self.servo_boards = await environment.get_board_group(ServoBoard)
-        self.arduinos = await environment.get_board_group(SBArduinoBoard)
-        self.ruggeduinos = await environment.get_board_group(Ruggeduino)
+        try:
+            self.power_boards = await environment.get_board_group(PowerBoard)
+            self.motor_boards = await environment.get_board_group(MotorBoard)
+            self.servo_boards = await environment.get_board_group(ServoBoard)
+            self.arduinos = await environment.get_board_group(SBArduinoBoard)
+            self.ruggeduinos = await environment.get_board_group(Ruggeduino)
+        except CommunicationError:
+            # E.g. no USB library: the hardware cannot even be looked at.
+            self._hint_if_by_default()
+            raise
         groups = (
             self.power_boards,
             self.motor_boards,
@@ -80,6 +91,10 @@ class KitRobot(BaseRobot):
             self.arduinos,
             self.ruggeduinos,
         )
-        if self._chosen_by_default and not any(groups):
-            hint_no_hardware()
+        if not any(groups):
+            self._hint_if_by_default()
         self.power_board = self.power_boards.singular()
+
+    def _hint_if_by_default(self) -> None:
+        if self._chosen_by_default:
+            hint_no_hardware()

@@ -49,7 +49,6 @@ from .sb_arduino_2019 import SBArduinoSimulator
 from .sr_motor_fw3 import SRMotorBoardFw3Simulator
 from .sr_power_fw3 import SRPowerBoardFw3Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
-from .sr_servo_fw2 import SRServoBoardFw2Simulator
 
 __all__ = [
     "SIMULATED_BACKENDS",
@@ -61,9 +60,8 @@ __all__ = [
     "SRV4ServoBoardSimulatedBackend",
     "SimulatedPort",
     "SimulatedUSBDevice",
+    "kit_discovery_options",
     "port_name",
-    "serial_discovery_options",
-    "usb_discovery_options",
 ]
 
 
@@ -163,18 +161,27 @@ class SimulatedUSBDevice:
         return f"<SimulatedUSBDevice {type(self._simulator).__name__} {self.address}>"
 
 
-def serial_discovery_options(
-    kit: SimulatedKit, simulator_type: type[SerialBoardSimulator]
+def kit_discovery_options(
+    kit: SimulatedKit,
+    serial_type: type[SerialBoardSimulator] = SerialBoardSimulator,
 ) -> DiscoveryOptions:
-    """Return discovery options that find the plugged-in ``simulator_type`` boards of ``kit``.
+    """Return discovery options that find the plugged-in boards of ``kit``.
 
-    Each board is listed as a :class:`SimulatedPort`; opening it gives a
-    :class:`SimulatorStream` to the simulator, with the kit's time scale.
+    Each serial board of ``serial_type`` (every serial board by default) is listed as a
+    :class:`SimulatedPort`, and opening it gives a :class:`SimulatorStream` to its
+    simulator, with the kit's time scale. Each USB board is found as a
+    :class:`SimulatedUSBDevice` by its vendor and product IDs. Any hardware discovery,
+    :func:`~j5aio.backends.hardware.listing.find_boards` included, then finds the kit.
+
+    :param kit: the kit whose boards to find.
+    :param serial_type: list only the serial boards of this simulator class (the
+        SourceBots Arduino and the Ruggeduino share their USB IDs, so each simulated
+        backend looks at its own kind only).
     """
     simulators = {
         port_name(kit, simulator): simulator
         for simulator in kit.serial_simulators()
-        if isinstance(simulator, simulator_type)
+        if isinstance(simulator, serial_type)
     }
 
     def list_ports() -> list[SimulatedPort]:
@@ -195,24 +202,17 @@ def serial_discovery_options(
     async def open_port(port: str, baudrate: int) -> ByteStream:
         return SimulatorStream(simulators[port], name=port, time_scale=kit.time_scale)
 
-    return DiscoveryOptions(port_source=list_ports, opener=open_port, time_scale=kit.time_scale)
-
-
-def usb_discovery_options(
-    kit: SimulatedKit, simulator_type: type[UsbBoardSimulator]
-) -> DiscoveryOptions:
-    """Return discovery options that find the plugged-in ``simulator_type`` boards of ``kit``."""
-
     def find(*, find_all: bool, idVendor: int, idProduct: int) -> list[SimulatedUSBDevice]:  # noqa: N803
         return [
             SimulatedUSBDevice(simulator, kit)
             for simulator in kit.usb_simulators()
-            if isinstance(simulator, simulator_type)
-            and simulator.connected
+            if simulator.connected
             and (simulator.idVendor, simulator.idProduct) == (idVendor, idProduct)
         ]
 
-    return DiscoveryOptions(usb_finder=find, time_scale=kit.time_scale)
+    return DiscoveryOptions(
+        port_source=list_ports, opener=open_port, usb_finder=find, time_scale=kit.time_scale
+    )
 
 
 class SRV4PowerBoardSimulatedBackend(SRV4PowerBoardHardwareBackend):
@@ -221,9 +221,7 @@ class SRV4PowerBoardSimulatedBackend(SRV4PowerBoardHardwareBackend):
     @classmethod
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
         """Find the power boards of the current simulated kit (or where ``options`` say)."""
-        return await super().discover(
-            options=options or usb_discovery_options(current_kit(), SRPowerBoardFw3Simulator)
-        )
+        return await super().discover(options=options or kit_discovery_options(current_kit()))
 
 
 class SRV4ServoBoardSimulatedBackend(SRV4ServoBoardHardwareBackend):
@@ -232,9 +230,7 @@ class SRV4ServoBoardSimulatedBackend(SRV4ServoBoardHardwareBackend):
     @classmethod
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
         """Find the servo boards of the current simulated kit (or where ``options`` say)."""
-        return await super().discover(
-            options=options or usb_discovery_options(current_kit(), SRServoBoardFw2Simulator)
-        )
+        return await super().discover(options=options or kit_discovery_options(current_kit()))
 
 
 class SRV4MotorBoardSimulatedBackend(SRV4MotorBoardHardwareBackend):
@@ -244,7 +240,7 @@ class SRV4MotorBoardSimulatedBackend(SRV4MotorBoardHardwareBackend):
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
         """Find the motor boards of the current simulated kit (or where ``options`` say)."""
         return await super().discover(
-            options=options or serial_discovery_options(current_kit(), SRMotorBoardFw3Simulator)
+            options=options or kit_discovery_options(current_kit(), SRMotorBoardFw3Simulator)
         )
 
 
@@ -255,7 +251,7 @@ class SBArduinoSimulatedBackend(SBArduinoHardwareBackend):
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
         """Find the SourceBots Arduinos of the current simulated kit (or where ``options`` say)."""
         return await super().discover(
-            options=options or serial_discovery_options(current_kit(), SBArduinoSimulator)
+            options=options or kit_discovery_options(current_kit(), SBArduinoSimulator)
         )
 
 
@@ -266,7 +262,7 @@ class SRV4RuggeduinoSimulatedBackend(SRV4RuggeduinoHardwareBackend):
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
         """Find the Ruggeduinos of the current simulated kit (or where ``options`` say)."""
         return await super().discover(
-            options=options or serial_discovery_options(current_kit(), SRRuggeduinoSimulator)
+            options=options or kit_discovery_options(current_kit(), SRRuggeduinoSimulator)
         )
 
 

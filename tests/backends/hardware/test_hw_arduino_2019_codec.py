@@ -81,6 +81,9 @@ def test_is_final_line() -> None:
     assert codec.is_final_line(b"- Error: x")
     assert not codec.is_final_line(b"> H")
     assert not codec.is_final_line(b"# W 2 H")
+    assert not codec.is_final_line(b"\r")
+    assert codec.is_final_line(b"? garbage")
+    assert codec.parse_reply([b"# A", b"", b"> a0 1", b"+ OK"]) == codec.Reply(("a0 1",))
 
 
 def test_version_line() -> None:
@@ -96,6 +99,6 @@ def test_supported_versions(version: str) -> None:
 
 @pytest.mark.parametrize("version", ["2019.7", "2018.7.0", "2019.5.0", "2019.x.0", "1.2.3.4"])
 def test_unsupported_versions(version: str) -> None:
-    with pytest.raises(UnsupportedFirmwareError, match="2019.6.0 or later") as info:
+    with pytest.raises(UnsupportedFirmwareError, match=r"2019\.6\.0 or later") as info:
         codec.check_version(version)
     assert info.value.found == version

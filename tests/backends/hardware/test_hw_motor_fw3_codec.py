@@ -48,7 +48,7 @@ def test_decode_speed_inverts_encode() -> None:
     assert codec.decode_speed(2) is MotorSpecialState.BRAKE
     assert codec.decode_speed(0xFD) == 1.0
     assert codec.decode_speed(0x80) == 0.0
-    with pytest.raises(ValueError, match="0..255"):
+    with pytest.raises(ValueError, match=r"0\.\.255"):
         codec.decode_speed(256)
 
 

@@ -8,9 +8,9 @@ from j5aio.errors import NotSupportedByHardwareError, UnexpectedReplyError
 
 
 def test_read_commands() -> None:
-    assert codec.FIRMWARE_VERSION == codec.ReadCommand(9, 4)
-    assert codec.BATTERY == codec.ReadCommand(7, 8)
-    assert codec.BUTTON == codec.ReadCommand(8, 4)
+    assert codec.ReadCommand(9, 4) == codec.FIRMWARE_VERSION
+    assert codec.ReadCommand(7, 8) == codec.BATTERY
+    assert codec.ReadCommand(8, 4) == codec.BUTTON
     assert codec.output_current_read(5) == codec.ReadCommand(5, 4)
     with pytest.raises(ValueError, match="outputs 0 to 5"):
         codec.output_current_read(6)

@@ -33,7 +33,9 @@ def test_commands() -> None:
 
 
 def test_initial_modes_match_j5_constructor_bytes() -> None:
-    sent = b"v" + b"".join(codec.encode_mode(pin, GPIOPinMode.DIGITAL_INPUT) for pin in range(2, 14))
+    sent = b"v" + b"".join(
+        codec.encode_mode(pin, GPIOPinMode.DIGITAL_INPUT) for pin in range(2, 14)
+    )
     assert sent == b"vicidieifigihiiijikilimin"
 
 

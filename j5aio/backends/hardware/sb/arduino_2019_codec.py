@@ -139,8 +139,13 @@ def encode_servo(servo: int, position: float | None) -> bytes:
 
 
 def is_final_line(line: bytes) -> bool:
-    """Whether ``line`` ends a reply (it starts with ``+`` or ``-``)."""
-    return line.startswith((b"+", b"-"))
+    """Whether ``line`` ends a reply: anything but a ``#`` or ``>`` line or a blank one.
+
+    A reply ends with ``+ OK`` or ``- Error…``; any other unexpected line ends it too,
+    so that :func:`parse_reply` reports it at once rather than after a timeout.
+    """
+    stripped = line.strip()
+    return bool(stripped) and not stripped.startswith((b"#", b">"))
 
 
 def parse_reply(lines: list[bytes]) -> Reply:
@@ -155,7 +160,7 @@ def parse_reply(lines: list[bytes]) -> Reply:
     for raw in lines:
         line = raw.decode("ascii", errors="replace").strip()
         code, _, rest = line.partition(" ")
-        if code == "#":
+        if code in ("#", ""):
             continue
         if code == ">":
             data.append(rest.strip())

@@ -1,0 +1,273 @@
+"""The demo: an async robot on the simulated kit, showing what the boards do as it runs.
+
+``python -m j5aio demo`` runs it. A :class:`~j5aio.kit.KitRobot` runs three tasks at
+once on a fresh simulated kit:
+
+- **drive** drives forwards, and turns on the spot when asked to (or every few seconds);
+- **sense** watches an ultrasound sensor on the SourceBots Arduino and the battery, and
+  asks drive to turn when a wall comes close;
+- **signal** blinks the power board's run LED, and beeps and raises a flag servo when a
+  wall is seen.
+
+A tiny simulated world moves the wall nearer as the motors drive and further away as the
+robot turns, and loads the battery as the motors work. Every half second a ``boards``
+line shows the state of the simulated boards themselves (read from the simulators, not
+from the robot). When the time is up the tasks are cancelled, the robot makes every
+board safe, and the demo checks that every simulated motor is braked.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from dataclasses import dataclass, field
+from typing import Final, TextIO
+
+import anyio
+from anyio.abc import ObjectReceiveStream, ObjectSendStream
+
+from j5aio.kit import KitRobot
+from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+from j5aio.simulator.kit import KitConfig, SimulatedKit, use_kit
+from j5aio.simulator.sr_motor_fw3 import MotorMode, MotorOutput
+
+__all__ = ["DEFAULT_SECONDS", "all_motors_braked", "demo", "run_demo"]
+
+#: How long the demo robot runs by default, in seconds.
+DEFAULT_SECONDS: Final = 6.0
+
+#: The Arduino pins of the ultrasound sensor: trigger and echo.
+TRIGGER_PIN: Final = 6
+ECHO_PIN: Final = 7
+#: How close a wall may come before the robot turns away, in metres.
+TURN_DISTANCE: Final = 0.4
+#: How long the run LED stays on, then off, when blinking, in seconds.
+BLINK_INTERVAL: Final = 0.3
+#: How far away the wall starts, in metres.
+START_DISTANCE: Final = 1.2
+
+
+class _Log:
+    """Prints one line per event, with the time since the demo started."""
+
+    def __init__(self, out: TextIO) -> None:
+        self._out = out
+        self._start = time.monotonic()
+
+    @property
+    def elapsed(self) -> float:
+        return time.monotonic() - self._start
+
+    def __call__(self, who: str, message: str) -> None:
+        print(f"{self.elapsed:5.2f} s  {who:<7} {message}", file=self._out, flush=True)
+
+
+@dataclass
+class _World:
+    """The room the robot drives in: a wall ahead, and a battery that the motors load."""
+
+    kit: SimulatedKit
+    distance: float = START_DISTANCE
+    elapsed: float = 0.0
+    amps: float = field(default=0.0)
+
+    def step(self, seconds: float) -> None:
+        """Move the world on by ``seconds``, from what the simulated motors do now."""
+        left, right = (output.power for output in self.kit.motor_boards[0].motors)
+        forwards = (left + right) / 2
+        turning = abs(left - right) / 2
+        self.distance -= forwards * 0.6 * seconds
+        if turning > 0.2:
+            self.distance += 1.5 * seconds  # turning away: the wall drops out of view
+        self.distance = min(max(self.distance, 0.05), 2.0)
+        self.elapsed += seconds
+        self.amps = 0.3 + 2.5 * (abs(left) + abs(right))
+        for arduino in self.kit.sb_arduinos:
+            arduino.set_ultrasound_distance(TRIGGER_PIN, ECHO_PIN, self.distance)
+        for power in self.kit.power_boards:
+            power.battery_current = self.amps
+            power.battery_voltage = 12.4 - 0.1 * self.amps - 0.02 * self.elapsed
+
+
+@dataclass
+class _Shared:
+    """What the tasks tell each other."""
+
+    wall_ahead: anyio.Event = field(default_factory=anyio.Event)
+
+
+async def _drive(robot: KitRobot, shared: _Shared, log: _Log) -> None:
+    left, right = robot.motor_boards[0].motors
+    while True:
+        log("drive", "forwards: both motors at +0.6")
+        await left.set_power(0.6)
+        await right.set_power(0.6)
+        with anyio.move_on_after(3.0):
+            await shared.wall_ahead.wait()
+        shared.wall_ahead = anyio.Event()
+        log("drive", "turning on the spot: left +0.5, right -0.5")
+        await left.set_power(0.5)
+        await right.set_power(-0.5)
+        await anyio.sleep(0.6)
+
+
+async def _sense(
+    robot: KitRobot, shared: _Shared, alerts: ObjectSendStream[float], log: _Log
+) -> None:
+    sensor = robot.arduinos[0].ultrasound_sensors[TRIGGER_PIN, ECHO_PIN]
+    battery = robot.power_board.battery_sensor
+    warned = False
+    next_battery = 0.0
+    while True:
+        distance = await sensor.distance()
+        if distance is not None and distance < TURN_DISTANCE and not warned:
+            log("sense", f"wall {distance:.2f} m ahead: asking drive to turn")
+            shared.wall_ahead.set()
+            await alerts.send(distance)
+            warned = True
+        elif distance is not None and distance > TURN_DISTANCE + 0.2:
+            warned = False
+        if log.elapsed >= next_battery:
+            volts = await battery.get_voltage()
+            amps = await battery.get_current()
+            log("sense", f"battery {volts:.2f} V, {amps:.2f} A")
+            next_battery += 1.5
+        await anyio.sleep(0.1)
+
+
+async def _signal(robot: KitRobot, alerts: ObjectReceiveStream[float], log: _Log) -> None:
+    run_led = robot.power_board.run_led
+    flag = robot.servo_boards[0].servos[0]
+    lit = False
+    flag_down_at: float | None = None
+    while True:
+        alert: float | None = None
+        with anyio.move_on_after(BLINK_INTERVAL):
+            alert = await alerts.receive()
+        if alert is not None:
+            log("signal", "beep (880 Hz, 0.15 s) and raise the flag servo")
+            await robot.power_board.piezo.buzz(0.15, 880)
+            await flag.set_position(1.0)
+            flag_down_at = log.elapsed + 0.75
+            continue
+        lit = not lit
+        await run_led.set_state(lit)
+        if flag_down_at is not None and log.elapsed >= flag_down_at:
+            await flag.set_position(-1.0)
+            flag_down_at = None
+
+
+def _describe_motor(output: MotorOutput) -> str:
+    if output.mode in (MotorMode.COAST, MotorMode.BRAKE):
+        return str(output.mode.value)
+    return f"{output.mode.value} {output.duty_percent}%"
+
+
+def describe_boards(kit: SimulatedKit, world: _World | None = None) -> str:
+    """One line saying what the simulated boards of ``kit`` are doing now."""
+    parts = []
+    for board in kit.motor_boards:
+        motors = ", ".join(_describe_motor(output) for output in board.motors)
+        parts.append(f"{board.serial_number} [{motors}]")
+    for power in kit.power_boards:
+        led = "on" if power.run_led else "off"
+        queue = power.note_queue
+        piezo = f"{queue[0].frequency} Hz" if queue else "quiet"
+        parts.append(f"run LED {led}, piezo {piezo}")
+    for servos in kit.servo_boards:
+        parts.append(f"flag servo {servos.positions[0] / 100:+.1f}")
+    if world is not None:
+        parts.append(f"wall {world.distance:.2f} m")
+    return " | ".join(parts)
+
+
+async def _show_boards(kit: SimulatedKit, world: _World, log: _Log) -> None:
+    while True:
+        log("boards", describe_boards(kit, world))
+        await anyio.sleep(0.5)
+
+
+async def _run_world(world: _World) -> None:
+    last = time.monotonic()
+    while True:
+        await anyio.sleep(0.05)
+        now = time.monotonic()
+        world.step(now - last)
+        last = now
+
+
+def all_motors_braked(kit: SimulatedKit) -> bool:
+    """Whether every motor of every simulated motor board in ``kit`` is braked."""
+    return all(
+        output.mode is MotorMode.BRAKE for board in kit.motor_boards for output in board.motors
+    )
+
+
+async def demo(seconds: float = DEFAULT_SECONDS, *, out: TextIO | None = None) -> bool:
+    """Run the demo robot for ``seconds`` on a fresh default simulated kit.
+
+    :param seconds: how long the robot's tasks run.
+    :param out: where to print; standard output by default.
+    :returns: whether every simulated motor was braked at the end.
+    :raises ValueError: ``seconds`` is not positive.
+    """
+    if not seconds > 0:
+        raise ValueError(f"seconds must be more than 0, not {seconds}")
+    out = out if out is not None else sys.stdout
+    kit = use_kit(KitConfig())
+    world = _World(kit)
+    world.step(0.0)
+    print(
+        f"j5aio demo: a robot on the simulated kit for {seconds:g} s. The kit: "
+        f"{_kit_summary(kit)}.\n"
+        "Three tasks run at once (drive, sense, signal); every 0.5 s a 'boards' line shows "
+        "what the simulated boards are doing.\n",
+        file=out,
+        flush=True,
+    )
+    log = _Log(out)
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+        log("robot", f"found {len(list(_boards(robot)))} boards; starting the tasks")
+        send, receive = anyio.create_memory_object_stream[float](10)
+        shared = _Shared()
+        with anyio.move_on_after(seconds):
+            async with send, receive, anyio.create_task_group() as tasks:
+                tasks.start_soon(_run_world, world)
+                tasks.start_soon(_show_boards, kit, world, log)
+                tasks.start_soon(_drive, robot, shared, log)
+                tasks.start_soon(_sense, robot, shared, send, log)
+                tasks.start_soon(_signal, robot, receive, log)
+        log("robot", "time is up: tasks cancelled, making every board safe")
+    braked = all_motors_braked(kit)
+    log("boards", describe_boards(kit))
+    if braked:
+        print("\nThe robot has stopped: every simulated motor is braked.", file=out, flush=True)
+    else:  # pragma: no cover - a make-safe failure
+        print("\nWARNING: some simulated motors were left running.", file=out, flush=True)
+    return braked
+
+
+def _boards(robot: KitRobot) -> list[object]:
+    return [
+        robot.power_board,
+        *robot.motor_boards,
+        *robot.servo_boards,
+        *robot.arduinos,
+        *robot.ruggeduinos,
+    ]
+
+
+def _kit_summary(kit: SimulatedKit) -> str:
+    counts = [
+        (len(kit.power_boards), "power board"),
+        (len(kit.motor_boards), "motor board"),
+        (len(kit.servo_boards), "servo board"),
+        (len(kit.sb_arduinos), "SourceBots Arduino"),
+        (len(kit.ruggeduinos), "Ruggeduino"),
+    ]
+    return ", ".join(f"{n} {what}{'s' if n != 1 else ''}" for n, what in counts if n)
+
+
+def run_demo(seconds: float = DEFAULT_SECONDS, *, out: TextIO | None = None) -> bool:
+    """Run :func:`demo` in a new event loop; return whether every motor ended braked."""
+    return anyio.run(lambda: demo(seconds, out=out))
