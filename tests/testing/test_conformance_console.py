@@ -11,6 +11,7 @@ from datetime import timedelta
 
 import pytest
 
+from j5aio.backends.console.arduino import ArduinoConsoleBackend
 from j5aio.backends.console.sb.arduino import SBArduinoConsoleBackend
 from j5aio.backends.console.sr.v4 import (
     SRV4MotorBoardConsoleBackend,
@@ -18,8 +19,8 @@ from j5aio.backends.console.sr.v4 import (
     SRV4RuggeduinoConsoleBackend,
     SRV4ServoBoardConsoleBackend,
 )
+from j5aio.boards.arduino.uno import ArduinoUno
 from j5aio.boards.sr.v4.power_board import PowerOutputPosition
-from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.testing.conformance import (
     BatterySensorInterfaceConformance,
     BatterySensorSubject,
@@ -42,15 +43,9 @@ from j5aio.testing.conformance import (
     UltrasoundInterfaceConformance,
     UltrasoundSubject,
 )
+from j5aio.testing.conformance.gpio_pin import pin_modes
 from j5aio.testing.conformance.ultrasound import SPEED_OF_SOUND
 from j5aio.testing.console import ConsoleScript
-
-UNO_DIGITAL = frozenset({
-    GPIOPinMode.DIGITAL_INPUT, GPIOPinMode.DIGITAL_INPUT_PULLUP, GPIOPinMode.DIGITAL_OUTPUT,
-})
-UNO_MODES = {pin: UNO_DIGITAL for pin in range(2, 14)} | {
-    pin: UNO_DIGITAL | {GPIOPinMode.ANALOGUE_INPUT} for pin in range(14, 20)
-}
 
 
 class ConsoleSuite:
@@ -65,6 +60,15 @@ class ConsoleSuite:
     def arduino(self) -> SBArduinoConsoleBackend:
         self.script = ConsoleScript()
         return SBArduinoConsoleBackend("SERIAL", self.script.console_class())
+
+    def pins(self, backend: ArduinoConsoleBackend) -> GPIOPinSubject:
+        """The pins of the backend's board, with the modes the board definition claims."""
+        board = backend.board("SERIAL", backend)
+        assert isinstance(board, ArduinoUno)
+        return GPIOPinSubject(
+            backend=backend, identifiers=sorted(board.pins), modes=pin_modes(board.pins),
+            set_input=self.answer_input, set_voltage=self.answer_voltage,
+        )
 
     async def answer_input(self, identifier: int, high: bool) -> None:
         self.script.answer(f"Pin {identifier} digital", str(high).lower(), replace=True)
@@ -159,10 +163,7 @@ class RuggeduinoSuite(ConsoleSuite):
 
 class TestRuggeduinoConsolePins(RuggeduinoSuite, GPIOPinInterfaceConformance):
     async def make_backend(self) -> GPIOPinSubject:
-        return GPIOPinSubject(
-            backend=self.ruggeduino(), identifiers=range(2, 20), modes=UNO_MODES,
-            set_input=self.answer_input, set_voltage=self.answer_voltage,
-        )
+        return self.pins(self.ruggeduino())
 
 
 class TestRuggeduinoConsoleLED(RuggeduinoSuite, LEDInterfaceConformance):
@@ -185,10 +186,7 @@ class TestRuggeduinoConsoleStringCommand(RuggeduinoSuite, StringCommandInterface
 
 class TestSBArduinoConsolePins(ConsoleSuite, GPIOPinInterfaceConformance):
     async def make_backend(self) -> GPIOPinSubject:
-        return GPIOPinSubject(
-            backend=self.arduino(), identifiers=range(2, 20), modes=UNO_MODES,
-            set_input=self.answer_input, set_voltage=self.answer_voltage,
-        )
+        return self.pins(self.arduino())
 
 
 class TestSBArduinoConsoleLED(ConsoleSuite, LEDInterfaceConformance):

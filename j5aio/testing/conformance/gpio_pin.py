@@ -9,11 +9,11 @@ from typing import ClassVar
 
 import pytest
 
-from j5aio.components.gpio_pin import GPIOPinInterface, GPIOPinMode
+from j5aio.components.gpio_pin import GPIOPin, GPIOPinInterface, GPIOPinMode
 
 from ._base import InterfaceConformance, Subject, require
 
-__all__ = ["GPIOPinInterfaceConformance", "GPIOPinSubject"]
+__all__ = ["GPIOPinInterfaceConformance", "GPIOPinSubject", "pin_modes"]
 
 DIGITAL_INPUTS = frozenset({
     GPIOPinMode.DIGITAL_INPUT,
@@ -54,6 +54,15 @@ class GPIOPinSubject(Subject):
             if supported:
                 found.append((identifier, supported[0]))
         return found
+
+
+def pin_modes(pins: Mapping[int, GPIOPin]) -> dict[int, frozenset[GPIOPinMode]]:
+    """The hardware modes of each pin of a board, as its board definition claims them.
+
+    Pass ``pin_modes(board.pins)`` as the ``modes`` of a :class:`GPIOPinSubject`, so that
+    the suite checks the backend can do what the board tells students it can.
+    """
+    return {identifier: pin.hardware_modes for identifier, pin in pins.items()}
 
 
 def _some(pins: list[tuple[int, GPIOPinMode]], what: str) -> list[tuple[int, GPIOPinMode]]:
