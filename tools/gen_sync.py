@@ -141,29 +141,42 @@ def _bases_first(classes: Iterable[type]) -> list[type]:
 
 
 class _Namespace:
-    """Resolves annotations, including names imported only under ``TYPE_CHECKING``."""
+    """Resolves annotations, including names a module imports only under ``TYPE_CHECKING``."""
 
     def __init__(self) -> None:
-        self._universe: dict[str, Any] = {}
-        clashes: set[str] = set()
-        for name, module in sorted(sys.modules.items()):
-            if not (name == "j5aio" or name.startswith("j5aio.")) or module is None:
-                continue
-            for attr, obj in vars(module).items():
-                if attr.startswith("__") or isinstance(obj, types.ModuleType):
-                    continue
-                known = self._universe.get(attr)
-                if known is None:
-                    self._universe[attr] = obj
-                elif known is not obj:
-                    clashes.add(attr)
-        for attr in clashes:
-            del self._universe[attr]
+        self._extras: dict[str, dict[str, Any]] = {}
+
+    def module_namespace(self, module_name: str) -> dict[str, Any]:
+        module = sys.modules[module_name]
+        extras = self._extras.get(module_name)
+        if extras is None:
+            extras = self._extras[module_name] = _type_checking_imports(module)
+        return {**extras, **vars(module)}
 
     def hints(self, obj: Any, module_name: str) -> dict[str, Any]:
-        module = sys.modules[module_name]
-        namespace = {**self._universe, **vars(module)}
+        namespace = self.module_namespace(module_name)
         return typing.get_type_hints(obj, globalns=namespace, localns=None)
+
+
+def _type_checking_imports(module: types.ModuleType) -> dict[str, Any]:
+    """Run the imports of a module's ``if TYPE_CHECKING:`` blocks; return what they bind."""
+    try:
+        tree = ast.parse(inspect.getsource(module))
+    except (OSError, TypeError):
+        return {}
+    namespace: dict[str, Any] = {}
+    for node in tree.body:
+        if (
+            isinstance(node, ast.If)
+            and isinstance(node.test, ast.Name | ast.Attribute)
+            and ast.unparse(node.test).endswith("TYPE_CHECKING")
+        ):
+            imports: list[ast.stmt] = [
+                n for n in node.body if isinstance(n, ast.Import | ast.ImportFrom)
+            ]
+            code = compile(ast.Module(body=imports, type_ignores=[]), module.__name__, "exec")
+            exec(code, {"__name__": module.__name__, "__package__": module.__package__}, namespace)
+    return namespace
 
 
 # --------------------------------------------------------------------------- rendering
@@ -196,7 +209,9 @@ class _Renderer:
         alias = self.module_aliases.get(module_name)
         if alias is None:
             parts = module_name.split(".")
-            alias = "_" + "_".join(p.strip("_") for p in parts[1:])
+            if parts[0] == "j5aio" and len(parts) > 1:
+                parts = parts[1:]
+            alias = "_" + "_".join(p.strip("_") for p in parts)
             self.module_aliases[module_name] = alias
         return alias
 
@@ -593,12 +608,14 @@ class _ClassWriter:
         annotations: dict[str, Any] = {}
         for klass in reversed(self.cls.__mro__):
             own = inspect.get_annotations(klass)
-            if not own:
+            if not own or klass.__module__ not in sys.modules:
                 continue
-            hints = self.r.namespace.hints(klass, klass.__module__)
-            for key in own:
-                if key in hints:
-                    annotations[key] = hints[key]
+            namespace = self.r.namespace.module_namespace(klass.__module__)
+            for key, value in own.items():
+                try:
+                    annotations[key] = eval(value, namespace) if isinstance(value, str) else value
+                except NameError:
+                    continue
         return annotations
 
     def init_attributes(self) -> dict[str, Any]:
@@ -612,7 +629,7 @@ class _ClassWriter:
             return {}
         param_hints = self.hints(init)
         found: dict[str, Any] = {}
-        module_ns = {**self.r.namespace._universe, **vars(sys.modules[self.module])}
+        module_ns = self.r.namespace.module_namespace(self.module)
         for node in ast.walk(tree):
             if isinstance(node, ast.AnnAssign):
                 target = node.target

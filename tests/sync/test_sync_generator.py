@@ -1,0 +1,160 @@
+"""The generator: the committed module is fresh, and its rules hold on a made-up class."""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+import types
+from pathlib import Path
+
+import pytest
+from sync_fakes import ROOT
+
+from j5aio.sync import _generated
+
+GENERATOR_PATH = ROOT / "tools" / "gen_sync.py"
+
+
+def load_generator() -> types.ModuleType:
+    spec = importlib.util.spec_from_file_location("gen_sync_under_test", GENERATOR_PATH)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.fixture(scope="module")
+def gen() -> types.ModuleType:
+    return load_generator()
+
+
+def test_committed_module_is_up_to_date(gen: types.ModuleType) -> None:
+    committed = Path(_generated.__file__).read_text(encoding="utf-8")
+    fresh = gen.generate()
+    assert committed == fresh, "j5aio/sync/_generated.py is stale: run python tools/gen_sync.py"
+
+
+def test_check_option_reports_staleness(gen: types.ModuleType, tmp_path: Path) -> None:
+    target = tmp_path / "generated.py"
+    assert gen.main(["--check", "--output", str(target)]) == 1
+    assert gen.main(["--output", str(target)]) == 0
+    assert gen.main(["--check", "--output", str(target)]) == 0
+    assert target.read_text(encoding="utf-8") == gen.generate()
+
+
+def test_discovery_finds_every_board_and_component(gen: types.ModuleType) -> None:
+    from j5aio.backends.environment import Environment
+    from j5aio.boards.board import Board
+    from j5aio.boards.board_group import BoardGroup
+    from j5aio.components.component import Component
+    from j5aio.robot import BaseRobot
+
+    discovery = gen.discover()
+    classes = set(discovery.classes)
+    assert {BoardGroup, Environment, BaseRobot, Board, Component} <= classes
+    for cls in classes:
+        for base in cls.__mro__[1:]:
+            if base in classes:
+                assert discovery.classes.index(base) < discovery.classes.index(cls)
+    assert "CONSOLE_ENVIRONMENT" in discovery.environments
+    for cls in Board.__subclasses__():
+        if cls.__module__.startswith("j5aio."):
+            assert cls in classes
+
+
+def test_every_coroutine_of_a_wrapped_class_is_reachable(gen: types.ModuleType) -> None:
+    import inspect
+
+    discovery = gen.discover()
+    for cls in discovery.classes:
+        wrapper = getattr(_generated, cls.__name__)
+        for name, member in inspect.getmembers(cls):
+            if name.startswith("_") or not inspect.iscoroutinefunction(member):
+                continue
+            face = name[4:] if name.startswith(("get_", "set_")) else name
+            assert hasattr(wrapper, face) or hasattr(wrapper, name), f"{cls.__name__}.{name}"
+
+
+def test_generated_classes_use_slots() -> None:
+    for name in _generated.__all__:
+        obj = getattr(_generated, name)
+        if isinstance(obj, type):
+            assert "__slots__" in vars(obj), name
+
+
+def test_rendering_rules(gen: types.ModuleType, tmp_path: Path) -> None:
+    """A made-up component: pairs, lone getters, setters with extras, defaults."""
+    source = '''
+from __future__ import annotations
+import enum
+from collections.abc import Mapping
+
+class Colour(enum.Enum):
+    RED = 1
+
+class Lamp:
+    """A lamp."""
+
+    def __init__(
+        self, name: str, *, colour: Colour = Colour.RED, level: float = float("inf"),
+    ) -> None:
+        self.name = name
+        self.options: dict[str, int] = {}
+
+    async def get_brightness(self) -> float:
+        """Return the brightness."""
+        return 1.0
+
+    async def set_brightness(self, value: float) -> None:
+        """Set the brightness."""
+
+    async def get_hours(self) -> int:
+        """Return the hours lit."""
+        return 3
+
+    async def get_channel(self, channel: int) -> float:
+        return 0.0
+
+    async def set_mode(self, mode: str, /, *extra: int, **more: str) -> None:
+        """Set the mode."""
+
+    def twin(self) -> Lamp:
+        """Return a twin."""
+        return self
+
+    def by_name(self) -> Mapping[str, Lamp]:
+        """All lamps."""
+        return {"me": self}
+
+    @property
+    def size(self) -> tuple[int, ...]:
+        """The size."""
+        return (1,)
+'''
+    (tmp_path / "sync_gen_fake_component.py").write_text(source, encoding="utf-8")
+    sys.path.insert(0, str(tmp_path))
+    try:
+        module = importlib.import_module("sync_gen_fake_component")
+        text = gen.render_module(gen.Discovery(classes=[module.Lamp]))
+    finally:
+        sys.path.remove(str(tmp_path))
+        sys.modules.pop("sync_gen_fake_component", None)
+    assert "class Lamp(_SyncWrapper):" in text
+    assert "    def brightness(self) -> float:" in text
+    assert "    @brightness.setter" in text
+    assert "    def hours(self) -> int:" in text
+    assert "@hours.setter" not in text
+    assert "def get_channel(self, channel: int) -> float:" in text
+    assert "def set_mode(self, mode: str, /, *extra: int, **more: str) -> None:" in text
+    assert "_call(self._core.set_mode, mode, *extra, **more)" in text
+    assert 'return cast("Lamp", _wrap(self._core.twin()))' in text
+    assert 'return cast("Mapping[str, Lamp]", _wrap(self._core.by_name()))' in text
+    assert "colour: Colour = Colour.RED" in text
+    assert "from sync_gen_fake_component import Colour" in text
+    assert "_register(_sync_gen_fake_component.Lamp, Lamp)" in text
+    assert 'level: float = float("inf")' in text
+    assert "def name(self) -> str:" in text
+    assert "def options(self) -> dict[str, int]:" in text
+    assert "def size(self) -> tuple[int, ...]:" in text
+    assert '"""Call ``get_channel``."""' in text

@@ -1,0 +1,156 @@
+"""The portal: results, errors, cancellation when the caller is interrupted, restart."""
+
+from __future__ import annotations
+
+import _thread
+import asyncio
+import threading
+import time
+
+import anyio
+import anyio.lowlevel
+import pytest
+
+from j5aio.sync import _runtime
+from j5aio.sync._runtime import call, get_loop, shutdown
+
+
+async def add(a: int, b: int, *, c: int = 0) -> int:
+    await anyio.lowlevel.checkpoint()
+    return a + b + c
+
+
+async def fail() -> None:
+    raise ValueError("bad value: allowed are 1 to 3")
+
+
+def test_call_returns_the_coroutines_result() -> None:
+    assert call(add, 1, 2) == 3
+    assert call(add, 1, 2, c=3) == 6
+
+
+def test_call_runs_in_the_portal_thread() -> None:
+    async def where() -> threading.Thread:
+        return threading.current_thread()
+
+    thread = call(where)
+    assert thread is not threading.current_thread()
+    assert thread.daemon
+    assert get_loop().is_running()
+
+
+def test_call_reraises_the_coroutines_exception() -> None:
+    with pytest.raises(ValueError, match="allowed are 1 to 3"):
+        call(fail)
+
+
+def test_call_refuses_a_function_that_is_not_a_coroutine_function() -> None:
+    def plain() -> int:
+        return 1
+
+    with pytest.raises(TypeError, match="did not return a coroutine"):
+        call(plain)  # type: ignore[arg-type]
+
+
+def test_call_from_inside_the_portal_loop_is_refused() -> None:
+    async def nested() -> int:
+        return call(add, 1, 1)
+
+    with pytest.raises(RuntimeError, match="await the async API"):
+        call(nested)
+
+
+def interrupt_main_after(delay: float) -> threading.Timer:
+    timer = threading.Timer(delay, _thread.interrupt_main)
+    timer.start()
+    return timer
+
+
+def test_interrupt_cancels_the_coroutine_before_the_call_returns() -> None:
+    events: list[str] = []
+
+    async def motor_command() -> None:
+        events.append("started")
+        try:
+            await anyio.sleep(5)
+            events.append("completed")
+        except anyio.get_cancelled_exc_class():
+            events.append("cancelled")
+            with anyio.CancelScope(shield=True):
+                await anyio.sleep(0.1)  # cleaning up takes a moment
+            events.append("cleaned up")
+            raise
+
+    interrupt_main_after(0.1)
+    started = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        call(motor_command)
+    assert time.monotonic() - started < 2
+    assert events == ["started", "cancelled", "cleaned up"]
+    time.sleep(0.2)
+    assert events == ["started", "cancelled", "cleaned up"]
+
+
+def test_cancellation_respects_anyio_shields() -> None:
+    events: list[str] = []
+
+    async def exchange() -> None:
+        with anyio.CancelScope(shield=True):
+            await anyio.sleep(0.3)
+            events.append("exchange whole")
+        await anyio.sleep(5)
+        events.append("completed")
+
+    interrupt_main_after(0.05)
+    with pytest.raises(KeyboardInterrupt):
+        call(exchange)
+    assert events == ["exchange whole"]
+
+
+def test_call_cancelled_before_it_starts_never_runs() -> None:
+    ran: list[bool] = []
+
+    async def never() -> None:
+        ran.append(True)
+
+    request = _runtime._Call(never())
+    request.cancel()
+    asyncio.run(request.run())
+    assert ran == []
+    assert request.done.acquire(blocking=False)
+
+
+def test_portal_that_has_stopped_refuses_new_calls() -> None:
+    portal = _runtime._LoopThread()
+    portal.stop(2)
+    assert not portal.thread.is_alive()
+
+    async def never() -> None:
+        raise AssertionError("ran")
+
+    with pytest.raises(RuntimeError, match="portal has stopped"):
+        portal.submit(never())
+
+
+def test_stopping_a_portal_cancels_calls_still_running() -> None:
+    portal = _runtime._LoopThread()
+    request = portal.submit(anyio.sleep(10))
+    time.sleep(0.05)
+    portal.stop(2)
+    assert request.done.acquire(timeout=1)
+    assert isinstance(request.error, RuntimeError)
+    assert "portal is stopping" in str(request.error)
+
+
+def test_shutdown_then_call_starts_a_new_portal() -> None:
+    first = get_loop()
+    shutdown()
+    assert not first.is_running()
+    shutdown()  # twice is harmless
+    assert call(add, 2, 2) == 4
+    assert get_loop() is not first
+
+
+def test_wait_keeps_waiting_across_slices() -> None:
+    slices = _runtime.WAIT_SLICE * 3
+    assert call(anyio.sleep, slices) is None
