@@ -1,0 +1,122 @@
+"""Tests of choosing the environment (J5AIO_ENV) and of the no-hardware hint."""
+
+from __future__ import annotations
+
+import io
+import sys
+
+import pytest
+
+from j5aio import environments
+from j5aio.backends.console import CONSOLE_ENVIRONMENT
+from j5aio.backends.hardware.env import HARDWARE_ENVIRONMENT
+from j5aio.environments import (
+    ENVIRONMENT_VARIABLE,
+    environment_was_chosen,
+    get_default_environment,
+    get_environment,
+    hint_no_hardware,
+    no_hardware_hint,
+)
+from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+
+
+@pytest.fixture(autouse=True)
+def _fresh(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv(ENVIRONMENT_VARIABLE, raising=False)
+    monkeypatch.setattr(environments, "_hint_shown", False)
+
+
+@pytest.mark.parametrize(
+    ("name", "expected"),
+    [
+        ("hardware", HARDWARE_ENVIRONMENT),
+        ("sim", SIMULATED_ENVIRONMENT),
+        ("console", CONSOLE_ENVIRONMENT),
+        (" SIM ", SIMULATED_ENVIRONMENT),
+    ],
+)
+def test_environments_by_name(name: str, expected: object) -> None:
+    assert get_environment(name) is expected
+
+
+def test_an_unknown_name_is_refused_with_the_choices() -> None:
+    with pytest.raises(
+        ValueError, match="unknown environment 'simulator': choose one of hardware, sim, console"
+    ):
+        get_environment("simulator")
+
+
+def test_a_name_must_be_a_string() -> None:
+    with pytest.raises(TypeError, match="an environment name must be a str, not int"):
+        get_environment(3)  # type: ignore[arg-type]
+
+
+def test_hardware_is_the_default(monkeypatch: pytest.MonkeyPatch) -> None:
+    assert get_default_environment() is HARDWARE_ENVIRONMENT
+    assert not environment_was_chosen()
+    monkeypatch.setenv(ENVIRONMENT_VARIABLE, "  ")
+    assert get_default_environment() is HARDWARE_ENVIRONMENT
+    assert not environment_was_chosen()
+
+
+@pytest.mark.parametrize(
+    ("value", "expected"),
+    [
+        ("hardware", HARDWARE_ENVIRONMENT),
+        ("sim", SIMULATED_ENVIRONMENT),
+        ("console", CONSOLE_ENVIRONMENT),
+    ],
+)
+def test_j5aio_env_chooses_the_default(
+    monkeypatch: pytest.MonkeyPatch, value: str, expected: object
+) -> None:
+    monkeypatch.setenv(ENVIRONMENT_VARIABLE, value)
+    assert get_default_environment() is expected
+    assert environment_was_chosen()
+
+
+def test_a_bad_j5aio_env_says_what_is_allowed(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv(ENVIRONMENT_VARIABLE, "simulated")
+    with pytest.raises(
+        ValueError,
+        match="J5AIO_ENV='simulated' is not an environment: set it to one of hardware, sim, con",
+    ):
+        get_default_environment()
+
+
+def test_the_hint_names_the_running_program(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(sys, "argv", ["/home/me/robot.py"])
+    assert no_hardware_hint() == (
+        "j5aio: no boards found. To try your program without hardware: "
+        "python -m j5aio run --sim robot.py (or set J5AIO_ENV=sim)"
+    )
+    monkeypatch.setattr(sys, "argv", ["-c"])
+    assert "run --sim program.py" in no_hardware_hint()
+    monkeypatch.setattr(sys, "argv", [])
+    assert "run --sim program.py" in no_hardware_hint()
+
+
+def test_the_hint_is_printed_once(capsys: pytest.CaptureFixture[str]) -> None:
+    assert hint_no_hardware() is True
+    assert hint_no_hardware() is False
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert captured.err.count("j5aio: no boards found.") == 1
+    assert captured.err.endswith("\n")
+    assert captured.err.count("\n") == 1
+
+
+def test_the_hint_is_not_printed_when_the_environment_was_chosen(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setenv(ENVIRONMENT_VARIABLE, "hardware")
+    out = io.StringIO()
+    assert hint_no_hardware(file=out) is False
+    assert out.getvalue() == ""
+
+
+def test_the_hint_goes_where_it_is_told() -> None:
+    out = io.StringIO()
+    assert hint_no_hardware(file=out) is True
+    assert out.getvalue().startswith("j5aio: no boards found.")
