@@ -103,10 +103,6 @@ def test_plugging_boots_a_usb_powered_board_only() -> None:
     assert separate.boots == 0
 
 
-def test_receive_accepts_any_bytes_like() -> None:
-    assert EchoBoard().receive(bytearray(b"q")) == b"Q"
-
-
 def read(device: UsbBoardSimulator, *args: Any) -> list[int]:
     reply = device.ctrl_transfer(0x80, *args)
     assert isinstance(reply, array.array)

@@ -1,0 +1,36 @@
+from __future__ import annotations
+
+import pytest
+
+import j5aio.simulator as simulator
+from j5aio.simulator import (
+    SERIAL_SIMULATORS,
+    SBArduinoSimulator,
+    SerialBoardSimulator,
+    SRMotorBoardFw3Simulator,
+    SRRuggeduinoSimulator,
+)
+
+
+def test_serial_simulators_by_cli_name() -> None:
+    assert set(SERIAL_SIMULATORS) == {"sr-motor", "sr-ruggeduino", "sb-arduino"}
+    expected = {
+        "sr-motor": SRMotorBoardFw3Simulator,
+        "sr-ruggeduino": SRRuggeduinoSimulator,
+        "sb-arduino": SBArduinoSimulator,
+    }
+    for name, factory in SERIAL_SIMULATORS.items():
+        board = factory("SER123")
+        assert isinstance(board, SerialBoardSimulator)
+        assert isinstance(board, expected[name])
+        assert board.serial_number == "SER123"
+
+
+def test_the_registry_cannot_be_changed() -> None:
+    with pytest.raises(TypeError):
+        SERIAL_SIMULATORS["x"] = SRMotorBoardFw3Simulator  # type: ignore[index]
+
+
+def test_every_exported_name_exists() -> None:
+    for name in simulator.__all__:
+        assert hasattr(simulator, name)
