@@ -1,0 +1,152 @@
+"""Tests of KitRobot."""
+
+from __future__ import annotations
+
+from collections.abc import AsyncIterator, Sequence
+
+import pytest
+
+from j5aio import environments
+from j5aio.backends.environment import Environment
+from j5aio.boards.board import Board
+from j5aio.environments import ENVIRONMENT_VARIABLE
+from j5aio.errors import CommunicationError
+from j5aio.kit import KitRobot
+from j5aio.simulator import kit as kit_module
+from j5aio.simulator.environment import (
+    SIMULATED_BACKENDS,
+    SIMULATED_ENVIRONMENT,
+    SRV4PowerBoardSimulatedBackend,
+)
+from j5aio.simulator.kit import KitConfig, use_kit
+from j5aio.simulator.sr_motor_fw3 import MotorMode
+
+
+@pytest.fixture(autouse=True)
+async def _fresh(monkeypatch: pytest.MonkeyPatch) -> AsyncIterator[None]:
+    saved = kit_module._current
+    monkeypatch.delenv(ENVIRONMENT_VARIABLE, raising=False)
+    monkeypatch.setattr(environments, "_hint_shown", False)
+    yield
+    for board in list(Board.BOARDS):
+        await board.close()
+    kit_module._current = saved
+
+
+def nothing_plugged_in_environment() -> Environment:
+    """An environment like the hardware one, on a computer with no boards."""
+    use_kit(KitConfig(0, 0, 0, 0, 0))
+    environment = Environment("EmptyHardware")
+    for backend in SIMULATED_BACKENDS:
+        environment.register_backend(backend)
+    return environment
+
+
+async def test_finds_every_board_of_the_kit() -> None:
+    kit = use_kit(KitConfig(ruggeduinos=1))
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+        assert robot.environment is SIMULATED_ENVIRONMENT
+        assert robot.power_board.serial_number == "SIMPB0"
+        assert list(robot.power_boards) == [robot.power_board]
+        assert [b.serial_number for b in robot.motor_boards] == ["SIMMB0", "SIMMB1"]
+        assert [b.serial_number for b in robot.servo_boards] == ["SIMSB0"]
+        assert [b.serial_number for b in robot.arduinos] == ["SIMSBA0"]
+        assert [b.serial_number for b in robot.ruggeduinos] == ["SIMRD0"]
+        await robot.motor_boards[1].motors[0].set_power(0.6)
+        assert kit.motor_boards[1].motors[0].mode is MotorMode.FORWARD
+    # Leaving the robot made every board safe: the motor boards brake.
+    assert all(
+        output.mode is MotorMode.BRAKE for board in kit.motor_boards for output in board.motors
+    )
+
+
+async def test_j5aio_env_chooses_the_simulated_kit(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv(ENVIRONMENT_VARIABLE, "sim")
+    use_kit(KitConfig(motor_boards=1))
+    async with KitRobot() as robot:
+        assert robot.environment is SIMULATED_ENVIRONMENT
+        assert len(robot.motor_boards) == 1
+
+
+async def test_a_missing_power_board_is_an_error_that_says_so() -> None:
+    use_kit(KitConfig(power_boards=0))
+    with pytest.raises(CommunicationError, match="expected exactly one PowerBoard"):
+        async with KitRobot(environment=SIMULATED_ENVIRONMENT):
+            pass  # pragma: no cover
+
+
+async def test_the_lock_is_released_after_a_failed_setup() -> None:
+    use_kit(KitConfig(power_boards=2))
+    with pytest.raises(CommunicationError, match="found 2"):
+        async with KitRobot(environment=SIMULATED_ENVIRONMENT):
+            pass  # pragma: no cover
+    use_kit()
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+        assert robot.power_board.serial_number == "SIMPB0"
+
+
+async def test_no_boards_found_by_default_prints_one_hint(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.setattr("j5aio.kit.get_default_environment", nothing_plugged_in_environment)
+    for _ in range(2):
+        with pytest.raises(CommunicationError, match="expected exactly one PowerBoard"):
+            async with KitRobot():
+                pass  # pragma: no cover
+    err = capsys.readouterr().err
+    assert err.count("j5aio: no boards found.") == 1
+    assert "python -m j5aio run --sim" in err
+    assert "J5AIO_ENV=sim" in err
+
+
+async def test_no_hint_when_the_environment_was_passed_in(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    environment = nothing_plugged_in_environment()
+    with pytest.raises(CommunicationError):
+        async with KitRobot(environment=environment):
+            pass  # pragma: no cover
+    assert "no boards found" not in capsys.readouterr().err
+
+
+async def test_no_hint_when_j5aio_env_chose_the_hardware(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.setenv(ENVIRONMENT_VARIABLE, "hardware")
+    monkeypatch.setattr("j5aio.kit.get_default_environment", nothing_plugged_in_environment)
+    with pytest.raises(CommunicationError):
+        async with KitRobot():
+            pass  # pragma: no cover
+    assert "no boards found" not in capsys.readouterr().err
+
+
+class UnreachablePowerBoardBackend(SRV4PowerBoardSimulatedBackend):
+    """A power board backend whose bus cannot be scanned (no USB library, say)."""
+
+    @classmethod
+    async def discover(cls, **kwargs: object) -> Sequence[Board]:
+        raise CommunicationError("pyusb found no libusb backend")
+
+
+async def test_hardware_that_cannot_be_looked_at_also_gets_the_hint(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    def environment() -> Environment:
+        env = Environment("BrokenHardware")
+        env.register_backend(UnreachablePowerBoardBackend)
+        return env
+
+    monkeypatch.setattr("j5aio.kit.get_default_environment", environment)
+    with pytest.raises(CommunicationError, match="libusb"):
+        async with KitRobot():
+            pass  # pragma: no cover
+    assert "j5aio: no boards found." in capsys.readouterr().err
+
+
+def test_environment_must_be_an_environment() -> None:
+    with pytest.raises(TypeError, match=r"environment must be an Environment .* not str"):
+        KitRobot(environment="sim")  # type: ignore[arg-type]
+    # The lock was given back: another robot can be made.
+    robot = KitRobot(environment=SIMULATED_ENVIRONMENT)
+    robot.release_lock()
+
