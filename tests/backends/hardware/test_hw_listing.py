@@ -1,0 +1,95 @@
+from types import SimpleNamespace
+from typing import Any
+
+from j5aio.backends.hardware import registry
+from j5aio.backends.hardware.listing import FoundBoard, find_boards, format_boards
+from j5aio.backends.hardware.options import DiscoveryOptions
+from j5aio.backends.hardware.transports.memory import SimulatorStream
+from j5aio.simulator.base import SerialBoardSimulator
+from j5aio.simulator.sb_arduino_2019 import SBArduinoSimulator
+from j5aio.simulator.sr_motor_fw3 import SRMotorBoardFw3Simulator
+from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
+from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
+from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator
+
+
+def port_of(device: str, sim: SerialBoardSimulator) -> SimpleNamespace:
+    return SimpleNamespace(
+        device=device,
+        vid=sim.usb_vid,
+        pid=sim.usb_pid,
+        serial_number=sim.serial_number,
+        manufacturer=sim.manufacturer,
+        product=sim.product,
+        description="",
+    )
+
+
+async def test_find_boards_lists_every_kind_and_closes_them() -> None:
+    serial: dict[str, SerialBoardSimulator] = {
+        "/dev/ttyUSB0": SRMotorBoardFw3Simulator("SRMOTOR"),
+        "/dev/ttyACM0": SBArduinoSimulator("SBDUINO"),
+        "/dev/ttyACM1": SRRuggeduinoSimulator("RUGGED"),
+    }
+    usb = [SRPowerBoardFw3Simulator("SRPOWER"), SRServoBoardFw2Simulator("SRSERVO")]
+
+    async def opener(port: str, baudrate: int) -> SimulatorStream:
+        return SimulatorStream(serial[port], time_scale=0)
+
+    def finder(*, find_all: bool, idVendor: int, idProduct: int) -> list[Any]:  # noqa: N803
+        return [d for d in usb if (d.idVendor, d.idProduct) == (idVendor, idProduct)]
+
+    options = DiscoveryOptions(
+        port_source=lambda: [port_of(device, sim) for device, sim in serial.items()],
+        usb_finder=finder,
+        opener=opener,
+        time_scale=0.01,
+    )
+    found = await find_boards(options=options)
+    assert {(b.board_type, b.serial_number, b.firmware_version) for b in found} == {
+        ("Student Robotics v4 Power Board", "SRPOWER", "3"),
+        ("Student Robotics v4 Servo Board", "SRSERVO", "2"),
+        ("Student Robotics v4 Motor Board", "SRMOTOR", "3"),
+        ("SourceBots Arduino", "SBDUINO", "2019.6.0"),
+        ("Ruggeduino", "RUGGED", "1"),
+    }
+    ports = {b.serial_number: b.port for b in found}
+    assert ports["SRMOTOR"] == "/dev/ttyUSB0"
+    assert ports["RUGGED"] == "/dev/ttyACM1"
+    assert registry.held() == frozenset()
+
+
+async def test_find_boards_leaves_a_board_held_by_a_robot_open() -> None:
+    sim = SRMotorBoardFw3Simulator("SRMOTOR")
+
+    async def opener(port: str, baudrate: int) -> SimulatorStream:
+        return SimulatorStream(sim, time_scale=0)
+
+    options = DiscoveryOptions(
+        port_source=lambda: [port_of("/dev/ttyUSB0", sim)],
+        usb_finder=lambda **_: [],
+        opener=opener,
+    )
+    from j5aio.backends.hardware.sr.v4 import SRV4MotorBoardHardwareBackend
+
+    board = await SRV4MotorBoardHardwareBackend.attach("/dev/ttyUSB0", opener=opener)
+    found = await find_boards(options=options)
+    assert [b.serial_number for b in found] == ["/dev/ttyUSB0"]
+    assert registry.holder("/dev/ttyUSB0") is board
+    await board.close()
+
+
+def test_format_boards() -> None:
+    assert "No boards found" in format_boards([])
+    text = format_boards(
+        [
+            FoundBoard("Student Robotics v4 Motor Board", "SRM1", "3", "/dev/ttyUSB0"),
+            FoundBoard("Ruggeduino", "R1", None, "/dev/ttyACM0"),
+        ]
+    )
+    lines = text.splitlines()
+    assert lines[0].split() == ["Board", "Serial", "number", "Firmware", "Port"]
+    assert "SRM1" in lines[1] and "/dev/ttyUSB0" in lines[1]
+    assert lines[2].startswith("Ruggeduino") and " - " in lines[2]
+    assert lines[-1] == "2 boards found."
+    assert format_boards([FoundBoard("X", "1", "1", "p")]).endswith("1 board found.")
