@@ -1,0 +1,80 @@
+"""Tests of the demo robot (j5aio.demo)."""
+
+from __future__ import annotations
+
+import io
+from collections.abc import AsyncIterator
+
+import pytest
+
+from j5aio.boards.board import Board
+from j5aio.demo import all_motors_braked, demo, describe_boards, run_demo
+from j5aio.simulator import kit as kit_module
+from j5aio.simulator.kit import KitConfig, SimulatedKit
+from j5aio.simulator.sr_motor_fw3 import MotorMode
+
+
+@pytest.fixture(autouse=True)
+async def _fresh() -> AsyncIterator[None]:
+    saved = kit_module._current
+    yield
+    for board in list(Board.BOARDS):
+        await board.close()
+    kit_module._current = saved
+
+
+async def test_the_demo_drives_senses_signals_and_ends_braked() -> None:
+    out = io.StringIO()
+    assert await demo(2.5, out=out) is True
+    text = out.getvalue()
+    lines = text.splitlines()
+    assert lines[0].startswith("j5aio demo: a robot on the simulated kit for 2.5 s")
+    assert "1 power board, 2 motor boards, 1 servo board, 1 SourceBots Arduino" in lines[0]
+    # The three tasks ran side by side and talked to each other.
+    assert "drive   forwards: both motors at +0.6" in text
+    assert "sense   battery" in text
+    assert "asking drive to turn" in text
+    assert "drive   turning on the spot" in text
+    assert "signal  beep" in text
+    # The boards lines come from the simulators: the motors really drove, and turned.
+    assert "SIMMB0 [forward 75%, forward 75%]" in text
+    assert "SIMMB0 [forward 62%, reverse 62%]" in text or "flag servo +1.0" in text
+    assert lines[-1] == "The robot has stopped: every simulated motor is braked."
+    final = lines[-3]
+    assert "SIMMB0 [brake, brake] | SIMMB1 [brake, brake]" in final
+
+
+def test_run_demo_runs_it_in_its_own_event_loop() -> None:
+    out = io.StringIO()
+    assert run_demo(0.3, out=out) is True
+    assert "every simulated motor is braked" in out.getvalue()
+
+
+@pytest.mark.parametrize("seconds", [0, -1.0, float("nan")])
+async def test_the_run_time_must_be_positive(seconds: float) -> None:
+    with pytest.raises(ValueError, match="seconds must be more than 0"):
+        await demo(seconds, out=io.StringIO())
+
+
+def test_all_motors_braked_reads_the_simulators() -> None:
+    kit = SimulatedKit(KitConfig(motor_boards=2))
+    # A motor board simulator starts coasting, until the host brakes it.
+    assert not all_motors_braked(kit)
+    brake_all = bytes([0x02, 2, 0x03, 2])  # fw 3: motor 0 brake, motor 1 brake
+    kit.motor_boards[0].receive(brake_all)
+    assert not all_motors_braked(kit)  # the second board still coasts
+    kit.motor_boards[1].receive(brake_all)
+    assert all_motors_braked(kit)
+    kit.motor_boards[1].receive(bytes([0x03, 128 + 50]))  # motor 1 forwards
+    assert kit.motor_boards[1].motors[1].mode is MotorMode.FORWARD
+    assert not all_motors_braked(kit)
+
+
+def test_describe_boards_shows_each_board() -> None:
+    kit = SimulatedKit()
+    line = describe_boards(kit)
+    assert line.startswith("SIMMB0 [")
+    assert "SIMMB1 [" in line
+    assert "run LED on, piezo quiet" in line
+    assert "flag servo +0.0" in line
+    assert "wall" not in line
