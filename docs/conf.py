@@ -2,7 +2,7 @@
 
 project = "j5aio"
 author = "j5aio developers"
-copyright = "2026, j5aio developers"  # noqa: A001
+copyright = "2026, j5aio developers"
 extensions = ["sphinx.ext.autodoc", "sphinx.ext.intersphinx", "sphinx.ext.viewcode"]
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"
