@@ -1,0 +1,313 @@
+"""Tests of the command line, ``python -m j5aio``."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from collections.abc import AsyncIterator, Iterator
+from pathlib import Path
+
+import pytest
+import serial
+
+from j5aio.__main__ import SIMULATOR_NAMES, build_parser, main
+from j5aio.backends.hardware import listing
+from j5aio.backends.hardware.listing import FoundBoard
+from j5aio.boards.board import Board
+from j5aio.environments import ENVIRONMENT_VARIABLE
+from j5aio.errors import CommunicationError
+from j5aio.simulator import kit as kit_module
+from j5aio.simulator.environment import kit_discovery_options
+from j5aio.simulator.kit import KitConfig, SimulatedKit
+
+REAL_FIND_BOARDS = listing.find_boards
+
+
+@pytest.fixture(autouse=True)
+async def _fresh(monkeypatch: pytest.MonkeyPatch) -> AsyncIterator[None]:
+    saved = kit_module._current
+    monkeypatch.delenv(ENVIRONMENT_VARIABLE, raising=False)
+    monkeypatch.setattr(sys, "argv", list(sys.argv))
+    monkeypatch.setattr(sys, "path", list(sys.path))
+    yield
+    for board in list(Board.BOARDS):
+        await board.close()
+    kit_module._current = saved
+
+
+def python_m_j5aio(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+    environment = {k: v for k, v in os.environ.items() if k != ENVIRONMENT_VARIABLE}
+    return subprocess.run(
+        [sys.executable, "-m", "j5aio", *args],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env=environment,
+        check=False,
+        cwd=cwd,
+    )
+
+
+# --- help and usage ----------------------------------------------------------------------
+
+
+def test_help_lists_every_command_with_examples(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        main(["--help"])
+    assert exit_info.value.code == 0
+    text = capsys.readouterr().out
+    for command in ("list", "demo", "run", "simulate"):
+        assert command in text
+    assert "python -m j5aio run --sim robot.py" in text
+
+
+def test_no_command_prints_the_help_and_fails(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main([]) == 2
+    assert "usage: python -m j5aio" in capsys.readouterr().out
+
+
+def test_simulate_help_lists_the_boards(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit):
+        main(["simulate", "--help"])
+    text = capsys.readouterr().out
+    for name in SIMULATOR_NAMES:
+        assert name in text
+
+
+@pytest.mark.parametrize(
+    ("arguments", "message"),
+    [
+        (["demo", "--seconds", "0"], "0 s is out of range: give 0 < S <= 600"),
+        (["demo", "--seconds", "soon"], "'soon' is not a number of seconds"),
+        (["simulate", "sb-arduino", "--time-scale", "-1"], "-1 is negative: give 0 or more"),
+        (["simulate", "sb-arduino", "--time-scale", "x"], "'x' is not a number"),
+        (["simulate", "sr-power"], "invalid choice: 'sr-power'"),
+        (["run", "--sim", "--env", "console", "x.py"], "not allowed with argument"),
+        (["run", "--env", "moon", "x.py"], "invalid choice: 'moon'"),
+    ],
+)
+def test_bad_arguments_say_what_is_allowed(
+    arguments: list[str], message: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        main(arguments)
+    assert exit_info.value.code == 2
+    assert message in capsys.readouterr().err
+
+
+def test_the_parser_is_named_for_python_m() -> None:
+    assert build_parser().prog == "python -m j5aio"
+
+
+# --- list --------------------------------------------------------------------------------
+
+
+def test_list_prints_each_board_found(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    kit = SimulatedKit(KitConfig(ruggeduinos=1))
+
+    async def find_in_kit() -> list[FoundBoard]:
+        return await REAL_FIND_BOARDS(options=kit_discovery_options(kit))
+
+    monkeypatch.setattr(listing, "find_boards", find_in_kit)
+    assert main(["list"]) == 0
+    text = capsys.readouterr().out
+    for simulator in kit:
+        assert str(simulator.serial_number) in text
+    assert "Student Robotics v4 Motor Board" in text
+    assert f"sim://{kit.name}/SIMMB0" in text
+    assert "6 boards found." in text
+
+
+def test_list_says_plainly_when_there_are_none(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    async def nothing() -> list[FoundBoard]:
+        return []
+
+    monkeypatch.setattr(listing, "find_boards", nothing)
+    assert main(["list"]) == 0
+    assert "No boards found." in capsys.readouterr().out
+
+
+def test_list_reports_a_failure_to_look(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    async def broken() -> list[FoundBoard]:
+        raise CommunicationError("pyusb found no libusb backend")
+
+    monkeypatch.setattr(listing, "find_boards", broken)
+    assert main(["list"]) == 1
+    assert "j5aio: could not look for boards: pyusb found no libusb backend" in (
+        capsys.readouterr().err
+    )
+
+
+# --- run ---------------------------------------------------------------------------------
+
+
+@pytest.fixture
+def program(tmp_path: Path) -> Iterator[Path]:
+    (tmp_path / "helper.py").write_text("GREETING = 'hello from a module beside it'\n")
+    path = tmp_path / "robot.py"
+    path.write_text(
+        textwrap.dedent(
+            """
+            import os, sys
+            import helper
+            print("env", os.environ.get("J5AIO_ENV"))
+            print("argv", sys.argv)
+            print("name", __name__)
+            print(helper.GREETING)
+            """
+        )
+    )
+    yield path
+
+
+@pytest.mark.parametrize(
+    ("flags", "environment"),
+    [(["--sim"], "sim"), (["--env", "console"], "console"), ([], None)],
+)
+def test_run_runs_the_program_as_main_in_the_chosen_environment(
+    program: Path,
+    flags: list[str],
+    environment: str | None,
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    assert main(["run", *flags, str(program), "--fast", "3"]) == 0
+    text = capsys.readouterr().out
+    assert f"env {environment}" in text
+    assert f"argv {[str(program), '--fast', '3']!r}" in text
+    assert "name __main__" in text
+    assert "hello from a module beside it" in text
+
+
+def test_run_drops_a_separating_double_dash(
+    program: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["run", "--sim", str(program), "--", "-x"]) == 0
+    assert f"argv {[str(program), '-x']!r}" in capsys.readouterr().out
+
+
+def test_run_refuses_a_missing_program(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    missing = tmp_path / "nope.py"
+    assert main(["run", "--sim", str(missing)]) == 2
+    assert f"j5aio: cannot run {missing}: no such file" in capsys.readouterr().err
+    assert ENVIRONMENT_VARIABLE not in os.environ
+
+
+KIT_PROGRAM = """
+import anyio
+from j5aio.kit import KitRobot
+
+async def main():
+    async with KitRobot() as robot:
+        await robot.motor_boards[0].motors[0].set_power(0.5)
+        print("environment", robot.environment.name)
+        print("motor boards", [board.serial_number for board in robot.motor_boards])
+
+anyio.run(main)
+"""
+
+
+def test_run_sim_runs_a_kit_robot_on_the_simulated_kit(tmp_path: Path) -> None:
+    (tmp_path / "robot.py").write_text(KIT_PROGRAM)
+    result = python_m_j5aio("run", "--sim", "robot.py", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "environment SimulatedEnvironment" in result.stdout
+    assert "motor boards ['SIMMB0', 'SIMMB1']" in result.stdout
+
+
+def test_a_program_finding_no_hardware_offers_the_sim_flag_in_one_line(tmp_path: Path) -> None:
+    (tmp_path / "robot.py").write_text(KIT_PROGRAM)
+    result = python_m_j5aio("run", "robot.py", cwd=tmp_path)
+    assert result.returncode != 0
+    hints = [line for line in result.stderr.splitlines() if "j5aio: no boards found." in line]
+    assert hints == [
+        "j5aio: no boards found. To try your program without hardware: "
+        "python -m j5aio run --sim robot.py (or set J5AIO_ENV=sim)"
+    ]
+
+
+# --- simulate ----------------------------------------------------------------------------
+
+
+def test_simulate_serves_a_motor_board_until_terminated() -> None:
+    environment = {k: v for k, v in os.environ.items() if k != ENVIRONMENT_VARIABLE}
+    process = subprocess.Popen(
+        [sys.executable, "-m", "j5aio", "simulate", "sr-motor", "--serial-number", "MB42"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=environment,
+    )
+    try:
+        assert process.stdout is not None
+        path = process.stdout.readline().strip()
+        with serial.Serial(path, 1_000_000, timeout=5) as port:
+            port.write(b"\x01")  # fw 3: "what are you?"
+            assert port.read(8) == b"MCV4B:3\n"
+        process.send_signal(signal.SIGTERM)
+        _, errors = process.communicate(timeout=10)
+    finally:
+        if process.poll() is None:  # pragma: no cover - only when the test fails
+            process.kill()
+            process.wait()
+    assert process.returncode == 0
+    assert "SR v4 motor board, firmware 3 (1 Mbaud) (serial number MB42)" in errors
+
+
+def test_simulate_with_time_scale_zero_boots_at_once() -> None:
+    environment = {k: v for k, v in os.environ.items() if k != ENVIRONMENT_VARIABLE}
+    process = subprocess.Popen(
+        [sys.executable, "-m", "j5aio", "simulate", "sr-ruggeduino", "--time-scale", "0"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=environment,
+    )
+    try:
+        assert process.stdout is not None
+        path = process.stdout.readline().strip()
+        started = time.monotonic()
+        with serial.Serial(path, 115200, timeout=5) as port:
+            port.write(b"v")  # SR firmware: version
+            assert port.readline() == b"SRduino:1\n"
+        assert time.monotonic() - started < 1.0  # a real Ruggeduino takes 1.5 s to boot
+        process.send_signal(signal.SIGINT)
+        process.communicate(timeout=10)
+    finally:
+        if process.poll() is None:  # pragma: no cover - only when the test fails
+            process.kill()
+            process.wait()
+    assert process.returncode == 0
+
+
+# --- demo --------------------------------------------------------------------------------
+
+
+def test_demo_in_process(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["demo", "--seconds", "0.5"]) == 0
+    assert "every simulated motor is braked" in capsys.readouterr().out
+
+
+def test_demo_runs_end_to_end_ends_by_itself_and_leaves_every_motor_braked() -> None:
+    started = time.monotonic()
+    result = python_m_j5aio("demo")
+    elapsed = time.monotonic() - started
+    assert result.returncode == 0, result.stderr
+    assert elapsed < 30
+    lines = result.stdout.splitlines()
+    assert lines[0].startswith("j5aio demo: a robot on the simulated kit for 6 s")
+    assert any("drive   forwards" in line for line in lines)
+    assert any("sense   battery" in line for line in lines)
+    assert any("signal  beep" in line for line in lines)
+    final_boards = [line for line in lines if "boards" in line][-1]
+    assert "SIMMB0 [brake, brake] | SIMMB1 [brake, brake]" in final_boards
+    assert lines[-1] == "The robot has stopped: every simulated motor is braked."
