@@ -15,7 +15,6 @@ The ``j5aio_sim_kit`` fixture of the pytest plugin does the same around a test.
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import AsyncIterator, Mapping
 from contextlib import asynccontextmanager
 from dataclasses import dataclass
@@ -35,8 +34,9 @@ BoardT = TypeVar("BoardT", bound=Board)
 
 def simulated_environment() -> Environment:
     """The environment whose backends reach the boards of the current simulated kit."""
-    module = importlib.import_module("j5aio.simulator.environment")
-    return cast(Environment, module.SIMULATED_ENVIRONMENT)
+    from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+
+    return SIMULATED_ENVIRONMENT
 
 
 @dataclass(frozen=True)
