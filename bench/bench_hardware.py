@@ -1,0 +1,335 @@
+"""Speed of the hardware backends, against simulated boards on real pseudo-terminals.
+
+Each simulated board is served on a pty by a separate process (``python -m j5aio simulate
+sb-arduino --pty``), so the server never competes with the measured code for the GIL.
+Every figure is a median, and the things compared are measured side by side in one run:
+
+(a) one request (``R 2`` → ``# R 2`` / ``> L`` / ``+ OK``) through the j5aio SB Arduino
+    backend vs the same bytes through raw blocking pyserial (goal: <= 1.05x);
+(b) four boards queried at once (one task each, four ptys) vs one board alone, the
+    same number of requests per board (goal: <= 1.15x the time of one);
+(c) a request sequence (write a pin, read a pin, read an analogue pin) through j5 0.12
+    vs j5aio (ratio reported). j5 0.12 is installed on demand into a temporary directory
+    (see ``bench/requirements.txt``); its backend is constructed with the pty's path.
+
+Run: ``python bench/bench_hardware.py [--requests N] [--repeats R]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import importlib
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import anyio
+import serial
+
+from j5aio.backends.hardware.sb import SBArduinoHardwareBackend
+from j5aio.components.gpio_pin import GPIOPinMode
+
+BENCH_DIR = Path(__file__).resolve().parent
+J5_TARGET = Path(tempfile.gettempdir()) / "j5aio-bench-j5-0.12"
+LOCAL_WHEEL = Path("/tmp/j5src/j5-0.12.0-py3-none-any.whl")
+SERVER_TIME_SCALE = "0.05"  # the simulated Arduino boots in 75 ms instead of 1.5 s
+
+
+@contextlib.contextmanager
+def served_boards(count: int) -> Iterator[list[str]]:
+    """Serve ``count`` simulated SB Arduinos on ptys, each from its own process."""
+    processes = []
+    try:
+        paths = []
+        for index in range(count):
+            process = subprocess.Popen(
+                [
+                    sys.executable,
+                    "-m",
+                    "j5aio",
+                    "simulate",
+                    "sb-arduino",
+                    "--pty",
+                    "--time-scale",
+                    SERVER_TIME_SCALE,
+                    "--serial-number",
+                    f"BENCH{index}",
+                ],
+                stdout=subprocess.PIPE,
+                stderr=subprocess.DEVNULL,
+                text=True,
+            )
+            processes.append(process)
+            assert process.stdout is not None
+            paths.append(process.stdout.readline().strip())
+        yield paths
+    finally:
+        for process in processes:
+            process.terminate()
+        for process in processes:
+            process.wait(5)
+
+
+def median_us(samples: list[float]) -> float:
+    return statistics.median(samples) * 1e6
+
+
+# -- (a) one round trip --------------------------------------------------------------------
+
+
+def raw_pyserial_round_trips(path: str, requests: int) -> list[float]:
+    port = serial.Serial(path, 115200, timeout=2)
+    try:
+        banner = port.readline()
+        assert banner == b"# Booted\n", banner
+        port.readline()  # the version line
+        times = []
+        for _ in range(requests):
+            start = time.perf_counter()
+            port.write(b"R 2\n")
+            while True:
+                line = port.readline()
+                if line[:1] in (b"+", b"-"):
+                    break
+                assert line, "timed out"
+            times.append(time.perf_counter() - start)
+        return times
+    finally:
+        port.close()
+
+
+async def j5aio_round_trips(path: str, requests: int) -> list[float]:
+    board = await SBArduinoHardwareBackend.attach(path)
+    backend = board.backend
+    assert isinstance(backend, SBArduinoHardwareBackend)
+    try:
+        times = []
+        for _ in range(requests):
+            start = time.perf_counter()
+            await backend.read_gpio_pin_digital_state(2)
+            times.append(time.perf_counter() - start)
+        return times
+    finally:
+        await board.close()
+
+
+def bench_round_trip(path: str, requests: int, repeats: int) -> tuple[float, float]:
+    raw: list[float] = []
+    ours: list[float] = []
+    for _ in range(repeats):  # interleaved, so drift affects both alike
+        raw += raw_pyserial_round_trips(path, requests)
+        ours += anyio.run(j5aio_round_trips, path, requests)
+        time.sleep(0.05)  # let the pty server see the port close before it reopens
+    return median_us(raw), median_us(ours)
+
+
+# -- (b) four boards at once ----------------------------------------------------------------
+
+
+async def boards_at_once(paths: list[str], requests: int) -> float:
+    boards = [await SBArduinoHardwareBackend.attach(path) for path in paths]
+    try:
+
+        async def query(board: Any) -> None:
+            for _ in range(requests):
+                await board.backend.read_gpio_pin_digital_state(2)
+
+        start = time.perf_counter()
+        async with anyio.create_task_group() as group:
+            for board in boards:
+                group.start_soon(query, board)
+        return time.perf_counter() - start
+    finally:
+        for board in boards:
+            await board.close()
+
+
+def raw_threads_at_once(paths: list[str], requests: int) -> float:
+    """The control: raw pyserial, one thread per board (what the machine itself allows)."""
+    barrier = threading.Barrier(len(paths) + 1)
+    results: list[float] = []
+
+    def run(path: str) -> None:
+        port = serial.Serial(path, 115200, timeout=2)
+        try:
+            port.readline()
+            port.readline()
+            barrier.wait()
+            for _ in range(requests):
+                port.write(b"R 2\n")
+                while port.readline()[:1] not in (b"+", b"-"):
+                    pass
+        finally:
+            port.close()
+            results.append(time.perf_counter())
+
+    threads = [threading.Thread(target=run, args=(path,)) for path in paths]
+    for thread in threads:
+        thread.start()
+    barrier.wait()
+    start = time.perf_counter()
+    for thread in threads:
+        thread.join()
+    return max(results) - start
+
+
+def bench_concurrency(
+    paths: list[str], requests: int, repeats: int
+) -> tuple[float, float, float, float]:
+    one: list[float] = []
+    four: list[float] = []
+    raw_one: list[float] = []
+    raw_four: list[float] = []
+    for _ in range(repeats):
+        one.append(anyio.run(boards_at_once, paths[:1], requests))
+        time.sleep(0.05)
+        four.append(anyio.run(boards_at_once, paths, requests))
+        time.sleep(0.05)
+        raw_one.append(raw_threads_at_once(paths[:1], requests))
+        time.sleep(0.05)
+        raw_four.append(raw_threads_at_once(paths, requests))
+        time.sleep(0.05)
+    return tuple(statistics.median(x) * 1e3 for x in (one, four, raw_one, raw_four))  # type: ignore[return-value]
+
+
+# -- (c) j5 0.12 ----------------------------------------------------------------------------
+
+
+def import_j5() -> Any:
+    """Import j5 0.12, installing it into a temporary directory first if it is missing."""
+    sys.path.insert(0, str(J5_TARGET))
+    name = "j5.backends.hardware.sb.arduino"
+    try:
+        module = importlib.import_module(name)
+    except ImportError:
+        source = str(LOCAL_WHEEL) if LOCAL_WHEEL.exists() else "j5==0.12.0"
+        print(f"installing j5 0.12 into {J5_TARGET} from {source} ...", file=sys.stderr)
+        subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "pip",
+                "install",
+                "--quiet",
+                "--no-deps",
+                "--target",
+                str(J5_TARGET),
+                source,
+            ],
+            check=True,
+        )
+        importlib.invalidate_caches()
+        module = importlib.import_module(name)
+    J5Backend = module.SBArduinoHardwareBackend  # noqa: N806
+    return J5Backend
+
+
+def sequence_j5(j5_backend_class: Any, path: str, rounds: int) -> list[float]:
+    backend = j5_backend_class(path)  # the least invasive way: its constructor takes a path
+    j5_mode = importlib.import_module("j5.components").GPIOPinMode
+
+    backend.set_gpio_pin_mode(3, j5_mode.DIGITAL_OUTPUT)
+    times = []
+    try:
+        for index in range(rounds):
+            start = time.perf_counter()
+            backend.write_gpio_pin_digital_state(3, index % 2 == 0)
+            backend.read_gpio_pin_digital_state(2)
+            backend.read_gpio_pin_analogue_value(14)
+            times.append(time.perf_counter() - start)
+        return times
+    finally:
+        backend._serial.close()
+
+
+async def sequence_j5aio(path: str, rounds: int) -> list[float]:
+    board = await SBArduinoHardwareBackend.attach(path)
+    backend = board.backend
+    assert isinstance(backend, SBArduinoHardwareBackend)
+    await backend.set_gpio_pin_mode(3, GPIOPinMode.DIGITAL_OUTPUT)
+    times = []
+    try:
+        for index in range(rounds):
+            start = time.perf_counter()
+            await backend.write_gpio_pin_digital_state(3, index % 2 == 0)
+            await backend.read_gpio_pin_digital_state(2)
+            await backend.read_gpio_pin_analogue_value(14)
+            times.append(time.perf_counter() - start)
+        return times
+    finally:
+        await board.close()
+
+
+def bench_j5(path: str, rounds: int, repeats: int) -> tuple[float, float]:
+    j5_backend_class = import_j5()
+    theirs: list[float] = []
+    ours: list[float] = []
+    for _ in range(repeats):
+        theirs += sequence_j5(j5_backend_class, path, rounds)
+        time.sleep(0.05)
+        ours += anyio.run(sequence_j5aio, path, rounds)
+        time.sleep(0.05)
+    return median_us(theirs), median_us(ours)
+
+
+def report(title: str, figures: list[tuple[str, str]], verdict: str) -> None:
+    print(title)
+    for name, value in figures:
+        print(f"    {name:<44} {value}")
+    print(f"    {verdict}")
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--requests", type=int, default=500, help="requests per measurement")
+    parser.add_argument("--repeats", type=int, default=5, help="measurements per figure")
+    args = parser.parse_args(argv)
+
+    def goal(ratio: float, limit: float) -> str:
+        return f"ratio {ratio:.3f} (goal <= {limit}: {'met' if ratio <= limit else 'NOT met'})"
+
+    print(
+        f"Python {sys.version.split()[0]}; {os.cpu_count()} CPUs; load {os.getloadavg()[0]:.1f}; "
+        f"{args.requests} requests x {args.repeats} repeats; simulated SB Arduinos on ptys, "
+        "one server process each\n"
+    )
+    with served_boards(4) as paths:
+        raw, ours = bench_round_trip(paths[0], args.requests, args.repeats)
+        report(
+            "(a) one round trip, median",
+            [
+                ("raw pyserial (blocking)", f"{raw:8.1f} us"),
+                ("j5aio SB Arduino backend", f"{ours:8.1f} us"),
+            ],
+            goal(ours / raw, 1.05),
+        )
+        one, four, raw_one, raw_four = bench_concurrency(paths, args.requests, args.repeats)
+        report(
+            f"(b) {args.requests} requests per board, wall time, median",
+            [
+                ("j5aio, one board", f"{one:8.1f} ms"),
+                ("j5aio, four boards at once (one task each)", f"{four:8.1f} ms"),
+                ("control: raw pyserial, one thread", f"{raw_one:8.1f} ms"),
+                ("control: raw pyserial, four threads", f"{raw_four:8.1f} ms"),
+                ("control ratio (what this machine allows)", f"{raw_four / raw_one:8.3f}"),
+            ],
+            goal(four / one, 1.15),
+        )
+        theirs, ours = bench_j5(paths[1], args.requests // 5, args.repeats)
+        report(
+            "(c) sequence: write pin, read pin, read analogue; median",
+            [("j5 0.12 (blocking pyserial)", f"{theirs:8.1f} us"), ("j5aio", f"{ours:8.1f} us")],
+            f"j5aio / j5 0.12 = {ours / theirs:.3f}",
+        )
+
+
+if __name__ == "__main__":
+    main()
