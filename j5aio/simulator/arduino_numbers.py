@@ -13,9 +13,10 @@ from __future__ import annotations
 import struct
 from typing import Final
 
-__all__ = ["float32", "format_float", "to_int16", "to_long"]
+__all__ = ["WHITE_SPACE", "float32", "format_float", "to_int16", "to_long"]
 
-_WHITE_SPACE: Final = b" \t\n\v\f\r"
+#: The bytes C ``isspace`` accepts, which ``atol`` skips and ``String::trim()`` removes.
+WHITE_SPACE: Final = b" \t\n\v\f\r"
 _SINGLE: Final = struct.Struct("<f")
 
 
@@ -26,7 +27,7 @@ def _wrap(value: int, bits: int) -> int:
 
 def to_long(text: bytes) -> int:
     """``String::toInt()``: the leading decimal number of ``text`` as a 32-bit ``long``."""
-    stripped = text.lstrip(_WHITE_SPACE)
+    stripped = text.lstrip(WHITE_SPACE)
     sign = 1
     if stripped[:1] in (b"+", b"-"):
         sign = -1 if stripped[:1] == b"-" else 1

@@ -34,13 +34,12 @@ from collections.abc import Callable
 from typing import ClassVar, Final
 
 from .arduino_base import ARDUINO_UNO_R3, ArduinoBoardSimulator, UsbIdentity
-from .arduino_numbers import float32, format_float, to_int16, to_long
+from .arduino_numbers import WHITE_SPACE, float32, format_float, to_int16, to_long
 from .arduino_pins import PinMode
 from .line_assembler import LineAssembler
 
 __all__ = ["SBArduinoFirmware", "SBArduinoSimulator"]
 
-_WHITE_SPACE: Final = b" \t\n\v\f\r"
 _LED_PIN: Final = 13
 _FIRST_PIN: Final = 2
 _LAST_PIN: Final = 13
@@ -74,7 +73,7 @@ class _CommandError(Exception):
 
 def _pop_option(argument: bytes) -> tuple[bytes, bytes]:
     """The firmware's ``pop_option``: trim, then split at the first space."""
-    argument = argument.strip(_WHITE_SPACE)
+    argument = argument.strip(WHITE_SPACE)
     separator = argument.find(b" ")
     if separator == -1:
         return argument, b""
@@ -174,7 +173,7 @@ class SBArduinoSimulator(ArduinoBoardSimulator):
         return prefix + kind + b" " + text + b"\r\n"
 
     def _execute(self, received: bytes) -> bytes:
-        line = received.strip(_WHITE_SPACE)
+        line = received.strip(WHITE_SPACE)
         echo = b"# " + line + b"\n"
         request_id = 0
         command = line
