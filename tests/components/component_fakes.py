@@ -3,8 +3,8 @@
 It implements every component interface, records each call as ``(method, args)`` in
 ``calls``, and keeps just enough state that a write can be read back.
 
-(It lives in a module with a unique name rather than in a ``conftest.py``: test modules
-can import it by name, and mypy does not see two modules called ``conftest``.)
+(It lives in a module of its own rather than in a ``conftest.py``, so that the test
+modules can import it, relatively, for their type annotations.)
 """
 
 from __future__ import annotations

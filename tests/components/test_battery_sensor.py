@@ -1,6 +1,6 @@
-from component_fakes import RecordingBackend
-
 from j5aio.components import BatterySensor, BatterySensorInterface
+
+from .component_fakes import RecordingBackend
 
 
 async def test_reads_voltage_and_current() -> None:

@@ -2,9 +2,10 @@ import math
 
 import anyio
 import pytest
-from component_fakes import RecordingBackend
 
 from j5aio.components import Button, ButtonInterface
+
+from .component_fakes import RecordingBackend
 
 
 async def test_get_is_pressed_reads_the_button() -> None:

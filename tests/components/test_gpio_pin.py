@@ -2,10 +2,11 @@ import math
 from collections.abc import Awaitable, Callable
 
 import pytest
-from component_fakes import RecordingBackend
 
 from j5aio.components import GPIOPin, GPIOPinInterface, GPIOPinMode, UltrasoundSensor
 from j5aio.errors import BadGPIOPinModeError, NotSupportedByComponentError
+
+from .component_fakes import RecordingBackend
 
 ALL_HARDWARE = frozenset(GPIOPinMode)
 INPUTS = [

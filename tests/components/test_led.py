@@ -1,7 +1,8 @@
 import pytest
-from component_fakes import RecordingBackend
 
 from j5aio.components import LED, LEDInterface
+
+from .component_fakes import RecordingBackend
 
 
 async def test_set_state_sends_the_state_and_get_state_reads_it() -> None:

@@ -1,9 +1,10 @@
 import math
 
 import pytest
-from component_fakes import RecordingBackend
 
 from j5aio.components import Motor, MotorInterface, MotorSpecialState, check_motor_state
+
+from .component_fakes import RecordingBackend
 
 ALLOWED = r"a float between -1 and 1, or MotorSpecialState\.BRAKE / COAST"
 

@@ -3,9 +3,10 @@ from datetime import timedelta
 
 import anyio
 import pytest
-from component_fakes import RecordingBackend
 
 from j5aio.components import Note, Piezo, PiezoInterface
+
+from .component_fakes import RecordingBackend
 
 
 @pytest.mark.parametrize(

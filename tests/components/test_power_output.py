@@ -1,8 +1,9 @@
 import pytest
-from component_fakes import RecordingBackend
 
 from j5aio.components import PowerOutput, PowerOutputGroup, PowerOutputInterface
 from j5aio.errors import CommunicationError
+
+from .component_fakes import RecordingBackend
 
 
 async def test_set_is_enabled_switches_the_output_and_get_is_enabled_reads_it() -> None:

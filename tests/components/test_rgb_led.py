@@ -2,9 +2,10 @@ import math
 from collections.abc import Awaitable, Callable
 
 import pytest
-from component_fakes import RecordingBackend
 
 from j5aio.components import RGBLED, RGBChannel, RGBLEDInterface
+
+from .component_fakes import RecordingBackend
 
 Setter = Callable[[RGBLED, float], Awaitable[None]]
 Getter = Callable[[RGBLED], Awaitable[float]]

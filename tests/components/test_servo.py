@@ -1,9 +1,10 @@
 import math
 
 import pytest
-from component_fakes import RecordingBackend
 
 from j5aio.components import Servo, ServoInterface
+
+from .component_fakes import RecordingBackend
 
 
 @pytest.mark.parametrize("position", [-1.0, 0.0, 0.3, 1.0, None])

@@ -1,7 +1,8 @@
 import pytest
-from component_fakes import RecordingBackend
 
 from j5aio.components import StringCommandComponent, StringCommandComponentInterface
+
+from .component_fakes import RecordingBackend
 
 
 async def test_execute_sends_the_command_and_returns_the_reply() -> None:

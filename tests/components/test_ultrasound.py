@@ -1,7 +1,6 @@
 from datetime import timedelta
 
 import pytest
-from component_fakes import RecordingBackend
 
 from j5aio.components import (
     DerivedComponent,
@@ -11,6 +10,8 @@ from j5aio.components import (
     UltrasoundSensor,
 )
 from j5aio.errors import NotSupportedByComponentError
+
+from .component_fakes import RecordingBackend
 
 
 def make_pin(identifier: int, backend: RecordingBackend, *, ultrasound: bool = True) -> GPIOPin:
