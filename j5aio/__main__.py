@@ -182,10 +182,7 @@ def _run(args: argparse.Namespace) -> int:
         return 2
     if args.environment is not None:
         os.environ[ENVIRONMENT_VARIABLE] = args.environment
-    arguments = list(args.arguments)
-    if arguments[:1] == ["--"]:
-        arguments = arguments[1:]
-    sys.argv = [str(program), *arguments]
+    sys.argv = [str(program), *args.arguments]
     sys.path.insert(0, str(program.resolve().parent))
     runpy.run_path(str(program), run_name="__main__")
     return 0

@@ -51,6 +51,8 @@ OPEN_SETTLE_TIME = 0.05
 #: How often, in seconds, the server looks whether a program has opened the port.
 _IDLE_POLL_INTERVAL = 0.01
 
+_NOTHING_TO_READ = frozenset({errno.EAGAIN, errno.EWOULDBLOCK, errno.EIO})
+
 
 class PtyServer:
     """A simulator served on a pseudo-terminal; made and started by :func:`serve_on_pty`.
@@ -214,12 +216,11 @@ class PtyServer:
     def _read_master(self) -> None:
         try:
             data = os.read(self._master, 4096)
-        except BlockingIOError:
-            return
         except OSError as error:
-            if error.errno != errno.EIO:  # EIO: the program closed the port meanwhile
-                raise
-            return
+            # EAGAIN: nothing after all; EIO: the program closed the port meanwhile.
+            if error.errno in _NOTHING_TO_READ:
+                return
+            raise  # pragma: no cover - an unexpected failure, logged by _run
         if not data or not self._simulator.connected:
             return
         response = self._simulator.receive(data)
@@ -242,9 +243,9 @@ class PtyServer:
             due, chunk = self._pending.popleft()
             try:
                 written = os.write(self._master, chunk)
-            except BlockingIOError:
+            except BlockingIOError:  # the program is not reading: wait until it does
                 written = 0
-            except OSError as error:
+            except OSError as error:  # pragma: no cover - EIO: the port closed (not Linux)
                 if error.errno != errno.EIO:
                     raise
                 self._pending.clear()

@@ -187,6 +187,40 @@ def test_negative_time_scale_is_refused() -> None:
         PtyServer(FakeSimulator(), time_scale=-1)
 
 
+def test_reads_that_find_nothing_are_ignored() -> None:
+    simulator = FakeSimulator()
+    server = PtyServer(simulator)  # not started: the test drives it by hand
+    try:
+        server._read_master()  # no program has the port open: the read fails with EIO
+        fd = os.open(server.path, os.O_RDWR | os.O_NOCTTY)
+        try:
+            server._read_master()  # open, but nothing written: the read would block
+        finally:
+            os.close(fd)
+    finally:
+        server.close()
+    assert simulator.received == []
+
+
+def test_output_waits_while_the_program_is_not_reading() -> None:
+    server = PtyServer(FakeSimulator())  # not started: the test drives it by hand
+    payload = bytes(range(256)) * 400  # far more than a pseudo-terminal buffers
+    fd = os.open(server.path, os.O_RDWR | os.O_NOCTTY)
+    try:
+        server._pending.append((time.monotonic(), payload))
+        server._write_due()
+        assert server._pending, "everything fitted: the test needs a bigger payload"
+        received = b""
+        deadline = time.monotonic() + 5
+        while len(received) < len(payload) and time.monotonic() < deadline:
+            received += os.read(fd, 65536)
+            server._write_due()
+    finally:
+        os.close(fd)
+        server.close()
+    assert received == payload
+
+
 def test_the_simulator_is_exposed() -> None:
     simulator = FakeSimulator()
     with serve_on_pty(simulator) as server:
