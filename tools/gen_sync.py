@@ -551,53 +551,51 @@ class _ClassWriter:
         lines.append(self.body_line("        ", self.result_expr(expr, returns, subst), returns))
         return lines
 
+    def property_lines(self, name: str, returns: Any, doc: str, expr: str) -> list[str]:
+        """A read-only property ``name`` returning ``expr`` (wrapped if it must be)."""
+        lines = ["    @property"]
+        lines += self.def_line("    ", name, ["self"], self.r.render(returns))
+        lines += _docstring(doc, "        ", "")
+        lines.append(f"        return {self.result_expr(expr, returns, None)}")
+        return lines
+
+    def setter_lines(self, name: str, function: Any, value_name: str, body: str) -> list[str]:
+        """The setter of property ``name``; ``body`` is formatted with the (unwrapped) value."""
+        annotation = self.hints(function).get(value_name, Any)
+        value = f"_unwrap({value_name})" if self.r.mentions_wrapped(annotation) else value_name
+        lines = ["", f"    @{name}.setter"]
+        lines += self.def_line(
+            "    ", name, ["self", f"{value_name}: {self.r.render(annotation)}"], "None",
+        )
+        lines.append("        " + body.format(value=value))
+        return lines
+
     def getter_property(self, prop: str, getter: Any, setter: Any | None) -> list[str]:
         returns = self.hints(getter).get("return", Any)
         doc = inspect.getdoc(getter) or f"The {prop}."
-        if setter is not None and inspect.getdoc(setter):
-            doc += "\n\nSetting it: " + inspect.getdoc(setter)  # type: ignore[operator]
-        lines = ["    @property"]
-        lines += self.def_line("    ", prop, ["self"], self.r.render(returns))
-        lines += _docstring(doc, "        ", "")
-        expr = self.result_expr(f"_call(self._core.get_{prop})", returns, None)
-        lines.append(f"        return {expr}")
+        setter_doc = inspect.getdoc(setter) if setter is not None else None
+        if setter_doc:
+            doc += "\n\nSetting it: " + setter_doc
+        lines = self.property_lines(prop, returns, doc, f"_call(self._core.get_{prop})")
         if setter is not None:
-            param = _required_params(setter)[0]
-            annotation = self.hints(setter).get(param.name, Any)
-            value = f"_unwrap({param.name})" if self.r.mentions_wrapped(annotation) else param.name
-            lines.append("")
-            lines.append(f"    @{prop}.setter")
-            lines += self.def_line(
-                "    ", prop, ["self", f"{param.name}: {self.r.render(annotation)}"], "None",
-            )
-            lines.append(f"        _call(self._core.set_{prop}, {value})")
+            value_name = _required_params(setter)[0].name
+            body = f"_call(self._core.set_{prop}, {{value}})"
+            lines += self.setter_lines(prop, setter, value_name, body)
         return lines
 
     def plain_property(self, name: str, prop: property) -> list[str]:
         returns = self.hints(prop.fget).get("return", Any)
-        lines = ["    @property"]
-        lines += self.def_line("    ", name, ["self"], self.r.render(returns))
-        lines += _docstring(inspect.getdoc(prop), "        ", f"The {name}.")
-        lines.append(f"        return {self.result_expr(f'self._core.{name}', returns, None)}")
+        doc = inspect.getdoc(prop) or f"The {name}."
+        lines = self.property_lines(name, returns, doc, f"self._core.{name}")
         if prop.fset is not None:
-            params = list(inspect.signature(prop.fset).parameters.values())
-            value_name = params[1].name
-            annotation = self.hints(prop.fset).get(value_name, Any)
-            value = f"_unwrap({value_name})" if self.r.mentions_wrapped(annotation) else value_name
-            lines.append("")
-            lines.append(f"    @{name}.setter")
-            lines += self.def_line(
-                "    ", name, ["self", f"{value_name}: {self.r.render(annotation)}"], "None",
-            )
-            lines.append(f"        self._core.{name} = {value}")
+            value_name = list(inspect.signature(prop.fset).parameters)[1]
+            body = f"self._core.{name} = {{value}}"
+            lines += self.setter_lines(name, prop.fset, value_name, body)
         return lines
 
     def instance_attribute(self, name: str, annotation: Any) -> list[str]:
-        lines = ["    @property"]
-        lines += self.def_line("    ", name, ["self"], self.r.render(annotation))
-        lines += _docstring(None, "        ", f"The ``{name}`` of the wrapped object.")
-        lines.append(f"        return {self.result_expr(f'self._core.{name}', annotation, None)}")
-        return lines
+        doc = f"The ``{name}`` of the wrapped object."
+        return self.property_lines(name, annotation, doc, f"self._core.{name}")
 
     def class_constant(self, name: str, annotation: Any) -> list[str]:
         rendered = self.r.render(annotation)

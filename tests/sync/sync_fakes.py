@@ -9,11 +9,9 @@ from collections import deque
 from collections.abc import Iterable
 from pathlib import Path
 
+from j5aio.backends.console import CONSOLE_ENVIRONMENT, ConsoleBackend
 from j5aio.backends.console.console import Console
-from j5aio.backends.console.sr.v4 import (
-    SRV4MotorBoardConsoleBackend,
-    SRV4PowerBoardConsoleBackend,
-)
+from j5aio.boards.board import Board
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard
 from j5aio.sync import _generated as sync
 from j5aio.sync._runtime import call
@@ -44,20 +42,23 @@ class ScriptedConsoleLog:
         return LoggedConsole
 
 
-def power_board(log: ScriptedConsoleLog, serial: str = "PB1") -> sync.PowerBoard:
-    backend = SRV4PowerBoardConsoleBackend(serial, console_class=log.console_class())
-    core = PowerBoard(serial, backend)
+def set_up(log: ScriptedConsoleLog, board_class: type[Board], serial: str) -> object:
+    """A set-up core board of ``board_class`` on its console backend, as its sync wrapper."""
+    backend = CONSOLE_ENVIRONMENT.get_backend(board_class)
+    assert issubclass(backend, ConsoleBackend)
+    core = board_class(serial, backend(serial, console_class=log.console_class()))
     call(core.setup)
-    board = wrap(core)
+    return wrap(core)
+
+
+def power_board(log: ScriptedConsoleLog, serial: str = "PB1") -> sync.PowerBoard:
+    board = set_up(log, PowerBoard, serial)
     assert isinstance(board, sync.PowerBoard)
     return board
 
 
 def motor_board(log: ScriptedConsoleLog, serial: str = "MB1") -> sync.MotorBoard:
-    backend = SRV4MotorBoardConsoleBackend(serial, console_class=log.console_class())
-    core = MotorBoard(serial, backend)
-    call(core.setup)
-    board = wrap(core)
+    board = set_up(log, MotorBoard, serial)
     assert isinstance(board, sync.MotorBoard)
     return board
 
