@@ -1,7 +1,9 @@
 from types import SimpleNamespace
 from typing import Any
 
-from j5aio.backends.hardware import registry
+import pytest
+
+from j5aio.backends.hardware import listing, registry
 from j5aio.backends.hardware.listing import FoundBoard, find_boards, format_boards
 from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.transports.memory import SimulatorStream
@@ -93,3 +95,19 @@ def test_format_boards() -> None:
     assert lines[2].startswith("Ruggeduino") and " - " in lines[2]
     assert lines[-1] == "2 boards found."
     assert format_boards([FoundBoard("X", "1", "1", "p")]).endswith("1 board found.")
+
+
+async def test_find_boards_defaults_to_a_short_boot_wait_and_skips_failures(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    seen: list[DiscoveryOptions | None] = []
+
+    class Recorder:
+        @classmethod
+        async def discover(cls, *, options: DiscoveryOptions | None = None) -> list[Any]:
+            seen.append(options)
+            return []
+
+    monkeypatch.setattr(listing, "HARDWARE_BACKENDS", (Recorder,))
+    assert await find_boards() == []
+    assert seen == [DiscoveryOptions(time_scale=listing.LISTING_TIME_SCALE, skip_failures=True)]

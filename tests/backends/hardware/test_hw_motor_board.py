@@ -130,6 +130,8 @@ async def test_a_vanished_port_is_a_disconnection_and_frees_the_port() -> None:
 
     board = await Backend.attach("sim://motor", opener=opener)
     assert registry.holder("sim://motor") is board
+    assert repr(board.backend) == "<SRV4MotorBoardHardwareBackend port='sim://motor'>"
+    assert board.backend.link.name == "sim://motor"  # type: ignore[attr-defined]
     assert board.serial_number == "sim://motor"
     sim.unplug()
     with pytest.raises(BoardDisconnectionError):

@@ -171,10 +171,14 @@ async def test_piezo_queue_and_the_too_fast_error() -> None:
 
 async def test_an_unplugged_board_is_a_disconnection() -> None:
     sim = SRPowerBoardFw3Simulator("PB1")
-    board, _backend = await connect(sim)
+    board, backend = await connect(sim)
+    assert backend.link.board_name == board.name
+    assert repr(backend).startswith("<SRV4PowerBoardHardwareBackend usb:1bda:0010#")
     sim.unplug()
     with pytest.raises(BoardDisconnectionError):
         await board.battery_sensor.get_voltage()
+    with pytest.raises(BoardDisconnectionError):
+        await board.run_led.set_state(True)
     await board.close()
 
 
