@@ -336,13 +336,14 @@ class FaultyStream(ByteStream):
 
     async def _interruptible(self, awaitable: Awaitable[T]) -> T | None:
         """Await ``awaitable``; return None if :meth:`_interrupt_wait` cuts it short."""
-        with anyio.CancelScope() as scope:
-            self._wait_scope = scope
-            try:
-                return await awaitable
-            finally:
-                self._wait_scope = None
-        return None
+        result: T | None = None
+        scope = self._wait_scope = anyio.CancelScope()
+        try:
+            with scope:
+                result = await awaitable
+        finally:
+            self._wait_scope = None
+        return result
 
     def _interrupt_wait(self) -> None:
         if self._wait_scope is not None:

@@ -397,7 +397,72 @@ def test_the_file_descriptor_probe() -> None:
             raise OSError("not open")
 
     probe = serial_stream_module._has_file_descriptor
-    assert not probe(NoFileno())  # type: ignore[arg-type]
-    assert not probe(BrokenFileno())  # type: ignore[arg-type]
+    assert not probe(NoFileno())
+    assert not probe(BrokenFileno())
     with socket.socket() as sock:
-        assert probe(sock)  # type: ignore[arg-type]
+        assert probe(sock)
+
+
+# -- rarer failures ------------------------------------------------------------------------
+
+
+async def test_a_write_that_fails_raises_board_disconnection(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    loop = asyncio.get_running_loop()
+    reported: list[dict[str, Any]] = []
+    loop.set_exception_handler(lambda _loop, context: reported.append(context))
+
+    def failing_write(data: Any) -> int:
+        raise serial.SerialException("write failed: [Errno 5] Input/output error")
+
+    monkeypatch.setattr(stream.serial, "write", failing_write)
+    try:
+        with pytest.raises(BoardDisconnectionError, match="writing to the port failed"):
+            await stream.send(b"x")
+        with pytest.raises(BoardDisconnectionError, match="gone away"):
+            await stream.receive()
+    finally:
+        loop.set_exception_handler(None)
+    assert reported and isinstance(reported[0]["exception"], serial.SerialException)
+
+
+async def test_the_transport_closing_by_itself_ends_the_stream(stream: SerialStream) -> None:
+    transport = stream._transport  # type: ignore[attr-defined]
+    transport.close()
+    with anyio.fail_after(2), pytest.raises(BoardDisconnectionError, match="closed"):
+        await stream.receive()
+
+
+async def test_close_now_survives_errors_while_closing(
+    stream: SerialStream, monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
+) -> None:
+    caplog.set_level(logging.DEBUG, logger="j5aio.backends.hardware.transports.serial_stream")
+    transport = stream._transport  # type: ignore[attr-defined]
+
+    def refuse() -> None:
+        raise OSError("no")
+
+    monkeypatch.setattr(transport, "pause_reading", refuse)
+    monkeypatch.setattr(stream.serial, "close", refuse)
+    stream.close_now()
+    assert stream.is_closed
+    assert "could not detach from the event loop" in caplog.text
+    assert "error while closing the port" in caplog.text
+    monkeypatch.undo()  # then clean up for real
+    transport.pause_reading()
+    stream.serial.close()
+
+
+async def test_a_polled_receive_waits_for_data() -> None:
+    stream = await open_serial_stream("loop://", poll_interval=0.001)
+    async with anyio.create_task_group() as tg:
+
+        async def send_later() -> None:
+            await anyio.sleep(0.01)
+            await stream.send(b"late")
+
+        tg.start_soon(send_later)
+        with anyio.fail_after(1):
+            assert await stream.receive() == b"late"
+    stream.close_now()

@@ -1,0 +1,315 @@
+"""Tests of USBLink: ordered transfers on one worker thread, cancellation, error mapping."""
+
+from __future__ import annotations
+
+import array
+import errno
+import random
+import struct
+import threading
+import time
+from collections.abc import AsyncIterator
+from typing import Any
+
+import anyio
+import pytest
+import usb.core
+
+from j5aio.backends.hardware.transports import (
+    USBDisconnectionError,
+    USBLink,
+    USBTransferTimeoutError,
+)
+from j5aio.errors import (
+    BoardDisconnectionError,
+    CommunicationError,
+    CommunicationTimeoutError,
+    UnexpectedReplyError,
+    USBCommunicationError,
+)
+
+
+class StandInDevice:
+    """A pyusb-shaped device: reads return the wIndex as a little-endian uint32."""
+
+    idVendor = 0x1BDA  # noqa: N815
+    idProduct = 0x0010  # noqa: N815
+
+    def __init__(self) -> None:
+        self.calls: list[tuple[int, int, int, int, Any, int | None]] = []
+        self.threads: set[int] = set()
+        self.errors: dict[int, BaseException] = {}
+        self.gate: threading.Event | None = None
+        self.started = threading.Event()
+        self.delay = 0.0
+        self.short_write = False
+        self.serial = "SRABC1"
+
+    @property
+    def serial_number(self) -> str:
+        self.threads.add(threading.get_ident())
+        return self.serial
+
+    def ctrl_transfer(
+        self,
+        bmRequestType: int,  # noqa: N803
+        bRequest: int,  # noqa: N803
+        wValue: int = 0,  # noqa: N803
+        wIndex: int = 0,  # noqa: N803
+        data_or_wLength: Any = None,  # noqa: N803
+        timeout: int | None = None,
+    ) -> Any:
+        self.threads.add(threading.get_ident())
+        self.calls.append((bmRequestType, bRequest, wValue, wIndex, data_or_wLength, timeout))
+        self.started.set()
+        if self.gate is not None:
+            self.gate.wait(5)
+        if self.delay:
+            time.sleep(self.delay)
+        if wIndex in self.errors:
+            raise self.errors[wIndex]
+        if bmRequestType & 0x80:
+            return array.array("B", struct.pack("<I", wIndex)[:data_or_wLength])
+        return len(data_or_wLength) - (1 if self.short_write else 0)
+
+
+@pytest.fixture
+def device() -> StandInDevice:
+    return StandInDevice()
+
+
+@pytest.fixture
+async def link(device: StandInDevice) -> AsyncIterator[USBLink]:
+    usb_link = USBLink(device, board_name="Power Board SRABC1", timeout_ms=250)
+    yield usb_link
+    if device.gate is not None:
+        device.gate.set()
+    usb_link.close_now()
+
+
+async def test_control_read_and_write_use_request_64(device: StandInDevice, link: USBLink) -> None:
+    assert await link.control_read(9, 4) == struct.pack("<I", 9)
+    await link.control_write(8, 0, struct.pack("<HH", 440, 500))
+    await link.control_write(2, 1)
+    assert device.calls == [
+        (0x80, 64, 0, 9, 4, 250),
+        (0x00, 64, 0, 8, struct.pack("<HH", 440, 500), 250),
+        (0x00, 64, 1, 2, b"", 250),
+    ]
+    assert link.board_name == "Power Board SRABC1"
+    assert link.device is device
+    assert repr(link) == "<USBLink 'Power Board SRABC1' open>"
+
+
+async def test_transfers_run_in_order_on_one_thread(device: StandInDevice, link: USBLink) -> None:
+    async with anyio.create_task_group() as tg:
+        for index in range(50):
+            tg.start_soon(link.control_write, index, 1)
+    assert [call[3] for call in device.calls] == list(range(50))
+    assert device.threads == {link.thread.ident}
+    assert link.thread.ident != threading.get_ident()
+
+
+async def test_read_serial_number_on_the_worker_thread(
+    device: StandInDevice, link: USBLink
+) -> None:
+    assert await link.read_serial_number() == "SRABC1"
+    assert device.threads == {link.thread.ident}
+
+
+async def test_call_runs_any_work_in_order(link: USBLink) -> None:
+    assert await link.call(lambda: 6 * 7, description="arithmetic") == 42
+
+
+# -- errors --------------------------------------------------------------------------------
+
+
+async def test_enodev_is_a_usb_and_a_board_disconnection_error(
+    device: StandInDevice, link: USBLink
+) -> None:
+    pyusb_error = usb.core.USBError("No such device", errno=errno.ENODEV)
+    device.errors[7] = pyusb_error
+    with pytest.raises(USBDisconnectionError) as caught:
+        await link.control_read(7, 8)
+    error = caught.value
+    assert isinstance(error, BoardDisconnectionError)
+    assert isinstance(error, USBCommunicationError)
+    assert error.usb_error is pyusb_error and error.errno == errno.ENODEV
+    assert error.__cause__ is pyusb_error
+    assert "Power Board SRABC1 has been disconnected" in str(error)
+    assert "wIndex 7" in str(error)
+
+
+async def test_a_pyusb_timeout_is_a_communication_timeout(
+    device: StandInDevice, link: USBLink
+) -> None:
+    device.errors[8] = usb.core.USBTimeoutError("Operation timed out", errno=errno.ETIMEDOUT)
+    with pytest.raises(USBTransferTimeoutError, match="did not answer in time") as caught:
+        await link.control_read(8, 4)
+    assert isinstance(caught.value, CommunicationTimeoutError)
+
+
+async def test_a_caller_names_what_an_errno_means(device: StandInDevice, link: USBLink) -> None:
+    device.errors[8] = usb.core.USBError("Pipe error", errno=errno.EPIPE)
+    with pytest.raises(USBCommunicationError) as caught:
+        await link.control_write(
+            8, 0, b"\x00" * 4, errors={errno.EPIPE: "the piezo queue is full: buzzing too fast"}
+        )
+    assert str(caught.value) == "Power Board SRABC1: the piezo queue is full: buzzing too fast"
+    assert caught.value.errno == errno.EPIPE
+    with pytest.raises(USBCommunicationError, match=r"writing wIndex 8 .* failed: Pipe error"):
+        await link.control_write(8, 0, b"\x00" * 4)
+
+
+@pytest.mark.parametrize(
+    ("code", "kind"),
+    [(errno.ENODEV, USBDisconnectionError), (errno.ETIMEDOUT, USBTransferTimeoutError)],
+)
+async def test_a_named_errno_keeps_its_error_class(
+    device: StandInDevice, link: USBLink, code: int, kind: type[USBCommunicationError]
+) -> None:
+    device.errors[1] = usb.core.USBError("oops", errno=code)
+    with pytest.raises(kind, match="Power Board SRABC1: custom words"):
+        await link.control_read(1, 4, errors={code: "custom words"})
+
+
+async def test_other_exceptions_from_pyusb_are_wrapped(
+    device: StandInDevice, link: USBLink
+) -> None:
+    device.errors[3] = ValueError("The device has no langid")
+    with pytest.raises(USBCommunicationError, match="no langid") as caught:
+        await link.control_read(3, 4)
+    assert isinstance(caught.value.usb_error, ValueError)
+    assert caught.value.errno is None
+    device.errors[4] = RuntimeError()
+    with pytest.raises(USBCommunicationError, match="failed: RuntimeError"):
+        await link.control_read(4, 4)
+
+
+async def test_short_transfers_are_reported(device: StandInDevice, link: USBLink) -> None:
+    with pytest.raises(UnexpectedReplyError, match="returned 4 bytes"):
+        await link.control_read(1, 8)
+    assert await link.control_read(1, 8, exact=False) == struct.pack("<I", 1)
+    device.short_write = True
+    with pytest.raises(USBCommunicationError, match="wrote only 3 bytes"):
+        await link.control_write(8, 0, b"\x01\x02\x03\x04")
+
+
+async def test_the_link_validates_its_timeout(device: StandInDevice) -> None:
+    with pytest.raises(ValueError, match="timeout_ms"):
+        USBLink(device, board_name="x", timeout_ms=0)
+
+
+# -- cancellation --------------------------------------------------------------------------
+
+
+async def test_a_caller_cancelled_mid_transfer_is_released_and_the_transfer_completes(
+    device: StandInDevice, link: USBLink
+) -> None:
+    device.gate = threading.Event()
+    start = time.monotonic()
+    with anyio.move_on_after(0.05) as scope:
+        await link.control_write(2, 1)
+    assert scope.cancelled_caught
+    assert time.monotonic() - start < 0.5  # released while the transfer was still blocked
+    device.gate.set()
+    assert await link.control_read(9, 4) == struct.pack("<I", 9)
+    assert [call[3] for call in device.calls] == [2, 9]
+
+
+async def test_a_caller_cancelled_while_queued_withdraws_its_transfer(
+    device: StandInDevice, link: USBLink
+) -> None:
+    device.gate = threading.Event()
+    async with anyio.create_task_group() as tg:
+        tg.start_soon(link.control_write, 1, 1)
+        await anyio.to_thread.run_sync(device.started.wait, 1)
+        with anyio.move_on_after(0.02):
+            await link.control_write(2, 1)  # queued behind the blocked transfer
+        device.gate.set()
+    await link.control_write(3, 1)
+    assert [call[3] for call in device.calls] == [1, 3]
+
+
+async def test_random_cancellations_never_deliver_a_result_to_the_wrong_caller(
+    device: StandInDevice, link: USBLink
+) -> None:
+    rng = random.Random(99)
+    device.delay = 0.0002
+    wrong = delivered = cancelled = 0
+
+    async def reader(worker: int) -> None:
+        nonlocal wrong, delivered, cancelled
+        for n in range(150):
+            index = worker * 1000 + n
+            with anyio.move_on_after(rng.uniform(0, 0.002)) as scope:
+                reply = await link.control_read(index, 4)
+                delivered += 1
+                wrong += reply != struct.pack("<I", index)
+            cancelled += scope.cancelled_caught
+
+    async with anyio.create_task_group() as tg:
+        for worker in range(4):
+            tg.start_soon(reader, worker)
+    assert wrong == 0
+    assert delivered >= 20 and cancelled >= 100
+    ran = [call[3] for call in device.calls]
+    for worker in range(4):  # each caller's transfers ran in its own order
+        mine = [i for i in ran if i // 1000 == worker]
+        assert mine == sorted(mine)
+
+
+# -- closing -------------------------------------------------------------------------------
+
+
+async def test_close_now_stops_the_thread_after_queued_transfers(device: StandInDevice) -> None:
+    link = USBLink(device, board_name="servo board")
+    assert link.thread.is_alive()
+    device.gate = threading.Event()
+    async with anyio.create_task_group() as tg:
+        tg.start_soon(link.control_write, 0, 1)
+        tg.start_soon(link.control_write, 1, 1)
+        await anyio.sleep(0.01)
+        threading.Timer(0.02, device.gate.set).start()
+        link.close_now()
+    assert not link.thread.is_alive()
+    assert [call[3] for call in device.calls] == [0, 1]
+    assert link.is_closed
+    with pytest.raises(USBDisconnectionError, match="servo board: the USB link is closed"):
+        await link.control_read(0, 4)
+    link.close_now()
+    await link.aclose()  # both idempotent
+
+
+async def test_aclose_stops_the_thread(device: StandInDevice) -> None:
+    async with USBLink(device, board_name="power board") as link:
+        await link.control_write(0, 1)
+    assert not link.thread.is_alive()
+    assert "closed" in repr(link)
+    with pytest.raises(CommunicationError):
+        await link.control_write(0, 0)
+
+
+def test_close_now_works_without_an_event_loop(device: StandInDevice) -> None:
+    link = USBLink(device, board_name="power board")
+    link.close_now()
+    assert not link.thread.is_alive()
+
+
+async def test_a_real_pyusb_device_is_released_when_the_thread_stops(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    released: list[object] = []
+    monkeypatch.setattr(usb.util, "dispose_resources", released.append)
+
+    class RealLookingDevice(usb.core.Device):  # type: ignore[misc]
+        def __init__(self) -> None:  # no libusb behind it
+            pass
+
+        def __del__(self) -> None:
+            pass
+
+    fake = RealLookingDevice()
+    link = USBLink(fake, board_name="real")
+    await link.aclose()
+    assert released == [fake]
