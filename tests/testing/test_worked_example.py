@@ -11,7 +11,7 @@ from pathlib import Path
 import anyio
 import pytest
 
-from j5aio.backends.hardware.transports import SimulatorStream
+from j5aio.backends.hardware.transports import ByteStream, SimulatorStream
 from j5aio.errors import (
     BoardDisconnectionError,
     CommunicationTimeoutError,
@@ -58,7 +58,7 @@ async def test_an_old_firmware_is_refused() -> None:
 
 
 # [step 2: faults]
-async def connect(stream: RecordingStream | SimulatorStream) -> BlinkenBoard:
+async def connect(stream: ByteStream) -> BlinkenBoard:
     board = await BlinkenBoardBackend.from_stream(
         stream, port="sim", serial_number="B1", time_scale=0,
     )
@@ -71,7 +71,7 @@ async def test_a_corrupted_reply_is_a_communication_error(
     j5aio_faulty_stream: FaultyStreamFactory,
 ) -> None:
     stream = j5aio_faulty_stream(SimulatorStream(BlinkenSimulator(), time_scale=0))
-    board = await connect(stream)  # type: ignore[arg-type]
+    board = await connect(stream)
     stream.corrupt_next_reply()
     with pytest.raises(UnexpectedReplyError):
         await board.button.get_is_pressed()
@@ -84,7 +84,7 @@ async def test_a_lost_reply_times_out_and_the_link_recovers(
 ) -> None:
     simulator = BlinkenSimulator()
     stream = j5aio_faulty_stream(SimulatorStream(simulator, time_scale=0))
-    board = await connect(stream)  # type: ignore[arg-type]
+    board = await connect(stream)
     stream.drop_next_reply()
     with pytest.raises(CommunicationTimeoutError):
         await board.leds[0].set_state(True)
@@ -97,7 +97,7 @@ async def test_an_unplugged_board_is_a_disconnection(
     j5aio_faulty_stream: FaultyStreamFactory,
 ) -> None:
     stream = j5aio_faulty_stream(SimulatorStream(BlinkenSimulator(), time_scale=0))
-    board = await connect(stream)  # type: ignore[arg-type]
+    board = await connect(stream)
     stream.disconnect()
     with pytest.raises(BoardDisconnectionError):
         await board.leds[1].set_state(True)
