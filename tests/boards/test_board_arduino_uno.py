@@ -1,12 +1,13 @@
 from __future__ import annotations
 
 import pytest
-from board_fakes import FakeRuggeduinoBackend, FakeUnoBackend
 
 from j5aio.boards.arduino import AnaloguePin, ArduinoUno
 from j5aio.boards.sr.v4 import Ruggeduino
 from j5aio.components import LED, GPIOPin, GPIOPinMode, StringCommandComponent
 from j5aio.errors import NotSupportedByComponentError
+
+from .board_fakes import FakeRuggeduinoBackend, FakeUnoBackend
 
 DIGITAL_MODES = {
     GPIOPinMode.DIGITAL_INPUT,

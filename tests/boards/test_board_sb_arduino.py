@@ -3,12 +3,13 @@ from __future__ import annotations
 from datetime import timedelta
 
 import pytest
-from board_fakes import FakeSBArduinoBackend
 
 from j5aio.boards.arduino import AnaloguePin, ArduinoUno
 from j5aio.boards.sb import SBArduinoBoard, UltrasoundSensors
 from j5aio.components import LED, GPIOPin, Servo, UltrasoundSensor
 from j5aio.errors import NotSupportedByComponentError
+
+from .board_fakes import FakeSBArduinoBackend
 
 
 def make_board() -> tuple[SBArduinoBoard, FakeSBArduinoBackend]:

@@ -1,10 +1,11 @@
 from __future__ import annotations
 
 import pytest
-from board_fakes import FakeMotorBoardBackend
 
 from j5aio.boards.sr.v4 import MotorBoard
 from j5aio.components import Motor, MotorSpecialState
+
+from .board_fakes import FakeMotorBoardBackend
 
 
 def test_identity() -> None:

@@ -5,11 +5,12 @@ from datetime import timedelta
 
 import anyio
 import pytest
-from board_fakes import FakePowerBoardBackend
 
 from j5aio.boards.board_group import BoardGroup
 from j5aio.boards.sr.v4 import PowerBoard, PowerOutputGroup, PowerOutputPosition
 from j5aio.components import LED, BatterySensor, Button, Piezo, PowerOutput
+
+from .board_fakes import FakePowerBoardBackend
 
 
 def make_board() -> tuple[PowerBoard, FakePowerBoardBackend]:

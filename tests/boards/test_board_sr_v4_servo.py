@@ -1,10 +1,11 @@
 from __future__ import annotations
 
 import pytest
-from board_fakes import FakeServoBoardBackend
 
 from j5aio.boards.sr.v4 import ServoBoard
 from j5aio.components import Servo
+
+from .board_fakes import FakeServoBoardBackend
 
 
 def test_identity() -> None:

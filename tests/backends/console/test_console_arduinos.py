@@ -3,7 +3,6 @@ from __future__ import annotations
 from datetime import timedelta
 
 import pytest
-from console_script import Terminal
 
 from j5aio.backends.console.sb import SBArduinoConsoleBackend
 from j5aio.backends.console.sr.v4 import SRV4RuggeduinoConsoleBackend
@@ -12,6 +11,8 @@ from j5aio.boards.sb import SBArduinoBoard
 from j5aio.boards.sr.v4 import Ruggeduino
 from j5aio.components import GPIOPinMode
 from j5aio.errors import BadGPIOPinModeError, NotSupportedByHardwareError
+
+from .console_script import Terminal
 
 RUGGEDUINO = "Ruggeduino(SERIAL): "
 SB = "SBArduinoBoard(SERIAL): "

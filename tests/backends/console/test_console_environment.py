@@ -3,7 +3,6 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 import pytest
-from console_script import Terminal
 
 from j5aio.backends.console import CONSOLE_ENVIRONMENT, ConsoleBackend
 from j5aio.backends.console.sb import SBArduinoConsoleBackend
@@ -16,6 +15,8 @@ from j5aio.backends.console.sr.v4 import (
 from j5aio.boards.board import Board
 from j5aio.boards.sb import SBArduinoBoard
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
+
+from .console_script import Terminal
 
 BACKENDS: dict[type[Board], type[ConsoleBackend]] = {
     PowerBoard: SRV4PowerBoardConsoleBackend,

@@ -6,10 +6,11 @@ from collections.abc import Iterator
 import anyio
 import anyio.lowlevel
 import pytest
-from console_script import Terminal
 
 from j5aio.backends.console import Console
 from j5aio.backends.console.stdin import read_stdin_line
+
+from .console_script import Terminal
 
 
 def console(terminal: Terminal) -> Console:

@@ -1,7 +1,6 @@
 from __future__ import annotations
 
 import pytest
-from console_script import Terminal
 
 from j5aio.backends.console.sr.v4 import (
     SRV4MotorBoardConsoleBackend,
@@ -10,6 +9,8 @@ from j5aio.backends.console.sr.v4 import (
 from j5aio.boards.board_group import BoardGroup
 from j5aio.boards.sr.v4 import MotorBoard, ServoBoard
 from j5aio.components import MotorSpecialState
+
+from .console_script import Terminal
 
 
 async def test_motors_start_braked_and_print_every_change() -> None:

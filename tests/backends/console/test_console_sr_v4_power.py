@@ -5,12 +5,13 @@ from datetime import timedelta
 
 import anyio
 import pytest
-from console_script import Terminal
 
 from j5aio.backends.console import Console, ConsoleBackend
 from j5aio.backends.console.sr.v4 import SRV4PowerBoardConsoleBackend
 from j5aio.boards.sr.v4 import PowerBoard, PowerOutputPosition
 from j5aio.errors import NotSupportedByHardwareError
+
+from .console_script import Terminal
 
 PREFIX = "PowerBoard(SERIAL): "
 
