@@ -1,6 +1,6 @@
 """Reading lines from standard input without blocking the event loop.
 
-``input()`` blocks its thread until the user presses return, so a console prompt read it
+``input()`` blocks its thread until the user presses return, so a console prompt reads it
 in a worker thread. That alone is not enough: a prompt that is cancelled leaves its
 thread blocked in ``input()``, and the line the user types next would be swallowed by
 that abandoned thread. :class:`LineReader` avoids this. It keeps at most one thread

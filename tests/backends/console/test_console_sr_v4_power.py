@@ -9,6 +9,7 @@ import pytest
 from j5aio.backends.console import Console, ConsoleBackend
 from j5aio.backends.console.sr.v4 import SRV4PowerBoardConsoleBackend
 from j5aio.boards.sr.v4 import PowerBoard, PowerOutputPosition
+from j5aio.components import Note
 from j5aio.errors import NotSupportedByHardwareError
 
 from .console_script import Terminal
@@ -100,7 +101,11 @@ async def test_battery_is_asked_for(board: PowerBoard, terminal: Terminal) -> No
 
 async def test_buzz_is_printed(board: PowerBoard, terminal: Terminal) -> None:
     await board.piezo.buzz(0.5, 440)
-    assert terminal.lines == [PREFIX + "Buzzing at 440.0Hz for 500ms"]
+    await board.piezo.buzz(timedelta(milliseconds=100), Note.A6)
+    assert terminal.lines == [
+        PREFIX + "Buzzing at 440.0Hz for 500ms",
+        PREFIX + "Buzzing at 1760.0Hz for 100ms",
+    ]
 
 
 async def test_buzz_longer_than_the_board_can_play(

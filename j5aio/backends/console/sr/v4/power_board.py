@@ -76,7 +76,7 @@ class SRV4PowerBoardConsoleBackend(
                 f"the power board plays notes of at most {self.MAX_BUZZ_MS} ms; "
                 f"{duration_ms} ms is too long",
             )
-        await self._console.info(f"Buzzing at {pitch}Hz for {duration_ms}ms")
+        await self._console.info(f"Buzzing at {float(pitch)}Hz for {duration_ms}ms")
 
     async def get_button_state(self, identifier: int) -> bool:
         """Ask whether the start button is pressed."""
