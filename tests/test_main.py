@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import subprocess
@@ -238,10 +239,12 @@ def test_a_program_finding_no_hardware_offers_the_sim_flag_in_one_line(tmp_path:
 # --- simulate ----------------------------------------------------------------------------
 
 
-def test_simulate_serves_a_motor_board_until_terminated() -> None:
+@contextlib.contextmanager
+def simulating(*args: str) -> Iterator[tuple[subprocess.Popen[str], str]]:
+    """Run ``python -m j5aio simulate ARGS``; yield the process and the port it printed."""
     environment = {k: v for k, v in os.environ.items() if k != ENVIRONMENT_VARIABLE}
     process = subprocess.Popen(
-        [sys.executable, "-m", "j5aio", "simulate", "sr-motor", "--serial-number", "MB42"],
+        [sys.executable, "-m", "j5aio", "simulate", *args],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
@@ -249,44 +252,39 @@ def test_simulate_serves_a_motor_board_until_terminated() -> None:
     )
     try:
         assert process.stdout is not None
-        path = process.stdout.readline().strip()
+        yield process, process.stdout.readline().strip()
+    finally:
+        if process.poll() is None:  # only when the test failed
+            process.kill()
+        process.communicate(timeout=10)
+
+
+def stop(process: subprocess.Popen[str], how: signal.Signals) -> str:
+    """Stop a ``simulate`` process with a signal; return what it wrote to stderr."""
+    process.send_signal(how)
+    _, errors = process.communicate(timeout=10)
+    assert process.returncode == 0
+    return errors
+
+
+def test_simulate_serves_a_motor_board_until_terminated() -> None:
+    with simulating("sr-motor", "--serial-number", "MB42") as (process, path):
         with serial.Serial(path, 1_000_000, timeout=5) as port:
             port.write(b"\x01")  # fw 3: "what are you?"
             assert port.read(8) == b"MCV4B:3\n"
-        process.send_signal(signal.SIGTERM)
-        _, errors = process.communicate(timeout=10)
-    finally:
-        if process.poll() is None:  # pragma: no cover - only when the test fails
-            process.kill()
-            process.wait()
-    assert process.returncode == 0
+        errors = stop(process, signal.SIGTERM)
     assert "SR v4 motor board, firmware 3 (1 Mbaud) (serial number MB42)" in errors
+    assert errors.rstrip().endswith("Stopped.")
 
 
 def test_simulate_with_time_scale_zero_boots_at_once() -> None:
-    environment = {k: v for k, v in os.environ.items() if k != ENVIRONMENT_VARIABLE}
-    process = subprocess.Popen(
-        [sys.executable, "-m", "j5aio", "simulate", "sr-ruggeduino", "--time-scale", "0"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-        env=environment,
-    )
-    try:
-        assert process.stdout is not None
-        path = process.stdout.readline().strip()
+    with simulating("sr-ruggeduino", "--time-scale", "0") as (process, path):
         started = time.monotonic()
         with serial.Serial(path, 115200, timeout=5) as port:
             port.write(b"v")  # SR firmware: version
             assert port.readline() == b"SRduino:1\n"
         assert time.monotonic() - started < 1.0  # a real Ruggeduino takes 1.5 s to boot
-        process.send_signal(signal.SIGINT)
-        process.communicate(timeout=10)
-    finally:
-        if process.poll() is None:  # pragma: no cover - only when the test fails
-            process.kill()
-            process.wait()
-    assert process.returncode == 0
+        stop(process, signal.SIGINT)
 
 
 # --- demo --------------------------------------------------------------------------------
