@@ -24,9 +24,10 @@ board is made safe and its port closed. The wrappers are generated from the core
 ``tools/gen_sync.py``.
 """
 
+from j5aio import __version__
 from j5aio.sync import _generated
 from j5aio.sync._generated import *  # noqa: F403
 from j5aio.sync._runtime import shutdown
 
-__all__ = ["shutdown"]
+__all__ = ["__version__", "shutdown"]
 __all__ += _generated.__all__

@@ -193,6 +193,6 @@ def test_base_robot_takes_the_lock_without_super_init() -> None:
 
 
 def test_sync_package_exports_what_j5_does() -> None:
-    for name in ("BaseRobot", "BoardGroup", "Environment", "Board", "shutdown"):
+    for name in ("BaseRobot", "BoardGroup", "Environment", "Board", "shutdown", "__version__"):
         assert name in sync.__all__
         assert hasattr(sync, name)
