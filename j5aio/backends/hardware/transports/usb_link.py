@@ -356,7 +356,7 @@ class USBLink:
                 continue
             try:
                 outcome: tuple[bool, Any] = (True, job.work())
-            except Exception as exc:
+            except BaseException as exc:  # the thread must survive, and its caller hear of it
                 outcome = (False, exc)
             job.finish(outcome)
         self._release_device()

@@ -313,3 +313,13 @@ async def test_a_real_pyusb_device_is_released_when_the_thread_stops(
     link = USBLink(fake, board_name="real")
     await link.aclose()
     assert released == [fake]
+
+
+async def test_the_worker_survives_any_exception(link: USBLink) -> None:
+    def exit_thread() -> None:
+        raise SystemExit("not in this thread")
+
+    with pytest.raises(USBCommunicationError, match="not in this thread"):
+        await link.call(exit_thread, description="misbehaving")
+    assert link.thread.is_alive()
+    assert await link.control_read(5, 4) == struct.pack("<I", 5)
