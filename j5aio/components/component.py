@@ -21,9 +21,13 @@ class Interface(ABC):  # noqa: B024 - a marker base class, deliberately without 
     without blocking other tasks.
     """
 
+    __slots__ = ()
+
 
 class Component(ABC):
     """The base class of every component: the smallest logical part of some hardware."""
+
+    __slots__ = ()
 
     @property
     @abstractmethod
@@ -51,6 +55,8 @@ class DerivedComponent(Component):
     A derived component has no identifier of its own: it is defined by the components
     it is made of.
     """
+
+    __slots__ = ()
 
     @property
     def identifier(self) -> int:
