@@ -208,21 +208,6 @@ async def test_subject_closes_a_backend_or_runs_its_cleanup() -> None:
     assert closed == ["backend", "cleanup"]
 
 
-class TestSubjectFixtureReleasesTheBackend(LEDInterfaceConformance):
-    released: list[bool] = []
-
-    async def make_backend(self) -> LEDSubject:
-        async def cleanup() -> None:
-            self.released.append(True)
-
-        return LEDSubject(backend=ReferenceLEDs(), identifiers=[0, 1], cleanup=cleanup)
-
-
-def test_the_subject_fixture_released_each_backend() -> None:
-    # Runs after the class above (pytest keeps definition order within a module).
-    assert len(TestSubjectFixtureReleasesTheBackend.released) == 3
-
-
 class ReferenceLEDs(LEDInterface):
     def __init__(self) -> None:
         self.states = [False, False]

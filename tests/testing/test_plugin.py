@@ -74,14 +74,20 @@ async def test_sim_kit_group_of_an_unknown_board(j5aio_sim_kit: OpenSimulatedKit
 
 
 def test_fixtures_clean_up_after_the_test(pytester: pytest.Pytester) -> None:
-    """Run in a pytest of its own, without this project's conftest that clears boards."""
+    """Run in a pytest of its own, without this project's conftest that clears boards.
+
+    pytest-asyncio runs in strict mode there, as in a suite that has not chosen auto mode.
+    """
     pytester.makepyfile(
         test_sim_kit="""
+        import pytest
+
         from j5aio.boards.board import Board
         from j5aio.simulator.kit import current_kit
 
         seen = {}
 
+        @pytest.mark.asyncio
         async def test_uses_kit(j5aio_sim_kit):
             seen["kit"] = j5aio_sim_kit.kit
             seen["boards"] = list(j5aio_sim_kit.boards)
@@ -111,9 +117,39 @@ def test_fixtures_clean_up_after_the_test(pytester: pytest.Pytester) -> None:
             assert len(Board.BOARDS) == 1
             Board.BOARDS.clear()
         """,
+        test_suite_subject="""
+        from j5aio.components.led import LEDInterface
+        from j5aio.testing.conformance import LEDInterfaceConformance, LEDSubject
+
+        released = []
+
+        class LEDs(LEDInterface):
+            def __init__(self):
+                self.states = [False, False]
+
+            async def get_led_state(self, identifier):
+                if identifier not in (0, 1):
+                    raise KeyError(identifier)
+                return self.states[identifier]
+
+            async def set_led_state(self, identifier, state):
+                if identifier not in (0, 1):
+                    raise KeyError(identifier)
+                self.states[identifier] = state
+
+        class TestLEDs(LEDInterfaceConformance):
+            async def make_backend(self):
+                async def cleanup():
+                    released.append(True)
+
+                return LEDSubject(backend=LEDs(), identifiers=[0, 1], cleanup=cleanup)
+
+        def test_each_backend_was_released():
+            assert released == [True, True, True]
+        """,
     )
-    result = pytester.runpytest_subprocess("-p", "asyncio", "-o", "asyncio_mode=auto")
-    result.assert_outcomes(passed=6)
+    result = pytester.runpytest_subprocess("-o", "asyncio_mode=strict")
+    result.assert_outcomes(passed=10)
 
 
 async def test_clean_boards_in_an_async_test(j5aio_clean_boards: None) -> None:

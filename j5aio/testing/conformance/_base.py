@@ -82,7 +82,11 @@ class InterfaceConformance(abc.ABC, Generic[SubjectT]):
 
     To use pytest fixtures while making the backend, add an autouse fixture to your
     class that stores what it needs on ``self``; it runs before :meth:`make_backend`.
+
+    The tests are marked for pytest-asyncio, so they run in its strict mode too.
     """
+
+    pytestmark: ClassVar[list[pytest.MarkDecorator]] = [pytest.mark.asyncio]
 
     #: Seconds any one test may spend awaiting the backend before it counts as a hang.
     call_timeout: ClassVar[float] = 5.0
