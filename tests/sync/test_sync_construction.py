@@ -6,7 +6,6 @@ import inspect
 import logging
 
 import pytest
-from sync_fakes import ScriptedConsoleLog
 
 from j5aio.backends.console.sb.arduino import SBArduinoConsoleBackend
 from j5aio.backends.console.sr.v4 import (
@@ -22,6 +21,8 @@ from j5aio.sync import _generated as sync
 from j5aio.sync import _runtime
 from j5aio.sync._runtime import call
 from j5aio.sync._wrapping import _WRAPPER_CLASSES, wrap
+
+from .sync_fakes import ScriptedConsoleLog
 
 
 def power_of(motor: sync.Motor) -> MotorState:

@@ -6,7 +6,8 @@ import subprocess
 import sys
 
 import pytest
-from sync_fakes import ROOT, child_env
+
+from .sync_fakes import ROOT, child_env
 
 EXAMPLES = ROOT / "examples"
 

@@ -7,7 +7,7 @@ import subprocess
 import time
 from pathlib import Path
 
-from sync_fakes import start_script, wait_for_line
+from .sync_fakes import start_script, wait_for_line
 
 PRELUDE = """
 from j5aio.sync import BaseRobot, BoardGroup

@@ -5,7 +5,6 @@ from __future__ import annotations
 import inspect
 
 import pytest
-from sync_fakes import ScriptedConsoleLog, motor_board, power_board
 
 from j5aio import sync
 from j5aio.backends.console.sr.v4 import (
@@ -18,6 +17,8 @@ from j5aio.components.motor import Motor as CoreMotor
 from j5aio.components.motor import MotorSpecialState
 from j5aio.components.power_output import PowerOutput as CorePowerOutput
 from j5aio.errors import CommunicationError, UnableToObtainLock
+
+from .sync_fakes import ScriptedConsoleLog, motor_board, power_board
 
 
 def test_get_set_pair_is_a_read_write_property() -> None:

@@ -8,9 +8,10 @@ import types
 from pathlib import Path
 
 import pytest
-from sync_fakes import ROOT
 
 from j5aio.sync import _generated
+
+from .sync_fakes import ROOT
 
 GENERATOR_PATH = ROOT / "tools" / "gen_sync.py"
 

@@ -9,7 +9,8 @@ from pathlib import Path
 
 import pytest
 from mypy import api
-from sync_fakes import ROOT
+
+from .sync_fakes import ROOT
 
 GOOD = """
 from j5aio.backends.console.sr.v4 import SRV4MotorBoardConsoleBackend, SRV4PowerBoardConsoleBackend

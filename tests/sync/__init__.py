@@ -1,0 +1,1 @@
+"""Tests of the sync facade, its portal and its generator."""
