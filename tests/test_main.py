@@ -110,7 +110,7 @@ def test_the_parser_is_named_for_python_m() -> None:
 def test_list_prints_each_board_found(
     monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    kit = SimulatedKit(KitConfig(ruggeduinos=1))
+    kit = SimulatedKit(KitConfig())
 
     async def find_in_kit() -> list[FoundBoard]:
         return await REAL_FIND_BOARDS(options=kit_discovery_options(kit))
@@ -122,7 +122,7 @@ def test_list_prints_each_board_found(
         assert str(simulator.serial_number) in text
     assert "Student Robotics v4 Motor Board" in text
     assert f"sim://{kit.name}/SIMMB0" in text
-    assert "6 boards found." in text
+    assert "5 boards found." in text
 
 
 def test_list_says_plainly_when_there_are_none(

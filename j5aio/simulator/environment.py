@@ -51,6 +51,7 @@ from .sr_power_fw3 import SRPowerBoardFw3Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 
 __all__ = [
+    "MINIMUM_TIMEOUT_SCALE",
     "SIMULATED_BACKENDS",
     "SIMULATED_ENVIRONMENT",
     "SBArduinoSimulatedBackend",
@@ -161,9 +162,18 @@ class SimulatedUSBDevice:
         return f"<SimulatedUSBDevice {type(self._simulator).__name__} {self.address}>"
 
 
+#: The least factor applied to the backends' timeouts on the simulated kit. A simulated
+#: board answers at once, so a timeout costs nothing unless something is wrong; but a
+#: timeout scaled to almost nothing (with a kit ``time_scale`` of 0) would fail whenever
+#: the computer is busy.
+MINIMUM_TIMEOUT_SCALE = 0.1
+
+
 def kit_discovery_options(
     kit: SimulatedKit,
     serial_type: type[SerialBoardSimulator] = SerialBoardSimulator,
+    *,
+    timeout_scale: float | None = None,
 ) -> DiscoveryOptions:
     """Return discovery options that find the plugged-in boards of ``kit``.
 
@@ -177,7 +187,12 @@ def kit_discovery_options(
     :param serial_type: list only the serial boards of this simulator class (the
         SourceBots Arduino and the Ruggeduino share their USB IDs, so each simulated
         backend looks at its own kind only).
+    :param timeout_scale: the factor for the backends' timeouts (waiting for a board to
+        boot, say); by default the kit's time scale, but at least
+        :data:`MINIMUM_TIMEOUT_SCALE`.
     """
+    if timeout_scale is None:
+        timeout_scale = max(kit.time_scale, MINIMUM_TIMEOUT_SCALE)
     simulators = {
         port_name(kit, simulator): simulator
         for simulator in kit.serial_simulators()
@@ -211,7 +226,7 @@ def kit_discovery_options(
         ]
 
     return DiscoveryOptions(
-        port_source=list_ports, opener=open_port, usb_finder=find, time_scale=kit.time_scale
+        port_source=list_ports, opener=open_port, usb_finder=find, time_scale=timeout_scale
     )
 
 

@@ -18,6 +18,7 @@ from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.components.motor import MotorSpecialState
 from j5aio.simulator import kit as kit_module
 from j5aio.simulator.environment import (
+    MINIMUM_TIMEOUT_SCALE,
     SIMULATED_BACKENDS,
     SIMULATED_ENVIRONMENT,
     SimulatedUSBDevice,
@@ -165,6 +166,13 @@ async def test_hardware_listing_finds_the_whole_kit_with_kit_discovery_options()
     assert motor.port == port_name(kit, kit.motor_boards[0])
     assert motor.firmware_version == "3"
     assert registry.held() == frozenset()  # listing closes what it opened
+
+
+def test_timeouts_follow_the_kit_time_scale_but_never_vanish() -> None:
+    assert kit_discovery_options(SimulatedKit()).time_scale == MINIMUM_TIMEOUT_SCALE
+    slow = SimulatedKit(KitConfig(time_scale=1.0))
+    assert kit_discovery_options(slow).time_scale == 1.0
+    assert kit_discovery_options(slow, timeout_scale=0.5).time_scale == 0.5
 
 
 def test_usb_stand_in_shows_the_simulator_and_its_place_in_the_kit() -> None:
