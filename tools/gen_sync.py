@@ -51,6 +51,8 @@ WRAPPED_PACKAGES = ("j5aio.components", "j5aio.boards")
 EXTRA_CLASSES = (("j5aio.backends.environment", "Environment"), ("j5aio.robot", "BaseRobot"))
 #: Package searched for module-level Environment objects.
 ENVIRONMENT_PACKAGE = "j5aio.backends"
+#: Modules whose public functions are wrapped when they take or return wrapped objects.
+FUNCTION_MODULES = ("j5aio.environments",)
 #: Packages never imported by discovery (hardware needs optional libraries at import).
 SKIPPED_PACKAGES = ("j5aio.sync",)
 
@@ -72,6 +74,8 @@ class Discovery:
     classes: list[type] = field(default_factory=list)
     environments: dict[str, tuple[str, str]] = field(default_factory=dict)
     """Exported name -> (module, attribute) of each environment object."""
+    functions: list[Callable[..., Any]] = field(default_factory=list)
+    """Module-level functions that take or return wrapped objects."""
 
 
 def _walk(package_name: str) -> list[types.ModuleType]:
@@ -120,6 +124,15 @@ def discover() -> Discovery:
                     raise RuntimeError(f"two environments are both called {name}")
                 seen[id(obj)] = name
                 discovery.environments[name] = (module.__name__, name)
+    for module_name in FUNCTION_MODULES:
+        module = importlib.import_module(module_name)
+        for name, obj in vars(module).items():
+            if (
+                inspect.isfunction(obj)
+                and obj.__module__ == module_name
+                and not name.startswith("_")
+            ):
+                discovery.functions.append(obj)
     return discovery
 
 
@@ -406,7 +419,7 @@ def _is_setter(func: Any) -> bool:
 class _ClassWriter:
     """Writes the wrapper class of one core class."""
 
-    def __init__(self, renderer: _Renderer, cls: type) -> None:
+    def __init__(self, renderer: _Renderer, cls: Any) -> None:
         self.r = renderer
         self.cls = cls
         self.module = cls.__module__
@@ -568,6 +581,21 @@ class _ClassWriter:
             "    ", name, ["self", f"{value_name}: {self.r.render(annotation)}"], "None",
         )
         lines.append("        " + body.format(value=value))
+        return lines
+
+    def module_function(self, func: Callable[..., Any]) -> list[str] | None:
+        """A module-level function, if its signature mentions a wrapped class."""
+        hints = self.hints(func)
+        if not any(self.r.mentions_wrapped(h) for h in hints.values()):
+            return None
+        decls, call, returns = self.signature(func, skip_first=False)
+        target = f"{self.r.module_ref(func.__module__)}.{func.__name__}"
+        expr = f"{target}({', '.join(call)})"
+        if _is_coroutine_function(func):
+            expr = f"_call({', '.join([target, *call])})"
+        lines = self.def_line("", func.__name__, decls, self.r.render(returns))
+        lines += _docstring(inspect.getdoc(func), "    ", f"Call ``{func.__name__}``.")
+        lines.append(self.body_line("    ", self.result_expr(expr, returns, None), returns))
         return lines
 
     def getter_property(self, prop: str, getter: Any, setter: Any | None) -> list[str]:
@@ -832,10 +860,17 @@ def render_module(discovery: Discovery) -> str:
         ref = f"{renderer.module_ref(module)}.{attribute}"
         environment_lines.append(f'{name}: Final[Environment] = cast("Environment", _wrap({ref}))')
         environment_lines.append(f'"""The sync face of ``{module}.{attribute}``."""')
+    functions: list[str] = []
+    function_names: list[str] = []
+    for func in discovery.functions:
+        function_lines = _ClassWriter(renderer, func).module_function(func)
+        if function_lines is not None:
+            functions.append("\n".join(function_lines))
+            function_names.append(func.__name__)
     renderer.used_typing.update({"Any", "Final", "Self", "cast"})
 
     exported = sorted(
-        [*renderer.wrapped.values(), *discovery.environments],
+        [*renderer.wrapped.values(), *discovery.environments, *function_names],
         key=lambda n: (0 if n.isupper() else 1 if n[0].isupper() else 2, n),
     )
     out = [HEADER]
@@ -861,6 +896,10 @@ def render_module(discovery: Discovery) -> str:
     out.append("")
     out += list(renderer.typevar_defs.values())
     for body in bodies:
+        out.append("")
+        out.append("")
+        out.append(body)
+    for body in functions:
         out.append("")
         out.append("")
         out.append(body)

@@ -38,6 +38,7 @@ import j5aio.components.power_output as _components_power_output
 import j5aio.components.rgb_led as _components_rgb_led
 import j5aio.components.servo as _components_servo
 import j5aio.components.string_command as _components_string_command
+import j5aio.environments as _environments
 import j5aio.robot as _robot
 from j5aio.sync._runtime import call as _call
 from j5aio.sync._wrapping import SyncWrapper as _SyncWrapper
@@ -76,6 +77,11 @@ __all__ = [
     "StringCommandComponent",
     "UltrasoundSensor",
     "UltrasoundSensors",
+    "console_environment",
+    "get_default_environment",
+    "get_environment",
+    "hardware_environment",
+    "simulated_environment",
 ]
 
 BoardT = TypeVar("BoardT", bound="Board", covariant=True)
@@ -1500,6 +1506,38 @@ class StringCommandComponent(IdentifiedComponent[_components_string_command.Stri
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         return _call(self._core.execute, command)
+
+
+def hardware_environment() -> Environment:
+    """The environment of the boards plugged into this computer."""
+    return cast("Environment", _wrap(_environments.hardware_environment()))
+
+
+def console_environment() -> Environment:
+    """The environment that prints what boards would do and asks for their readings."""
+    return cast("Environment", _wrap(_environments.console_environment()))
+
+
+def simulated_environment() -> Environment:
+    """The environment of the simulated kit (see :mod:`j5aio.simulator.environment`)."""
+    return cast("Environment", _wrap(_environments.simulated_environment()))
+
+
+def get_environment(name: str) -> Environment:
+    """Return the environment called ``name``: ``"hardware"``, ``"sim"`` or ``"console"``.
+
+    :raises TypeError: ``name`` is not a string.
+    :raises ValueError: ``name`` is not one of those.
+    """
+    return cast("Environment", _wrap(_environments.get_environment(name)))
+
+
+def get_default_environment() -> Environment:
+    """Return the environment named by ``J5AIO_ENV``, or the hardware one when it is unset.
+
+    :raises ValueError: ``J5AIO_ENV`` names no environment (the message lists the choices).
+    """
+    return cast("Environment", _wrap(_environments.get_default_environment()))
 
 
 _register(_backends_environment.Environment, Environment)

@@ -14,14 +14,16 @@ EXAMPLES = ROOT / "examples"
 SAFE_POWER_BOARD = [f"PowerBoard(SERIAL): Setting output {n} to False" for n in range(6)]
 
 
-def run_example(name: str, stdin: str) -> subprocess.CompletedProcess[str]:
+def run_example(
+    name: str, stdin: str, **environ: str,
+) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
         [sys.executable, str(EXAMPLES / name)],
         input=stdin,
         capture_output=True,
         text=True,
         timeout=30,
-        env=child_env(),
+        env={**child_env(), **environ},
         cwd=ROOT,
         check=False,
     )
@@ -29,7 +31,7 @@ def run_example(name: str, stdin: str) -> subprocess.CompletedProcess[str]:
 
 def test_every_sync_example_is_tested() -> None:
     tested = {"sync_blink_run_led.py", "sync_drive_forward.py", "sync_start_and_buzz.py",
-              "sync_read_battery.py", "sync_j5_compat.py"}
+              "sync_read_battery.py", "sync_j5_compat.py", "sync_any_kit.py"}
     assert {path.name for path in EXAMPLES.glob("sync_*.py")} == tested
 
 
@@ -98,3 +100,21 @@ def test_the_j5_program_prints_what_j5_would() -> None:
         "MotorBoard(SERIAL): Setting motor 0 to BRAKE.",
         "MotorBoard(SERIAL): Setting motor 1 to BRAKE.",
     ]
+
+
+def test_any_kit_on_the_console() -> None:
+    result = run_example("sync_any_kit.py", "12.2\n", J5AIO_ENV="console")
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[0] == "Using the ConsoleEnvironment."
+    assert "Battery: 12.2 V" in result.stdout
+    assert "Motors: MotorSpecialState.BRAKE, MotorSpecialState.BRAKE" in lines
+
+
+def test_any_kit_on_the_simulated_kit() -> None:
+    result = run_example("sync_any_kit.py", "", J5AIO_ENV="sim")
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[0] == "Using the SimulatedEnvironment."
+    assert lines[1].startswith("Battery: ")
+    assert lines[2] == "Motors: MotorSpecialState.BRAKE, MotorSpecialState.BRAKE"

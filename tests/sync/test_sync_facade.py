@@ -197,3 +197,16 @@ def test_sync_package_exports_what_j5_does() -> None:
     for name in ("BaseRobot", "BoardGroup", "Environment", "Board", "shutdown", "__version__"):
         assert name in sync.__all__
         assert hasattr(sync, name)
+
+
+def test_environment_functions_return_the_sync_environments(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    assert sync.get_environment("console") is sync.CONSOLE_ENVIRONMENT
+    assert sync.console_environment() is sync.CONSOLE_ENVIRONMENT
+    assert sync.hardware_environment() is sync.HARDWARE_ENVIRONMENT
+    assert isinstance(sync.simulated_environment(), sync.Environment)
+    monkeypatch.setenv("J5AIO_ENV", "console")
+    assert sync.get_default_environment() is sync.CONSOLE_ENVIRONMENT
+    with pytest.raises(ValueError, match="choose one of"):
+        sync.get_environment("moon")
