@@ -22,10 +22,14 @@ from __future__ import annotations
 import os
 import sys
 from collections.abc import Callable
+from functools import cache
 from pathlib import Path
-from typing import Final, TextIO
+from typing import Final, TextIO, TypeVar
 
 from j5aio.backends.environment import Environment
+from j5aio.boards.board import Board
+from j5aio.boards.board_group import BoardGroup
+from j5aio.errors import CommunicationError
 
 __all__ = [
     "ENVIRONMENT_NAMES",
@@ -47,6 +51,8 @@ ENVIRONMENT_VARIABLE: Final = "J5AIO_ENV"
 ENVIRONMENT_NAMES: Final = ("hardware", "sim", "console")
 
 _hint_shown = False
+
+BoardT = TypeVar("BoardT", bound=Board)
 
 
 def hardware_environment() -> Environment:
@@ -99,14 +105,43 @@ def environment_was_chosen() -> bool:
     return bool(os.environ.get(ENVIRONMENT_VARIABLE, "").strip())
 
 
+class _HardwareByDefault(Environment):
+    """The hardware environment, used because nothing chose another.
+
+    It shares the hardware environment's backends. When the hardware cannot even be
+    looked at (no USB library, say), it prints :func:`no_hardware_hint` before the error.
+    """
+
+    def __init__(self, hardware: Environment) -> None:
+        super().__init__(hardware.name)
+        self.board_backend_mapping = hardware.board_backend_mapping
+
+    async def get_board_group(self, board: type[BoardT]) -> BoardGroup[BoardT]:
+        """Find every ``board`` on the hardware; see :meth:`Environment.get_board_group`."""
+        try:
+            return await super().get_board_group(board)
+        except CommunicationError:
+            hint_no_hardware()
+            raise
+
+
+@cache
+def _hardware_by_default() -> Environment:
+    return _HardwareByDefault(hardware_environment())
+
+
 def get_default_environment() -> Environment:
     """Return the environment named by ``J5AIO_ENV``, or the hardware one when it is unset.
+
+    With ``J5AIO_ENV`` unset, the environment returned drives the same backends as
+    :func:`hardware_environment`, and if the hardware cannot be looked at it first prints
+    one line saying how to run on the simulated kit instead.
 
     :raises ValueError: ``J5AIO_ENV`` names no environment (the message lists the choices).
     """
     name = os.environ.get(ENVIRONMENT_VARIABLE, "").strip()
     if not name:
-        return hardware_environment()
+        return _hardware_by_default()
     try:
         return get_environment(name)
     except ValueError:

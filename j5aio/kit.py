@@ -20,7 +20,6 @@ from j5aio.boards.board_group import BoardGroup
 from j5aio.boards.sb import SBArduinoBoard
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
 from j5aio.environments import get_default_environment, hint_no_hardware
-from j5aio.errors import CommunicationError
 from j5aio.robot import BaseRobot
 
 __all__ = ["KitRobot"]
@@ -71,19 +70,15 @@ class KitRobot(BaseRobot):
 
         :raises CommunicationError: there is not exactly one power board, or a board
             could not be reached. When the hardware was looked at only by default and
-            nothing was found, one line says how to run on the simulated kit instead.
+            nothing was found (or it could not be looked at), one line says how to run
+            on the simulated kit instead.
         """
         environment = self.environment
-        try:
-            self.power_boards = await environment.get_board_group(PowerBoard)
-            self.motor_boards = await environment.get_board_group(MotorBoard)
-            self.servo_boards = await environment.get_board_group(ServoBoard)
-            self.arduinos = await environment.get_board_group(SBArduinoBoard)
-            self.ruggeduinos = await environment.get_board_group(Ruggeduino)
-        except CommunicationError:
-            # E.g. no USB library: the hardware cannot even be looked at.
-            self._hint_if_by_default()
-            raise
+        self.power_boards = await environment.get_board_group(PowerBoard)
+        self.motor_boards = await environment.get_board_group(MotorBoard)
+        self.servo_boards = await environment.get_board_group(ServoBoard)
+        self.arduinos = await environment.get_board_group(SBArduinoBoard)
+        self.ruggeduinos = await environment.get_board_group(Ruggeduino)
         groups = (
             self.power_boards,
             self.motor_boards,
@@ -91,10 +86,6 @@ class KitRobot(BaseRobot):
             self.arduinos,
             self.ruggeduinos,
         )
-        if not any(groups):
-            self._hint_if_by_default()
-        self.power_board = self.power_boards.singular()
-
-    def _hint_if_by_default(self) -> None:
-        if self._chosen_by_default:
+        if self._chosen_by_default and not any(groups):
             hint_no_hardware()
+        self.power_board = self.power_boards.singular()

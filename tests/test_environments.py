@@ -4,12 +4,16 @@ from __future__ import annotations
 
 import io
 import sys
+from collections.abc import Sequence
 
 import pytest
 
 from j5aio import environments
 from j5aio.backends.console import CONSOLE_ENVIRONMENT
+from j5aio.backends.environment import Environment
 from j5aio.backends.hardware.env import HARDWARE_ENVIRONMENT
+from j5aio.boards.board import Board
+from j5aio.boards.sr.v4 import MotorBoard, PowerBoard
 from j5aio.environments import (
     ENVIRONMENT_VARIABLE,
     environment_was_chosen,
@@ -18,7 +22,9 @@ from j5aio.environments import (
     hint_no_hardware,
     no_hardware_hint,
 )
-from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+from j5aio.errors import CommunicationError
+from j5aio.simulator.environment import SIMULATED_ENVIRONMENT, SRV4PowerBoardSimulatedBackend
+from j5aio.simulator.kit import KitConfig, use_kit
 
 
 @pytest.fixture(autouse=True)
@@ -53,11 +59,60 @@ def test_a_name_must_be_a_string() -> None:
 
 
 def test_hardware_is_the_default(monkeypatch: pytest.MonkeyPatch) -> None:
-    assert get_default_environment() is HARDWARE_ENVIRONMENT
+    default = get_default_environment()
+    assert default.name == HARDWARE_ENVIRONMENT.name
+    assert default.board_backend_mapping is HARDWARE_ENVIRONMENT.board_backend_mapping
     assert not environment_was_chosen()
     monkeypatch.setenv(ENVIRONMENT_VARIABLE, "  ")
-    assert get_default_environment() is HARDWARE_ENVIRONMENT
+    assert get_default_environment() is default
     assert not environment_was_chosen()
+
+
+class UnreachablePowerBoardBackend(SRV4PowerBoardSimulatedBackend):
+    """A power board backend whose bus cannot be scanned (no USB library, say)."""
+
+    @classmethod
+    async def discover(cls, **kwargs: object) -> Sequence[Board]:
+        raise CommunicationError("pyusb found no libusb backend")
+
+
+def unreachable_hardware() -> Environment:
+    environment = Environment("HardwareEnvironment")
+    environment.register_backend(UnreachablePowerBoardBackend)
+    return environment
+
+
+async def test_hardware_that_cannot_be_looked_at_by_default_gets_the_hint(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.setattr(environments, "hardware_environment", unreachable_hardware)
+    monkeypatch.setattr(
+        environments, "_hardware_by_default", environments._hardware_by_default.__wrapped__
+    )
+    with pytest.raises(CommunicationError, match="libusb"):
+        await get_default_environment().get_board_group(PowerBoard)
+    assert capsys.readouterr().err.startswith("j5aio: no boards found.")
+
+
+async def test_hardware_chosen_explicitly_gets_no_hint(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.setattr(environments, "hardware_environment", unreachable_hardware)
+    monkeypatch.setenv(ENVIRONMENT_VARIABLE, "hardware")
+    with pytest.raises(CommunicationError, match="libusb"):
+        await get_default_environment().get_board_group(PowerBoard)
+    assert capsys.readouterr().err == ""
+
+
+async def test_boards_found_by_default_are_the_hardware_backends_boards() -> None:
+    kit = use_kit(KitConfig(motor_boards=1))
+    try:
+        default = environments._HardwareByDefault(SIMULATED_ENVIRONMENT)
+        group = await default.get_board_group(MotorBoard)
+        assert [board.serial_number for board in group] == [kit.motor_boards[0].serial_number]
+    finally:
+        for board in list(Board.BOARDS):
+            await board.close()
 
 
 @pytest.mark.parametrize(
