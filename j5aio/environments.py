@@ -15,6 +15,9 @@ unset or ``hardware``   the boards plugged into this computer
 
 When a program looked for real boards only because nobody chose otherwise, and found none,
 :func:`hint_no_hardware` prints one line saying how to try the program without hardware.
+The hardware environment that :func:`get_default_environment` returns when ``J5AIO_ENV``
+is unset drives the same backends as :func:`hardware_environment`, and prints that line
+itself when the hardware cannot even be looked at (no USB library, say).
 """
 
 from __future__ import annotations
@@ -132,10 +135,6 @@ def _hardware_by_default() -> Environment:
 
 def get_default_environment() -> Environment:
     """Return the environment named by ``J5AIO_ENV``, or the hardware one when it is unset.
-
-    With ``J5AIO_ENV`` unset, the environment returned drives the same backends as
-    :func:`hardware_environment`, and if the hardware cannot be looked at it first prints
-    one line saying how to run on the simulated kit instead.
 
     :raises ValueError: ``J5AIO_ENV`` names no environment (the message lists the choices).
     """
