@@ -1,15 +1,27 @@
-"""The conformance suites, run against every hardware backend, each over a board simulator.
+"""The conformance suites, run against every hardware and every simulated-environment backend.
 
-Serial backends get a :class:`SimulatorStream` wrapped in a :class:`RecordingStream` (so
-the suites check that refused calls send nothing); USB backends get the simulator as
-their pyusb device. The suites observe and feed the boards through the simulators.
+Each suite runs twice, with the board from two sources:
+
+``direct``
+    the hardware backend connected straight to a fresh board simulator: serial backends
+    through a :class:`SimulatorStream` wrapped in a :class:`RecordingStream` (so the
+    suites check that refused calls send nothing), USB backends with the simulator as
+    their pyusb device;
+``sim-env``
+    the simulated environment's backend, its board found by the environment's own
+    discovery in the plugin's ``j5aio_sim_kit``.
+
+Either way the suites observe and feed the boards through the simulators. The Ruggeduino
+string command runs directly only, against a team's own firmware: the kit's Ruggeduino
+runs SR's firmware, which has no string commands.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Awaitable, Callable, Sequence
+from dataclasses import dataclass
 from datetime import timedelta
-from typing import Any
+from typing import Any, Generic, TypeVar
 
 import anyio
 import pytest
@@ -26,12 +38,14 @@ from j5aio.backends.hardware.transports.memory import SerialSimulatorLike, Simul
 from j5aio.backends.hardware.usb_backend import USBHardwareBackend
 from j5aio.boards.arduino.uno import ArduinoUno
 from j5aio.boards.board import Board
-from j5aio.components.derived.ultrasound import UltrasoundInterface
+from j5aio.boards.sb.arduino import SBArduinoBoard
+from j5aio.boards.sr.v4.motor_board import MotorBoard
+from j5aio.boards.sr.v4.power_board import PowerBoard
+from j5aio.boards.sr.v4.ruggeduino import Ruggeduino
+from j5aio.boards.sr.v4.servo_board import ServoBoard
 from j5aio.components.gpio_pin import GPIOPinInterface, GPIOPinMode
-from j5aio.components.led import LEDInterface
-from j5aio.components.motor import MotorInterface, MotorSpecialState, MotorState
-from j5aio.components.servo import ServoInterface, ServoPosition
-from j5aio.components.string_command import StringCommandComponentInterface
+from j5aio.components.motor import MotorSpecialState, MotorState
+from j5aio.components.servo import ServoPosition
 from j5aio.errors import NotSupportedByHardwareError
 from j5aio.simulator import (
     MotorMode,
@@ -43,6 +57,8 @@ from j5aio.simulator import (
 )
 from j5aio.simulator.arduino_base import ArduinoBoardSimulator
 from j5aio.simulator.base import UsbBoardSimulator
+from j5aio.simulator.environment import SIMULATED_BACKENDS
+from j5aio.testing import OpenSimulatedKit
 from j5aio.testing.conformance import (
     BatterySensorInterfaceConformance,
     BatterySensorSubject,
@@ -68,6 +84,20 @@ from j5aio.testing.conformance import (
 from j5aio.testing.conformance.gpio_pin import pin_modes
 from j5aio.testing.transports import RecordingStream
 
+pytestmark = pytest.mark.j5aio_kit(
+    power_boards=1, motor_boards=1, servo_boards=1, sb_arduinos=1, ruggeduinos=1,
+)
+
+SimT = TypeVar("SimT")
+
+
+def test_every_simulated_backend_is_a_hardware_backend_tested_here() -> None:
+    tested = {
+        SRV4PowerBoardHardwareBackend, SRV4MotorBoardHardwareBackend,
+        SRV4ServoBoardHardwareBackend, SRV4RuggeduinoHardwareBackend, SBArduinoHardwareBackend,
+    }
+    assert {backend.__mro__[1] for backend in SIMULATED_BACKENDS} == tested
+
 
 async def over_simulator(
     backend_class: type[SerialHardwareBackend], simulator: SerialSimulatorLike,
@@ -82,20 +112,6 @@ async def over_simulator(
     return board, stream
 
 
-def backend_as(board: Board, interface: type) -> Any:
-    """The backend of ``board``, checked to implement ``interface``."""
-    backend = board.backend
-    assert isinstance(backend, interface)
-    return backend
-
-
-async def led_ready(board: Board) -> Any:
-    """The LED backend of an Arduino, with the LED's pin (13) made an output as it needs."""
-    backend = backend_as(board, GPIOPinInterface)
-    await backend.set_gpio_pin_mode(13, GPIOPinMode.DIGITAL_OUTPUT)
-    return backend_as(board, LEDInterface)
-
-
 async def from_usb(backend_class: type[USBHardwareBackend], simulator: UsbBoardSimulator) -> Board:
     """Connect a USB backend to ``simulator`` (as its pyusb device) and set its board up."""
     board = await backend_class.from_usb_device(simulator)
@@ -103,121 +119,173 @@ async def from_usb(backend_class: type[USBHardwareBackend], simulator: UsbBoardS
     return board
 
 
+async def kit_owns_it() -> None:
+    """Nothing to release: the j5aio_sim_kit fixture closes the kit's boards."""
+
+
+@dataclass
+class Connected(Generic[SimT]):
+    """A set-up board under test, the simulator behind it, and how to release it."""
+
+    board: Board
+    sim: SimT
+    cleanup: Callable[[], Awaitable[None]]
+    traffic: Callable[[], bytes] | None = None
+
+    @property
+    def backend(self) -> Any:
+        return self.board.backend
+
+    def subject_args(self) -> dict[str, Any]:
+        """The arguments every subject takes from here."""
+        return {"backend": self.backend, "traffic": self.traffic, "cleanup": self.cleanup}
+
+
+class FromEitherSource:
+    """Gives each test its board from both sources: ``direct`` and ``sim-env``."""
+
+    kit: OpenSimulatedKit | None
+
+    @pytest.fixture(autouse=True, params=["direct", "sim-env"])
+    def _source(self, request: pytest.FixtureRequest) -> None:
+        self.kit = request.getfixturevalue("j5aio_sim_kit") if request.param == "sim-env" else None
+
+    def from_kit(self, board_type: type[Board], sims: Sequence[SimT]) -> Connected[SimT]:
+        assert self.kit is not None
+        board = self.kit.group(board_type)[0]
+        assert type(board.backend) in SIMULATED_BACKENDS
+        return Connected(board, sims[0], kit_owns_it)
+
+    async def usb(
+        self,
+        backend_class: type[USBHardwareBackend],
+        sim: SimT,
+        sims: Callable[[], Sequence[SimT]],
+    ) -> Connected[SimT]:
+        if self.kit is not None:
+            return self.from_kit(backend_class.board, sims())
+        board = await from_usb(backend_class, sim)  # type: ignore[arg-type]
+        return Connected(board, sim, board.close)
+
+    async def serial(
+        self,
+        backend_class: type[SerialHardwareBackend],
+        sim: SimT,
+        sims: Callable[[], Sequence[SimT]],
+    ) -> Connected[SimT]:
+        if self.kit is not None:
+            return self.from_kit(backend_class.board, sims())
+        board, stream = await over_simulator(backend_class, sim)  # type: ignore[arg-type]
+        return Connected(board, sim, board.close, lambda: stream.sent)
+
+    def kit_sims(self) -> OpenSimulatedKit:
+        assert self.kit is not None
+        return self.kit
+
+
 # --- SR v4 power board (USB, firmware 3) ----------------------------------------------
 
 
-class PowerBoardSuite:
-    sim: SRPowerBoardFw3Simulator
-
-    board: Board
-
-    async def power_board(self) -> SRV4PowerBoardHardwareBackend:
-        self.sim = SRPowerBoardFw3Simulator("SIMPB0")
-        self.board = await from_usb(SRV4PowerBoardHardwareBackend, self.sim)
-        assert isinstance(self.board.backend, SRV4PowerBoardHardwareBackend)
-        return self.board.backend
+class PowerBoardSuite(FromEitherSource):
+    async def power_board(self) -> Connected[SRPowerBoardFw3Simulator]:
+        return await self.usb(
+            SRV4PowerBoardHardwareBackend, SRPowerBoardFw3Simulator("SIMPB0"),
+            lambda: self.kit_sims().kit.power_boards,
+        )
 
 
-class TestPowerBoardHardwareOutputs(PowerBoardSuite, PowerOutputInterfaceConformance):
+class TestPowerBoardOutputs(PowerBoardSuite, PowerOutputInterfaceConformance):
     async def make_backend(self) -> PowerOutputSubject:
+        it = await self.power_board()
+
         async def observe(identifier: int) -> bool:
-            return self.sim.outputs[identifier]
+            return it.sim.outputs[identifier]
 
         async def set_current(identifier: int, amps: float) -> None:
-            self.sim.set_output_current(identifier, amps)
+            it.sim.set_output_current(identifier, amps)
 
         return PowerOutputSubject(
-            backend=await self.power_board(), identifiers=range(6),
-            observe=observe, set_current=set_current, cleanup=self.board.close,
+            **it.subject_args(), identifiers=range(6), observe=observe, set_current=set_current,
         )
 
 
-class TestPowerBoardHardwareLEDs(PowerBoardSuite, LEDInterfaceConformance):
+class TestPowerBoardLEDs(PowerBoardSuite, LEDInterfaceConformance):
     async def make_backend(self) -> LEDSubject:
+        it = await self.power_board()
+
         async def observe(identifier: int) -> bool:
-            return self.sim.run_led if identifier == 0 else self.sim.error_led
+            return it.sim.run_led if identifier == 0 else it.sim.error_led
 
-        return LEDSubject(
-            backend=await self.power_board(), identifiers=[0, 1], observe=observe,
-            cleanup=self.board.close,
-        )
+        return LEDSubject(**it.subject_args(), identifiers=[0, 1], observe=observe)
 
 
-class TestPowerBoardHardwareButton(PowerBoardSuite, ButtonInterfaceConformance):
+class TestPowerBoardButton(PowerBoardSuite, ButtonInterfaceConformance):
     async def make_backend(self) -> ButtonSubject:
-        backend = await self.power_board()
+        it = await self.power_board()
 
         async def set_pressed(identifier: int, pressed: bool) -> None:
-            if pressed:
-                self.sim.press_start()
-            else:
-                self.sim.release_start()
+            (it.sim.press_start if pressed else it.sim.release_start)()
 
         async def press(identifier: int) -> None:
             # Held long enough for the backend's polling to see it, as a finger would be.
-            self.sim.press_start()
-            await anyio.sleep(backend.BUTTON_POLL_INTERVAL * 3)
-            self.sim.release_start()
+            it.sim.press_start()
+            await anyio.sleep(it.backend.BUTTON_POLL_INTERVAL * 3)
+            it.sim.release_start()
 
         return ButtonSubject(
-            backend=backend, identifiers=[0], set_pressed=set_pressed, press=press,
-            cleanup=self.board.close,
+            **it.subject_args(), identifiers=[0], set_pressed=set_pressed, press=press,
         )
 
 
-class TestPowerBoardHardwareBattery(PowerBoardSuite, BatterySensorInterfaceConformance):
+class TestPowerBoardBattery(PowerBoardSuite, BatterySensorInterfaceConformance):
     async def make_backend(self) -> BatterySensorSubject:
+        it = await self.power_board()
+
         async def set_reading(identifier: int, volts: float, amps: float) -> None:
-            self.sim.battery_voltage = volts
-            self.sim.battery_current = amps
+            it.sim.battery_voltage = volts
+            it.sim.battery_current = amps
 
-        return BatterySensorSubject(
-            backend=await self.power_board(), identifiers=[0], set_reading=set_reading,
-            cleanup=self.board.close,
-        )
+        return BatterySensorSubject(**it.subject_args(), identifiers=[0], set_reading=set_reading)
 
 
-class TestPowerBoardHardwarePiezo(PowerBoardSuite, PiezoInterfaceConformance):
+class TestPowerBoardPiezo(PowerBoardSuite, PiezoInterfaceConformance):
     async def make_backend(self) -> PiezoSubject:
+        it = await self.power_board()
+
         async def observe(identifier: int) -> Sequence[tuple[timedelta, float]]:
             return [
                 (timedelta(milliseconds=note.duration_ms), float(note.frequency))
-                for note in self.sim.note_queue
+                for note in it.sim.note_queue
             ]
 
-        return PiezoSubject(
-            backend=await self.power_board(), identifiers=[0], observe=observe,
-            cleanup=self.board.close,
-        )
+        return PiezoSubject(**it.subject_args(), identifiers=[0], observe=observe)
 
 
-# --- SR v4 servo board (USB, firmware 2) ----------------------------------------------
+# --- SR v4 servo board (USB, firmware 2) and motor board (serial, firmware 3) --------------
 
 
-class TestServoBoardHardware(ServoInterfaceConformance):
+class TestServoBoard(FromEitherSource, ServoInterfaceConformance):
     async def make_backend(self) -> ServoSubject:
-        sim = SRServoBoardFw2Simulator("SIMSB0")
-        board = await from_usb(SRV4ServoBoardHardwareBackend, sim)
+        it = await self.usb(
+            SRV4ServoBoardHardwareBackend, SRServoBoardFw2Simulator("SIMSB0"),
+            lambda: self.kit_sims().kit.servo_boards,
+        )
 
         async def observe(identifier: int) -> ServoPosition:
-            return sim.positions[identifier] / 100
+            return it.sim.positions[identifier] / 100
 
-        return ServoSubject(
-            backend=backend_as(board, ServoInterface), identifiers=range(12), observe=observe,
-            cleanup=board.close,
+        return ServoSubject(**it.subject_args(), identifiers=range(12), observe=observe)
+
+
+class TestMotorBoard(FromEitherSource, MotorInterfaceConformance):
+    async def make_backend(self) -> MotorSubject:
+        it = await self.serial(
+            SRV4MotorBoardHardwareBackend, SRMotorBoardFw3Simulator("SIMMB0"),
+            lambda: self.kit_sims().kit.motor_boards,
         )
 
-
-# --- SR v4 motor board (serial, firmware 3) -------------------------------------------
-
-
-class TestMotorBoardHardware(MotorInterfaceConformance):
-    async def make_backend(self) -> MotorSubject:
-        sim = SRMotorBoardFw3Simulator("SIMMB0")
-        board, stream = await over_simulator(SRV4MotorBoardHardwareBackend, sim)
-
         async def observe(identifier: int) -> MotorState:
-            output = sim.motors[identifier]
+            output = it.sim.motors[identifier]
             if output.mode is MotorMode.BRAKE:
                 return MotorSpecialState.BRAKE
             if output.mode is MotorMode.COAST:
@@ -227,71 +295,112 @@ class TestMotorBoardHardware(MotorInterfaceConformance):
             sign = -1 if output.mode is MotorMode.REVERSE else 1
             return sign * output.steps / 125
 
-        return MotorSubject(
-            backend=backend_as(board, MotorInterface), identifiers=[0, 1], observe=observe,
-            traffic=lambda: stream.sent, cleanup=board.close,
-        )
+        return MotorSubject(**it.subject_args(), identifiers=[0, 1], observe=observe)
 
 
 # --- Arduinos (serial) ----------------------------------------------------------------
 
 
-def arduino_pins(
-    board: Board, stream: RecordingStream, sim: ArduinoBoardSimulator, analogue_pins: range,
-) -> GPIOPinSubject:
-    """The pins of a set-up Arduino board, with the modes its backend supports.
+class ArduinoSuite(FromEitherSource):
+    backend_class: type[SerialHardwareBackend]
+    #: The pins the firmware reads analogue values on.
+    analogue_pins: range
 
-    That is fewer than the board claims: see test_backends_take_every_mode_the_board_claims.
-    """
-    assert isinstance(board, ArduinoUno)
-    modes = {
-        pin: claimed if pin < board.FIRST_ANALOGUE_PIN
-        else claimed & {GPIOPinMode.ANALOGUE_INPUT} if pin in analogue_pins
-        else frozenset()
-        for pin, claimed in pin_modes(board.pins).items()
-    }
-
-    async def observe_output(identifier: int) -> bool:
-        return sim.output_level(identifier)
-
-    async def set_input(identifier: int, high: bool) -> None:
-        sim.set_input_level(identifier, high)
-
-    async def set_voltage(identifier: int, volts: float) -> None:
-        sim.set_analogue(identifier, volts=volts)
-
-    return GPIOPinSubject(
-        backend=backend_as(board, GPIOPinInterface), identifiers=sorted(board.pins), modes=modes,
-        traffic=lambda: stream.sent, cleanup=board.close,
-        observe_output=observe_output, set_input=set_input, set_voltage=set_voltage,
-    )
+    async def arduino(self) -> Connected[ArduinoBoardSimulator]:
+        sim: ArduinoBoardSimulator
+        if self.backend_class is SRV4RuggeduinoHardwareBackend:
+            sim = SRRuggeduinoSimulator("SIMRD0")
+            return await self.serial(
+                self.backend_class, sim, lambda: self.kit_sims().kit.ruggeduinos,
+            )
+        sim = SBArduinoSimulator("SIMSBA0")
+        return await self.serial(self.backend_class, sim, lambda: self.kit_sims().kit.sb_arduinos)
 
 
-class RuggeduinoSuite:
-    sim: SRRuggeduinoSimulator
-
-    async def ruggeduino(self) -> tuple[Board, RecordingStream]:
-        self.sim = SRRuggeduinoSimulator("SIMRD0")
-        return await over_simulator(SRV4RuggeduinoHardwareBackend, self.sim)
-
-
-class TestRuggeduinoHardwarePins(RuggeduinoSuite, GPIOPinInterfaceConformance):
+class ArduinoPins(ArduinoSuite, GPIOPinInterfaceConformance):
     async def make_backend(self) -> GPIOPinSubject:
-        board, stream = await self.ruggeduino()
-        return arduino_pins(board, stream, self.sim, range(14, 20))
+        it = await self.arduino()
+        assert isinstance(it.board, ArduinoUno)
+
+        async def observe_output(identifier: int) -> bool:
+            return it.sim.output_level(identifier)
+
+        async def set_input(identifier: int, high: bool) -> None:
+            it.sim.set_input_level(identifier, high)
+
+        async def set_voltage(identifier: int, volts: float) -> None:
+            it.sim.set_analogue(identifier, volts=volts)
+
+        # The modes the backends support: fewer than the board claims on pins 14 to 19
+        # (see test_backends_take_every_mode_the_board_claims).
+        modes = {
+            pin: claimed if pin < it.board.FIRST_ANALOGUE_PIN
+            else claimed & {GPIOPinMode.ANALOGUE_INPUT} if pin in self.analogue_pins
+            else frozenset()
+            for pin, claimed in pin_modes(it.board.pins).items()
+        }
+        return GPIOPinSubject(
+            **it.subject_args(), identifiers=sorted(modes), modes=modes,
+            observe_output=observe_output, set_input=set_input, set_voltage=set_voltage,
+        )
 
 
-class TestRuggeduinoHardwareLED(RuggeduinoSuite, LEDInterfaceConformance):
+class ArduinoLED(ArduinoSuite, LEDInterfaceConformance):
     async def make_backend(self) -> LEDSubject:
-        board, stream = await self.ruggeduino()
+        it = await self.arduino()
+        # The LED is on pin 13, which must be an output for the LED to work.
+        await it.backend.set_gpio_pin_mode(13, GPIOPinMode.DIGITAL_OUTPUT)
 
         async def observe(identifier: int) -> bool:
-            return self.sim.output_level(13)
+            return it.sim.output_level(13)
 
-        return LEDSubject(
-            backend=await led_ready(board), identifiers=[0], observe=observe,
-            traffic=lambda: stream.sent, cleanup=board.close,
+        return LEDSubject(**it.subject_args(), identifiers=[0], observe=observe)
+
+
+class TestRuggeduinoPins(ArduinoPins):
+    backend_class = SRV4RuggeduinoHardwareBackend
+    analogue_pins = range(14, 20)
+
+
+class TestRuggeduinoLED(ArduinoLED):
+    backend_class = SRV4RuggeduinoHardwareBackend
+
+
+class TestSBArduinoPins(ArduinoPins):
+    backend_class = SBArduinoHardwareBackend
+    analogue_pins = range(14, 18)
+
+
+class TestSBArduinoLED(ArduinoLED):
+    backend_class = SBArduinoHardwareBackend
+
+
+class TestSBArduinoServos(ArduinoSuite, ServoInterfaceConformance):
+    backend_class = SBArduinoHardwareBackend
+
+    async def make_backend(self) -> ServoSubject:
+        it = await self.arduino()
+        return ServoSubject(**it.subject_args(), identifiers=range(16))
+
+
+class TestSBArduinoUltrasound(ArduinoSuite, UltrasoundInterfaceConformance):
+    backend_class = SBArduinoHardwareBackend
+
+    async def make_backend(self) -> UltrasoundSubject:
+        it = await self.arduino()
+
+        async def place_object(trigger: int, echo: int, metres: float | None) -> None:
+            it.sim.set_ultrasound_distance(trigger, echo, metres)
+
+        return UltrasoundSubject(
+            **it.subject_args(), identifiers=range(2, 20), pairs=[(4, 5), (12, 13)],
+            place_object=place_object,
         )
+
+    @pytest.mark.xfail(reason="a pin the board does not have (20, -1) is refused with "
+                       "NotSupportedByHardwareError rather than ValueError")
+    async def test_out_of_range_identifier_raises(self, subject: UltrasoundSubject) -> None:
+        await super().test_out_of_range_identifier_raises(subject)
 
 
 class TeamFirmware:
@@ -310,69 +419,14 @@ class TeamFirmware:
         return data.upper() + b"\n"
 
 
-class TestRuggeduinoHardwareStringCommand(StringCommandInterfaceConformance):
+class TestRuggeduinoStringCommand(StringCommandInterfaceConformance):
     async def make_backend(self) -> StringCommandSubject:
         board, _ = await over_simulator(SRV4RuggeduinoHardwareBackend, TeamFirmware())
-        exchanges = [("ping", "PING"), ("speed 3", "SPEED 3"), ("go", "GO")]
+        assert isinstance(board.backend, SRV4RuggeduinoHardwareBackend)
         return StringCommandSubject(
-            backend=backend_as(board, StringCommandComponentInterface), exchanges=exchanges,
-            cleanup=board.close,
+            backend=board.backend, cleanup=board.close,
+            exchanges=[("ping", "PING"), ("speed 3", "SPEED 3"), ("go", "GO")],
         )
-
-
-class SBArduinoSuite:
-    sim: SBArduinoSimulator
-
-    async def arduino(self) -> tuple[Board, RecordingStream]:
-        self.sim = SBArduinoSimulator("SIMSBA0")
-        return await over_simulator(SBArduinoHardwareBackend, self.sim)
-
-
-class TestSBArduinoHardwarePins(SBArduinoSuite, GPIOPinInterfaceConformance):
-    async def make_backend(self) -> GPIOPinSubject:
-        board, stream = await self.arduino()
-        return arduino_pins(board, stream, self.sim, range(14, 18))
-
-
-class TestSBArduinoHardwareLED(SBArduinoSuite, LEDInterfaceConformance):
-    async def make_backend(self) -> LEDSubject:
-        board, stream = await self.arduino()
-
-        async def observe(identifier: int) -> bool:
-            return self.sim.output_level(13)
-
-        return LEDSubject(
-            backend=await led_ready(board), identifiers=[0], observe=observe,
-            traffic=lambda: stream.sent, cleanup=board.close,
-        )
-
-
-class TestSBArduinoHardwareServos(SBArduinoSuite, ServoInterfaceConformance):
-    async def make_backend(self) -> ServoSubject:
-        board, stream = await self.arduino()
-        return ServoSubject(
-            backend=backend_as(board, ServoInterface), identifiers=range(16),
-            traffic=lambda: stream.sent, cleanup=board.close,
-        )
-
-
-class TestSBArduinoHardwareUltrasound(SBArduinoSuite, UltrasoundInterfaceConformance):
-    async def make_backend(self) -> UltrasoundSubject:
-        board, stream = await self.arduino()
-
-        async def place_object(trigger: int, echo: int, metres: float | None) -> None:
-            self.sim.set_ultrasound_distance(trigger, echo, metres)
-
-        return UltrasoundSubject(
-            backend=backend_as(board, UltrasoundInterface), identifiers=range(2, 20),
-            pairs=[(4, 5), (12, 13)], place_object=place_object, traffic=lambda: stream.sent,
-            cleanup=board.close,
-        )
-
-    @pytest.mark.xfail(reason="a pin the board does not have (20, -1) is refused with "
-                       "NotSupportedByHardwareError rather than ValueError")
-    async def test_out_of_range_identifier_raises(self, subject: UltrasoundSubject) -> None:
-        await super().test_out_of_range_identifier_raises(subject)
 
 
 @pytest.mark.xfail(reason="the Arduino hardware backends refuse digital modes on pins 14-19 "
@@ -387,8 +441,9 @@ async def test_backends_take_every_mode_the_board_claims(
 ) -> None:
     board, _ = await over_simulator(backend_class, simulator("SIM0"))
     assert isinstance(board, ArduinoUno)
+    backend = board.backend
+    assert isinstance(backend, GPIOPinInterface)
     refused = []
-    backend = backend_as(board, GPIOPinInterface)
     for pin, modes in pin_modes(board.pins).items():
         for mode in sorted(modes):
             try:
@@ -399,3 +454,9 @@ async def test_backends_take_every_mode_the_board_claims(
                 refused.append((pin, mode.name))
     await board.close()
     assert refused == []
+
+
+def test_the_kit_has_one_board_of_each_kind() -> None:
+    assert {PowerBoard, MotorBoard, ServoBoard, SBArduinoBoard, Ruggeduino} == {
+        backend.board for backend in SIMULATED_BACKENDS
+    }
