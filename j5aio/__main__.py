@@ -25,11 +25,11 @@ __all__ = ["SIMULATOR_NAMES", "build_parser", "main"]
 
 _EPILOG: Final = """\
 examples:
-  python -m j5aio demo                      watch a robot run on the simulated kit
-  python -m j5aio run --sim robot.py        run your program on the simulated kit
-  python -m j5aio run robot.py              run it on the boards plugged in
-  python -m j5aio list                      which boards are plugged in?
-  python -m j5aio simulate sb-arduino --pty serve a simulated board on a serial port
+  python -m j5aio demo                        watch a robot run on the simulated kit
+  python -m j5aio run --sim robot.py          run your program on the simulated kit
+  python -m j5aio run robot.py                run it on the boards plugged in
+  python -m j5aio list                        which boards are plugged in?
+  python -m j5aio simulate sb-arduino --pty   serve a simulated board on a serial port
 
 Run 'python -m j5aio COMMAND --help' for a command's options.
 """
