@@ -112,9 +112,14 @@ class InterfaceConformance(abc.ABC, Generic[SubjectT]):
 
     @contextmanager
     def bounded(self) -> Iterator[None]:
-        """Fail the test if the block takes longer than :attr:`call_timeout`."""
-        with anyio.fail_after(self.call_timeout):
+        """Fail the test if the block takes longer than :attr:`call_timeout` (a hang)."""
+        with anyio.move_on_after(self.call_timeout) as scope:
             yield
+        if scope.cancelled_caught:
+            pytest.fail(
+                f"the backend did not finish within call_timeout ({self.call_timeout} s): "
+                "a call hangs, or waits for an input the subject's hooks never gave",
+            )
 
     async def assert_refused(
         self, subject: Subject, call: Callable[[int], Awaitable[Any]], what: str,
