@@ -32,7 +32,7 @@ for board in r.motor_boards:
     print(f" - {board.serial_number} - Version {board.firmware_version}")
 for output in r.power_board.outputs:
     output.is_enabled = False
-big_led = r.power_board.outputs[0]  # type: ignore[index]  # core K-only __getitem__ (reported)
+big_led = r.power_board.outputs[0]
 big_led.is_enabled = True
 r.motor_boards[board.serial_number].motors[0].power = 0.5
 r.power_board.piezo.buzz(0.25, 440)

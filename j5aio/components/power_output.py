@@ -122,12 +122,23 @@ class PowerOutputGroup(Generic[K]):
             state = "on" if enabled else "off"
             raise ExceptionGroup(f"{len(errors)} power outputs failed to switch {state}", errors)
 
-    def __getitem__(self, key: K) -> PowerOutput:
-        """Return the output under ``key``.
+    def __getitem__(self, key: K | int) -> PowerOutput:
+        """Return the output under ``key``, or the output whose number is ``key``.
 
-        :raises KeyError: there is no output under ``key``.
+        ``board.outputs[PowerOutputPosition.H0]`` and ``board.outputs[0]`` are the same
+        output.
+
+        :raises KeyError: there is no output under ``key``; the message lists the keys.
         """
-        return self._outputs[key]
+        if key in self._outputs:
+            return self._outputs[key]  # type: ignore[index]
+        if isinstance(key, int) and not isinstance(key, bool):
+            for output in self._outputs.values():
+                if output.identifier == key:
+                    return output
+        keys = ", ".join(str(getattr(k, "name", k)) for k in self._outputs)
+        numbers = ", ".join(str(output.identifier) for output in self._outputs.values())
+        raise KeyError(f"no power output {key!r}: use one of {keys}, or a number ({numbers})")
 
     def __iter__(self) -> Iterator[PowerOutput]:
         """Iterate over the outputs, in order."""

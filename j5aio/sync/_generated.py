@@ -555,10 +555,13 @@ class PowerOutputGroup(_SyncWrapper, Generic[K]):
         """
         _call(self._core.power_off)
 
-    def __getitem__(self, key: K) -> PowerOutput:
-        """Return the output under ``key``.
+    def __getitem__(self, key: K | int) -> PowerOutput:
+        """Return the output under ``key``, or the output whose number is ``key``.
 
-        :raises KeyError: there is no output under ``key``.
+        ``board.outputs[PowerOutputPosition.H0]`` and ``board.outputs[0]`` are the same
+        output.
+
+        :raises KeyError: there is no output under ``key``; the message lists the keys.
         """
         return cast("PowerOutput", _wrap(self._core.__getitem__(key)))
 

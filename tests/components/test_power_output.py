@@ -86,7 +86,8 @@ def test_group_lookup_iteration_and_length() -> None:
     assert len(group) == 4
     assert [output.identifier for output in group] == [0, 1, 2, 3]
     assert group["B"].identifier == 2
-    with pytest.raises(KeyError):
+    expected = r"no power output 'Z': use one of H, A, B, C, or a number \(0, 1, 2, 3\)"
+    with pytest.raises(KeyError, match=expected):
         group["Z"]
     assert repr(group) == "<PowerOutputGroup of 4 outputs>"
 
@@ -94,3 +95,13 @@ def test_group_lookup_iteration_and_length() -> None:
 def test_identifier_and_interface() -> None:
     assert PowerOutput(6, RecordingBackend()).identifier == 6
     assert PowerOutput.interface_class() is PowerOutputInterface
+
+
+def test_group_lookup_by_output_number() -> None:
+    group = make_group(RecordingBackend())
+    assert group[0] is group["H"]
+    assert group[3] is group["C"]
+    with pytest.raises(KeyError, match="no power output 7"):
+        group[7]
+    with pytest.raises(KeyError, match="no power output True"):
+        group[True]
