@@ -20,6 +20,7 @@ from types import FrameType
 from typing import Final
 
 from j5aio.environments import ENVIRONMENT_NAMES, ENVIRONMENT_VARIABLE
+from j5aio.simulator import SERIAL_SIMULATORS
 
 __all__ = ["SIMULATOR_NAMES", "build_parser", "main"]
 
@@ -34,11 +35,16 @@ examples:
 Run 'python -m j5aio COMMAND --help' for a command's options.
 """
 
-#: The boards ``simulate`` can serve, with what each is.
-SIMULATOR_NAMES: Final = {
+_DESCRIPTIONS: Final = {
     "sr-motor": "SR v4 motor board, firmware 3 (1 Mbaud)",
     "sr-ruggeduino": "SR Ruggeduino, firmware 1 (115200 baud)",
     "sb-arduino": "SourceBots Arduino, 2019 firmware (115200 baud)",
+}
+
+#: The boards ``simulate`` can serve, with what each is.
+SIMULATOR_NAMES: Final = {
+    name: _DESCRIPTIONS.get(name, getattr(factory, "__name__", name))
+    for name, factory in SERIAL_SIMULATORS.items()
 }
 
 
@@ -188,25 +194,10 @@ def _run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _simulator(name: str, serial_number: str) -> object:
-    from j5aio.simulator.sb_arduino_2019 import SBArduinoSimulator
-    from j5aio.simulator.sr_motor_fw3 import SRMotorBoardFw3Simulator
-    from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
-
-    factories: dict[str, Callable[[str], object]] = {
-        "sr-motor": SRMotorBoardFw3Simulator,
-        "sr-ruggeduino": SRRuggeduinoSimulator,
-        "sb-arduino": SBArduinoSimulator,
-    }
-    return factories[name](serial_number)
-
-
 def _simulate(args: argparse.Namespace) -> int:
-    from j5aio.backends.hardware.transports.memory import SerialSimulatorLike
     from j5aio.simulator.serve import serve_on_pty
 
-    simulator = _simulator(args.board, args.serial_number)
-    assert isinstance(simulator, SerialSimulatorLike)
+    simulator = SERIAL_SIMULATORS[args.board](args.serial_number)
     stop = threading.Event()
 
     def on_signal(signum: int, frame: FrameType | None) -> None:
