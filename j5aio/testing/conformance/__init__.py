@@ -18,7 +18,7 @@ hook the subject does not give are skipped, saying which hook would enable them.
 from ._base import InterfaceConformance, Subject
 from .battery_sensor import BatterySensorInterfaceConformance, BatterySensorSubject
 from .button import ButtonInterfaceConformance, ButtonSubject
-from .gpio_pin import GPIOPinInterfaceConformance, GPIOPinSubject
+from .gpio_pin import GPIOPinInterfaceConformance, GPIOPinSubject, pin_modes
 from .led import LEDInterfaceConformance, LEDSubject
 from .motor import MotorInterfaceConformance, MotorSubject
 from .piezo import PiezoInterfaceConformance, PiezoSubject
@@ -53,4 +53,5 @@ __all__ = [
     "Subject",
     "UltrasoundInterfaceConformance",
     "UltrasoundSubject",
+    "pin_modes",
 ]
