@@ -177,7 +177,11 @@ def _list(args: argparse.Namespace) -> int:
 def _demo(args: argparse.Namespace) -> int:
     from j5aio.demo import DEFAULT_SECONDS, run_demo
 
-    braked = run_demo(args.seconds if args.seconds is not None else DEFAULT_SECONDS)
+    try:
+        braked = run_demo(args.seconds if args.seconds is not None else DEFAULT_SECONDS)
+    except KeyboardInterrupt:
+        print("Interrupted.", file=sys.stderr)
+        return 130
     return 0 if braked else 1
 
 

@@ -226,18 +226,26 @@ async def demo(seconds: float = DEFAULT_SECONDS, *, out: TextIO | None = None) -
         flush=True,
     )
     log = _Log(out)
-    async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
-        log("robot", f"found {len(list(_boards(robot)))} boards; starting the tasks")
-        send, receive = anyio.create_memory_object_stream[float](10)
-        shared = _Shared()
-        with anyio.move_on_after(seconds):
-            async with send, receive, anyio.create_task_group() as tasks:
-                tasks.start_soon(_run_world, world)
-                tasks.start_soon(_show_boards, kit, world, log)
-                tasks.start_soon(_drive, robot, shared, log)
-                tasks.start_soon(_sense, robot, shared, send, log)
-                tasks.start_soon(_signal, robot, receive, log)
-        log("robot", "time is up: tasks cancelled, making every board safe")
+    try:
+        async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+            log("robot", f"found {len(_boards(robot))} boards; starting the tasks")
+            send, receive = anyio.create_memory_object_stream[float](10)
+            shared = _Shared()
+            with anyio.move_on_after(seconds):
+                async with send, receive, anyio.create_task_group() as tasks:
+                    tasks.start_soon(_run_world, world)
+                    tasks.start_soon(_show_boards, kit, world, log)
+                    tasks.start_soon(_drive, robot, shared, log)
+                    tasks.start_soon(_sense, robot, shared, send, log)
+                    tasks.start_soon(_signal, robot, receive, log)
+            log("robot", "time is up: tasks cancelled, making every board safe")
+    finally:
+        # Also when the demo is interrupted (Ctrl-C): the robot made the boards safe.
+        braked = _report(kit, log, out)
+    return braked
+
+
+def _report(kit: SimulatedKit, log: _Log, out: TextIO) -> bool:
     braked = all_motors_braked(kit)
     log("boards", describe_boards(kit))
     if braked:

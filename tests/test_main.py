@@ -309,3 +309,32 @@ def test_demo_runs_end_to_end_ends_by_itself_and_leaves_every_motor_braked() -> 
     final_boards = [line for line in lines if "boards" in line][-1]
     assert "SIMMB0 [brake, brake] | SIMMB1 [brake, brake]" in final_boards
     assert lines[-1] == "The robot has stopped: every simulated motor is braked."
+
+
+def test_an_interrupted_demo_still_leaves_every_motor_braked() -> None:
+    environment = {k: v for k, v in os.environ.items() if k != ENVIRONMENT_VARIABLE}
+    process = subprocess.Popen(
+        [sys.executable, "-m", "j5aio", "demo", "--seconds", "30"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=environment,
+        # As in a terminal: Ctrl-C raises KeyboardInterrupt (a shell may have ignored it).
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
+    try:
+        assert process.stdout is not None
+        for line in process.stdout:
+            if "SIMMB0 [forward" in line:  # the robot is driving
+                break
+        process.send_signal(signal.SIGINT)
+        rest, errors = process.communicate(timeout=20)
+    finally:
+        if process.poll() is None:  # only when the test failed
+            process.kill()
+            process.communicate(timeout=10)
+    assert process.returncode == 130
+    assert errors.strip() == "Interrupted."
+    lines = rest.splitlines()
+    assert "SIMMB0 [brake, brake] | SIMMB1 [brake, brake]" in lines[-3]
+    assert lines[-1] == "The robot has stopped: every simulated motor is braked."
