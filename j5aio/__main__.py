@@ -199,6 +199,9 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def _simulate(args: argparse.Namespace) -> int:
+    if sys.platform == "win32":  # pragma: no cover - tested on POSIX only
+        print("j5aio: simulate needs pseudo-terminals, which Windows lacks", file=sys.stderr)
+        return 2
     from j5aio.simulator.serve import serve_on_pty
 
     simulator = SERIAL_SIMULATORS[args.board](args.serial_number)

@@ -239,6 +239,11 @@ def test_a_program_finding_no_hardware_offers_the_sim_flag_in_one_line(tmp_path:
 # --- simulate ----------------------------------------------------------------------------
 
 
+posix_only = pytest.mark.skipif(
+    sys.platform == "win32", reason="pseudo-terminals exist on POSIX systems only"
+)
+
+
 @contextlib.contextmanager
 def simulating(*args: str) -> Iterator[tuple[subprocess.Popen[str], str]]:
     """Run ``python -m j5aio simulate ARGS``; yield the process and the port it printed."""
@@ -267,6 +272,7 @@ def stop(process: subprocess.Popen[str], how: signal.Signals) -> str:
     return errors
 
 
+@posix_only
 def test_simulate_serves_a_motor_board_until_terminated() -> None:
     with simulating("sr-motor", "--serial-number", "MB42") as (process, path):
         with serial.Serial(path, 1_000_000, timeout=5) as port:
@@ -277,6 +283,7 @@ def test_simulate_serves_a_motor_board_until_terminated() -> None:
     assert errors.rstrip().endswith("Stopped.")
 
 
+@posix_only
 def test_simulate_with_time_scale_zero_boots_at_once() -> None:
     with simulating("sr-ruggeduino", "--time-scale", "0") as (process, path):
         started = time.monotonic()
@@ -311,6 +318,7 @@ def test_demo_runs_end_to_end_ends_by_itself_and_leaves_every_motor_braked() -> 
     assert lines[-1] == "The robot has stopped: every simulated motor is braked."
 
 
+@posix_only
 def test_an_interrupted_demo_still_leaves_every_motor_braked() -> None:
     environment = {k: v for k, v in os.environ.items() if k != ENVIRONMENT_VARIABLE}
     process = subprocess.Popen(

@@ -13,6 +13,8 @@ from collections.abc import Callable
 import pytest
 import serial
 
+pytest.importorskip("termios", reason="pseudo-terminals exist on POSIX systems only")
+
 from j5aio.simulator.serve import OPEN_SETTLE_TIME, PtyServer, serve_on_pty
 
 
