@@ -139,21 +139,22 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _seconds(text: str) -> float:
+def _number(text: str, what: str) -> float:
     try:
-        value = float(text)
+        return float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number of seconds") from None
+        raise argparse.ArgumentTypeError(f"{text!r} is not {what}") from None
+
+
+def _seconds(text: str) -> float:
+    value = _number(text, "a number of seconds")
     if not 0 < value <= 600:
         raise argparse.ArgumentTypeError(f"{text} s is out of range: give 0 < S <= 600")
     return value
 
 
 def _time_scale(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    value = _number(text, "a number")
     if not value >= 0:
         raise argparse.ArgumentTypeError(f"{text} is negative: give 0 or more")
     return value
