@@ -44,7 +44,7 @@ def test_pins_by_number_and_by_analogue_name() -> None:
         assert board.pins[number].hardware_modes == DIGITAL_MODES
         assert board.pins[number].firmware_modes == frozenset()
     for pin in AnaloguePin:
-        assert board.pins[pin].hardware_modes == DIGITAL_MODES | {GPIOPinMode.ANALOGUE_INPUT}
+        assert board.pins[pin].hardware_modes == {GPIOPinMode.ANALOGUE_INPUT}
 
 
 def test_pins_are_read_only() -> None:
@@ -106,3 +106,9 @@ async def test_ruggeduino_command_reaches_the_backend() -> None:
     board = Ruggeduino("R1", backend)
     assert await board.command.execute("ping") == "PING"
     assert backend.named("execute_string_command") == [("ping",)]
+
+
+async def test_digital_mode_on_an_analogue_pin_is_refused_by_the_pin() -> None:
+    board = ArduinoUno("UNO", FakeUnoBackend())
+    with pytest.raises(NotSupportedByComponentError, match="ANALOGUE_INPUT"):
+        await board.pins[AnaloguePin.A0].set_mode(GPIOPinMode.DIGITAL_OUTPUT)

@@ -9,8 +9,6 @@ import re
 from collections.abc import Sequence
 from datetime import timedelta
 
-import pytest
-
 from j5aio.backends.console.arduino import ArduinoConsoleBackend
 from j5aio.backends.console.sb.arduino import SBArduinoConsoleBackend
 from j5aio.backends.console.sr.v4 import (
@@ -216,6 +214,3 @@ class TestSBArduinoConsoleUltrasound(ConsoleSuite, UltrasoundInterfaceConformanc
             place_object=place_object,
         )
 
-    @pytest.mark.xfail(reason="the console backend has no way to report 'no echo' (None)")
-    async def test_no_echo_reads_none(self, subject: UltrasoundSubject) -> None:
-        await super().test_no_echo_reads_none(subject)

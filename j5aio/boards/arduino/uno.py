@@ -57,10 +57,12 @@ class ArduinoUno(Board):
         },
     )
 
-    #: The hardware modes of the analogue pins: those of a digital pin, and analogue input.
-    ANALOGUE_PIN_MODES: ClassVar[frozenset[GPIOPinMode]] = DIGITAL_PIN_MODES | {
-        GPIOPinMode.ANALOGUE_INPUT,
-    }
+    #: The hardware modes of the analogue pins. The Uno's chip could use them as digital
+    #: pins too, but none of the kit's firmwares offers that, so they claim only what the
+    #: backends can do: a digital mode is refused by the pin itself, before any traffic.
+    ANALOGUE_PIN_MODES: ClassVar[frozenset[GPIOPinMode]] = frozenset(
+        {GPIOPinMode.ANALOGUE_INPUT},
+    )
 
     #: The firmware modes of the digital pins; a board whose firmware drives more widens it.
     DIGITAL_PIN_FIRMWARE_MODES: ClassVar[frozenset[FirmwareMode]] = frozenset()

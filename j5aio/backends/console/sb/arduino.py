@@ -44,7 +44,7 @@ class SBArduinoConsoleBackend(ServoInterface, UltrasoundInterface, ArduinoConsol
     async def get_ultrasound_pulse(
         self, trigger_pin_identifier: int, echo_pin_identifier: int,
     ) -> timedelta | None:
-        """Ask how long the echo took, in microseconds."""
+        """Ask how long the echo took, in microseconds; an answer of 0 means no echo."""
         self._check_ultrasound_pins(trigger_pin_identifier, echo_pin_identifier)
         microseconds = await self._console.read(
             f"Response time for ultrasound sensor on pins "
@@ -52,12 +52,13 @@ class SBArduinoConsoleBackend(ServoInterface, UltrasoundInterface, ArduinoConsol
             float,
         )
         self._ultrasound_used(trigger_pin_identifier, echo_pin_identifier)
-        return timedelta(microseconds=microseconds)
+        # As on the board itself, a reading of 0 says that no echo came back.
+        return timedelta(microseconds=microseconds) if microseconds else None
 
     async def get_ultrasound_distance(
         self, trigger_pin_identifier: int, echo_pin_identifier: int,
     ) -> float | None:
-        """Ask for the distance to the nearest object, in metres."""
+        """Ask for the distance to the nearest object, in metres; 0 means no echo."""
         self._check_ultrasound_pins(trigger_pin_identifier, echo_pin_identifier)
         metres = await self._console.read(
             f"Distance for ultrasound sensor on pins "
@@ -65,7 +66,7 @@ class SBArduinoConsoleBackend(ServoInterface, UltrasoundInterface, ArduinoConsol
             float,
         )
         self._ultrasound_used(trigger_pin_identifier, echo_pin_identifier)
-        return metres
+        return metres or None
 
     def _check_ultrasound_pins(self, trigger: int, echo: int) -> None:
         for identifier in (trigger, echo):

@@ -110,6 +110,7 @@ class SBArduinoHardwareBackend(ServoInterface, UltrasoundInterface, ArduinoHardw
 
     def _check_ultrasound_pins(self, trigger: int, echo: int) -> None:
         for pin in (trigger, echo):
+            self._pins.mode(pin)  # ValueError for a pin the board does not have
             if pin not in DIGITAL_PINS:
                 raise NotSupportedByHardwareError(
                     f"{self.board.name} drives ultrasound sensors on digital pins "
