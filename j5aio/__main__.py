@@ -161,18 +161,23 @@ def _time_scale(text: str) -> float:
 
 
 def _list(args: argparse.Namespace) -> int:
+    import functools
+
     import anyio
 
     from j5aio.backends.hardware.listing import find_boards, format_boards
     from j5aio.errors import CommunicationError
 
+    problems: list[str] = []
     try:
-        boards = anyio.run(find_boards)
+        boards = anyio.run(functools.partial(find_boards, problems=problems))
     except CommunicationError as error:
         print(f"j5aio: could not look for boards: {error}", file=sys.stderr)
         return 1
     print(format_boards(boards))
-    return 0
+    for problem in problems:
+        print(f"j5aio: could not look for every board: {problem}", file=sys.stderr)
+    return 1 if problems and not boards else 0
 
 
 def _demo(args: argparse.Namespace) -> int:

@@ -112,8 +112,8 @@ def test_list_prints_each_board_found(
 ) -> None:
     kit = SimulatedKit(KitConfig())
 
-    async def find_in_kit() -> list[FoundBoard]:
-        return await REAL_FIND_BOARDS(options=kit_discovery_options(kit))
+    async def find_in_kit(*, problems: list[str]) -> list[FoundBoard]:
+        return await REAL_FIND_BOARDS(options=kit_discovery_options(kit), problems=problems)
 
     monkeypatch.setattr(listing, "find_boards", find_in_kit)
     assert main(["list"]) == 0
@@ -128,7 +128,7 @@ def test_list_prints_each_board_found(
 def test_list_says_plainly_when_there_are_none(
     monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    async def nothing() -> list[FoundBoard]:
+    async def nothing(*, problems: list[str]) -> list[FoundBoard]:
         return []
 
     monkeypatch.setattr(listing, "find_boards", nothing)
@@ -139,14 +139,38 @@ def test_list_says_plainly_when_there_are_none(
 def test_list_reports_a_failure_to_look(
     monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    async def broken() -> list[FoundBoard]:
-        raise CommunicationError("pyusb found no libusb backend")
+    async def broken(*, problems: list[str]) -> list[FoundBoard]:
+        raise CommunicationError("serial ports could not be listed")
 
     monkeypatch.setattr(listing, "find_boards", broken)
     assert main(["list"]) == 1
-    assert "j5aio: could not look for boards: pyusb found no libusb backend" in (
+    assert "j5aio: could not look for boards: serial ports could not be listed" in (
         capsys.readouterr().err
     )
+
+
+def test_list_shows_what_it_found_and_says_what_it_could_not_look_for(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    async def partly(*, problems: list[str]) -> list[FoundBoard]:
+        problems.append("Student Robotics v4 Power Board: pyusb found no libusb backend")
+        return [FoundBoard("Student Robotics v4 Motor Board", "SR0ABC", "3", "/dev/ttyUSB0")]
+
+    monkeypatch.setattr(listing, "find_boards", partly)
+    assert main(["list"]) == 0
+    captured = capsys.readouterr()
+    assert "SR0ABC" in captured.out
+    assert "could not look for every board: Student Robotics v4 Power Board: pyusb found no" in (
+        captured.err
+    )
+
+    async def only_problems(*, problems: list[str]) -> list[FoundBoard]:
+        problems.append("Student Robotics v4 Servo Board: pyusb found no libusb backend")
+        return []
+
+    monkeypatch.setattr(listing, "find_boards", only_problems)
+    assert main(["list"]) == 1
+    assert "No boards found." in capsys.readouterr().out
 
 
 # --- run ---------------------------------------------------------------------------------

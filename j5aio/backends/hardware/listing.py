@@ -19,6 +19,7 @@ from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.env import HARDWARE_BACKENDS
 from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.boards.board import Board
+from j5aio.errors import CommunicationError
 
 __all__ = ["LISTING_TIME_SCALE", "FoundBoard", "find_boards", "format_boards"]
 
@@ -41,14 +42,24 @@ class FoundBoard:
     port: str
 
 
-async def find_boards(*, options: DiscoveryOptions | None = None) -> list[FoundBoard]:
+async def find_boards(
+    *,
+    options: DiscoveryOptions | None = None,
+    problems: list[str] | None = None,
+) -> list[FoundBoard]:
     """Return every board the hardware environment finds, one backend after another.
 
     A board that fails its handshake is logged and left out rather than stopping the
-    listing.
+    listing. A kind of board that cannot be looked for at all (for example the USB boards
+    on a machine without libusb) is left out too, when ``problems`` is given: the reason
+    is appended to it and the other kinds are still listed.
 
     :param options: stand-in port lists and USB finders for tests; by default the real
         ones, with :data:`LISTING_TIME_SCALE` and failing boards skipped.
+    :param problems: collects why a kind of board could not be looked for; without it
+        such a failure is raised.
+    :raises CommunicationError: a kind of board could not be looked for, and
+        ``problems`` was not given.
     """
     if options is None:
         options = DiscoveryOptions(time_scale=LISTING_TIME_SCALE, skip_failures=True)
@@ -59,7 +70,14 @@ async def find_boards(*, options: DiscoveryOptions | None = None) -> list[FoundB
     opened: list[Board] = []
     try:
         for backend in HARDWARE_BACKENDS:
-            for board in await backend.discover(options=options):
+            try:
+                boards = await backend.discover(options=options)
+            except CommunicationError as error:
+                if problems is None:
+                    raise
+                problems.append(f"{backend.board.name}: {error}")
+                continue
+            for board in boards:
                 port = str(getattr(board.backend, "port", ""))
                 found.append(
                     FoundBoard(board.name, board.serial_number, board.firmware_version, port),

@@ -111,3 +111,30 @@ async def test_find_boards_defaults_to_a_short_boot_wait_and_skips_failures(
     monkeypatch.setattr(listing, "HARDWARE_BACKENDS", (Recorder,))
     assert await find_boards() == []
     assert seen == [DiscoveryOptions(time_scale=listing.LISTING_TIME_SCALE, skip_failures=True)]
+
+
+async def test_find_boards_still_lists_serial_boards_when_usb_cannot_be_searched() -> None:
+    from j5aio.errors import CommunicationError
+
+    sim = SRMotorBoardFw3Simulator("SRMOTOR")
+
+    async def opener(port: str, baudrate: int) -> SimulatorStream:
+        return SimulatorStream(sim, time_scale=0)
+
+    def no_libusb(**_: Any) -> list[Any]:
+        raise CommunicationError("pyusb found no libusb backend")
+
+    options = DiscoveryOptions(
+        port_source=lambda: [port_of("/dev/ttyUSB0", sim)],
+        usb_finder=no_libusb,
+        opener=opener,
+    )
+    problems: list[str] = []
+    found = await find_boards(options=options, problems=problems)
+    assert [b.serial_number for b in found] == ["SRMOTOR"]
+    assert problems == [
+        "Student Robotics v4 Power Board: pyusb found no libusb backend",
+        "Student Robotics v4 Servo Board: pyusb found no libusb backend",
+    ]
+    with pytest.raises(CommunicationError, match="no libusb"):
+        await find_boards(options=options)
