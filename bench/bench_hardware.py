@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import functools
 import importlib
 import os
 import statistics
@@ -44,8 +45,12 @@ SERVER_TIME_SCALE = "0.05"  # the simulated Arduino boots in 75 ms instead of 1.
 
 
 @contextlib.contextmanager
-def served_boards(count: int) -> Iterator[list[str]]:
-    """Serve ``count`` simulated SB Arduinos on ptys, each from its own process."""
+def served_boards(count: int, *, uart_timing: bool = False) -> Iterator[list[str]]:
+    """Serve ``count`` simulated SB Arduinos on ptys, each from its own process.
+
+    With ``uart_timing`` each reply is held back for the time the board's 115200 baud
+    serial line would take to carry the request and the reply, as on real hardware.
+    """
     processes = []
     try:
         paths = []
@@ -62,6 +67,7 @@ def served_boards(count: int) -> Iterator[list[str]]:
                     SERVER_TIME_SCALE,
                     "--serial-number",
                     f"BENCH{index}",
+                    *(["--uart-timing"] if uart_timing else []),
                 ],
                 stdout=subprocess.PIPE,
                 stderr=subprocess.DEVNULL,
@@ -134,7 +140,8 @@ def bench_round_trip(path: str, requests: int, repeats: int) -> tuple[float, flo
 # -- (b) four boards at once ----------------------------------------------------------------
 
 
-async def boards_at_once(paths: list[str], requests: int) -> float:
+async def boards_at_once(paths: list[str], requests: int, *, sequential: bool = False) -> float:
+    """Time ``requests`` reads on each board: one task per board, or one board after another."""
     boards = [await SBArduinoHardwareBackend.attach(path) for path in paths]
     try:
 
@@ -143,13 +150,34 @@ async def boards_at_once(paths: list[str], requests: int) -> float:
                 await board.backend.read_gpio_pin_digital_state(2)
 
         start = time.perf_counter()
-        async with anyio.create_task_group() as group:
+        if sequential:
             for board in boards:
-                group.start_soon(query, board)
+                await query(board)
+        else:
+            async with anyio.create_task_group() as group:
+                for board in boards:
+                    group.start_soon(query, board)
         return time.perf_counter() - start
     finally:
         for board in boards:
             await board.close()
+
+
+def bench_wire_timed(paths: list[str], requests: int, repeats: int) -> tuple[float, float, float]:
+    """Medians (ms) of one board, four at once and four in sequence, on wire-timed boards."""
+    one: list[float] = []
+    four: list[float] = []
+    in_sequence: list[float] = []
+    for _ in range(repeats):
+        one.append(anyio.run(boards_at_once, paths[:1], requests))
+        time.sleep(0.05)
+        four.append(anyio.run(boards_at_once, paths, requests))
+        time.sleep(0.05)
+        in_sequence.append(
+            anyio.run(functools.partial(boards_at_once, paths, requests, sequential=True)),
+        )
+        time.sleep(0.05)
+    return tuple(statistics.median(x) * 1e3 for x in (one, four, in_sequence))  # type: ignore[return-value]
 
 
 def raw_threads_at_once(paths: list[str], requests: int) -> float:
@@ -321,13 +349,27 @@ def main(argv: list[str] | None = None) -> None:
                 ("control: raw pyserial, four threads", f"{raw_four:8.1f} ms"),
                 ("control ratio (what this machine allows)", f"{raw_four / raw_one:8.3f}"),
             ],
-            goal(four / one, 1.15),
+            goal(four / one, 1.15) + "  [instant simulators: CPU-bound on this machine]",
         )
         theirs, ours = bench_j5(paths[1], args.requests // 5, args.repeats)
         report(
             "(c) sequence: write pin, read pin, read analogue; median",
             [("j5 0.12 (blocking pyserial)", f"{theirs:8.1f} us"), ("j5aio", f"{ours:8.1f} us")],
             f"j5aio / j5 0.12 = {ours / theirs:.3f}",
+        )
+    wire_requests = max(1, args.requests // 5)
+    with served_boards(4, uart_timing=True) as paths:
+        one, four, in_sequence = bench_wire_timed(paths, wire_requests, args.repeats)
+        report(
+            f"(b') {wire_requests} requests per board on wire-timed simulators "
+            "(115200 baud, as the real boards), wall time, median",
+            [
+                ("j5aio, one board", f"{one:8.1f} ms"),
+                ("j5aio, four boards at once (one task each)", f"{four:8.1f} ms"),
+                ("j5aio, four boards one after another (as j5)", f"{in_sequence:8.1f} ms"),
+                ("one after another / one board", f"{in_sequence / one:8.3f}"),
+            ],
+            goal(four / one, 1.15),
         )
 
 

@@ -135,6 +135,11 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="F",
         help="multiply the board's boot delay by F (default 1: as slow as the real board)",
     )
+    simulate.add_argument(
+        "--uart-timing",
+        action="store_true",
+        help="delay every reply by the time the board's serial line would take to carry it",
+    )
     simulate.set_defaults(handler=_simulate)
     return parser
 
@@ -218,7 +223,9 @@ def _simulate(args: argparse.Namespace) -> int:
 
     previous = {sig: signal.signal(sig, on_signal) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
-        with serve_on_pty(simulator, time_scale=args.time_scale) as server:
+        with serve_on_pty(
+            simulator, time_scale=args.time_scale, uart_timing=args.uart_timing,
+        ) as server:
             print(server.path, flush=True)
             print(
                 f"Serving a simulated {SIMULATOR_NAMES[args.board]} (serial number "

@@ -62,13 +62,23 @@ class PtyServer:
     :param simulator: the simulated board to serve.
     :param time_scale: multiplies the simulator's boot delay; ``0`` makes it (almost)
         instant.
+    :param uart_timing: if true, each reply comes out only after the time the board's
+        UART would take to receive the request and send the reply (10 bits a byte at the
+        simulator's baud rate), as on the real wire.
     """
 
-    def __init__(self, simulator: SerialSimulatorLike, *, time_scale: float = 1.0) -> None:
+    def __init__(
+        self,
+        simulator: SerialSimulatorLike,
+        *,
+        time_scale: float = 1.0,
+        uart_timing: bool = False,
+    ) -> None:
         if time_scale < 0:
             raise ValueError(f"time_scale must be zero or more, not {time_scale}")
         self._simulator = simulator
         self._time_scale = time_scale
+        self._seconds_per_byte = 10 / simulator.baudrate if uart_timing else 0.0
         master, slave = os.openpty()
         tty.setraw(slave)
         self._path = os.ttyname(slave)
@@ -225,8 +235,11 @@ class PtyServer:
             return
         response = self._simulator.receive(data)
         if response:
+            wire_time = (len(data) + len(response)) * self._seconds_per_byte
             # Never overtake earlier output (the boot banner, say), as on a real wire.
-            due = max(time.monotonic(), self._pending[-1][0] if self._pending else 0.0)
+            due = max(
+                time.monotonic() + wire_time, self._pending[-1][0] if self._pending else 0.0,
+            )
             self._pending.append((due, response))
 
     def _due(self) -> bool:
@@ -255,7 +268,9 @@ class PtyServer:
                 return
 
 
-def serve_on_pty(simulator: SerialSimulatorLike, *, time_scale: float = 1.0) -> PtyServer:
+def serve_on_pty(
+    simulator: SerialSimulatorLike, *, time_scale: float = 1.0, uart_timing: bool = False,
+) -> PtyServer:
     """Serve ``simulator`` on a new pseudo-terminal and return the running server.
 
     Open :attr:`PtyServer.path` as a serial port to talk to the simulated board; close
@@ -267,9 +282,11 @@ def serve_on_pty(simulator: SerialSimulatorLike, *, time_scale: float = 1.0) -> 
     :param simulator: the simulated board to serve.
     :param time_scale: multiplies the simulator's boot delay; ``0`` makes it (almost)
         instant.
+    :param uart_timing: delay each reply by the time the board's UART would need to
+        receive the request and send the reply.
     :raises ValueError: ``time_scale`` is negative.
     :raises OSError: no pseudo-terminal could be made.
     """
-    server = PtyServer(simulator, time_scale=time_scale)
+    server = PtyServer(simulator, time_scale=time_scale, uart_timing=uart_timing)
     server.start()
     return server
