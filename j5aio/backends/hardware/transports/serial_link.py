@@ -55,10 +55,10 @@ from __future__ import annotations
 
 import logging
 import math
-from types import TracebackType
 from typing import TypeVar
 
 import anyio
+from anyio.abc import AsyncResource
 
 from j5aio.errors import (
     BoardDisconnectionError,
@@ -91,7 +91,7 @@ def _preview(data: bytes | bytearray, limit: int = 80) -> str:
     return shown + (f" (+{len(data) - limit} more bytes)" if len(data) > limit else "")
 
 
-class SerialLink:
+class SerialLink(AsyncResource):
     """Requests and replies over one :class:`~.stream.ByteStream`, safely serialised.
 
     :param stream: the open stream to the board; the link owns it and closes it.
@@ -271,17 +271,6 @@ class SerialLink:
         self._closed = True
         with anyio.CancelScope(shield=True):
             await self._stream.aclose()
-
-    async def __aenter__(self) -> SerialLink:
-        return self
-
-    async def __aexit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
-        await self.aclose()
 
     def __repr__(self) -> str:
         state = "closed" if self._closed else ("dirty" if self._dirty else "open")

@@ -24,14 +24,14 @@ The contract that implementations keep:
 from __future__ import annotations
 
 import abc
-from types import TracebackType
 
 import anyio.lowlevel
+from anyio.abc import AsyncResource
 
 __all__ = ["ByteStream"]
 
 
-class ByteStream(abc.ABC):
+class ByteStream(AsyncResource):
     """A bidirectional stream of bytes to one board.
 
     Use it as an async context manager, or close it with :meth:`aclose` or
@@ -81,17 +81,6 @@ class ByteStream(abc.ABC):
         """
         self.close_now()
         await anyio.lowlevel.checkpoint()
-
-    async def __aenter__(self) -> ByteStream:
-        return self
-
-    async def __aexit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
-        await self.aclose()
 
     def __repr__(self) -> str:
         state = "closed" if self.is_closed else "open"

@@ -29,11 +29,11 @@ import logging
 import queue
 import threading
 from collections.abc import Callable, Mapping
-from types import TracebackType
 from typing import Any, Generic, Protocol, TypeVar
 
 import usb.core
 import usb.util
+from anyio.abc import AsyncResource
 
 from j5aio.errors import (
     BoardDisconnectionError,
@@ -153,7 +153,7 @@ def _post(loop: asyncio.AbstractEventLoop, future: asyncio.Future[Any], outcome:
         loop.call_soon_threadsafe(_resolve, future, outcome)
 
 
-class USBLink:
+class USBLink(AsyncResource):
     """Ordered transfers to one USB device on a dedicated worker thread.
 
     :param device: the pyusb device (or a stand-in with the same shape).
@@ -329,17 +329,6 @@ class USBLink:
                 return
             self._closed = True
             self._jobs.put(None)
-
-    async def __aenter__(self) -> USBLink:
-        return self
-
-    async def __aexit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
-        await self.aclose()
 
     def __repr__(self) -> str:
         state = "closed" if self._closed else "open"
