@@ -29,7 +29,6 @@ from __future__ import annotations
 import time
 import weakref
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import Any
 
 from j5aio.backends.environment import Environment
@@ -39,6 +38,7 @@ from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBack
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
+from j5aio.backends.hardware.transports.discovery import PortInfo
 from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.backends.hardware.transports.stream import ByteStream
 from j5aio.boards.board import Board
@@ -59,7 +59,6 @@ __all__ = [
     "SRV4PowerBoardSimulatedBackend",
     "SRV4RuggeduinoSimulatedBackend",
     "SRV4ServoBoardSimulatedBackend",
-    "SimulatedPort",
     "SimulatedUSBDevice",
     "kit_discovery_options",
     "port_name",
@@ -70,18 +69,6 @@ def port_name(kit: SimulatedKit, simulator: SerialBoardSimulator) -> str:
     """Return the name a serial simulator's port has in ``kit``."""
     return f"sim://{kit.name}/{simulator.serial_number}"
 
-
-@dataclass
-class SimulatedPort:
-    """What the simulated kit's port list shows for one serial board (like pyserial's)."""
-
-    device: str
-    vid: int | None
-    pid: int | None
-    serial_number: str | None
-    manufacturer: str | None
-    product: str | None
-    description: str
 
 
 # Piezo time on each simulated power board: when its notes last moved on.
@@ -178,9 +165,9 @@ def kit_discovery_options(
     """Return discovery options that find the plugged-in boards of ``kit``.
 
     Each serial board of ``serial_type`` (every serial board by default) is listed as a
-    :class:`SimulatedPort`, and opening it gives a :class:`SimulatorStream` to its
-    simulator, with the kit's time scale. Each USB board is found as a
-    :class:`SimulatedUSBDevice` by its vendor and product IDs. Any hardware discovery,
+    :class:`~j5aio.backends.hardware.transports.discovery.PortInfo`, and opening it gives a
+    :class:`SimulatorStream` to its simulator, with the kit's time scale. Each USB board is
+    found as a :class:`SimulatedUSBDevice` by its vendor and product IDs. Any hardware discovery,
     :func:`~j5aio.backends.hardware.listing.find_boards` included, then finds the kit.
 
     :param kit: the kit whose boards to find.
@@ -199,9 +186,9 @@ def kit_discovery_options(
         if isinstance(simulator, serial_type)
     }
 
-    def list_ports() -> list[SimulatedPort]:
+    def list_ports() -> list[PortInfo]:
         return [
-            SimulatedPort(
+            PortInfo(
                 device=name,
                 vid=simulator.usb_vid,
                 pid=simulator.usb_pid,

@@ -36,15 +36,35 @@ FTDI_VENDOR_ID = 0x0403
 
 
 class ComPortLike(Protocol):
-    """The fields of pyserial's ``ListPortInfo`` that :class:`PortInfo` reads."""
+    """The fields of pyserial's ``ListPortInfo`` that :class:`PortInfo` reads (read-only)."""
 
-    device: str
-    vid: int | None
-    pid: int | None
-    serial_number: str | None
-    manufacturer: str | None
-    product: str | None
-    description: str
+    @property
+    def device(self) -> str:
+        """The path or name to open."""
+
+    @property
+    def vid(self) -> int | None:
+        """The USB vendor ID, if any."""
+
+    @property
+    def pid(self) -> int | None:
+        """The USB product ID, if any."""
+
+    @property
+    def serial_number(self) -> str | None:
+        """The USB serial number string, if any."""
+
+    @property
+    def manufacturer(self) -> str | None:
+        """The USB manufacturer string, if any."""
+
+    @property
+    def product(self) -> str | None:
+        """The USB product string, if any."""
+
+    @property
+    def description(self) -> str:
+        """A human description from the operating system."""
 
 
 @dataclass(frozen=True)
