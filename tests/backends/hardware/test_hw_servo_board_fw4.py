@@ -18,11 +18,12 @@ from j5aio.testing.transports import RecordingStream, ScriptedStream
 
 SR = SRV4ServoBoardFw4HardwareBackend
 SB = SBServoBoardHardwareBackend
+AnyServoBackend = type[SRV4ServoBoardFw4HardwareBackend] | type[SBServoBoardHardwareBackend]
 IDN_SR = (b"*IDN?\n", b"Student Robotics:SBv4B:srABC:4.3\n")
 
 
 async def connect(
-    backend: type[SR], sim: SRServoBoardFw4Simulator,
+    backend: AnyServoBackend, sim: SRServoBoardFw4Simulator,
 ) -> tuple[ServoBoardFw4, RecordingStream]:
     stream = RecordingStream(SimulatorStream(sim, time_scale=0))
     board = await backend.from_stream(stream, port="sim", serial_number=sim.serial_number)
@@ -51,7 +52,7 @@ async def test_handshake_sends_only_the_identity_request() -> None:
                                                          SBServoBoard, 8)],
 )
 async def test_each_firmware_gets_its_board(
-    backend: type[SR], sim: type[SRServoBoardFw4Simulator], board_class: type[ServoBoardFw4],
+    backend: AnyServoBackend, sim: type[SRServoBoardFw4Simulator], board_class: type[ServoBoardFw4],
     count: int,
 ) -> None:
     board, _ = await connect(backend, sim("x"))
@@ -68,7 +69,7 @@ async def test_each_firmware_gets_its_board(
                                                         ("4.4",))],
 )
 async def test_the_other_firmware_is_unsupported(
-    backend: type[SR], sim: type[SRServoBoardFw4Simulator], found: str, supported: tuple[str],
+    backend: AnyServoBackend, sim: type[SRServoBoardFw4Simulator], found: str, supported: tuple[str],
 ) -> None:
     stream = SimulatorStream(sim("x"), time_scale=0)
     with pytest.raises(UnsupportedFirmwareError) as info:
@@ -162,7 +163,7 @@ async def test_backend_refuses_bad_identifiers_and_limits_sending_nothing() -> N
 
 async def test_supply_flags_and_reset() -> None:
     sim = SRServoBoardFw4Simulator("x")
-    board, stream = await connect(SR, sim)
+    board, _ = await connect(SR, sim)
     sim.set_supply(voltage=5.5, current=0.75)
     assert await board.supply.get_voltage() == 5.5
     assert await board.supply.get_current() == 0.75
@@ -219,7 +220,9 @@ def servo_port(device: str, serial_number: str) -> SimpleNamespace:
 
 
 async def test_discovery_and_attach_by_usb_identity() -> None:
-    sims = {"/dev/s1": SRServoBoardFw4Simulator("srS1"), "/dev/s2": SRServoBoardFw4Simulator("srS2")}
+    sims = {
+        "/dev/s1": SRServoBoardFw4Simulator("srS1"), "/dev/s2": SRServoBoardFw4Simulator("srS2"),
+    }
     opened: list[str] = []
 
     async def opener(port: str, baudrate: int) -> ByteStream:

@@ -74,7 +74,8 @@ def test_encode_set_refuses(firmware: codec.Firmware, servo: object, pulse: obje
 
 def test_ack_and_nack() -> None:
     codec.check_ack(BOARD, b"*RESET\n", b"ACK")
-    with pytest.raises(CommunicationError, match=r"refused 'SERVO:1:SET:9': Invalid servo setpoint"):
+    refused = r"refused 'SERVO:1:SET:9': Invalid servo setpoint"
+    with pytest.raises(CommunicationError, match=refused):
         codec.check_ack(BOARD, b"SERVO:1:SET:9\n", b"NACK:Invalid servo setpoint")
     with pytest.raises(UnexpectedReplyError, match="not 'ACK'"):
         codec.check_ack(BOARD, b"*RESET\n", b"ACK ")

@@ -22,6 +22,7 @@ that says so. gpiozero calls are short pin writes and run on the event loop.
 from __future__ import annotations
 
 import logging
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -91,15 +92,18 @@ class KCHHardwareBackend(RGBLEDInterface, FlashingLEDInterface, Backend):
     hat_directory: ClassVar[Path] = HAT_DIRECTORY
 
     def __init__(self, pin_factory: Any = None) -> None:
-        from gpiozero import DigitalOutputDevice, GPIOZeroError
+        from gpiozero import DigitalOutputDevice, GPIOZeroError, PinFactoryFallback
 
         self._devices: list[DigitalOutputDevice] = []
         try:
-            self._start = self._output(DigitalOutputDevice, START_PIN, pin_factory)
-            self._leds = tuple(
-                tuple(self._output(DigitalOutputDevice, pin, pin_factory) for pin in pins)
-                for pins in KCH_PINS
-            )
+            with warnings.catch_warnings():
+                # gpiozero warns of each pin library it cannot load; the error below says it.
+                warnings.simplefilter("ignore", PinFactoryFallback)
+                self._start = self._output(DigitalOutputDevice, START_PIN, pin_factory)
+                self._leds = tuple(
+                    tuple(self._output(DigitalOutputDevice, pin, pin_factory) for pin in pins)
+                    for pins in KCH_PINS
+                )
         except GPIOZeroError as exc:
             self._close_devices()
             reason = str(exc).rstrip("!.")
