@@ -69,7 +69,8 @@ async def test_each_firmware_gets_its_board(
                                                         ("4.4",))],
 )
 async def test_the_other_firmware_is_unsupported(
-    backend: AnyServoBackend, sim: type[SRServoBoardFw4Simulator], found: str, supported: tuple[str],
+    backend: AnyServoBackend, sim: type[SRServoBoardFw4Simulator], found: str,
+    supported: tuple[str],
 ) -> None:
     stream = SimulatorStream(sim("x"), time_scale=0)
     with pytest.raises(UnsupportedFirmwareError) as info:
