@@ -16,6 +16,7 @@ from j5aio.backends.console.sr.v4 import (
     SBServoBoardConsoleBackend,
     SRV4ServoBoardFw4ConsoleBackend,
 )
+from j5aio.backends.hardware.sr.kch import KCHHardwareBackend
 from j5aio.backends.hardware.sr.v4 import (
     SBServoBoardHardwareBackend,
     SRV4ServoBoardFw4HardwareBackend,
@@ -45,6 +46,7 @@ async def servo_subject(
     board = await backend_class.from_stream(stream, port="sim", serial_number=sim.serial_number)
     await board.setup()
     stream.clear()
+    assert isinstance(board.backend, backend_class)
 
     async def observe(identifier: int) -> ServoPosition:
         pulse = sim.pulse_widths[identifier]
@@ -92,6 +94,7 @@ class TestKCHUserLEDs(OnOffRGBLEDs):
     async def make_backend(self) -> RGBLEDSubject:
         simulator = KCHSimulator()
         board = simulator.board()
+        assert isinstance(board.backend, KCHHardwareBackend)
 
         async def observe(identifier: int, channel: RGBChannel) -> float:
             return 1.0 if simulator.colours[identifier][channel] else 0.0
@@ -105,6 +108,7 @@ class TestKCHStartLED(LEDInterfaceConformance):
     async def make_backend(self) -> LEDSubject:
         simulator = KCHSimulator()
         board = simulator.board()
+        assert isinstance(board.backend, KCHHardwareBackend)
 
         async def observe(identifier: int) -> bool:
             return simulator.start_led
