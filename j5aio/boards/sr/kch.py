@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, ClassVar, Final, cast
+from typing import TYPE_CHECKING, ClassVar, cast
 
 from j5aio.boards.board import Board
 from j5aio.components.flashing_led import FlashingLED, FlashingLEDInterface
@@ -18,14 +18,14 @@ __all__ = ["Colour", "KCHBoard"]
 class Colour:
     """The eight colours a KCH LED can show (each channel is on or off)."""
 
-    OFF: Final[RGBColour] = (0.0, 0.0, 0.0)
-    RED: Final[RGBColour] = (1.0, 0.0, 0.0)
-    YELLOW: Final[RGBColour] = (1.0, 1.0, 0.0)
-    GREEN: Final[RGBColour] = (0.0, 1.0, 0.0)
-    CYAN: Final[RGBColour] = (0.0, 1.0, 1.0)
-    BLUE: Final[RGBColour] = (0.0, 0.0, 1.0)
-    MAGENTA: Final[RGBColour] = (1.0, 0.0, 1.0)
-    WHITE: Final[RGBColour] = (1.0, 1.0, 1.0)
+    OFF: ClassVar[RGBColour] = (0.0, 0.0, 0.0)
+    RED: ClassVar[RGBColour] = (1.0, 0.0, 0.0)
+    YELLOW: ClassVar[RGBColour] = (1.0, 1.0, 0.0)
+    GREEN: ClassVar[RGBColour] = (0.0, 1.0, 0.0)
+    CYAN: ClassVar[RGBColour] = (0.0, 1.0, 1.0)
+    BLUE: ClassVar[RGBColour] = (0.0, 0.0, 1.0)
+    MAGENTA: ClassVar[RGBColour] = (1.0, 0.0, 1.0)
+    WHITE: ClassVar[RGBColour] = (1.0, 1.0, 1.0)
 
 
 class KCHBoard(Board):
