@@ -22,17 +22,22 @@ from j5aio.backends.hardware.sr.v4 import (
     SRV4ServoBoardFw4HardwareBackend,
 )
 from j5aio.backends.hardware.transports.memory import SimulatorStream
+from j5aio.boards.sr.v4 import ServoBoardFw4
 from j5aio.components.rgb_led import RGBChannel
 from j5aio.components.servo import ServoPosition
 from j5aio.simulator.kch import KCHSimulator
 from j5aio.simulator.sr_servo_fw4 import SBServoBoardFw4Simulator, SRServoBoardFw4Simulator
 from j5aio.testing.conformance import (
-    LEDInterfaceConformance,
-    LEDSubject,
+    FlagInterfaceConformance,
+    FlagSubject,
+    FlashingLEDInterfaceConformance,
+    FlashingLEDSubject,
+    PulseServoInterfaceConformance,
+    PulseServoSubject,
     RGBLEDInterfaceConformance,
     RGBLEDSubject,
-    ServoInterfaceConformance,
-    ServoSubject,
+    SupplySensorInterfaceConformance,
+    SupplySensorSubject,
 )
 from j5aio.testing.console import ConsoleScript
 from j5aio.testing.transports import RecordingStream
@@ -41,7 +46,7 @@ from j5aio.testing.transports import RecordingStream
 async def servo_subject(
     backend_class: type[SRV4ServoBoardFw4HardwareBackend] | type[SBServoBoardHardwareBackend],
     sim: SRServoBoardFw4Simulator,
-) -> ServoSubject:
+) -> PulseServoSubject:
     stream = RecordingStream(SimulatorStream(sim, time_scale=0))
     board = await backend_class.from_stream(stream, port="sim", serial_number=sim.serial_number)
     await board.setup()
@@ -52,32 +57,99 @@ async def servo_subject(
         pulse = sim.pulse_widths[identifier]
         return None if pulse is None else (pulse - 1500) / 500  # default limits 1000-2000 µs
 
-    return ServoSubject(
+    async def observe_pulse(identifier: int) -> int | None:
+        return sim.pulse_widths[identifier]
+
+    return PulseServoSubject(
         backend=board.backend, identifiers=range(sim.SERVO_COUNT), observe=observe,
-        traffic=lambda: stream.sent, cleanup=board.close,
+        observe_pulse=observe_pulse, traffic=lambda: stream.sent, cleanup=board.close,
     )
 
 
-class TestSRServoBoardFw4(ServoInterfaceConformance):
-    async def make_backend(self) -> ServoSubject:
+async def servo_board(
+    sim: SRServoBoardFw4Simulator,
+) -> tuple[SRV4ServoBoardFw4HardwareBackend, RecordingStream]:
+    stream = RecordingStream(SimulatorStream(sim, time_scale=0))
+    board = await SRV4ServoBoardFw4HardwareBackend.from_stream(
+        stream, port="sim", serial_number=sim.serial_number,
+    )
+    assert isinstance(board.backend, SRV4ServoBoardFw4HardwareBackend)
+    return board.backend, stream
+
+
+class TestSRServoBoardFw4(PulseServoInterfaceConformance):
+    async def make_backend(self) -> PulseServoSubject:
         return await servo_subject(SRV4ServoBoardFw4HardwareBackend, SRServoBoardFw4Simulator("S"))
 
 
-class TestSBServoBoardFw4(ServoInterfaceConformance):
-    async def make_backend(self) -> ServoSubject:
+class TestSBServoBoardFw4(PulseServoInterfaceConformance):
+    async def make_backend(self) -> PulseServoSubject:
         return await servo_subject(SBServoBoardHardwareBackend, SBServoBoardFw4Simulator("S"))
 
 
-class TestSRServoBoardFw4Console(ServoInterfaceConformance):
-    async def make_backend(self) -> ServoSubject:
+class TestSRServoBoardFw4Console(PulseServoInterfaceConformance):
+    async def make_backend(self) -> PulseServoSubject:
         backend = SRV4ServoBoardFw4ConsoleBackend("SERIAL", ConsoleScript().console_class())
-        return ServoSubject(backend=backend, identifiers=range(12))
+        return PulseServoSubject(backend=backend, identifiers=range(12))
 
 
-class TestSBServoBoardFw4Console(ServoInterfaceConformance):
-    async def make_backend(self) -> ServoSubject:
+class TestSBServoBoardFw4Console(PulseServoInterfaceConformance):
+    async def make_backend(self) -> PulseServoSubject:
         backend = SBServoBoardConsoleBackend("SERIAL", ConsoleScript().console_class())
-        return ServoSubject(backend=backend, identifiers=range(8))
+        return PulseServoSubject(backend=backend, identifiers=range(8))
+
+
+class TestServoBoardFw4Supply(SupplySensorInterfaceConformance):
+    async def make_backend(self) -> SupplySensorSubject:
+        sim = SRServoBoardFw4Simulator("S")
+        backend, stream = await servo_board(sim)
+
+        async def set_reading(identifier: int, volts: float, amps: float) -> None:
+            sim.set_supply(voltage=volts, current=amps)
+
+        return SupplySensorSubject(
+            backend=backend, identifiers=[0], set_reading=set_reading, traffic=lambda: stream.sent,
+        )
+
+
+class TestServoBoardFw4Flags(FlagInterfaceConformance):
+    async def make_backend(self) -> FlagSubject:
+        sim = SRServoBoardFw4Simulator("S")
+        backend, stream = await servo_board(sim)
+
+        async def set_flag(identifier: int, raised: bool) -> None:
+            if identifier == ServoBoardFw4.POWER_GOOD:
+                sim.power_good = raised
+            else:
+                sim.watchdog_failed = raised
+
+        return FlagSubject(
+            backend=backend, identifiers=[0, 1], set_flag=set_flag, traffic=lambda: stream.sent,
+        )
+
+
+class TestServoBoardFw4ConsoleSupplyAndFlags(FlagInterfaceConformance):
+    async def make_backend(self) -> FlagSubject:
+        self.script = ConsoleScript()
+        backend = SRV4ServoBoardFw4ConsoleBackend("SERIAL", self.script.console_class())
+        names = ("Power good", "Watchdog failed")
+
+        async def set_flag(identifier: int, raised: bool) -> None:
+            self.script.answer(names[identifier], str(raised).lower(), replace=True)
+
+        return FlagSubject(backend=backend, identifiers=[0, 1], set_flag=set_flag)
+
+
+class TestServoBoardFw4ConsoleSupply(SupplySensorInterfaceConformance):
+    async def make_backend(self) -> SupplySensorSubject:
+        self.script = ConsoleScript()
+        backend = SRV4ServoBoardFw4ConsoleBackend("SERIAL", self.script.console_class())
+
+        async def set_reading(identifier: int, volts: float, amps: float) -> None:
+            self.script.answer("Servo supply voltage", str(volts), replace=True)
+            self.script.answer("Servo supply current", str(amps), replace=True)
+
+        return SupplySensorSubject(backend=backend, identifiers=[0], set_reading=set_reading)
 
 
 # --- KCH ------------------------------------------------------------------------------
@@ -104,8 +176,8 @@ class TestKCHUserLEDs(OnOffRGBLEDs):
         )
 
 
-class TestKCHStartLED(LEDInterfaceConformance):
-    async def make_backend(self) -> LEDSubject:
+class TestKCHStartLED(FlashingLEDInterfaceConformance):
+    async def make_backend(self) -> FlashingLEDSubject:
         simulator = KCHSimulator()
         board = simulator.board()
         assert isinstance(board.backend, KCHHardwareBackend)
@@ -113,8 +185,12 @@ class TestKCHStartLED(LEDInterfaceConformance):
         async def observe(identifier: int) -> bool:
             return simulator.start_led
 
-        return LEDSubject(
-            backend=board.backend, identifiers=[0], observe=observe, cleanup=board.close,
+        async def observe_changes(identifier: int) -> int:
+            return simulator.start_led_changes
+
+        return FlashingLEDSubject(
+            backend=board.backend, identifiers=[0], observe=observe,
+            observe_changes=observe_changes, cleanup=board.close,
         )
 
 
@@ -124,7 +200,7 @@ class TestKCHConsoleUserLEDs(OnOffRGBLEDs):
         return RGBLEDSubject(backend=backend, identifiers=range(3))
 
 
-class TestKCHConsoleStartLED(LEDInterfaceConformance):
-    async def make_backend(self) -> LEDSubject:
+class TestKCHConsoleStartLED(FlashingLEDInterfaceConformance):
+    async def make_backend(self) -> FlashingLEDSubject:
         backend = KCHConsoleBackend("SERIAL", ConsoleScript().console_class())
-        return LEDSubject(backend=backend, identifiers=[0])
+        return FlashingLEDSubject(backend=backend, identifiers=[0])
