@@ -2,16 +2,51 @@
 
 from __future__ import annotations
 
+import math
 from abc import abstractmethod
-from typing import cast
+from typing import Final, cast
 
 from j5aio.components._checks import describe
 from j5aio.components.servo import Servo, ServoInterface
 
-__all__ = ["PulseLimits", "PulseServo", "PulseServoInterface"]
+__all__ = [
+    "DEFAULT_PULSE_LIMITS",
+    "PulseLimits",
+    "PulseServo",
+    "PulseServoInterface",
+    "position_for_pulse",
+    "pulse_for_position",
+]
 
 PulseLimits = tuple[int, int]
 """Pulse widths in whole µs: (the pulse at position -1, the pulse at position 1)."""
+
+#: The pulse limits a servo starts with, in µs: position -1 is 1000 µs, 1 is 2000 µs.
+DEFAULT_PULSE_LIMITS: Final[PulseLimits] = (1000, 2000)
+
+
+def pulse_for_position(position: float, limits: PulseLimits) -> int:
+    """Return the pulse in µs for ``position`` in [-1, 1] between ``limits`` (low, high).
+
+    ``int((position + 1) x (high - low) / 2 + low)``, as sr-robot3 and sbot compute it.
+
+    :raises ValueError: ``position`` is outside [-1, 1] or NaN.
+    """
+    if not -1 <= position <= 1:
+        raise ValueError(f"a servo position must be between -1 and 1, not {position}")
+    low, high = limits
+    return int((position + 1) * (high - low) / 2 + low)
+
+
+def position_for_pulse(pulse_us: int, limits: PulseLimits) -> float:
+    """Return the position in [-1, 1] of a pulse, between ``limits`` (low, high).
+
+    ``(pulse - low) x 2 / (high - low) - 1``, rounded to 3 places as sr-robot3 does, and
+    kept within [-1, 1]: a pulse set under wider limits reads as the nearer end.
+    """
+    low, high = limits
+    position = round((pulse_us - low) * 2 / (high - low) - 1, 3)
+    return math.copysign(1.0, position) if abs(position) > 1 else position + 0.0
 
 
 class PulseServoInterface(ServoInterface):

@@ -9,14 +9,19 @@ from j5aio.backends.console.console import Console
 from j5aio.boards.sb.servo_board import SBServoBoard
 from j5aio.boards.sr.v4.servo_board_fw4 import ServoBoardFw4
 from j5aio.components.flag import FlagInterface
-from j5aio.components.pulse_servo import PulseLimits, PulseServoInterface
+from j5aio.components.pulse_servo import (
+    DEFAULT_PULSE_LIMITS,
+    PulseLimits,
+    PulseServoInterface,
+    position_for_pulse,
+    pulse_for_position,
+)
 from j5aio.components.servo import ServoPosition
 from j5aio.components.supply_sensor import SupplySensorInterface
 
 __all__ = ["SBServoBoardConsoleBackend", "SRV4ServoBoardFw4ConsoleBackend"]
 
 _TICK_US = 5
-_DEFAULT_LIMITS: PulseLimits = (1000, 2000)
 _FLAG_NAMES = ("Power good", "Watchdog failed")
 
 
@@ -42,7 +47,7 @@ class SRV4ServoBoardFw4ConsoleBackend(
     def __init__(self, serial: str, console_class: type[Console] | None = None) -> None:
         super().__init__(serial, console_class)
         self._servos = range(self.board.SERVO_COUNT)
-        self._limits: list[PulseLimits] = [_DEFAULT_LIMITS for _ in self._servos]
+        self._limits: list[PulseLimits] = [DEFAULT_PULSE_LIMITS for _ in self._servos]
         self._pulses: list[int | None] = [None for _ in self._servos]
 
     async def get_servo_pulse_range(self, identifier: int) -> PulseLimits:
@@ -77,8 +82,7 @@ class SRV4ServoBoardFw4ConsoleBackend(
         pulse = await self.get_servo_pulse_width(identifier)
         if pulse is None:
             return None
-        lower, upper = self._limits[identifier]
-        return max(-1.0, min(1.0, round((pulse - lower) * 2 / (upper - lower) - 1, 3)))
+        return position_for_pulse(pulse, self._limits[identifier])
 
     async def set_servo_position(self, identifier: int, position: ServoPosition) -> None:
         """Print the servo's new position and pulse."""
@@ -87,8 +91,7 @@ class SRV4ServoBoardFw4ConsoleBackend(
             self._pulses[identifier] = None
             await self._console.info(f"Setting servo {identifier} to unpowered.")
             return
-        lower, upper = self._limits[identifier]
-        pulse = int((position + 1) * (upper - lower) / 2 + lower)
+        pulse = pulse_for_position(position, self._limits[identifier])
         self._pulses[identifier] = pulse - pulse % _TICK_US
         await self._console.info(f"Setting servo {identifier} to {position} ({pulse} µs).")
 

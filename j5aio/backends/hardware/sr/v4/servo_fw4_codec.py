@@ -20,11 +20,15 @@ This module does no I/O.
 
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass
 from typing import Final
 
+from j5aio.components.pulse_servo import (
+    DEFAULT_PULSE_LIMITS,
+    position_for_pulse,
+    pulse_for_position,
+)
 from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
 
 __all__ = [
@@ -69,8 +73,6 @@ PRODUCT: Final = "Servo Board v4"
 BOARD_TYPE: Final = "SBv4B"
 #: The length of one firmware tick, in µs: pulses are stored in whole ticks, rounded down.
 TICK_US: Final = 5
-#: The pulse limits a servo starts with, in µs: position -1 is 1000 µs, 1 is 2000 µs.
-DEFAULT_PULSE_LIMITS: Final = (1000, 2000)
 
 #: Ask for the identity.
 IDENTIFY: Final = b"*IDN?\n"
@@ -295,27 +297,3 @@ def parse_status(board: str, reply: bytes) -> Status:
     if len(fields) != 2 or any(field not in (b"0", b"1") for field in fields):
         raise _bad(board, READ_STATUS, reply, "not '<0 or 1>:<0 or 1>'")
     return Status(watchdog_failed=fields[0] == b"1", power_good=fields[1] == b"1")
-
-
-def pulse_for_position(position: float, limits: tuple[int, int]) -> int:
-    """Return the pulse in µs for ``position`` in [-1, 1] between ``limits`` (low, high).
-
-    ``int((position + 1) x (high - low) / 2 + low)``, as sr-robot3 and sbot compute it.
-
-    :raises ValueError: ``position`` is outside [-1, 1] or NaN.
-    """
-    if not -1 <= position <= 1:
-        raise ValueError(f"a servo position must be between -1 and 1, not {position}")
-    low, high = limits
-    return int((position + 1) * (high - low) / 2 + low)
-
-
-def position_for_pulse(pulse_us: int, limits: tuple[int, int]) -> float:
-    """Return the position in [-1, 1] of a pulse read back, between ``limits`` (low, high).
-
-    ``(pulse - low) x 2 / (high - low) - 1``, rounded to 3 places as sr-robot3 does, and
-    kept within [-1, 1]: a pulse set under wider limits reads as the nearer end.
-    """
-    low, high = limits
-    position = round((pulse_us - low) * 2 / (high - low) - 1, 3)
-    return math.copysign(1.0, position) if abs(position) > 1 else position + 0.0
