@@ -240,3 +240,16 @@ async def test_discovery_and_attach_by_usb_identity() -> None:
     attached = await SR.attach("/dev/s1", opener=opener)
     assert attached.serial_number == "/dev/s1"
     await attached.close()
+
+
+async def test_a_repeated_handshake_keeps_the_limits_and_refreshes_the_identity() -> None:
+    sim = SRServoBoardFw4Simulator("srOLD")
+    board, _ = await connect(SR, sim)
+    await board.servos[0].set_pulse_limits(600, 2400)
+    sim.serial_number = "srNEW"  # another board of the same firmware came back
+    backend = board.backend
+    assert isinstance(backend, SR)
+    await backend._handshake(time_scale=0)
+    assert backend.asset_tag == "srNEW"
+    assert backend.pulse_limits[0] == (600, 2400)
+    await board.close()

@@ -10,9 +10,11 @@ a port first. Nothing is sent to the servos at start-up: they keep whatever the 
 was doing.
 
 Positions map onto each servo's pulse limits (1000 to 2000 µs unless changed). Every
-read asks the board, so nothing about the board is cached: the only state kept here is
-:attr:`~_ServoBoardFw4Backend.pulse_limits`, the user's own setting, and the firmware
-found by the handshake.
+read asks the board, so nothing about the board is cached. The state kept here is what
+the handshake found (firmware, version, asset tag: running :meth:`_handshake` again
+refreshes it) and :attr:`~_ServoBoardFw4Backend.pulse_limits`, the user's own setting,
+which a repeated handshake keeps. So after a reconnection, running the handshake again
+is all there is to do.
 """
 
 from __future__ import annotations
@@ -69,7 +71,9 @@ class _ServoBoardFw4Backend(
         self._firmware = firmware
         self._firmware_version = identity.version
         self._asset_tag = identity.asset_tag
-        self._limits = [codec.DEFAULT_PULSE_LIMITS] * firmware.servo_count
+        # The limits are the user's: a handshake run again (the board came back) keeps them.
+        if len(self._limits) != firmware.servo_count:
+            self._limits = [codec.DEFAULT_PULSE_LIMITS] * firmware.servo_count
 
     @property
     def firmware(self) -> codec.Firmware:
