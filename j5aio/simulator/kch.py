@@ -19,9 +19,10 @@ from the backend.
 from __future__ import annotations
 
 from itertools import pairwise
-from typing import TYPE_CHECKING, Any, Final
+from typing import TYPE_CHECKING, Any, Final, cast
 
 if TYPE_CHECKING:
+    from j5aio.backends.hardware.sr.kch import KCHHardwareBackend
     from j5aio.boards.board import Board
 
 __all__ = ["KCHSimulator"]
@@ -42,17 +43,38 @@ class KCHSimulator:
 
             pin_factory = MockFactory()
         self._factory = pin_factory
+        self._board: Board | None = None
 
     @property
     def pin_factory(self) -> Any:
         """The gpiozero mock pin factory whose pins are the KCH's."""
         return self._factory
 
-    def board(self, serial_number: str = "SIMKCH") -> Board:
-        """Return a KCH board driven by the real hardware backend over these pins."""
+    def board(
+        self,
+        serial_number: str = "SIMKCH",
+        *,
+        backend_class: type[KCHHardwareBackend] | None = None,
+    ) -> Board:
+        """Return the KCH board driven by the real hardware backend over these pins.
+
+        The pins can be held by one backend at a time, so while the board is open this
+        gives back the same board (as discovering a real KCH twice does); once it is
+        closed, a new one.
+
+        :param serial_number: the KCH's asset code (for a new board).
+        :param backend_class: the backend to drive it with (for a new board), a subclass
+            of :class:`~j5aio.backends.hardware.sr.kch.KCHHardwareBackend` such as a
+            simulated environment's; that class itself by default.
+        """
         from j5aio.backends.hardware.sr.kch import KCHHardwareBackend
 
-        return KCHHardwareBackend.from_pin_factory(self._factory, serial_number)
+        board = self._board
+        if board is not None and not cast(KCHHardwareBackend, board.backend).closed:
+            return board
+        backend = backend_class or KCHHardwareBackend
+        self._board = backend.from_pin_factory(self._factory, serial_number)
+        return self._board
 
     def _level(self, pin: int) -> bool:
         return bool(self._factory.pin(pin).state)

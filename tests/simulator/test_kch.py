@@ -36,3 +36,23 @@ def test_a_given_pin_factory_is_used() -> None:
     assert simulator.pin_factory is factory
     factory.pin(24).drive_high()
     assert simulator.colours[0] == (True, False, False)
+
+
+async def test_the_board_is_given_back_while_open_and_made_anew_after() -> None:
+    from j5aio.backends.hardware.sr.kch import KCHHardwareBackend
+
+    class Simulated(KCHHardwareBackend):
+        pass
+
+    simulator = KCHSimulator()
+    board = simulator.board("A", backend_class=Simulated)
+    assert type(board.backend) is Simulated
+    assert simulator.board("B") is board
+    await board.close()
+    assert isinstance(board.backend, Simulated)
+    assert board.backend.closed
+    again = simulator.board("B")
+    assert again is not board
+    assert again.serial_number == "B"
+    assert type(again.backend) is KCHHardwareBackend
+    await again.close()

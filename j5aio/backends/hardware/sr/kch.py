@@ -206,6 +206,11 @@ class KCHHardwareBackend(RGBLEDInterface, FlashingLEDInterface, Backend):
             device.close()
         self._devices.clear()
 
+    @property
+    def closed(self) -> bool:
+        """Whether the pins have been released."""
+        return not self._devices
+
     async def close(self) -> None:
         """Stop flashing and release the pins."""
         self._flashing = False
