@@ -8,6 +8,8 @@ from j5aio.components.battery_sensor import BatterySensor, BatterySensorInterfac
 from j5aio.components.button import Button, ButtonInterface
 from j5aio.components.component import Component, DerivedComponent, Interface
 from j5aio.components.derived.ultrasound import UltrasoundInterface, UltrasoundSensor
+from j5aio.components.flag import Flag, FlagInterface
+from j5aio.components.flashing_led import FlashingLED, FlashingLEDInterface
 from j5aio.components.gpio_pin import (
     FirmwareMode,
     GPIOPin,
@@ -25,12 +27,14 @@ from j5aio.components.motor import (
 )
 from j5aio.components.piezo import Duration, Note, Piezo, PiezoInterface, Pitch
 from j5aio.components.power_output import PowerOutput, PowerOutputGroup, PowerOutputInterface
+from j5aio.components.pulse_servo import PulseLimits, PulseServo, PulseServoInterface
 from j5aio.components.rgb_led import RGBLED, RGBChannel, RGBColour, RGBLEDInterface
 from j5aio.components.servo import Servo, ServoInterface, ServoPosition
 from j5aio.components.string_command import (
     StringCommandComponent,
     StringCommandComponentInterface,
 )
+from j5aio.components.supply_sensor import SupplySensor, SupplySensorInterface
 
 __all__ = [
     "LED",
@@ -43,6 +47,10 @@ __all__ = [
     "DerivedComponent",
     "Duration",
     "FirmwareMode",
+    "Flag",
+    "FlagInterface",
+    "FlashingLED",
+    "FlashingLEDInterface",
     "GPIOPin",
     "GPIOPinInterface",
     "GPIOPinMode",
@@ -60,6 +68,9 @@ __all__ = [
     "PowerOutput",
     "PowerOutputGroup",
     "PowerOutputInterface",
+    "PulseLimits",
+    "PulseServo",
+    "PulseServoInterface",
     "RGBChannel",
     "RGBColour",
     "RGBLEDInterface",
@@ -68,6 +79,8 @@ __all__ = [
     "ServoPosition",
     "StringCommandComponent",
     "StringCommandComponentInterface",
+    "SupplySensor",
+    "SupplySensorInterface",
     "UltrasoundInterface",
     "UltrasoundSensor",
     "check_motor_state",

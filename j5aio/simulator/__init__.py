@@ -9,6 +9,8 @@ Serial boards (:class:`SerialBoardSimulator`):
 - :class:`SRMotorBoardFw3Simulator`: SR Motor Board v4, firmware 3, binary, 1 Mbaud.
 - :class:`SRRuggeduinoSimulator`: SR Ruggeduino single-character firmware 1 or 2.
 - :class:`SBArduinoSimulator`: SourceBots Arduino, 2019 line protocol (2019.6.0 / 2019.8.0).
+- :class:`SRServoBoardFw4Simulator` / :class:`SBServoBoardFw4Simulator`: SR Servo Board v4,
+  serial firmware 4.3 (12 servos) and the SourceBots fork 4.4 (8 servos).
 
 USB control-transfer boards (:class:`UsbBoardSimulator`, shaped like a pyusb device):
 
@@ -32,6 +34,7 @@ from .sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
 from .sr_power_fw3 import PiezoNote, SRPowerBoardFw3Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from .sr_servo_fw2 import SRServoBoardFw2Simulator
+from .sr_servo_fw4 import SBServoBoardFw4Simulator, SRServoBoardFw4Simulator
 
 __all__ = [
     "ARDUINO_UNO_R3",
@@ -44,10 +47,12 @@ __all__ = [
     "PinMode",
     "SBArduinoFirmware",
     "SBArduinoSimulator",
+    "SBServoBoardFw4Simulator",
     "SRMotorBoardFw3Simulator",
     "SRPowerBoardFw3Simulator",
     "SRRuggeduinoSimulator",
     "SRServoBoardFw2Simulator",
+    "SRServoBoardFw4Simulator",
     "SerialBoardSimulator",
     "SerialSimulatorFactory",
     "SimulatorUnpluggedError",
@@ -70,5 +75,7 @@ SERIAL_SIMULATORS: Final[Mapping[str, SerialSimulatorFactory]] = MappingProxyTyp
         "sr-motor": SRMotorBoardFw3Simulator,
         "sr-ruggeduino": SRRuggeduinoSimulator,
         "sb-arduino": SBArduinoSimulator,
+        "sr-servo-fw4": SRServoBoardFw4Simulator,
+        "sb-servo-fw4": SBServoBoardFw4Simulator,
     }
 )

@@ -21,23 +21,30 @@ import j5aio.boards.arduino.uno as _boards_arduino_uno
 import j5aio.boards.board as _boards_board
 import j5aio.boards.board_group as _boards_board_group
 import j5aio.boards.sb.arduino as _boards_sb_arduino
+import j5aio.boards.sb.servo_board as _boards_sb_servo_board
+import j5aio.boards.sr.kch as _boards_sr_kch
 import j5aio.boards.sr.v4.motor_board as _boards_sr_v4_motor_board
 import j5aio.boards.sr.v4.power_board as _boards_sr_v4_power_board
 import j5aio.boards.sr.v4.ruggeduino as _boards_sr_v4_ruggeduino
 import j5aio.boards.sr.v4.servo_board as _boards_sr_v4_servo_board
+import j5aio.boards.sr.v4.servo_board_fw4 as _boards_sr_v4_servo_board_fw4
 import j5aio.components._identified as _components_identified
 import j5aio.components.battery_sensor as _components_battery_sensor
 import j5aio.components.button as _components_button
 import j5aio.components.component as _components_component
 import j5aio.components.derived.ultrasound as _components_derived_ultrasound
+import j5aio.components.flag as _components_flag
+import j5aio.components.flashing_led as _components_flashing_led
 import j5aio.components.gpio_pin as _components_gpio_pin
 import j5aio.components.led as _components_led
 import j5aio.components.motor as _components_motor
 import j5aio.components.piezo as _components_piezo
 import j5aio.components.power_output as _components_power_output
+import j5aio.components.pulse_servo as _components_pulse_servo
 import j5aio.components.rgb_led as _components_rgb_led
 import j5aio.components.servo as _components_servo
 import j5aio.components.string_command as _components_string_command
+import j5aio.components.supply_sensor as _components_supply_sensor
 import j5aio.environments as _environments
 import j5aio.robot as _robot
 from j5aio.sync._runtime import call as _call
@@ -59,22 +66,30 @@ __all__ = [
     "Board",
     "BoardGroup",
     "Button",
+    "Colour",
     "Component",
     "DerivedComponent",
     "Environment",
+    "Flag",
+    "FlashingLED",
     "GPIOPin",
     "IdentifiedComponent",
+    "KCHBoard",
     "Motor",
     "MotorBoard",
     "Piezo",
     "PowerBoard",
     "PowerOutput",
     "PowerOutputGroup",
+    "PulseServo",
     "Ruggeduino",
     "SBArduinoBoard",
+    "SBServoBoard",
     "Servo",
     "ServoBoard",
+    "ServoBoardFw4",
     "StringCommandComponent",
+    "SupplySensor",
     "UltrasoundSensor",
     "UltrasoundSensors",
     "console_environment",
@@ -127,6 +142,13 @@ class Environment(_SyncWrapper):
     @overload
     def get_board_group(
         self,
+        board: type[_boards_sb_servo_board.SBServoBoard],
+    ) -> BoardGroup[SBServoBoard]:
+        ...
+
+    @overload
+    def get_board_group(
+        self,
         board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
     ) -> BoardGroup[Ruggeduino]:
         ...
@@ -141,8 +163,19 @@ class Environment(_SyncWrapper):
     @overload
     def get_board_group(
         self,
+        board: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
+    ) -> BoardGroup[ServoBoardFw4]:
+        ...
+
+    @overload
+    def get_board_group(
+        self,
         board: type[_boards_arduino_uno.ArduinoUno],
     ) -> BoardGroup[ArduinoUno]:
+        ...
+
+    @overload
+    def get_board_group(self, board: type[_boards_sr_kch.KCHBoard]) -> BoardGroup[KCHBoard]:
         ...
 
     @overload
@@ -222,6 +255,30 @@ class UltrasoundSensors(_SyncWrapper):
         :raises KeyError: a pin number is not a pin of the board.
         """
         return cast("UltrasoundSensor", _wrap(self._core.__getitem__(pins)))
+
+
+class Colour(_SyncWrapper):
+    """The eight colours a KCH LED can show (each channel is on or off)."""
+
+    __slots__ = ()
+
+    _core: _boards_sr_kch.Colour
+
+    OFF: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.OFF
+
+    RED: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.RED
+
+    YELLOW: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.YELLOW
+
+    GREEN: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.GREEN
+
+    CYAN: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.CYAN
+
+    BLUE: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.BLUE
+
+    MAGENTA: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.MAGENTA
+
+    WHITE: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.WHITE
 
 
 class BaseRobot(_SyncWrapper):
@@ -356,6 +413,17 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
+        board_type: type[_boards_sb_servo_board.SBServoBoard],
+        backend_class: type[_backends_backend.Backend],
+        *,
+        ports: Sequence[str] = (),
+    ) -> BoardGroup[SBServoBoard]:
+        ...
+
+    @overload
+    @classmethod
+    def get_board_group(
+        cls,
         board_type: type[_boards_sr_v4_ruggeduino.Ruggeduino],
         backend_class: type[_backends_backend.Backend],
         *,
@@ -378,11 +446,33 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
+        board_type: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
+        backend_class: type[_backends_backend.Backend],
+        *,
+        ports: Sequence[str] = (),
+    ) -> BoardGroup[ServoBoardFw4]:
+        ...
+
+    @overload
+    @classmethod
+    def get_board_group(
+        cls,
         board_type: type[_boards_arduino_uno.ArduinoUno],
         backend_class: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[ArduinoUno]:
+        ...
+
+    @overload
+    @classmethod
+    def get_board_group(
+        cls,
+        board_type: type[_boards_sr_kch.KCHBoard],
+        backend_class: type[_backends_backend.Backend],
+        *,
+        ports: Sequence[str] = (),
+    ) -> BoardGroup[KCHBoard]:
         ...
 
     @overload
@@ -623,6 +713,49 @@ class ArduinoUno(Board):
 
     def make_safe(self) -> None:
         """Do nothing: a pin has no safe state that suits every circuit."""
+        _call(self._core.make_safe)
+
+
+class KCHBoard(Board):
+    """The KCH, the HAT on the Raspberry Pi of the Student Robotics 2023+ kit.
+
+    Its three user LEDs A, B and C (:attr:`leds`, 0 to 2) each have a red, a green and a
+    blue part that are on or off, so they show the eight :class:`Colour` s: any
+    brightness above 0 lights a part fully. Its start LED (:attr:`start_led`) flashes
+    while a robot waits for the start button. Colours stay lit when the program ends.
+
+    :param serial_number: the KCH's asset code.
+    :param backend: the backend that drives the LEDs.
+    """
+
+    __slots__ = ()
+
+    _core: _boards_sr_kch.KCHBoard
+
+    def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
+        _adopt_into(self, _boards_sr_kch.KCHBoard(serial_number, backend))
+
+    name: ClassVar[str] = _boards_sr_kch.KCHBoard.name
+
+    LED_COUNT: ClassVar[int] = _boards_sr_kch.KCHBoard.LED_COUNT
+
+    @property
+    def leds(self) -> tuple[RGBLED, ...]:
+        """The user LEDs A, B and C (0, 1 and 2)."""
+        return cast("tuple[RGBLED, ...]", _wrap(self._core.leds))
+
+    @property
+    def start_led(self) -> FlashingLED:
+        """The start LED, which flashes while the robot waits to be started."""
+        return cast("FlashingLED", _wrap(self._core.start_led))
+
+    @staticmethod
+    def supported_components() -> set[type[_components_component.Component]]:
+        """The component classes on a KCH."""
+        return _boards_sr_kch.KCHBoard.supported_components()
+
+    def make_safe(self) -> None:
+        """Turn the start LED off; the user LEDs keep their colours, as on the real kit."""
         _call(self._core.make_safe)
 
 
@@ -871,6 +1004,67 @@ class Ruggeduino(ArduinoUno):
         return _boards_sr_v4_ruggeduino.Ruggeduino.supported_components()
 
 
+class ServoBoardFw4(ServoBoard):
+    """The Student Robotics v4 Servo Board running the serial firmware 4.3: twelve servos.
+
+    Everything a :class:`ServoBoard` does works the same, so programs written for the
+    older firmware keep working. On top of that:
+
+    * each servo is a :class:`~j5aio.components.pulse_servo.PulseServo`: its positions
+      -1 to 1 map onto pulse limits (1000 to 2000 µs unless changed), and it reads back
+      the pulse the board really gives, in 5 µs steps;
+    * ``None`` unpowers a servo;
+    * :attr:`supply` measures the servo rail, :attr:`power_good` and
+      :attr:`watchdog_failed` report the board's status flags.
+
+    The SourceBots fork of the firmware, with eight servos, is
+    :class:`~j5aio.boards.sb.servo_board.SBServoBoard`, a subclass with another
+    :attr:`SERVO_COUNT`. It is a class of its own (not a per-board channel count) so that
+    a board group, the sync facade and autocompletion all know how many servos there are.
+
+    :param serial_number: the board's serial number.
+    :param backend: the backend that drives the board.
+    """
+
+    __slots__ = ()
+
+    _core: _boards_sr_v4_servo_board_fw4.ServoBoardFw4
+
+    def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
+        _adopt_into(self, _boards_sr_v4_servo_board_fw4.ServoBoardFw4(serial_number, backend))
+
+    name: ClassVar[str] = _boards_sr_v4_servo_board_fw4.ServoBoardFw4.name
+
+    POWER_GOOD: ClassVar[int] = _boards_sr_v4_servo_board_fw4.ServoBoardFw4.POWER_GOOD
+
+    WATCHDOG_FAILED: ClassVar[int] = _boards_sr_v4_servo_board_fw4.ServoBoardFw4.WATCHDOG_FAILED
+
+    @property
+    def servos(self) -> tuple[PulseServo, ...]:
+        """The servos, numbered from 0."""
+        return cast("tuple[PulseServo, ...]", _wrap(self._core.servos))
+
+    @property
+    def supply(self) -> SupplySensor:
+        """The servo rail's voltage and current."""
+        return cast("SupplySensor", _wrap(self._core.supply))
+
+    @property
+    def power_good(self) -> Flag:
+        """Raised while the servo rail's regulator reports good power."""
+        return cast("Flag", _wrap(self._core.power_good))
+
+    @property
+    def watchdog_failed(self) -> Flag:
+        """Raised when the board lost touch with its pulse generator (often: no 12 V)."""
+        return cast("Flag", _wrap(self._core.watchdog_failed))
+
+    @staticmethod
+    def supported_components() -> set[type[_components_component.Component]]:
+        """The component classes on this Servo Board."""
+        return _boards_sr_v4_servo_board_fw4.ServoBoardFw4.supported_components()
+
+
 class IdentifiedComponent(Component, Generic[InterfaceT]):
     """A component known by a number on its board, driven through one backend.
 
@@ -935,6 +1129,25 @@ class UltrasoundSensor(DerivedComponent):
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         return _call(self._core.distance)
+
+
+class SBServoBoard(ServoBoardFw4):
+    """The servo board of the SourceBots 2024+ kit: SourceBots' firmware 4.4, eight servos.
+
+    The same board and protocol as :class:`~j5aio.boards.sr.v4.servo_board_fw4.ServoBoardFw4`,
+    with eight servos (0 to 7) whose pulses may be as short as 300 µs.
+
+    :param serial_number: the board's serial number.
+    :param backend: the backend that drives the board.
+    """
+
+    __slots__ = ()
+
+    _core: _boards_sb_servo_board.SBServoBoard
+
+    name: ClassVar[str] = _boards_sb_servo_board.SBServoBoard.name
+
+    SERVO_COUNT: ClassVar[int] = _boards_sb_servo_board.SBServoBoard.SERVO_COUNT
 
 
 class BatterySensor(IdentifiedComponent[_components_battery_sensor.BatterySensorInterface]):
@@ -1007,6 +1220,34 @@ class Button(IdentifiedComponent[_components_button.ButtonInterface]):
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         _call(self._core.wait_until_pressed, timeout)
+
+
+class Flag(IdentifiedComponent[_components_flag.FlagInterface]):
+    """A condition a board reports as raised (``True``) or not (``False``).
+
+    What a flag means is given by the name the board gives it, for example a servo
+    board's ``power_good`` and ``watchdog_failed``.
+
+    :param identifier: the number of the flag on its board.
+    :param backend: the backend that reads the flag.
+    """
+
+    __slots__ = ()
+
+    _core: _components_flag.Flag
+
+    @property
+    def state(self) -> bool:
+        """Return ``True`` if the flag is raised.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.get_state)
+
+    @classmethod
+    def interface_class(cls) -> type[_components_flag.FlagInterface]:
+        """The interface a backend implements to read flags: :class:`FlagInterface`."""
+        return _components_flag.Flag.interface_class()
 
 
 class GPIOPin(IdentifiedComponent[_components_gpio_pin.GPIOPinInterface]):
@@ -1511,6 +1752,121 @@ class StringCommandComponent(IdentifiedComponent[_components_string_command.Stri
         return _call(self._core.execute, command)
 
 
+class SupplySensor(IdentifiedComponent[_components_supply_sensor.SupplySensorInterface]):
+    """A meter on one of a board's power rails (such as a servo board's servo supply).
+
+    :param identifier: the number of the rail on its board.
+    :param backend: the backend that reads the meter.
+    """
+
+    __slots__ = ()
+
+    _core: _components_supply_sensor.SupplySensor
+
+    @property
+    def voltage(self) -> float:
+        """Return the rail's voltage, in volts.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.get_voltage)
+
+    @property
+    def current(self) -> float:
+        """Return the current drawn from the rail, in amps.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.get_current)
+
+    @classmethod
+    def interface_class(cls) -> type[_components_supply_sensor.SupplySensorInterface]:
+        """The interface a backend implements for supply sensors: :class:`SupplySensorInterface`."""
+        return _components_supply_sensor.SupplySensor.interface_class()
+
+
+class FlashingLED(LED):
+    """An LED that is on, off, or flashing by itself.
+
+    ``await led.flash()`` starts it flashing once a second; ``await led.set_state(...)``
+    stops the flashing and leaves it on or off.
+
+    :param identifier: the number of the LED on its board.
+    :param backend: the backend that drives the LED.
+    """
+
+    __slots__ = ()
+
+    _core: _components_flashing_led.FlashingLED
+
+    @property
+    def is_flashing(self) -> bool:
+        """Return whether the LED is flashing."""
+        return _call(self._core.get_is_flashing)
+
+    @classmethod
+    def interface_class(cls) -> type[_components_flashing_led.FlashingLEDInterface]:
+        """The interface a backend implements for flashing LEDs: :class:`FlashingLEDInterface`."""
+        return _components_flashing_led.FlashingLED.interface_class()
+
+    def flash(self, period: float = 1.0) -> None:
+        """Flash the LED: on for half of ``period`` seconds, then off for the other half.
+
+        :raises TypeError: ``period`` is not a number (or is a bool).
+        :raises ValueError: ``period`` is outside 0.02 to 60 seconds, or NaN.
+        """
+        _call(self._core.flash, period)
+
+
+class PulseServo(Servo):
+    """A servo driven by pulses whose widths are set by its position.
+
+    Position -1 gives the lower pulse limit and 1 the upper one (1000 and 2000 µs unless
+    changed with :meth:`set_pulse_limits`); positions in between are spread evenly.
+
+    :param identifier: the number of the servo on its board.
+    :param backend: the backend that drives the servo.
+    """
+
+    __slots__ = ()
+
+    _core: _components_pulse_servo.PulseServo
+
+    @property
+    def pulse_range(self) -> tuple[int, int]:
+        """Return the shortest and longest pulse the board can give this servo, in µs."""
+        return _call(self._core.get_pulse_range)
+
+    @property
+    def pulse_limits(self) -> tuple[int, int]:
+        """Return the pulses that positions -1 and 1 give, in µs."""
+        return _call(self._core.get_pulse_limits)
+
+    @property
+    def pulse_width(self) -> int | None:
+        """Return the pulse the board gives this servo, in µs, or ``None`` when unpowered.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.get_pulse_width)
+
+    @classmethod
+    def interface_class(cls) -> type[_components_pulse_servo.PulseServoInterface]:
+        """The interface a backend implements for pulse servos: :class:`PulseServoInterface`."""
+        return _components_pulse_servo.PulseServo.interface_class()
+
+    def set_pulse_limits(self, lower: int, upper: int) -> None:
+        """Make positions -1 and 1 give pulses of ``lower`` and ``upper`` µs.
+
+        :param lower: the pulse at position -1, in whole µs.
+        :param upper: the pulse at position 1, in whole µs, more than ``lower``.
+        :raises TypeError: a limit is not an int (a bool is refused too).
+        :raises ValueError: ``lower`` is not below ``upper``, or a limit is outside the
+            range the board's firmware accepts (see :meth:`get_pulse_range`).
+        """
+        _call(self._core.set_pulse_limits, lower, upper)
+
+
 def hardware_environment() -> Environment:
     """The environment of the boards plugged into this computer."""
     return cast("Environment", _wrap(_environments.hardware_environment()))
@@ -1545,22 +1901,27 @@ def get_default_environment() -> Environment:
 
 _register(_backends_environment.Environment, Environment)
 _register(_boards_sb_arduino.UltrasoundSensors, UltrasoundSensors)
+_register(_boards_sr_kch.Colour, Colour)
 _register(_robot.BaseRobot, BaseRobot)
 _register(_boards_board.Board, Board)
 _register(_boards_board_group.BoardGroup, BoardGroup)
 _register(_components_component.Component, Component)
 _register(_components_power_output.PowerOutputGroup, PowerOutputGroup)
 _register(_boards_arduino_uno.ArduinoUno, ArduinoUno)
+_register(_boards_sr_kch.KCHBoard, KCHBoard)
 _register(_boards_sr_v4_motor_board.MotorBoard, MotorBoard)
 _register(_boards_sr_v4_power_board.PowerBoard, PowerBoard)
 _register(_boards_sr_v4_servo_board.ServoBoard, ServoBoard)
 _register(_components_component.DerivedComponent, DerivedComponent)
 _register(_boards_sb_arduino.SBArduinoBoard, SBArduinoBoard)
 _register(_boards_sr_v4_ruggeduino.Ruggeduino, Ruggeduino)
+_register(_boards_sr_v4_servo_board_fw4.ServoBoardFw4, ServoBoardFw4)
 _register(_components_identified.IdentifiedComponent, IdentifiedComponent)
 _register(_components_derived_ultrasound.UltrasoundSensor, UltrasoundSensor)
+_register(_boards_sb_servo_board.SBServoBoard, SBServoBoard)
 _register(_components_battery_sensor.BatterySensor, BatterySensor)
 _register(_components_button.Button, Button)
+_register(_components_flag.Flag, Flag)
 _register(_components_gpio_pin.GPIOPin, GPIOPin)
 _register(_components_led.LED, LED)
 _register(_components_motor.Motor, Motor)
@@ -1569,6 +1930,9 @@ _register(_components_power_output.PowerOutput, PowerOutput)
 _register(_components_rgb_led.RGBLED, RGBLED)
 _register(_components_servo.Servo, Servo)
 _register(_components_string_command.StringCommandComponent, StringCommandComponent)
+_register(_components_supply_sensor.SupplySensor, SupplySensor)
+_register(_components_flashing_led.FlashingLED, FlashingLED)
+_register(_components_pulse_servo.PulseServo, PulseServo)
 
 CONSOLE_ENVIRONMENT: Final[Environment] = cast("Environment", _wrap(_backends_console.CONSOLE_ENVIRONMENT))
 """The sync face of ``j5aio.backends.console.CONSOLE_ENVIRONMENT``."""

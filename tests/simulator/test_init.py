@@ -6,19 +6,23 @@ import j5aio.simulator as simulator
 from j5aio.simulator import (
     SERIAL_SIMULATORS,
     SBArduinoSimulator,
+    SBServoBoardFw4Simulator,
     SerialBoardSimulator,
     SRMotorBoardFw3Simulator,
     SRRuggeduinoSimulator,
+    SRServoBoardFw4Simulator,
 )
 
 
 def test_serial_simulators_by_cli_name() -> None:
-    assert set(SERIAL_SIMULATORS) == {"sr-motor", "sr-ruggeduino", "sb-arduino"}
     expected = {
         "sr-motor": SRMotorBoardFw3Simulator,
         "sr-ruggeduino": SRRuggeduinoSimulator,
         "sb-arduino": SBArduinoSimulator,
+        "sr-servo-fw4": SRServoBoardFw4Simulator,
+        "sb-servo-fw4": SBServoBoardFw4Simulator,
     }
+    assert set(SERIAL_SIMULATORS) == set(expected)
     for name, factory in SERIAL_SIMULATORS.items():
         board = factory("SER123")
         assert isinstance(board, SerialBoardSimulator)

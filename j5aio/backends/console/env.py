@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 from j5aio.backends.console.sb.arduino import SBArduinoConsoleBackend
+from j5aio.backends.console.sr.kch import KCHConsoleBackend
 from j5aio.backends.console.sr.v4 import (
+    SBServoBoardConsoleBackend,
     SRV4MotorBoardConsoleBackend,
     SRV4PowerBoardConsoleBackend,
     SRV4RuggeduinoConsoleBackend,
     SRV4ServoBoardConsoleBackend,
+    SRV4ServoBoardFw4ConsoleBackend,
 )
 from j5aio.backends.environment import Environment
 
@@ -22,5 +25,8 @@ for _backend in (
     SRV4ServoBoardConsoleBackend,
     SRV4RuggeduinoConsoleBackend,
     SBArduinoConsoleBackend,
+    SRV4ServoBoardFw4ConsoleBackend,
+    SBServoBoardConsoleBackend,
+    KCHConsoleBackend,
 ):
     CONSOLE_ENVIRONMENT.register_backend(_backend)

@@ -1,5 +1,6 @@
 """Boards made by SourceBots."""
 
 from j5aio.boards.sb.arduino import SBArduinoBoard, UltrasoundSensors
+from j5aio.boards.sb.servo_board import SBServoBoard
 
-__all__ = ["SBArduinoBoard", "UltrasoundSensors"]
+__all__ = ["SBArduinoBoard", "SBServoBoard", "UltrasoundSensors"]

@@ -18,14 +18,18 @@ hook the subject does not give are skipped, saying which hook would enable them.
 from ._base import InterfaceConformance, Subject
 from .battery_sensor import BatterySensorInterfaceConformance, BatterySensorSubject
 from .button import ButtonInterfaceConformance, ButtonSubject
+from .flag import FlagInterfaceConformance, FlagSubject
+from .flashing_led import FlashingLEDInterfaceConformance, FlashingLEDSubject
 from .gpio_pin import GPIOPinInterfaceConformance, GPIOPinSubject, pin_modes
 from .led import LEDInterfaceConformance, LEDSubject
 from .motor import MotorInterfaceConformance, MotorSubject
 from .piezo import PiezoInterfaceConformance, PiezoSubject
 from .power_output import PowerOutputInterfaceConformance, PowerOutputSubject
+from .pulse_servo import PulseServoInterfaceConformance, PulseServoSubject
 from .rgb_led import RGBLEDInterfaceConformance, RGBLEDSubject
 from .servo import ServoInterfaceConformance, ServoSubject
 from .string_command import StringCommandInterfaceConformance, StringCommandSubject
+from .supply_sensor import SupplySensorInterfaceConformance, SupplySensorSubject
 from .ultrasound import UltrasoundInterfaceConformance, UltrasoundSubject
 
 __all__ = [
@@ -33,6 +37,10 @@ __all__ = [
     "BatterySensorSubject",
     "ButtonInterfaceConformance",
     "ButtonSubject",
+    "FlagInterfaceConformance",
+    "FlagSubject",
+    "FlashingLEDInterfaceConformance",
+    "FlashingLEDSubject",
     "GPIOPinInterfaceConformance",
     "GPIOPinSubject",
     "InterfaceConformance",
@@ -44,6 +52,8 @@ __all__ = [
     "PiezoSubject",
     "PowerOutputInterfaceConformance",
     "PowerOutputSubject",
+    "PulseServoInterfaceConformance",
+    "PulseServoSubject",
     "RGBLEDInterfaceConformance",
     "RGBLEDSubject",
     "ServoInterfaceConformance",
@@ -51,6 +61,8 @@ __all__ = [
     "StringCommandInterfaceConformance",
     "StringCommandSubject",
     "Subject",
+    "SupplySensorInterfaceConformance",
+    "SupplySensorSubject",
     "UltrasoundInterfaceConformance",
     "UltrasoundSubject",
     "pin_modes",

@@ -6,15 +6,19 @@ import pytest
 
 from j5aio.backends.console import CONSOLE_ENVIRONMENT, ConsoleBackend
 from j5aio.backends.console.sb import SBArduinoConsoleBackend
+from j5aio.backends.console.sr.kch import KCHConsoleBackend
 from j5aio.backends.console.sr.v4 import (
+    SBServoBoardConsoleBackend,
     SRV4MotorBoardConsoleBackend,
     SRV4PowerBoardConsoleBackend,
     SRV4RuggeduinoConsoleBackend,
     SRV4ServoBoardConsoleBackend,
+    SRV4ServoBoardFw4ConsoleBackend,
 )
 from j5aio.boards.board import Board
-from j5aio.boards.sb import SBArduinoBoard
-from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
+from j5aio.boards.sb import SBArduinoBoard, SBServoBoard
+from j5aio.boards.sr.kch import KCHBoard
+from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard, ServoBoardFw4
 
 from .console_script import Terminal
 
@@ -24,6 +28,9 @@ BACKENDS: dict[type[Board], type[ConsoleBackend]] = {
     ServoBoard: SRV4ServoBoardConsoleBackend,
     Ruggeduino: SRV4RuggeduinoConsoleBackend,
     SBArduinoBoard: SBArduinoConsoleBackend,
+    ServoBoardFw4: SRV4ServoBoardFw4ConsoleBackend,
+    SBServoBoard: SBServoBoardConsoleBackend,
+    KCHBoard: KCHConsoleBackend,
 }
 
 

@@ -4,6 +4,7 @@ from j5aio.boards.sr.v4.motor_board import MotorBoard
 from j5aio.boards.sr.v4.power_board import PowerBoard, PowerOutputGroup, PowerOutputPosition
 from j5aio.boards.sr.v4.ruggeduino import Ruggeduino
 from j5aio.boards.sr.v4.servo_board import ServoBoard
+from j5aio.boards.sr.v4.servo_board_fw4 import ServoBoardFw4
 
 __all__ = [
     "MotorBoard",
@@ -12,4 +13,5 @@ __all__ = [
     "PowerOutputPosition",
     "Ruggeduino",
     "ServoBoard",
+    "ServoBoardFw4",
 ]

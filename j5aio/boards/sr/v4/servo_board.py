@@ -29,7 +29,11 @@ class ServoBoard(Board):
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
         servo_backend = cast(ServoInterface, backend)
-        self._servos = tuple(Servo(i, servo_backend) for i in range(self.SERVO_COUNT))
+        self._servos = tuple(self._make_servo(i, servo_backend) for i in range(self.SERVO_COUNT))
+
+    def _make_servo(self, identifier: int, backend: ServoInterface) -> Servo:
+        """Make servo ``identifier``; subclasses with richer servos override this."""
+        return Servo(identifier, backend)
 
     @property
     def servos(self) -> tuple[Servo, ...]:

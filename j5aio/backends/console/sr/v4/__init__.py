@@ -4,10 +4,16 @@ from j5aio.backends.console.sr.v4.motor_board import SRV4MotorBoardConsoleBacken
 from j5aio.backends.console.sr.v4.power_board import SRV4PowerBoardConsoleBackend
 from j5aio.backends.console.sr.v4.ruggeduino import SRV4RuggeduinoConsoleBackend
 from j5aio.backends.console.sr.v4.servo_board import SRV4ServoBoardConsoleBackend
+from j5aio.backends.console.sr.v4.servo_board_fw4 import (
+    SBServoBoardConsoleBackend,
+    SRV4ServoBoardFw4ConsoleBackend,
+)
 
 __all__ = [
+    "SBServoBoardConsoleBackend",
     "SRV4MotorBoardConsoleBackend",
     "SRV4PowerBoardConsoleBackend",
     "SRV4RuggeduinoConsoleBackend",
     "SRV4ServoBoardConsoleBackend",
+    "SRV4ServoBoardFw4ConsoleBackend",
 ]

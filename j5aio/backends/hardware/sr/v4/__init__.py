@@ -4,10 +4,18 @@ from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBack
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.servo_board_fw4 import (
+    SERVO_FW4_BACKENDS,
+    SBServoBoardHardwareBackend,
+    SRV4ServoBoardFw4HardwareBackend,
+)
 
 __all__ = [
+    "SERVO_FW4_BACKENDS",
+    "SBServoBoardHardwareBackend",
     "SRV4MotorBoardHardwareBackend",
     "SRV4PowerBoardHardwareBackend",
     "SRV4RuggeduinoHardwareBackend",
+    "SRV4ServoBoardFw4HardwareBackend",
     "SRV4ServoBoardHardwareBackend",
 ]

@@ -1,0 +1,210 @@
+"""Hardware backends of the SR v4 Servo Board with the serial firmware (4.3, and SB's 4.4).
+
+The board is a USB CDC serial port with the same USB ids as firmware 2 (``1BDA:0011``);
+firmware 2 is not a serial port, so serial discovery only ever finds the text firmware.
+The handshake asks ``*IDN?`` and keeps the board only if its version is one the backend
+supports; the version tells SR's 4.3 (12 servos, :class:`SRV4ServoBoardFw4HardwareBackend`)
+from the SourceBots fork 4.4 (8 servos, :class:`SBServoBoardHardwareBackend`).
+:data:`SERVO_FW4_BACKENDS` maps each version to its backend, for code that identifies
+a port first. Nothing is sent to the servos at start-up: they keep whatever the board
+was doing.
+
+Positions map onto each servo's pulse limits (1000 to 2000 µs unless changed). Every
+read asks the board, so nothing about the board is cached. The state kept here is what
+the handshake found (firmware, version, asset tag: running :meth:`_handshake` again
+refreshes it) and :attr:`~_ServoBoardFw4Backend.pulse_limits`, the user's own setting,
+which a repeated handshake keeps. So after a reconnection, running the handshake again
+is all there is to do.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from types import MappingProxyType
+from typing import ClassVar, Final
+
+from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
+from j5aio.backends.hardware.sr.v4 import servo_fw4_codec as codec
+from j5aio.backends.hardware.transports.readers import read_line
+from j5aio.backends.hardware.transports.serial_link import SerialLink
+from j5aio.boards.sb.servo_board import SBServoBoard
+from j5aio.boards.sr.v4.servo_board_fw4 import ServoBoardFw4
+from j5aio.components.flag import FlagInterface
+from j5aio.components.pulse_servo import PulseLimits, PulseServoInterface
+from j5aio.components.servo import ServoPosition
+from j5aio.components.supply_sensor import SupplySensorInterface
+
+__all__ = [
+    "SERVO_FW4_BACKENDS",
+    "SBServoBoardHardwareBackend",
+    "SRV4ServoBoardFw4HardwareBackend",
+]
+
+# A reply is one line; the firmware's whole reply buffer is 64 bytes.
+_REPLY: Final = read_line(max_length=64)
+
+
+class _ServoBoardFw4Backend(
+    PulseServoInterface, SupplySensorInterface, FlagInterface, SerialHardwareBackend,
+):
+    """What both firmwares share; subclasses name the board and the supported version."""
+
+    board = ServoBoardFw4
+    DEFAULT_TIMEOUT: ClassVar[float] = 0.5
+    USB_IDS: ClassVar[frozenset[tuple[int, int]]] = frozenset({(codec.VID, codec.PID)})
+    USB_MANUFACTURER: ClassVar[str | None] = codec.MANUFACTURER
+    USB_PRODUCT: ClassVar[str | None] = codec.PRODUCT
+    #: The firmware versions this backend drives.
+    SUPPORTED_VERSIONS: ClassVar[tuple[str, ...]] = ()
+
+    def __init__(self, link: SerialLink, *, port: str) -> None:
+        super().__init__(link, port=port)
+        self._firmware: codec.Firmware | None = None
+        self._asset_tag: str | None = None
+        self._limits: list[PulseLimits] = []
+
+    # -- handshake and state -------------------------------------------------------------
+
+    async def _handshake(self, *, time_scale: float) -> None:
+        identity = codec.parse_identity(self.board.name, await self._query(codec.IDENTIFY))
+        firmware = codec.firmware_for(self.board.name, identity.version, self.SUPPORTED_VERSIONS)
+        self._firmware = firmware
+        self._firmware_version = identity.version
+        self._asset_tag = identity.asset_tag
+        # The limits are the user's: a handshake run again (the board came back) keeps them.
+        if len(self._limits) != firmware.servo_count:
+            self._limits = [codec.DEFAULT_PULSE_LIMITS] * firmware.servo_count
+
+    @property
+    def firmware(self) -> codec.Firmware:
+        """The firmware the handshake found."""
+        if self._firmware is None:
+            raise RuntimeError(f"{self.board.name} on {self.port} has not been identified yet")
+        return self._firmware
+
+    @property
+    def asset_tag(self) -> str | None:
+        """The asset tag the board reported in its identity."""
+        return self._asset_tag
+
+    @property
+    def pulse_limits(self) -> tuple[PulseLimits, ...]:
+        """Each servo's pulse limits: the user's setting, kept across reconnections."""
+        return tuple(self._limits)
+
+    async def _query(self, request: bytes) -> bytes:
+        return await self._exchange(request, _REPLY)
+
+    async def _act(self, request: bytes) -> None:
+        codec.check_ack(self.board.name, request, await self._query(request))
+
+    def _check_servo(self, identifier: int) -> None:
+        codec.encode_get(self.firmware, identifier)  # TypeError / ValueError for a bad one
+
+    # -- servos --------------------------------------------------------------------------
+
+    async def get_servo_pulse_range(self, identifier: int) -> PulseLimits:
+        """Return the firmware's shortest and longest pulse, in µs."""
+        self._check_servo(identifier)
+        return (self.firmware.min_pulse, self.firmware.max_pulse)
+
+    async def get_servo_pulse_limits(self, identifier: int) -> PulseLimits:
+        """Return the pulses positions -1 and 1 give servo ``identifier``, in µs."""
+        self._check_servo(identifier)
+        return self._limits[identifier]
+
+    async def set_servo_pulse_limits(self, identifier: int, limits: PulseLimits) -> None:
+        """Map positions -1 and 1 of servo ``identifier`` to ``limits`` (sends nothing).
+
+        :raises ValueError: the limits are not increasing, or outside the firmware's range.
+        """
+        self._check_servo(identifier)
+        lower, upper = limits
+        firmware = self.firmware
+        if not firmware.min_pulse <= lower < upper <= firmware.max_pulse:
+            raise ValueError(
+                f"{self.board.name} takes pulse limits within {firmware.min_pulse} to "
+                f"{firmware.max_pulse} µs, lower first; got {lower} to {upper} µs",
+            )
+        self._limits[identifier] = (lower, upper)
+
+    async def get_servo_pulse_width(self, identifier: int) -> int | None:
+        """Ask the board for servo ``identifier``'s pulse, in µs (``None``: disabled)."""
+        firmware = self.firmware
+        request = codec.encode_get(firmware, identifier)
+        return codec.parse_pulse(self.board.name, request, await self._query(request), firmware)
+
+    async def get_servo_position(self, identifier: int) -> ServoPosition:
+        """Return the position of the pulse the board gives (``None``: disabled).
+
+        The pulse is read back in 5 µs steps, so the position is within 0.01 of the one
+        set with the default limits.
+        """
+        pulse = await self.get_servo_pulse_width(identifier)
+        if pulse is None:
+            return None
+        return codec.position_for_pulse(pulse, self._limits[identifier])
+
+    async def set_servo_position(self, identifier: int, position: ServoPosition) -> None:
+        """Send ``SERVO:<n>:SET:<µs>`` for a position, ``SERVO:<n>:DISABLE`` for ``None``."""
+        firmware = self.firmware
+        if position is None:
+            await self._act(codec.encode_disable(firmware, identifier))
+            return
+        self._check_servo(identifier)
+        pulse = codec.pulse_for_position(position, self._limits[identifier])
+        await self._act(codec.encode_set(firmware, identifier, pulse))
+
+    async def reset(self) -> None:
+        """Disable every servo (``*RESET``)."""
+        await self._act(codec.RESET)
+
+    # -- supply and flags ----------------------------------------------------------------
+
+    @staticmethod
+    def _check_only(kind: str, identifier: int, valid: range) -> None:
+        if isinstance(identifier, bool) or identifier not in valid:
+            raise ValueError(
+                f"the servo board has {kind} {valid.start} to {valid.stop - 1}, "
+                f"not {identifier!r}",
+            )
+
+    async def get_supply_voltage(self, identifier: int) -> float:
+        """Return the servo rail's voltage (``SERVO:V?``), in volts."""
+        self._check_only("supply sensor", identifier, range(1))
+        reply = await self._query(codec.READ_VOLTAGE)
+        return codec.parse_milli(self.board.name, codec.READ_VOLTAGE, reply)
+
+    async def get_supply_current(self, identifier: int) -> float:
+        """Return the servo rail's current (``SERVO:I?``), in amps."""
+        self._check_only("supply sensor", identifier, range(1))
+        reply = await self._query(codec.READ_CURRENT)
+        return codec.parse_milli(self.board.name, codec.READ_CURRENT, reply)
+
+    async def get_flag_state(self, identifier: int) -> bool:
+        """Return flag 0 (power good) or 1 (watchdog failed) from ``*STATUS?``."""
+        self._check_only("flags", identifier, range(2))
+        status = codec.parse_status(self.board.name, await self._query(codec.READ_STATUS))
+        if identifier == ServoBoardFw4.POWER_GOOD:
+            return status.power_good
+        return status.watchdog_failed
+
+
+class SRV4ServoBoardFw4HardwareBackend(_ServoBoardFw4Backend):
+    """Drives an SR v4 Servo Board running Student Robotics firmware 4.3 (12 servos)."""
+
+    board = ServoBoardFw4
+    SUPPORTED_VERSIONS: ClassVar[tuple[str, ...]] = ("4.3",)
+
+
+class SBServoBoardHardwareBackend(_ServoBoardFw4Backend):
+    """Drives a servo board running the SourceBots fork of the firmware, 4.4 (8 servos)."""
+
+    board = SBServoBoard
+    SUPPORTED_VERSIONS: ClassVar[tuple[str, ...]] = ("4.4",)
+
+
+#: The backend of each servo board firmware version, for code that identifies a port first.
+SERVO_FW4_BACKENDS: Final[Mapping[str, type[_ServoBoardFw4Backend]]] = MappingProxyType(
+    {"4.3": SRV4ServoBoardFw4HardwareBackend, "4.4": SBServoBoardHardwareBackend},
+)
