@@ -9,6 +9,7 @@ Serial boards (:class:`SerialBoardSimulator`):
 - :class:`SRMotorBoardFw3Simulator`: SR Motor Board v4, firmware 3, binary, 1 Mbaud.
 - :class:`SRRuggeduinoSimulator`: SR Ruggeduino single-character firmware 1 or 2.
 - :class:`SBArduinoSimulator`: SourceBots Arduino, 2019 line protocol (2019.6.0 / 2019.8.0).
+- :class:`SBArduino2024Simulator`: SourceBots Arduino, sb2024 colon protocol (``2.0``).
 
 USB control-transfer boards (:class:`UsbBoardSimulator`, shaped like a pyusb device):
 
@@ -21,6 +22,7 @@ USB control-transfer boards (:class:`UsbBoardSimulator`, shaped like a pyusb dev
 from __future__ import annotations
 
 from collections.abc import Mapping
+from functools import partial
 from types import MappingProxyType
 from typing import Final, Protocol
 
@@ -28,6 +30,7 @@ from .arduino_base import ARDUINO_UNO_R3, ArduinoBoardSimulator, UsbIdentity
 from .arduino_pins import ArduinoUnoPins, PinMode
 from .base import SerialBoardSimulator, SimulatorUnpluggedError, UsbBoardSimulator
 from .sb_arduino_2019 import SBArduinoFirmware, SBArduinoSimulator
+from .sb_arduino_2024 import SBArduino2024Simulator
 from .sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
 from .sr_power_fw3 import PiezoNote, SRPowerBoardFw3Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
@@ -42,6 +45,7 @@ __all__ = [
     "MotorOutput",
     "PiezoNote",
     "PinMode",
+    "SBArduino2024Simulator",
     "SBArduinoFirmware",
     "SBArduinoSimulator",
     "SRMotorBoardFw3Simulator",
@@ -70,5 +74,7 @@ SERIAL_SIMULATORS: Final[Mapping[str, SerialSimulatorFactory]] = MappingProxyTyp
         "sr-motor": SRMotorBoardFw3Simulator,
         "sr-ruggeduino": SRRuggeduinoSimulator,
         "sb-arduino": SBArduinoSimulator,
+        "sr-arduino-fw2": partial(SRRuggeduinoSimulator, firmware_version=2),
+        "sb-arduino-2024": SBArduino2024Simulator,
     }
 )

@@ -1,5 +1,6 @@
 """Boards made by SourceBots."""
 
 from j5aio.boards.sb.arduino import SBArduinoBoard, UltrasoundSensors
+from j5aio.boards.sb.arduino_2024 import SBArduino2024Board
 
-__all__ = ["SBArduinoBoard", "UltrasoundSensors"]
+__all__ = ["SBArduino2024Board", "SBArduinoBoard", "UltrasoundSensors"]

@@ -1,11 +1,13 @@
 """Hardware backends for the Student Robotics v4 kit."""
 
+from j5aio.backends.hardware.sr.v4.arduino import SRArduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
 
 __all__ = [
+    "SRArduinoHardwareBackend",
     "SRV4MotorBoardHardwareBackend",
     "SRV4PowerBoardHardwareBackend",
     "SRV4RuggeduinoHardwareBackend",
