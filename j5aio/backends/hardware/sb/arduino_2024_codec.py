@@ -80,7 +80,7 @@ _MODE_NAMES: Final = {
 }
 _MODES_BY_NAME: Final = {name.encode(): mode for mode, name in _MODE_NAMES.items()}
 _DECIMAL: Final = re.compile(rb"-?(0|[1-9][0-9]{0,4})")
-_FIELD: Final = re.compile(r"[\x21-\x39\x3b-\x7e]+")  # printable ASCII but ':' and space
+_FIELD: Final = re.compile(r"[\x20-\x39\x3b-\x7e]+")  # printable ASCII but ':'
 _PIN_RANGE: Final = range(0, 20)
 
 
