@@ -21,6 +21,8 @@ import j5aio.boards.arduino.uno as _boards_arduino_uno
 import j5aio.boards.board as _boards_board
 import j5aio.boards.board_group as _boards_board_group
 import j5aio.boards.sb.arduino as _boards_sb_arduino
+import j5aio.boards.sb.arduino_2024 as _boards_sb_arduino_2024
+import j5aio.boards.sr.v4.arduino as _boards_sr_v4_arduino
 import j5aio.boards.sr.v4.motor_board as _boards_sr_v4_motor_board
 import j5aio.boards.sr.v4.power_board as _boards_sr_v4_power_board
 import j5aio.boards.sr.v4.ruggeduino as _boards_sr_v4_ruggeduino
@@ -71,7 +73,9 @@ __all__ = [
     "PowerOutput",
     "PowerOutputGroup",
     "Ruggeduino",
+    "SBArduino2024Board",
     "SBArduinoBoard",
+    "SRArduinoBoard",
     "Servo",
     "ServoBoard",
     "StringCommandComponent",
@@ -127,8 +131,22 @@ class Environment(_SyncWrapper):
     @overload
     def get_board_group(
         self,
+        board: type[_boards_sr_v4_arduino.SRArduinoBoard],
+    ) -> BoardGroup[SRArduinoBoard]:
+        ...
+
+    @overload
+    def get_board_group(
+        self,
         board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
     ) -> BoardGroup[Ruggeduino]:
+        ...
+
+    @overload
+    def get_board_group(
+        self,
+        board: type[_boards_sb_arduino_2024.SBArduino2024Board],
+    ) -> BoardGroup[SBArduino2024Board]:
         ...
 
     @overload
@@ -212,7 +230,7 @@ class UltrasoundSensors(_SyncWrapper):
 
     _core: _boards_sb_arduino.UltrasoundSensors
 
-    def __init__(self, board: SBArduinoBoard) -> None:
+    def __init__(self, board: ArduinoUno) -> None:
         _adopt_into(self, _boards_sb_arduino.UltrasoundSensors(_unwrap(board)))
 
     def __getitem__(self, pins: tuple[int, int]) -> UltrasoundSensor:
@@ -356,11 +374,33 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
+        board_type: type[_boards_sr_v4_arduino.SRArduinoBoard],
+        backend_class: type[_backends_backend.Backend],
+        *,
+        ports: Sequence[str] = (),
+    ) -> BoardGroup[SRArduinoBoard]:
+        ...
+
+    @overload
+    @classmethod
+    def get_board_group(
+        cls,
         board_type: type[_boards_sr_v4_ruggeduino.Ruggeduino],
         backend_class: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[Ruggeduino]:
+        ...
+
+    @overload
+    @classmethod
+    def get_board_group(
+        cls,
+        board_type: type[_boards_sb_arduino_2024.SBArduino2024Board],
+        backend_class: type[_backends_backend.Backend],
+        *,
+        ports: Sequence[str] = (),
+    ) -> BoardGroup[SBArduino2024Board]:
         ...
 
     @overload
@@ -606,6 +646,8 @@ class ArduinoUno(Board):
 
     DIGITAL_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_arduino_uno.ArduinoUno.DIGITAL_PIN_FIRMWARE_MODES
 
+    ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_arduino_uno.ArduinoUno.ANALOGUE_PIN_FIRMWARE_MODES
+
     @property
     def pins(self) -> Mapping[int, GPIOPin]:
         """The GPIO pins, by number or by :class:`AnaloguePin` (a read-only mapping)."""
@@ -841,6 +883,44 @@ class SBArduinoBoard(ArduinoUno):
         return _boards_sb_arduino.SBArduinoBoard.supported_components()
 
 
+class SBArduino2024Board(ArduinoUno):
+    """The SourceBots Arduino of the 2024 kit (firmware ``2.0``, the sb2024 protocol).
+
+    Every pin from 2 to 19 is a digital input, input with pull-up or output; A0 to A5
+    (14 to 19) also read voltages. An ultrasound sensor works on any two pins:
+    ``board.ultrasound_sensors[trigger, echo]``, whose ``distance()`` is ``None`` when
+    no echo comes back. The firmware drives no servos.
+
+    :param serial_number: the board's serial number.
+    :param backend: the backend that drives the board.
+    """
+
+    __slots__ = ()
+
+    _core: _boards_sb_arduino_2024.SBArduino2024Board
+
+    def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
+        _adopt_into(self, _boards_sb_arduino_2024.SBArduino2024Board(serial_number, backend))
+
+    name: ClassVar[str] = _boards_sb_arduino_2024.SBArduino2024Board.name
+
+    ANALOGUE_PIN_MODES: ClassVar[frozenset[_components_gpio_pin.GPIOPinMode]] = _boards_sb_arduino_2024.SBArduino2024Board.ANALOGUE_PIN_MODES
+
+    DIGITAL_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_sb_arduino_2024.SBArduino2024Board.DIGITAL_PIN_FIRMWARE_MODES
+
+    ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_sb_arduino_2024.SBArduino2024Board.ANALOGUE_PIN_FIRMWARE_MODES
+
+    @property
+    def ultrasound_sensors(self) -> UltrasoundSensors:
+        """Ultrasound sensors on demand: ``board.ultrasound_sensors[trigger_pin, echo_pin]``."""
+        return cast("UltrasoundSensors", _wrap(self._core.ultrasound_sensors))
+
+    @staticmethod
+    def supported_components() -> set[type[_components_component.Component]]:
+        """The component classes on a SourceBots Arduino (sb2024)."""
+        return _boards_sb_arduino_2024.SBArduino2024Board.supported_components()
+
+
 class Ruggeduino(ArduinoUno):
     """The Student Robotics Ruggeduino.
 
@@ -935,6 +1015,45 @@ class UltrasoundSensor(DerivedComponent):
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         return _call(self._core.distance)
+
+
+class SRArduinoBoard(Ruggeduino):
+    """The Student Robotics Arduino (an Uno running SR firmware 2, ``SRduino:2``).
+
+    It speaks the Ruggeduino's single-character protocol. Every pin from 2 to 19 is a
+    digital input, input with pull-up or output; A0 to A5 (14 to 19) also read voltages.
+    An ultrasound sensor works on any two pins: ``board.ultrasound_sensors[trigger,
+    echo]``, whose ``distance()`` is ``None`` when no echo comes back. :attr:`command`
+    sends raw text, as sr-robot3's ``command()`` does.
+
+    :param serial_number: the board's serial number.
+    :param backend: the backend that drives the board.
+    """
+
+    __slots__ = ()
+
+    _core: _boards_sr_v4_arduino.SRArduinoBoard
+
+    def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
+        _adopt_into(self, _boards_sr_v4_arduino.SRArduinoBoard(serial_number, backend))
+
+    name: ClassVar[str] = _boards_sr_v4_arduino.SRArduinoBoard.name
+
+    ANALOGUE_PIN_MODES: ClassVar[frozenset[_components_gpio_pin.GPIOPinMode]] = _boards_sr_v4_arduino.SRArduinoBoard.ANALOGUE_PIN_MODES
+
+    DIGITAL_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_sr_v4_arduino.SRArduinoBoard.DIGITAL_PIN_FIRMWARE_MODES
+
+    ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_sr_v4_arduino.SRArduinoBoard.ANALOGUE_PIN_FIRMWARE_MODES
+
+    @property
+    def ultrasound_sensors(self) -> UltrasoundSensors:
+        """Ultrasound sensors on demand: ``board.ultrasound_sensors[trigger_pin, echo_pin]``."""
+        return cast("UltrasoundSensors", _wrap(self._core.ultrasound_sensors))
+
+    @staticmethod
+    def supported_components() -> set[type[_components_component.Component]]:
+        """The component classes on an SR Arduino."""
+        return _boards_sr_v4_arduino.SRArduinoBoard.supported_components()
 
 
 class BatterySensor(IdentifiedComponent[_components_battery_sensor.BatterySensorInterface]):
@@ -1556,9 +1675,11 @@ _register(_boards_sr_v4_power_board.PowerBoard, PowerBoard)
 _register(_boards_sr_v4_servo_board.ServoBoard, ServoBoard)
 _register(_components_component.DerivedComponent, DerivedComponent)
 _register(_boards_sb_arduino.SBArduinoBoard, SBArduinoBoard)
+_register(_boards_sb_arduino_2024.SBArduino2024Board, SBArduino2024Board)
 _register(_boards_sr_v4_ruggeduino.Ruggeduino, Ruggeduino)
 _register(_components_identified.IdentifiedComponent, IdentifiedComponent)
 _register(_components_derived_ultrasound.UltrasoundSensor, UltrasoundSensor)
+_register(_boards_sr_v4_arduino.SRArduinoBoard, SRArduinoBoard)
 _register(_components_battery_sensor.BatterySensor, BatterySensor)
 _register(_components_button.Button, Button)
 _register(_components_gpio_pin.GPIOPin, GPIOPin)

@@ -5,6 +5,7 @@ import pytest
 import j5aio.simulator as simulator
 from j5aio.simulator import (
     SERIAL_SIMULATORS,
+    SBArduino2024Simulator,
     SBArduinoSimulator,
     SerialBoardSimulator,
     SRMotorBoardFw3Simulator,
@@ -13,12 +14,14 @@ from j5aio.simulator import (
 
 
 def test_serial_simulators_by_cli_name() -> None:
-    assert set(SERIAL_SIMULATORS) == {"sr-motor", "sr-ruggeduino", "sb-arduino"}
     expected = {
         "sr-motor": SRMotorBoardFw3Simulator,
         "sr-ruggeduino": SRRuggeduinoSimulator,
         "sb-arduino": SBArduinoSimulator,
+        "sr-arduino-fw2": SRRuggeduinoSimulator,
+        "sb-arduino-2024": SBArduino2024Simulator,
     }
+    assert set(SERIAL_SIMULATORS) == set(expected)
     for name, factory in SERIAL_SIMULATORS.items():
         board = factory("SER123")
         assert isinstance(board, SerialBoardSimulator)

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 from j5aio.backends.console.sb.arduino import SBArduinoConsoleBackend
+from j5aio.backends.console.sb.arduino_2024 import SBArduino2024ConsoleBackend
 from j5aio.backends.console.sr.v4 import (
+    SRArduinoConsoleBackend,
     SRV4MotorBoardConsoleBackend,
     SRV4PowerBoardConsoleBackend,
     SRV4RuggeduinoConsoleBackend,
@@ -22,5 +24,7 @@ for _backend in (
     SRV4ServoBoardConsoleBackend,
     SRV4RuggeduinoConsoleBackend,
     SBArduinoConsoleBackend,
+    SRArduinoConsoleBackend,
+    SBArduino2024ConsoleBackend,
 ):
     CONSOLE_ENVIRONMENT.register_backend(_backend)

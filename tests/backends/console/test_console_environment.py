@@ -5,16 +5,17 @@ from collections.abc import Iterator
 import pytest
 
 from j5aio.backends.console import CONSOLE_ENVIRONMENT, ConsoleBackend
-from j5aio.backends.console.sb import SBArduinoConsoleBackend
+from j5aio.backends.console.sb import SBArduino2024ConsoleBackend, SBArduinoConsoleBackend
 from j5aio.backends.console.sr.v4 import (
+    SRArduinoConsoleBackend,
     SRV4MotorBoardConsoleBackend,
     SRV4PowerBoardConsoleBackend,
     SRV4RuggeduinoConsoleBackend,
     SRV4ServoBoardConsoleBackend,
 )
 from j5aio.boards.board import Board
-from j5aio.boards.sb import SBArduinoBoard
-from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
+from j5aio.boards.sb import SBArduino2024Board, SBArduinoBoard
+from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard, SRArduinoBoard
 
 from .console_script import Terminal
 
@@ -24,6 +25,8 @@ BACKENDS: dict[type[Board], type[ConsoleBackend]] = {
     ServoBoard: SRV4ServoBoardConsoleBackend,
     Ruggeduino: SRV4RuggeduinoConsoleBackend,
     SBArduinoBoard: SBArduinoConsoleBackend,
+    SRArduinoBoard: SRArduinoConsoleBackend,
+    SBArduino2024Board: SBArduino2024ConsoleBackend,
 }
 
 

@@ -1,11 +1,13 @@
 """Console backends of the Student Robotics v4 boards."""
 
+from j5aio.backends.console.sr.v4.arduino import SRArduinoConsoleBackend
 from j5aio.backends.console.sr.v4.motor_board import SRV4MotorBoardConsoleBackend
 from j5aio.backends.console.sr.v4.power_board import SRV4PowerBoardConsoleBackend
 from j5aio.backends.console.sr.v4.ruggeduino import SRV4RuggeduinoConsoleBackend
 from j5aio.backends.console.sr.v4.servo_board import SRV4ServoBoardConsoleBackend
 
 __all__ = [
+    "SRArduinoConsoleBackend",
     "SRV4MotorBoardConsoleBackend",
     "SRV4PowerBoardConsoleBackend",
     "SRV4RuggeduinoConsoleBackend",
