@@ -155,13 +155,13 @@ async def test_raw_commands_as_sr_robot3() -> None:
     await board.close()
 
     stream2 = ScriptedStream([(b"v", b"TeamDuino:2\n"), (b"x", b"\xff\n")])
-    board = await Backend.from_stream(stream2, port="scripted", serial_number="T1")
-    team = board.backend
+    team_board = await Backend.from_stream(stream2, port="scripted", serial_number="T1")
+    team = team_board.backend
     assert isinstance(team, Backend)
     assert not team.is_official_firmware
     with pytest.raises(UnexpectedReplyError, match="UTF-8"):
         await team.execute_string_command("x")
-    await board.close()
+    await team_board.close()
 
 
 async def test_bad_replies_name_the_board_and_command() -> None:
