@@ -17,6 +17,7 @@ import j5aio.backends.backend as _backends_backend
 import j5aio.backends.console as _backends_console
 import j5aio.backends.environment as _backends_environment
 import j5aio.backends.hardware.env as _backends_hardware_env
+import j5aio.boards.arduino.all_digital as _boards_arduino_all_digital
 import j5aio.boards.arduino.uno as _boards_arduino_uno
 import j5aio.boards.board as _boards_board
 import j5aio.boards.board_group as _boards_board_group
@@ -55,6 +56,7 @@ __all__ = [
     "HARDWARE_ENVIRONMENT",
     "LED",
     "RGBLED",
+    "AllDigitalUno",
     "ArduinoUno",
     "BaseRobot",
     "BatterySensor",
@@ -138,15 +140,22 @@ class Environment(_SyncWrapper):
     @overload
     def get_board_group(
         self,
-        board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
-    ) -> BoardGroup[Ruggeduino]:
+        board: type[_boards_sb_arduino_2024.SBArduino2024Board],
+    ) -> BoardGroup[SBArduino2024Board]:
         ...
 
     @overload
     def get_board_group(
         self,
-        board: type[_boards_sb_arduino_2024.SBArduino2024Board],
-    ) -> BoardGroup[SBArduino2024Board]:
+        board: type[_boards_arduino_all_digital.AllDigitalUno],
+    ) -> BoardGroup[AllDigitalUno]:
+        ...
+
+    @overload
+    def get_board_group(
+        self,
+        board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
+    ) -> BoardGroup[Ruggeduino]:
         ...
 
     @overload
@@ -385,22 +394,33 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_ruggeduino.Ruggeduino],
+        board_type: type[_boards_sb_arduino_2024.SBArduino2024Board],
         backend_class: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[Ruggeduino]:
+    ) -> BoardGroup[SBArduino2024Board]:
         ...
 
     @overload
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sb_arduino_2024.SBArduino2024Board],
+        board_type: type[_boards_arduino_all_digital.AllDigitalUno],
         backend_class: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[SBArduino2024Board]:
+    ) -> BoardGroup[AllDigitalUno]:
+        ...
+
+    @overload
+    @classmethod
+    def get_board_group(
+        cls,
+        board_type: type[_boards_sr_v4_ruggeduino.Ruggeduino],
+        backend_class: type[_backends_backend.Backend],
+        *,
+        ports: Sequence[str] = (),
+    ) -> BoardGroup[Ruggeduino]:
         ...
 
     @overload
@@ -844,6 +864,42 @@ class DerivedComponent(Component):
         return self._core.identifier
 
 
+class AllDigitalUno(ArduinoUno):
+    """An Uno whose pins 2 to 19 are all digital, with ultrasound on any pair of them.
+
+    The base of the boards of today's kits (the SR Arduino with firmware 2, the
+    SourceBots Arduino with sb2024): A0 to A5 (14 to 19) take the digital modes as well
+    as ANALOGUE_INPUT, and ``board.ultrasound_sensors[trigger, echo]`` works on any two
+    pins; its ``distance()`` is ``None`` when no echo comes back.
+
+    :param serial_number: the board's serial number.
+    :param backend: the backend that drives the board.
+    """
+
+    __slots__ = ()
+
+    _core: _boards_arduino_all_digital.AllDigitalUno
+
+    def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
+        _adopt_into(self, _boards_arduino_all_digital.AllDigitalUno(serial_number, backend))
+
+    ANALOGUE_PIN_MODES: ClassVar[frozenset[_components_gpio_pin.GPIOPinMode]] = _boards_arduino_all_digital.AllDigitalUno.ANALOGUE_PIN_MODES
+
+    DIGITAL_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_arduino_all_digital.AllDigitalUno.DIGITAL_PIN_FIRMWARE_MODES
+
+    ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_arduino_all_digital.AllDigitalUno.ANALOGUE_PIN_FIRMWARE_MODES
+
+    @property
+    def ultrasound_sensors(self) -> UltrasoundSensors:
+        """Ultrasound sensors on demand: ``board.ultrasound_sensors[trigger_pin, echo_pin]``."""
+        return cast("UltrasoundSensors", _wrap(self._core.ultrasound_sensors))
+
+    @staticmethod
+    def supported_components() -> set[type[_components_component.Component]]:
+        """The component classes on the board."""
+        return _boards_arduino_all_digital.AllDigitalUno.supported_components()
+
+
 class SBArduinoBoard(ArduinoUno):
     """The SourceBots Arduino.
 
@@ -881,44 +937,6 @@ class SBArduinoBoard(ArduinoUno):
     def supported_components() -> set[type[_components_component.Component]]:
         """The component classes on a SourceBots Arduino."""
         return _boards_sb_arduino.SBArduinoBoard.supported_components()
-
-
-class SBArduino2024Board(ArduinoUno):
-    """The SourceBots Arduino of the 2024 kit (firmware ``2.0``, the sb2024 protocol).
-
-    Every pin from 2 to 19 is a digital input, input with pull-up or output; A0 to A5
-    (14 to 19) also read voltages. An ultrasound sensor works on any two pins:
-    ``board.ultrasound_sensors[trigger, echo]``, whose ``distance()`` is ``None`` when
-    no echo comes back. The firmware drives no servos.
-
-    :param serial_number: the board's serial number.
-    :param backend: the backend that drives the board.
-    """
-
-    __slots__ = ()
-
-    _core: _boards_sb_arduino_2024.SBArduino2024Board
-
-    def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
-        _adopt_into(self, _boards_sb_arduino_2024.SBArduino2024Board(serial_number, backend))
-
-    name: ClassVar[str] = _boards_sb_arduino_2024.SBArduino2024Board.name
-
-    ANALOGUE_PIN_MODES: ClassVar[frozenset[_components_gpio_pin.GPIOPinMode]] = _boards_sb_arduino_2024.SBArduino2024Board.ANALOGUE_PIN_MODES
-
-    DIGITAL_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_sb_arduino_2024.SBArduino2024Board.DIGITAL_PIN_FIRMWARE_MODES
-
-    ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_sb_arduino_2024.SBArduino2024Board.ANALOGUE_PIN_FIRMWARE_MODES
-
-    @property
-    def ultrasound_sensors(self) -> UltrasoundSensors:
-        """Ultrasound sensors on demand: ``board.ultrasound_sensors[trigger_pin, echo_pin]``."""
-        return cast("UltrasoundSensors", _wrap(self._core.ultrasound_sensors))
-
-    @staticmethod
-    def supported_components() -> set[type[_components_component.Component]]:
-        """The component classes on a SourceBots Arduino (sb2024)."""
-        return _boards_sb_arduino_2024.SBArduino2024Board.supported_components()
 
 
 class Ruggeduino(ArduinoUno):
@@ -1017,14 +1035,13 @@ class UltrasoundSensor(DerivedComponent):
         return _call(self._core.distance)
 
 
-class SRArduinoBoard(Ruggeduino):
-    """The Student Robotics Arduino (an Uno running SR firmware 2, ``SRduino:2``).
+class SBArduino2024Board(AllDigitalUno):
+    """The SourceBots Arduino of the 2024 kit (firmware ``2.0``, the sb2024 protocol).
 
-    It speaks the Ruggeduino's single-character protocol. Every pin from 2 to 19 is a
-    digital input, input with pull-up or output; A0 to A5 (14 to 19) also read voltages.
-    An ultrasound sensor works on any two pins: ``board.ultrasound_sensors[trigger,
-    echo]``, whose ``distance()`` is ``None`` when no echo comes back. :attr:`command`
-    sends raw text, as sr-robot3's ``command()`` does.
+    Every pin from 2 to 19 is a digital input, input with pull-up or output; A0 to A5
+    (14 to 19) also read voltages. An ultrasound sensor works on any two pins:
+    ``board.ultrasound_sensors[trigger, echo]``, whose ``distance()`` is ``None`` when
+    no echo comes back. The firmware drives no servos.
 
     :param serial_number: the board's serial number.
     :param backend: the backend that drives the board.
@@ -1032,28 +1049,9 @@ class SRArduinoBoard(Ruggeduino):
 
     __slots__ = ()
 
-    _core: _boards_sr_v4_arduino.SRArduinoBoard
+    _core: _boards_sb_arduino_2024.SBArduino2024Board
 
-    def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
-        _adopt_into(self, _boards_sr_v4_arduino.SRArduinoBoard(serial_number, backend))
-
-    name: ClassVar[str] = _boards_sr_v4_arduino.SRArduinoBoard.name
-
-    ANALOGUE_PIN_MODES: ClassVar[frozenset[_components_gpio_pin.GPIOPinMode]] = _boards_sr_v4_arduino.SRArduinoBoard.ANALOGUE_PIN_MODES
-
-    DIGITAL_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_sr_v4_arduino.SRArduinoBoard.DIGITAL_PIN_FIRMWARE_MODES
-
-    ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_sr_v4_arduino.SRArduinoBoard.ANALOGUE_PIN_FIRMWARE_MODES
-
-    @property
-    def ultrasound_sensors(self) -> UltrasoundSensors:
-        """Ultrasound sensors on demand: ``board.ultrasound_sensors[trigger_pin, echo_pin]``."""
-        return cast("UltrasoundSensors", _wrap(self._core.ultrasound_sensors))
-
-    @staticmethod
-    def supported_components() -> set[type[_components_component.Component]]:
-        """The component classes on an SR Arduino."""
-        return _boards_sr_v4_arduino.SRArduinoBoard.supported_components()
+    name: ClassVar[str] = _boards_sb_arduino_2024.SBArduino2024Board.name
 
 
 class BatterySensor(IdentifiedComponent[_components_battery_sensor.BatterySensorInterface]):
@@ -1630,6 +1628,31 @@ class StringCommandComponent(IdentifiedComponent[_components_string_command.Stri
         return _call(self._core.execute, command)
 
 
+class SRArduinoBoard(AllDigitalUno, Ruggeduino):
+    """The Student Robotics Arduino (an Uno running SR firmware 2, ``SRduino:2``).
+
+    It speaks the Ruggeduino's single-character protocol. Every pin from 2 to 19 is a
+    digital input, input with pull-up or output; A0 to A5 (14 to 19) also read voltages.
+    An ultrasound sensor works on any two pins: ``board.ultrasound_sensors[trigger,
+    echo]``, whose ``distance()`` is ``None`` when no echo comes back. :attr:`command`
+    sends raw text, as sr-robot3's ``command()`` does.
+
+    :param serial_number: the board's serial number.
+    :param backend: the backend that drives the board.
+    """
+
+    __slots__ = ()
+
+    _core: _boards_sr_v4_arduino.SRArduinoBoard
+
+    name: ClassVar[str] = _boards_sr_v4_arduino.SRArduinoBoard.name
+
+    @staticmethod
+    def supported_components() -> set[type[_components_component.Component]]:
+        """The component classes on an SR Arduino."""
+        return _boards_sr_v4_arduino.SRArduinoBoard.supported_components()
+
+
 def hardware_environment() -> Environment:
     """The environment of the boards plugged into this computer."""
     return cast("Environment", _wrap(_environments.hardware_environment()))
@@ -1674,12 +1697,12 @@ _register(_boards_sr_v4_motor_board.MotorBoard, MotorBoard)
 _register(_boards_sr_v4_power_board.PowerBoard, PowerBoard)
 _register(_boards_sr_v4_servo_board.ServoBoard, ServoBoard)
 _register(_components_component.DerivedComponent, DerivedComponent)
+_register(_boards_arduino_all_digital.AllDigitalUno, AllDigitalUno)
 _register(_boards_sb_arduino.SBArduinoBoard, SBArduinoBoard)
-_register(_boards_sb_arduino_2024.SBArduino2024Board, SBArduino2024Board)
 _register(_boards_sr_v4_ruggeduino.Ruggeduino, Ruggeduino)
 _register(_components_identified.IdentifiedComponent, IdentifiedComponent)
 _register(_components_derived_ultrasound.UltrasoundSensor, UltrasoundSensor)
-_register(_boards_sr_v4_arduino.SRArduinoBoard, SRArduinoBoard)
+_register(_boards_sb_arduino_2024.SBArduino2024Board, SBArduino2024Board)
 _register(_components_battery_sensor.BatterySensor, BatterySensor)
 _register(_components_button.Button, Button)
 _register(_components_gpio_pin.GPIOPin, GPIOPin)
@@ -1690,6 +1713,7 @@ _register(_components_power_output.PowerOutput, PowerOutput)
 _register(_components_rgb_led.RGBLED, RGBLED)
 _register(_components_servo.Servo, Servo)
 _register(_components_string_command.StringCommandComponent, StringCommandComponent)
+_register(_boards_sr_v4_arduino.SRArduinoBoard, SRArduinoBoard)
 
 CONSOLE_ENVIRONMENT: Final[Environment] = cast("Environment", _wrap(_backends_console.CONSOLE_ENVIRONMENT))
 """The sync face of ``j5aio.backends.console.CONSOLE_ENVIRONMENT``."""

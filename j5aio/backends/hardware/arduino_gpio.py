@@ -1,9 +1,9 @@
 """The base of the Arduino backends whose firmware makes every pin digital (SR fw 2, SB sb2024).
 
 Pins 2 to 19 take the digital modes, A0 to A5 are analogue inputs too, pin 13 is the LED,
-and an ultrasound sensor can sit on any two pins. Subclasses say how each operation is
-put on the wire; this class applies the pin rules of :mod:`.arduino_pin_table` and keeps
-the cache right:
+and an ultrasound sensor can sit on any two pins. Subclasses give their firmware's codec
+(:class:`PinCodec`) and how the board is identified; this class applies the pin rules of
+:mod:`.arduino_pin_table` and keeps the cache right:
 
 * a call is checked before anything is sent (bad input sends nothing);
 * the cache changes only after the board has answered, so a call that fails or is
@@ -17,7 +17,7 @@ from __future__ import annotations
 from abc import abstractmethod
 from collections.abc import Callable
 from datetime import timedelta
-from typing import ClassVar, TypeVar
+from typing import ClassVar, Protocol, TypeVar
 
 from j5aio.backends.hardware.arduino import ARDUINO_USB_IDS
 from j5aio.backends.hardware.arduino_pin_table import PinTable, wire_mode
@@ -30,7 +30,7 @@ from j5aio.components.gpio_pin import GPIOPinInterface, GPIOPinMode
 from j5aio.components.led import LEDInterface
 from j5aio.errors import NotSupportedByHardwareError, UnexpectedReplyError
 
-__all__ = ["ArduinoGPIOBackend", "echo_distance", "echo_pulse"]
+__all__ = ["ArduinoGPIOBackend", "PinCodec", "echo_distance", "echo_pulse"]
 
 T = TypeVar("T")
 
@@ -54,6 +54,37 @@ def echo_pulse(millimetres: int) -> timedelta | None:
     return timedelta(microseconds=millimetres * _US_PER_MM)
 
 
+class PinCodec(Protocol):
+    """What this base needs of a firmware's codec module (its functions, by these names)."""
+
+    def encode_mode(self, pin: int, mode: GPIOPinMode) -> bytes:
+        """The request that puts ``pin`` in a digital mode."""
+
+    def encode_digital_write(self, pin: int, level: bool) -> bytes:
+        """The request that sets the output latch of ``pin``."""
+
+    def encode_digital_read(self, pin: int) -> bytes:
+        """The request that reads the level of ``pin``."""
+
+    def encode_analogue_read(self, pin: int) -> bytes:
+        """The request that reads the ADC on analogue ``pin``."""
+
+    def encode_ultrasound(self, trigger: int, echo: int) -> bytes:
+        """The request that measures with an ultrasound sensor."""
+
+    def parse_done(self, line: bytes) -> None:
+        """Check the reply of a mode change or a write."""
+
+    def parse_digital(self, line: bytes) -> bool:
+        """Parse the reply of a digital read."""
+
+    def parse_analogue(self, line: bytes) -> float:
+        """Parse the reply of an analogue read, in volts."""
+
+    def parse_ultrasound(self, line: bytes) -> int:
+        """Parse the reply of an ultrasound measurement, in mm (0 or less: no echo)."""
+
+
 class ArduinoGPIOBackend(
     GPIOPinInterface, LEDInterface, UltrasoundInterface, SerialHardwareBackend,
 ):
@@ -65,6 +96,8 @@ class ArduinoGPIOBackend(
     #: How many times the identity query is sent while the board boots (each waits
     #: ``DEFAULT_TIMEOUT`` times the time scale): about 33 s in all, as j5 allowed.
     IDENTIFY_ATTEMPTS: ClassVar[int] = 26
+    #: The firmware's codec module.
+    CODEC: ClassVar[PinCodec]
 
     def __init__(self, link: SerialLink, *, port: str) -> None:
         super().__init__(link, port=port)
@@ -95,30 +128,28 @@ class ArduinoGPIOBackend(
         :raises CommunicationError: the board never answered as this firmware does.
         """
 
-    @abstractmethod
-    async def _send_mode(self, pin: int, mode: GPIOPinMode) -> None:
-        """Put ``pin`` in digital ``mode`` (INPUT, INPUT_PULLUP or OUTPUT)."""
-
-    @abstractmethod
-    async def _send_level(self, pin: int, level: bool) -> None:
-        """Set the output latch of ``pin`` (drives an output; pull-up of an input)."""
-
-    @abstractmethod
-    async def _query_digital(self, pin: int) -> bool:
-        """Read the level of ``pin``."""
-
-    @abstractmethod
-    async def _query_analogue(self, pin: int) -> float:
-        """Read the voltage on analogue ``pin``."""
-
-    @abstractmethod
-    async def _query_ultrasound(self, trigger: int, echo: int) -> int:
-        """Measure with an ultrasound sensor; return the firmware's reading in mm."""
-
     # -- helpers for subclasses ---------------------------------------------------------
 
     async def _handshake(self, *, time_scale: float) -> None:
         self._firmware_version = await self.identify(self._link, time_scale=time_scale)
+
+    async def _send_mode(self, pin: int, mode: GPIOPinMode) -> None:
+        """Put ``pin`` in digital ``mode`` (INPUT, INPUT_PULLUP or OUTPUT)."""
+        await self._ask(self.CODEC.encode_mode(pin, mode), self.CODEC.parse_done)
+
+    async def _send_level(self, pin: int, level: bool) -> None:
+        """Set the output latch of ``pin`` (drives an output; pull-up of an input)."""
+        await self._ask(self.CODEC.encode_digital_write(pin, level), self.CODEC.parse_done)
+
+    async def _query_digital(self, pin: int) -> bool:
+        return await self._ask(self.CODEC.encode_digital_read(pin), self.CODEC.parse_digital)
+
+    async def _query_analogue(self, pin: int) -> float:
+        return await self._ask(self.CODEC.encode_analogue_read(pin), self.CODEC.parse_analogue)
+
+    async def _query_ultrasound(self, trigger: int, echo: int) -> int:
+        request = self.CODEC.encode_ultrasound(trigger, echo)
+        return await self._ask(request, self.CODEC.parse_ultrasound)
 
     async def _ask(self, request: bytes, parse: Callable[[bytes], T]) -> T:
         """Send ``request``, read one reply line and parse it.

@@ -2,23 +2,14 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
-from j5aio.boards.arduino.uno import ArduinoUno
-from j5aio.boards.sb.arduino import UltrasoundSensors
-from j5aio.components.derived.ultrasound import UltrasoundSensor
-from j5aio.components.gpio_pin import GPIOPin, GPIOPinMode
-from j5aio.components.led import LED
-
-if TYPE_CHECKING:
-    from j5aio.backends.backend import Backend
-    from j5aio.components.component import Component
-    from j5aio.components.gpio_pin import FirmwareMode
+from j5aio.boards.arduino.all_digital import AllDigitalUno
 
 __all__ = ["SBArduino2024Board"]
 
 
-class SBArduino2024Board(ArduinoUno):
+class SBArduino2024Board(AllDigitalUno):
     """The SourceBots Arduino of the 2024 kit (firmware ``2.0``, the sb2024 protocol).
 
     Every pin from 2 to 19 is a digital input, input with pull-up or output; A0 to A5
@@ -31,27 +22,3 @@ class SBArduino2024Board(ArduinoUno):
     """
 
     name: ClassVar[str] = "SourceBots Arduino (sb2024)"
-
-    ANALOGUE_PIN_MODES: ClassVar[frozenset[GPIOPinMode]] = ArduinoUno.DIGITAL_PIN_MODES | {
-        GPIOPinMode.ANALOGUE_INPUT,
-    }
-    DIGITAL_PIN_FIRMWARE_MODES: ClassVar[frozenset[FirmwareMode]] = frozenset(
-        {UltrasoundSensor},
-    )
-    ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[FirmwareMode]] = frozenset(
-        {UltrasoundSensor},
-    )
-
-    def __init__(self, serial_number: str, backend: Backend) -> None:
-        super().__init__(serial_number, backend)
-        self._ultrasound_sensors = UltrasoundSensors(self)
-
-    @property
-    def ultrasound_sensors(self) -> UltrasoundSensors:
-        """Ultrasound sensors on demand: ``board.ultrasound_sensors[trigger_pin, echo_pin]``."""
-        return self._ultrasound_sensors
-
-    @staticmethod
-    def supported_components() -> set[type[Component]]:
-        """The component classes on a SourceBots Arduino (sb2024)."""
-        return {GPIOPin, LED, UltrasoundSensor}

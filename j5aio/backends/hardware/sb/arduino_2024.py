@@ -9,7 +9,9 @@ then applied by the board's ``setup()``.
 
 from __future__ import annotations
 
-from j5aio.backends.hardware.arduino_gpio import ArduinoGPIOBackend
+from typing import ClassVar
+
+from j5aio.backends.hardware.arduino_gpio import ArduinoGPIOBackend, PinCodec
 from j5aio.backends.hardware.sb import arduino_2024_codec as codec
 from j5aio.backends.hardware.serial_backend import scaled
 from j5aio.backends.hardware.transports.readers import read_line
@@ -32,6 +34,7 @@ class SBArduino2024HardwareBackend(ArduinoGPIOBackend):
     """Drives a SourceBots Arduino over the sb2024 colon protocol."""
 
     board = SBArduino2024Board
+    CODEC: ClassVar[PinCodec] = codec
 
     @classmethod
     async def identify(
@@ -67,21 +70,6 @@ class SBArduino2024HardwareBackend(ArduinoGPIOBackend):
             f"{attempts or cls.IDENTIFY_ATTEMPTS} tries of *IDN? (last: {last}): is it "
             "powered, and does it run the sb2024 firmware?",
         )
-
-    async def _send_mode(self, pin: int, mode: GPIOPinMode) -> None:
-        await self._ask(codec.encode_mode(pin, mode), codec.parse_ack)
-
-    async def _send_level(self, pin: int, level: bool) -> None:
-        await self._ask(codec.encode_digital_write(pin, level), codec.parse_ack)
-
-    async def _query_digital(self, pin: int) -> bool:
-        return await self._ask(codec.encode_digital_read(pin), codec.parse_digital)
-
-    async def _query_analogue(self, pin: int) -> float:
-        return await self._ask(codec.encode_analogue_read(pin), codec.parse_analogue)
-
-    async def _query_ultrasound(self, trigger: int, echo: int) -> int:
-        return await self._ask(codec.encode_ultrasound(trigger, echo), codec.parse_ultrasound)
 
     async def read_pin_mode(self, identifier: int) -> GPIOPinMode:
         """Ask the board which digital mode a pin is in (``MODE:GET?``), bypassing the cache.

@@ -50,6 +50,7 @@ __all__ = [
     "parse_ack",
     "parse_analogue",
     "parse_digital",
+    "parse_done",
     "parse_identity",
     "parse_mode",
     "parse_ultrasound",
@@ -174,6 +175,10 @@ def parse_ack(line: bytes) -> None:
     """
     if line != ACK:
         raise _refuse("'ACK'", line)
+
+
+#: The acknowledgement check of a mode change or a write, by the name backends use.
+parse_done = parse_ack
 
 
 def parse_mode(line: bytes) -> GPIOPinMode:

@@ -9,13 +9,14 @@ applied by the board's ``setup()``.
 
 from __future__ import annotations
 
-from j5aio.backends.hardware.arduino_gpio import ArduinoGPIOBackend
+from typing import ClassVar
+
+from j5aio.backends.hardware.arduino_gpio import ArduinoGPIOBackend, PinCodec
 from j5aio.backends.hardware.serial_backend import scaled
 from j5aio.backends.hardware.sr.v4 import arduino_fw2_codec as codec
 from j5aio.backends.hardware.transports.readers import read_line
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.boards.sr.v4.arduino import SRArduinoBoard
-from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.components.string_command import StringCommandComponentInterface
 from j5aio.errors import (
     CommunicationError,
@@ -33,6 +34,7 @@ class SRArduinoHardwareBackend(StringCommandComponentInterface, ArduinoGPIOBacke
     """Drives an SR Arduino over the single-character protocol (firmware 2)."""
 
     board = SRArduinoBoard
+    CODEC: ClassVar[PinCodec] = codec
 
     def __init__(self, link: SerialLink, *, port: str) -> None:
         super().__init__(link, port=port)
@@ -83,21 +85,6 @@ class SRArduinoHardwareBackend(StringCommandComponentInterface, ArduinoGPIOBacke
     async def _handshake(self, *, time_scale: float) -> None:
         self._version = await self._read_version(self._link, time_scale, None)
         self._firmware_version = self._version.version
-
-    async def _send_mode(self, pin: int, mode: GPIOPinMode) -> None:
-        await self._ask(codec.encode_mode(pin, mode), codec.parse_empty)
-
-    async def _send_level(self, pin: int, level: bool) -> None:
-        await self._ask(codec.encode_digital_write(pin, level), codec.parse_empty)
-
-    async def _query_digital(self, pin: int) -> bool:
-        return await self._ask(codec.encode_digital_read(pin), codec.parse_digital)
-
-    async def _query_analogue(self, pin: int) -> float:
-        return await self._ask(codec.encode_analogue_read(pin), codec.parse_analogue)
-
-    async def _query_ultrasound(self, trigger: int, echo: int) -> int:
-        return await self._ask(codec.encode_ultrasound(trigger, echo), codec.parse_ultrasound)
 
     async def execute_string_command(self, command: str) -> str:
         """Send ``command`` as it is (no terminator) and return the first reply line.

@@ -41,6 +41,7 @@ __all__ = [
     "encode_ultrasound",
     "parse_analogue",
     "parse_digital",
+    "parse_done",
     "parse_empty",
     "parse_ultrasound",
     "parse_version",
@@ -91,6 +92,10 @@ def parse_empty(line: bytes) -> None:
     """
     if line:
         raise UnexpectedReplyError(f"expected an empty line, got {line!r}")
+
+
+#: The reply check of a mode change or a write, by the name backends use.
+parse_done = parse_empty
 
 
 def _parse_unsigned(line: bytes, high: int, what: str) -> int:
