@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+import contextlib
+
 import anyio
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from j5aio.backends.hardware.sb import SBArduino2024HardwareBackend
 from j5aio.backends.hardware.transports.memory import SimulatorStream
@@ -11,6 +15,7 @@ from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.boards.sb import SBArduino2024Board
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import (
+    CommunicationError,
     CommunicationTimeoutError,
     NotSupportedByHardwareError,
     UnexpectedReplyError,
@@ -241,3 +246,28 @@ async def test_a_cancelled_mode_change_leaves_the_cache_as_the_board_is() -> Non
     await backend.set_gpio_pin_mode(3, GPIOPinMode.DIGITAL_OUTPUT)
     assert sim.pin_mode(3) is PinMode.OUTPUT
     await board.close()
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.binary(max_size=24).filter(lambda reply: b"\n" not in reply))
+def test_any_reply_is_a_value_or_a_communication_error(reply: bytes) -> None:
+    async def read() -> None:
+        stream = ScriptedStream([
+            IDN,
+            (b"PIN:3:DIGITAL:GET?\n", reply + b"\n"),
+            (b"ULTRASOUND:2:3:MEASURE?\n", reply + b"\n"),
+        ])
+        board = await Backend.from_stream(stream, port="scripted", serial_number="SB1")
+        backend = board.backend
+        assert isinstance(backend, Backend)
+        with contextlib.suppress(CommunicationError):
+            assert isinstance(await backend.read_gpio_pin_digital_state(3), bool)
+        try:
+            distance = await backend.get_ultrasound_distance(2, 3)
+        except CommunicationError:
+            pass
+        else:
+            assert distance is None or distance > 0
+        await board.close()
+
+    anyio.run(read)

@@ -2,7 +2,12 @@
 
 from __future__ import annotations
 
+import contextlib
+
+import anyio
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
 from j5aio.backends.hardware.sr.v4 import SRArduinoHardwareBackend, SRV4RuggeduinoHardwareBackend
@@ -11,6 +16,7 @@ from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.boards.sr.v4 import Ruggeduino, SRArduinoBoard
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import (
+    CommunicationError,
     CommunicationTimeoutError,
     NotSupportedByHardwareError,
     UnexpectedReplyError,
@@ -201,3 +207,26 @@ async def test_bad_input_sends_nothing() -> None:
             await call
     assert stream.sent == b""
     await backend.close()
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.binary(max_size=24).filter(lambda reply: b"\n" not in reply))
+def test_any_reply_is_a_value_or_a_communication_error(reply: bytes) -> None:
+    async def read() -> None:
+        stream = ScriptedStream([
+            (b"v", b"SRduino:2\n"), (b"rd", reply + b"\n"), (b"ucd", reply + b"\n"),
+        ])
+        board = await Backend.from_stream(stream, port="scripted", serial_number="SRA1")
+        backend = board.backend
+        assert isinstance(backend, Backend)
+        with contextlib.suppress(CommunicationError):
+            assert isinstance(await backend.read_gpio_pin_digital_state(3), bool)
+        try:
+            distance = await backend.get_ultrasound_distance(2, 3)
+        except CommunicationError:
+            pass
+        else:
+            assert distance is None or distance > 0
+        await board.close()
+
+    anyio.run(read)
