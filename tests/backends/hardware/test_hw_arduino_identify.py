@@ -9,10 +9,13 @@ from __future__ import annotations
 
 import pytest
 
+from j5aio.backends.hardware.arduino_gpio import ArduinoGPIOBackend
 from j5aio.backends.hardware.sb import SBArduino2024HardwareBackend
 from j5aio.backends.hardware.sr.v4 import SRArduinoHardwareBackend
 from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.backends.hardware.transports.serial_link import SerialLink
+from j5aio.boards.arduino import AnaloguePin
+from j5aio.boards.arduino.all_digital import AllDigitalUno
 from j5aio.errors import CommunicationError, CommunicationTimeoutError, UnsupportedFirmwareError
 from j5aio.simulator import (
     SBArduino2024Simulator,
@@ -20,6 +23,8 @@ from j5aio.simulator import (
     SerialBoardSimulator,
     SRRuggeduinoSimulator,
 )
+from j5aio.simulator.arduino_base import ArduinoBoardSimulator
+from j5aio.simulator.serve import serve_on_pty
 
 SCALE = 0.1  # replies from a simulator are instant; keep the waits short
 
@@ -68,3 +73,26 @@ async def test_an_sb2019_board_whose_banner_was_missed_fails_both_cleanly() -> N
         with pytest.raises(CommunicationError):
             await backend.identify(link, time_scale=SCALE, attempts=2)
     await link.aclose()
+
+
+@pytest.mark.parametrize(
+    ("backend_class", "simulator", "version"),
+    [
+        (SRArduinoHardwareBackend, SRRuggeduinoSimulator("P1", firmware_version=2), "2"),
+        (SBArduino2024HardwareBackend, SBArduino2024Simulator("P2"), "2.0"),
+    ],
+)
+async def test_attach_over_a_real_pseudo_terminal(
+    backend_class: type[ArduinoGPIOBackend], simulator: ArduinoBoardSimulator, version: str,
+) -> None:
+    with serve_on_pty(simulator, time_scale=0.02) as server:
+        board = await backend_class.attach(server.path, time_scale=0.1)
+        assert isinstance(board, AllDigitalUno)
+        assert board.firmware_version == version
+        await board.setup()
+        simulator.set_analogue(AnaloguePin.A3, volts=2.5)
+        assert await board.pins[AnaloguePin.A3].analogue_read() == 2.5
+        simulator.set_ultrasound_distance(6, 7, 0.3)
+        assert await board.ultrasound_sensors[6, 7].distance() == 0.3
+        assert await backend_class.attach(server.path) is board
+        await board.close()
