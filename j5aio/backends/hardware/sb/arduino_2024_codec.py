@@ -3,17 +3,17 @@ r"""The SourceBots Arduino sb2024 colon protocol (firmware ``2.0``): pure encode
 A request is ``:``-separated ASCII ending ``\n`` (the firmware does not strip ``\r``);
 every request gets one reply line: ``ACK``, a value, or ``NACK:<reason>``.
 
-=========================================== ==========================================
+=========================================== ===========================================
 request                                     reply
-=========================================== ==========================================
+=========================================== ===========================================
 ``*IDN?``                                   ``SourceBots:Arduino:X:2.0``
-``PIN:<n>:MODE:SET:<INPUT|INPUT_PULLUP|...>`` ``ACK``
+``PIN:<n>:MODE:SET:<mode>``                 ``ACK`` (mode INPUT, INPUT_PULLUP, OUTPUT)
 ``PIN:<n>:MODE:GET?``                       ``INPUT``, ``INPUT_PULLUP`` or ``OUTPUT``
 ``PIN:<n>:DIGITAL:SET:<1|0>``               ``ACK``
 ``PIN:<n>:DIGITAL:GET?``                    ``1`` or ``0``
 ``PIN:<n>:ANALOG:GET?``                     0…1023
 ``ULTRASOUND:<trig>:<echo>:MEASURE?``       millimetres, ``5 * µs / 29`` in a 16-bit int
-=========================================== ==========================================
+=========================================== ===========================================
 
 The echo time is held in a signed 16-bit ``int``, so an echo longer than 32 767 µs
 wraps negative: a reading of 0 or below means "no echo". Every parser here accepts
