@@ -28,7 +28,11 @@ from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.components.derived.ultrasound import UltrasoundInterface
 from j5aio.components.gpio_pin import GPIOPinInterface, GPIOPinMode
 from j5aio.components.led import LEDInterface
-from j5aio.errors import NotSupportedByHardwareError, UnexpectedReplyError
+from j5aio.errors import (
+    CommunicationTimeoutError,
+    NotSupportedByHardwareError,
+    UnexpectedReplyError,
+)
 
 __all__ = ["ArduinoGPIOBackend", "PinCodec", "echo_distance", "echo_pulse"]
 
@@ -156,8 +160,12 @@ class ArduinoGPIOBackend(
 
         :raises UnexpectedReplyError: the reply does not parse; the message names the
             board, its port, the request and the reply.
+        :raises CommunicationTimeoutError: no reply in time; the message names the board.
         """
-        line = await self._exchange(request, _LINE)
+        try:
+            line = await self._exchange(request, _LINE)
+        except CommunicationTimeoutError as exc:
+            raise CommunicationTimeoutError(f"{self.board.name} did not answer: {exc}") from exc
         try:
             return parse(line)
         except UnexpectedReplyError as exc:
