@@ -277,6 +277,7 @@ async def test_a_board_that_stops_answering_is_named() -> None:
     sim = SBArduino2024Simulator("SB1")
     faulty = FaultyStream(SimulatorStream(sim, time_scale=0))
     board = await Backend.from_stream(faulty, port="faulty", serial_number="SB1", time_scale=0)
+    assert isinstance(board, SBArduino2024Board)
     faulty.silence()
     with pytest.raises(CommunicationTimeoutError, match=r"SourceBots Arduino \(sb2024\) did not"):
         await board.pins[3].digital_read()
