@@ -39,6 +39,8 @@ _DESCRIPTIONS: Final = {
     "sr-motor": "SR v4 motor board, firmware 3 (1 Mbaud)",
     "sr-ruggeduino": "SR Ruggeduino, firmware 1 (115200 baud)",
     "sb-arduino": "SourceBots Arduino, 2019 firmware (115200 baud)",
+    "sr-arduino-fw2": "SR Arduino, firmware 2 (115200 baud)",
+    "sb-arduino-2024": "SourceBots Arduino, sb2024 firmware 2.0 (115200 baud)",
 }
 
 #: The boards ``simulate`` can serve, with what each is.
@@ -114,7 +116,7 @@ def build_parser() -> argparse.ArgumentParser:
         "(Ctrl-C). The first line printed is the port's path; open it with pyserial, j5 or "
         "any other program as you would a real board's port.",
         epilog="boards:\n"
-        + "\n".join(f"  {name:<15}{what}" for name, what in SIMULATOR_NAMES.items()),
+        + "\n".join(f"  {name:<17}{what}" for name, what in SIMULATOR_NAMES.items()),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     simulate.add_argument("board", choices=SIMULATOR_NAMES, metavar="BOARD", help="the board")

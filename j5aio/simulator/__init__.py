@@ -11,6 +11,7 @@ Serial boards (:class:`SerialBoardSimulator`):
 - :class:`SBArduinoSimulator`: SourceBots Arduino, 2019 line protocol (2019.6.0 / 2019.8.0).
 - :class:`SRServoBoardFw4Simulator` / :class:`SBServoBoardFw4Simulator`: SR Servo Board v4,
   serial firmware 4.3 (12 servos) and the SourceBots fork 4.4 (8 servos).
+- :class:`SBArduino2024Simulator`: SourceBots Arduino, sb2024 colon protocol (``2.0``).
 
 USB control-transfer boards (:class:`UsbBoardSimulator`, shaped like a pyusb device):
 
@@ -23,6 +24,7 @@ USB control-transfer boards (:class:`UsbBoardSimulator`, shaped like a pyusb dev
 from __future__ import annotations
 
 from collections.abc import Mapping
+from functools import partial
 from types import MappingProxyType
 from typing import Final, Protocol
 
@@ -30,6 +32,7 @@ from .arduino_base import ARDUINO_UNO_R3, ArduinoBoardSimulator, UsbIdentity
 from .arduino_pins import ArduinoUnoPins, PinMode
 from .base import SerialBoardSimulator, SimulatorUnpluggedError, UsbBoardSimulator
 from .sb_arduino_2019 import SBArduinoFirmware, SBArduinoSimulator
+from .sb_arduino_2024 import SBArduino2024Simulator
 from .sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
 from .sr_power_fw3 import PiezoNote, SRPowerBoardFw3Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
@@ -45,6 +48,7 @@ __all__ = [
     "MotorOutput",
     "PiezoNote",
     "PinMode",
+    "SBArduino2024Simulator",
     "SBArduinoFirmware",
     "SBArduinoSimulator",
     "SBServoBoardFw4Simulator",
@@ -77,5 +81,7 @@ SERIAL_SIMULATORS: Final[Mapping[str, SerialSimulatorFactory]] = MappingProxyTyp
         "sb-arduino": SBArduinoSimulator,
         "sr-servo-fw4": SRServoBoardFw4Simulator,
         "sb-servo-fw4": SBServoBoardFw4Simulator,
+        "sr-arduino-fw2": partial(SRRuggeduinoSimulator, firmware_version=2),
+        "sb-arduino-2024": SBArduino2024Simulator,
     }
 )

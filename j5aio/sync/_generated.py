@@ -17,12 +17,15 @@ import j5aio.backends.backend as _backends_backend
 import j5aio.backends.console as _backends_console
 import j5aio.backends.environment as _backends_environment
 import j5aio.backends.hardware.env as _backends_hardware_env
+import j5aio.boards.arduino.all_digital as _boards_arduino_all_digital
 import j5aio.boards.arduino.uno as _boards_arduino_uno
 import j5aio.boards.board as _boards_board
 import j5aio.boards.board_group as _boards_board_group
 import j5aio.boards.sb.arduino as _boards_sb_arduino
+import j5aio.boards.sb.arduino_2024 as _boards_sb_arduino_2024
 import j5aio.boards.sb.servo_board as _boards_sb_servo_board
 import j5aio.boards.sr.kch as _boards_sr_kch
+import j5aio.boards.sr.v4.arduino as _boards_sr_v4_arduino
 import j5aio.boards.sr.v4.motor_board as _boards_sr_v4_motor_board
 import j5aio.boards.sr.v4.power_board as _boards_sr_v4_power_board
 import j5aio.boards.sr.v4.ruggeduino as _boards_sr_v4_ruggeduino
@@ -60,6 +63,7 @@ __all__ = [
     "HARDWARE_ENVIRONMENT",
     "LED",
     "RGBLED",
+    "AllDigitalUno",
     "ArduinoUno",
     "BaseRobot",
     "BatterySensor",
@@ -83,8 +87,10 @@ __all__ = [
     "PowerOutputGroup",
     "PulseServo",
     "Ruggeduino",
+    "SBArduino2024Board",
     "SBArduinoBoard",
     "SBServoBoard",
+    "SRArduinoBoard",
     "Servo",
     "ServoBoard",
     "ServoBoardFw4",
@@ -142,8 +148,29 @@ class Environment(_SyncWrapper):
     @overload
     def get_board_group(
         self,
+        board: type[_boards_sr_v4_arduino.SRArduinoBoard],
+    ) -> BoardGroup[SRArduinoBoard]:
+        ...
+
+    @overload
+    def get_board_group(
+        self,
+        board: type[_boards_sb_arduino_2024.SBArduino2024Board],
+    ) -> BoardGroup[SBArduino2024Board]:
+        ...
+
+    @overload
+    def get_board_group(
+        self,
         board: type[_boards_sb_servo_board.SBServoBoard],
     ) -> BoardGroup[SBServoBoard]:
+        ...
+
+    @overload
+    def get_board_group(
+        self,
+        board: type[_boards_arduino_all_digital.AllDigitalUno],
+    ) -> BoardGroup[AllDigitalUno]:
         ...
 
     @overload
@@ -245,7 +272,7 @@ class UltrasoundSensors(_SyncWrapper):
 
     _core: _boards_sb_arduino.UltrasoundSensors
 
-    def __init__(self, board: SBArduinoBoard) -> None:
+    def __init__(self, board: ArduinoUno) -> None:
         _adopt_into(self, _boards_sb_arduino.UltrasoundSensors(_unwrap(board)))
 
     def __getitem__(self, pins: tuple[int, int]) -> UltrasoundSensor:
@@ -413,11 +440,44 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
+        board_type: type[_boards_sr_v4_arduino.SRArduinoBoard],
+        backend_class: type[_backends_backend.Backend],
+        *,
+        ports: Sequence[str] = (),
+    ) -> BoardGroup[SRArduinoBoard]:
+        ...
+
+    @overload
+    @classmethod
+    def get_board_group(
+        cls,
+        board_type: type[_boards_sb_arduino_2024.SBArduino2024Board],
+        backend_class: type[_backends_backend.Backend],
+        *,
+        ports: Sequence[str] = (),
+    ) -> BoardGroup[SBArduino2024Board]:
+        ...
+
+    @overload
+    @classmethod
+    def get_board_group(
+        cls,
         board_type: type[_boards_sb_servo_board.SBServoBoard],
         backend_class: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SBServoBoard]:
+        ...
+
+    @overload
+    @classmethod
+    def get_board_group(
+        cls,
+        board_type: type[_boards_arduino_all_digital.AllDigitalUno],
+        backend_class: type[_backends_backend.Backend],
+        *,
+        ports: Sequence[str] = (),
+    ) -> BoardGroup[AllDigitalUno]:
         ...
 
     @overload
@@ -696,6 +756,8 @@ class ArduinoUno(Board):
 
     DIGITAL_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_arduino_uno.ArduinoUno.DIGITAL_PIN_FIRMWARE_MODES
 
+    ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_arduino_uno.ArduinoUno.ANALOGUE_PIN_FIRMWARE_MODES
+
     @property
     def pins(self) -> Mapping[int, GPIOPin]:
         """The GPIO pins, by number or by :class:`AnaloguePin` (a read-only mapping)."""
@@ -935,6 +997,42 @@ class DerivedComponent(Component):
         return self._core.identifier
 
 
+class AllDigitalUno(ArduinoUno):
+    """An Uno whose pins 2 to 19 are all digital, with ultrasound on any pair of them.
+
+    The base of the boards of today's kits (the SR Arduino with firmware 2, the
+    SourceBots Arduino with sb2024): A0 to A5 (14 to 19) take the digital modes as well
+    as ANALOGUE_INPUT, and ``board.ultrasound_sensors[trigger, echo]`` works on any two
+    pins; its ``distance()`` is ``None`` when no echo comes back.
+
+    :param serial_number: the board's serial number.
+    :param backend: the backend that drives the board.
+    """
+
+    __slots__ = ()
+
+    _core: _boards_arduino_all_digital.AllDigitalUno
+
+    def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
+        _adopt_into(self, _boards_arduino_all_digital.AllDigitalUno(serial_number, backend))
+
+    ANALOGUE_PIN_MODES: ClassVar[frozenset[_components_gpio_pin.GPIOPinMode]] = _boards_arduino_all_digital.AllDigitalUno.ANALOGUE_PIN_MODES
+
+    DIGITAL_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_arduino_all_digital.AllDigitalUno.DIGITAL_PIN_FIRMWARE_MODES
+
+    ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_arduino_all_digital.AllDigitalUno.ANALOGUE_PIN_FIRMWARE_MODES
+
+    @property
+    def ultrasound_sensors(self) -> UltrasoundSensors:
+        """Ultrasound sensors on demand: ``board.ultrasound_sensors[trigger_pin, echo_pin]``."""
+        return cast("UltrasoundSensors", _wrap(self._core.ultrasound_sensors))
+
+    @staticmethod
+    def supported_components() -> set[type[_components_component.Component]]:
+        """The component classes on the board."""
+        return _boards_arduino_all_digital.AllDigitalUno.supported_components()
+
+
 class SBArduinoBoard(ArduinoUno):
     """The SourceBots Arduino.
 
@@ -1129,6 +1227,25 @@ class UltrasoundSensor(DerivedComponent):
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         return _call(self._core.distance)
+
+
+class SBArduino2024Board(AllDigitalUno):
+    """The SourceBots Arduino of the 2024 kit (firmware ``2.0``, the sb2024 protocol).
+
+    Every pin from 2 to 19 is a digital input, input with pull-up or output; A0 to A5
+    (14 to 19) also read voltages. An ultrasound sensor works on any two pins:
+    ``board.ultrasound_sensors[trigger, echo]``, whose ``distance()`` is ``None`` when
+    no echo comes back. The firmware drives no servos.
+
+    :param serial_number: the board's serial number.
+    :param backend: the backend that drives the board.
+    """
+
+    __slots__ = ()
+
+    _core: _boards_sb_arduino_2024.SBArduino2024Board
+
+    name: ClassVar[str] = _boards_sb_arduino_2024.SBArduino2024Board.name
 
 
 class SBServoBoard(ServoBoardFw4):
@@ -1785,6 +1902,31 @@ class SupplySensor(IdentifiedComponent[_components_supply_sensor.SupplySensorInt
         return _components_supply_sensor.SupplySensor.interface_class()
 
 
+class SRArduinoBoard(AllDigitalUno, Ruggeduino):
+    """The Student Robotics Arduino (an Uno running SR firmware 2, ``SRduino:2``).
+
+    It speaks the Ruggeduino's single-character protocol. Every pin from 2 to 19 is a
+    digital input, input with pull-up or output; A0 to A5 (14 to 19) also read voltages.
+    An ultrasound sensor works on any two pins: ``board.ultrasound_sensors[trigger,
+    echo]``, whose ``distance()`` is ``None`` when no echo comes back. :attr:`command`
+    sends raw text, as sr-robot3's ``command()`` does.
+
+    :param serial_number: the board's serial number.
+    :param backend: the backend that drives the board.
+    """
+
+    __slots__ = ()
+
+    _core: _boards_sr_v4_arduino.SRArduinoBoard
+
+    name: ClassVar[str] = _boards_sr_v4_arduino.SRArduinoBoard.name
+
+    @staticmethod
+    def supported_components() -> set[type[_components_component.Component]]:
+        """The component classes on an SR Arduino."""
+        return _boards_sr_v4_arduino.SRArduinoBoard.supported_components()
+
+
 class FlashingLED(LED):
     """An LED that is on, off, or flashing by itself.
 
@@ -1913,11 +2055,13 @@ _register(_boards_sr_v4_motor_board.MotorBoard, MotorBoard)
 _register(_boards_sr_v4_power_board.PowerBoard, PowerBoard)
 _register(_boards_sr_v4_servo_board.ServoBoard, ServoBoard)
 _register(_components_component.DerivedComponent, DerivedComponent)
+_register(_boards_arduino_all_digital.AllDigitalUno, AllDigitalUno)
 _register(_boards_sb_arduino.SBArduinoBoard, SBArduinoBoard)
 _register(_boards_sr_v4_ruggeduino.Ruggeduino, Ruggeduino)
 _register(_boards_sr_v4_servo_board_fw4.ServoBoardFw4, ServoBoardFw4)
 _register(_components_identified.IdentifiedComponent, IdentifiedComponent)
 _register(_components_derived_ultrasound.UltrasoundSensor, UltrasoundSensor)
+_register(_boards_sb_arduino_2024.SBArduino2024Board, SBArduino2024Board)
 _register(_boards_sb_servo_board.SBServoBoard, SBServoBoard)
 _register(_components_battery_sensor.BatterySensor, BatterySensor)
 _register(_components_button.Button, Button)
@@ -1931,6 +2075,7 @@ _register(_components_rgb_led.RGBLED, RGBLED)
 _register(_components_servo.Servo, Servo)
 _register(_components_string_command.StringCommandComponent, StringCommandComponent)
 _register(_components_supply_sensor.SupplySensor, SupplySensor)
+_register(_boards_sr_v4_arduino.SRArduinoBoard, SRArduinoBoard)
 _register(_components_flashing_led.FlashingLED, FlashingLED)
 _register(_components_pulse_servo.PulseServo, PulseServo)
 

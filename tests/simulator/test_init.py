@@ -5,6 +5,7 @@ import pytest
 import j5aio.simulator as simulator
 from j5aio.simulator import (
     SERIAL_SIMULATORS,
+    SBArduino2024Simulator,
     SBArduinoSimulator,
     SBServoBoardFw4Simulator,
     SerialBoardSimulator,
@@ -21,6 +22,8 @@ def test_serial_simulators_by_cli_name() -> None:
         "sb-arduino": SBArduinoSimulator,
         "sr-servo-fw4": SRServoBoardFw4Simulator,
         "sb-servo-fw4": SBServoBoardFw4Simulator,
+        "sr-arduino-fw2": SRRuggeduinoSimulator,
+        "sb-arduino-2024": SBArduino2024Simulator,
     }
     assert set(SERIAL_SIMULATORS) == set(expected)
     for name, factory in SERIAL_SIMULATORS.items():

@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 from j5aio.backends.console.sb.arduino import SBArduinoConsoleBackend
+from j5aio.backends.console.sb.arduino_2024 import SBArduino2024ConsoleBackend
 from j5aio.backends.console.sr.kch import KCHConsoleBackend
 from j5aio.backends.console.sr.v4 import (
     SBServoBoardConsoleBackend,
+    SRArduinoConsoleBackend,
     SRV4MotorBoardConsoleBackend,
     SRV4PowerBoardConsoleBackend,
     SRV4RuggeduinoConsoleBackend,
@@ -28,5 +30,7 @@ for _backend in (
     SRV4ServoBoardFw4ConsoleBackend,
     SBServoBoardConsoleBackend,
     KCHConsoleBackend,
+    SRArduinoConsoleBackend,
+    SBArduino2024ConsoleBackend,
 ):
     CONSOLE_ENVIRONMENT.register_backend(_backend)

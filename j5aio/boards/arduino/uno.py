@@ -67,6 +67,9 @@ class ArduinoUno(Board):
     #: The firmware modes of the digital pins; a board whose firmware drives more widens it.
     DIGITAL_PIN_FIRMWARE_MODES: ClassVar[frozenset[FirmwareMode]] = frozenset()
 
+    #: The firmware modes of the analogue pins (none unless the firmware drives them).
+    ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[FirmwareMode]] = frozenset()
+
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
         gpio_backend = cast(GPIOPinInterface, backend)
@@ -87,6 +90,7 @@ class ArduinoUno(Board):
                 gpio_backend,
                 initial_mode=GPIOPinMode.ANALOGUE_INPUT,
                 hardware_modes=self.ANALOGUE_PIN_MODES,
+                firmware_modes=self.ANALOGUE_PIN_FIRMWARE_MODES,
             )
         self._pins: Mapping[int, GPIOPin] = MappingProxyType(pins)
 

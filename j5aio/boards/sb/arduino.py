@@ -69,7 +69,7 @@ class UltrasoundSensors:
     :param board: the board whose pins the sensors use.
     """
 
-    def __init__(self, board: SBArduinoBoard) -> None:
+    def __init__(self, board: ArduinoUno) -> None:
         self._board = board
 
     def __getitem__(self, pins: tuple[int, int]) -> UltrasoundSensor:

@@ -5,10 +5,11 @@ from collections.abc import Iterator
 import pytest
 
 from j5aio.backends.console import CONSOLE_ENVIRONMENT, ConsoleBackend
-from j5aio.backends.console.sb import SBArduinoConsoleBackend
+from j5aio.backends.console.sb import SBArduino2024ConsoleBackend, SBArduinoConsoleBackend
 from j5aio.backends.console.sr.kch import KCHConsoleBackend
 from j5aio.backends.console.sr.v4 import (
     SBServoBoardConsoleBackend,
+    SRArduinoConsoleBackend,
     SRV4MotorBoardConsoleBackend,
     SRV4PowerBoardConsoleBackend,
     SRV4RuggeduinoConsoleBackend,
@@ -16,9 +17,16 @@ from j5aio.backends.console.sr.v4 import (
     SRV4ServoBoardFw4ConsoleBackend,
 )
 from j5aio.boards.board import Board
-from j5aio.boards.sb import SBArduinoBoard, SBServoBoard
+from j5aio.boards.sb import SBArduino2024Board, SBArduinoBoard, SBServoBoard
 from j5aio.boards.sr.kch import KCHBoard
-from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard, ServoBoardFw4
+from j5aio.boards.sr.v4 import (
+    MotorBoard,
+    PowerBoard,
+    Ruggeduino,
+    ServoBoard,
+    ServoBoardFw4,
+    SRArduinoBoard,
+)
 
 from .console_script import Terminal
 
@@ -31,6 +39,8 @@ BACKENDS: dict[type[Board], type[ConsoleBackend]] = {
     ServoBoardFw4: SRV4ServoBoardFw4ConsoleBackend,
     SBServoBoard: SBServoBoardConsoleBackend,
     KCHBoard: KCHConsoleBackend,
+    SRArduinoBoard: SRArduinoConsoleBackend,
+    SBArduino2024Board: SBArduino2024ConsoleBackend,
 }
 
 

@@ -1,5 +1,6 @@
 """The version 4 boards of Student Robotics."""
 
+from j5aio.boards.sr.v4.arduino import SRArduinoBoard
 from j5aio.boards.sr.v4.motor_board import MotorBoard
 from j5aio.boards.sr.v4.power_board import PowerBoard, PowerOutputGroup, PowerOutputPosition
 from j5aio.boards.sr.v4.ruggeduino import Ruggeduino
@@ -12,6 +13,7 @@ __all__ = [
     "PowerOutputGroup",
     "PowerOutputPosition",
     "Ruggeduino",
+    "SRArduinoBoard",
     "ServoBoard",
     "ServoBoardFw4",
 ]

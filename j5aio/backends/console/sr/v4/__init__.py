@@ -1,5 +1,6 @@
 """Console backends of the Student Robotics v4 boards."""
 
+from j5aio.backends.console.sr.v4.arduino import SRArduinoConsoleBackend
 from j5aio.backends.console.sr.v4.motor_board import SRV4MotorBoardConsoleBackend
 from j5aio.backends.console.sr.v4.power_board import SRV4PowerBoardConsoleBackend
 from j5aio.backends.console.sr.v4.ruggeduino import SRV4RuggeduinoConsoleBackend
@@ -11,6 +12,7 @@ from j5aio.backends.console.sr.v4.servo_board_fw4 import (
 
 __all__ = [
     "SBServoBoardConsoleBackend",
+    "SRArduinoConsoleBackend",
     "SRV4MotorBoardConsoleBackend",
     "SRV4PowerBoardConsoleBackend",
     "SRV4RuggeduinoConsoleBackend",

@@ -1,5 +1,6 @@
 """Hardware backends for the Student Robotics v4 kit."""
 
+from j5aio.backends.hardware.sr.v4.arduino import SRArduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
@@ -13,6 +14,7 @@ from j5aio.backends.hardware.sr.v4.servo_board_fw4 import (
 __all__ = [
     "SERVO_FW4_BACKENDS",
     "SBServoBoardHardwareBackend",
+    "SRArduinoHardwareBackend",
     "SRV4MotorBoardHardwareBackend",
     "SRV4PowerBoardHardwareBackend",
     "SRV4RuggeduinoHardwareBackend",

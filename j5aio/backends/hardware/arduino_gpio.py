@@ -1,0 +1,256 @@
+"""The base of the Arduino backends whose firmware makes every pin digital (SR fw 2, SB sb2024).
+
+Pins 2 to 19 take the digital modes, A0 to A5 are analogue inputs too, pin 13 is the LED,
+and an ultrasound sensor can sit on any two pins. Subclasses give their firmware's codec
+(:class:`PinCodec`) and how the board is identified; this class applies the pin rules of
+:mod:`.arduino_pin_table` and keeps the cache right:
+
+* a call is checked before anything is sent (bad input sends nothing);
+* the cache changes only after the board has answered, so a call that fails or is
+  cancelled never leaves the cache describing what the board was not told;
+* every cached fact lives in :attr:`ArduinoGPIOBackend.pins`, and
+  :meth:`ArduinoGPIOBackend.forget_board_state` resets it (for a board that rebooted).
+"""
+
+from __future__ import annotations
+
+from abc import abstractmethod
+from collections.abc import Callable
+from datetime import timedelta
+from typing import ClassVar, Protocol, TypeVar
+
+from j5aio.backends.hardware.arduino import ARDUINO_USB_IDS
+from j5aio.backends.hardware.arduino_pin_table import PinTable, wire_mode
+from j5aio.backends.hardware.arduino_pins import LED_PIN, ArduinoPins
+from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
+from j5aio.backends.hardware.transports.readers import read_line
+from j5aio.backends.hardware.transports.serial_link import SerialLink
+from j5aio.components.derived.ultrasound import UltrasoundInterface
+from j5aio.components.gpio_pin import GPIOPinInterface, GPIOPinMode
+from j5aio.components.led import LEDInterface
+from j5aio.errors import (
+    CommunicationTimeoutError,
+    NotSupportedByHardwareError,
+    UnexpectedReplyError,
+)
+
+__all__ = ["ArduinoGPIOBackend", "PinCodec", "echo_distance", "echo_pulse"]
+
+T = TypeVar("T")
+
+_LINE = read_line()
+#: Microseconds of echo per millimetre in both firmwares' formula, mm = 5 x µs / 29.
+_US_PER_MM = 29 / 5
+
+
+def echo_distance(millimetres: int) -> float | None:
+    """Return a firmware's ultrasound reading in metres; ``None`` for 0 or less (no echo)."""
+    return millimetres / 1000 if millimetres > 0 else None
+
+
+def echo_pulse(millimetres: int) -> timedelta | None:
+    """Return the echo time a reading stands for (``mm x 29 / 5`` µs); ``None`` for no echo.
+
+    These firmwares report only millimetres, so the pulse is worked back from them.
+    """
+    if millimetres <= 0:
+        return None
+    return timedelta(microseconds=millimetres * _US_PER_MM)
+
+
+class PinCodec(Protocol):
+    """What this base needs of a firmware's codec module (its functions, by these names)."""
+
+    def encode_mode(self, pin: int, mode: GPIOPinMode) -> bytes:
+        """The request that puts ``pin`` in a digital mode."""
+
+    def encode_digital_write(self, pin: int, level: bool) -> bytes:
+        """The request that sets the output latch of ``pin``."""
+
+    def encode_digital_read(self, pin: int) -> bytes:
+        """The request that reads the level of ``pin``."""
+
+    def encode_analogue_read(self, pin: int) -> bytes:
+        """The request that reads the ADC on analogue ``pin``."""
+
+    def encode_ultrasound(self, trigger: int, echo: int) -> bytes:
+        """The request that measures with an ultrasound sensor."""
+
+    def parse_done(self, line: bytes) -> None:
+        """Check the reply of a mode change or a write."""
+
+    def parse_digital(self, line: bytes) -> bool:
+        """Parse the reply of a digital read."""
+
+    def parse_analogue(self, line: bytes) -> float:
+        """Parse the reply of an analogue read, in volts."""
+
+    def parse_ultrasound(self, line: bytes) -> int:
+        """Parse the reply of an ultrasound measurement, in mm (0 or less: no echo)."""
+
+
+class ArduinoGPIOBackend(
+    GPIOPinInterface, LEDInterface, UltrasoundInterface, SerialHardwareBackend,
+):
+    """Pins 2-19, LED 0 (pin 13) and ultrasound on an Arduino Uno whose pins are all digital."""
+
+    USB_IDS: ClassVar[frozenset[tuple[int, int]]] = ARDUINO_USB_IDS
+    DEFAULT_TIMEOUT: ClassVar[float] = 1.25
+    SKIP_PORTS_WITHOUT_SERIAL: ClassVar[bool] = True
+    #: How many times the identity query is sent while the board boots (each waits
+    #: ``DEFAULT_TIMEOUT`` times the time scale): about 33 s in all, as j5 allowed.
+    IDENTIFY_ATTEMPTS: ClassVar[int] = 26
+    #: The firmware's codec module.
+    CODEC: ClassVar[PinCodec]
+
+    def __init__(self, link: SerialLink, *, port: str) -> None:
+        super().__init__(link, port=port)
+        self._pins = PinTable(self.board.name)
+
+    @property
+    def pins(self) -> PinTable:
+        """What the backend remembers of the pins: its only cached board state."""
+        return self._pins
+
+    def forget_board_state(self) -> None:
+        """Forget the cached pin modes and levels: the board has rebooted (power-on state)."""
+        self._pins.reset()
+
+    # -- what a firmware implements -----------------------------------------------------
+
+    @classmethod
+    @abstractmethod
+    async def identify(
+        cls, link: SerialLink, *, time_scale: float = 1.0, attempts: int | None = None,
+    ) -> str:
+        """Ask the board on ``link`` who it is; return its version if this backend drives it.
+
+        The query is repeated while the board boots (up to ``attempts`` times,
+        :attr:`IDENTIFY_ATTEMPTS` by default).
+
+        :raises UnsupportedFirmwareError: the board runs this firmware, another version.
+        :raises CommunicationError: the board never answered as this firmware does.
+        """
+
+    # -- helpers for subclasses ---------------------------------------------------------
+
+    async def _handshake(self, *, time_scale: float) -> None:
+        self._firmware_version = await self.identify(self._link, time_scale=time_scale)
+
+    async def _send_mode(self, pin: int, mode: GPIOPinMode) -> None:
+        """Put ``pin`` in digital ``mode`` (INPUT, INPUT_PULLUP or OUTPUT)."""
+        await self._ask(self.CODEC.encode_mode(pin, mode), self.CODEC.parse_done)
+
+    async def _send_level(self, pin: int, level: bool) -> None:
+        """Set the output latch of ``pin`` (drives an output; pull-up of an input)."""
+        await self._ask(self.CODEC.encode_digital_write(pin, level), self.CODEC.parse_done)
+
+    async def _query_digital(self, pin: int) -> bool:
+        return await self._ask(self.CODEC.encode_digital_read(pin), self.CODEC.parse_digital)
+
+    async def _query_analogue(self, pin: int) -> float:
+        return await self._ask(self.CODEC.encode_analogue_read(pin), self.CODEC.parse_analogue)
+
+    async def _query_ultrasound(self, trigger: int, echo: int) -> int:
+        request = self.CODEC.encode_ultrasound(trigger, echo)
+        return await self._ask(request, self.CODEC.parse_ultrasound)
+
+    async def _ask(self, request: bytes, parse: Callable[[bytes], T]) -> T:
+        """Send ``request``, read one reply line and parse it.
+
+        :raises UnexpectedReplyError: the reply does not parse; the message names the
+            board, its port, the request and the reply.
+        :raises CommunicationTimeoutError: no reply in time; the message names the board.
+        """
+        try:
+            line = await self._exchange(request, _LINE)
+        except CommunicationTimeoutError as exc:
+            raise CommunicationTimeoutError(f"{self.board.name} did not answer: {exc}") from exc
+        try:
+            return parse(line)
+        except UnexpectedReplyError as exc:
+            raise UnexpectedReplyError(
+                f"{self.board.name} on {self.port}: bad reply {line!r} to {request!r}: {exc}",
+            ) from exc
+
+    # -- pins ---------------------------------------------------------------------------
+
+    async def set_gpio_pin_mode(self, identifier: int, pin_mode: GPIOPinMode) -> None:
+        """Put a pin in ``pin_mode``; an output starts at the level last written to it.
+
+        The level is set before the pin becomes an output, so it never glitches.
+        """
+        self._pins.check_mode(identifier, pin_mode)
+        if pin_mode is GPIOPinMode.DIGITAL_OUTPUT:
+            await self._send_level(identifier, self._pins.state(identifier).level)
+        await self._send_mode(identifier, wire_mode(pin_mode))
+        self._pins.record(identifier, mode=pin_mode)
+
+    async def get_gpio_pin_mode(self, identifier: int) -> GPIOPinMode:
+        """Return the mode last set on a pin."""
+        return self._pins.mode(identifier)
+
+    async def write_gpio_pin_digital_state(self, identifier: int, state: bool) -> None:
+        """Drive an output pin high or low."""
+        self._pins.check_output(identifier, "write to it")
+        await self._send_level(identifier, state)
+        self._pins.record(identifier, level=state)
+
+    async def get_gpio_pin_digital_state(self, identifier: int) -> bool:
+        """Return the level last written to an output pin."""
+        return self._pins.check_output(identifier, "read back its last written level").level
+
+    async def read_gpio_pin_digital_state(self, identifier: int) -> bool:
+        """Read the level of an input pin."""
+        self._pins.check_input(identifier)
+        return await self._query_digital(identifier)
+
+    async def read_gpio_pin_analogue_value(self, identifier: int) -> float:
+        """Read the voltage on an analogue pin (A0-A5 in ANALOGUE_INPUT mode), in volts."""
+        self._pins.check_analogue(identifier)
+        return await self._query_analogue(identifier)
+
+    async def write_gpio_pin_dac_value(self, identifier: int, scaled_value: float) -> None:
+        """Refuse: the Uno has no DAC."""
+        raise NotSupportedByHardwareError(f"{self.board.name} has no DAC (analogue output)")
+
+    async def write_gpio_pin_pwm_value(self, identifier: int, duty_cycle: float) -> None:
+        """Refuse: the firmware has no PWM command."""
+        raise NotSupportedByHardwareError(
+            f"{self.board.name}'s firmware has no PWM output command",
+        )
+
+    # -- the LED ------------------------------------------------------------------------
+
+    async def get_led_state(self, identifier: int) -> bool:
+        """Return the level last written to the LED (pin 13, which must be an output)."""
+        ArduinoPins.check_led(identifier, self.board.name)
+        return await self.get_gpio_pin_digital_state(LED_PIN)
+
+    async def set_led_state(self, identifier: int, state: bool) -> None:
+        """Light or clear the LED (pin 13, which must be an output)."""
+        ArduinoPins.check_led(identifier, self.board.name)
+        await self.write_gpio_pin_digital_state(LED_PIN, state)
+
+    # -- ultrasound ---------------------------------------------------------------------
+
+    async def _measure(self, trigger: int, echo: int) -> int:
+        """Measure, then remember the modes the firmware left: trigger low output, echo input."""
+        self._pins.mode(trigger)
+        self._pins.mode(echo)
+        millimetres = await self._query_ultrasound(trigger, echo)
+        self._pins.record(trigger, mode=GPIOPinMode.DIGITAL_OUTPUT, level=False)
+        self._pins.record(echo, mode=GPIOPinMode.DIGITAL_INPUT)
+        return millimetres
+
+    async def get_ultrasound_pulse(
+        self, trigger_pin_identifier: int, echo_pin_identifier: int,
+    ) -> timedelta | None:
+        """Return the echo time of an ultrasound sensor, or ``None`` with no echo."""
+        return echo_pulse(await self._measure(trigger_pin_identifier, echo_pin_identifier))
+
+    async def get_ultrasound_distance(
+        self, trigger_pin_identifier: int, echo_pin_identifier: int,
+    ) -> float | None:
+        """Return the distance in metres, or ``None`` with no echo (never negative)."""
+        return echo_distance(await self._measure(trigger_pin_identifier, echo_pin_identifier))
