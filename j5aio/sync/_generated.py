@@ -893,8 +893,14 @@ class Ruggeduino(ArduinoUno):
 class IdentifiedComponent(Component, Generic[InterfaceT]):
     """A component known by a number on its board, driven through one backend.
 
+    A board passes its backend as it is (typed as any :class:`~j5aio.backends.backend.Backend`,
+    with no ``cast``): that the backend implements the component's interface is checked
+    when the backend class is made (see :class:`~j5aio.backends.backend.BackendMeta`) and
+    again here.
+
     :param identifier: the number of the component on its board.
     :param backend: the backend that implements this component's interface.
+    :raises TypeError: ``backend`` does not implement :meth:`interface_class`.
     """
 
     __slots__ = ()
@@ -926,7 +932,7 @@ class UltrasoundSensor(DerivedComponent):
         self,
         gpio_trigger: GPIOPin,
         gpio_echo: GPIOPin,
-        backend: _components_derived_ultrasound.UltrasoundInterface,
+        backend: _components_derived_ultrasound.UltrasoundInterface | _backends_backend.Backend,
         *,
         distance_mode: bool = True,
     ) -> None:
@@ -1054,7 +1060,7 @@ class GPIOPin(IdentifiedComponent[_components_gpio_pin.GPIOPinInterface]):
     def __init__(
         self,
         identifier: int,
-        backend: _components_gpio_pin.GPIOPinInterface,
+        backend: _components_gpio_pin.GPIOPinInterface | _backends_backend.Backend,
         *,
         initial_mode: _components_gpio_pin.GPIOPinMode | type[_components_component.DerivedComponent | DerivedComponent],
         hardware_modes: Set[_components_gpio_pin.GPIOPinMode] = frozenset({_components_gpio_pin.GPIOPinMode.DIGITAL_OUTPUT}),
