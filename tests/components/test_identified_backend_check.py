@@ -23,5 +23,6 @@ def test_a_backend_with_the_interface_is_taken_as_is() -> None:
 
 
 def test_a_backend_without_the_interface_is_refused_by_name() -> None:
-    with pytest.raises(TypeError, match="Motor needs a backend that implements MotorInterface, but JustLEDs does not"):
+    message = "Motor needs a backend that implements MotorInterface, but JustLEDs does not"
+    with pytest.raises(TypeError, match=message):
         Motor(0, JustLEDs())  # type: ignore[arg-type]
