@@ -7,8 +7,8 @@ of a third-party kit::
     python -m j5aio sync-gen beekit.boards -o beekit/sync.py --check  # CI: is it fresh?
 
 The generator imports the given modules (a package is walked) and reads their public
-classes by introspection: every class defined there except enums, interfaces, backends,
-exceptions and sync wrappers. For j5aio's own facade (:data:`CORE_SCOPE`) that is every
+classes by introspection: every board and component class defined there (a simulator or
+a backend beside them is left alone). For j5aio's own facade (:data:`CORE_SCOPE`) that is every
 class of :mod:`j5aio.components` and :mod:`j5aio.boards`, plus
 :class:`~j5aio.backends.environment.Environment`, :class:`~j5aio.robot.BaseRobot`, the
 module-level :class:`~j5aio.backends.environment.Environment` objects of
@@ -155,6 +155,8 @@ def discover(scope: Scope = CORE_SCOPE) -> Discovery:
     :raises ImportError: a module of the scope cannot be imported.
     """
     from j5aio.backends.environment import Environment
+    from j5aio.boards.board import Board
+    from j5aio.components.component import Component
 
     found: dict[type, None] = {}
     for package in scope.modules:
@@ -164,6 +166,7 @@ def discover(scope: Scope = CORE_SCOPE) -> Discovery:
                     inspect.isclass(obj)
                     and obj.__module__ == module.__name__
                     and _is_wrappable(obj)
+                    and (scope.is_core or issubclass(obj, Board | Component))
                 ):
                     found[obj] = None
     for module_name, class_name in scope.extra_classes:
@@ -1059,10 +1062,11 @@ def render_module(
         key=lambda n: (0 if n.isupper() else 1 if n[0].isupper() else 2, n),
     )
     if discovery.scope.is_core:
-        out = [_CORE_HEADER]
+        header = _CORE_HEADER
     else:
-        out = [_KIT_HEADER.format(modules=" ".join(discovery.scope.modules))]
-    out += ["# ruff: noqa: E501", "", "from __future__ import annotations", ""]
+        header = _KIT_HEADER.format(modules=" ".join(discovery.scope.modules))
+    future = "from __future__ import annotations"
+    out = [header.rstrip("\n"), "", future, ""]
     by_module: dict[str, set[str]] = {}
     if renderer.used_typing:
         by_module["typing"] = set(renderer.used_typing)
@@ -1097,8 +1101,10 @@ def render_module(
     if environment_lines:
         out.append("")
         out += environment_lines
-    source = "\n".join(out) + "\n"
-    return re.sub(r"\n{4,}", "\n\n\n", source)
+    source = re.sub(r"\n{4,}", "\n\n\n", "\n".join(out) + "\n")
+    if any(len(line) > LINE_LENGTH for line in source.splitlines()):
+        source = source.replace(f"\n\n{future}\n", f"\n\n# ruff: noqa: E501\n\n{future}\n", 1)
+    return source
 
 
 def generate(modules: Sequence[str] | None = None) -> str:
