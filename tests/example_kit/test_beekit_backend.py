@@ -16,7 +16,7 @@ from j5aio.errors import (
     UnexpectedReplyError,
     UnsupportedFirmwareError,
 )
-from j5aio.testing import ScriptedStream
+from j5aio.testing import RecordingStream, ScriptedStream
 from j5aio.testing.plugin import FaultyStreamFactory, PtySimulatorFactory
 
 HANDSHAKE = (b"?\n", b"BEE:2.1\n")
@@ -112,3 +112,18 @@ def test_the_simulator_answers_what_it_does_not_know_with_err() -> None:
     assert simulator.led is True
     assert simulator.reset() == b""
     assert simulator.led is False
+
+
+async def test_send_writes_a_command_that_has_no_reply() -> None:
+    simulator = BeeSimulator()
+    stream = RecordingStream(SimulatorStream(simulator, time_scale=0))
+    board = await BeeBackend.from_stream(stream, port="sim", serial_number="B1", time_scale=0)
+    backend = board.backend
+    assert isinstance(backend, BeeBackend)
+    stream.clear()
+    await backend.send(b"L1\n")  # the board answers OK, which nobody reads here
+    assert stream.sent == b"L1\n"
+    assert simulator.led is True
+    backend.firmware_version = "2.9"
+    assert board.firmware_version == "2.9"
+    await board.close()
