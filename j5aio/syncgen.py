@@ -364,7 +364,11 @@ class _Renderer:
         if module == "builtins":
             return name
         top = name.split(".")[0]
-        if module.startswith("j5aio") or top in self.wrapped.values():
+        if (
+            module.startswith("j5aio")
+            or top in self.wrapped.values()
+            or (self.public_only and module.startswith(self.discovery.scope.modules))
+        ):
             return f"{self.module_ref(module)}.{name}"
         known = self.name_imports.get(top)
         if known is not None and known != module:
@@ -1102,8 +1106,13 @@ def render_module(
         out.append("")
         out += environment_lines
     source = re.sub(r"\n{4,}", "\n\n\n", "\n".join(out) + "\n")
-    if any(len(line) > LINE_LENGTH for line in source.splitlines()):
-        source = source.replace(f"\n\n{future}\n", f"\n\n# ruff: noqa: E501\n\n{future}\n", 1)
+    # A kit's linter settings are unknown (line length, import sections): its generated
+    # module is exempt from ruff as a whole; mypy --strict checks it all the same.
+    noqa = "" if discovery.scope.is_core else "# ruff: noqa"
+    if not noqa and any(len(line) > LINE_LENGTH for line in source.splitlines()):
+        noqa = "# ruff: noqa: E501"
+    if noqa:
+        source = source.replace(f"\n\n{future}\n", f"\n\n{noqa}\n\n{future}\n", 1)
     return source
 
 

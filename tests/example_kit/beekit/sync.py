@@ -5,6 +5,8 @@ public async class changes; ``--check`` fails while this file is stale. Every wr
 one core object and calls it through j5aio's portal; no wrapper contains logic of its own.
 """
 
+# ruff: noqa
+
 from __future__ import annotations
 
 from typing import ClassVar, cast
