@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+import pytest
 from beekit.backend import BeeBackend
 from beekit.simulator import BeeSimulator
 
-from j5aio.backends.hardware.transports import SimulatorStream
+from j5aio.backends.hardware.transports import SimulatorStream, read_line
 from j5aio.components.motor import MotorState
 from j5aio.testing import RecordingStream
 from j5aio.testing.conformance import (
@@ -21,13 +22,14 @@ from j5aio.testing.conformance import (
 class BeeSuite:
     """Connects a backend to a fresh simulator, recording what it sends."""
 
+    backend_class: type[BeeBackend] = BeeBackend
     simulator: BeeSimulator
     stream: RecordingStream
 
     async def connect(self) -> BeeBackend:
         self.simulator = BeeSimulator()
         self.stream = RecordingStream(SimulatorStream(self.simulator, time_scale=0))
-        board = await BeeBackend.from_stream(
+        board = await self.backend_class.from_stream(
             self.stream, port="sim", serial_number="B1", time_scale=0,
         )
         await board.setup()
@@ -78,3 +80,27 @@ class TestBeeButton(BeeSuite, ButtonInterfaceConformance):
             backend=backend, identifiers=[0], set_pressed=set_pressed,
             traffic=lambda: self.stream.sent,
         )
+
+
+class TruncatingBeeBackend(BeeBackend):
+    """A deliberately broken backend: ``int()`` where ``round()`` belongs."""
+
+    async def set_motor_state(self, identifier: int, power: MotorState) -> None:
+        assert isinstance(power, float)
+        await self.exchange(b"M%d %d\n" % (identifier, int(power * 100)), read_line())
+        self._powers[identifier] = power  # and it reports what it was asked, not what it did
+
+
+class TruncatingBeeMotors(TestBeeMotors):  # not named Test...: pytest does not collect it
+    backend_class = TruncatingBeeBackend
+
+
+async def test_the_motor_suite_catches_a_truncating_backend() -> None:
+    suite = TruncatingBeeMotors()
+    subject = await suite.make_backend()
+    try:
+        await suite.test_every_identifier(subject)  # exact powers: the bug does not show
+        with pytest.raises(AssertionError, match=r"set to 0\.667 but the board shows 0\.66"):
+            await suite.test_the_board_shows_each_power(subject)
+    finally:
+        await subject.aclose()
