@@ -250,7 +250,7 @@ def test_a_kits_board_and_component_are_wrapped_on_j5aios_wrappers(tmp_path: Pat
         (tmp_path / f"{name}_sync.py").write_text(text, encoding="utf-8")
         wrappers = importlib.import_module(f"{name}_sync")
 
-        class Both(kit.HornInterface, LEDInterface):
+        class Horns:
             volume = 3
 
             async def get_horn_volume(self, identifier: int) -> int:
@@ -259,13 +259,16 @@ def test_a_kits_board_and_component_are_wrapped_on_j5aios_wrappers(tmp_path: Pat
             async def set_horn_volume(self, identifier: int, volume: int) -> None:
                 self.volume = volume
 
+        class LEDs(LEDInterface):
             async def get_led_state(self, identifier: int) -> bool:
                 return True
 
             async def set_led_state(self, identifier: int, state: bool) -> None:
                 pass
 
-        cart = wrappers.Cart("C1", Both())
+        # the kit's interface exists only at run time here, so the class is made at run time
+        both = type("Both", (Horns, kit.HornInterface, LEDs), {})
+        cart = wrappers.Cart("C1", both())
         assert isinstance(cart.horn, wrappers.Horn)
         assert isinstance(cart.lamp, sync.LED)
         assert cart.horn.volume == 3
