@@ -36,7 +36,7 @@ from j5aio.boards.sr.v4 import MotorBoard
 from j5aio.sync import MotorBoard as SyncMotorBoard
 from j5aio.sync import shutdown
 from j5aio.sync._runtime import call
-from j5aio.sync._wrapping import wrap
+from j5aio.sync.wrapping import wrap
 
 GOAL_US = 60.0
 

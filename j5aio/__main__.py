@@ -3,7 +3,8 @@
 - ``list``: the boards plugged into this computer;
 - ``demo``: an example robot on the simulated kit, showing what the boards do;
 - ``run [--sim] program.py``: a robot program, on the hardware or the simulated kit;
-- ``simulate NAME --pty``: a simulated board on a pseudo-terminal, for any program to open.
+- ``simulate NAME --pty``: a simulated board on a pseudo-terminal, for any program to open;
+- ``sync-gen MODULE -o FILE [--check]``: the typed sync facade of a kit's own boards.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from pathlib import Path
 from types import FrameType
 from typing import Final
 
+from j5aio import syncgen
 from j5aio.environments import ENVIRONMENT_NAMES, ENVIRONMENT_VARIABLE
 from j5aio.simulator import SERIAL_SIMULATORS
 
@@ -143,6 +145,16 @@ def build_parser() -> argparse.ArgumentParser:
         help="delay every reply by the time the board's serial line would take to carry it",
     )
     simulate.set_defaults(handler=_simulate)
+
+    sync_gen = commands.add_parser(
+        "sync-gen",
+        help="generate the typed sync facade of a kit's own boards",
+        description="Write a module of typed sync wrappers (like j5aio.sync's) for the "
+        "boards and components defined in MODULE; with --check, only say whether the "
+        "file is up to date (exit status 1 if not).",
+    )
+    syncgen.add_arguments(sync_gen)
+    sync_gen.set_defaults(handler=syncgen.run)
     return parser
 
 

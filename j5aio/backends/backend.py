@@ -7,14 +7,22 @@ import inspect
 import logging
 from abc import ABCMeta, abstractmethod
 from collections.abc import Callable, Coroutine, Sequence
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import Any, ClassVar, Generic
 
+from typing_extensions import TypeVar
+
+from j5aio.boards.board import Board
 from j5aio.errors import NotSupportedByHardwareError
 
-if TYPE_CHECKING:
-    from j5aio.boards.board import Board
+__all__ = ["Backend", "BackendMeta", "BoardT"]
 
-__all__ = ["Backend", "BackendMeta"]
+BoardT = TypeVar("BoardT", bound=Board, default=Board, covariant=True)
+"""The class of board a backend drives, for typing: ``Backend[MotorBoard]``.
+
+It defaults to :class:`~j5aio.boards.board.Board`, so a backend declared without it
+(``class MyBackend(Backend)``) still type-checks; name the board to have
+:meth:`Backend.attach` and friends return it typed.
+"""
 
 
 class BackendMeta(ABCMeta):
@@ -88,13 +96,21 @@ def _logged(
     return logged_method
 
 
-class Backend(metaclass=BackendMeta):
+class Backend(Generic[BoardT], metaclass=BackendMeta):
     """The code that drives one board in one environment (console, hardware, simulated).
 
     A backend subclasses the interfaces of its board's components and implements their
     coroutines. There is one backend instance per board instance. Backends do not check
     what the user meant (components do that); they refuse only what the hardware cannot
     do, with :class:`~j5aio.errors.NotSupportedByHardwareError`.
+
+    Name the board class as the type argument and as :attr:`board`, and the coroutines
+    that make boards return it typed, with no ``isinstance`` check at the call site::
+
+        class BeeBackend(SerialHardwareBackend[BeeBoard], MotorInterface, LEDInterface):
+            board = BeeBoard
+
+        bee = await BeeBackend.attach("/dev/ttyUSB0")   # typed as BeeBoard
     """
 
     #: The class of board this backend drives.
@@ -102,12 +118,12 @@ class Backend(metaclass=BackendMeta):
 
     @classmethod
     @abstractmethod
-    async def discover(cls) -> Sequence[Board]:
+    async def discover(cls) -> Sequence[BoardT]:
         """Find every board this backend can drive, connected and ready to set up."""
         raise NotImplementedError
 
     @classmethod
-    async def attach(cls, port: str) -> Board:
+    async def attach(cls, port: str) -> BoardT:
         """Connect to a board on an explicit port, without discovery.
 
         :param port: a device path (a pseudo-terminal works) or a pyserial URL.

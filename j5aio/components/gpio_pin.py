@@ -5,12 +5,15 @@ from __future__ import annotations
 from abc import abstractmethod
 from collections.abc import Set as AbstractSet
 from enum import IntEnum
-from typing import ClassVar, TypeGuard
+from typing import TYPE_CHECKING, ClassVar, TypeGuard
 
 from j5aio.components._checks import check_bool, check_number, describe
 from j5aio.components._identified import IdentifiedComponent
 from j5aio.components.component import DerivedComponent, Interface
 from j5aio.errors import BadGPIOPinModeError, NotSupportedByComponentError
+
+if TYPE_CHECKING:
+    from j5aio.backends.backend import Backend
 
 __all__ = ["FirmwareMode", "GPIOPin", "GPIOPinInterface", "GPIOPinMode", "PinMode"]
 
@@ -144,7 +147,7 @@ class GPIOPin(IdentifiedComponent[GPIOPinInterface]):
     def __init__(
         self,
         identifier: int,
-        backend: GPIOPinInterface,
+        backend: GPIOPinInterface | Backend,
         *,
         initial_mode: PinMode,
         hardware_modes: AbstractSet[GPIOPinMode] = DEFAULT_HW_MODE,

@@ -21,7 +21,10 @@ An ``await x.get_power()`` / ``await x.set_power(v)`` pair of the core is the pr
 ``x.power`` here; every other coroutine is a method of the same name that blocks. When
 the program ends, however it ends (normally, by an exception, Ctrl-C or SIGTERM), every
 board is made safe and its port closed. The wrappers are generated from the core by
-``tools/gen_sync.py``.
+:mod:`j5aio.syncgen`; a kit of your own gets the same typed wrappers for its boards with
+``python -m j5aio sync-gen yourkit.boards -o yourkit/sync.py``, and board classes may be
+given as the core's or as these wrappers (``BoardGroup.get_board_group(MotorBoard, ...)``
+with either ``MotorBoard``).
 """
 
 from j5aio import __version__

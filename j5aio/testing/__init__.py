@@ -13,7 +13,8 @@
   ``j5aio_pty_simulator``, ``j5aio_faulty_stream`` and ``j5aio_clean_boards``), active
   wherever j5aio is installed.
 
-``docs/testing-backends.rst`` walks through testing a new backend with all of these.
+``docs/testing-backends.rst`` walks through adding a board of your own (a backend, its
+simulator, its tests and its sync face) with all of these.
 """
 
 from j5aio.testing.console import ConsoleScript

@@ -26,6 +26,10 @@ available in every test suite, sync tests and async tests alike:
 ``j5aio_clean_boards``
     Empties :attr:`Board.BOARDS <j5aio.boards.board.Board.BOARDS>` after the test, so
     that boards a test set up do not leak into the next one.
+
+At the end of a run the plugin lists every conformance check that was skipped because
+the subject lacked a hook (see :mod:`j5aio.testing.conformance`), so that a green run
+cannot hide them.
 """
 
 from __future__ import annotations
@@ -51,6 +55,7 @@ __all__ = [
     "j5aio_pty_simulator",
     "j5aio_sim_kit",
     "pytest_configure",
+    "pytest_terminal_summary",
 ]
 
 KIT_MARKER = "j5aio_kit"
@@ -63,6 +68,21 @@ def pytest_configure(config: pytest.Config) -> None:
         f"{KIT_MARKER}(**counts): the boards of the j5aio_sim_kit fixture's kit, as the "
         "keyword arguments of j5aio.simulator.kit.KitConfig",
     )
+
+
+def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
+    """List the conformance checks that were skipped for want of a subject's hook."""
+    from j5aio.testing.conformance._base import HOOK_SKIP_MARK
+
+    lines: list[str] = []
+    for report in terminalreporter.stats.get("skipped", []):
+        longrepr = getattr(report, "longrepr", None)
+        if isinstance(longrepr, tuple) and len(longrepr) == 3 and HOOK_SKIP_MARK in longrepr[2]:
+            lines.append(f"{report.nodeid}: {longrepr[2].removeprefix('Skipped: ')}")
+    if lines:
+        terminalreporter.section("j5aio conformance: checks not run for want of a hook")
+        for line in lines:
+            terminalreporter.write_line(line)
 
 
 @pytest.fixture

@@ -2,16 +2,21 @@ r"""Fake transports for testing backends: record, script and break byte streams.
 
 In the spirit of httpx's ``MockTransport``, these are
 :class:`~j5aio.backends.hardware.transports.ByteStream` objects that a test hands to a
-backend (through a :class:`~j5aio.backends.hardware.transports.SerialLink`) in place of a
-serial port:
+backend in place of a serial port, usually through
+:meth:`SerialHardwareBackend.from_stream
+<j5aio.backends.hardware.serial_backend.SerialHardwareBackend.from_stream>`, which runs
+the backend's handshake over the stream and returns its board:
 
 * :class:`ScriptedStream` answers a fixed script of requests, and fails the test with a
   clear diff when the backend sends something else::
 
-      stream = ScriptedStream([(b"v", b"SRduino:2\n"), (b"ah", b"")])
-      backend = MyBackend(SerialLink(stream))
-      ...
+      stream = ScriptedStream([(b"?\n", b"BEE:2.1\n"), (b"L1\n", b"OK\n")])
+      board = await BeeBackend.from_stream(stream, port="script", serial_number="B1")
+      await board.led.set_state(True)
       stream.assert_all_used()
+
+  (A backend can also be built on a link by hand: ``MyBackend(SerialLink(stream,
+  name="script"), port="script")``; its ``port=`` is required.)
 
 * :class:`RecordingStream` wraps any stream and records every chunk both ways.
 * :class:`FaultyStream` wraps any stream and injects faults, on demand or on a schedule:

@@ -15,7 +15,7 @@ from j5aio.backends.backend import Backend
 from j5aio.boards.arduino import ArduinoUno
 from j5aio.boards.board import Board
 from j5aio.boards.sb import SBArduinoBoard
-from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
+from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard, SRArduinoBoard
 from j5aio.components import (
     BatterySensorInterface,
     ButtonInterface,
@@ -190,3 +190,14 @@ class FakeSBArduinoBackend(
     Recorder, ServoInterface, UltrasoundInterface, GPIOPinInterface, LEDInterface, Backend,
 ):
     board = SBArduinoBoard
+
+
+class FakeSRArduinoBackend(
+    Recorder,
+    StringCommandComponentInterface,
+    UltrasoundInterface,
+    GPIOPinInterface,
+    LEDInterface,
+    Backend,
+):
+    board = SRArduinoBoard

@@ -14,7 +14,7 @@ from j5aio.components import LED, GPIOPin, StringCommandComponent, UltrasoundSen
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.simulator import SBArduino2024Simulator, SRRuggeduinoSimulator
 
-from .board_fakes import FakeSBArduinoBackend
+from .board_fakes import FakeSBArduinoBackend, FakeSRArduinoBackend
 
 ALL_DIGITAL = frozenset(
     {GPIOPinMode.DIGITAL_INPUT, GPIOPinMode.DIGITAL_INPUT_PULLUP, GPIOPinMode.DIGITAL_OUTPUT},
@@ -35,7 +35,8 @@ def test_identities() -> None:
 
 @pytest.mark.parametrize("board_class", [SRArduinoBoard, SBArduino2024Board])
 def test_every_pin_is_digital_and_takes_ultrasound(board_class: type[ArduinoUno]) -> None:
-    board = board_class("B1", FakeSBArduinoBackend())
+    backend = FakeSRArduinoBackend() if board_class is SRArduinoBoard else FakeSBArduinoBackend()
+    board = board_class("B1", backend)
     assert sorted(board.pins) == list(range(2, 20))
     for number in range(2, 14):
         assert board.pins[number].hardware_modes == ALL_DIGITAL

@@ -15,7 +15,7 @@ from j5aio.boards.board import Board
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard
 from j5aio.sync import _generated as sync
 from j5aio.sync._runtime import call
-from j5aio.sync._wrapping import wrap
+from j5aio.sync.wrapping import wrap
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -20,7 +20,7 @@ from j5aio.components.piezo import Note
 from j5aio.sync import _generated as sync
 from j5aio.sync import _runtime
 from j5aio.sync._runtime import call
-from j5aio.sync._wrapping import _WRAPPER_CLASSES, wrap
+from j5aio.sync.wrapping import _WRAPPER_CLASSES, wrap
 
 from .sync_fakes import ScriptedConsoleLog
 

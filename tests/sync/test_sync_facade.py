@@ -148,6 +148,20 @@ def test_board_group_errors_are_the_cores() -> None:
         empty.singular()
 
 
+def test_board_group_takes_the_sync_board_classes_too() -> None:
+    group = sync.BoardGroup.get_board_group(sync.MotorBoard, SRV4MotorBoardConsoleBackend)
+    assert isinstance(group.singular(), sync.MotorBoard)
+    assert group.board_type is MotorBoard
+    env_group = sync.CONSOLE_ENVIRONMENT.get_board_group(sync.PowerBoard)
+    assert isinstance(env_group.singular(), sync.PowerBoard)
+    assert sync.CONSOLE_ENVIRONMENT.get_backend(sync.PowerBoard) is SRV4PowerBoardConsoleBackend
+
+
+def test_a_sync_board_class_of_the_wrong_kind_is_still_refused() -> None:
+    with pytest.raises(TypeError, match="drives MotorBoard, not PowerBoard"):
+        sync.BoardGroup.get_board_group(sync.PowerBoard, SRV4MotorBoardConsoleBackend)
+
+
 def test_environment_objects_are_wrapped() -> None:
     env = sync.CONSOLE_ENVIRONMENT
     assert isinstance(env, sync.Environment)

@@ -8,7 +8,7 @@ from typing import Any
 import pytest
 
 from j5aio.sync import _generated
-from j5aio.sync._wrapping import SyncWrapper
+from j5aio.sync.wrapping import SyncWrapper
 
 
 class Spy:
@@ -62,7 +62,7 @@ def core_class_of(wrapper_class: type[SyncWrapper]) -> type:
 
 
 def _wrapping_registry() -> dict[type, Any]:
-    from j5aio.sync import _wrapping
+    from j5aio.sync import wrapping as _wrapping
 
     return {k: v for k, v in _wrapping._WRAPPER_CLASSES.items() if v is not None}
 

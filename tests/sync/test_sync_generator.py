@@ -5,19 +5,21 @@ from __future__ import annotations
 import importlib.util
 import sys
 import types
+import uuid
 from pathlib import Path
 
 import pytest
 
+from j5aio import syncgen
 from j5aio.sync import _generated
 
 from .sync_fakes import ROOT
 
-GENERATOR_PATH = ROOT / "tools" / "gen_sync.py"
+TOOL_PATH = ROOT / "tools" / "gen_sync.py"
 
 
-def load_generator() -> types.ModuleType:
-    spec = importlib.util.spec_from_file_location("gen_sync_under_test", GENERATOR_PATH)
+def load_tool() -> types.ModuleType:
+    spec = importlib.util.spec_from_file_location("gen_sync_under_test", TOOL_PATH)
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
     sys.modules[spec.name] = module
@@ -27,7 +29,7 @@ def load_generator() -> types.ModuleType:
 
 @pytest.fixture(scope="module")
 def gen() -> types.ModuleType:
-    return load_generator()
+    return syncgen
 
 
 def test_committed_module_is_up_to_date(gen: types.ModuleType) -> None:
@@ -37,10 +39,11 @@ def test_committed_module_is_up_to_date(gen: types.ModuleType) -> None:
 
 
 def test_check_option_reports_staleness(gen: types.ModuleType, tmp_path: Path) -> None:
+    tool = load_tool()
     target = tmp_path / "generated.py"
-    assert gen.main(["--check", "--output", str(target)]) == 1
-    assert gen.main(["--output", str(target)]) == 0
-    assert gen.main(["--check", "--output", str(target)]) == 0
+    assert tool.main(["--check", "--output", str(target)]) == 1
+    assert tool.main(["--output", str(target)]) == 0
+    assert tool.main(["--check", "--output", str(target)]) == 0
     assert target.read_text(encoding="utf-8") == gen.generate()
 
 
@@ -159,3 +162,120 @@ class Lamp:
     assert "def options(self) -> dict[str, int]:" in text
     assert "def size(self) -> tuple[int, ...]:" in text
     assert '"""Call ``get_channel``."""' in text
+
+
+KIT_SOURCE = '''
+from __future__ import annotations
+
+from abc import abstractmethod
+from typing import ClassVar
+
+from j5aio.backends.backend import Backend
+from j5aio.boards.board import Board
+from j5aio.components._identified import IdentifiedComponent
+from j5aio.components.component import Component, Interface
+from j5aio.components.led import LED
+
+
+class HornInterface(Interface):
+    @abstractmethod
+    async def get_horn_volume(self, identifier: int) -> int: ...
+
+    @abstractmethod
+    async def set_horn_volume(self, identifier: int, volume: int) -> None: ...
+
+
+class Horn(IdentifiedComponent[HornInterface]):
+    """A horn."""
+
+    __slots__ = ()
+
+    @classmethod
+    def interface_class(cls) -> type[HornInterface]:
+        return HornInterface
+
+    async def get_volume(self) -> int:
+        """How loud."""
+        return await self._backend.get_horn_volume(self._identifier)
+
+    async def set_volume(self, volume: int) -> None:
+        await self._backend.set_horn_volume(self._identifier, volume)
+
+
+class Cart(Board):
+    """A cart with a horn and a lamp."""
+
+    name: ClassVar[str] = "Cart"
+
+    def __init__(self, serial_number: str, backend: Backend) -> None:
+        super().__init__(serial_number, backend)
+        self._horn = Horn(0, backend)
+        self._lamp = LED(0, backend)
+
+    @property
+    def horn(self) -> Horn:
+        """The horn."""
+        return self._horn
+
+    @property
+    def lamp(self) -> LED:
+        """The lamp."""
+        return self._lamp
+
+    @staticmethod
+    def supported_components() -> set[type[Component]]:
+        return {Horn, LED}
+
+    async def make_safe(self) -> None:
+        await self._horn.set_volume(0)
+'''
+
+
+def test_a_kits_board_and_component_are_wrapped_on_j5aios_wrappers(tmp_path: Path) -> None:
+    from j5aio import sync
+    from j5aio.components.led import LEDInterface
+
+    name = f"fake_kit_{uuid.uuid4().hex}"
+    (tmp_path / f"{name}.py").write_text(KIT_SOURCE, encoding="utf-8")
+    sys.path.insert(0, str(tmp_path))
+    try:
+        kit = importlib.import_module(name)
+        text = syncgen.generate([name])
+        assert f"import {name} as _{name}" in text
+        assert f"class Horn(_sync.IdentifiedComponent[_{name}.HornInterface]):" in text
+        assert "class Cart(_sync.Board):" in text
+        assert "    def horn(self) -> Horn:" in text
+        assert "    def lamp(self) -> _sync.LED:" in text
+        assert "_components_identified" not in text  # nothing private of j5aio
+        (tmp_path / f"{name}_sync.py").write_text(text, encoding="utf-8")
+        wrappers = importlib.import_module(f"{name}_sync")
+
+        class Horns:
+            volume = 3
+
+            async def get_horn_volume(self, identifier: int) -> int:
+                return self.volume
+
+            async def set_horn_volume(self, identifier: int, volume: int) -> None:
+                self.volume = volume
+
+        class LEDs(LEDInterface):
+            async def get_led_state(self, identifier: int) -> bool:
+                return True
+
+            async def set_led_state(self, identifier: int, state: bool) -> None:
+                pass
+
+        # the kit's interface exists only at run time here, so the class is made at run time
+        both = type("Both", (Horns, kit.HornInterface, LEDs), {})
+        cart = wrappers.Cart("C1", both())
+        assert isinstance(cart.horn, wrappers.Horn)
+        assert isinstance(cart.lamp, sync.LED)
+        assert cart.horn.volume == 3
+        cart.horn.volume = 7
+        assert cart.horn.volume == 7
+        assert cart.lamp.state is True
+    finally:
+        sys.path.remove(str(tmp_path))
+        sys.modules.pop(name, None)
+        sys.modules.pop(f"{name}_sync", None)

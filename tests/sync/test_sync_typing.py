@@ -38,6 +38,9 @@ r.motor_boards[0].motors[0].power = MotorSpecialState.BRAKE
 r.power_board.piezo.buzz(0.25, 440)
 for board in r.motor_boards:
     reveal_type(board)
+from j5aio import sync
+reveal_type(BoardGroup.get_board_group(sync.MotorBoard, SRV4MotorBoardConsoleBackend).singular())
+reveal_type(CONSOLE_ENVIRONMENT.get_board_group(sync.PowerBoard))
 """
 
 BAD = """
@@ -97,6 +100,8 @@ def test_facade_code_type_checks_with_precise_types(mypy_report: dict[str, list[
         '"j5aio.sync._generated.Motor"',
         '"j5aio.sync._generated.BoardGroup[j5aio.sync._generated.MotorBoard]"',
         '"j5aio.sync._generated.MotorBoard"',
+        '"j5aio.sync._generated.MotorBoard"',
+        '"j5aio.sync._generated.BoardGroup[j5aio.sync._generated.PowerBoard]"',
     ]
 
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import gc
 from collections.abc import Iterator, Mapping, Sequence
 
-from j5aio.sync import _wrapping
-from j5aio.sync._wrapping import (
+from j5aio.sync import wrapping as _wrapping
+from j5aio.sync.wrapping import (
     SyncWrapper,
     WrappedMapping,
     WrappedSequence,
@@ -154,3 +154,38 @@ class _ReadOnly(Mapping[str, CoreThing]):
 
     def __repr__(self) -> str:
         return "_ReadOnly(...)"
+
+
+def test_unwrap_turns_a_wrapper_class_into_its_core_class() -> None:
+    from j5aio import sync
+    from j5aio.boards.sr.v4 import MotorBoard
+
+    class MyMotorBoard(sync.MotorBoard):
+        __slots__ = ()
+
+    assert unwrap(sync.MotorBoard) is MotorBoard
+    assert unwrap(MyMotorBoard) is MotorBoard
+    assert unwrap(MotorBoard) is MotorBoard
+    assert unwrap(int) is int
+    assert _wrapping.core_class_of(int) is None
+    assert _wrapping.registered()[MotorBoard] is sync.MotorBoard
+
+
+def test_a_late_registration_wins_over_what_was_found_for_a_subclass() -> None:
+    from j5aio import sync
+    from j5aio.boards.sr.v4 import MotorBoard
+
+    class LateBoard(MotorBoard):
+        pass
+
+    class LateWrapper(sync.MotorBoard):
+        __slots__ = ()
+
+    assert _wrapping._wrapper_class_of(LateBoard) is sync.MotorBoard  # found via its base
+    register(LateBoard, LateWrapper)
+    try:
+        assert _wrapping._wrapper_class_of(LateBoard) is LateWrapper
+        assert unwrap(LateWrapper) is LateBoard
+    finally:
+        del _wrapping._WRAPPER_CLASSES[LateBoard]
+        del _wrapping._CORE_CLASSES[LateWrapper]

@@ -23,7 +23,6 @@ from dataclasses import dataclass
 from datetime import timedelta
 from typing import Any, Generic, TypeVar
 
-import anyio
 import pytest
 
 from j5aio.backends.hardware.sb import SBArduinoHardwareBackend
@@ -227,13 +226,14 @@ class TestPowerBoardButton(PowerBoardSuite, ButtonInterfaceConformance):
             (it.sim.press_start if pressed else it.sim.release_start)()
 
         async def press(identifier: int) -> None:
-            # Held long enough for the backend's polling to see it, as a finger would be.
-            it.sim.press_start()
-            await anyio.sleep(it.backend.BUTTON_POLL_INTERVAL * 3)
+            it.sim.press_start()  # latched: held until the suite calls release
+
+        async def release(identifier: int) -> None:
             it.sim.release_start()
 
         return ButtonSubject(
             **it.subject_args(), identifiers=[0], set_pressed=set_pressed, press=press,
+            release=release,
         )
 
 
@@ -295,7 +295,9 @@ class TestMotorBoard(FromEitherSource, MotorInterfaceConformance):
             sign = -1 if output.mode is MotorMode.REVERSE else 1
             return sign * output.steps / 125
 
-        return MotorSubject(**it.subject_args(), identifiers=[0, 1], observe=observe)
+        return MotorSubject(
+            **it.subject_args(), identifiers=[0, 1], observe=observe, power_step=1 / 125,
+        )
 
 
 # --- Arduinos (serial) ----------------------------------------------------------------

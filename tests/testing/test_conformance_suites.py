@@ -25,6 +25,7 @@ from j5aio.components.power_output import PowerOutputInterface
 from j5aio.components.rgb_led import RGBChannel, RGBLEDInterface
 from j5aio.components.servo import ServoInterface, ServoPosition
 from j5aio.components.string_command import StringCommandComponentInterface
+from j5aio.errors import NotSupportedByHardwareError
 from j5aio.testing.conformance import (
     BatterySensorInterfaceConformance,
     BatterySensorSubject,
@@ -266,10 +267,50 @@ async def test_button_suite_catches_a_non_bool_state() -> None:
 
 async def test_button_suite_skips_without_hooks() -> None:
     subject = ButtonSubject(backend=EagerButton(), identifiers=[0])
-    with pytest.raises(Skipped, match=r"needs the 'press' hook"):
+    with pytest.raises(Skipped, match=r"needs the 'press' \(or 'set_pressed'\) hook"):
         await run(ButtonInterfaceConformance, "test_wait_returns_after_a_press", subject)
     with pytest.raises(Skipped, match=r"needs the 'set_pressed' hook"):
         await run(ButtonInterfaceConformance, "test_state_follows_the_button", subject)
+
+
+class PollingButton(ButtonInterface):
+    """A wait that polls a held-down flag, as hardware backends do."""
+
+    def __init__(self) -> None:
+        self.held = False
+
+    async def get_button_state(self, identifier: int) -> bool:
+        check(identifier, 1)
+        return self.held
+
+    async def wait_until_button_pressed(self, identifier: int) -> None:
+        check(identifier, 1)
+        while not self.held:  # noqa: ASYNC110 - polling is the point of this fake
+            await anyio.sleep(0.05)
+
+
+async def test_button_suite_latches_a_press_for_a_polling_backend() -> None:
+    backend = PollingButton()
+    released: list[int] = []
+
+    async def press(identifier: int) -> None:
+        backend.held = True  # latched: no sleep for the poll interval
+
+    async def release(identifier: int) -> None:
+        backend.held = False
+        released.append(identifier)
+
+    subject = ButtonSubject(backend=backend, identifiers=[0], press=press, release=release)
+    await run(ButtonInterfaceConformance, "test_wait_returns_after_a_press", subject)
+    assert released == [0]
+    assert backend.held is False
+
+    async def set_pressed(identifier: int, pressed: bool) -> None:
+        backend.held = pressed
+
+    subject = ButtonSubject(backend=backend, identifiers=[0], set_pressed=set_pressed)
+    await run(ButtonInterfaceConformance, "test_wait_works_after_a_cancelled_wait", subject)
+    assert backend.held is False
 
 
 async def test_button_suite_catches_a_wait_that_misses_presses() -> None:
@@ -313,6 +354,97 @@ async def test_motor_suite_catches_lost_states() -> None:
         await run(MotorInterfaceConformance, "test_brake_and_coast", subject)
     with pytest.raises(AssertionError, match=r"motor 1 was set to"):
         await run(MotorInterfaceConformance, "test_every_identifier", subject)
+
+
+class HundredStepMotors(MotorInterface):
+    """Motors a board drives in ±100 steps; ``encode`` turns a power into a step."""
+
+    def __init__(self, *, brake_and_coast: bool = True, truncate: bool = False) -> None:
+        self.reported: dict[int, MotorState] = {0: 0.0, 1: 0.0}
+        self.board_steps: dict[int, int] = {0: 0, 1: 0}
+        self.brake_and_coast = brake_and_coast
+        self.truncate = truncate
+
+    async def get_motor_state(self, identifier: int) -> MotorState:
+        check(identifier, 2)
+        return self.reported[identifier]  # what it was given, as many backends report
+
+    async def set_motor_state(self, identifier: int, power: MotorState) -> None:
+        check(identifier, 2)
+        if isinstance(power, MotorSpecialState):
+            if not self.brake_and_coast:
+                raise NotSupportedByHardwareError(f"this board has no {power.name}")
+            self.reported[identifier] = power
+            return
+        steps = power * 100
+        self.board_steps[identifier] = int(steps) if self.truncate else round(steps)
+        self.reported[identifier] = power
+
+    async def observe(self, identifier: int) -> MotorState:
+        state = self.reported[identifier]
+        if isinstance(state, MotorSpecialState):
+            return state
+        return self.board_steps[identifier] / 100
+
+
+async def run_whole_suite(suite: Any, subject: Subject) -> list[str]:
+    """Run every test of ``suite``; return the names of those that skipped."""
+    skipped = []
+    for name in dir(suite):
+        if name.startswith("test_"):
+            try:
+                await run(suite, name, subject)
+            except Skipped:
+                skipped.append(name)
+    return skipped
+
+
+async def test_motor_suite_passes_a_board_without_brake_or_coast() -> None:
+    backend = HundredStepMotors(brake_and_coast=False)
+    subject = MotorSubject(
+        backend=backend, identifiers=[0, 1], observe=backend.observe, special_states=(),
+        power_step=0.01,
+    )
+    skipped = await run_whole_suite(MotorInterfaceConformance, subject)
+    assert skipped == ["test_brake_and_coast", "test_every_hook_is_given"]  # no traffic hook
+
+
+async def test_motor_suite_catches_a_board_that_lacks_a_declared_state() -> None:
+    backend = HundredStepMotors(brake_and_coast=False)
+    subject = MotorSubject(backend=backend, identifiers=[0, 1])
+    with pytest.raises(NotSupportedByHardwareError):
+        await run(MotorInterfaceConformance, "test_brake_and_coast", subject)
+
+
+async def test_motor_suite_catches_an_undeclared_state_that_is_accepted() -> None:
+    backend = HundredStepMotors(brake_and_coast=True)
+    subject = MotorSubject(
+        backend=backend, identifiers=[0, 1], special_states=[MotorSpecialState.BRAKE],
+    )
+    with pytest.raises(Failed, match="DID NOT RAISE"):
+        await run(MotorInterfaceConformance, "test_undeclared_special_states_are_refused", subject)
+
+
+async def test_motor_suite_catches_a_truncating_backend_through_observe() -> None:
+    backend = HundredStepMotors(truncate=True)
+    subject = MotorSubject(backend=backend, identifiers=[0, 1], observe=backend.observe)
+    with pytest.raises(AssertionError, match=r"set to 0.667 but the board shows 0.66: is the"):
+        await run(MotorInterfaceConformance, "test_the_board_shows_each_power", subject)
+    with pytest.raises(AssertionError, match=r"set to 0.667 but the board shows 0.66"):
+        await run(MotorInterfaceConformance, "test_set_then_get_round_trips", subject)
+    rounding = HundredStepMotors(truncate=False)
+    subject = MotorSubject(backend=rounding, identifiers=[0, 1], observe=rounding.observe)
+    assert await run_whole_suite(MotorInterfaceConformance, subject) == [
+        "test_every_hook_is_given",
+        "test_undeclared_special_states_are_refused",
+    ]
+
+
+async def test_motor_suite_without_observe_says_what_it_could_not_check() -> None:
+    backend = HundredStepMotors(truncate=True)
+    subject = MotorSubject(backend=backend, identifiers=[0, 1])
+    with pytest.raises(Skipped, match="needs the 'observe' hook of the subject"):
+        await run(MotorInterfaceConformance, "test_the_board_shows_each_power", subject)
 
 
 def test_motor_and_servo_state_comparisons() -> None:

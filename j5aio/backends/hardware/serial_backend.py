@@ -18,13 +18,13 @@ from __future__ import annotations
 
 import logging
 from abc import abstractmethod
-from collections.abc import Sequence
-from typing import ClassVar, TypeVar
+from collections.abc import Mapping, Sequence
+from typing import ClassVar, TypeVar, cast
 
 import anyio
 import anyio.to_thread
 
-from j5aio.backends.backend import Backend
+from j5aio.backends.backend import Backend, BoardT
 from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.options import DiscoveryOptions, StreamOpener
 from j5aio.backends.hardware.transports.discovery import (
@@ -56,11 +56,28 @@ def scaled(seconds: float, time_scale: float) -> float:
     return max(seconds * time_scale, MINIMUM_WAIT)
 
 
-class SerialHardwareBackend(Backend):
+class SerialHardwareBackend(Backend[BoardT]):
     """A backend that drives one board through one serial port.
 
-    Subclasses set the class attributes that describe the board and implement
-    :meth:`_handshake`.
+    A subclass for a new board (``class BeeBackend(SerialHardwareBackend[BeeBoard],
+    MotorInterface, ...)``) gives:
+
+    * ``board``: the board class it drives (also the type argument, so that
+      :meth:`attach`, :meth:`from_stream` and :meth:`discover` return it typed);
+    * :attr:`BAUDRATE` and :attr:`DEFAULT_TIMEOUT` (seconds to wait for a reply), and for
+      discovery the USB identity: :attr:`USB_IDS`, optionally :attr:`USB_MANUFACTURER` /
+      :attr:`USB_PRODUCT`;
+    * :meth:`_handshake`, the one method it must implement: called once on a freshly
+      opened port, it checks that the board is the right one and runs firmware it can
+      drive (raising :class:`~j5aio.errors.CommunicationError` or
+      :class:`~j5aio.errors.UnsupportedFirmwareError` if not) and records the firmware
+      version by setting :attr:`firmware_version`;
+    * the interface coroutines, which talk to the board with :meth:`exchange` (a request
+      and its reply, read by a :class:`~j5aio.backends.hardware.transports.readers.ReplyReader`)
+      and :meth:`send` (a command with no reply). Both serialise access to the port,
+      time out after :attr:`DEFAULT_TIMEOUT` and raise
+      :class:`~j5aio.errors.CommunicationError` subclasses naming the port; a vanished
+      port is forgotten, so that rediscovery opens it afresh.
 
     :param link: the link to the board's port; the backend owns and closes it.
     :param port: the port's path or URL.
@@ -96,8 +113,15 @@ class SerialHardwareBackend(Backend):
 
     @property
     def firmware_version(self) -> str | None:
-        """The firmware version the board reported during the handshake."""
+        """The firmware version the board reported during the handshake.
+
+        :meth:`_handshake` sets it (``self.firmware_version = "3"``); ``None`` until then.
+        """
         return self._firmware_version
+
+    @firmware_version.setter
+    def firmware_version(self, version: str | None) -> None:
+        self._firmware_version = version
 
     # -- making a backend ---------------------------------------------------------------
 
@@ -109,7 +133,7 @@ class SerialHardwareBackend(Backend):
         port: str,
         serial_number: str,
         time_scale: float = 1.0,
-    ) -> Board:
+    ) -> BoardT:
         """Run the handshake over an open ``stream`` and return the board (not yet set up).
 
         The backend owns ``stream`` from now on, and closes it if the handshake fails.
@@ -127,7 +151,7 @@ class SerialHardwareBackend(Backend):
         except BaseException:
             await link.aclose()
             raise
-        return cls.board(serial_number, backend)
+        return cast(BoardT, cls.board(serial_number, backend))
 
     @classmethod
     async def attach(
@@ -136,7 +160,7 @@ class SerialHardwareBackend(Backend):
         *,
         time_scale: float = 1.0,
         opener: StreamOpener | None = None,
-    ) -> Board:
+    ) -> BoardT:
         """Open the board on ``port`` without discovery and return it (not yet set up).
 
         The serial number is the port's USB serial number if the system lists the port
@@ -151,15 +175,15 @@ class SerialHardwareBackend(Backend):
             answer as it should.
         """
 
-        async def connect() -> Board:
+        async def connect() -> BoardT:
             found = await anyio.to_thread.run_sync(find_port, port)
             serial_number = found.serial_number if found and found.serial_number else port
             return await cls._open(port, serial_number, opener, time_scale)
 
-        return await registry.claim(port, cls, connect)
+        return cast(BoardT, await registry.claim(port, cls, connect))
 
     @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[BoardT]:
         """Open every port whose USB identity matches this board and return the boards.
 
         Boards are opened concurrently. A port this backend already holds gives back its
@@ -174,12 +198,12 @@ class SerialHardwareBackend(Backend):
         ports = await anyio.to_thread.run_sync(list_serial_ports, options.port_source)
         matched = match_ports(ports, set(cls.USB_IDS), cls.USB_MANUFACTURER, cls.USB_PRODUCT)
         wanted = [port for port in matched if cls._has_serial_number(port)]
-        results: dict[str, Board | Exception] = {}
+        results: dict[str, BoardT | Exception] = {}
 
         async def connect_one(port: PortInfo) -> None:
             serial_number = port.serial_number or port.device
 
-            async def connect() -> Board:
+            async def connect() -> BoardT:
                 return await cls._open(
                     port.device,
                     serial_number,
@@ -188,7 +212,9 @@ class SerialHardwareBackend(Backend):
                 )
 
             try:
-                results[port.device] = await registry.claim(port.device, cls, connect)
+                results[port.device] = cast(
+                    BoardT, await registry.claim(port.device, cls, connect),
+                )
             except registry.PortInUseError as exc:
                 _log.info("Skipping %s: %s", port.device, exc)
             except Exception as exc:
@@ -197,7 +223,7 @@ class SerialHardwareBackend(Backend):
         async with anyio.create_task_group() as group:
             for port in wanted:
                 group.start_soon(connect_one, port)
-        return cls._collect(results, skip_failures=options.skip_failures)
+        return cast(list[BoardT], cls._collect(results, skip_failures=options.skip_failures))
 
     @classmethod
     def _has_serial_number(cls, port: PortInfo) -> bool:
@@ -215,7 +241,9 @@ class SerialHardwareBackend(Backend):
         )
 
     @staticmethod
-    def _collect(results: dict[str, Board | Exception], *, skip_failures: bool) -> list[Board]:
+    def _collect(
+        results: Mapping[str, Board | Exception], *, skip_failures: bool,
+    ) -> list[Board]:
         boards = [item for item in results.values() if isinstance(item, Board)]
         failures = [(port, item) for port, item in results.items() if isinstance(item, Exception)]
         for port, failure in failures:
@@ -231,7 +259,7 @@ class SerialHardwareBackend(Backend):
         serial_number: str,
         opener: StreamOpener | None,
         time_scale: float,
-    ) -> Board:
+    ) -> BoardT:
         if opener is None:
             stream: ByteStream = await open_serial_stream(port, cls.BAUDRATE)
         else:
@@ -245,9 +273,35 @@ class SerialHardwareBackend(Backend):
 
     @abstractmethod
     async def _handshake(self, *, time_scale: float) -> None:
-        """Check the board and its firmware version; set :attr:`_firmware_version`."""
+        """Check the board and its firmware; set :attr:`firmware_version`.
+
+        Implement it in a subclass: it runs once, right after the port is opened, and
+        talks to the board with :meth:`exchange` / :meth:`send`. Waits for the board to
+        boot are multiplied by ``time_scale`` (see :func:`scaled`).
+
+        :raises CommunicationError: the board is not the one expected.
+        :raises UnsupportedFirmwareError: it runs firmware this backend cannot drive.
+        """
 
     # -- talking to the board -----------------------------------------------------------
+
+    async def exchange(
+        self, request: bytes, reader: ReplyReader[T], timeout: float | None = None,
+    ) -> T:
+        """Send ``request`` and return the reply that ``reader`` reads.
+
+        :param timeout: seconds to wait for the reply; :attr:`DEFAULT_TIMEOUT` by default.
+        :raises CommunicationError: no reply in time, or a reply ``reader`` refuses.
+        :raises BoardDisconnectionError: the port has gone (it is forgotten).
+        """
+        return await self._exchange(request, reader, timeout)
+
+    async def send(self, data: bytes) -> None:
+        """Send ``data``, a command the board does not answer.
+
+        :raises BoardDisconnectionError: the port has gone (it is forgotten).
+        """
+        await self._send(data)
 
     async def _exchange(
         self, request: bytes, reader: ReplyReader[T], timeout: float | None = None

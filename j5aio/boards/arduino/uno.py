@@ -5,11 +5,11 @@ from __future__ import annotations
 from collections.abc import Mapping
 from enum import IntEnum
 from types import MappingProxyType
-from typing import TYPE_CHECKING, ClassVar, cast
+from typing import TYPE_CHECKING, ClassVar
 
 from j5aio.boards.board import Board
-from j5aio.components.gpio_pin import GPIOPin, GPIOPinInterface, GPIOPinMode
-from j5aio.components.led import LED, LEDInterface
+from j5aio.components.gpio_pin import GPIOPin, GPIOPinMode
+from j5aio.components.led import LED
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -72,12 +72,11 @@ class ArduinoUno(Board):
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
-        gpio_backend = cast(GPIOPinInterface, backend)
-        self._led = LED(0, cast(LEDInterface, backend))
+        self._led = LED(0, backend)
         pins: dict[int, GPIOPin] = {
             number: GPIOPin(
                 number,
-                gpio_backend,
+                backend,
                 initial_mode=GPIOPinMode.DIGITAL_INPUT,
                 hardware_modes=self.DIGITAL_PIN_MODES,
                 firmware_modes=self.DIGITAL_PIN_FIRMWARE_MODES,
@@ -87,7 +86,7 @@ class ArduinoUno(Board):
         for analogue_pin in ArduinoUno.AnaloguePin:
             pins[analogue_pin] = GPIOPin(
                 int(analogue_pin),
-                gpio_backend,
+                backend,
                 initial_mode=GPIOPinMode.ANALOGUE_INPUT,
                 hardware_modes=self.ANALOGUE_PIN_MODES,
                 firmware_modes=self.ANALOGUE_PIN_FIRMWARE_MODES,

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, ClassVar, cast
+from typing import TYPE_CHECKING, ClassVar
 
 from j5aio.boards.arduino.uno import ArduinoUno
-from j5aio.components.derived.ultrasound import UltrasoundInterface, UltrasoundSensor
+from j5aio.components.derived.ultrasound import UltrasoundSensor
 from j5aio.components.gpio_pin import GPIOPin
 from j5aio.components.led import LED
-from j5aio.components.servo import Servo, ServoInterface
+from j5aio.components.servo import Servo
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -39,8 +39,7 @@ class SBArduinoBoard(ArduinoUno):
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
-        servo_backend = cast(ServoInterface, backend)
-        self._servos = tuple(Servo(i, servo_backend) for i in range(self.SERVO_COUNT))
+        self._servos = tuple(Servo(i, backend) for i in range(self.SERVO_COUNT))
         self._ultrasound_sensors = UltrasoundSensors(self)
 
     @property
@@ -87,7 +86,7 @@ class UltrasoundSensors:
         return UltrasoundSensor(
             trigger_pin,
             echo_pin,
-            cast(UltrasoundInterface, self._board.backend),
+            self._board.backend,
         )
 
     def _pin(self, number: int) -> GPIOPin:

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, ClassVar, cast
+from typing import TYPE_CHECKING, ClassVar
 
 from j5aio.boards.board import Board
-from j5aio.components.flashing_led import FlashingLED, FlashingLEDInterface
-from j5aio.components.rgb_led import RGBLED, RGBColour, RGBLEDInterface
+from j5aio.components.flashing_led import FlashingLED
+from j5aio.components.rgb_led import RGBLED, RGBColour
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -47,9 +47,8 @@ class KCHBoard(Board):
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
-        rgb_backend = cast(RGBLEDInterface, backend)
-        self._leds = tuple(RGBLED(i, rgb_backend) for i in range(self.LED_COUNT))
-        self._start_led = FlashingLED(0, cast(FlashingLEDInterface, backend))
+        self._leds = tuple(RGBLED(i, backend) for i in range(self.LED_COUNT))
+        self._start_led = FlashingLED(0, backend)
 
     @property
     def leds(self) -> tuple[RGBLED, ...]:

@@ -4,10 +4,15 @@ from __future__ import annotations
 
 from abc import abstractmethod
 from datetime import timedelta
+from typing import TYPE_CHECKING
 
+from j5aio.components._identified import checked_backend
 from j5aio.components.component import DerivedComponent, Interface
 from j5aio.components.gpio_pin import GPIOPin
 from j5aio.errors import NotSupportedByComponentError
+
+if TYPE_CHECKING:
+    from j5aio.backends.backend import Backend
 
 __all__ = ["UltrasoundInterface", "UltrasoundSensor"]
 
@@ -52,7 +57,7 @@ class UltrasoundSensor(DerivedComponent):
         self,
         gpio_trigger: GPIOPin,
         gpio_echo: GPIOPin,
-        backend: UltrasoundInterface,
+        backend: UltrasoundInterface | Backend,
         *,
         distance_mode: bool = True,
     ) -> None:
@@ -74,7 +79,7 @@ class UltrasoundSensor(DerivedComponent):
             )
         self._gpio_trigger = gpio_trigger
         self._gpio_echo = gpio_echo
-        self._backend = backend
+        self._backend: UltrasoundInterface = checked_backend(type(self), backend)
         self._distance_mode = distance_mode
 
     @classmethod

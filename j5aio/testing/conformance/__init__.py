@@ -8,11 +8,34 @@ suite's subject, with hooks that let the suite observe the board and feed it inp
 
     class TestMyBoardLEDs(LEDInterfaceConformance):
         async def make_backend(self) -> LEDSubject:
-            backend = await MyBoardBackend.connect(...)
-            return LEDSubject(backend=backend, identifiers=range(4))
+            self.simulator = MyBoardSimulator()
+            board = await MyBoardBackend.from_stream(
+                SimulatorStream(self.simulator, time_scale=0), port="sim", serial_number="S1",
+            )
+            await board.setup()
 
-pytest then runs every test of the suite against ``MyBoardBackend``. Tests that need a
-hook the subject does not give are skipped, saying which hook would enable them.
+            async def observe(identifier: int) -> bool:
+                return self.simulator.leds[identifier]
+
+            return LEDSubject(backend=board.backend, identifiers=range(4), observe=observe)
+
+pytest then runs every test of the suite against ``MyBoardBackend``. The suites are
+async tests: run them with pytest-asyncio (they carry its ``asyncio`` marker, so strict
+mode works; ``asyncio_mode = "auto"`` is simplest for your own async tests).
+
+Tests that need a hook the subject does not give are skipped, saying which hook would
+enable them. Some checks need a hook but live inside other tests (comparing what the board
+shows with what the backend reports needs ``observe``; checking that a refused call sends
+nothing needs ``traffic``): without the hook they are left out, so every suite also has
+``test_every_hook_is_given``, which skips naming each hook left out, and the pytest plugin
+lists all of these skips at the end of the run. A green run with such skips has *not*
+checked everything: a scaling or rounding bug, for one, is caught only through
+``observe``.
+
+Capabilities are declared on the subject, not assumed: a motor board without BRAKE or
+COAST gives ``MotorSubject(special_states=())`` and must refuse them with
+:class:`~j5aio.errors.NotSupportedByHardwareError`; ``power_step`` sets how exactly
+powers are checked.
 """
 
 from ._base import InterfaceConformance, Subject

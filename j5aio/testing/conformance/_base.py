@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import abc
+import dataclasses
 from collections.abc import AsyncIterator, Awaitable, Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -38,6 +39,9 @@ class Subject:
         is awaited instead.
     """
 
+    #: Hooks whose absence leaves no check out (``cleanup`` has a default behaviour).
+    optional_hooks: ClassVar[tuple[str, ...]] = ("cleanup",)
+
     backend: Any
     identifiers: Sequence[int] = ()
     invalid_identifiers: Sequence[int] | None = None
@@ -49,6 +53,16 @@ class Subject:
         if self.invalid_identifiers is not None:
             return list(self.invalid_identifiers)
         return [max(self.identifiers, default=-1) + 1, -1]
+
+    def missing_hooks(self) -> list[str]:
+        """The names of the hooks this subject leaves as ``None``, but for optional ones."""
+        return [
+            f.name
+            for f in dataclasses.fields(self)
+            if "Callable" in str(f.type)
+            and f.name not in self.optional_hooks
+            and getattr(self, f.name) is None
+        ]
 
     def sent_so_far(self) -> bytes | None:
         """Return what the backend has sent so far, or ``None`` without a traffic hook."""
@@ -65,10 +79,14 @@ class Subject:
 SubjectT = TypeVar("SubjectT", bound=Subject)
 
 
+#: Every skip reason for a missing hook contains this, so that reports can find them.
+HOOK_SKIP_MARK = "hook of the subject"
+
+
 def require(hook: Callable[..., Any] | None, name: str) -> Callable[..., Any]:
     """Return ``hook``, or skip the running test because the subject lacks it."""
     if hook is None:
-        pytest.skip(f"needs the {name!r} hook of the subject; give it to test this")
+        pytest.skip(f"needs the {name!r} {HOOK_SKIP_MARK}; give it to test this")
     return hook
 
 
@@ -78,7 +96,11 @@ class InterfaceConformance(abc.ABC, Generic[SubjectT]):
     Subclass a suite in a class whose name starts with ``Test`` and implement
     :meth:`make_backend`; pytest then collects every test of the suite for your backend.
     A fresh backend is made for each test and released afterwards. Tests that your
-    subject gives no hook for are skipped, saying which hook would enable them.
+    subject gives no hook for are skipped, saying which hook would enable them, and
+    :meth:`test_every_hook_is_given` skips naming every hook left out, since some checks
+    (comparing what the board shows with what the backend reports, through ``observe``)
+    are folded into other tests and silently left out without their hook. The pytest
+    plugin lists all such skips at the end of the run, so a green run cannot hide them.
 
     To use pytest fixtures while making the backend, add an autouse fixture to your
     class that stores what it needs on ``self``; it runs before :meth:`make_backend`.
@@ -109,6 +131,16 @@ class InterfaceConformance(abc.ABC, Generic[SubjectT]):
         finally:
             with anyio.fail_after(self.call_timeout):
                 await made.aclose()
+
+    async def test_every_hook_is_given(self, subject: SubjectT) -> None:
+        """Skips, naming them, if the subject leaves hooks out: their checks did not run."""
+        missing = subject.missing_hooks()
+        if missing:
+            names = ", ".join(repr(name) for name in missing)
+            pytest.skip(
+                f"no {names} (each a {HOOK_SKIP_MARK}): the checks that need them were "
+                "left out of this run; give them to run every check",
+            )
 
     @contextmanager
     def bounded(self) -> Iterator[None]:

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, ClassVar, cast
+from typing import TYPE_CHECKING, ClassVar
 
 from j5aio.boards.board import Board
 from j5aio.components._checks import check_number
-from j5aio.components.motor import Motor, MotorInterface, MotorSpecialState, MotorState
+from j5aio.components.motor import Motor, MotorSpecialState, MotorState
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -38,8 +38,7 @@ class MotorBoard(Board):
         safe_state: MotorState = MotorSpecialState.BRAKE,
     ) -> None:
         super().__init__(serial_number, backend)
-        motor_backend = cast(MotorInterface, backend)
-        self._motors = tuple(Motor(i, motor_backend) for i in range(self.MOTOR_COUNT))
+        self._motors = tuple(Motor(i, backend) for i in range(self.MOTOR_COUNT))
         if not isinstance(safe_state, MotorSpecialState):
             safe_state = check_number(
                 safe_state,

@@ -5,20 +5,19 @@ from __future__ import annotations
 from collections.abc import Mapping
 from enum import Enum
 from types import MappingProxyType
-from typing import TYPE_CHECKING, ClassVar, cast
+from typing import TYPE_CHECKING, ClassVar
 
 import anyio
 
 from j5aio.boards.board import Board
 from j5aio.components._checks import check_timeout
-from j5aio.components.battery_sensor import BatterySensor, BatterySensorInterface
-from j5aio.components.button import Button, ButtonInterface
-from j5aio.components.led import LED, LEDInterface
-from j5aio.components.piezo import Piezo, PiezoInterface
+from j5aio.components.battery_sensor import BatterySensor
+from j5aio.components.button import Button
+from j5aio.components.led import LED
+from j5aio.components.piezo import Piezo
 from j5aio.components.power_output import (
     PowerOutput,
     PowerOutputGroup,
-    PowerOutputInterface,
 )
 
 if TYPE_CHECKING:
@@ -63,16 +62,16 @@ class PowerBoard(Board):
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
         outputs: dict[PowerOutputPosition, PowerOutput] = {
-            position: PowerOutput(position.value, cast(PowerOutputInterface, backend))
+            position: PowerOutput(position.value, backend)
             for position in PowerOutputPosition
         }
         self._outputs: Mapping[PowerOutputPosition, PowerOutput] = MappingProxyType(outputs)
         self._output_group = PowerOutputGroup(self._outputs)
-        self._piezo = Piezo(0, cast(PiezoInterface, backend))
-        self._start_button = Button(0, cast(ButtonInterface, backend))
-        self._battery_sensor = BatterySensor(0, cast(BatterySensorInterface, backend))
-        self._run_led = LED(0, cast(LEDInterface, backend))
-        self._error_led = LED(1, cast(LEDInterface, backend))
+        self._piezo = Piezo(0, backend)
+        self._start_button = Button(0, backend)
+        self._battery_sensor = BatterySensor(0, backend)
+        self._run_led = LED(0, backend)
+        self._error_led = LED(1, backend)
 
     @property
     def outputs(self) -> PowerOutputGroup[PowerOutputPosition]:

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, ClassVar, cast
+from typing import TYPE_CHECKING, ClassVar
 
 from j5aio.boards.arduino.uno import ArduinoUno
 from j5aio.components.gpio_pin import GPIOPin
 from j5aio.components.led import LED
 from j5aio.components.string_command import (
     StringCommandComponent,
-    StringCommandComponentInterface,
 )
 
 if TYPE_CHECKING:
@@ -34,7 +33,7 @@ class Ruggeduino(ArduinoUno):
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
         self._command = StringCommandComponent(
-            0, cast(StringCommandComponentInterface, backend),
+            0, backend,
         )
 
     @property

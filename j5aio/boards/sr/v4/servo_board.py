@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, ClassVar, cast
+from typing import TYPE_CHECKING, ClassVar
 
 from j5aio.boards.board import Board
-from j5aio.components.servo import Servo, ServoInterface
+from j5aio.components.servo import Servo
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -28,10 +28,9 @@ class ServoBoard(Board):
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
-        servo_backend = cast(ServoInterface, backend)
-        self._servos = tuple(self._make_servo(i, servo_backend) for i in range(self.SERVO_COUNT))
+        self._servos = tuple(self._make_servo(i, backend) for i in range(self.SERVO_COUNT))
 
-    def _make_servo(self, identifier: int, backend: ServoInterface) -> Servo:
+    def _make_servo(self, identifier: int, backend: Backend) -> Servo:
         """Make servo ``identifier``; subclasses with richer servos override this."""
         return Servo(identifier, backend)
 

@@ -5,14 +5,14 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, ClassVar, cast
 
 from j5aio.boards.sr.v4.servo_board import ServoBoard
-from j5aio.components.flag import Flag, FlagInterface
-from j5aio.components.pulse_servo import PulseServo, PulseServoInterface
-from j5aio.components.supply_sensor import SupplySensor, SupplySensorInterface
+from j5aio.components.flag import Flag
+from j5aio.components.pulse_servo import PulseServo
+from j5aio.components.supply_sensor import SupplySensor
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
     from j5aio.components.component import Component
-    from j5aio.components.servo import Servo, ServoInterface
+    from j5aio.components.servo import Servo
 
 __all__ = ["ServoBoardFw4"]
 
@@ -48,12 +48,12 @@ class ServoBoardFw4(ServoBoard):
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
-        self._supply = SupplySensor(0, cast(SupplySensorInterface, backend))
-        self._power_good = Flag(self.POWER_GOOD, cast(FlagInterface, backend))
-        self._watchdog_failed = Flag(self.WATCHDOG_FAILED, cast(FlagInterface, backend))
+        self._supply = SupplySensor(0, backend)
+        self._power_good = Flag(self.POWER_GOOD, backend)
+        self._watchdog_failed = Flag(self.WATCHDOG_FAILED, backend)
 
-    def _make_servo(self, identifier: int, backend: ServoInterface) -> Servo:
-        return PulseServo(identifier, cast(PulseServoInterface, backend))
+    def _make_servo(self, identifier: int, backend: Backend) -> Servo:
+        return PulseServo(identifier, backend)
 
     @property
     def servos(self) -> tuple[PulseServo, ...]:

@@ -1,9 +1,17 @@
-"""Turning core objects into their sync wrappers, and back.
+"""Turning core objects into their sync wrappers, and back: what generated wrappers use.
 
-The generated facade registers one wrapper class per core class. :func:`wrap` finds the
-wrapper of a core object (the same wrapper every time, so ``board.motors[0] is
-board.motors[0]``), and wraps the items of mappings, sequences, sets and iterators of core
-objects lazily. :func:`unwrap` does the reverse for arguments.
+This module is public: the modules that ``python -m j5aio sync-gen`` writes for a
+third-party kit import only from here (and from :mod:`j5aio.sync` for the wrappers of
+j5aio's own classes). A generated module registers one wrapper class per core class with
+:func:`register`; :func:`wrap` then finds the wrapper of a core object (the same wrapper
+every time, so ``board.motors[0] is board.motors[0]``) and wraps the items of mappings,
+sequences, sets and iterators of core objects lazily. :func:`unwrap` does the reverse for
+arguments, and turns a wrapper *class* back into its core class, so that the sync facade
+accepts its own board classes wherever the core accepts the core ones. :func:`call` runs a
+coroutine of the core on the facade's event-loop thread and blocks until it is done.
+
+None of this is needed to *use* the facade; it is the contract between the generator and
+its output, kept stable for generated modules of other packages.
 """
 
 from __future__ import annotations
@@ -12,13 +20,18 @@ import weakref
 from collections.abc import Iterator, Mapping, Sequence, Set
 from typing import Any, TypeVar
 
+from j5aio.sync._runtime import call
+
 __all__ = [
     "SyncWrapper",
     "WrappedMapping",
     "WrappedSequence",
     "adopt",
     "adopt_into",
+    "call",
+    "core_class_of",
     "register",
+    "registered",
     "unwrap",
     "wrap",
 ]
@@ -29,6 +42,8 @@ V = TypeVar("V")
 
 #: core class -> wrapper class (subclasses of a registered class are added on first use).
 _WRAPPER_CLASSES: dict[type, type[SyncWrapper] | None] = {}
+#: wrapper class -> core class, for the registered wrapper classes only.
+_CORE_CLASSES: dict[type, type] = {}
 #: id(core object) -> its wrapper. The wrapper keeps its core object (and so the id) alive,
 #: and the entry goes when the wrapper does, so an id is never looked up for a new object.
 _WRAPPERS: weakref.WeakValueDictionary[int, SyncWrapper] = weakref.WeakValueDictionary()
@@ -57,8 +72,34 @@ class SyncWrapper:
 
 
 def register(core_class: type, wrapper_class: type[SyncWrapper]) -> None:
-    """Use ``wrapper_class`` for instances of ``core_class`` (and its unregistered subclasses)."""
+    """Use ``wrapper_class`` for instances of ``core_class`` (and its unregistered subclasses).
+
+    Registering forgets what was found earlier for unregistered subclasses, so that a
+    wrapper module imported late (a third-party kit's) is used for its own classes.
+    """
+    explicit = set(_CORE_CLASSES.values())
+    for cls in [c for c in _WRAPPER_CLASSES if c not in explicit]:
+        del _WRAPPER_CLASSES[cls]
     _WRAPPER_CLASSES[core_class] = wrapper_class
+    _CORE_CLASSES[wrapper_class] = core_class
+
+
+def registered() -> dict[type, type[SyncWrapper]]:
+    """Return every registered core class with its wrapper class (a copy)."""
+    return {
+        core: wrapper
+        for wrapper, core in _CORE_CLASSES.items()
+        if _WRAPPER_CLASSES.get(core) is wrapper
+    }
+
+
+def core_class_of(cls: type) -> type | None:
+    """Return the core class that wrapper class ``cls`` (or its nearest wrapped base) wraps."""
+    for klass in cls.__mro__:
+        core = _CORE_CLASSES.get(klass)
+        if core is not None:
+            return core
+    return None
 
 
 def adopt(cls: type[W], core: Any) -> W:
@@ -118,7 +159,15 @@ def wrap(obj: Any) -> Any:
 
 
 def unwrap(obj: Any) -> Any:
-    """Return the core object behind a wrapper (or a container of them); others unchanged."""
+    """Return the core object behind a wrapper (or a container of them); others unchanged.
+
+    A wrapper class (such as ``j5aio.sync.MotorBoard``) gives the core class it wraps.
+    """
+    if isinstance(obj, type):
+        if issubclass(obj, SyncWrapper):
+            core = core_class_of(obj)
+            return obj if core is None else core
+        return obj
     if isinstance(obj, SyncWrapper):
         return obj._core
     if isinstance(obj, WrappedMapping | WrappedSequence):
