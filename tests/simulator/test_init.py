@@ -8,18 +8,23 @@ from j5aio.simulator import (
     SBArduinoSimulator,
     SerialBoardSimulator,
     SRMotorBoardFw3Simulator,
+    SRMotorBoardFw4Simulator,
+    SRPowerBoardFw4Simulator,
     SRRuggeduinoSimulator,
 )
 
 
 def test_serial_simulators_by_cli_name() -> None:
-    assert set(SERIAL_SIMULATORS) == {"sr-motor", "sr-ruggeduino", "sb-arduino"}
-    expected = {
+    expected: dict[str, type[SerialBoardSimulator]] = {
         "sr-motor": SRMotorBoardFw3Simulator,
         "sr-ruggeduino": SRRuggeduinoSimulator,
         "sb-arduino": SBArduinoSimulator,
+        "sr-power-fw4": SRPowerBoardFw4Simulator,
+        "sr-motor-fw4": SRMotorBoardFw4Simulator,
     }
-    for name, factory in SERIAL_SIMULATORS.items():
+    assert set(expected) <= set(SERIAL_SIMULATORS)
+    for name in expected:
+        factory = SERIAL_SIMULATORS[name]
         board = factory("SER123")
         assert isinstance(board, SerialBoardSimulator)
         assert isinstance(board, expected[name])
