@@ -28,8 +28,9 @@ def test_brake_is_set_zero_and_coast_is_disable(sim: SRMotorBoardFw4Simulator) -
     assert sim.motors[0].drive is MotorDrive.BRAKE
     assert ask(sim, b"MOT:0:GET?") == b"1:0\n"
     assert ask(sim, b"MOT:0:SET:-250") == b"ACK\n"
-    assert sim.motors[0].drive is MotorDrive.REVERSE
-    assert sim.motors[0].power == -0.25
+    reversing = sim.motors[0]
+    assert reversing.drive is MotorDrive.REVERSE
+    assert reversing.power == -0.25
     assert ask(sim, b"MOT:0:GET?") == b"1:-250\n"
     assert ask(sim, b"MOT:0:DISABLE") == b"ACK\n"
     assert ask(sim, b"MOT:0:GET?") == b"0:0\n"  # 0 whenever disabled
