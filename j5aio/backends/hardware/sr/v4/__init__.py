@@ -1,13 +1,20 @@
 """Hardware backends for the Student Robotics v4 kit."""
 
 from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4HardwareBackend
+from j5aio.backends.hardware.sr.v4.motor_identify import MotorBoardIdentity, identify_motor_board
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.power_board_fw4 import SRV4PowerBoardFw4HardwareBackend
 from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
 
 __all__ = [
+    "MotorBoardIdentity",
+    "SRV4MotorBoardFw4HardwareBackend",
     "SRV4MotorBoardHardwareBackend",
+    "SRV4PowerBoardFw4HardwareBackend",
     "SRV4PowerBoardHardwareBackend",
     "SRV4RuggeduinoHardwareBackend",
     "SRV4ServoBoardHardwareBackend",
+    "identify_motor_board",
 ]
