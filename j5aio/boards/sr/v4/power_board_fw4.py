@@ -70,7 +70,7 @@ class BoardResetInterface(Interface):
         raise NotImplementedError
 
 
-class PowerBoardOutputGroup(PowerOutputGroup[PowerBoardOutput]):
+class PowerBoardOutputGroup(PowerOutputGroup[PowerOutputPosition]):
     """The outputs of a firmware 4 power board.
 
     Look an output up by :class:`PowerBoardOutput`, by the seed kit's
@@ -83,7 +83,8 @@ class PowerBoardOutputGroup(PowerOutputGroup[PowerBoardOutput]):
     __slots__ = ("_switchable",)
 
     def __init__(self, outputs: Mapping[PowerBoardOutput, PowerOutput]) -> None:
-        super().__init__(outputs)
+        # Keyed by PowerBoardOutput; lookups by PowerOutputPosition go by number.
+        super().__init__(cast(Mapping[PowerOutputPosition, PowerOutput], outputs))
         self._switchable = PowerOutputGroup(
             {key: output for key, output in outputs.items() if key is not PowerBoardOutput.L2},
         )
@@ -93,9 +94,8 @@ class PowerBoardOutputGroup(PowerOutputGroup[PowerBoardOutput]):
 
         :raises KeyError: there is no output under ``key``.
         """
-        if isinstance(key, PowerOutputPosition):
-            key = key.value
-        return super().__getitem__(key)
+        number: int = key.value if isinstance(key, PowerBoardOutput | PowerOutputPosition) else key
+        return super().__getitem__(number)
 
     async def power_on(self) -> None:
         """Switch on every output but L2 (the brain's, which is always on)."""
@@ -154,7 +154,7 @@ class PowerBoardFw4(PowerBoard):
         self._regulator_sensor = VoltageSensor(0, cast(VoltageSensorInterface, backend))
 
     @property
-    def outputs(self) -> PowerBoardOutputGroup:  # type: ignore[override]
+    def outputs(self) -> PowerBoardOutputGroup:
         """The seven outputs, by :class:`PowerBoardOutput`, ``PowerOutputPosition`` or number."""
         return self._fw4_outputs
 

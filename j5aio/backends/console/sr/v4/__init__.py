@@ -1,13 +1,17 @@
 """Console backends of the Student Robotics v4 boards."""
 
 from j5aio.backends.console.sr.v4.motor_board import SRV4MotorBoardConsoleBackend
+from j5aio.backends.console.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4ConsoleBackend
 from j5aio.backends.console.sr.v4.power_board import SRV4PowerBoardConsoleBackend
+from j5aio.backends.console.sr.v4.power_board_fw4 import SRV4PowerBoardFw4ConsoleBackend
 from j5aio.backends.console.sr.v4.ruggeduino import SRV4RuggeduinoConsoleBackend
 from j5aio.backends.console.sr.v4.servo_board import SRV4ServoBoardConsoleBackend
 
 __all__ = [
     "SRV4MotorBoardConsoleBackend",
+    "SRV4MotorBoardFw4ConsoleBackend",
     "SRV4PowerBoardConsoleBackend",
+    "SRV4PowerBoardFw4ConsoleBackend",
     "SRV4RuggeduinoConsoleBackend",
     "SRV4ServoBoardConsoleBackend",
 ]
