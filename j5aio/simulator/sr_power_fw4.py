@@ -7,8 +7,8 @@ or ``NACK:<reason>``. The replies produced from one USB packet (one :meth:`recei
 share a 64-byte buffer, so a host that sends several commands at once may get them cut.
 
 Outputs 0-6 are H0, H1, L0, L1, L2 (the brain, always on unless ``*SYS:BRAIN:SET:0``),
-L3 and the 5 V rail. The start buttons are latched: a press is remembered until the
-next ``BTN:START:GET?``. ``*RESET`` clears the over-current latches, switches every
+L3 and the 5 V rail. The start buttons are latched: a press (the moment a button goes
+down) is remembered until the next ``BTN:START:GET?``, which reports it once. ``*RESET`` clears the over-current latches, switches every
 output off but the brain, darkens both LEDs, stops the buzzer and clears the button
 latches. Pulling the USB cable switches every output but the brain off, stops the
 buzzer and lights both LEDs.
@@ -109,9 +109,14 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
     # --- outside control ---
 
     def press_start(self, *, external: bool = False) -> None:
-        """Press (and hold) the internal start button, or the external one."""
+        """Press (and hold) the internal start button, or the external one.
+
+        The press latches: the next ``BTN:START:GET?`` reports it, once, even if the
+        button was released before. Holding the button does not press it again.
+        """
+        if not self._held[external]:
+            self._pressed[external] = True
         self._held[external] = True
-        self._pressed[external] = True
 
     def release_start(self, *, external: bool = False) -> None:
         """Release the internal start button, or the external one."""
@@ -378,9 +383,8 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
             return "NACK:Missing button command"
         if args[1] != "GET?":
             return "NACK:Invalid button command"
-        # A held button counts as pressed again at once.
         reply = f"{int(self._pressed[0])}:{int(self._pressed[1])}"
-        self._pressed = list(self._held)
+        self._pressed = [False, False]
         return reply
 
     def _buzzer(self, args: list[str]) -> str:

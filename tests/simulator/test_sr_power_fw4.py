@@ -119,9 +119,12 @@ def test_start_button_is_latched(sim: SRPowerBoardFw4Simulator) -> None:
     assert ask(sim, b"BTN:START:GET?") == b"0:0\n"  # reading cleared both
     sim.press_start()
     assert ask(sim, b"BTN:START:GET?") == b"1:0\n"
-    assert ask(sim, b"BTN:START:GET?") == b"1:0\n"  # still held
+    sim.press_start()  # still held: not a new press
+    assert ask(sim, b"BTN:START:GET?") == b"0:0\n"
     sim.release_start()
-    assert ask(sim, b"BTN:START:GET?") == b"1:0\n"  # pressed since the last read
+    sim.press_start(external=True)
+    sim.release_start(external=True)
+    assert ask(sim, b"BTN:START:GET?") == b"0:1\n"  # pressed since the last read
     assert ask(sim, b"BTN:START:GET?") == b"0:0\n"
 
 
