@@ -8,10 +8,10 @@ share a 64-byte buffer, so a host that sends several commands at once may get th
 
 Outputs 0-6 are H0, H1, L0, L1, L2 (the brain, always on unless ``*SYS:BRAIN:SET:0``),
 L3 and the 5 V rail. The start buttons are latched: a press (the moment a button goes
-down) is remembered until the next ``BTN:START:GET?``, which reports it once. ``*RESET`` clears the over-current latches, switches every
-output off but the brain, darkens both LEDs, stops the buzzer and clears the button
-latches. Pulling the USB cable switches every output but the brain off, stops the
-buzzer and lights both LEDs.
+down) is remembered until the next ``BTN:START:GET?``, which reports it once.
+``*RESET`` clears the over-current latches, switches every output off but the brain,
+darkens both LEDs, stops the buzzer and clears the button latches. Pulling the USB
+cable switches every output but the brain off, stops the buzzer and lights both LEDs.
 
 The simulator keeps no clock: :meth:`SRPowerBoardFw4Simulator.advance` passes time, for
 the buzzer's remaining time and the flashing LEDs (which toggle once a second).

@@ -1,6 +1,9 @@
 """Hardware backends for the Student Robotics v4 kit."""
 
-from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.motor_board import (
+    SRV4MotorBoardHardwareBackend,
+    SRV4MotorBoardJ5ScaleHardwareBackend,
+)
 from j5aio.backends.hardware.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4HardwareBackend
 from j5aio.backends.hardware.sr.v4.motor_identify import MotorBoardIdentity, identify_motor_board
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
@@ -12,6 +15,7 @@ __all__ = [
     "MotorBoardIdentity",
     "SRV4MotorBoardFw4HardwareBackend",
     "SRV4MotorBoardHardwareBackend",
+    "SRV4MotorBoardJ5ScaleHardwareBackend",
     "SRV4PowerBoardFw4HardwareBackend",
     "SRV4PowerBoardHardwareBackend",
     "SRV4RuggeduinoHardwareBackend",
