@@ -191,3 +191,10 @@ def test_unplug_is_the_boards_own_safe_state(sim: SRPowerBoardFw4Simulator) -> N
     sim.plug()
     assert sim.led_modes == ("1", "0")
     assert sim.reset() == b""
+
+
+def test_partial_line_is_kept_until_its_newline(sim: SRPowerBoardFw4Simulator) -> None:
+    sim.receive(b"OUT:0:")
+    assert sim._input.pending == b"OUT:0:"
+    assert sim.receive(b"GET?\n") == b"0\n"
+    assert sim._input.pending == b""

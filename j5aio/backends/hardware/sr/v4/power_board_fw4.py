@@ -18,6 +18,7 @@ import anyio
 from j5aio.backends.hardware.sr.v4 import power_fw4_codec as codec
 from j5aio.backends.hardware.sr.v4.text_backend import SRTextBackend
 from j5aio.backends.hardware.sr.v4.text_protocol import Identity
+from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.boards.sr.v4.power_board_fw4 import BoardResetInterface, PowerBoardFw4
 from j5aio.components.battery_sensor import BatterySensorInterface
 from j5aio.components.button import ButtonInterface
@@ -56,8 +57,10 @@ class SRV4PowerBoardFw4HardwareBackend(
     #: How often :meth:`wait_until_button_pressed` reads the button, in seconds.
     BUTTON_POLL_INTERVAL: ClassVar[float] = 0.05
 
-    #: The identity the board gave in the handshake.
-    identity: Identity | None = None
+    def __init__(self, link: SerialLink, *, port: str) -> None:
+        super().__init__(link, port=port)
+        #: The identity the board gave in the handshake (the backend's only cached state).
+        self.identity: Identity | None = None
 
     @property
     def asset_tag(self) -> str | None:
