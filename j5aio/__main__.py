@@ -39,6 +39,8 @@ _DESCRIPTIONS: Final = {
     "sr-motor": "SR v4 motor board, firmware 3 (1 Mbaud)",
     "sr-ruggeduino": "SR Ruggeduino, firmware 1 (115200 baud)",
     "sb-arduino": "SourceBots Arduino, 2019 firmware (115200 baud)",
+    "sr-power-fw4": "SR v4 power board, firmware 4.4 (USB CDC serial)",
+    "sr-motor-fw4": "SR v4 motor board, firmware 4.4 (115200 baud)",
 }
 
 #: The boards ``simulate`` can serve, with what each is.
