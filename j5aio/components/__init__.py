@@ -8,6 +8,8 @@ from j5aio.components.battery_sensor import BatterySensor, BatterySensorInterfac
 from j5aio.components.button import Button, ButtonInterface
 from j5aio.components.component import Component, DerivedComponent, Interface
 from j5aio.components.derived.ultrasound import UltrasoundInterface, UltrasoundSensor
+from j5aio.components.fan import Fan, FanInterface
+from j5aio.components.flashing_led import FlashingLED, FlashingLEDInterface, LEDMode
 from j5aio.components.gpio_pin import (
     FirmwareMode,
     GPIOPin,
@@ -16,6 +18,7 @@ from j5aio.components.gpio_pin import (
     PinMode,
 )
 from j5aio.components.led import LED, LEDInterface
+from j5aio.components.monitored_motor import MonitoredMotor, MonitoredMotorInterface
 from j5aio.components.motor import (
     Motor,
     MotorInterface,
@@ -25,12 +28,18 @@ from j5aio.components.motor import (
 )
 from j5aio.components.piezo import Duration, Note, Piezo, PiezoInterface, Pitch
 from j5aio.components.power_output import PowerOutput, PowerOutputGroup, PowerOutputInterface
+from j5aio.components.protected_power_output import (
+    ProtectedPowerOutput,
+    ProtectedPowerOutputInterface,
+)
 from j5aio.components.rgb_led import RGBLED, RGBChannel, RGBColour, RGBLEDInterface
 from j5aio.components.servo import Servo, ServoInterface, ServoPosition
 from j5aio.components.string_command import (
     StringCommandComponent,
     StringCommandComponentInterface,
 )
+from j5aio.components.temperature_sensor import TemperatureSensor, TemperatureSensorInterface
+from j5aio.components.voltage_sensor import VoltageSensor, VoltageSensorInterface
 
 __all__ = [
     "LED",
@@ -42,12 +51,19 @@ __all__ = [
     "Component",
     "DerivedComponent",
     "Duration",
+    "Fan",
+    "FanInterface",
     "FirmwareMode",
+    "FlashingLED",
+    "FlashingLEDInterface",
     "GPIOPin",
     "GPIOPinInterface",
     "GPIOPinMode",
     "Interface",
     "LEDInterface",
+    "LEDMode",
+    "MonitoredMotor",
+    "MonitoredMotorInterface",
     "Motor",
     "MotorInterface",
     "MotorSpecialState",
@@ -60,6 +76,8 @@ __all__ = [
     "PowerOutput",
     "PowerOutputGroup",
     "PowerOutputInterface",
+    "ProtectedPowerOutput",
+    "ProtectedPowerOutputInterface",
     "RGBChannel",
     "RGBColour",
     "RGBLEDInterface",
@@ -68,7 +86,11 @@ __all__ = [
     "ServoPosition",
     "StringCommandComponent",
     "StringCommandComponentInterface",
+    "TemperatureSensor",
+    "TemperatureSensorInterface",
     "UltrasoundInterface",
     "UltrasoundSensor",
+    "VoltageSensor",
+    "VoltageSensorInterface",
     "check_motor_state",
 ]

@@ -54,6 +54,8 @@ def test_every_component_names_an_exported_interface() -> None:
     assert {c.__name__ for c in concrete} == {
         "LED", "RGBLED", "BatterySensor", "Button", "GPIOPin", "Motor", "Piezo",
         "PowerOutput", "Servo", "StringCommandComponent", "UltrasoundSensor",
+        "FlashingLED", "ProtectedPowerOutput", "MonitoredMotor", "TemperatureSensor",
+        "VoltageSensor", "Fan",
     }
     for component in concrete:
         interface = component.interface_class()
