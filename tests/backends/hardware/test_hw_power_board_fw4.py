@@ -12,13 +12,15 @@ from j5aio.boards.sr.v4 import PowerBoardFw4, PowerBoardOutput, PowerOutputPosit
 from j5aio.components.flashing_led import LEDMode
 from j5aio.components.piezo import Note
 from j5aio.errors import (
+    BoardDisconnectionError,
     CommunicationError,
+    CommunicationTimeoutError,
     NotSupportedByHardwareError,
     UnexpectedReplyError,
     UnsupportedFirmwareError,
 )
 from j5aio.simulator import SRPowerBoardFw4Simulator
-from j5aio.testing.transports import RecordingStream, ScriptedStream
+from j5aio.testing.transports import FaultyStream, RecordingStream, ScriptedStream
 
 Backend = SRV4PowerBoardFw4HardwareBackend
 IDN = (b"*IDN?\n", b"Student Robotics:PBv4B:srABC:4.4.2\n")
@@ -223,3 +225,22 @@ async def test_discovery_by_usb_id() -> None:
 def test_board_needs_a_backend_that_can_reset() -> None:
     with pytest.raises(TypeError, match="BoardResetInterface"):
         PowerBoardFw4("x", object())  # type: ignore[arg-type]
+
+
+async def test_a_lost_or_corrupt_reply_is_an_error_and_the_next_call_works() -> None:
+    sim = SRPowerBoardFw4Simulator("srABC")
+    stream = FaultyStream(SimulatorStream(sim, time_scale=0))
+    board = await Backend.from_stream(stream, port="faulty", serial_number="srABC")
+    assert isinstance(board, PowerBoardFw4)
+    stream.drop_next_reply()
+    with pytest.raises(CommunicationTimeoutError, match="OUT:0:GET"):
+        await board.outputs[0].get_is_enabled()
+    stream.corrupt_next_reply()
+    with pytest.raises(CommunicationError):
+        await board.outputs[0].get_is_enabled()
+    await board.outputs[0].set_is_enabled(True)
+    assert await board.outputs[0].get_is_enabled() is True
+    sim.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.outputs[0].get_is_enabled()
+    await board.close()
