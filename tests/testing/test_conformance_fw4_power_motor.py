@@ -25,6 +25,7 @@ from j5aio.backends.hardware.sr.v4 import (
 )
 from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.boards.board import Board
+from j5aio.components.flashing_led import LEDMode
 from j5aio.components.motor import MotorSpecialState, MotorState
 from j5aio.simulator import MotorDrive, SRMotorBoardFw4Simulator, SRPowerBoardFw4Simulator
 from j5aio.simulator.base import SerialBoardSimulator
@@ -33,10 +34,10 @@ from j5aio.testing.conformance import (
     BatterySensorSubject,
     ButtonInterfaceConformance,
     ButtonSubject,
-    LEDInterfaceConformance,
-    LEDSubject,
-    MotorInterfaceConformance,
-    MotorSubject,
+    FlashingLEDInterfaceConformance,
+    FlashingLEDSubject,
+    MonitoredMotorInterfaceConformance,
+    MonitoredMotorSubject,
     PiezoInterfaceConformance,
     PiezoSubject,
     PowerOutputInterfaceConformance,
@@ -97,14 +98,21 @@ class TestFw4PowerOutputs(PowerSuite, PowerOutputInterfaceConformance):
         )
 
 
-class TestFw4PowerLEDs(PowerSuite, LEDInterfaceConformance):
-    async def make_backend(self) -> LEDSubject:
+class TestFw4PowerLEDs(PowerSuite, FlashingLEDInterfaceConformance):
+    async def make_backend(self) -> FlashingLEDSubject:
         await self.board()
 
         async def observe(identifier: int) -> bool:
             return self.sim.run_led if identifier == 0 else self.sim.error_led
 
-        return LEDSubject(**self.common(), identifiers=[0, 1], observe=observe)
+        async def observe_mode(identifier: int) -> LEDMode:
+            return {"0": LEDMode.OFF, "1": LEDMode.ON, "F": LEDMode.FLASH}[
+                self.sim.led_modes[identifier]
+            ]
+
+        return FlashingLEDSubject(
+            **self.common(), identifiers=[0, 1], observe=observe, observe_mode=observe_mode,
+        )
 
 
 class TestFw4PowerButton(PowerSuite, ButtonInterfaceConformance):
@@ -150,12 +158,12 @@ class TestFw4PowerPiezo(PowerSuite, PiezoInterfaceConformance):
         return PiezoSubject(**self.common(), identifiers=[0], observe=observe)
 
 
-class TestFw4MotorBoard(MotorInterfaceConformance):
+class TestFw4MotorBoard(MonitoredMotorInterfaceConformance):
     powers: ClassVar[tuple[float, ...]] = FW4_POWERS
     # The board steps powers by 0.001.
     power_tolerance: ClassVar[float] = 0.001
 
-    async def make_backend(self) -> MotorSubject:
+    async def make_backend(self) -> MonitoredMotorSubject:
         sim = SRMotorBoardFw4Simulator("srSIM")
         board, stream = await over(SRV4MotorBoardFw4HardwareBackend, sim)
 
@@ -167,10 +175,17 @@ class TestFw4MotorBoard(MotorInterfaceConformance):
                 return MotorSpecialState.BRAKE
             return channel.power
 
+        async def set_current(identifier: int, amps: float) -> None:
+            sim.set_motor_current(identifier, amps)
+
+        async def set_fault(identifier: int, fault: bool) -> None:
+            sim.set_fault(identifier, fault)
+
         assert isinstance(board.backend, SRV4MotorBoardFw4HardwareBackend)
-        return MotorSubject(
+        return MonitoredMotorSubject(
             backend=board.backend, identifiers=[0, 1], observe=observe,
             traffic=lambda: stream.sent, cleanup=board.close,
+            set_current=set_current, set_fault=set_fault,
         )
 
 
@@ -195,9 +210,9 @@ class TestFw4PowerConsoleOutputs(ConsolePowerSuite, PowerOutputInterfaceConforma
         )
 
 
-class TestFw4PowerConsoleLEDs(ConsolePowerSuite, LEDInterfaceConformance):
-    async def make_backend(self) -> LEDSubject:
-        return LEDSubject(backend=self.power_board(), identifiers=[0, 1])
+class TestFw4PowerConsoleLEDs(ConsolePowerSuite, FlashingLEDInterfaceConformance):
+    async def make_backend(self) -> FlashingLEDSubject:
+        return FlashingLEDSubject(backend=self.power_board(), identifiers=[0, 1])
 
 
 class TestFw4PowerConsoleButton(ConsolePowerSuite, ButtonInterfaceConformance):
@@ -234,8 +249,19 @@ class TestFw4PowerConsolePiezo(ConsolePowerSuite, PiezoInterfaceConformance):
         return PiezoSubject(backend=self.power_board(), identifiers=[0], observe=observe)
 
 
-class TestFw4MotorConsole(MotorInterfaceConformance):
-    async def make_backend(self) -> MotorSubject:
+class TestFw4MotorConsole(MonitoredMotorInterfaceConformance):
+    async def make_backend(self) -> MonitoredMotorSubject:
         script = ConsoleScript()
         backend = SRV4MotorBoardFw4ConsoleBackend("SERIAL", script.console_class())
-        return MotorSubject(backend=backend, identifiers=[0, 1])
+
+        async def set_current(identifier: int, amps: float) -> None:
+            script.answer(f"Current of motor {identifier}", str(amps), replace=True)
+
+        async def set_fault(identifier: int, fault: bool) -> None:
+            for motor in (0, 1):
+                answer = str(fault and motor == identifier).lower()
+                script.answer(f"Does motor {motor} have a fault", answer, replace=True)
+
+        return MonitoredMotorSubject(
+            backend=backend, identifiers=[0, 1], set_current=set_current, set_fault=set_fault,
+        )

@@ -18,8 +18,10 @@ hook the subject does not give are skipped, saying which hook would enable them.
 from ._base import InterfaceConformance, Subject
 from .battery_sensor import BatterySensorInterfaceConformance, BatterySensorSubject
 from .button import ButtonInterfaceConformance, ButtonSubject
+from .flashing_led import FlashingLEDInterfaceConformance, FlashingLEDSubject
 from .gpio_pin import GPIOPinInterfaceConformance, GPIOPinSubject, pin_modes
 from .led import LEDInterfaceConformance, LEDSubject
+from .monitored_motor import MonitoredMotorInterfaceConformance, MonitoredMotorSubject
 from .motor import MotorInterfaceConformance, MotorSubject
 from .piezo import PiezoInterfaceConformance, PiezoSubject
 from .power_output import PowerOutputInterfaceConformance, PowerOutputSubject
@@ -33,11 +35,15 @@ __all__ = [
     "BatterySensorSubject",
     "ButtonInterfaceConformance",
     "ButtonSubject",
+    "FlashingLEDInterfaceConformance",
+    "FlashingLEDSubject",
     "GPIOPinInterfaceConformance",
     "GPIOPinSubject",
     "InterfaceConformance",
     "LEDInterfaceConformance",
     "LEDSubject",
+    "MonitoredMotorInterfaceConformance",
+    "MonitoredMotorSubject",
     "MotorInterfaceConformance",
     "MotorSubject",
     "PiezoInterfaceConformance",
