@@ -43,6 +43,8 @@ _DESCRIPTIONS: Final = {
     "sb-arduino": "SourceBots Arduino, 2019 firmware (115200 baud)",
     "sr-arduino-fw2": "SR Arduino, firmware 2 (115200 baud)",
     "sb-arduino-2024": "SourceBots Arduino, sb2024 firmware 2.0 (115200 baud)",
+    "sr-power-fw4": "SR v4 power board, firmware 4.4 (USB CDC serial)",
+    "sr-motor-fw4": "SR v4 motor board, firmware 4.4 (115200 baud)",
 }
 
 #: The boards ``simulate`` can serve, with what each is.

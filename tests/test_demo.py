@@ -37,8 +37,8 @@ async def test_the_demo_drives_senses_signals_and_ends_braked() -> None:
     assert "drive   turning on the spot" in text
     assert "signal  beep" in text
     # The boards lines come from the simulators: the motors really drove, and turned.
-    assert "SIMMB0 [forward 75%, forward 75%]" in text
-    assert "SIMMB0 [forward 62%, reverse 62%]" in text or "flag servo +1.0" in text
+    assert "SIMMB0 [forward 60%, forward 60%]" in text  # power 0.6 drives at 60 % duty
+    assert "SIMMB0 [forward 50%, reverse 50%]" in text or "flag servo +1.0" in text
     assert lines[-1] == "The robot has stopped: every simulated motor is braked."
     final = lines[-3]
     assert "SIMMB0 [brake, brake] | SIMMB1 [brake, brake]" in final

@@ -7,6 +7,8 @@ no clock; transports wrap them.
 Serial boards (:class:`SerialBoardSimulator`):
 
 - :class:`SRMotorBoardFw3Simulator`: SR Motor Board v4, firmware 3, binary, 1 Mbaud.
+- :class:`SRMotorBoardFw4Simulator`: SR Motor Board v4, firmware 4.4 / 4.5, text, 115 200 baud.
+- :class:`SRPowerBoardFw4Simulator`: SR Power Board v4, firmware 4.4, CDC serial, text.
 - :class:`SRRuggeduinoSimulator`: SR Ruggeduino single-character firmware 1 or 2.
 - :class:`SBArduinoSimulator`: SourceBots Arduino, 2019 line protocol (2019.6.0 / 2019.8.0).
 - :class:`SRServoBoardFw4Simulator` / :class:`SBServoBoardFw4Simulator`: SR Servo Board v4,
@@ -34,7 +36,9 @@ from .base import SerialBoardSimulator, SimulatorUnpluggedError, UsbBoardSimulat
 from .sb_arduino_2019 import SBArduinoFirmware, SBArduinoSimulator
 from .sb_arduino_2024 import SBArduino2024Simulator
 from .sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
+from .sr_motor_fw4 import MotorChannel, MotorDrive, SRMotorBoardFw4Simulator
 from .sr_power_fw3 import PiezoNote, SRPowerBoardFw3Simulator
+from .sr_power_fw4 import BuzzerNote, SRPowerBoardFw4Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from .sr_servo_fw2 import SRServoBoardFw2Simulator
 from .sr_servo_fw4 import SBServoBoardFw4Simulator, SRServoBoardFw4Simulator
@@ -44,6 +48,9 @@ __all__ = [
     "SERIAL_SIMULATORS",
     "ArduinoBoardSimulator",
     "ArduinoUnoPins",
+    "BuzzerNote",
+    "MotorChannel",
+    "MotorDrive",
     "MotorMode",
     "MotorOutput",
     "PiezoNote",
@@ -53,7 +60,9 @@ __all__ = [
     "SBArduinoSimulator",
     "SBServoBoardFw4Simulator",
     "SRMotorBoardFw3Simulator",
+    "SRMotorBoardFw4Simulator",
     "SRPowerBoardFw3Simulator",
+    "SRPowerBoardFw4Simulator",
     "SRRuggeduinoSimulator",
     "SRServoBoardFw2Simulator",
     "SRServoBoardFw4Simulator",
@@ -83,5 +92,7 @@ SERIAL_SIMULATORS: Final[Mapping[str, SerialSimulatorFactory]] = MappingProxyTyp
         "sb-servo-fw4": SBServoBoardFw4Simulator,
         "sr-arduino-fw2": partial(SRRuggeduinoSimulator, firmware_version=2),
         "sb-arduino-2024": SBArduino2024Simulator,
+        "sr-power-fw4": SRPowerBoardFw4Simulator,
+        "sr-motor-fw4": SRMotorBoardFw4Simulator,
     }
 )

@@ -290,10 +290,8 @@ class TestMotorBoard(FromEitherSource, MotorInterfaceConformance):
                 return MotorSpecialState.BRAKE
             if output.mode is MotorMode.COAST:
                 return MotorSpecialState.COAST
-            # The power commanded, ±steps/125 as the protocol encodes it; the firmware
-            # saturates the duty from 100 steps (power 0.8) on, which we do not judge here.
-            sign = -1 if output.mode is MotorMode.REVERSE else 1
-            return sign * output.steps / 125
+            # The signed duty the board drives, which is the power set (issue 15).
+            return output.power
 
         return MotorSubject(
             **it.subject_args(), identifiers=[0, 1], observe=observe, power_step=1 / 125,
