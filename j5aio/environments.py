@@ -118,6 +118,7 @@ class _HardwareByDefault(Environment):
     def __init__(self, hardware: Environment) -> None:
         super().__init__(hardware.name)
         self.board_backend_mapping = hardware.board_backend_mapping
+        self.backends = hardware.backends
 
     async def get_board_group(self, board: type[BoardT]) -> BoardGroup[BoardT]:
         """Find every ``board`` on the hardware; see :meth:`Environment.get_board_group`."""
