@@ -116,7 +116,7 @@ class _HardwareByDefault(Environment):
     """
 
     def __init__(self, hardware: Environment) -> None:
-        super().__init__(hardware.name)
+        super().__init__(hardware.name, gather=hardware.gather)
         self.board_backend_mapping = hardware.board_backend_mapping
         self.backends = hardware.backends
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from typing import TypeVar
 
 from j5aio.backends.backend import Backend
@@ -26,14 +27,32 @@ class Environment:
     the boards of every backend registered for the class asked for or a subclass of it.
 
     :param name: a name to show to people, e.g. ``"HardwareEnvironment"``.
+    :param gather: find a family's boards through every backend registered for it (as
+        on hardware); if false, through the first one only (the console environment,
+        where every backend makes up one board).
     """
 
-    def __init__(self, name: str) -> None:
+    def __init__(self, name: str, *, gather: bool = True) -> None:
         self.name = name
+        #: Whether :meth:`get_board_group` gathers the boards of every generation.
+        self.gather = gather
         #: The first backend registered for each board class.
         self.board_backend_mapping: dict[type[Board], type[Backend]] = {}
         #: Every backend registered, in order (several may drive one board family).
         self.backends: list[type[Backend]] = []
+
+    @classmethod
+    def from_backends(
+        cls, name: str, backends: Iterable[type[Backend]], *, gather: bool = True
+    ) -> Environment:
+        """Make an environment of ``backends``, later generations registered alongside.
+
+        :raises RuntimeError: a backend is listed twice.
+        """
+        environment = cls(name, gather=gather)
+        for backend in backends:
+            environment.register_backend(backend, alongside=True)
+        return environment
 
     @property
     def supported_boards(self) -> set[type[Board]]:
@@ -70,7 +89,7 @@ class Environment:
         except KeyError:
             raise NotImplementedError(self._unsupported(board)) from None
 
-    def get_backends(self, board: type[Board]) -> tuple[type[Backend], ...]:
+    def backends_for(self, board: type[Board]) -> tuple[type[Backend], ...]:
         """Return every backend for ``board`` or a subclass of it, in registration order.
 
         :raises NotImplementedError: the environment has no backend for such a board.
@@ -92,7 +111,10 @@ class Environment:
 
         :raises NotImplementedError: the environment has no backend for that board.
         """
-        return await BoardGroup.get_board_group(board, self.get_backends(board))
+        backends = self.backends_for(board)
+        if not self.gather:
+            backends = (self.board_backend_mapping.get(board, backends[0]),)
+        return await BoardGroup.get_board_group(board, backends)
 
     def merge(self, other: Environment) -> None:
         """Add every backend of ``other`` to this environment.

@@ -54,7 +54,7 @@ async def test_asking_for_the_subclass_finds_that_generation_only() -> None:
     env.register_backend(LampGen2Backend)
     group = await env.get_board_group(LampBoardGen2)
     assert [board.serial_number for board in group] == ["C"]
-    assert env.get_backends(LampBoardGen2) == (LampGen2Backend,)
+    assert env.backends_for(LampBoardGen2) == (LampGen2Backend,)
     assert env.get_backend(LampBoardGen2) is LampGen2Backend
 
 
@@ -70,10 +70,10 @@ async def test_only_the_new_generation_registered_still_answers_the_family() -> 
 async def test_a_second_backend_for_the_same_class_needs_alongside() -> None:
     env = Environment("E")
     env.register_backend(LampBackend)
-    with pytest.raises(RuntimeError, match="already uses LampBackend for LampBoard.*alongside"):
+    with pytest.raises(RuntimeError, match=r"already uses LampBackend for LampBoard.*alongside"):
         env.register_backend(OtherLampBackend)
     env.register_backend(OtherLampBackend, alongside=True)
-    assert env.get_backends(LampBoard) == (LampBackend, OtherLampBackend)
+    assert env.backends_for(LampBoard) == (LampBackend, OtherLampBackend)
     assert env.get_backend(LampBoard) is LampBackend
     with pytest.raises(RuntimeError, match="already uses"):
         env.register_backend(OtherLampBackend, alongside=True)
@@ -83,7 +83,7 @@ async def test_two_boards_with_one_serial_number_are_an_error() -> None:
     env = Environment("E")
     env.register_backend(LampBackend)
     env.register_backend(OtherLampBackend, alongside=True)
-    with pytest.raises(CommunicationError, match="two Lamp.*'A'.*LampBackend and OtherLampBackend"):
+    with pytest.raises(CommunicationError, match=r"two Lamp.*'A'.*LampBackend and Other"):
         await env.get_board_group(LampBoard)
 
 
@@ -93,7 +93,7 @@ def test_merge_keeps_every_generation_and_refuses_conflicts() -> None:
     second.register_backend(LampBackend)
     second.register_backend(LampGen2Backend)
     first.merge(second)
-    assert first.get_backends(LampBoard) == (LampBackend, LampGen2Backend)
+    assert first.backends_for(LampBoard) == (LampBackend, LampGen2Backend)
     with pytest.raises(RuntimeError, match="both have a backend for LampBoard, LampBoardGen2"):
         first.merge(second)
 
@@ -108,5 +108,5 @@ def test_group_refuses_a_backend_of_another_family_or_none() -> None:
 def test_unknown_family_lists_what_is_supported() -> None:
     env = Environment("E")
     env.register_backend(LampBackend)
-    with pytest.raises(NotImplementedError, match="does not support LampBoardGen2; it supports: LampBoard"):
-        env.get_backends(LampBoardGen2)
+    with pytest.raises(NotImplementedError, match="LampBoardGen2; it supports: LampBoard"):
+        env.backends_for(LampBoardGen2)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Final
+from typing import Any, Final
 
 import anyio
 
@@ -71,7 +71,9 @@ async def find_boards(
     try:
         for backend in HARDWARE_BACKENDS:
             try:
-                boards = await backend.discover(options=options)
+                # Hardware backends' discovery takes options (serial and USB ones do).
+                discover: Any = backend.discover
+                boards = await discover(options=options)
             except CommunicationError as error:
                 if problems is None:
                     raise
