@@ -214,6 +214,10 @@ class SimulatedKit:
         """The factor applied to every simulated delay."""
         return self._config.time_scale
 
+    def simulator_names(self) -> tuple[str, ...]:
+        """The registry names of the simulators the kit was made from, in order."""
+        return tuple(self._boards)
+
     def simulators(self, name: str) -> tuple[BoardSimulator, ...]:
         """The simulators made from the registry's simulator ``name`` (e.g. ``"sr-motor"``)."""
         return self._boards.get(name, ())
