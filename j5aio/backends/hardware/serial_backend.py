@@ -38,7 +38,12 @@ from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.backends.hardware.transports.serial_stream import open_serial_stream
 from j5aio.backends.hardware.transports.stream import ByteStream
 from j5aio.boards.board import Board
-from j5aio.errors import BoardDisconnectionError, DeviceMissingSerialNumberError
+from j5aio.errors import (
+    BoardDisconnectionError,
+    CommunicationError,
+    DeviceMissingSerialNumberError,
+    UnsupportedFirmwareError,
+)
 
 __all__ = ["SerialHardwareBackend", "scaled"]
 
@@ -78,6 +83,10 @@ class SerialHardwareBackend(Backend):
     USB_PRODUCT: ClassVar[str | None] = None
     #: Skip a port without a USB serial number (with a warning) instead of raising.
     SKIP_PORTS_WITHOUT_SERIAL: ClassVar[bool] = False
+    #: Multiplies the handshake's waits when :meth:`identify` asks whether a board is of
+    #: this kind (a board that boots and answers in time needs far less than a handshake
+    #: allows for a slow one).
+    IDENTIFY_TIME_SCALE: ClassVar[float] = 1.0
 
     def __init__(self, link: SerialLink, *, port: str) -> None:
         self._link = link
@@ -200,6 +209,55 @@ class SerialHardwareBackend(Backend):
         return cls._collect(results, skip_failures=options.skip_failures)
 
     @classmethod
+    async def identify(
+        cls,
+        port: str,
+        *,
+        serial_number: str,
+        opener: StreamOpener | None = None,
+        time_scale: float = 1.0,
+    ) -> Board | None:
+        """Open ``port`` at this board's baud rate and return the board if it is one.
+
+        This is how :func:`j5aio.backends.hardware.attach` and discovery of ports that
+        several kinds share tell boards apart: the handshake runs with its waits scaled
+        by ``time_scale`` and :data:`IDENTIFY_TIME_SCALE`. A board whose answers show it
+        is another kind (a wrong reply, no reply) gives ``None``, and the port is closed
+        again. Override it when the handshake alone cannot tell, or would disturb other
+        kinds of board.
+
+        :param port: the port's path or URL.
+        :param serial_number: the serial number to give the board.
+        :param opener: opens the port; the real serial port by default.
+        :param time_scale: multiplies the waits for the board to boot and answer.
+        :raises UnsupportedFirmwareError: the board is of this kind but runs firmware this
+            backend cannot drive.
+        :raises CommunicationError: the port could not be opened.
+        """
+        stream = await cls._open_stream(port, opener)
+        try:
+            return await cls.from_stream(
+                stream,
+                port=port,
+                serial_number=serial_number,
+                time_scale=time_scale * cls.IDENTIFY_TIME_SCALE,
+            )
+        except UnsupportedFirmwareError:
+            raise
+        except CommunicationError as error:
+            _log.debug("%s on %s: not this kind: %s", cls.__name__, port, error)
+            return None
+
+    @classmethod
+    def has_serial_number(cls, port: PortInfo) -> bool:
+        """Whether ``port`` has a USB serial number; without one, skip it or raise.
+
+        :raises DeviceMissingSerialNumberError: it has none and
+            :data:`SKIP_PORTS_WITHOUT_SERIAL` is false.
+        """
+        return cls._has_serial_number(port)
+
+    @classmethod
     def _has_serial_number(cls, port: PortInfo) -> bool:
         if port.serial_number:
             return True
@@ -215,6 +273,14 @@ class SerialHardwareBackend(Backend):
         )
 
     @staticmethod
+    def collect(results: dict[str, Board | Exception], *, skip_failures: bool) -> list[Board]:
+        """Return the boards among ``results`` (by port), sorted by serial number.
+
+        Failures are logged; the first is raised unless ``skip_failures``.
+        """
+        return SerialHardwareBackend._collect(results, skip_failures=skip_failures)
+
+    @staticmethod
     def _collect(results: dict[str, Board | Exception], *, skip_failures: bool) -> list[Board]:
         boards = [item for item in results.values() if isinstance(item, Board)]
         failures = [(port, item) for port, item in results.items() if isinstance(item, Exception)]
@@ -225,6 +291,26 @@ class SerialHardwareBackend(Backend):
         return sorted(boards, key=lambda board: board.serial_number)
 
     @classmethod
+    async def open_port(
+        cls,
+        port: str,
+        serial_number: str,
+        opener: StreamOpener | None = None,
+        time_scale: float = 1.0,
+    ) -> Board:
+        """Open ``port`` and run the handshake (no claim in the port registry).
+
+        :raises CommunicationError: the port could not be opened, or the handshake failed.
+        """
+        return await cls._open(port, serial_number, opener, time_scale)
+
+    @classmethod
+    async def _open_stream(cls, port: str, opener: StreamOpener | None) -> ByteStream:
+        if opener is None:
+            return await open_serial_stream(port, cls.BAUDRATE)
+        return await opener(port, cls.BAUDRATE)
+
+    @classmethod
     async def _open(
         cls,
         port: str,
@@ -232,10 +318,7 @@ class SerialHardwareBackend(Backend):
         opener: StreamOpener | None,
         time_scale: float,
     ) -> Board:
-        if opener is None:
-            stream: ByteStream = await open_serial_stream(port, cls.BAUDRATE)
-        else:
-            stream = await opener(port, cls.BAUDRATE)
+        stream = await cls._open_stream(port, opener)
         return await cls.from_stream(
             stream,
             port=port,
