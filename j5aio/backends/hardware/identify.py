@@ -113,7 +113,8 @@ async def attach(
     async def connect() -> Board:
         found = await anyio.to_thread.run_sync(find_port, port)
         serial_number = found.serial_number if found and found.serial_number else port
-        return await _identify(port, serial_number, _candidates(found, backends), opener, time_scale)
+        candidates = _candidates(found, backends)
+        return await _identify(port, serial_number, candidates, opener, time_scale)
 
     board = await registry.claim(port, SerialHardwareBackend, connect)
     try:

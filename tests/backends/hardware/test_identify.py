@@ -13,6 +13,7 @@ from j5aio.backends.hardware import attach, registry
 from j5aio.backends.hardware.identify import discover_serial_boards, serial_backends
 from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
+from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
 from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
 from j5aio.backends.hardware.transports.discovery import PortInfo
@@ -61,13 +62,15 @@ def served(servers: list[PtyServer], simulator: SerialBoardSimulator) -> str:
 async def eventually(condition: Callable[[], bool]) -> None:
     """Wait (up to 5 s) for the simulator's thread to have done what ``condition`` checks."""
     with anyio.fail_after(5):
-        while not condition():
+        while not condition():  # noqa: ASYNC110 - another thread changes it
             await anyio.sleep(0.01)
 
 
 def test_serial_backends_come_in_identification_order() -> None:
     backends = serial_backends()
-    order = [SRV4MotorBoardHardwareBackend, SBArduinoHardwareBackend, SRV4RuggeduinoHardwareBackend]
+    order: list[type[SerialHardwareBackend]] = [
+        SRV4MotorBoardHardwareBackend, SBArduinoHardwareBackend, SRV4RuggeduinoHardwareBackend,
+    ]
     assert [backend for backend in backends if backend in order] == order
 
 
@@ -129,7 +132,7 @@ class Answering(SerialBoardSimulator):
 
 
 async def test_unsupported_firmware_is_reported_as_such(serve: list[PtyServer]) -> None:
-    with pytest.raises(UnsupportedFirmwareError, match="Ruggeduino.*'7'"):
+    with pytest.raises(UnsupportedFirmwareError, match=r"Ruggeduino.*'7'"):
         await attach(served(serve, Answering(b"SRduino:7\n")), time_scale=0.1)
 
 
