@@ -99,6 +99,8 @@ async def test_a_registered_kind_gets_a_simulated_backend_finding_its_own_boards
         assert simulated_backend(GEN9) is backend
         kit = use_kit(KitDefinition("x", "x", {"sr-motor": 1, "test-motor-gen9": 2}))
         boards = await backend.discover()
+        for board in boards:
+            await board.setup()  # so that the fixture closes it
         assert sorted(board.serial_number for board in boards) == ["SIMG90", "SIMG91"]
         assert all(isinstance(board, MotorBoardGen9) for board in boards)
         options = kit_discovery_options(kit, kind=GEN9)
