@@ -219,7 +219,12 @@ def kit_discovery_options(
         ]
 
     return DiscoveryOptions(
-        port_source=list_ports, opener=open_port, usb_finder=find, time_scale=timeout_scale
+        port_source=list_ports,
+        opener=open_port,
+        usb_finder=find,
+        time_scale=timeout_scale,
+        # Each simulated backend lists its own kind's boards only.
+        identify_shared_ports=serial_type is SerialBoardSimulator and kind is None,
     )
 
 

@@ -34,9 +34,14 @@ from j5aio.backends.hardware.transports.discovery import (
 from j5aio.boards.board import Board
 from j5aio.errors import CommunicationError, UnsupportedFirmwareError
 
-__all__ = ["attach", "discover_serial_boards", "serial_backends"]
+__all__ = ["REOPEN_DELAY", "attach", "discover_serial_boards", "serial_backends"]
 
 _log = logging.getLogger(__name__)
+
+#: Seconds between one kind's probe closing the port and the next kind's opening it, so
+#: that the board (or a simulator serving a pseudo-terminal) sees the port close, and the
+#: reopening resets it as a fresh open does.
+REOPEN_DELAY = 0.1
 
 
 def serial_backends() -> tuple[type[SerialHardwareBackend], ...]:
@@ -70,7 +75,9 @@ async def _identify(
 ) -> Board:
     """Try each backend on ``port`` in turn; return the first board that answers as its kind."""
     unsupported: list[UnsupportedFirmwareError] = []
-    for backend in backends:
+    for index, backend in enumerate(backends):
+        if index:
+            await anyio.sleep(REOPEN_DELAY)
         try:
             board = await backend.identify(
                 port, serial_number=serial_number, opener=opener, time_scale=time_scale

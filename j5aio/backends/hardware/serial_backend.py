@@ -171,8 +171,13 @@ class SerialHardwareBackend(Backend):
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
         """Open every port whose USB identity matches this board and return the boards.
 
-        Boards are opened concurrently. A port this backend already holds gives back its
-        board; a port held by another kind of backend is skipped.
+        When other registered kinds of board use the same USB IDs (the Arduinos), each
+        such port is identified once among them instead
+        (:func:`~j5aio.backends.hardware.identify.discover_serial_boards`): this backend's
+        boards are returned, and the others' stay held for their own discovery to give
+        back without opening the port again. Boards are opened concurrently. A port this
+        backend already holds gives back its board; a port held by another kind of
+        backend is skipped.
 
         :param options: stand-in port lists and openers, a time scale, and whether a
             failing board is skipped; the real thing by default.
@@ -180,6 +185,13 @@ class SerialHardwareBackend(Backend):
         :raises CommunicationError: a board failed its handshake (unless skipped).
         """
         options = options or DiscoveryOptions()
+        sharing = cls._kinds_sharing_ports() if options.identify_shared_ports else ()
+        if len(sharing) > 1:
+            from j5aio.backends.hardware.identify import discover_serial_boards
+
+            found = await discover_serial_boards(options=options, backends=sharing)
+            # Boards of the other kinds stay held, for their own discovery to give back.
+            return [board for board in found if isinstance(board.backend, cls)]
         ports = await anyio.to_thread.run_sync(list_serial_ports, options.port_source)
         matched = match_ports(ports, set(cls.USB_IDS), cls.USB_MANUFACTURER, cls.USB_PRODUCT)
         wanted = [port for port in matched if cls._has_serial_number(port)]
@@ -247,6 +259,23 @@ class SerialHardwareBackend(Backend):
         except CommunicationError as error:
             _log.debug("%s on %s: not this kind: %s", cls.__name__, port, error)
             return None
+
+    @classmethod
+    def _kinds_sharing_ports(cls) -> tuple[type[SerialHardwareBackend], ...]:
+        """Return this backend and the registered kinds that use any of its USB IDs, in order.
+
+        Empty when no registered kind is this backend or one of its bases.
+        """
+        from j5aio.backends.hardware.identify import serial_backends
+
+        registered = serial_backends()
+        if not any(issubclass(cls, backend) for backend in registered):
+            return ()
+        return tuple(
+            cls if issubclass(cls, backend) else backend
+            for backend in registered
+            if issubclass(cls, backend) or backend.USB_IDS & cls.USB_IDS
+        )
 
     @classmethod
     def has_serial_number(cls, port: PortInfo) -> bool:

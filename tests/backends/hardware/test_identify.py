@@ -76,7 +76,7 @@ def test_serial_backends_come_in_identification_order() -> None:
 
 async def test_a_motor_board_is_identified_set_up_and_braked(serve: list[PtyServer]) -> None:
     simulator = SRMotorBoardFw3Simulator("MB1")
-    board = await attach(served(serve, simulator), time_scale=0.1)
+    board = await attach(served(serve, simulator), time_scale=0.3)
     assert isinstance(board, MotorBoard)
     assert board.firmware_version == "3"
     await eventually(lambda: [m.mode.value for m in simulator.motors] == ["brake", "brake"])
@@ -91,7 +91,7 @@ async def test_both_sb_arduino_firmwares_are_identified(
     simulator = SBArduinoSimulator("SB1", firmware_version=firmware)
     simulator.set_analogue(14, volts=2.5)
     path = served(serve, simulator)
-    board = await attach(path, time_scale=0.1)
+    board = await attach(path, time_scale=0.3)
     assert isinstance(board, SBArduinoBoard)
     assert board.firmware_version == firmware.value
     assert board.serial_number == path
@@ -104,12 +104,12 @@ async def test_a_ruggeduino_is_identified_after_the_others_said_no(
     simulator = SRRuggeduinoSimulator("RD1")
     path = served(serve, simulator)
     started = time.monotonic()
-    board = await attach(path, time_scale=0.1)
+    board = await attach(path, time_scale=0.3)
     assert isinstance(board, Ruggeduino)
     assert board.firmware_version == "1"
     assert time.monotonic() - started < 10  # liveness only
     # Attaching again gives back the board that holds the port.
-    assert await attach(path, time_scale=0.1) is board
+    assert await attach(path, time_scale=0.3) is board
 
 
 class Answering(SerialBoardSimulator):
@@ -133,7 +133,7 @@ class Answering(SerialBoardSimulator):
 
 async def test_unsupported_firmware_is_reported_as_such(serve: list[PtyServer]) -> None:
     with pytest.raises(UnsupportedFirmwareError, match=r"Ruggeduino.*'7'"):
-        await attach(served(serve, Answering(b"SRduino:7\n")), time_scale=0.1)
+        await attach(served(serve, Answering(b"SRduino:7\n")), time_scale=0.3)
 
 
 async def test_a_port_nothing_recognises_lists_what_was_tried() -> None:
@@ -165,10 +165,58 @@ async def test_discovery_asks_a_shared_port_once_and_finds_each_board_once() -> 
         return SimulatorStream(simulators[port], name=port, time_scale=0)
 
     boards = await discover_serial_boards(
-        options=DiscoveryOptions(port_source=ports, opener=opener, time_scale=0.1)
+        options=DiscoveryOptions(port_source=ports, opener=opener, time_scale=0.3)
     )
     kinds = {board.serial_number: type(board) for board in boards}
     assert kinds == {"SBA": SBArduinoBoard, "RDA": Ruggeduino, "MBA": MotorBoard}
     # The motor board's port is opened by its own kind only; the SB Arduino's once.
     assert opened.count(("/dev/ttyUSB0", 1_000_000)) == 1
     assert [entry for entry in opened if entry[0] == "/dev/ttyACM0"] == [("/dev/ttyACM0", 115200)]
+
+
+async def test_each_arduino_kinds_discovery_identifies_shared_ports_once() -> None:
+    simulators: dict[str, SerialBoardSimulator] = {
+        "/dev/ttyACM0": SBArduinoSimulator("SBA"),
+        "/dev/ttyACM1": SRRuggeduinoSimulator("RDA"),
+    }
+    opened: list[tuple[str, int]] = []
+
+    def ports() -> list[PortInfo]:
+        return [
+            PortInfo(path, sim.usb_vid, sim.usb_pid, sim.serial_number) for path, sim in
+            simulators.items()
+        ]
+
+    async def opener(port: str, baudrate: int) -> ByteStream:
+        opened.append((port, baudrate))
+        return SimulatorStream(simulators[port], name=port, time_scale=0)
+
+    options = DiscoveryOptions(port_source=ports, opener=opener, time_scale=0.3)
+    arduinos = await SBArduinoHardwareBackend.discover(options=options)
+    assert [board.serial_number for board in arduinos] == ["SBA"]
+    # The Ruggeduino was identified on the way, and is held: its own discovery gives it
+    # back without opening its port again.
+    opened_before = list(opened)
+    ruggeduinos = await SRV4RuggeduinoHardwareBackend.discover(options=options)
+    assert [board.serial_number for board in ruggeduinos] == ["RDA"]
+    assert opened == opened_before
+    assert opened.count(("/dev/ttyACM0", 115200)) == 1
+    for board in [*arduinos, *ruggeduinos]:
+        await board.close()
+
+
+async def test_without_shared_port_identification_each_kind_tries_its_matches() -> None:
+    simulator = SRRuggeduinoSimulator("RDB")
+
+    async def opener(port: str, baudrate: int) -> ByteStream:
+        return SimulatorStream(simulator, name=port, time_scale=0)
+
+    options = DiscoveryOptions(
+        port_source=lambda: [PortInfo("/dev/ttyACM5", simulator.usb_vid, simulator.usb_pid, "RDB")],
+        opener=opener,
+        time_scale=0.3,
+        identify_shared_ports=False,
+    )
+    boards = await SRV4RuggeduinoHardwareBackend.discover(options=options)
+    assert [board.serial_number for board in boards] == ["RDB"]
+    await boards[0].close()
