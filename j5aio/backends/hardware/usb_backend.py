@@ -112,7 +112,8 @@ class USBHardwareBackend(Backend):
         """
         options = options or DiscoveryOptions()
         find = functools.partial(find_usb_devices, cls.VID, cls.PID, finder=options.usb_finder)
-        devices = await anyio.to_thread.run_sync(find)
+        found = await anyio.to_thread.run_sync(find)
+        devices = [device for device in found if cls.drives_device(device)]
         boards: list[Board] = []
         for device in devices:
             try:
@@ -131,6 +132,16 @@ class USBHardwareBackend(Backend):
                 continue
             boards.append(board)
         return sorted(boards, key=lambda board: board.serial_number)
+
+    @classmethod
+    def drives_device(cls, device: USBDeviceLike) -> bool:
+        """Whether ``device``, found by this backend's vendor and product ID, is its board.
+
+        Every such device is by default. A backend overrides it when another generation
+        of board uses the same IDs (the SR power board's firmware 4 is a CDC serial
+        device with the firmware 3 board's IDs), so that discovery leaves it alone.
+        """
+        return True
 
     @abstractmethod
     async def _handshake(self) -> None:

@@ -12,7 +12,7 @@ from typing import ClassVar
 import anyio
 
 from j5aio.backends.hardware.sr.v4 import power_fw3_codec as codec
-from j5aio.backends.hardware.transports.usb_link import USBLink
+from j5aio.backends.hardware.transports.usb_link import USBDeviceLike, USBLink
 from j5aio.backends.hardware.usb_backend import USBHardwareBackend
 from j5aio.boards.sr.v4.power_board import PowerBoard
 from j5aio.components.battery_sensor import BatterySensorInterface
@@ -43,6 +43,23 @@ class SRV4PowerBoardHardwareBackend(
     board = PowerBoard
     VID: ClassVar[int] = codec.VID
     PID: ClassVar[int] = codec.PID
+
+    @classmethod
+    def drives_device(cls, device: USBDeviceLike) -> bool:
+        """Whether ``device`` is a firmware 3 board: one USB interface, not CDC serial.
+
+        The firmware 4 board has the same vendor and product IDs but is a CDC serial
+        device (two interfaces), driven through its serial port. A device whose
+        configuration cannot be read is tried (and its handshake decides).
+        """
+        get_configuration = getattr(device, "get_active_configuration", None)
+        if get_configuration is None:
+            return True
+        try:
+            interfaces = int(get_configuration().bNumInterfaces)
+        except Exception:  # no permission, not configured: let the handshake tell
+            return True
+        return interfaces == 1
 
     #: How often :meth:`wait_until_button_pressed` reads the button, in seconds.
     BUTTON_POLL_INTERVAL: ClassVar[float] = 0.05
