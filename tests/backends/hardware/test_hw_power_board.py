@@ -227,7 +227,7 @@ async def test_discovery_leaves_a_firmware_4_board_to_its_serial_backend() -> No
     finally:
         for board in boards:
             await board.close()
-    assert SRV4PowerBoardHardwareBackend.drives_device(fw3)  # type: ignore[arg-type]
+    assert SRV4PowerBoardHardwareBackend.drives_device(fw3)
     assert not SRV4PowerBoardHardwareBackend.drives_device(fw4)
     assert SRV4PowerBoardHardwareBackend.drives_device(_Unreadable())
-    assert SRV4PowerBoardHardwareBackend.drives_device(object())
+    assert SRV4PowerBoardHardwareBackend.drives_device(object())  # type: ignore[arg-type]
