@@ -30,8 +30,6 @@ from j5aio.backends.hardware.options import DiscoveryOptions, StreamOpener
 from j5aio.backends.hardware.transports.discovery import (
     PortInfo,
     find_port,
-    list_serial_ports,
-    match_ports,
 )
 from j5aio.backends.hardware.transports.readers import ReplyReader
 from j5aio.backends.hardware.transports.serial_link import SerialLink
@@ -184,41 +182,14 @@ class SerialHardwareBackend(Backend):
         :raises DeviceMissingSerialNumberError: a matching port has no serial number.
         :raises CommunicationError: a board failed its handshake (unless skipped).
         """
+        from j5aio.backends.hardware.identify import discover_serial_boards
+
         options = options or DiscoveryOptions()
         sharing = cls._kinds_sharing_ports() if options.identify_shared_ports else ()
-        if len(sharing) > 1:
-            from j5aio.backends.hardware.identify import discover_serial_boards
-
-            found = await discover_serial_boards(options=options, backends=sharing)
-            # Boards of the other kinds stay held, for their own discovery to give back.
-            return [board for board in found if isinstance(board.backend, cls)]
-        ports = await anyio.to_thread.run_sync(list_serial_ports, options.port_source)
-        matched = match_ports(ports, set(cls.USB_IDS), cls.USB_MANUFACTURER, cls.USB_PRODUCT)
-        wanted = [port for port in matched if cls._has_serial_number(port)]
-        results: dict[str, Board | Exception] = {}
-
-        async def connect_one(port: PortInfo) -> None:
-            serial_number = port.serial_number or port.device
-
-            async def connect() -> Board:
-                return await cls._open(
-                    port.device,
-                    serial_number,
-                    options.opener,
-                    options.time_scale,
-                )
-
-            try:
-                results[port.device] = await registry.claim(port.device, cls, connect)
-            except registry.PortInUseError as exc:
-                _log.info("Skipping %s: %s", port.device, exc)
-            except Exception as exc:
-                results[port.device] = exc
-
-        async with anyio.create_task_group() as group:
-            for port in wanted:
-                group.start_soon(connect_one, port)
-        return cls._collect(results, skip_failures=options.skip_failures)
+        backends = sharing if len(sharing) > 1 else (cls,)
+        found = await discover_serial_boards(options=options, backends=backends)
+        # Boards of the other kinds stay held, for their own discovery to give back.
+        return [board for board in found if isinstance(board.backend, cls)]
 
     @classmethod
     async def identify(
@@ -246,7 +217,7 @@ class SerialHardwareBackend(Backend):
             backend cannot drive.
         :raises CommunicationError: the port could not be opened.
         """
-        stream = await cls._open_stream(port, opener)
+        stream = await cls._open_stream(port, opener)  # a port that will not open: raise
         try:
             return await cls.from_stream(
                 stream,
@@ -307,10 +278,6 @@ class SerialHardwareBackend(Backend):
 
         Failures are logged; the first is raised unless ``skip_failures``.
         """
-        return SerialHardwareBackend._collect(results, skip_failures=skip_failures)
-
-    @staticmethod
-    def _collect(results: dict[str, Board | Exception], *, skip_failures: bool) -> list[Board]:
         boards = [item for item in results.values() if isinstance(item, Board)]
         failures = [(port, item) for port, item in results.items() if isinstance(item, Exception)]
         for port, failure in failures:
