@@ -11,7 +11,9 @@ unset or ``hardware``   the boards plugged into this computer
 ``console``             print what the boards would do, and ask for readings
 ======================  ==========================================================
 
-``python -m j5aio run --sim program.py`` sets ``J5AIO_ENV=sim`` for the program.
+``python -m j5aio run --sim program.py`` sets ``J5AIO_ENV=sim`` for the program. Which
+simulated kit it is comes from ``J5AIO_KIT`` (``--kit NAME``): see
+:mod:`j5aio.simulator.kit`.
 
 When a program looked for real boards only because nobody chose otherwise, and found none,
 :func:`hint_no_hardware` prints one line saying how to try the program without hardware.
