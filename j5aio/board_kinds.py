@@ -42,13 +42,10 @@ import warnings
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Final
+from typing import Final
 
 from j5aio.backends.backend import Backend
 from j5aio.boards.board import Board
-
-if TYPE_CHECKING:
-    from j5aio.simulator.base import SerialBoardSimulator, UsbBoardSimulator
 
 __all__ = [
     "DEFAULT_KIT",
@@ -73,8 +70,12 @@ ENTRY_POINT_GROUP: Final = "j5aio.boards"
 #: The name of the kit the simulated environment uses when none is chosen.
 DEFAULT_KIT: Final = "default"
 
-SimulatorFactory = Callable[[str], "SerialBoardSimulator | UsbBoardSimulator"]
-"""Makes a simulator given the serial number it reports."""
+SimulatorFactory = Callable[[str], object]
+"""Makes a simulator given the serial number it reports: a
+:class:`~j5aio.simulator.base.SerialBoardSimulator` (which ``simulate`` can serve on a
+pty), a :class:`~j5aio.simulator.base.UsbBoardSimulator`, or, for a board reached
+otherwise (a HAT's GPIO), a simulator of its own that the kind's ``simulated`` backend
+finds in the kit."""
 
 
 class BoardPluginWarning(UserWarning):

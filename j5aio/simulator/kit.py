@@ -53,8 +53,10 @@ MAX_BOARDS_OF_A_KIND: Final = 99
 #: The environment variable that names the kit of the simulated environment.
 KIT_VARIABLE: Final = "J5AIO_KIT"
 
-BoardSimulator = SerialBoardSimulator | UsbBoardSimulator
-"""A simulator of one board, reached by serial port or by USB control transfers."""
+BoardSimulator = object
+"""A simulator of one board: usually a :class:`SerialBoardSimulator` or a
+:class:`UsbBoardSimulator`, but a board reached otherwise (a Raspberry Pi HAT's GPIO, say)
+has a simulator of its own shape."""
 
 _kit_numbers = itertools.count(1)
 
@@ -269,13 +271,21 @@ class SimulatedKit:
         """Every board reached through USB control transfers."""
         return tuple(sim for sim in self._all() if isinstance(sim, UsbBoardSimulator))
 
+    def other_simulators(self) -> tuple[BoardSimulator, ...]:
+        """Every board reached neither by serial port nor by USB (a HAT's GPIO, say)."""
+        return tuple(
+            sim
+            for sim in self._all()
+            if not isinstance(sim, SerialBoardSimulator | UsbBoardSimulator)
+        )
+
     def __iter__(self) -> Iterator[SerialBoardSimulator | UsbBoardSimulator]:
-        """Iterate over every board of the kit."""
+        """Iterate over every board of the kit reached by USB or a serial port."""
         yield from self.usb_simulators()
         yield from self.serial_simulators()
 
     def __len__(self) -> int:
-        """How many boards the kit has."""
+        """How many boards reached by USB or a serial port the kit has."""
         return len(self.usb_simulators()) + len(self.serial_simulators())
 
     def __repr__(self) -> str:

@@ -119,3 +119,36 @@ def test_a_kind_without_simulators_has_no_simulated_backend() -> None:
     own = replace(GEN9, simulated=Gen9HardwareBackend)
     assert simulated_backend(own) is Gen9HardwareBackend
     assert issubclass(MotorBoardGen9, MotorBoard)
+
+
+class HatSimulator:
+    """A board reached neither by serial port nor USB (a HAT's GPIO)."""
+
+    def __init__(self, serial_number: str) -> None:
+        self.serial_number = serial_number
+
+
+def test_a_simulator_of_another_shape_is_in_the_kit_but_not_served_on_a_pty() -> None:
+    from dataclasses import replace
+
+    from j5aio.board_kinds import SimulatorEntry
+    from j5aio.simulator import SERIAL_SIMULATORS
+
+    hat = replace(
+        GEN9,
+        name="test-hat",
+        hardware=None,
+        simulated=Gen9HardwareBackend,
+        simulators=(SimulatorEntry("test-hat", lambda serial: HatSimulator(serial), "hat", "HAT"),),
+    )
+    register(hat)
+    try:
+        assert not hat.simulators[0].is_serial
+        assert "test-hat" not in SERIAL_SIMULATORS
+        kit = SimulatedKit(KitDefinition("x", "x", {"sr-motor": 1, "test-hat": 1}))
+        others = kit.other_simulators()
+        assert [type(sim) for sim in others] == [HatSimulator]
+        assert kit.kind_of(others[0]) is hat
+        assert len(kit) == 1  # the boards reached by USB or a serial port
+    finally:
+        unregister(hat.name)
