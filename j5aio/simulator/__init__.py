@@ -25,9 +25,7 @@ USB control-transfer boards (:class:`UsbBoardSimulator`, shaped like a pyusb dev
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from functools import partial
-from types import MappingProxyType
+from collections.abc import Iterator, Mapping
 from typing import Final, Protocol
 
 from .arduino_base import ARDUINO_UNO_R3, ArduinoBoardSimulator, UsbIdentity
@@ -82,17 +80,32 @@ class SerialSimulatorFactory(Protocol):
         ...
 
 
-#: Serial board simulators by command-line name (``python -m j5aio simulate <name>``).
-SERIAL_SIMULATORS: Final[Mapping[str, SerialSimulatorFactory]] = MappingProxyType(
-    {
-        "sr-motor": SRMotorBoardFw3Simulator,
-        "sr-ruggeduino": SRRuggeduinoSimulator,
-        "sb-arduino": SBArduinoSimulator,
-        "sr-servo-fw4": SRServoBoardFw4Simulator,
-        "sb-servo-fw4": SBServoBoardFw4Simulator,
-        "sr-arduino-fw2": partial(SRRuggeduinoSimulator, firmware_version=2),
-        "sb-arduino-2024": SBArduino2024Simulator,
-        "sr-power-fw4": SRPowerBoardFw4Simulator,
-        "sr-motor-fw4": SRMotorBoardFw4Simulator,
-    }
-)
+class _SerialSimulators(Mapping[str, SerialSimulatorFactory]):
+    """The serial simulators of the board kind registry, by name; read-only."""
+
+    def _factories(self) -> dict[str, SerialSimulatorFactory]:
+        from j5aio.board_kinds import simulator_entries
+
+        return {
+            name: entry.factory  # type: ignore[misc]
+            for name, (kind, entry) in simulator_entries().items()
+            if entry.is_serial
+        }
+
+    def __getitem__(self, name: str) -> SerialSimulatorFactory:
+        return self._factories()[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._factories())
+
+    def __len__(self) -> int:
+        return len(self._factories())
+
+    def __repr__(self) -> str:
+        return f"SERIAL_SIMULATORS({', '.join(self)})"
+
+
+#: Serial board simulators by command-line name (``python -m j5aio simulate <name>``),
+#: from the registry of board kinds (:func:`j5aio.board_kinds.simulator_entries`), so
+#: plugins' simulators are here too.
+SERIAL_SIMULATORS: Final[Mapping[str, SerialSimulatorFactory]] = _SerialSimulators()

@@ -9,12 +9,12 @@ the portal (:func:`j5aio.sync.wrapping.call`); no wrapper contains logic of its 
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping, Sequence, Set
+from collections.abc import Iterable, Iterator, Mapping, Sequence, Set
 from datetime import timedelta
 from typing import Any, ClassVar, Final, Generic, Self, TypeVar, cast, overload
 
 import j5aio.backends.backend as _backends_backend
-import j5aio.backends.console as _backends_console
+import j5aio.backends.console.env as _backends_console_env
 import j5aio.backends.environment as _backends_environment
 import j5aio.backends.hardware.env as _backends_hardware_env
 import j5aio.boards.arduino.all_digital as _boards_arduino_all_digital
@@ -127,42 +127,83 @@ InterfaceT = TypeVar("InterfaceT", bound="_components_component.Interface")
 
 
 class Environment(_SyncWrapper):
-    """A set of backends that work together: one backend per kind of board.
+    """A set of backends that work together: the backends of each kind of board.
 
     The same robot code runs on the console, on real hardware or on the simulated kit by
     handing it a different environment.
 
+    Usually one backend drives each board class. A board family with several
+    generations (the SR power board's USB firmware 3 and serial firmware 4, say) has one
+    backend per generation: register the later ones with ``alongside=True``, or give each
+    generation a subclass of the family's board class. :meth:`get_board_group` gathers
+    the boards of every backend registered for the class asked for or a subclass of it.
+
     :param name: a name to show to people, e.g. ``"HardwareEnvironment"``.
+    :param gather: find a family's boards through every backend registered for it (as
+        on hardware); if false, through the first one only (the console environment,
+        where every backend makes up one board).
     """
 
     __slots__ = ()
 
     _core: _backends_environment.Environment
 
-    def __init__(self, name: str) -> None:
-        _adopt_into(self, _backends_environment.Environment(name))
+    def __init__(self, name: str, *, gather: bool = True) -> None:
+        _adopt_into(self, _backends_environment.Environment(name, gather=gather))
+
+    @classmethod
+    def from_backends(
+        cls,
+        name: str,
+        backends: Iterable[type[_backends_backend.Backend]],
+        *,
+        gather: bool = True,
+    ) -> Environment:
+        """Make an environment of ``backends``, later generations registered alongside.
+
+        :raises RuntimeError: a backend is listed twice.
+        """
+        return cast("Environment", _wrap(_backends_environment.Environment.from_backends(name, backends, gather=gather)))
 
     @property
     def supported_boards(self) -> set[type[_boards_board.Board]]:
         """The kinds of board this environment has a backend for."""
         return self._core.supported_boards
 
-    def register_backend(self, backend: type[_backends_backend.Backend]) -> None:
+    def register_backend(
+        self,
+        backend: type[_backends_backend.Backend],
+        *,
+        alongside: bool = False,
+    ) -> None:
         """Use ``backend`` for the kind of board it drives.
 
-        :raises RuntimeError: this environment already has a backend for that board.
+        :param alongside: ``backend`` drives another generation of a board class that
+            already has a backend here: use both, and find boards through each.
+        :raises RuntimeError: this environment already has ``backend``, or already has a
+            backend for its board and ``alongside`` is false.
         """
-        self._core.register_backend(backend)
+        self._core.register_backend(backend, alongside=alongside)
 
     def get_backend(
         self,
         board: type[_boards_board.Board | Board],
     ) -> type[_backends_backend.Backend]:
-        """Return the backend this environment uses for ``board``.
+        """Return the (first) backend this environment uses for ``board``.
 
         :raises NotImplementedError: the environment has no backend for that board.
         """
         return self._core.get_backend(_unwrap(board))
+
+    def backends_for(
+        self,
+        board: type[_boards_board.Board | Board],
+    ) -> tuple[type[_backends_backend.Backend], ...]:
+        """Return every backend for ``board`` or a subclass of it, in registration order.
+
+        :raises NotImplementedError: the environment has no backend for such a board.
+        """
+        return self._core.backends_for(_unwrap(board))
 
     @overload
     def get_board_group(self, board: type[SyncBoardT]) -> BoardGroup[SyncBoardT]:
@@ -268,14 +309,17 @@ class Environment(_SyncWrapper):
         ...
 
     def get_board_group(self, board: type[_boards_board.Board | Board]) -> BoardGroup[Board]:
-        """Find every ``board`` through this environment's backend for it.
+        """Find every ``board`` through each backend this environment has for it.
+
+        Boards of every generation (backends for ``board`` or a subclass) are gathered
+        into one group.
 
         :raises NotImplementedError: the environment has no backend for that board.
         """
         return cast("BoardGroup[Board]", _wrap(_call(self._core.get_board_group, _unwrap(board))))
 
     def merge(self, other: Environment) -> None:
-        """Add every board-to-backend mapping of ``other`` to this environment.
+        """Add every backend of ``other`` to this environment.
 
         :raises RuntimeError: both environments have a backend for the same board; nothing
             is merged.
@@ -288,11 +332,21 @@ class Environment(_SyncWrapper):
         return self._core.name
 
     @property
+    def gather(self) -> bool:
+        """The ``gather`` of the wrapped object."""
+        return self._core.gather
+
+    @property
     def board_backend_mapping(
         self,
     ) -> dict[type[_boards_board.Board], type[_backends_backend.Backend]]:
         """The ``board_backend_mapping`` of the wrapped object."""
         return self._core.board_backend_mapping
+
+    @property
+    def backends(self) -> list[type[_backends_backend.Backend]]:
+        """The ``backends`` of the wrapped object."""
+        return self._core.backends
 
 
 class UltrasoundSensors(_SyncWrapper):
@@ -478,7 +532,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[SyncBoardT],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SyncBoardT]:
@@ -489,7 +543,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_v4_arduino.SRArduinoBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SRArduinoBoard]:
@@ -500,7 +554,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sb_arduino_2024.SBArduino2024Board],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SBArduino2024Board]:
@@ -511,7 +565,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sb_servo_board.SBServoBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SBServoBoard]:
@@ -522,7 +576,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_arduino_all_digital.AllDigitalUno],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[AllDigitalUno]:
@@ -533,7 +587,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[MotorBoardFw4]:
@@ -544,7 +598,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[PowerBoardFw4]:
@@ -555,7 +609,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_v4_ruggeduino.Ruggeduino],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[Ruggeduino]:
@@ -566,7 +620,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sb_arduino.SBArduinoBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SBArduinoBoard]:
@@ -577,7 +631,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[ServoBoardFw4]:
@@ -588,7 +642,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_arduino_uno.ArduinoUno],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[ArduinoUno]:
@@ -599,7 +653,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_kch.KCHBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[KCHBoard]:
@@ -610,7 +664,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_v4_motor_board.MotorBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[MotorBoard]:
@@ -621,7 +675,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_v4_power_board.PowerBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[PowerBoard]:
@@ -632,7 +686,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_v4_servo_board.ServoBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[ServoBoard]:
@@ -643,7 +697,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_board.Board],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[Board]:
@@ -653,22 +707,29 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_board.Board | Board],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[Board]:
         """Find every board of ``board_type`` that ``backend_class`` can reach.
 
         :param board_type: the class of board wanted, e.g. ``PowerBoard``.
-        :param backend_class: the backend to find and drive them with.
+        :param backend_class: the backend to find and drive them with, or several (one
+            per generation of the board: their boards are gathered into one group).
         :param ports: explicit ports (device paths or pyserial URLs) to attach to, on top
-            of discovery, for unusual adapters and simulators.
+            of discovery, for unusual adapters and simulators; they are attached with the
+            first backend.
         :returns: the group, ordered by serial number.
+        :raises TypeError: a backend drives another kind of board, or none was given.
+        :raises CommunicationError: two boards report the same serial number.
         """
         return cast("BoardGroup[Board]", _wrap(_call(_boards_board_group.BoardGroup.get_board_group, _unwrap(board_type), backend_class, ports=ports)))
 
     def update_boards(self) -> None:
-        """Look for boards again, so that boards connected since are included."""
+        """Look for boards again, so that boards connected since are included.
+
+        :raises CommunicationError: two boards report the same serial number.
+        """
         _call(self._core.update_boards)
 
     def singular(self) -> BoardT:
@@ -684,8 +745,13 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
 
     @property
     def backend_class(self) -> type[_backends_backend.Backend]:
-        """The backend that finds and drives the boards."""
+        """The backend that finds and drives the boards (the first, if there are several)."""
         return self._core.backend_class
+
+    @property
+    def backend_classes(self) -> tuple[type[_backends_backend.Backend], ...]:
+        """Every backend the boards are found through (one per generation of the board)."""
+        return self._core.backend_classes
 
     @property
     def board_type(self) -> type[_boards_board.Board]:
@@ -2479,7 +2545,7 @@ _register(_components_monitored_motor.MonitoredMotor, MonitoredMotor)
 _register(_components_protected_power_output.ProtectedPowerOutput, ProtectedPowerOutput)
 _register(_components_pulse_servo.PulseServo, PulseServo)
 
-CONSOLE_ENVIRONMENT: Final[Environment] = cast("Environment", _wrap(_backends_console.CONSOLE_ENVIRONMENT))
-"""The sync face of ``j5aio.backends.console.CONSOLE_ENVIRONMENT``."""
+CONSOLE_ENVIRONMENT: Final[Environment] = cast("Environment", _wrap(_backends_console_env.CONSOLE_ENVIRONMENT))
+"""The sync face of ``j5aio.backends.console.env.CONSOLE_ENVIRONMENT``."""
 HARDWARE_ENVIRONMENT: Final[Environment] = cast("Environment", _wrap(_backends_hardware_env.HARDWARE_ENVIRONMENT))
 """The sync face of ``j5aio.backends.hardware.env.HARDWARE_ENVIRONMENT``."""

@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Final
 
 from j5aio.backends.backend import Backend
+from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.boards.board import Board
 from j5aio.boards.sr.kch import KCHBoard
 from j5aio.components.flashing_led import FlashingLEDInterface, LEDMode
@@ -144,8 +145,12 @@ class KCHHardwareBackend(RGBLEDInterface, FlashingLEDInterface, Backend):
         return cls.from_pin_factory(None, hat.asset_code or "KCH")
 
     @classmethod
-    async def discover(cls) -> Sequence[Board]:
-        """Return the KCH of this Raspberry Pi, or nothing where there is none."""
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Return the KCH of this Raspberry Pi, or nothing where there is none.
+
+        :param options: ignored (the KCH is not found on a serial port or USB); accepted
+            so that listing can pass the same options to every backend.
+        """
         if not _is_kch(read_hat(cls.hat_directory)):
             _log.info("No KCH: %s does not show a Student Robotics HAT.", cls.hat_directory)
             return []
