@@ -191,7 +191,7 @@ async def test_buzz_uses_the_backends_steps() -> None:
         PITCH_STEP = 100.0
 
     backend = CoarseBackend()
-    with pytest.raises(ValueError, match="0.01 s"):
+    with pytest.raises(ValueError, match=r"0\.01 s"):
         await Piezo(0, backend).buzz(0.004, 440)
     with pytest.raises(ValueError, match="100 Hz"):
         await Piezo(0, backend).buzz(0.5, 40)

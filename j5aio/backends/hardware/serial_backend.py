@@ -18,8 +18,8 @@ from __future__ import annotations
 
 import logging
 from abc import abstractmethod
-from collections.abc import Sequence
-from typing import ClassVar, TypeVar
+from collections.abc import Callable, Sequence
+from typing import ClassVar, TypeVar, overload
 
 import anyio
 import anyio.to_thread
@@ -45,6 +45,7 @@ __all__ = ["SerialHardwareBackend", "scaled"]
 _log = logging.getLogger(__name__)
 
 T = TypeVar("T")
+U = TypeVar("U")
 
 #: The shortest wait a time scale can produce, so that a zero scale still lets an
 #: instantly ready simulator answer.
@@ -249,20 +250,46 @@ class SerialHardwareBackend(Backend):
 
     # -- talking to the board -----------------------------------------------------------
 
+    @overload
     async def _exchange(
         self, request: bytes, reader: ReplyReader[T], timeout: float | None = None
-    ) -> T:
-        """Send ``request`` and return the reply; forget the port if it has gone."""
+    ) -> T: ...
+
+    @overload
+    async def _exchange(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        timeout: float | None = None,
+        *,
+        then: Callable[[T], U],
+    ) -> U: ...
+
+    async def _exchange(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        timeout: float | None = None,
+        *,
+        then: Callable[[T], object] | None = None,
+    ) -> object:
+        """Send ``request`` and return the reply (or ``then(reply)``); see the link.
+
+        ``then`` runs once the reply has arrived, even for a cancelled caller: update
+        caches there. Forgets the port if it has gone.
+        """
         try:
-            return await self._link.exchange(request, reader, timeout=timeout)
+            if then is None:
+                return await self._link.exchange(request, reader, timeout=timeout)
+            return await self._link.exchange(request, reader, timeout=timeout, then=then)
         except BoardDisconnectionError:
             self._forget()
             raise
 
-    async def _send(self, data: bytes) -> None:
-        """Send ``data`` expecting no reply; forget the port if it has gone."""
+    async def _send(self, data: bytes, *, then: Callable[[], None] | None = None) -> None:
+        """Send ``data`` expecting no reply; ``then`` runs once it has gone (see the link)."""
         try:
-            await self._link.send(data)
+            await self._link.send(data, then=then)
         except BoardDisconnectionError:
             self._forget()
             raise

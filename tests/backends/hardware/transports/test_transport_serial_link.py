@@ -500,22 +500,59 @@ async def test_a_caller_cancelled_while_waiting_for_the_lock_sends_nothing(
         tg.cancel_scope.cancel()
 
 
-async def test_native_task_cancel_that_tears_an_exchange_marks_the_link_dirty(
+async def test_native_task_cancel_does_not_tear_an_exchange(
     peer_pair: tuple[MemoryStream, MemoryStream],
 ) -> None:
     host, board = peer_pair
     link = SerialLink(host, quiet_time=0.02)
+    seen: list[bytes] = []
     async with anyio.create_task_group() as tg:
         await start_peer(tg, board, upper, delay=lambda: 0.01)
-        task = asyncio.ensure_future(link.exchange(b"torn\n", read_line(), timeout=1))
+        task = asyncio.ensure_future(
+            link.exchange(b"torn\n", read_line(), timeout=1, then=seen.append)
+        )
         await anyio.sleep(0.002)
-        task.cancel()  # asyncio-native: breaks through the anyio shield
+        task.cancel()  # asyncio-native: breaks through anyio shields, not through this
         with pytest.raises(asyncio.CancelledError):
             await task
-        assert link.is_dirty
-        # The torn exchange's reply arrives ~8 ms later and is drained, not taken.
+        # The exchange ran to its end: its reply was consumed and its callback ran.
+        assert seen == [b"TORN"]
+        assert not link.is_dirty and link.buffered == b""
         assert await link.exchange(b"next\n", read_line(), timeout=1) == b"NEXT"
         tg.cancel_scope.cancel()
+
+
+async def test_asyncio_timeout_around_an_exchange_becomes_timeout_error(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    seen: list[bytes] = []
+    async with anyio.create_task_group() as tg:
+        await start_peer(tg, board, upper, delay=lambda: 0.02)
+        with pytest.raises(TimeoutError):
+            async with asyncio.timeout(0.005):
+                await link.exchange(b"slow\n", read_line(), timeout=1, then=seen.append)
+        assert seen == [b"SLOW"]
+        assert await asyncio.wait_for(link.exchange(b"x\n", read_line(), timeout=1), 1) == b"X"
+        tg.cancel_scope.cancel()
+
+
+async def test_then_runs_after_a_send_and_its_errors_reach_the_caller(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    sent: list[str] = []
+    await link.send(b"\x02\x80", then=lambda: sent.append("done"))
+    assert sent == ["done"]
+    await board.send(b"reply\n")
+
+    def refuse(reply: bytes) -> None:
+        raise ValueError(f"refused {reply!r}")
+
+    with pytest.raises(ValueError, match="refused b'reply'"):
+        await link.exchange(b"", read_line(), timeout=1, then=refuse)
 
 
 @dataclass

@@ -4,6 +4,12 @@ Handshake: ``00 01`` (a resync byte, which the firmware ignores when idle and wh
 swallows a half-sent speed command, then the version query), answered ``MCV4B:3\n``;
 then both motors are braked: ``02 02 03 02``. The board cannot be read back, so the
 motor states are the ones last sent.
+
+Correlation guarantee: the board answers only the version query, so no reply can be
+mistaken for another. A motor command that did not go out whole (a timeout part way)
+marks the link dirty; the next command is then preceded by ``00 01``, and the link
+waits for the version line: the ``00`` swallows the half-sent command, and the answer
+shows the board is listening again.
 """
 
 from __future__ import annotations
@@ -44,6 +50,7 @@ class SRV4MotorBoardHardwareBackend(MotorInterface, SerialHardwareBackend):
         if version not in codec.SUPPORTED_VERSIONS:
             raise UnsupportedFirmwareError(self.board.name, version, codec.SUPPORTED_VERSIONS)
         self._firmware_version = version
+        self._link.set_resync(codec.RESYNC_AND_VERSION_QUERY, codec.encode_version_reply(version))
         for motor in range(codec.MOTOR_COUNT):
             await self.set_motor_state(motor, MotorSpecialState.BRAKE)
 
@@ -59,5 +66,9 @@ class SRV4MotorBoardHardwareBackend(MotorInterface, SerialHardwareBackend):
     async def set_motor_state(self, identifier: int, power: MotorState) -> None:
         """Set a motor to a power in [-1, 1] (``round(p x 125) + 128``), BRAKE or COAST."""
         self._check_motor(identifier)
-        await self._send(codec.encode_motor_command(identifier, power))
-        self._states[identifier] = power
+        command = codec.encode_motor_command(identifier, power)
+
+        def remember() -> None:
+            self._states[identifier] = power
+
+        await self._send(command, then=remember)
