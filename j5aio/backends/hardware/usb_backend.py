@@ -13,7 +13,7 @@ from __future__ import annotations
 import functools
 import logging
 from abc import abstractmethod
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import ClassVar
 
 import anyio
@@ -152,10 +152,16 @@ class USBHardwareBackend(Backend):
         value: int,
         data: bytes = b"",
         errors: Mapping[int, str] | None = None,
+        *,
+        then: Callable[[], None] | None = None,
     ) -> None:
-        """Write command ``index`` with ``value`` and ``data``; forget the device if gone."""
+        """Write command ``index`` with ``value`` and ``data``; forget the device if gone.
+
+        :param then: called once the board has accepted the write, even for a cancelled
+            caller: update caches there.
+        """
         try:
-            await self._link.control_write(index, value, data, errors=errors)
+            await self._link.control_write(index, value, data, errors=errors, then=then)
         except BoardDisconnectionError:
             self._forget()
             raise

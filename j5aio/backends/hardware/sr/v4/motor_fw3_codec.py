@@ -11,6 +11,7 @@ This module does no I/O: the hardware backend and the motor board simulator both
 
 from __future__ import annotations
 
+import re
 from typing import Final
 
 from j5aio.components.motor import MotorSpecialState, MotorState
@@ -61,6 +62,7 @@ MOTOR_COUNT: Final = 2
 #: What the host sends to ask for the version, resynchronising the parser first.
 RESYNC_AND_VERSION_QUERY: Final = bytes((CMD_RESYNC, CMD_VERSION))
 
+_VERSION = re.compile(r"[0-9]{1,5}")
 _SCALE = 125
 _OFFSET = 128
 
@@ -123,11 +125,12 @@ def encode_version_reply(version: str = "3") -> bytes:
 def parse_version_reply(line: bytes) -> str:
     """Return the firmware version from the version line (without its line ending).
 
-    :raises UnexpectedReplyError: the line is not ``MCV4B:<version>``.
+    :raises UnexpectedReplyError: the line is not ``MCV4B:<version>``, the version
+        being a whole number.
     """
     text = line.decode("ascii", errors="replace").rstrip("\r\n")
     model, separator, version = text.partition(":")
-    if model != MODEL or not separator:
+    if model != MODEL or not separator or not _VERSION.fullmatch(version):
         raise UnexpectedReplyError(
             f"expected a motor board version line like '{MODEL}:3', got {text!r}; is this "
             "port really an SR v4 motor board?",

@@ -78,8 +78,11 @@ class SRV4PowerBoardHardwareBackend(
     async def set_power_output_enabled(self, identifier: int, enabled: bool) -> None:
         """Switch an output on or off."""
         self._check_output(identifier)
-        await self._write(identifier, int(enabled))
-        self._outputs[identifier] = enabled
+
+        def remember() -> None:
+            self._outputs[identifier] = enabled
+
+        await self._write(identifier, int(enabled), then=remember)
 
     async def get_power_output_current(self, identifier: int) -> float:
         """Read the current an output draws, in amperes."""
@@ -132,5 +135,8 @@ class SRV4PowerBoardHardwareBackend(
     async def set_led_state(self, identifier: int, state: bool) -> None:
         """Light (``True``) or clear LED 0 (run) or 1 (error)."""
         index = codec.led_write_index(identifier)
-        await self._write(index, int(state))
-        self._leds[identifier] = state
+
+        def remember() -> None:
+            self._leds[identifier] = state
+
+        await self._write(index, int(state), then=remember)

@@ -66,5 +66,9 @@ class SRV4ServoBoardHardwareBackend(ServoInterface, USBHardwareBackend):
                 f"{self.board.name} cannot unpower a servo (position None); give a "
                 "position between -1 and 1",
             )
-        await self._write(index, codec.encode_position(position))
-        self._positions[index] = position
+        value = codec.encode_position(position)
+
+        def remember() -> None:
+            self._positions[index] = position
+
+        await self._write(index, value, then=remember)
