@@ -1,7 +1,9 @@
 """The hardware backend of the SR v4 Power Board, firmware 3 (USB control transfers).
 
 Handshake: one read of ``wIndex`` 9 (4 bytes), which must be 3. The outputs and LEDs
-cannot be read back, so their states are the ones last written (all off at first).
+cannot be read back, so their states are the ones last written; at first they are the
+board's power-up state: outputs off, RUN LED on, ERROR LED off (cleared when the host
+enumerates the board).
 """
 
 from __future__ import annotations
@@ -50,7 +52,7 @@ class SRV4PowerBoardHardwareBackend(
     def __init__(self, link: USBLink, *, key: str) -> None:
         super().__init__(link, key=key)
         self._outputs = [False] * codec.OUTPUT_COUNT
-        self._leds = [False, False]
+        self._leds = [True, False]
 
     async def _handshake(self) -> None:
         version = str(codec.parse_u32(await self._read_command(codec.FIRMWARE_VERSION)))

@@ -106,11 +106,16 @@ class SRV4RuggeduinoHardwareBackend(StringCommandComponentInterface, ArduinoHard
         current = self._pins.digital(identifier)
         if wanted.mode is GPIOPinMode.DIGITAL_OUTPUT:
             if mode_changed:
-                # The firmware keeps the pin's output latch: it drives its last level.
-                level = current.level
+                # An output drives its latch: high after a pull-up input, low after a
+                # plain input, its last level if it was an output already.
+                latch = (
+                    current.level
+                    if current.mode is GPIOPinMode.DIGITAL_OUTPUT
+                    else current.mode is GPIOPinMode.DIGITAL_INPUT_PULLUP
+                )
                 await self._command(
                     codec.encode_mode(identifier, wanted.mode),
-                    then=lambda: self._remember_pin(identifier, wanted.mode, level),
+                    then=lambda: self._remember_pin(identifier, wanted.mode, latch),
                 )
             await self._command(
                 codec.encode_digital_write(identifier, wanted.level),

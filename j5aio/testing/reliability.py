@@ -1,0 +1,459 @@
+"""Stress trials of the hardware backends against their simulators (issue 9's checks).
+
+Each *rig* connects one real hardware backend to a simulator of its board and knows how
+to compare what the backend remembers (its caches) with what the simulated board really
+does. The trials built on rigs are run at full size by ``bench/bench_reliability.py``
+and at a bounded size by the test suite:
+
+* :func:`cancellation_trials` (R1): random operations, each cancelled at a random moment
+  through anyio (``move_on_after``) or asyncio itself (``Task.cancel``,
+  ``asyncio.timeout``); counts wrong answers and caches that disagree with the board.
+* :func:`bad_value_trials` (R4): random bad values given to the components; counts the
+  bytes that reached the wire.
+* :func:`fuzzed_reply_trials` (R5): requests answered with random bytes; counts
+  exceptions that are not :class:`~j5aio.errors.CommunicationError` (or a subclass).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import random
+import time
+from collections.abc import AsyncIterator, Awaitable, Callable, Sequence
+from contextlib import asynccontextmanager
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import anyio
+import anyio.lowlevel
+
+from j5aio.backends.hardware.arduino import ArduinoHardwareBackend
+from j5aio.backends.hardware.sb import arduino_2019_codec as sb_codec
+from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
+from j5aio.backends.hardware.sr.v4 import motor_fw3_codec as motor_codec
+from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
+from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
+from j5aio.backends.hardware.transports.memory import SimulatorStream
+from j5aio.backends.hardware.transports.stream import ByteStream
+from j5aio.boards.board import Board
+from j5aio.components.gpio_pin import GPIOPinMode
+from j5aio.components.motor import MotorSpecialState, MotorState
+from j5aio.errors import CommunicationError
+from j5aio.simulator.arduino_pins import PinMode
+from j5aio.simulator.sb_arduino_2019 import SBArduinoSimulator
+from j5aio.simulator.sr_motor_fw3 import MotorMode, SRMotorBoardFw3Simulator
+from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
+from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
+from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator
+
+__all__ = [
+    "BACKEND_NAMES",
+    "CancellationStyle",
+    "Rig",
+    "TrialReport",
+    "cancellation_trials",
+    "open_rig",
+]
+
+#: The backends every trial runs against.
+BACKEND_NAMES: tuple[str, ...] = ("sb-arduino", "ruggeduino", "motor", "power", "servo")
+
+#: How a trial cancels: through anyio, or through asyncio itself.
+CancellationStyle = Literal["anyio", "asyncio"]
+
+_PINS = range(2, 8)
+_MODES = (GPIOPinMode.DIGITAL_INPUT, GPIOPinMode.DIGITAL_INPUT_PULLUP, GPIOPinMode.DIGITAL_OUTPUT)
+_SIM_MODES = {
+    GPIOPinMode.DIGITAL_INPUT: PinMode.INPUT,
+    GPIOPinMode.DIGITAL_INPUT_PULLUP: PinMode.INPUT_PULLUP,
+    GPIOPinMode.DIGITAL_OUTPUT: PinMode.OUTPUT,
+}
+
+Operation = Callable[[], Awaitable[object]]
+
+
+@dataclass
+class Rig:
+    """One backend connected to a simulator of its board."""
+
+    name: str
+    board: Board
+    simulator: Any
+    #: Returns a random operation and the answer it must give (None: not checked).
+    pick: Callable[[random.Random], tuple[Operation, object]]
+    #: Describes every cache entry that disagrees with the simulated board.
+    mismatches: Callable[[], list[str]]
+
+    async def settle(self) -> None:
+        """Wait until no work for the board is left in flight."""
+        link = getattr(self.board.backend, "link", None)
+        call = getattr(link, "call", None)
+        if call is not None:  # a USB link: a no-op job runs after every earlier one
+            await call(lambda: None, description="waiting for earlier transfers")
+        await anyio.lowlevel.checkpoint()
+
+
+@dataclass
+class TrialReport:
+    """What one run of trials observed."""
+
+    backend: str
+    style: str
+    trials: int = 0
+    cancelled: int = 0
+    wrong_answers: int = 0
+    mismatches: int = 0
+    errors: int = 0
+    details: list[str] = field(default_factory=list)
+
+    def note(self, text: str) -> None:
+        """Keep the first few details of what went wrong."""
+        if len(self.details) < 10:
+            self.details.append(text)
+
+
+# -- rigs ---------------------------------------------------------------------------------
+
+#: The most time a simulated board takes to answer, in seconds, so that cancellations
+#: land before, during and after exchanges.
+LATENCY = 0.001
+
+
+class _SlowStream(ByteStream):
+    """A stream whose board takes up to :data:`LATENCY` to take each request in."""
+
+    def __init__(self, inner: ByteStream, rng: random.Random) -> None:
+        self._inner = inner
+        self._rng = rng
+
+    @property
+    def name(self) -> str:
+        return self._inner.name
+
+    @property
+    def is_closed(self) -> bool:
+        return self._inner.is_closed
+
+    async def send(self, data: bytes) -> None:
+        await self._inner.send(data)
+        await anyio.sleep(self._rng.uniform(0, LATENCY))
+
+    async def receive(self, max_bytes: int = 4096) -> bytes:
+        return await self._inner.receive(max_bytes)
+
+    def close_now(self) -> None:
+        self._inner.close_now()
+
+
+class _SlowDevice:
+    """A USB simulator whose transfers take up to :data:`LATENCY` each."""
+
+    def __init__(self, simulator: Any, rng: random.Random) -> None:
+        self._simulator = simulator
+        self._rng = rng
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._simulator, name)
+
+    def ctrl_transfer(self, *args: Any, **kwargs: Any) -> Any:
+        time.sleep(self._rng.uniform(0, LATENCY))
+        return self._simulator.ctrl_transfer(*args, **kwargs)
+
+
+def _arduino_pick(
+    backend: ArduinoHardwareBackend, sim: Any
+) -> Callable[[random.Random], tuple[Operation, object]]:
+    def pick(rng: random.Random) -> tuple[Operation, object]:
+        pin = rng.choice(_PINS)
+        mode = backend._pins.digital(pin).mode
+        roll = rng.random()
+        if roll < 0.4:
+            wanted = rng.choice(_MODES)
+            return (lambda: backend.set_gpio_pin_mode(pin, wanted)), None
+        if roll < 0.7 and mode is GPIOPinMode.DIGITAL_OUTPUT:
+            level = rng.random() < 0.5
+            return (lambda: backend.write_gpio_pin_digital_state(pin, level)), None
+        if mode is not GPIOPinMode.DIGITAL_OUTPUT:
+            level = rng.random() < 0.5
+            sim.set_input_level(pin, level)
+            return (lambda: backend.read_gpio_pin_digital_state(pin)), level
+        return (lambda: backend.set_gpio_pin_mode(pin, rng.choice(_MODES))), None
+
+    return pick
+
+
+def _arduino_mismatches(backend: ArduinoHardwareBackend, sim: Any) -> list[str]:
+    found = []
+    for pin in _PINS:
+        state = backend._pins.digital(pin)
+        if sim.pin_mode(pin) is not _SIM_MODES[state.mode]:
+            found.append(f"pin {pin}: remembered {state.mode.name}, board {sim.pin_mode(pin)}")
+        elif state.mode is GPIOPinMode.DIGITAL_OUTPUT and sim.output_level(pin) != state.level:
+            found.append(f"pin {pin}: remembered level {state.level}, board drives the other")
+    return found
+
+
+async def _serial_board(
+    backend_class: type[Any], sim: Any, stream_wrapper: Callable[[ByteStream], ByteStream] | None
+) -> Board:
+    stream: ByteStream = _SlowStream(SimulatorStream(sim, time_scale=0), random.Random(1))
+    if stream_wrapper is not None:
+        stream = stream_wrapper(stream)
+    board: Board = await backend_class.from_stream(
+        stream, port=f"sim-{sim.serial_number}", serial_number=sim.serial_number, time_scale=0
+    )
+    await board.setup()
+    return board
+
+
+async def _sb_arduino_rig(wrap: Callable[[ByteStream], ByteStream] | None) -> Rig:
+    sim = SBArduinoSimulator("RIG-SB")
+    board = await _serial_board(SBArduinoHardwareBackend, sim, wrap)
+    backend = board.backend
+    assert isinstance(backend, SBArduinoHardwareBackend)
+    pins = _arduino_pick(backend, sim)
+
+    def pick(rng: random.Random) -> tuple[Operation, object]:
+        if rng.random() < 0.25:
+            servo = rng.randrange(4)
+            position = None if rng.random() < 0.2 else rng.uniform(-1, 1)
+            return (lambda: backend.set_servo_position(servo, position)), None
+        return pins(rng)
+
+    def mismatches() -> list[str]:
+        found = _arduino_mismatches(backend, sim)
+        for servo in range(4):
+            remembered = sb_codec.servo_level(backend._servos[servo])
+            if sim.servo_widths[servo] != remembered:
+                actual = sim.servo_widths[servo]
+                found.append(f"servo {servo}: remembered {remembered}, board {actual}")
+        return found
+
+    return Rig("sb-arduino", board, sim, pick, mismatches)
+
+
+async def _ruggeduino_rig(wrap: Callable[[ByteStream], ByteStream] | None) -> Rig:
+    sim = SRRuggeduinoSimulator("RIG-RUGGEDUINO")
+    board = await _serial_board(SRV4RuggeduinoHardwareBackend, sim, wrap)
+    backend = board.backend
+    assert isinstance(backend, SRV4RuggeduinoHardwareBackend)
+    return Rig(
+        "ruggeduino",
+        board,
+        sim,
+        _arduino_pick(backend, sim),
+        lambda: _arduino_mismatches(backend, sim),
+    )
+
+
+def _motor_output(state: MotorState) -> tuple[MotorMode, int]:
+    if state is MotorSpecialState.BRAKE:
+        return MotorMode.BRAKE, 0
+    if state is MotorSpecialState.COAST:
+        return MotorMode.COAST, 0
+    speed = motor_codec.encode_speed(state) - 128
+    return (MotorMode.FORWARD if speed >= 0 else MotorMode.REVERSE), abs(speed)
+
+
+async def _motor_rig(wrap: Callable[[ByteStream], ByteStream] | None) -> Rig:
+    sim = SRMotorBoardFw3Simulator("RIG-MOTOR")
+    board = await _serial_board(SRV4MotorBoardHardwareBackend, sim, wrap)
+    backend = board.backend
+    assert isinstance(backend, SRV4MotorBoardHardwareBackend)
+
+    def pick(rng: random.Random) -> tuple[Operation, object]:
+        motor = rng.randrange(2)
+        choices: list[MotorState] = [
+            MotorSpecialState.BRAKE,
+            MotorSpecialState.COAST,
+            round(rng.uniform(-1, 1), 3),
+        ]
+        state = rng.choice(choices)
+        return (lambda: backend.set_motor_state(motor, state)), None
+
+    def mismatches() -> list[str]:
+        found = []
+        for motor in range(2):
+            remembered = backend._states[motor]
+            output = sim.motors[motor]
+            if _motor_output(remembered) != (output.mode, output.steps):
+                found.append(f"motor {motor}: remembered {remembered}, board {output}")
+        return found
+
+    return Rig("motor", board, sim, pick, mismatches)
+
+
+async def _power_rig() -> Rig:
+    sim = SRPowerBoardFw3Simulator("RIG-POWER")
+    board = await SRV4PowerBoardHardwareBackend.from_usb_device(
+        _SlowDevice(sim, random.Random(2))
+    )
+    await board.setup()
+    backend = board.backend
+    assert isinstance(backend, SRV4PowerBoardHardwareBackend)
+
+    def pick(rng: random.Random) -> tuple[Operation, object]:
+        on = rng.random() < 0.5
+        if rng.random() < 0.7:
+            output = rng.randrange(6)
+            return (lambda: backend.set_power_output_enabled(output, on)), None
+        led = rng.randrange(2)
+        return (lambda: backend.set_led_state(led, on)), None
+
+    def mismatches() -> list[str]:
+        found = [
+            f"output {n}: remembered {backend._outputs[n]}, board {sim.outputs[n]}"
+            for n in range(6)
+            if backend._outputs[n] != sim.outputs[n]
+        ]
+        if backend._leds[0] != sim.run_led:
+            found.append(f"run LED: remembered {backend._leds[0]}, board {sim.run_led}")
+        return found
+
+    return Rig("power", board, sim, pick, mismatches)
+
+
+async def _servo_rig() -> Rig:
+    sim = SRServoBoardFw2Simulator("RIG-SERVO")
+    board = await SRV4ServoBoardHardwareBackend.from_usb_device(
+        _SlowDevice(sim, random.Random(3))
+    )
+    await board.setup()
+    backend = board.backend
+    assert isinstance(backend, SRV4ServoBoardHardwareBackend)
+
+    def pick(rng: random.Random) -> tuple[Operation, object]:
+        servo = rng.randrange(12)
+        position = round(rng.uniform(-1, 1), 2)
+        return (lambda: backend.set_servo_position(servo, position)), None
+
+    def mismatches() -> list[str]:
+        found = []
+        for servo in range(12):
+            remembered = backend._positions[servo]
+            expected = round((remembered or 0.0) * 100)
+            if sim.positions[servo] != expected:
+                found.append(f"servo {servo}: remembered {expected}, board {sim.positions[servo]}")
+        return found
+
+    return Rig("servo", board, sim, pick, mismatches)
+
+
+@asynccontextmanager
+async def open_rig(
+    name: str, *, wrap: Callable[[ByteStream], ByteStream] | None = None
+) -> AsyncIterator[Rig]:
+    """Connect backend ``name`` (one of :data:`BACKEND_NAMES`) to a fresh simulator.
+
+    :param wrap: wraps a serial board's stream (to inject faults, say).
+    :raises ValueError: an unknown name.
+    """
+    if name == "sb-arduino":
+        rig = await _sb_arduino_rig(wrap)
+    elif name == "ruggeduino":
+        rig = await _ruggeduino_rig(wrap)
+    elif name == "motor":
+        rig = await _motor_rig(wrap)
+    elif name == "power":
+        rig = await _power_rig()
+    elif name == "servo":
+        rig = await _servo_rig()
+    else:
+        raise ValueError(f"no rig called {name!r}; choose from {', '.join(BACKEND_NAMES)}")
+    try:
+        yield rig
+    finally:
+        await rig.board.close()
+
+
+# -- R1: random cancellation ----------------------------------------------------------------
+
+
+async def _cancel_natively(operation: Operation, delay: float, rng: random.Random) -> bool:
+    """Run ``operation``, cancelling it with Task.cancel or asyncio.timeout after ``delay``."""
+    if rng.random() < 0.5:
+        task = asyncio.ensure_future(operation())
+        await asyncio.sleep(delay)
+        cancelled = task.cancel()
+        try:
+            await task
+        except asyncio.CancelledError:
+            return cancelled
+        return False
+    try:
+        async with asyncio.timeout(delay):
+            await operation()
+    except TimeoutError:
+        return True
+    return False
+
+
+async def _run_one(
+    rig: Rig, style: CancellationStyle, rng: random.Random, report: TrialReport, max_delay: float
+) -> None:
+    operation, expected = rig.pick(rng)
+    delay = rng.uniform(0, max_delay)
+    result: list[object] = []
+
+    async def run() -> None:
+        result.append(await operation())
+
+    report.trials += 1
+    try:
+        if style == "anyio":
+            with anyio.move_on_after(delay) as scope:
+                await run()
+            cancelled = scope.cancelled_caught
+        else:
+            cancelled = await _cancel_natively(run, delay, rng)
+    except (CommunicationError, ValueError) as exc:
+        report.errors += 1
+        report.note(f"{type(exc).__name__}: {exc}")
+        cancelled = False
+    report.cancelled += cancelled
+    await rig.settle()
+    if result and expected is not None and result[0] != expected:
+        report.wrong_answers += 1
+        report.note(f"answer {result[0]!r}, expected {expected!r}")
+    wrong = rig.mismatches()
+    if wrong:
+        report.mismatches += len(wrong)
+        for line in wrong:
+            report.note(line)
+
+
+async def cancellation_trials(
+    name: str,
+    style: CancellationStyle,
+    trials: int,
+    *,
+    seed: int = 0,
+    max_delay: float = 0.003,
+) -> TrialReport:
+    """Run ``trials`` random operations on backend ``name``, each cancelled at random.
+
+    :param style: ``"anyio"`` (``move_on_after``) or ``"asyncio"`` (``Task.cancel`` or
+        ``asyncio.timeout``, which break through anyio shields).
+    :param max_delay: the latest moment of a cancellation, in seconds.
+    """
+    rng = random.Random(seed)
+    report = TrialReport(name, style)
+    async with open_rig(name) as rig:
+        for _ in range(trials):
+            await _run_one(rig, style, rng, report, max_delay)
+    return report
+
+
+def summarise(reports: Sequence[TrialReport]) -> dict[str, int]:
+    """Add up the counts of several reports."""
+    return {
+        "trials": sum(r.trials for r in reports),
+        "cancelled": sum(r.cancelled for r in reports),
+        "wrong_answers": sum(r.wrong_answers for r in reports),
+        "mismatches": sum(r.mismatches for r in reports),
+        "errors": sum(r.errors for r in reports),
+    }
+
+
