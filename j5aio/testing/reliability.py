@@ -202,7 +202,7 @@ async def _serial_board(
     if stream_wrapper is not None:
         stream = stream_wrapper(stream)
     board: Board = await backend_class.from_stream(
-        stream, port=f"sim-{sim.serial_number}", serial_number=sim.serial_number, time_scale=0
+        stream, port=f"sim-{sim.serial_number}", serial_number=sim.serial_number, time_scale=0.01
     )
     await board.setup()
     return board

@@ -12,13 +12,19 @@ A serial backend can be made three ways, all ending in the same handshake:
 
 Ports are claimed in :mod:`.registry`, so a port that a live backend holds is never
 opened twice. Every failure is a :class:`~j5aio.errors.CommunicationError`.
+
+A board found by discovery or attached by port is looked for again when it vanishes
+(see :mod:`.reconnect`): by its USB serial number for a discovered board (its port
+path may change), at the same path for an attached one. A board made with
+:meth:`SerialHardwareBackend.from_stream` cannot be reopened, so it stays lost.
 """
 
 from __future__ import annotations
 
 import logging
 from abc import abstractmethod
-from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from collections.abc import Callable, Iterable, Sequence
 from typing import ClassVar, TypeVar, overload
 
 import anyio
@@ -27,7 +33,9 @@ import anyio.to_thread
 from j5aio.backends.backend import Backend
 from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.options import DiscoveryOptions, StreamOpener
+from j5aio.backends.hardware.reconnect import Reconnecting
 from j5aio.backends.hardware.transports.discovery import (
+    ComPortLike,
     PortInfo,
     find_port,
     list_serial_ports,
@@ -57,7 +65,18 @@ def scaled(seconds: float, time_scale: float) -> float:
     return max(seconds * time_scale, MINIMUM_WAIT)
 
 
-class SerialHardwareBackend(Backend):
+@dataclass(frozen=True)
+class _Origin:
+    """How a board was found, so that it can be found again."""
+
+    serial_number: str
+    by_port: bool
+    opener: StreamOpener | None
+    port_source: Callable[[], Iterable[ComPortLike]] | None
+    time_scale: float
+
+
+class SerialHardwareBackend(Reconnecting, Backend):
     """A backend that drives one board through one serial port.
 
     Subclasses set the class attributes that describe the board and implement
@@ -84,6 +103,7 @@ class SerialHardwareBackend(Backend):
         self._link = link
         self._port = port
         self._firmware_version: str | None = None
+        self._origin: _Origin | None = None
 
     @property
     def port(self) -> str:
@@ -155,7 +175,8 @@ class SerialHardwareBackend(Backend):
         async def connect() -> Board:
             found = await anyio.to_thread.run_sync(find_port, port)
             serial_number = found.serial_number if found and found.serial_number else port
-            return await cls._open(port, serial_number, opener, time_scale)
+            origin = _Origin(serial_number, True, opener, None, time_scale)
+            return await cls._open(port, origin)
 
         return await registry.claim(port, cls, connect)
 
@@ -179,16 +200,19 @@ class SerialHardwareBackend(Backend):
 
         async def connect_one(port: PortInfo) -> None:
             serial_number = port.serial_number or port.device
+            origin = _Origin(
+                serial_number, False, options.opener, options.port_source, options.time_scale
+            )
 
             async def connect() -> Board:
-                return await cls._open(
-                    port.device,
-                    serial_number,
-                    options.opener,
-                    options.time_scale,
-                )
+                return await cls._open(port.device, origin)
 
+            known = cls._lost_board(serial_number, options)
             try:
+                if known is not None:  # the same board, perhaps back on another path
+                    await cls._found_again(known)
+                    results[port.device] = known
+                    return
                 results[port.device] = await registry.claim(port.device, cls, connect)
             except registry.PortInUseError as exc:
                 _log.info("Skipping %s: %s", port.device, exc)
@@ -226,23 +250,80 @@ class SerialHardwareBackend(Backend):
         return sorted(boards, key=lambda board: board.serial_number)
 
     @classmethod
-    async def _open(
-        cls,
-        port: str,
-        serial_number: str,
-        opener: StreamOpener | None,
-        time_scale: float,
-    ) -> Board:
+    def _lost_board(cls, serial_number: str, options: DiscoveryOptions) -> Board | None:
+        """Return the lost board with ``serial_number`` found by the same kind of search."""
+        known = registry.find_serial(cls, serial_number)
+        if known is None:
+            return None
+        backend = known.backend
+        assert isinstance(backend, SerialHardwareBackend)
+        origin = backend._origin
+        if backend.is_connected or origin is None or origin.by_port:
+            return None
+        if origin.port_source is not options.port_source:
+            return None
+        return known
+
+    @staticmethod
+    async def _found_again(board: Board) -> None:
+        backend = board.backend
+        if isinstance(backend, Reconnecting) and not backend.is_connected:
+            await backend.reconnect()
+
+    @classmethod
+    async def _open_stream(cls, port: str, opener: StreamOpener | None) -> ByteStream:
         if opener is None:
-            stream: ByteStream = await open_serial_stream(port, cls.BAUDRATE)
-        else:
-            stream = await opener(port, cls.BAUDRATE)
-        return await cls.from_stream(
+            return await open_serial_stream(port, cls.BAUDRATE)
+        return await opener(port, cls.BAUDRATE)
+
+    @classmethod
+    async def _open(cls, port: str, origin: _Origin) -> Board:
+        stream = await cls._open_stream(port, origin.opener)
+        board = await cls.from_stream(
             stream,
             port=port,
-            serial_number=serial_number,
-            time_scale=time_scale,
+            serial_number=origin.serial_number,
+            time_scale=origin.time_scale,
         )
+        backend = board.backend
+        assert isinstance(backend, SerialHardwareBackend)
+        backend._origin = origin
+        return board
+
+    async def _reopen(self) -> None:
+        """Find the board again (see :mod:`.reconnect`), on a new link."""
+        origin = self._origin
+        if origin is None:
+            raise BoardDisconnectionError(
+                f"{self._port}: this board was given as an open stream, so it cannot be reopened"
+            )
+        port = self._port
+        if not origin.by_port:
+            listed = await anyio.to_thread.run_sync(list_serial_ports, origin.port_source)
+            matched = match_ports(
+                listed, set(self.USB_IDS), self.USB_MANUFACTURER, self.USB_PRODUCT
+            )
+            found = [item for item in matched if item.serial_number == origin.serial_number]
+            if not found:
+                raise BoardDisconnectionError(f"{origin.serial_number} is not listed")
+            port = found[0].device
+        stream = await self._open_stream(port, origin.opener)
+        link = SerialLink(stream, name=port, default_timeout=self.DEFAULT_TIMEOUT)
+        try:
+            registry.move(self._port, port, self)
+        except BaseException:
+            link.close_now()
+            raise
+        self._port = port
+        self._link = link
+        self._lost = False
+        try:
+            self.reset_board_state()
+            await self._handshake(time_scale=origin.time_scale)
+        except BaseException:
+            self._lost = True
+            link.close_now()
+            raise
 
     @abstractmethod
     async def _handshake(self, *, time_scale: float) -> None:
@@ -252,7 +333,12 @@ class SerialHardwareBackend(Backend):
 
     @overload
     async def _exchange(
-        self, request: bytes, reader: ReplyReader[T], timeout: float | None = None
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        timeout: float | None = None,
+        *,
+        idempotent: bool = True,
     ) -> T: ...
 
     @overload
@@ -263,6 +349,7 @@ class SerialHardwareBackend(Backend):
         timeout: float | None = None,
         *,
         then: Callable[[T], U],
+        idempotent: bool = True,
     ) -> U: ...
 
     async def _exchange(
@@ -272,35 +359,48 @@ class SerialHardwareBackend(Backend):
         timeout: float | None = None,
         *,
         then: Callable[[T], object] | None = None,
+        idempotent: bool = True,
     ) -> object:
         """Send ``request`` and return the reply (or ``then(reply)``); see the link.
 
         ``then`` runs once the reply has arrived, even for a cancelled caller: update
-        caches there. Forgets the port if it has gone.
+        caches there. ``idempotent`` says whether the request may be sent again after
+        the board vanished and came back (see :mod:`.reconnect`).
         """
-        try:
+
+        async def call() -> object:
             if then is None:
                 return await self._link.exchange(request, reader, timeout=timeout)
             return await self._link.exchange(request, reader, timeout=timeout, then=then)
+
+        try:
+            return await self._guarded(call, idempotent=idempotent)
         except BoardDisconnectionError:
             self._forget()
             raise
 
-    async def _send(self, data: bytes, *, then: Callable[[], None] | None = None) -> None:
+    async def _send(
+        self, data: bytes, *, then: Callable[[], None] | None = None, idempotent: bool = True
+    ) -> None:
         """Send ``data`` expecting no reply; ``then`` runs once it has gone (see the link)."""
         try:
-            await self._link.send(data, then=then)
+            await self._guarded(
+                lambda: self._link.send(data, then=then), idempotent=idempotent
+            )
         except BoardDisconnectionError:
             self._forget()
             raise
 
     def _forget(self) -> None:
-        """Close the link at once and free the port, so that rediscovery opens it afresh."""
-        registry.release(self._port, self)
+        """Close the link at once; free the port only if the board will not be looked for."""
+        self._mark_lost()
+        if not self.reconnect_policy.enabled:
+            registry.release(self._port, self)
         self._link.close_now()
 
     async def close(self) -> None:
-        """Close the port and free it for rediscovery."""
+        """Close the port and free it for rediscovery; the board is not looked for again."""
+        self._closed_for_good = True
         registry.release(self._port, self)
         await self._link.aclose()
 

@@ -44,6 +44,10 @@ class SRV4MotorBoardHardwareBackend(MotorInterface, SerialHardwareBackend):
         super().__init__(link, port=port)
         self._states: list[MotorState] = [MotorSpecialState.BRAKE] * codec.MOTOR_COUNT
 
+    def reset_board_state(self) -> None:
+        """Forget the motor states: the handshake brakes both motors again."""
+        self._states = [MotorSpecialState.BRAKE] * codec.MOTOR_COUNT
+
     async def _handshake(self, *, time_scale: float) -> None:
         line = await self._exchange(codec.RESYNC_AND_VERSION_QUERY, _VERSION_LINE)
         version = codec.parse_version_reply(line)

@@ -54,6 +54,11 @@ class SRV4PowerBoardHardwareBackend(
         self._outputs = [False] * codec.OUTPUT_COUNT
         self._leds = [True, False]
 
+    def reset_board_state(self) -> None:
+        """Forget what was remembered: the board is at its power-up state again."""
+        self._outputs = [False] * codec.OUTPUT_COUNT
+        self._leds = [True, False]
+
     async def _handshake(self) -> None:
         version = str(codec.parse_u32(await self._read_command(codec.FIRMWARE_VERSION)))
         if version not in codec.SUPPORTED_VERSIONS:
@@ -101,7 +106,8 @@ class SRV4PowerBoardHardwareBackend(
         """
         self._check_single(identifier, "piezo")
         note = codec.encode_piezo_note(duration, pitch)
-        await self._write(codec.PIEZO_WRITE, 0, note, errors=_PIEZO_ERRORS)
+        # Not idempotent: a note sent again after the board came back would play twice.
+        await self._write(codec.PIEZO_WRITE, 0, note, errors=_PIEZO_ERRORS, idempotent=False)
 
     # -- start button -------------------------------------------------------------------
 

@@ -40,6 +40,10 @@ class SRV4ServoBoardHardwareBackend(ServoInterface, USBHardwareBackend):
         super().__init__(link, key=key)
         self._positions: list[ServoPosition] = [0.0] * codec.SERVO_COUNT
 
+    def reset_board_state(self) -> None:
+        """Forget the positions: the handshake centres every servo again."""
+        self._positions = [0.0] * codec.SERVO_COUNT
+
     async def _handshake(self) -> None:
         command = codec.FIRMWARE_VERSION
         reply = await self._read(command.index, command.length, errors=_HANDSHAKE_ERRORS)
