@@ -49,6 +49,7 @@ from .sb_arduino_2019 import SBArduinoSimulator
 from .sr_motor_fw3 import SRMotorBoardFw3Simulator
 from .sr_power_fw3 import SRPowerBoardFw3Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
+from .usb_support import no_device_error
 
 __all__ = [
     "MINIMUM_TIMEOUT_SCALE",
@@ -95,6 +96,7 @@ class SimulatedUSBDevice:
         self.bus = kit.name
         #: The board's serial number, in place of a USB address.
         self.address = simulator.serial_number
+        self._connection = simulator.connection
 
     @property
     def simulator(self) -> UsbBoardSimulator:
@@ -125,7 +127,13 @@ class SimulatedUSBDevice:
         data_or_wLength: Any = None,  # noqa: N803
         timeout: int | None = None,
     ) -> Any:
-        """Do a control transfer on the simulator, after letting time pass on it."""
+        """Do a control transfer on the simulator, after letting time pass on it.
+
+        A device found before the board was unplugged is dead for good (errno 19), as a
+        pyusb device is after its cable came out, even once the board is back.
+        """
+        if self._simulator.connection != self._connection:
+            raise no_device_error()
         self._let_time_pass()
         return self._simulator.ctrl_transfer(
             bmRequestType, bRequest, wValue, wIndex, data_or_wLength, timeout

@@ -40,7 +40,7 @@ from j5aio.backends.hardware.transports.stream import ByteStream
 from j5aio.boards.board import Board
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.components.motor import MotorSpecialState, MotorState
-from j5aio.errors import CommunicationError
+from j5aio.errors import BoardDisconnectionError, CommunicationError
 from j5aio.simulator.arduino_pins import PinMode
 from j5aio.simulator.sb_arduino_2019 import SBArduinoSimulator
 from j5aio.simulator.sr_motor_fw3 import MotorMode, SRMotorBoardFw3Simulator
@@ -51,10 +51,13 @@ from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator
 __all__ = [
     "BACKEND_NAMES",
     "CancellationStyle",
+    "ReplugReport",
     "Rig",
     "TrialReport",
     "cancellation_trials",
     "open_rig",
+    "replug_trials",
+    "rig_for",
 ]
 
 #: The backends every trial runs against.
@@ -85,6 +88,8 @@ class Rig:
     pick: Callable[[random.Random], tuple[Operation, object]]
     #: Describes every cache entry that disagrees with the simulated board.
     mismatches: Callable[[], list[str]]
+    #: An idempotent call that reaches the board (to see whether it answers).
+    probe: Operation
 
     async def settle(self) -> None:
         """Wait until no work for the board is left in flight."""
@@ -208,9 +213,7 @@ async def _serial_board(
     return board
 
 
-async def _sb_arduino_rig(wrap: Callable[[ByteStream], ByteStream] | None) -> Rig:
-    sim = SBArduinoSimulator("RIG-SB")
-    board = await _serial_board(SBArduinoHardwareBackend, sim, wrap)
+def _sb_arduino_rig(board: Board, sim: Any) -> Rig:
     backend = board.backend
     assert isinstance(backend, SBArduinoHardwareBackend)
     pins = _arduino_pick(backend, sim)
@@ -231,12 +234,12 @@ async def _sb_arduino_rig(wrap: Callable[[ByteStream], ByteStream] | None) -> Ri
                 found.append(f"servo {servo}: remembered {remembered}, board {actual}")
         return found
 
-    return Rig("sb-arduino", board, sim, pick, mismatches)
+    return Rig(
+        "sb-arduino", board, sim, pick, mismatches, lambda: backend.read_gpio_pin_analogue_value(14)
+    )
 
 
-async def _ruggeduino_rig(wrap: Callable[[ByteStream], ByteStream] | None) -> Rig:
-    sim = SRRuggeduinoSimulator("RIG-RUGGEDUINO")
-    board = await _serial_board(SRV4RuggeduinoHardwareBackend, sim, wrap)
+def _ruggeduino_rig(board: Board, sim: Any) -> Rig:
     backend = board.backend
     assert isinstance(backend, SRV4RuggeduinoHardwareBackend)
     return Rig(
@@ -245,7 +248,12 @@ async def _ruggeduino_rig(wrap: Callable[[ByteStream], ByteStream] | None) -> Ri
         sim,
         _arduino_pick(backend, sim),
         lambda: _arduino_mismatches(backend, sim),
+        lambda: backend.read_gpio_pin_analogue_value(14),
     )
+
+
+def _motor_state_now(_: object, backend: SRV4MotorBoardHardwareBackend) -> MotorState:
+    return backend._states[0]
 
 
 def _motor_output(state: MotorState) -> tuple[MotorMode, int]:
@@ -257,9 +265,7 @@ def _motor_output(state: MotorState) -> tuple[MotorMode, int]:
     return (MotorMode.FORWARD if speed >= 0 else MotorMode.REVERSE), abs(speed)
 
 
-async def _motor_rig(wrap: Callable[[ByteStream], ByteStream] | None) -> Rig:
-    sim = SRMotorBoardFw3Simulator("RIG-MOTOR")
-    board = await _serial_board(SRV4MotorBoardHardwareBackend, sim, wrap)
+def _motor_rig(board: Board, sim: Any) -> Rig:
     backend = board.backend
     assert isinstance(backend, SRV4MotorBoardHardwareBackend)
 
@@ -282,15 +288,18 @@ async def _motor_rig(wrap: Callable[[ByteStream], ByteStream] | None) -> Rig:
                 found.append(f"motor {motor}: remembered {remembered}, board {output}")
         return found
 
-    return Rig("motor", board, sim, pick, mismatches)
-
-
-async def _power_rig() -> Rig:
-    sim = SRPowerBoardFw3Simulator("RIG-POWER")
-    board = await SRV4PowerBoardHardwareBackend.from_usb_device(
-        _SlowDevice(sim, random.Random(2))
+    probe = backend.get_motor_state  # cached: reaching the board needs a set
+    return Rig(
+        "motor",
+        board,
+        sim,
+        pick,
+        mismatches,
+        lambda: backend.set_motor_state(0, _motor_state_now(probe, backend)),
     )
-    await board.setup()
+
+
+def _power_rig(board: Board, sim: Any) -> Rig:
     backend = board.backend
     assert isinstance(backend, SRV4PowerBoardHardwareBackend)
 
@@ -312,15 +321,10 @@ async def _power_rig() -> Rig:
             found.append(f"run LED: remembered {backend._leds[0]}, board {sim.run_led}")
         return found
 
-    return Rig("power", board, sim, pick, mismatches)
+    return Rig("power", board, sim, pick, mismatches, lambda: backend.get_battery_sensor_voltage(0))
 
 
-async def _servo_rig() -> Rig:
-    sim = SRServoBoardFw2Simulator("RIG-SERVO")
-    board = await SRV4ServoBoardHardwareBackend.from_usb_device(
-        _SlowDevice(sim, random.Random(3))
-    )
-    await board.setup()
+def _servo_rig(board: Board, sim: Any) -> Rig:
     backend = board.backend
     assert isinstance(backend, SRV4ServoBoardHardwareBackend)
 
@@ -338,7 +342,53 @@ async def _servo_rig() -> Rig:
                 found.append(f"servo {servo}: remembered {expected}, board {sim.positions[servo]}")
         return found
 
-    return Rig("servo", board, sim, pick, mismatches)
+    return Rig(
+        "servo",
+        board,
+        sim,
+        pick,
+        mismatches,
+        lambda: backend.set_servo_position(0, backend._positions[0]),
+    )
+
+
+_RIGS: dict[str, Callable[[Board, Any], Rig]] = {
+    "sb-arduino": _sb_arduino_rig,
+    "ruggeduino": _ruggeduino_rig,
+    "motor": _motor_rig,
+    "power": _power_rig,
+    "servo": _servo_rig,
+}
+
+
+async def _connect(name: str, wrap: Callable[[ByteStream], ByteStream] | None) -> Rig:
+    if name == "sb-arduino":
+        sim: Any = SBArduinoSimulator("RIG-SB")
+        board = await _serial_board(SBArduinoHardwareBackend, sim, wrap)
+    elif name == "ruggeduino":
+        sim = SRRuggeduinoSimulator("RIG-RUGGEDUINO")
+        board = await _serial_board(SRV4RuggeduinoHardwareBackend, sim, wrap)
+    elif name == "motor":
+        sim = SRMotorBoardFw3Simulator("RIG-MOTOR")
+        board = await _serial_board(SRV4MotorBoardHardwareBackend, sim, wrap)
+    elif name == "power":
+        sim = SRPowerBoardFw3Simulator("RIG-POWER")
+        board = await SRV4PowerBoardHardwareBackend.from_usb_device(
+            _SlowDevice(sim, random.Random(2))
+        )
+        await board.setup()
+    else:
+        sim = SRServoBoardFw2Simulator("RIG-SERVO")
+        board = await SRV4ServoBoardHardwareBackend.from_usb_device(
+            _SlowDevice(sim, random.Random(3))
+        )
+        await board.setup()
+    return _RIGS[name](board, sim)
+
+
+def rig_for(name: str, board: Board, sim: Any) -> Rig:
+    """Make the rig of backend ``name`` around a board already connected to ``sim``."""
+    return _RIGS[name](board, sim)
 
 
 @asynccontextmanager
@@ -350,18 +400,9 @@ async def open_rig(
     :param wrap: wraps a serial board's stream (to inject faults, say).
     :raises ValueError: an unknown name.
     """
-    if name == "sb-arduino":
-        rig = await _sb_arduino_rig(wrap)
-    elif name == "ruggeduino":
-        rig = await _ruggeduino_rig(wrap)
-    elif name == "motor":
-        rig = await _motor_rig(wrap)
-    elif name == "power":
-        rig = await _power_rig()
-    elif name == "servo":
-        rig = await _servo_rig()
-    else:
+    if name not in _RIGS:
         raise ValueError(f"no rig called {name!r}; choose from {', '.join(BACKEND_NAMES)}")
+    rig = await _connect(name, wrap)
     try:
         yield rig
     finally:
@@ -457,3 +498,118 @@ def summarise(reports: Sequence[TrialReport]) -> dict[str, int]:
     }
 
 
+
+
+# -- R3: unplug and replug ------------------------------------------------------------------
+
+
+@dataclass
+class ReplugReport:
+    """What unplugging and replugging one simulated board, again and again, observed."""
+
+    backend: str
+    trials: int = 0
+    #: Calls made while unplugged that failed with BoardDisconnectionError (all should).
+    disconnection_errors: int = 0
+    #: Calls made while unplugged that seemed to work, or failed some other way.
+    wrong_outcomes: int = 0
+    #: Seconds from plugging the board back in to its first answer.
+    back_after: list[float] = field(default_factory=list)
+    #: Cache entries that disagreed with the board once it was back.
+    stale: int = 0
+    #: Times discovery gave a new object instead of the one in use.
+    duplicates: int = 0
+    #: Times make_safe failed on the board once it was back.
+    make_safe_failures: int = 0
+    details: list[str] = field(default_factory=list)
+
+
+_KIT_FIELDS = {
+    "sb-arduino": "sb_arduinos",
+    "ruggeduino": "ruggeduinos",
+    "motor": "motor_boards",
+    "power": "power_boards",
+    "servo": "servo_boards",
+}
+
+
+def _board_class(name: str) -> type[Board]:
+    classes: dict[str, type[Board]] = {
+        "sb-arduino": SBArduinoHardwareBackend.board,
+        "ruggeduino": SRV4RuggeduinoHardwareBackend.board,
+        "motor": SRV4MotorBoardHardwareBackend.board,
+        "power": SRV4PowerBoardHardwareBackend.board,
+        "servo": SRV4ServoBoardHardwareBackend.board,
+    }
+    return classes[name]
+
+
+async def replug_trials(name: str, trials: int, *, seed: int = 0) -> ReplugReport:
+    """Unplug and replug a board of the simulated kit ``trials`` times.
+
+    Each time: change some state, unplug, make a call (it must fail with
+    :class:`~j5aio.errors.BoardDisconnectionError`), plug back in, then time how long the
+    same board object takes to answer again, compare its caches with the board, look
+    it up again (it must be the same object) and make it safe.
+    """
+    from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+    from j5aio.simulator.kit import KitConfig, use_kit
+
+    counts = dict.fromkeys(_KIT_FIELDS.values(), 0)
+    counts[_KIT_FIELDS[name]] = 1
+    kit = use_kit(KitConfig(**counts))
+    sim = getattr(kit, _KIT_FIELDS[name])[0]
+    board = (await SIMULATED_ENVIRONMENT.get_board_group(_board_class(name))).singular()
+    rig = rig_for(name, board, sim)
+    rng = random.Random(seed)
+    report = ReplugReport(name)
+    try:
+        for _ in range(trials):
+            await _replug_once(rig, rng, report, name)
+    finally:
+        await board.close()
+    return report
+
+
+async def _replug_once(rig: Rig, rng: random.Random, report: ReplugReport, name: str) -> None:
+    from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+
+    report.trials += 1
+    operation, _ = rig.pick(rng)
+    await operation()
+    rig.simulator.unplug()
+    try:
+        await rig.probe()
+    except BoardDisconnectionError:
+        report.disconnection_errors += 1
+    except Exception as exc:
+        report.wrong_outcomes += 1
+        report.details.append(f"while unplugged: {exc!r}")
+    else:
+        report.wrong_outcomes += 1
+        report.details.append("a call worked while the board was unplugged")
+    rig.simulator.plug()
+    start = time.perf_counter()
+    deadline = start + 5
+    while True:
+        try:
+            await rig.probe()
+            break
+        except BoardDisconnectionError:
+            if time.perf_counter() > deadline:
+                report.details.append("the board did not answer within 5 s of its return")
+                return
+            await anyio.sleep(0.002)
+    report.back_after.append(time.perf_counter() - start)
+    await rig.settle()
+    stale = rig.mismatches()
+    report.stale += len(stale)
+    report.details.extend(stale[:3])
+    again = await SIMULATED_ENVIRONMENT.get_board_group(_board_class(name))
+    if list(again) != [rig.board] or again.singular() is not rig.board:
+        report.duplicates += 1
+    try:
+        await rig.board.make_safe()
+    except Exception as exc:
+        report.make_safe_failures += 1
+        report.details.append(f"make_safe: {exc!r}")
