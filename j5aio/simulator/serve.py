@@ -89,11 +89,11 @@ class PtyServer:
         if time_scale < 0:
             raise ValueError(f"time_scale must be zero or more, not {time_scale}")
         self._link = os.fspath(link) if link is not None else None
-        if self._link is not None and os.path.lexists(self._link):
-            if not os.path.islink(self._link):
-                raise FileExistsError(
-                    f"{self._link} exists and is not a symbolic link; choose another path"
-                )
+        link_path = self._link
+        if link_path is not None and os.path.lexists(link_path) and not os.path.islink(link_path):
+            raise FileExistsError(
+                f"{link_path} exists and is not a symbolic link; choose another path"
+            )
         self._simulator = simulator
         self._time_scale = time_scale
         self._seconds_per_byte = 10 / simulator.baudrate if uart_timing else 0.0
