@@ -26,6 +26,10 @@ available in every test suite, sync tests and async tests alike:
 ``j5aio_clean_boards``
     Empties :attr:`Board.BOARDS <j5aio.boards.board.Board.BOARDS>` after the test, so
     that boards a test set up do not leak into the next one.
+
+The plugin loads in any test suite. ``j5aio_sim_kit`` is an async fixture and needs
+pytest-asyncio; without it, a test that asks for the fixture fails with a message
+saying what to install, and every other test runs as usual.
 """
 
 from __future__ import annotations
@@ -34,7 +38,11 @@ from collections.abc import AsyncIterator, Iterable, Iterator, Mapping
 from typing import TYPE_CHECKING
 
 import pytest
-import pytest_asyncio
+
+try:
+    import pytest_asyncio
+except ImportError:  # the plugin must load anyway: only the async fixture needs it
+    pytest_asyncio = None  # type: ignore[assignment]
 
 if TYPE_CHECKING:
     from j5aio.backends.hardware.transports.memory import SerialSimulatorLike
@@ -74,8 +82,14 @@ def j5aio_clean_boards() -> Iterator[None]:
     Board.BOARDS.clear()
 
 
-@pytest_asyncio.fixture
-async def j5aio_sim_kit(request: pytest.FixtureRequest) -> AsyncIterator[OpenSimulatedKit]:
+#: What a test that asks for an async fixture without pytest-asyncio is told.
+NEEDS_PYTEST_ASYNCIO = (
+    "the j5aio fixture {name!r} is async and needs pytest-asyncio: install it "
+    "(pip install pytest-asyncio, or j5aio's 'test' extra) and enable it"
+)
+
+
+async def _sim_kit(request: pytest.FixtureRequest) -> AsyncIterator[OpenSimulatedKit]:
     """A fresh simulated kit, its boards set up; closed and unregistered afterwards."""
     from j5aio.simulator.kit import KitConfig
     from j5aio.testing.simkit import open_simulated_kit
@@ -84,6 +98,17 @@ async def j5aio_sim_kit(request: pytest.FixtureRequest) -> AsyncIterator[OpenSim
     config = KitConfig(**marker.kwargs) if marker is not None else None
     async with open_simulated_kit(config) as sim:
         yield sim
+
+
+def _sim_kit_unavailable() -> None:
+    """Stand in for ``j5aio_sim_kit`` without pytest-asyncio: say what to install."""
+    pytest.fail(NEEDS_PYTEST_ASYNCIO.format(name="j5aio_sim_kit"), pytrace=False)
+
+
+if pytest_asyncio is not None:
+    j5aio_sim_kit = pytest_asyncio.fixture(_sim_kit, name="j5aio_sim_kit")
+else:
+    j5aio_sim_kit = pytest.fixture(_sim_kit_unavailable, name="j5aio_sim_kit")
 
 
 class PtySimulatorFactory:

@@ -371,6 +371,9 @@ class USBLink(AsyncResource):
             self._stop_waiters.append((loop, stopped))
         self._request_stop()
         await stopped
+        # The thread has posted its last word and only returns now: wait for that, so
+        # that a closed link never has a live thread.
+        self._thread.join(1.0)
 
     def _request_stop(self) -> None:
         with self._state_lock:
