@@ -17,6 +17,8 @@ and at a bounded size by the test suite:
 from __future__ import annotations
 
 import asyncio
+import functools
+import math
 import random
 import time
 from collections.abc import AsyncIterator, Awaitable, Callable, Sequence
@@ -40,7 +42,11 @@ from j5aio.backends.hardware.transports.stream import ByteStream
 from j5aio.boards.board import Board
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.components.motor import MotorSpecialState, MotorState
-from j5aio.errors import BoardDisconnectionError, CommunicationError
+from j5aio.errors import (
+    BoardDisconnectionError,
+    CommunicationError,
+    NotSupportedByHardwareError,
+)
 from j5aio.simulator.arduino_pins import PinMode
 from j5aio.simulator.sb_arduino_2019 import SBArduinoSimulator
 from j5aio.simulator.sr_motor_fw3 import MotorMode, SRMotorBoardFw3Simulator
@@ -50,11 +56,15 @@ from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator
 
 __all__ = [
     "BACKEND_NAMES",
+    "BadValueReport",
     "CancellationStyle",
+    "FuzzReport",
     "ReplugReport",
     "Rig",
     "TrialReport",
+    "bad_value_trials",
     "cancellation_trials",
+    "fuzzed_reply_trials",
     "open_rig",
     "replug_trials",
     "rig_for",
@@ -132,6 +142,8 @@ class _SlowStream(ByteStream):
     def __init__(self, inner: ByteStream, rng: random.Random) -> None:
         self._inner = inner
         self._rng = rng
+        #: How many bytes have been sent.
+        self.sent = 0
 
     @property
     def name(self) -> str:
@@ -142,6 +154,7 @@ class _SlowStream(ByteStream):
         return self._inner.is_closed
 
     async def send(self, data: bytes) -> None:
+        self.sent += len(data)
         await self._inner.send(data)
         await anyio.sleep(self._rng.uniform(0, LATENCY))
 
@@ -158,11 +171,14 @@ class _SlowDevice:
     def __init__(self, simulator: Any, rng: random.Random) -> None:
         self._simulator = simulator
         self._rng = rng
+        #: How many transfers have been made.
+        self.transfers = 0
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self._simulator, name)
 
     def ctrl_transfer(self, *args: Any, **kwargs: Any) -> Any:
+        self.transfers += 1
         time.sleep(self._rng.uniform(0, LATENCY))
         return self._simulator.ctrl_transfer(*args, **kwargs)
 
@@ -613,3 +629,305 @@ async def _replug_once(rig: Rig, rng: random.Random, report: ReplugReport, name:
     except Exception as exc:
         report.make_safe_failures += 1
         report.details.append(f"make_safe: {exc!r}")
+
+
+# -- R4: bad values -------------------------------------------------------------------------
+
+#: Values no component may accept for a power, position, level, duration or pitch.
+BAD_VALUES: tuple[object, ...] = (
+    math.nan,
+    math.inf,
+    -math.inf,
+    1.0000001,
+    -1.5,
+    2,
+    10**400,
+    1e308,
+    "0.5",
+    b"1",
+    [1],
+    object(),
+    0.0004,
+    -0.0,
+)
+
+
+@dataclass
+class BadValueReport:
+    """What giving components bad values observed."""
+
+    backend: str
+    trials: int = 0
+    #: Calls refused with TypeError or ValueError (or NotSupportedByHardwareError).
+    refused: int = 0
+    #: Calls that went through (a value that was fine after all, such as 2 seconds).
+    accepted: int = 0
+    #: Refused calls that still sent something to the board: must be 0.
+    reached_the_wire: int = 0
+    #: Other exceptions: must be 0.
+    foreign: int = 0
+    details: list[str] = field(default_factory=list)
+
+
+def _traffic(rig: Rig) -> int:
+    backend: Any = rig.board.backend
+    link = backend.link
+    device = getattr(link, "device", None)
+    if device is not None:
+        return int(getattr(device, "transfers", 0))
+    return int(getattr(link.stream, "sent", 0))
+
+
+def _bad_calls(rig: Rig, rng: random.Random) -> list[tuple[str, Operation]]:
+    board: Any = rig.board
+    value = rng.choice(BAD_VALUES)
+    calls: list[tuple[str, Operation]] = []
+    if rig.name in ("sb-arduino", "ruggeduino"):
+        pin = board.pins[rng.choice(_PINS)]
+        calls += [
+            (f"set_mode({value!r})", lambda: pin.set_mode(value)),
+            (f"digital_write({value!r})", lambda: pin.digital_write(value)),
+        ]
+    if rig.name in ("sb-arduino", "servo"):
+        servo = board.servos[rng.randrange(4)]
+        calls.append((f"set_position({value!r})", lambda: servo.set_position(value)))
+    if rig.name == "motor":
+        motor = board.motors[rng.randrange(2)]
+        calls.append((f"set_power({value!r})", lambda: motor.set_power(value)))
+    if rig.name == "power":
+        output = list(board.outputs)[rng.randrange(6)]
+        calls += [
+            (f"set_is_enabled({value!r})", lambda: output.set_is_enabled(value)),
+            (f"buzz({value!r}, 440)", lambda: board.piezo.buzz(value, 440)),
+            (f"buzz(0.1, {value!r})", lambda: board.piezo.buzz(0.1, value)),
+            (f"run_led.set_state({value!r})", lambda: board._run_led.set_state(value)),
+        ]
+    return calls
+
+
+async def bad_value_trials(name: str, trials: int, *, seed: int = 0) -> BadValueReport:
+    """Give the components of backend ``name`` ``trials`` random bad values.
+
+    Counts the refused calls that nevertheless sent something to the board.
+    """
+    rng = random.Random(seed)
+    report = BadValueReport(name)
+    async with open_rig(name) as rig:
+        while report.trials < trials:
+            for what, call in _bad_calls(rig, rng):
+                report.trials += 1
+                before = _traffic(rig)
+                try:
+                    await call()
+                except (TypeError, ValueError, NotSupportedByHardwareError):
+                    report.refused += 1
+                    await rig.settle()
+                    if _traffic(rig) != before:
+                        report.reached_the_wire += 1
+                        report.details.append(f"{what} was refused but reached the wire")
+                except Exception as exc:
+                    report.foreign += 1
+                    report.details.append(f"{what}: {exc!r}")
+                else:
+                    report.accepted += 1
+    return report
+
+
+# -- R5: fuzzed replies ---------------------------------------------------------------------
+
+
+@dataclass
+class FuzzReport:
+    """What requests answered with random bytes observed."""
+
+    backend: str
+    trials: int = 0
+    #: CommunicationError (or a subclass): the right way to fail.
+    communication_errors: int = 0
+    #: Answers that were returned (the random bytes happened to be a valid reply).
+    answers: int = 0
+    #: Any other exception: must be 0.
+    foreign: int = 0
+    details: list[str] = field(default_factory=list)
+
+
+class _FuzzedStream(ByteStream):
+    """A stream whose board answers every request with random bytes."""
+
+    def __init__(self, name: str, rng: random.Random, replies: Callable[[random.Random], bytes]):
+        self._name = name
+        self._rng = rng
+        self._replies = replies
+        self._pending = bytearray()
+        self._arrived = anyio.Event()
+        self._closed = False
+
+    @property
+    def name(self) -> str:
+        return self._name
+
+    @property
+    def is_closed(self) -> bool:
+        return self._closed
+
+    async def send(self, data: bytes) -> None:
+        await anyio.lowlevel.checkpoint()
+        self._pending += self._replies(self._rng)
+        self._arrived.set()
+
+    async def receive(self, max_bytes: int = 4096) -> bytes:
+        while not self._pending:
+            if self._closed:
+                raise anyio.ClosedResourceError
+            self._arrived = anyio.Event()
+            await self._arrived.wait()
+        data = bytes(self._pending[:max_bytes])
+        del self._pending[:max_bytes]
+        return data
+
+    def close_now(self) -> None:
+        self._closed = True
+        self._arrived.set()
+
+
+def _fuzz_reply(rng: random.Random) -> bytes:
+    """Random bytes, often shaped like a reply line, sometimes wildly not."""
+    pieces = [
+        b"> ",
+        b"+ OK",
+        b"- Error",
+        b"# ",
+        b"@1 ",
+        b"a0 ",
+        b"inf",
+        b"nan",
+        b"1e20",
+        b"9" * rng.randrange(1, 500),
+        b"-1",
+        b"\r\n",
+        b"\n",
+        b"h",
+        b"l",
+        b"SRduino:1",
+        b"MCV4B:3",
+        bytes(rng.randrange(256) for _ in range(rng.randrange(8))),
+    ]
+    return b"".join(rng.choice(pieces) for _ in range(rng.randrange(1, 8))) + b"\n"
+
+
+class _FuzzedDevice:
+    """A USB device that answers every read with random bytes of a random length."""
+
+    def __init__(self, simulator: Any, rng: random.Random) -> None:
+        self._simulator = simulator
+        self._rng = rng
+        self.fuzzing = False
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._simulator, name)
+
+    def ctrl_transfer(self, request_type: int, *args: Any, **kwargs: Any) -> Any:
+        result = self._simulator.ctrl_transfer(request_type, *args, **kwargs)
+        if self.fuzzing and request_type & 0x80:
+            length = self._rng.choice([0, 1, 3, 4, 5, 8, 9, 64])
+            return bytes(self._rng.randrange(256) for _ in range(length))
+        return result
+
+
+async def _fuzz_serial(name: str, trials: int, rng: random.Random, report: FuzzReport) -> None:
+    sim: Any = SBArduinoSimulator("FUZZ") if name == "sb-arduino" else SRRuggeduinoSimulator("F")
+    backend_class: Any = (
+        SBArduinoHardwareBackend if name == "sb-arduino" else SRV4RuggeduinoHardwareBackend
+    )
+
+    class Quick(backend_class):  # type: ignore[misc]
+        DEFAULT_TIMEOUT = 0.02
+
+    board = await Quick.from_stream(
+        SimulatorStream(sim, time_scale=0), port="fuzz", serial_number="F", time_scale=0.01
+    )
+    backend = board.backend
+    fuzzed = _FuzzedStream("fuzzed", rng, _fuzz_reply)
+    backend._link = type(backend.link)(fuzzed, name="fuzzed", default_timeout=0.02)
+    reads = [
+        lambda: backend.read_gpio_pin_digital_state(rng.choice(_PINS)),
+        lambda: backend.read_gpio_pin_analogue_value(14 + rng.randrange(4)),
+        lambda: backend.set_gpio_pin_mode(rng.choice(_PINS), rng.choice(_MODES[:2])),
+    ]
+    if name == "sb-arduino":
+        reads += [
+            lambda: backend.get_ultrasound_distance(2, 3),
+            lambda: backend.get_ultrasound_pulse(4, 5),
+        ]
+    for _ in range(trials):
+        await _fuzz_one(rng.choice(reads), report)
+    await board.close()
+
+
+async def _fuzz_usb(name: str, trials: int, rng: random.Random, report: FuzzReport) -> None:
+    sim: Any = SRPowerBoardFw3Simulator("F") if name == "power" else SRServoBoardFw2Simulator("F")
+    device = _FuzzedDevice(sim, rng)
+    backend_class: Any = (
+        SRV4PowerBoardHardwareBackend if name == "power" else SRV4ServoBoardHardwareBackend
+    )
+    board = await backend_class.from_usb_device(device)
+    backend = board.backend
+    device.fuzzing = True
+    if name == "power":
+        reads = [
+            lambda: backend.get_battery_sensor_voltage(0),
+            lambda: backend.get_power_output_current(rng.randrange(6)),
+            lambda: backend.get_button_state(0),
+        ]
+    else:
+        reads = [backend._handshake]
+    for _ in range(trials):
+        await _fuzz_one(rng.choice(reads), report)
+    await board.close()
+
+
+async def _fuzz_motor(trials: int, rng: random.Random, report: FuzzReport) -> None:
+    for _ in range(trials):
+        fuzzed = _FuzzedStream("fuzzed", rng, _fuzz_reply)
+        await _fuzz_one(functools.partial(_motor_handshake, fuzzed), report)
+
+
+async def _motor_handshake(stream: ByteStream) -> Board:
+    return await SRV4MotorBoardHardwareBackend.from_stream(
+        stream, port="fuzz", serial_number="F", time_scale=0.01
+    )
+
+
+async def _fuzz_one(call: Operation, report: FuzzReport) -> None:
+    report.trials += 1
+    try:
+        result = await call()
+    except CommunicationError:
+        report.communication_errors += 1
+        return
+    except Exception as exc:
+        report.foreign += 1
+        if len(report.details) < 10:
+            report.details.append(repr(exc))
+        return
+    report.answers += 1
+    if isinstance(result, Board):
+        await result.close()
+
+
+async def fuzzed_reply_trials(name: str, trials: int, *, seed: int = 0) -> FuzzReport:
+    """Answer ``trials`` requests of backend ``name`` with random bytes.
+
+    Counts the exceptions that are not :class:`~j5aio.errors.CommunicationError`.
+    """
+    rng = random.Random(seed)
+    report = FuzzReport(name)
+    if name in ("sb-arduino", "ruggeduino"):
+        await _fuzz_serial(name, trials, rng, report)
+    elif name == "motor":
+        await _fuzz_motor(trials, rng, report)
+    elif name in ("power", "servo"):
+        await _fuzz_usb(name, trials, rng, report)
+    else:
+        raise ValueError(f"no rig called {name!r}; choose from {', '.join(BACKEND_NAMES)}")
+    return report
