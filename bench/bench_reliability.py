@@ -27,11 +27,13 @@ import anyio
 
 from j5aio.backends.hardware.reconnect import ReconnectPolicy
 from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
+from j5aio.boards.sb.arduino import SBArduinoBoard
 from j5aio.errors import BoardDisconnectionError
 from j5aio.simulator import SBArduinoSimulator
 from j5aio.simulator.serve import serve_on_pty
 from j5aio.testing.reliability import (
     BACKEND_NAMES,
+    CancellationStyle,
     bad_value_trials,
     cancellation_trials,
     fuzzed_reply_trials,
@@ -49,8 +51,9 @@ async def r1(trials: int) -> None:
     print(f"R1  random cancellations ({trials} trials per backend and style)")
     print(f"    {'backend':<11}{'style':<9}{'cancelled':>10}{'wrong':>7}{'stale':>7}{'errors':>8}")
     for name in BACKEND_NAMES:
-        for style in ("anyio", "asyncio"):
-            report = await cancellation_trials(name, style, trials, seed=1)  # type: ignore[arg-type]
+        styles: tuple[CancellationStyle, ...] = ("anyio", "asyncio")
+        for style in styles:
+            report = await cancellation_trials(name, style, trials, seed=1)
             print(
                 f"    {name:<11}{style:<9}{report.cancelled:>10}{report.wrong_answers:>7}"
                 f"{report.mismatches:>7}{report.errors:>8}"
@@ -83,6 +86,7 @@ async def _pty_replugs(replugs: int) -> list[float]:
         link = Path(folder) / "arduino"
         with serve_on_pty(sim, time_scale=0, link=link):
             board = await SBArduinoHardwareBackend.attach(str(link), time_scale=0.1)
+            assert isinstance(board, SBArduinoBoard)
             backend = board.backend
             assert isinstance(backend, SBArduinoHardwareBackend)
             backend.reconnect_policy = ReconnectPolicy()  # the default, stated
