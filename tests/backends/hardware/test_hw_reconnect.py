@@ -14,6 +14,7 @@ from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.reconnect import ReconnectPolicy
 from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
 from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.boards.sr.v4.power_board import PowerBoard
 from j5aio.components.gpio_pin import GPIOPinMode
@@ -198,3 +199,164 @@ async def test_r3_replugged_boards_answer_again_with_nothing_stale(name: str) ->
     assert report.make_safe_failures == 0
     assert len(report.back_after) == 3
     assert max(report.back_after) < 5  # liveness only; the bench measures the time
+
+
+class _Bus:
+    """A stand-in USB bus: the devices it lists, found as ``usb.core.find`` would."""
+
+    def __init__(self, *devices: Any) -> None:
+        self.devices = list(devices)
+
+    def __call__(self, *, find_all: bool, idVendor: int, idProduct: int) -> list[Any]:  # noqa: N803
+        return [d for d in self.devices if (d.idVendor, d.idProduct) == (idVendor, idProduct)]
+
+
+class _Unreadable:
+    """A device whose serial number cannot be read (it vanished while being looked at)."""
+
+    idVendor = 0x1BDA  # noqa: N815
+    idProduct = 0x0010  # noqa: N815
+    bus = 9
+    address = 9
+
+    @property
+    def serial_number(self) -> str:
+        raise OSError(19, "No such device")
+
+    def ctrl_transfer(self, *args: Any, **kwargs: Any) -> Any:
+        raise OSError(19, "No such device")
+
+
+class _Placed:
+    """A simulator at a place on the stand-in bus (a new place after each replug)."""
+
+    def __init__(self, simulator: Any, address: int) -> None:
+        self._simulator = simulator
+        self._connection = simulator.connection
+        self.bus = 1
+        self.address = address
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._simulator, name)
+
+    def ctrl_transfer(self, *args: Any, **kwargs: Any) -> Any:
+        if self._simulator.connection != self._connection:
+            raise OSError(19, "No such device")
+        return self._simulator.ctrl_transfer(*args, **kwargs)
+
+
+async def test_a_usb_board_is_found_again_among_other_devices_at_a_new_address() -> None:
+    from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
+
+    ours, theirs, stranger = (SRPowerBoardFw3Simulator(n) for n in ("OURS", "THEIRS", "NEW"))
+    bus = _Bus(_Placed(ours, 1), _Placed(theirs, 2))
+    options = DiscoveryOptions(usb_finder=bus)
+    boards = await SRV4PowerBoardHardwareBackend.discover(options=options)
+    board = next(b for b in boards if b.serial_number == "OURS")
+    backend = board.backend
+    assert isinstance(backend, SRV4PowerBoardHardwareBackend)
+    backend.reconnect_policy = QUICK
+    assert await backend.reconnect()  # connected: nothing to do
+    ours.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await backend.set_power_output_enabled(0, True)
+    # Back at a new address, after a stranger and an unreadable device; the other
+    # board's device is held, so it is not even looked at.
+    ours.plug()
+    bus.devices = [_Placed(theirs, 2), _Placed(stranger, 3), _Unreadable(), _Placed(ours, 7)]
+    await backend.set_power_output_enabled(0, True)
+    assert ours.outputs[0] is True
+    assert backend.port == "usb:1bda:0010@1.7"
+    assert registry.holder("usb:1bda:0010@1.7") is board
+    assert registry.holder("usb:1bda:0010@1.1") is None
+    for each in boards:
+        await each.close()
+
+
+async def test_a_usb_board_whose_handshake_fails_on_return_stays_lost_until_it_passes() -> None:
+    from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator
+
+    sim = SRServoBoardFw2Simulator("SERVO")
+    bus = _Bus(_Placed(sim, 1))
+    options = DiscoveryOptions(usb_finder=bus)
+    (board,) = await SRV4ServoBoardHardwareBackend.discover(options=options)
+    backend = board.backend
+    assert isinstance(backend, SRV4ServoBoardHardwareBackend)
+    backend.reconnect_policy = QUICK
+    sim.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await backend.set_servo_position(0, 0.5)
+    sim.has_12v = False  # back on USB, but without its 12 V it cannot start
+    sim.plug()
+    bus.devices = [_Placed(sim, 2)]
+    with pytest.raises(BoardDisconnectionError):
+        await backend.set_servo_position(0, 0.5)
+    assert not backend.is_connected
+    sim.has_12v = True
+    sim.power_cycle()
+    bus.devices = [_Placed(sim, 3)]
+    await backend.set_servo_position(0, 0.5)
+    assert sim.positions[0] == 50
+    await board.close()
+
+
+async def test_a_serial_board_whose_handshake_fails_on_return_stays_lost_until_it_passes() -> None:
+    from j5aio.testing.transports import ScriptedStream
+
+    sim = SBArduinoSimulator("FLAKY")
+    nonsense = [False]
+
+    async def opener(port: str, baudrate: int) -> Any:
+        if nonsense[0]:  # the board comes back talking nonsense once
+            nonsense[0] = False
+            return ScriptedStream([], banner=b"# Hello\n# SBDuino GPIO v2019.8.0\r\n")
+        return SimulatorStream(sim, time_scale=0)
+
+    board = await SBArduinoHardwareBackend.attach("/dev/flaky", opener=opener, time_scale=0.01)
+    backend = board.backend
+    assert isinstance(backend, SBArduinoHardwareBackend)
+    backend.reconnect_policy = QUICK
+    sim.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.pins[14].analogue_read()
+    nonsense[0] = True
+    sim.plug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.pins[14].analogue_read()
+    assert not nonsense[0] and not backend.is_connected
+    assert 0 <= await board.pins[14].analogue_read() <= 5
+    await board.close()
+
+
+async def test_a_serial_board_with_reconnection_off_frees_its_port() -> None:
+    sim = SBArduinoSimulator("OFF")
+
+    async def opener(port: str, baudrate: int) -> Any:
+        return SimulatorStream(sim, time_scale=0)
+
+    board = await SBArduinoHardwareBackend.attach("/dev/off", opener=opener, time_scale=0.01)
+    board.backend.reconnect_policy = ReconnectPolicy(enabled=False)  # type: ignore[attr-defined]
+    sim.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.pins[14].analogue_read()
+    assert registry.holder("/dev/off") is None
+    await board.close()
+
+
+async def test_looking_with_another_search_does_not_take_over_a_lost_board() -> None:
+    sim = SBArduinoSimulator("SER9")
+    ports = [comport("/dev/ttyACM0", "SER9")]
+
+    async def opener(port: str, baudrate: int) -> Any:
+        return SimulatorStream(sim, time_scale=0)
+
+    options = DiscoveryOptions(port_source=lambda: ports, opener=opener, time_scale=0.01)
+    (board,) = await SBArduinoHardwareBackend.discover(options=options)
+    sim.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.pins[14].analogue_read()
+    sim.plug()
+    other = DiscoveryOptions(port_source=lambda: list(ports), opener=opener, time_scale=0.01)
+    # Its port is still held by the lost board, which is handed back as it is.
+    assert await SBArduinoHardwareBackend.discover(options=other) == [board]
+    await board.close()
