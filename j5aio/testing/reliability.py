@@ -137,7 +137,7 @@ LATENCY = 0.001
 
 
 class _SlowStream(ByteStream):
-    """A stream whose board takes up to :data:`LATENCY` to take each request in."""
+    """A stream that takes up to :data:`LATENCY` to send each request."""
 
     def __init__(self, inner: ByteStream, rng: random.Random) -> None:
         self._inner = inner
@@ -154,9 +154,10 @@ class _SlowStream(ByteStream):
         return self._inner.is_closed
 
     async def send(self, data: bytes) -> None:
-        self.sent += len(data)
-        await self._inner.send(data)
+        # The wait comes first: like every stream, this one sends all or nothing.
         await anyio.sleep(self._rng.uniform(0, LATENCY))
+        await self._inner.send(data)
+        self.sent += len(data)
 
     async def receive(self, max_bytes: int = 4096) -> bytes:
         return await self._inner.receive(max_bytes)

@@ -123,6 +123,8 @@ def with_request_id(request: bytes, request_id: int) -> bytes:
 
 
 def _strip_id(line: bytes) -> bytes:
+    if not line.startswith(b"@"):
+        return line
     match = _ID_PREFIX.match(line)
     return line[match.end() :] if match else line
 

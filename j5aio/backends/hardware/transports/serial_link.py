@@ -37,13 +37,18 @@ mark the link dirty.
 
 **Native asyncio cancellation.** ``asyncio.Task.cancel()`` (used by ``asyncio.timeout``
 and ``asyncio.wait_for``) breaks through anyio shields. So, once the lock is held, the
-exchange runs in a task of its own (:func:`~.completion.run_to_completion`) that no
+exchange runs to completion (:func:`~.completion.run_to_completion`) in a task that no
 caller's cancellation reaches; the caller waits for it either way and is cancelled
-afterwards. An exchange is therefore never torn half way, whoever cancels. A ``then``
-callback given to :meth:`~SerialLink.exchange` or :meth:`~SerialLink.send` runs inside
-that task as soon as the board has answered (or the bytes have gone): that is where a
-backend updates what it remembers of the board, so its caches change when, and only
-when, the board has been told, even for a cancelled caller.
+afterwards. For an exchange that task is made only when needed (a task for every
+exchange would cost tens of microseconds): the exchange runs in the caller's task, and
+if ``Task.cancel`` tears it after its request has gone, a task of its own reads the reply
+to its end, by the same deadline, while the caller waits. (A stream sends all of a
+request or, cancelled, none of it, so a request torn before it went needs no reply.) An
+exchange is therefore never torn half way, whoever cancels. A ``then`` callback given to
+:meth:`~SerialLink.exchange` or :meth:`~SerialLink.send` runs as soon as the board has
+answered (or the bytes have gone), even for a cancelled caller: that is where a backend
+updates what it remembers of the board, so its caches change when, and only when, the
+board has been told.
 
 **Correlation: which reply belongs to which request.** After a timeout the reply may
 still be on its way, and the next request must not take it. Each protocol gets the
@@ -74,10 +79,11 @@ from a stream is wrapped in :class:`~j5aio.errors.CommunicationError`.
 
 from __future__ import annotations
 
+import asyncio
 import logging
 import math
 from collections.abc import Callable
-from typing import TypeVar, overload
+from typing import Any, TypeVar, overload
 
 import anyio
 from anyio.abc import AsyncResource
@@ -95,6 +101,16 @@ from .stream import ByteStream
 from .trace import log_wire, wire_logger
 
 __all__ = ["SerialLink"]
+
+
+class _Progress:
+    """How far an exchange got: ``deadline`` is set once its request has gone."""
+
+    __slots__ = ("deadline", "seconds")
+
+    def __init__(self) -> None:
+        self.deadline: float | None = None
+        self.seconds = 0.0
 
 T = TypeVar("T")
 U = TypeVar("U")
@@ -297,13 +313,38 @@ class SerialLink(AsyncResource):
         """
         seconds = self._timeout(timeout)
         request = bytes(request)
-
-        async def locked() -> object:
-            reply = await self._exchange_locked(request, reader, seconds)
-            return reply if then is None else then(reply)
-
+        progress = _Progress()
         async with self._lock:
-            return await run_to_completion(locked)
+            with anyio.CancelScope(shield=True):
+                try:
+                    reply = await self._exchange_locked(request, reader, seconds, progress)
+                except asyncio.CancelledError:
+                    # Task.cancel broke through the shield. Once the request has gone,
+                    # its reply is read (and ``then`` run) in a task of its own, which
+                    # the caller waits for before being cancelled; before that, nothing
+                    # was sent (a stream sends all or, cancelled, nothing).
+                    if progress.deadline is not None:
+                        await self._finish_torn(request, reader, progress, then)
+                    raise
+                result = reply if then is None else then(reply)
+        return result
+
+    async def _finish_torn(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        progress: _Progress,
+        then: Callable[[T], object] | None,
+    ) -> None:
+        async def finish() -> None:
+            reply = await self._finish_reply(request, reader, progress)
+            if then is not None:
+                then(reply)
+
+        try:
+            await run_to_completion(finish)
+        except Exception as exc:
+            _log.debug("%s: the reply to a cancelled caller's %r: %r", self._name, request, exc)
 
     async def read(self, reader: ReplyReader[T], *, timeout: float | None = None) -> T:
         """Read what ``reader`` parses without sending anything (a boot banner, say).
@@ -375,7 +416,9 @@ class SerialLink(AsyncResource):
         if self._closed:
             raise BoardDisconnectionError(f"{self._name}: the link is closed")
 
-    async def _exchange_locked(self, request: bytes, reader: ReplyReader[T], seconds: float) -> T:
+    async def _exchange_locked(
+        self, request: bytes, reader: ReplyReader[T], seconds: float, progress: _Progress
+    ) -> T:
         self._check_open()
         finished = False
         try:
@@ -389,27 +432,55 @@ class SerialLink(AsyncResource):
                 _log.debug("%s: discarding stale input %s", self._name, _preview(self._buffer))
                 self._buffer.clear()
             with anyio.move_on_after(seconds):
+                deadline = anyio.current_time() + seconds
                 await self._write(request)
+                progress.deadline, progress.seconds = deadline, seconds
                 reply = await self._read_reply(reader, request)
                 finished = True
-                if self._buffer and not reader.correlates:
-                    _log.debug(
-                        "%s: reply to %r followed by %s; the next exchange drains first",
-                        self._name,
-                        request,
-                        _preview(self._buffer),
-                    )
-                    self._dirty = True
-                elif reader.correlates:
-                    self._dirty = False
+                self._after_reply(request, reader)
                 return reply
-            raise CommunicationTimeoutError(
-                f"{self._name}: no complete reply ({reader.describe()}) to {_preview(request)} "
-                f"within {seconds} s (received so far: {_preview(self._buffer)})"
-            )
+            raise self._timed_out(request, reader, seconds)
         finally:
             if not finished:
                 self._dirty = True
+
+    async def _finish_reply(
+        self, request: bytes, reader: ReplyReader[T], progress: _Progress
+    ) -> T:
+        """Read the reply to ``request`` (already sent) by the exchange's deadline."""
+        assert progress.deadline is not None
+        finished = False
+        try:
+            with anyio.move_on_after(max(0.0, progress.deadline - anyio.current_time())):
+                reply = await self._read_reply(reader, request)
+                finished = True
+                self._after_reply(request, reader)
+                return reply
+            raise self._timed_out(request, reader, progress.seconds)
+        finally:
+            if not finished:
+                self._dirty = True
+
+    def _after_reply(self, request: bytes, reader: ReplyReader[Any]) -> None:
+        # The line was clean when the exchange began (drained, resynchronised, or
+        # correlated), so it is dirty now only if more than the reply came.
+        self._dirty = False
+        if self._buffer and not reader.correlates:
+            _log.debug(
+                "%s: reply to %r followed by %s; the next exchange drains first",
+                self._name,
+                request,
+                _preview(self._buffer),
+            )
+            self._dirty = True
+
+    def _timed_out(
+        self, request: bytes, reader: ReplyReader[Any], seconds: float
+    ) -> CommunicationTimeoutError:
+        return CommunicationTimeoutError(
+            f"{self._name}: no complete reply ({reader.describe()}) to {_preview(request)} "
+            f"within {seconds:g} s (received so far: {_preview(self._buffer)})"
+        )
 
     async def _resync_locked(self) -> None:
         """Send the probe and discard input up to and including its known answer."""
