@@ -81,9 +81,12 @@ async def test_a_board_back_on_another_path_is_the_same_board() -> None:
     await board.close()
 
 
-async def test_a_lost_board_found_by_discovery_is_reconnected_then() -> None:
-    sim = SBArduinoSimulator("SER2")
-    ports = [comport("/dev/ttyACM0", "SER2")]
+async def _discovered_then_lost(
+    serial_number: str,
+) -> tuple[SBArduinoSimulator, list[SimpleNamespace], DiscoveryOptions, Any]:
+    """Discover a simulated Arduino on a listed port, then unplug it and notice."""
+    sim = SBArduinoSimulator(serial_number)
+    ports = [comport("/dev/ttyACM0", serial_number)]
 
     async def opener(port: str, baudrate: int) -> Any:
         return SimulatorStream(sim, time_scale=0)
@@ -93,6 +96,11 @@ async def test_a_lost_board_found_by_discovery_is_reconnected_then() -> None:
     sim.unplug()
     with pytest.raises(BoardDisconnectionError):
         await board.pins[14].analogue_read()
+    return sim, ports, options, board
+
+
+async def test_a_lost_board_found_by_discovery_is_reconnected_then() -> None:
+    sim, ports, options, board = await _discovered_then_lost("SER2")
     ports[0] = comport("/dev/ttyACM3", "SER2")
     sim.plug()
     assert await SBArduinoHardwareBackend.discover(options=options) == [board]
@@ -344,19 +352,11 @@ async def test_a_serial_board_with_reconnection_off_frees_its_port() -> None:
 
 
 async def test_looking_with_another_search_does_not_take_over_a_lost_board() -> None:
-    sim = SBArduinoSimulator("SER9")
-    ports = [comport("/dev/ttyACM0", "SER9")]
-
-    async def opener(port: str, baudrate: int) -> Any:
-        return SimulatorStream(sim, time_scale=0)
-
-    options = DiscoveryOptions(port_source=lambda: ports, opener=opener, time_scale=0.01)
-    (board,) = await SBArduinoHardwareBackend.discover(options=options)
-    sim.unplug()
-    with pytest.raises(BoardDisconnectionError):
-        await board.pins[14].analogue_read()
+    sim, ports, options, board = await _discovered_then_lost("SER9")
     sim.plug()
-    other = DiscoveryOptions(port_source=lambda: list(ports), opener=opener, time_scale=0.01)
+    other = DiscoveryOptions(
+        port_source=lambda: list(ports), opener=options.opener, time_scale=0.01
+    )
     # Its port is still held by the lost board, which is handed back as it is.
     assert await SBArduinoHardwareBackend.discover(options=other) == [board]
     await board.close()
