@@ -161,6 +161,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="multiply the board's boot delay by F (default 1: as slow as the real board)",
     )
     simulate.add_argument(
+        "--link",
+        metavar="PATH",
+        help="keep PATH a symbolic link to the pseudo-terminal while serving (removed at "
+        "exit), so that programs can open one stable path, also after a restart",
+    )
+    simulate.add_argument(
         "--uart-timing",
         action="store_true",
         help="delay every reply by the time the board's serial line would take to carry it",
@@ -314,12 +320,12 @@ def _simulate(args: argparse.Namespace) -> int:
     previous = {sig: signal.signal(sig, on_signal) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
         with serve_on_pty(
-            simulator, time_scale=args.time_scale, uart_timing=args.uart_timing,
+            simulator, time_scale=args.time_scale, uart_timing=args.uart_timing, link=args.link,
         ) as server:
-            print(server.path, flush=True)
+            print(server.port, flush=True)
             print(
                 f"Serving a simulated {SIMULATOR_NAMES[args.board]} (serial number "
-                f"{args.serial_number}) on {server.path}. Press Ctrl-C to stop.",
+                f"{args.serial_number}) on {server.port}. Press Ctrl-C to stop.",
                 file=sys.stderr,
                 flush=True,
             )

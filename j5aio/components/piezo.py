@@ -6,6 +6,7 @@ import math
 from abc import abstractmethod
 from datetime import timedelta
 from enum import Enum
+from typing import ClassVar
 
 import anyio
 
@@ -44,7 +45,18 @@ Pitch = int | float | Note
 
 
 class PiezoInterface(Interface):
-    """The coroutines a backend implements to drive piezo sounders."""
+    """The coroutines a backend implements to drive piezo sounders.
+
+    A backend whose board plays durations or pitches in steps other than whole
+    milliseconds and whole hertz overrides :attr:`DURATION_STEP` and :attr:`PITCH_STEP`:
+    :class:`Piezo` refuses a note that rounds to zero steps, before anything is sent.
+    """
+
+    #: The smallest duration step the board plays; a duration is rounded to a whole
+    #: number of steps (half to even), and one that rounds to zero is refused.
+    DURATION_STEP: ClassVar[timedelta] = timedelta(milliseconds=1)
+    #: The smallest pitch step the board plays, in hertz; rounded like the duration.
+    PITCH_STEP: ClassVar[float] = 1.0
 
     @abstractmethod
     async def buzz(self, identifier: int, duration: timedelta, pitch: float) -> None:
@@ -89,7 +101,10 @@ class Piezo(IdentifiedComponent[PiezoInterface]):
         :param pitch: the frequency in hertz, or a :class:`Note` such as ``Note.A6``.
         :param blocking: wait until the note has finished before returning.
         :raises TypeError: ``duration`` or ``pitch`` has the wrong type (a bool is refused).
-        :raises ValueError: ``duration`` or ``pitch`` is zero, negative, NaN or infinite.
+        :raises ValueError: ``duration`` or ``pitch`` is zero, negative, NaN or infinite,
+            or so small that it rounds to nothing the board can play (below half of the
+            backend's :attr:`PiezoInterface.DURATION_STEP` or
+            :attr:`PiezoInterface.PITCH_STEP`: 0.5 ms and 0.5 Hz on the SR power board).
         :raises NotSupportedByHardwareError: (from the backend) the board cannot play
             this note, for example because it is too long.
         :raises CommunicationError: the board did not answer, or answered wrongly.
@@ -98,9 +113,27 @@ class Piezo(IdentifiedComponent[PiezoInterface]):
         self.verify_duration(length)
         self.verify_pitch(pitch)
         frequency = pitch if isinstance(pitch, Note) else float(pitch)
+        self._check_playable(length, frequency)
         await self._backend.buzz(self._identifier, length, frequency)
         if blocking:
             await anyio.sleep(length.total_seconds())
+
+    def _check_playable(self, duration: timedelta, frequency: float) -> None:
+        """Refuse a note whose duration or pitch rounds to zero of the board's steps."""
+        duration_step = self._backend.DURATION_STEP
+        if round(duration / duration_step) < 1:
+            raise ValueError(
+                f"piezo duration {duration.total_seconds():g} s is too short for this board, "
+                f"which plays whole steps of {duration_step.total_seconds():g} s: it would "
+                f"round to nothing; give more than half a step",
+            )
+        pitch_step = self._backend.PITCH_STEP
+        if round(frequency / pitch_step) < 1:
+            raise ValueError(
+                f"piezo pitch {frequency:g} Hz is too low for this board, which plays whole "
+                f"steps of {pitch_step:g} Hz: it would round to 0 Hz (silence); give more "
+                "than half a step",
+            )
 
     @staticmethod
     def verify_pitch(pitch: Pitch) -> None:

@@ -80,11 +80,21 @@ class SerialBoardSimulator(ABC):
         #: The USB product string that port discovery shows.
         self.product = product
         self._connected = True
+        self._connection = 0
 
     @property
     def connected(self) -> bool:
         """Whether the board is plugged in."""
         return self._connected
+
+    @property
+    def connection(self) -> int:
+        """A number that changes each time the board is unplugged.
+
+        A port opened before an unplug is dead for good, as a real one is after its
+        cable came out: transports compare this number with the one they saw at opening.
+        """
+        return self._connection
 
     def open(self) -> bytes:
         """Tell the board the host opened its port; return what the board prints at boot.
@@ -107,6 +117,8 @@ class SerialBoardSimulator(ABC):
 
     def unplug(self) -> None:
         """Pull the USB cable out."""
+        if self._connected:
+            self._connection += 1
         self._connected = False
 
     def plug(self) -> None:
@@ -150,6 +162,7 @@ class UsbBoardSimulator(ABC):
         self._product = product
         self._strings_read: set[str] = set()
         self._connected = True
+        self._connection = 0
         self._configuration = SimulatedConfiguration(1, self.interface_descriptors)
 
     # --- descriptor strings: read from the device once, then cached, as pyusb does ---
@@ -206,8 +219,15 @@ class UsbBoardSimulator(ABC):
         """Whether the board is plugged in."""
         return self._connected
 
+    @property
+    def connection(self) -> int:
+        """A number that changes each time the board is unplugged (see the serial one)."""
+        return self._connection
+
     def unplug(self) -> None:
         """Pull the USB cable out: every transfer now fails with ENODEV."""
+        if self._connected:
+            self._connection += 1
         self._connected = False
 
     def plug(self) -> None:

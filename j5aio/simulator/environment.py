@@ -44,6 +44,8 @@ from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.backends.hardware.transports.stream import ByteStream
 from j5aio.board_kinds import BoardKind, board_kinds
 from j5aio.boards.board import Board
+from j5aio.boards.sb.arduino import SBArduinoBoard
+from j5aio.boards.sr.v4.ruggeduino import Ruggeduino
 
 from .base import SerialBoardSimulator, UsbBoardSimulator
 from .kit import SimulatedKit, current_kit
@@ -51,6 +53,7 @@ from .sb_arduino_2019 import SBArduinoSimulator
 from .sr_motor_fw3 import SRMotorBoardFw3Simulator
 from .sr_power_fw3 import SRPowerBoardFw3Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
+from .usb_support import no_device_error
 
 __all__ = [
     "MINIMUM_TIMEOUT_SCALE",
@@ -98,6 +101,7 @@ class SimulatedUSBDevice:
         self.bus = kit.name
         #: The board's serial number, in place of a USB address.
         self.address = simulator.serial_number
+        self._connection = simulator.connection
 
     @property
     def simulator(self) -> UsbBoardSimulator:
@@ -128,7 +132,13 @@ class SimulatedUSBDevice:
         data_or_wLength: Any = None,  # noqa: N803
         timeout: int | None = None,
     ) -> Any:
-        """Do a control transfer on the simulator, after letting time pass on it."""
+        """Do a control transfer on the simulator, after letting time pass on it.
+
+        A device found before the board was unplugged is dead for good (errno 19), as a
+        pyusb device is after its cable came out, even once the board is back.
+        """
+        if self._simulator.connection != self._connection:
+            raise no_device_error()
         self._let_time_pass()
         return self._simulator.ctrl_transfer(
             bmRequestType, bRequest, wValue, wIndex, data_or_wLength, timeout
@@ -267,7 +277,9 @@ class SBArduinoSimulatedBackend(SBArduinoHardwareBackend):
     """The SourceBots Arduino hardware backend, finding the simulated kit's Arduinos."""
 
     @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+    async def discover(
+        cls, *, options: DiscoveryOptions | None = None,
+    ) -> Sequence[SBArduinoBoard]:
         """Find the SourceBots Arduinos of the current simulated kit (or where ``options`` say)."""
         return await super().discover(
             options=options or kit_discovery_options(current_kit(), SBArduinoSimulator)
@@ -278,7 +290,9 @@ class SRV4RuggeduinoSimulatedBackend(SRV4RuggeduinoHardwareBackend):
     """The Ruggeduino hardware backend, finding the simulated kit's Ruggeduinos."""
 
     @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+    async def discover(
+        cls, *, options: DiscoveryOptions | None = None,
+    ) -> Sequence[Ruggeduino]:
         """Find the Ruggeduinos of the current simulated kit (or where ``options`` say)."""
         return await super().discover(
             options=options or kit_discovery_options(current_kit(), SRRuggeduinoSimulator)

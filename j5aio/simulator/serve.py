@@ -15,6 +15,14 @@ each time a program opens the port, ``simulator.open()`` is called and the boot 
 returns is written ``boot_delay * time_scale`` seconds later (and never sooner than
 :data:`OPEN_SETTLE_TIME`, so that the opening program's input flush cannot eat it).
 
+**Unplugging.** While the simulator is unplugged (``simulator.unplug()``) the server
+closes the pseudo-terminal, so a program that has the port open gets an error, as from a
+real board whose cable came out; when it is plugged back in, a new pseudo-terminal is
+made. Its path differs (``/dev/pts/M``), so give the server a ``link``: a symbolic link
+kept pointing at the current pseudo-terminal (and removed when the server closes), which
+programs open as the board's port, before and after a replug, and across restarts of
+``python -m j5aio simulate NAME --pty --link PATH``.
+
 The pseudo-terminal is in raw mode (no echo, no line editing, no CR/LF translation). The
 server runs in a thread of its own, so it works beside synchronous and asynchronous code
 alike; only that thread touches the simulator while the server runs.
@@ -65,6 +73,9 @@ class PtyServer:
     :param uart_timing: if true, each reply comes out only after the time the board's
         UART would take to receive the request and send the reply (10 bits a byte at the
         simulator's baud rate), as on the real wire.
+    :param link: a path to keep as a symbolic link to the current pseudo-terminal;
+        an existing symbolic link there is replaced, anything else is refused.
+    :raises FileExistsError: ``link`` exists and is not a symbolic link.
     """
 
     def __init__(
@@ -73,20 +84,22 @@ class PtyServer:
         *,
         time_scale: float = 1.0,
         uart_timing: bool = False,
+        link: str | os.PathLike[str] | None = None,
     ) -> None:
         if time_scale < 0:
             raise ValueError(f"time_scale must be zero or more, not {time_scale}")
+        self._link = os.fspath(link) if link is not None else None
+        link_path = self._link
+        if link_path is not None and os.path.lexists(link_path) and not os.path.islink(link_path):
+            raise FileExistsError(
+                f"{link_path} exists and is not a symbolic link; choose another path"
+            )
         self._simulator = simulator
         self._time_scale = time_scale
         self._seconds_per_byte = 10 / simulator.baudrate if uart_timing else 0.0
-        master, slave = os.openpty()
-        tty.setraw(slave)
-        self._path = os.ttyname(slave)
-        # With the slave closed here, the master reports a hang-up until a program opens
-        # the path: that is how an "open" (a board reset) is noticed.
-        os.close(slave)
-        os.set_blocking(master, False)
-        self._master = master
+        self._master = -1
+        self._path = ""
+        self._open_pty()
         self._wake_read, self._wake_write = os.pipe()
         self._pending: deque[tuple[float, bytes]] = deque()
         self._port_open = False
@@ -99,8 +112,26 @@ class PtyServer:
 
     @property
     def path(self) -> str:
-        """The path of the slave side, to open as a serial port (e.g. ``/dev/pts/4``)."""
+        """The path of the slave side, to open as a serial port (e.g. ``/dev/pts/4``).
+
+        It changes each time the board is plugged back in; :attr:`link` does not.
+        """
         return self._path
+
+    @property
+    def has_pty(self) -> bool:
+        """Whether the pseudo-terminal exists now (not while the board is unplugged)."""
+        return self._master >= 0
+
+    @property
+    def link(self) -> str | None:
+        """The symbolic link kept pointing at :attr:`path`, if one was asked for."""
+        return self._link
+
+    @property
+    def port(self) -> str:
+        """The path to open as the board's port: :attr:`link` if there is one."""
+        return self._link if self._link is not None else self._path
 
     @property
     def simulator(self) -> SerialSimulatorLike:
@@ -147,8 +178,12 @@ class PtyServer:
         if self._thread.is_alive():
             self._thread.join(timeout)
         for fd in (self._master, self._wake_read, self._wake_write):
+            if fd >= 0:
+                with contextlib.suppress(OSError):
+                    os.close(fd)
+        if self._link is not None and os.path.islink(self._link):
             with contextlib.suppress(OSError):
-                os.close(fd)
+                os.unlink(self._link)
 
     def __enter__(self) -> Self:
         return self
@@ -176,6 +211,33 @@ class PtyServer:
         state = "serving" if self.is_serving else "stopped"
         return f"<PtyServer {type(self._simulator).__name__} on {self._path} {state}>"
 
+    # The pseudo-terminal.
+
+    def _open_pty(self) -> None:
+        master, slave = os.openpty()
+        tty.setraw(slave)
+        self._path = os.ttyname(slave)
+        # With the slave closed here, the master reports a hang-up until a program opens
+        # the path: that is how an "open" (a board reset) is noticed.
+        os.close(slave)
+        os.set_blocking(master, False)
+        self._master = master
+        if self._link is not None:
+            temporary = f"{self._link}.{os.getpid()}.tmp"
+            with contextlib.suppress(FileNotFoundError):
+                os.unlink(temporary)
+            os.symlink(self._path, temporary)
+            os.replace(temporary, self._link)  # atomic: never a moment without the link
+
+    def _unplugged(self, poller: select.poll) -> None:
+        """Close the pseudo-terminal: the program with the port open gets an error."""
+        poller.unregister(self._master)
+        os.close(self._master)
+        self._master = -1
+        self._port_open = False
+        self._pending.clear()
+        LOGGER.info("the simulated board on %s was unplugged", self._path)
+
     # The server thread.
 
     def _run(self) -> None:
@@ -189,6 +251,14 @@ class PtyServer:
                 LOGGER.exception("the simulator on %s failed; still serving", self._path)
 
     def _step(self, poller: select.poll) -> None:
+        if not self._simulator.connected:
+            if self._master >= 0:
+                self._unplugged(poller)
+            self._sleep(_IDLE_POLL_INTERVAL)
+            return
+        if self._master < 0:
+            self._open_pty()
+            poller.register(self._master, select.POLLIN)
         hung_up = self._master_hung_up()
         if hung_up:
             if self._port_open:
@@ -269,7 +339,11 @@ class PtyServer:
 
 
 def serve_on_pty(
-    simulator: SerialSimulatorLike, *, time_scale: float = 1.0, uart_timing: bool = False,
+    simulator: SerialSimulatorLike,
+    *,
+    time_scale: float = 1.0,
+    uart_timing: bool = False,
+    link: str | os.PathLike[str] | None = None,
 ) -> PtyServer:
     """Serve ``simulator`` on a new pseudo-terminal and return the running server.
 
@@ -284,9 +358,12 @@ def serve_on_pty(
         instant.
     :param uart_timing: delay each reply by the time the board's UART would need to
         receive the request and send the reply.
+    :param link: keep a symbolic link at this path pointing at the pseudo-terminal, also
+        across an unplug (see the module's notes); removed when the server closes.
     :raises ValueError: ``time_scale`` is negative.
+    :raises FileExistsError: ``link`` exists and is not a symbolic link.
     :raises OSError: no pseudo-terminal could be made.
     """
-    server = PtyServer(simulator, time_scale=time_scale, uart_timing=uart_timing)
+    server = PtyServer(simulator, time_scale=time_scale, uart_timing=uart_timing, link=link)
     server.start()
     return server

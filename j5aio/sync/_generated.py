@@ -1966,7 +1966,10 @@ class Piezo(IdentifiedComponent[_components_piezo.PiezoInterface]):
         :param pitch: the frequency in hertz, or a :class:`Note` such as ``Note.A6``.
         :param blocking: wait until the note has finished before returning.
         :raises TypeError: ``duration`` or ``pitch`` has the wrong type (a bool is refused).
-        :raises ValueError: ``duration`` or ``pitch`` is zero, negative, NaN or infinite.
+        :raises ValueError: ``duration`` or ``pitch`` is zero, negative, NaN or infinite,
+            or so small that it rounds to nothing the board can play (below half of the
+            backend's :attr:`PiezoInterface.DURATION_STEP` or
+            :attr:`PiezoInterface.PITCH_STEP`: 0.5 ms and 0.5 Hz on the SR power board).
         :raises NotSupportedByHardwareError: (from the backend) the board cannot play
             this note, for example because it is too long.
         :raises CommunicationError: the board did not answer, or answered wrongly.

@@ -30,15 +30,24 @@ available in every test suite, sync tests and async tests alike:
 At the end of a run the plugin lists every conformance check that was skipped because
 the subject lacked a hook (see :mod:`j5aio.testing.conformance`), so that a green run
 cannot hide them.
+
+The plugin loads in any test suite. ``j5aio_sim_kit`` is an async fixture and needs
+pytest-asyncio; without it, a test that asks for the fixture fails with a message
+saying what to install, and every other test runs as usual.
 """
 
 from __future__ import annotations
 
+import sys
 from collections.abc import AsyncIterator, Iterable, Iterator, Mapping
 from typing import TYPE_CHECKING
 
 import pytest
-import pytest_asyncio
+
+try:
+    import pytest_asyncio
+except ImportError:  # the plugin must load anyway: only the async fixture needs it
+    pytest_asyncio = None  # type: ignore[assignment]
 
 if TYPE_CHECKING:
     from j5aio.backends.hardware.transports.memory import SerialSimulatorLike
@@ -72,12 +81,16 @@ def pytest_configure(config: pytest.Config) -> None:
 
 def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
     """List the conformance checks that were skipped for want of a subject's hook."""
-    from j5aio.testing.conformance._base import HOOK_SKIP_MARK
-
+    # Only a run that used the suites can have such skips; importing them otherwise
+    # would need pytest-asyncio, which a suite without async tests may not have.
+    base = sys.modules.get("j5aio.testing.conformance._base")
+    if base is None:
+        return
+    mark: str = base.HOOK_SKIP_MARK
     lines: list[str] = []
     for report in terminalreporter.stats.get("skipped", []):
         longrepr = getattr(report, "longrepr", None)
-        if isinstance(longrepr, tuple) and len(longrepr) == 3 and HOOK_SKIP_MARK in longrepr[2]:
+        if isinstance(longrepr, tuple) and len(longrepr) == 3 and mark in longrepr[2]:
             lines.append(f"{report.nodeid}: {longrepr[2].removeprefix('Skipped: ')}")
     if lines:
         terminalreporter.section("j5aio conformance: checks not run for want of a hook")
@@ -94,8 +107,14 @@ def j5aio_clean_boards() -> Iterator[None]:
     Board.BOARDS.clear()
 
 
-@pytest_asyncio.fixture
-async def j5aio_sim_kit(request: pytest.FixtureRequest) -> AsyncIterator[OpenSimulatedKit]:
+#: What a test that asks for an async fixture without pytest-asyncio is told.
+NEEDS_PYTEST_ASYNCIO = (
+    "the j5aio fixture {name!r} is async and needs pytest-asyncio: install it "
+    "(pip install pytest-asyncio, or j5aio's 'test' extra) and enable it"
+)
+
+
+async def _sim_kit(request: pytest.FixtureRequest) -> AsyncIterator[OpenSimulatedKit]:
     """A fresh simulated kit, its boards set up; closed and unregistered afterwards."""
     from j5aio.simulator.kit import KitConfig
     from j5aio.testing.simkit import open_simulated_kit
@@ -104,6 +123,17 @@ async def j5aio_sim_kit(request: pytest.FixtureRequest) -> AsyncIterator[OpenSim
     config = KitConfig(**marker.kwargs) if marker is not None else None
     async with open_simulated_kit(config) as sim:
         yield sim
+
+
+def _sim_kit_unavailable() -> None:
+    """Stand in for ``j5aio_sim_kit`` without pytest-asyncio: say what to install."""
+    pytest.fail(NEEDS_PYTEST_ASYNCIO.format(name="j5aio_sim_kit"), pytrace=False)
+
+
+if pytest_asyncio is not None:
+    j5aio_sim_kit = pytest_asyncio.fixture(_sim_kit, name="j5aio_sim_kit")
+else:
+    j5aio_sim_kit = pytest.fixture(_sim_kit_unavailable, name="j5aio_sim_kit")
 
 
 class PtySimulatorFactory:

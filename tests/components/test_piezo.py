@@ -155,3 +155,45 @@ async def test_blocking_buzz_waits_and_can_be_cancelled() -> None:
 def test_identifier_and_interface() -> None:
     assert Piezo(3, RecordingBackend()).identifier == 3
     assert Piezo.interface_class() is PiezoInterface
+
+
+@pytest.mark.parametrize(
+    ("duration", "pitch", "what"),
+    [
+        (0.0004, 440, "duration"),
+        (0.0005, 440, "duration"),
+        (timedelta(microseconds=500), 440, "duration"),
+        (0.1, 0.4, "pitch"),
+        (0.1, 0.5, "pitch"),
+    ],
+)
+async def test_buzz_refuses_a_note_that_rounds_to_nothing(
+    duration: float | timedelta, pitch: float, what: str
+) -> None:
+    backend = RecordingBackend()
+    with pytest.raises(ValueError, match=rf"^piezo {what} .* round"):
+        await Piezo(0, backend).buzz(duration, pitch)
+    assert backend.calls == []
+
+
+@pytest.mark.parametrize(("duration", "pitch"), [(0.0006, 440), (0.1, 0.6), (0.0015, 1.5)])
+async def test_buzz_sends_a_note_that_rounds_to_one_step_or_more(
+    duration: float, pitch: float
+) -> None:
+    backend = RecordingBackend()
+    await Piezo(0, backend).buzz(duration, pitch)
+    assert len(backend.calls) == 1
+
+
+async def test_buzz_uses_the_backends_steps() -> None:
+    class CoarseBackend(RecordingBackend):
+        DURATION_STEP = timedelta(milliseconds=10)
+        PITCH_STEP = 100.0
+
+    backend = CoarseBackend()
+    with pytest.raises(ValueError, match=r"0\.01 s"):
+        await Piezo(0, backend).buzz(0.004, 440)
+    with pytest.raises(ValueError, match="100 Hz"):
+        await Piezo(0, backend).buzz(0.5, 40)
+    await Piezo(0, backend).buzz(0.006, 60)
+    assert len(backend.calls) == 1

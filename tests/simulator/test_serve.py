@@ -9,6 +9,7 @@ import subprocess
 import sys
 import time
 from collections.abc import Callable
+from pathlib import Path
 
 import pytest
 import serial
@@ -128,13 +129,38 @@ def test_a_large_reply_is_written_in_full() -> None:
     assert reply == b"".join(b"ok:" + chunk for chunk in simulator.received)
 
 
-def test_a_disconnected_simulator_answers_nothing() -> None:
+def test_unplugging_hangs_up_the_port_and_plugging_in_makes_a_new_one(tmp_path: Path) -> None:
     simulator = FakeSimulator(boot=b"")
-    simulator.connected = False
-    with serve_on_pty(simulator, time_scale=0) as server, open_port(server.path, 0.2) as port:
-        port.write(b"hello\n")
-        assert port.read(10) == b""
-    assert simulator.received == []
+    link = tmp_path / "board"
+    with serve_on_pty(simulator, time_scale=0, link=link) as server:
+        assert server.link == str(link) == server.port
+        assert os.readlink(link) == server.path
+        with open_port(str(link), 0.5) as port:
+            wait_for(lambda: server.opened_count == 1)
+            simulator.connected = False  # the cable comes out
+            wait_for(lambda: not server.is_port_open)
+            with pytest.raises(serial.SerialException):
+                for _ in range(50):  # the hang-up may take a poll of the server to show
+                    port.write(b"hello\n")
+                    port.read(1)
+                    time.sleep(0.01)
+        assert simulator.received in ([], [b"hello\n"])
+        assert not server.has_pty
+        simulator.connected = True  # and goes back in: a new pseudo-terminal
+        wait_for(lambda: server.has_pty)  # (its number may be the one just freed)
+        assert os.readlink(link) == server.path
+        with open_port(str(link), 2) as port:
+            port.write(b"again\n")
+            assert port.read(9) == b"ok:again\n"
+    assert not os.path.lexists(link)  # removed at exit
+
+
+def test_a_link_refuses_to_replace_a_file(tmp_path: Path) -> None:
+    path = tmp_path / "file"
+    path.write_text("keep me")
+    with pytest.raises(FileExistsError, match="not a symbolic link"):
+        serve_on_pty(FakeSimulator(), link=path)
+    assert path.read_text() == "keep me"
 
 
 def test_a_failing_simulator_is_logged_and_serving_continues(
@@ -286,3 +312,55 @@ def test_uart_timing_delays_each_reply_by_its_time_on_the_wire() -> None:
         port.write(request)
         assert port.read(12) == b"ok:" + request
         assert time.monotonic() - started < 0.1
+
+
+def _start_simulator(link: Path) -> subprocess.Popen[str]:
+    command = [
+        sys.executable, "-m", "j5aio", "simulate", "sb-arduino", "--pty", "--link", str(link),
+        "--time-scale", "0", "--serial-number", "LINKED",
+    ]
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert process.stdout is not None
+    assert process.stdout.readline().strip() == str(link)
+    return process
+
+
+def _stop(process: subprocess.Popen[str], *, kill: bool = False) -> None:
+    if kill:
+        process.kill()
+    else:
+        process.send_signal(signal.SIGINT)
+    process.communicate(timeout=10)
+
+
+async def test_a_killed_and_restarted_simulator_at_the_same_link_serves_the_same_board(
+    tmp_path: Path,
+) -> None:
+    from j5aio.backends.hardware import registry
+    from j5aio.backends.hardware.reconnect import ReconnectPolicy
+    from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
+    from j5aio.errors import BoardDisconnectionError
+
+    link = tmp_path / "arduino"
+    process = _start_simulator(link)
+    try:
+        board = await SBArduinoHardwareBackend.attach(str(link), time_scale=0.1)
+        backend = board.backend
+        assert isinstance(backend, SBArduinoHardwareBackend)
+        backend.reconnect_policy = ReconnectPolicy(interval=0.0)
+        await board.setup()
+        assert 0 <= await board.pins[14].analogue_read() <= 5
+        _stop(process, kill=True)
+        with pytest.raises(BoardDisconnectionError):
+            await board.pins[14].analogue_read()
+        with pytest.raises(BoardDisconnectionError):
+            await board.pins[14].analogue_read()  # gone: the link is dangling
+        process = _start_simulator(link)
+        assert 0 <= await board.pins[14].analogue_read() <= 5
+        assert backend.reconnections == 1
+        assert registry.holder(str(link)) is board
+        await board.close()
+    finally:
+        if process.poll() is None:
+            _stop(process)
+    assert not link.exists()

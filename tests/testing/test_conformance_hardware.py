@@ -123,8 +123,10 @@ async def over_simulator(
 ) -> tuple[Board, RecordingStream]:
     """Connect a serial backend to ``simulator`` and set its board up, recording traffic."""
     stream = RecordingStream(SimulatorStream(simulator, time_scale=0))
+    # The simulator boots at once; a small time scale keeps the boot limit generous
+    # on a loaded machine.
     board = await backend_class.from_stream(
-        stream, port="sim", serial_number="SIM0", time_scale=0,
+        stream, port="sim", serial_number="SIM0", time_scale=0.01,
     )
     await board.setup()
     stream.clear()

@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 import time
+from pathlib import Path
 
 import anyio
 import pytest
@@ -262,3 +265,48 @@ def test_plugin_is_registered_by_entry_point(pytester: pytest.Pytester) -> None:
         assert f"{fixture} -- " in listed
     markers = pytester.runpytest_subprocess("--markers").stdout.str()
     assert "@pytest.mark.j5aio_kit(**counts)" in markers
+
+
+# Found first on the path, this stands in for pytest-asyncio and fails to import, as
+# the real package does where it is not installed.
+BLOCKER = """
+raise ModuleNotFoundError("No module named 'pytest_asyncio'", name="pytest_asyncio")
+"""
+
+SUITE = """
+def test_a_plain_test_runs(j5aio_clean_boards):
+    assert True
+
+
+def test_the_async_fixture_says_what_to_install(j5aio_sim_kit):
+    raise AssertionError("never reached")
+"""
+
+
+def test_the_plugin_loads_without_pytest_asyncio(tmp_path: Path) -> None:
+    blocked = tmp_path / "blocked" / "pytest_asyncio"
+    blocked.mkdir(parents=True)
+    (blocked / "__init__.py").write_text(BLOCKER)
+    suite = tmp_path / "suite"
+    suite.mkdir()
+    (suite / "test_suite.py").write_text(SUITE)
+    worktree = Path(__file__).resolve().parents[2]
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(blocked.parent), str(worktree)])}
+    env.pop("PYTEST_ADDOPTS", None)
+    result = subprocess.run(
+        [
+            sys.executable, "-m", "pytest",
+            "-p", "no:asyncio", "-p", "no:cacheprovider", "-q", "-rE", str(suite),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=suite,
+        env=env,
+        timeout=120,
+        check=False,
+    )
+    output = result.stdout + result.stderr
+    assert "ModuleNotFoundError" not in output, output
+    assert "1 passed" in output, output
+    assert "1 error" in output, output
+    assert "needs pytest-asyncio: install it" in output, output

@@ -1,8 +1,13 @@
 """The base of the Arduino Uno serial backends: pins and the LED, over the shared pin rules.
 
-Subclasses say how a pin's remembered state is sent to the board and how pins are read;
-this class applies :mod:`.arduino_pins` so that every Arduino board refuses the same
-things with the same errors.
+Subclasses say how a pin's state is sent to the board and how pins are read; this class
+applies :mod:`.arduino_pins` so that every Arduino board refuses the same things with the
+same errors.
+
+What the backend remembers of a pin changes only once the board has been told: a new
+mode or level is sent first, and stored by the subclass when the board has answered
+(see :meth:`ArduinoHardwareBackend._apply_pin`), so a cancelled or failed change leaves
+the remembered state as it was.
 """
 
 from __future__ import annotations
@@ -10,7 +15,8 @@ from __future__ import annotations
 from abc import abstractmethod
 from typing import ClassVar
 
-from j5aio.backends.hardware.arduino_pins import LED_PIN, ArduinoPins
+from j5aio.backends.backend import BoardT
+from j5aio.backends.hardware.arduino_pins import LED_PIN, ArduinoPins, DigitalPinState
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.components.gpio_pin import GPIOPinInterface, GPIOPinMode
@@ -31,7 +37,7 @@ ARDUINO_USB_IDS: frozenset[tuple[int, int]] = frozenset(
 )
 
 
-class ArduinoHardwareBackend(GPIOPinInterface, LEDInterface, SerialHardwareBackend):
+class ArduinoHardwareBackend(GPIOPinInterface, LEDInterface, SerialHardwareBackend[BoardT]):
     """Pins 2-13 (digital), 14-19 (analogue) and LED 0 (pin 13) of an Arduino Uno."""
 
     USB_IDS: ClassVar[frozenset[tuple[int, int]]] = ARDUINO_USB_IDS
@@ -45,8 +51,24 @@ class ArduinoHardwareBackend(GPIOPinInterface, LEDInterface, SerialHardwareBacke
         self._pins = ArduinoPins(self.board.name)
 
     @abstractmethod
-    async def _apply_pin(self, identifier: int, *, mode_changed: bool) -> None:
-        """Send the remembered mode and level of digital pin ``identifier`` to the board."""
+    async def _apply_pin(
+        self, identifier: int, wanted: DigitalPinState, *, mode_changed: bool
+    ) -> None:
+        """Tell the board to put digital pin ``identifier`` in state ``wanted``.
+
+        Store each part of ``wanted`` in ``self._pins.digital(identifier)`` only once
+        the board has been told it (in the link's ``then=`` callback), never before.
+        """
+
+    def _remember_pin(self, identifier: int, mode: GPIOPinMode, level: bool) -> None:
+        """Store what the board was just told about a digital pin."""
+        state = self._pins.digital(identifier)
+        state.mode = mode
+        state.level = level
+
+    def reset_board_state(self) -> None:
+        """Forget what was remembered: after a reset the pins are inputs, driven low."""
+        self._pins = ArduinoPins(self.board.name)
 
     @abstractmethod
     async def _read_digital(self, identifier: int) -> bool:
@@ -60,8 +82,8 @@ class ArduinoHardwareBackend(GPIOPinInterface, LEDInterface, SerialHardwareBacke
         """Put a pin in ``pin_mode``; an output starts at the level last written to it."""
         if self._pins.check_mode(identifier, pin_mode):
             state = self._pins.digital(identifier)
-            state.mode = pin_mode
-            await self._apply_pin(identifier, mode_changed=True)
+            wanted = DigitalPinState(pin_mode, state.level)
+            await self._apply_pin(identifier, wanted, mode_changed=True)
 
     async def get_gpio_pin_mode(self, identifier: int) -> GPIOPinMode:
         """Return the mode last set on a pin (the board cannot report it)."""
@@ -70,8 +92,8 @@ class ArduinoHardwareBackend(GPIOPinInterface, LEDInterface, SerialHardwareBacke
     async def write_gpio_pin_digital_state(self, identifier: int, state: bool) -> None:
         """Drive an output pin high or low."""
         pin = self._pins.output(identifier, "write to it")
-        pin.level = state
-        await self._apply_pin(identifier, mode_changed=False)
+        wanted = DigitalPinState(pin.mode, state)
+        await self._apply_pin(identifier, wanted, mode_changed=False)
 
     async def get_gpio_pin_digital_state(self, identifier: int) -> bool:
         """Return the level last written to an output pin."""

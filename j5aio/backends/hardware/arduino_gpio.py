@@ -19,6 +19,7 @@ from collections.abc import Callable
 from datetime import timedelta
 from typing import ClassVar, Protocol, TypeVar
 
+from j5aio.backends.backend import BoardT
 from j5aio.backends.hardware.arduino import ARDUINO_USB_IDS
 from j5aio.backends.hardware.arduino_pin_table import PinTable, wire_mode
 from j5aio.backends.hardware.arduino_pins import LED_PIN, ArduinoPins
@@ -90,7 +91,7 @@ class PinCodec(Protocol):
 
 
 class ArduinoGPIOBackend(
-    GPIOPinInterface, LEDInterface, UltrasoundInterface, SerialHardwareBackend,
+    GPIOPinInterface, LEDInterface, UltrasoundInterface, SerialHardwareBackend[BoardT],
 ):
     """Pins 2-19, LED 0 (pin 13) and ultrasound on an Arduino Uno whose pins are all digital."""
 

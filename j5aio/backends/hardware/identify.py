@@ -17,7 +17,7 @@ another with a full boot wait each.
 from __future__ import annotations
 
 import logging
-from collections.abc import Sequence
+from collections.abc import Callable, Iterable, Sequence
 
 import anyio
 import anyio.to_thread
@@ -26,6 +26,7 @@ from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.options import DiscoveryOptions, StreamOpener
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
 from j5aio.backends.hardware.transports.discovery import (
+    ComPortLike,
     PortInfo,
     find_port,
     list_serial_ports,
@@ -72,15 +73,26 @@ async def _identify(
     backends: Sequence[type[SerialHardwareBackend]],
     opener: StreamOpener | None,
     time_scale: float,
+    *,
+    port_source: Callable[[], Iterable[ComPortLike]] | None = None,
 ) -> Board:
-    """Try each backend on ``port`` in turn; return the first board that answers as its kind."""
+    """Try each backend on ``port`` in turn; return the first board that answers as its kind.
+
+    A board found through ``port_source`` (discovery) is looked for again by its serial
+    number if it vanishes; one asked for by its port (``port_source`` None), at that port.
+    """
     unsupported: list[UnsupportedFirmwareError] = []
     for index, backend in enumerate(backends):
         if index:
             await anyio.sleep(REOPEN_DELAY)
         try:
             board = await backend.identify(
-                port, serial_number=serial_number, opener=opener, time_scale=time_scale
+                port,
+                serial_number=serial_number,
+                opener=opener,
+                time_scale=time_scale,
+                port_source=port_source,
+                by_port=port_source is None,
             )
         except UnsupportedFirmwareError as error:
             _log.info("%s on %s: %s", backend.__name__, port, error)
@@ -167,18 +179,36 @@ async def discover_serial_boards(
 
     async def connect_one(port: PortInfo, kinds: list[type[SerialHardwareBackend]]) -> None:
         serial_number = port.serial_number or port.device
+        source = options.port_source
 
         async def connect() -> Board:
             if len(kinds) == 1:
                 return await kinds[0].open_port(
-                    port.device, serial_number, options.opener, options.time_scale
+                    port.device,
+                    serial_number,
+                    options.opener,
+                    options.time_scale,
+                    port_source=source,
                 )
             return await _identify(
-                port.device, serial_number, kinds, options.opener, options.time_scale
+                port.device,
+                serial_number,
+                kinds,
+                options.opener,
+                options.time_scale,
+                port_source=source,
             )
 
         claimant = kinds[0] if len(kinds) == 1 else SerialHardwareBackend
         try:
+            # A board that vanished and is listed again (perhaps on another path) is
+            # brought back as the same Board, not opened as a new one.
+            for kind in kinds:
+                known = kind._lost_board(serial_number, options)
+                if known is not None:
+                    await kind._found_again(known)
+                    results[port.device] = known
+                    return
             results[port.device] = await registry.claim(port.device, claimant, connect)
         except registry.PortInUseError as exc:
             _log.info("Skipping %s: %s", port.device, exc)

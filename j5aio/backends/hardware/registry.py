@@ -15,7 +15,7 @@ import anyio
 from j5aio.boards.board import Board
 from j5aio.errors import CommunicationError
 
-__all__ = ["PortInUseError", "claim", "held", "holder", "release"]
+__all__ = ["PortInUseError", "claim", "find_serial", "held", "holder", "move", "release"]
 
 _boards: dict[str, Board] = {}
 _opening: dict[str, anyio.Event] = {}
@@ -65,6 +65,33 @@ def release(key: str, backend: object) -> None:
     board = _boards.get(key)
     if board is not None and board.backend is backend:
         del _boards[key]
+
+
+def find_serial(backend_class: type, serial_number: str) -> Board | None:
+    """Return the board of ``backend_class`` with ``serial_number``, whatever its key.
+
+    Discovery asks this first, so that a board that came back on another port (a
+    replugged USB-serial adapter may get a new path) is handed back, not duplicated.
+    """
+    for board in _boards.values():
+        if isinstance(board.backend, backend_class) and board.serial_number == serial_number:
+            return board
+    return None
+
+
+def move(old_key: str, new_key: str, backend: object) -> None:
+    """Hold ``new_key`` instead of ``old_key`` for the board driven by ``backend``.
+
+    :raises PortInUseError: another board holds ``new_key``.
+    """
+    board = _boards.get(old_key)
+    if board is None or board.backend is not backend or old_key == new_key:
+        return
+    other = _boards.get(new_key)
+    if other is not None and other is not board:
+        raise PortInUseError(f"{new_key} is already in use by {other}")
+    del _boards[old_key]
+    _boards[new_key] = board
 
 
 def clear() -> None:

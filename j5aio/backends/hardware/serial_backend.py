@@ -12,14 +12,20 @@ A serial backend can be made three ways, all ending in the same handshake:
 
 Ports are claimed in :mod:`.registry`, so a port that a live backend holds is never
 opened twice. Every failure is a :class:`~j5aio.errors.CommunicationError`.
+
+A board found by discovery or attached by port is looked for again when it vanishes
+(see :mod:`.reconnect`): by its USB serial number for a discovered board (its port
+path may change), at the same path for an attached one. A board made with
+:meth:`SerialHardwareBackend.from_stream` cannot be reopened, so it stays lost.
 """
 
 from __future__ import annotations
 
 import logging
 from abc import abstractmethod
-from collections.abc import Sequence
-from typing import ClassVar, TypeVar, cast
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import ClassVar, TypeVar, cast, overload
 
 import anyio
 import anyio.to_thread
@@ -27,9 +33,13 @@ import anyio.to_thread
 from j5aio.backends.backend import Backend, BoardT
 from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.options import DiscoveryOptions, StreamOpener
+from j5aio.backends.hardware.reconnect import Reconnecting
 from j5aio.backends.hardware.transports.discovery import (
+    ComPortLike,
     PortInfo,
     find_port,
+    list_serial_ports,
+    match_ports,
 )
 from j5aio.backends.hardware.transports.readers import ReplyReader
 from j5aio.backends.hardware.transports.serial_link import SerialLink
@@ -48,6 +58,7 @@ __all__ = ["SerialHardwareBackend", "scaled"]
 _log = logging.getLogger(__name__)
 
 T = TypeVar("T")
+U = TypeVar("U")
 
 #: The shortest wait a time scale can produce, so that a zero scale still lets an
 #: instantly ready simulator answer.
@@ -59,7 +70,18 @@ def scaled(seconds: float, time_scale: float) -> float:
     return max(seconds * time_scale, MINIMUM_WAIT)
 
 
-class SerialHardwareBackend(Backend[BoardT]):
+@dataclass(frozen=True)
+class _Origin:
+    """How a board was found, so that it can be found again."""
+
+    serial_number: str
+    by_port: bool
+    opener: StreamOpener | None
+    port_source: Callable[[], Iterable[ComPortLike]] | None
+    time_scale: float
+
+
+class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
     """A backend that drives one board through one serial port.
 
     A subclass for a new board (``class BeeBackend(SerialHardwareBackend[BeeBoard],
@@ -107,6 +129,7 @@ class SerialHardwareBackend(Backend[BoardT]):
         self._link = link
         self._port = port
         self._firmware_version: str | None = None
+        self._origin: _Origin | None = None
 
     @property
     def port(self) -> str:
@@ -185,7 +208,8 @@ class SerialHardwareBackend(Backend[BoardT]):
         async def connect() -> BoardT:
             found = await anyio.to_thread.run_sync(find_port, port)
             serial_number = found.serial_number if found and found.serial_number else port
-            return await cls._open(port, serial_number, opener, time_scale)
+            origin = _Origin(serial_number, True, opener, None, time_scale)
+            return await cls._open(port, origin)
 
         return cast(BoardT, await registry.claim(port, cls, connect))
 
@@ -223,6 +247,8 @@ class SerialHardwareBackend(Backend[BoardT]):
         serial_number: str,
         opener: StreamOpener | None = None,
         time_scale: float = 1.0,
+        port_source: Callable[[], Iterable[ComPortLike]] | None = None,
+        by_port: bool = True,
     ) -> BoardT | None:
         """Open ``port`` at this board's baud rate and return the board if it is one.
 
@@ -237,13 +263,17 @@ class SerialHardwareBackend(Backend[BoardT]):
         :param serial_number: the serial number to give the board.
         :param opener: opens the port; the real serial port by default.
         :param time_scale: multiplies the waits for the board to boot and answer.
+        :param port_source: the port list discovery searched, to search again when a
+            discovered board vanishes (see :mod:`.reconnect`).
+        :param by_port: the board was asked for by its port (``attach``), so it is looked
+            for again at the same path; else by its serial number.
         :raises UnsupportedFirmwareError: the board is of this kind but runs firmware this
             backend cannot drive.
         :raises CommunicationError: the port could not be opened.
         """
         stream = await cls._open_stream(port, opener)  # a port that will not open: raise
         try:
-            return await cls.from_stream(
+            board = await cls.from_stream(
                 stream,
                 port=port,
                 serial_number=serial_number,
@@ -254,6 +284,9 @@ class SerialHardwareBackend(Backend[BoardT]):
         except CommunicationError as error:
             _log.debug("%s on %s: not this kind: %s", cls.__name__, port, error)
             return None
+        origin = _Origin(serial_number, by_port, opener, port_source, time_scale)
+        cast(SerialHardwareBackend[BoardT], board.backend)._origin = origin
+        return board
 
     @classmethod
     def _kinds_sharing_ports(cls) -> tuple[type[SerialHardwareBackend], ...]:
@@ -279,10 +312,6 @@ class SerialHardwareBackend(Backend[BoardT]):
         :raises DeviceMissingSerialNumberError: it has none and
             :data:`SKIP_PORTS_WITHOUT_SERIAL` is false.
         """
-        return cls._has_serial_number(port)
-
-    @classmethod
-    def _has_serial_number(cls, port: PortInfo) -> bool:
         if port.serial_number:
             return True
         message = (
@@ -297,7 +326,9 @@ class SerialHardwareBackend(Backend[BoardT]):
         )
 
     @staticmethod
-    def collect(results: dict[str, Board | Exception], *, skip_failures: bool) -> list[Board]:
+    def collect(
+        results: Mapping[str, Board | Exception], *, skip_failures: bool,
+    ) -> list[Board]:
         """Return the boards among ``results`` (by port), sorted by serial number.
 
         Failures are logged; the first is raised unless ``skip_failures``.
@@ -311,18 +342,25 @@ class SerialHardwareBackend(Backend[BoardT]):
         return sorted(boards, key=lambda board: board.serial_number)
 
     @classmethod
-    async def open_port(
-        cls,
-        port: str,
-        serial_number: str,
-        opener: StreamOpener | None = None,
-        time_scale: float = 1.0,
-    ) -> BoardT:
-        """Open ``port`` and run the handshake (no claim in the port registry).
+    def _lost_board(cls, serial_number: str, options: DiscoveryOptions) -> Board | None:
+        """Return the lost board with ``serial_number`` found by the same kind of search."""
+        known = registry.find_serial(cls, serial_number)
+        if known is None:
+            return None
+        backend = known.backend
+        assert isinstance(backend, SerialHardwareBackend)
+        origin = backend._origin
+        if backend.is_connected or origin is None or origin.by_port:
+            return None
+        if origin.port_source is not options.port_source:
+            return None
+        return known
 
-        :raises CommunicationError: the port could not be opened, or the handshake failed.
-        """
-        return await cls._open(port, serial_number, opener, time_scale)
+    @staticmethod
+    async def _found_again(board: Board) -> None:
+        backend = board.backend
+        if isinstance(backend, Reconnecting) and not backend.is_connected:
+            await backend.reconnect()
 
     @classmethod
     async def _open_stream(cls, port: str, opener: StreamOpener | None) -> ByteStream:
@@ -331,78 +369,175 @@ class SerialHardwareBackend(Backend[BoardT]):
         return await opener(port, cls.BAUDRATE)
 
     @classmethod
-    async def _open(
+    async def open_port(
         cls,
         port: str,
         serial_number: str,
-        opener: StreamOpener | None,
-        time_scale: float,
+        opener: StreamOpener | None = None,
+        time_scale: float = 1.0,
+        *,
+        port_source: Callable[[], Iterable[ComPortLike]] | None = None,
     ) -> BoardT:
-        stream = await cls._open_stream(port, opener)
-        return await cls.from_stream(
+        """Open ``port``, found by discovery, and run the handshake (no port claim).
+
+        The board is looked for by its serial number if it vanishes.
+
+        :raises CommunicationError: the port could not be opened, or the handshake failed.
+        """
+        origin = _Origin(serial_number, False, opener, port_source, time_scale)
+        return await cls._open(port, origin)
+
+    @classmethod
+    async def _open(cls, port: str, origin: _Origin) -> BoardT:
+        stream = await cls._open_stream(port, origin.opener)
+        board = await cls.from_stream(
             stream,
             port=port,
-            serial_number=serial_number,
-            time_scale=time_scale,
+            serial_number=origin.serial_number,
+            time_scale=origin.time_scale,
         )
+        backend = board.backend
+        assert isinstance(backend, SerialHardwareBackend)
+        backend._origin = origin
+        return board
+
+    async def _reopen(self) -> None:
+        """Find the board again (see :mod:`.reconnect`), on a new link."""
+        origin = self._origin
+        if origin is None:
+            raise BoardDisconnectionError(
+                f"{self._port}: this board was given as an open stream, so it cannot be reopened"
+            )
+        port = self._port
+        if not origin.by_port:
+            listed = await anyio.to_thread.run_sync(list_serial_ports, origin.port_source)
+            matched = match_ports(
+                listed, set(self.USB_IDS), self.USB_MANUFACTURER, self.USB_PRODUCT
+            )
+            found = [item for item in matched if item.serial_number == origin.serial_number]
+            if not found:
+                raise BoardDisconnectionError(f"{origin.serial_number} is not listed")
+            port = found[0].device
+        stream = await self._open_stream(port, origin.opener)
+        link = SerialLink(stream, name=port, default_timeout=self.DEFAULT_TIMEOUT)
+        try:
+            registry.move(self._port, port, self)
+        except BaseException:
+            link.close_now()
+            raise
+        self._port = port
+        self._link = link
+        self._lost = False
+        try:
+            self.reset_board_state()
+            await self._handshake(time_scale=origin.time_scale)
+        except BaseException:
+            self._lost = True
+            link.close_now()
+            raise
 
     @abstractmethod
     async def _handshake(self, *, time_scale: float) -> None:
-        """Check the board and its firmware; set :attr:`firmware_version`.
-
-        Implement it in a subclass: it runs once, right after the port is opened, and
-        talks to the board with :meth:`exchange` / :meth:`send`. Waits for the board to
-        boot are multiplied by ``time_scale`` (see :func:`scaled`).
-
-        :raises CommunicationError: the board is not the one expected.
-        :raises UnsupportedFirmwareError: it runs firmware this backend cannot drive.
-        """
+        """Check the board and its firmware version; set :attr:`_firmware_version`."""
 
     # -- talking to the board -----------------------------------------------------------
 
     async def exchange(
-        self, request: bytes, reader: ReplyReader[T], timeout: float | None = None,
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        timeout: float | None = None,
+        *,
+        idempotent: bool = True,
     ) -> T:
         """Send ``request`` and return the reply that ``reader`` reads.
 
         :param timeout: seconds to wait for the reply; :attr:`DEFAULT_TIMEOUT` by default.
         :raises CommunicationError: no reply in time, or a reply ``reader`` refuses.
-        :raises BoardDisconnectionError: the port has gone (it is forgotten).
+        :param idempotent: whether the request may be sent again after the board vanished
+            and came back (see :mod:`.reconnect`); ``False`` for one that must not repeat.
+        :raises BoardDisconnectionError: the port has gone (it is looked for again).
         """
-        return await self._exchange(request, reader, timeout)
+        return await self._exchange(request, reader, timeout, idempotent=idempotent)
 
-    async def send(self, data: bytes) -> None:
+    async def send(self, data: bytes, *, idempotent: bool = True) -> None:
         """Send ``data``, a command the board does not answer.
 
-        :raises BoardDisconnectionError: the port has gone (it is forgotten).
+        :param idempotent: as for :meth:`exchange`.
+        :raises BoardDisconnectionError: the port has gone (it is looked for again).
         """
-        await self._send(data)
+        await self._send(data, idempotent=idempotent)
+
+    @overload
+    async def _exchange(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        timeout: float | None = None,
+        *,
+        idempotent: bool = True,
+    ) -> T: ...
+
+    @overload
+    async def _exchange(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        timeout: float | None = None,
+        *,
+        then: Callable[[T], U],
+        idempotent: bool = True,
+    ) -> U: ...
 
     async def _exchange(
-        self, request: bytes, reader: ReplyReader[T], timeout: float | None = None
-    ) -> T:
-        """Send ``request`` and return the reply; forget the port if it has gone."""
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        timeout: float | None = None,
+        *,
+        then: Callable[[T], object] | None = None,
+        idempotent: bool = True,
+    ) -> object:
+        """Send ``request`` and return the reply (or ``then(reply)``); see the link.
+
+        ``then`` runs once the reply has arrived, even for a cancelled caller: update
+        caches there. ``idempotent`` says whether the request may be sent again after
+        the board vanished and came back (see :mod:`.reconnect`).
+        """
+
+        async def call() -> object:
+            if then is None:
+                return await self._link.exchange(request, reader, timeout=timeout)
+            return await self._link.exchange(request, reader, timeout=timeout, then=then)
+
         try:
-            return await self._link.exchange(request, reader, timeout=timeout)
+            return await self._guarded(call, idempotent=idempotent)
         except BoardDisconnectionError:
             self._forget()
             raise
 
-    async def _send(self, data: bytes) -> None:
-        """Send ``data`` expecting no reply; forget the port if it has gone."""
+    async def _send(
+        self, data: bytes, *, then: Callable[[], None] | None = None, idempotent: bool = True
+    ) -> None:
+        """Send ``data`` expecting no reply; ``then`` runs once it has gone (see the link)."""
         try:
-            await self._link.send(data)
+            await self._guarded(
+                lambda: self._link.send(data, then=then), idempotent=idempotent
+            )
         except BoardDisconnectionError:
             self._forget()
             raise
 
     def _forget(self) -> None:
-        """Close the link at once and free the port, so that rediscovery opens it afresh."""
-        registry.release(self._port, self)
+        """Close the link at once; free the port only if the board will not be looked for."""
+        self._mark_lost()
+        if not self.reconnect_policy.enabled:
+            registry.release(self._port, self)
         self._link.close_now()
 
     async def close(self) -> None:
-        """Close the port and free it for rediscovery."""
+        """Close the port and free it for rediscovery; the board is not looked for again."""
+        self._closed_for_good = True
         registry.release(self._port, self)
         await self._link.aclose()
 

@@ -6,6 +6,10 @@ with a simulated device) reads the serial number, runs the handshake and returns
 board. Each device is driven through one :class:`~.transports.usb_link.USBLink`, whose
 worker thread runs its transfers in order. A device a live backend holds is never
 opened twice (see :mod:`.registry`).
+
+A board that vanishes (errno 19) is looked for again by vendor, product and serial
+number (see :mod:`.reconnect`); a replugged device gets a new bus address, so its key in
+the registry moves with it, and the same board object keeps working.
 """
 
 from __future__ import annotations
@@ -13,7 +17,7 @@ from __future__ import annotations
 import functools
 import logging
 from abc import abstractmethod
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import ClassVar
 
 import anyio
@@ -22,7 +26,8 @@ import anyio.to_thread
 from j5aio.backends.backend import Backend
 from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.options import DiscoveryOptions
-from j5aio.backends.hardware.transports.discovery import find_usb_devices
+from j5aio.backends.hardware.reconnect import Reconnecting
+from j5aio.backends.hardware.transports.discovery import USBFinder, find_usb_devices
 from j5aio.backends.hardware.transports.usb_link import USBDeviceLike, USBLink
 from j5aio.boards.board import Board
 from j5aio.errors import BoardDisconnectionError, DeviceMissingSerialNumberError
@@ -42,7 +47,7 @@ def device_key(device: USBDeviceLike) -> str:
     return f"usb:{ids}#{id(device)}"
 
 
-class USBHardwareBackend(Backend):
+class USBHardwareBackend(Reconnecting, Backend):
     """A backend that drives one board through USB control transfers.
 
     :param link: the link to the device; the backend owns and closes it.
@@ -58,6 +63,9 @@ class USBHardwareBackend(Backend):
         self._link = link
         self._key = key
         self._firmware_version: str | None = None
+        self._serial_number: str | None = None
+        self._finder: USBFinder | None = None
+        self._found_by_discovery = False
 
     @property
     def link(self) -> USBLink:
@@ -93,6 +101,7 @@ class USBHardwareBackend(Backend):
                     "reinstalled.",
                 )
             backend = cls(link, key=device_key(device))
+            backend._serial_number = serial_number
             await backend._handshake()
         except BaseException:
             with anyio.CancelScope(shield=True):
@@ -122,6 +131,13 @@ class USBHardwareBackend(Backend):
                     cls,
                     functools.partial(cls.from_usb_device, device),
                 )
+                backend = board.backend
+                assert isinstance(backend, USBHardwareBackend)
+                if not backend._found_by_discovery:
+                    backend._finder = options.usb_finder
+                    backend._found_by_discovery = True
+                if not backend.is_connected:
+                    await backend.reconnect()
             except registry.PortInUseError as exc:  # pragma: no cover - one backend per VID:PID
                 _log.info("Skipping a USB device: %s", exc)
                 continue
@@ -161,12 +177,55 @@ class USBHardwareBackend(Backend):
     async def _handshake(self) -> None:
         """Check the firmware version (set :attr:`_firmware_version`) and initialise."""
 
+    async def _reopen(self) -> None:
+        """Find the device again by vendor, product and serial number; handshake anew."""
+        if not self._found_by_discovery:
+            raise BoardDisconnectionError(
+                f"{self._key}: this board was not found by discovery, so it cannot be found again"
+            )
+        find = functools.partial(find_usb_devices, self.VID, self.PID, finder=self._finder)
+        for device in await anyio.to_thread.run_sync(find):
+            if device_key(device) in registry.held() and device_key(device) != self._key:
+                continue  # another board's device
+            link = USBLink(device, board_name=self.board.name)
+            try:
+                serial_number = await link.read_serial_number()
+            except Exception:
+                await link.aclose()
+                continue
+            if serial_number != self._serial_number:
+                await link.aclose()
+                continue
+            old, self._link = self._link, link
+            old.close_now(timeout=0)
+            registry.move(self._key, device_key(device), self)
+            self._key = device_key(device)
+            self._lost = False
+            try:
+                self.reset_board_state()
+                await self._handshake()
+            except BaseException:
+                self._lost = True
+                with anyio.CancelScope(shield=True):
+                    await link.aclose()
+                raise
+            return
+        raise BoardDisconnectionError(f"{self._serial_number} is not on the bus")
+
     async def _read(
-        self, index: int, length: int, errors: Mapping[int, str] | None = None
+        self,
+        index: int,
+        length: int,
+        errors: Mapping[int, str] | None = None,
+        *,
+        idempotent: bool = True,
     ) -> bytes:
-        """Read ``length`` bytes from command ``index``; forget the device if it has gone."""
+        """Read ``length`` bytes from command ``index``, under the reconnection policy."""
         try:
-            return await self._link.control_read(index, length, errors=errors)
+            return await self._guarded(
+                lambda: self._link.control_read(index, length, errors=errors),
+                idempotent=idempotent,
+            )
         except BoardDisconnectionError:
             self._forget()
             raise
@@ -177,20 +236,35 @@ class USBHardwareBackend(Backend):
         value: int,
         data: bytes = b"",
         errors: Mapping[int, str] | None = None,
+        *,
+        then: Callable[[], None] | None = None,
+        idempotent: bool = True,
     ) -> None:
-        """Write command ``index`` with ``value`` and ``data``; forget the device if gone."""
+        """Write command ``index`` with ``value`` and ``data``; forget the device if gone.
+
+        :param then: called once the board has accepted the write, even for a cancelled
+            caller: update caches there.
+        :param idempotent: whether the write may be repeated after the board vanished
+            and came back (a piezo note may not).
+        """
         try:
-            await self._link.control_write(index, value, data, errors=errors)
+            await self._guarded(
+                lambda: self._link.control_write(index, value, data, errors=errors, then=then),
+                idempotent=idempotent,
+            )
         except BoardDisconnectionError:
             self._forget()
             raise
 
     def _forget(self) -> None:
-        registry.release(self._key, self)
+        self._mark_lost()
+        if not self.reconnect_policy.enabled or not self._found_by_discovery:
+            registry.release(self._key, self)
 
     async def close(self) -> None:
         """Stop the device's worker thread and free it for rediscovery."""
-        self._forget()
+        self._closed_for_good = True
+        registry.release(self._key, self)
         await self._link.aclose()
 
     def __repr__(self) -> str:

@@ -1,10 +1,13 @@
+import contextlib
 from datetime import timedelta
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from j5aio.backends.hardware.sb import arduino_2019_codec as codec
 from j5aio.components.gpio_pin import GPIOPinMode
-from j5aio.errors import UnexpectedReplyError, UnsupportedFirmwareError
+from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
 
 
 def test_request_vectors() -> None:
@@ -63,7 +66,7 @@ def test_parse_analogue() -> None:
     assert codec.parse_analogue(reply, 17) == 2.5
     with pytest.raises(UnexpectedReplyError, match="no reading for a0"):
         codec.parse_analogue(codec.Reply(("a1 3",)), 14)
-    with pytest.raises(UnexpectedReplyError, match="expected a number for a0"):
+    with pytest.raises(UnexpectedReplyError, match="'x' as its reading of a0"):
         codec.parse_analogue(codec.Reply(("a0 x",)), 14)
 
 
@@ -72,7 +75,7 @@ def test_parse_ultrasound() -> None:
     assert codec.parse_ultrasound_pulse(codec.Reply(("0.00",))) is None
     assert codec.parse_ultrasound_distance(codec.Reply(("1230",))) == 1.23
     assert codec.parse_ultrasound_distance(codec.Reply(("0",))) is None
-    with pytest.raises(UnexpectedReplyError, match="expected a number"):
+    with pytest.raises(UnexpectedReplyError, match="'far' as its ultrasound distance"):
         codec.parse_ultrasound_distance(codec.Reply(("far",)))
 
 
@@ -102,3 +105,117 @@ def test_unsupported_versions(version: str) -> None:
     with pytest.raises(UnsupportedFirmwareError, match=r"2019\.6\.0 or later") as info:
         codec.check_version(version)
     assert info.value.found == version
+
+
+# -- strict parsing: hostile values and arbitrary bytes -------------------------------
+
+HOSTILE_NUMBERS = [
+    "inf", "nan", "-inf", "1e20", "9" * 400, "-1", "+5", " 12 ", "1_000", "0x10", "١٢", "", "1.5",
+]
+
+
+@pytest.mark.parametrize("value", [*HOSTILE_NUMBERS, "1024", "01024"])
+def test_parse_analogue_refuses_what_the_firmware_cannot_send(value: str) -> None:
+    with pytest.raises(UnexpectedReplyError, match=r"SourceBots Arduino sent .* a0"):
+        codec.parse_analogue(codec.Reply((f"a0 {value}",)), 14)
+
+
+@pytest.mark.parametrize("value", [*HOSTILE_NUMBERS[:-1], "65536", "1.0"])
+def test_parse_distance_refuses_what_the_firmware_cannot_send(value: str) -> None:
+    with pytest.raises(UnexpectedReplyError, match="SourceBots Arduino sent"):
+        codec.parse_ultrasound_distance(codec.Reply((value,)))
+
+
+@pytest.mark.parametrize("value", [*HOSTILE_NUMBERS[:-1], "4294967296", "1.234"])
+def test_parse_pulse_refuses_what_the_firmware_cannot_send(value: str) -> None:
+    with pytest.raises(UnexpectedReplyError, match="SourceBots Arduino sent"):
+        codec.parse_ultrasound_pulse(codec.Reply((value,)))
+
+
+def test_strict_parsers_accept_every_value_the_firmware_sends() -> None:
+    assert codec.parse_analogue(codec.Reply(("a0 1023",)), 14) == 1023 / 1024 * 5
+    assert codec.parse_ultrasound_distance(codec.Reply(("65535",))) == 65.535
+    assert codec.parse_ultrasound_pulse(codec.Reply(("1234.56",))) == timedelta(
+        microseconds=1234.56
+    )
+
+
+@pytest.mark.parametrize("version", ["2019.+6.0", "2019. 6.0", "2019.6_0.0", "2019.6.-0"])
+def test_check_version_refuses_loose_numbers(version: str) -> None:
+    with pytest.raises(UnsupportedFirmwareError):
+        codec.check_version(version)
+
+
+def test_request_ids_and_the_matching_reader() -> None:
+    request = codec.with_request_id(codec.encode_digital_read(2), 7)
+    assert request == b"@7 R 2\n"
+    assert codec.encode_command("R", 2, request_id=7) == request
+    reader = codec.reply_to(request)
+    assert reader.correlates
+    late = b"# @6 R 2\n@6 > H\r\n@6 + OK\r\n"
+    own = b"# @7 R 2\n@7 > L\r\n@7 + OK\r\n"
+    parsed = reader.parse(late + own)
+    assert parsed is not None
+    lines, used = parsed
+    assert used == len(late + own)
+    assert codec.parse_digital(codec.parse_reply(lines)) is False
+    assert reader.parse(late) is None
+    # An echo alone identifies the reply too (a firmware that drops the id prefix).
+    assert reader.parse(b"# @7 R 2\n> H\r\n+ OK\r\n") is not None
+    for bad in (0, 32768):
+        with pytest.raises(ValueError, match="request id"):
+            codec.with_request_id(b"R 2\n", bad)
+    with pytest.raises(ValueError, match="already has"):
+        codec.with_request_id(request, 8)
+    with pytest.raises(ValueError, match="no request id"):
+        codec.reply_to(b"R 2\n")
+    with pytest.raises(ValueError, match="request id"):
+        codec.encode_command("R", request_id=0)
+
+
+def test_is_final_line_sees_through_request_ids() -> None:
+    assert not codec.is_final_line(b"@3 > H")
+    assert codec.is_final_line(b"@3 + OK")
+    assert codec.parse_reply([b"# @3 R 2", b"@3 > H", b"@3 + OK"]) == codec.Reply(("H",))
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.binary(max_size=40), max_size=6), st.integers(14, 17))
+def test_every_parser_raises_only_communication_errors_on_arbitrary_bytes(
+    lines: list[bytes], pin: int
+) -> None:
+    try:
+        reply = codec.parse_reply(lines)
+    except CommunicationError:
+        reply = codec.Reply(tuple(line.decode("latin-1") for line in lines))
+    for parse in (
+        codec.parse_digital,
+        lambda r: codec.parse_analogue(r, pin),
+        codec.parse_ultrasound_pulse,
+        codec.parse_ultrasound_distance,
+    ):
+        try:
+            value = parse(reply)
+        except CommunicationError:
+            continue
+        if isinstance(value, float):
+            assert 0 <= value <= 65.535
+    for line in lines:
+        with contextlib.suppress(CommunicationError):
+            codec.check_version(codec.parse_version_line(line))
+        codec.is_final_line(line)
+        with contextlib.suppress(CommunicationError):
+            codec.reply_to(b"@1 R 2\n").parse(line)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(max_size=30))
+def test_number_parsers_on_arbitrary_text(text: str) -> None:
+    for parse in (
+        lambda r: codec.parse_analogue(r, 14),
+        codec.parse_ultrasound_pulse,
+        codec.parse_ultrasound_distance,
+    ):
+        data = (f"a0 {text}",) if parse is not codec.parse_ultrasound_pulse else (text,)
+        with contextlib.suppress(CommunicationError):
+            parse(codec.Reply(data))

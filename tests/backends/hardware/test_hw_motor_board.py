@@ -1,3 +1,4 @@
+import anyio
 import pytest
 
 from j5aio.backends.hardware import registry
@@ -121,7 +122,7 @@ async def test_bad_motor_identifiers_send_nothing() -> None:
     await board.close()
 
 
-async def test_a_vanished_port_is_a_disconnection_and_frees_the_port() -> None:
+async def test_a_vanished_port_is_a_disconnection_and_the_board_works_again_when_back() -> None:
     sim = SRMotorBoardFw3Simulator("SR0M")
 
     async def opener(port: str, baudrate: int) -> SimulatorStream:
@@ -136,6 +137,20 @@ async def test_a_vanished_port_is_a_disconnection_and_frees_the_port() -> None:
     sim.unplug()
     with pytest.raises(BoardDisconnectionError):
         await board.backend.set_motor_state(0, 0.5)  # type: ignore[attr-defined]
+    # The board keeps its port, so that nothing else opens it meanwhile.
+    assert registry.holder("sim://motor") is board
+    assert not board.backend.is_connected  # type: ignore[attr-defined]
+    with pytest.raises(BoardDisconnectionError, match="disconnected"):
+        await board.backend.set_motor_state(0, 0.5)  # type: ignore[attr-defined]
+    sim.plug()
+    await anyio.sleep(board.backend.reconnect_policy.interval)  # type: ignore[attr-defined]
+    # Back: the handshake ran again (both motors braked), and the same board works.
+    await board.backend.set_motor_state(1, 0.5)  # type: ignore[attr-defined]
+    assert board.backend.is_connected  # type: ignore[attr-defined]
+    assert board.backend.reconnections == 1  # type: ignore[attr-defined]
+    assert await board.backend.get_motor_state(0) is MotorSpecialState.BRAKE  # type: ignore[attr-defined]
+    assert sim.motors[1].steps == 50
+    await board.close()
     assert registry.holder("sim://motor") is None
-    with pytest.raises(BoardDisconnectionError):
+    with pytest.raises(BoardDisconnectionError, match="closed"):
         await board.backend.set_motor_state(0, 0.5)  # type: ignore[attr-defined]

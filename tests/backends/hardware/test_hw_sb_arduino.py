@@ -1,4 +1,5 @@
 import logging
+import re
 from datetime import timedelta
 from types import SimpleNamespace
 
@@ -27,7 +28,15 @@ from j5aio.testing.transports import RecordingStream, ScriptedStream
 
 Backend = SBArduinoHardwareBackend
 BANNER = b"# Booted\n# SBDuino GPIO v2019.8.0\r\n"
-SETUP = [(f"W {pin} Z\n".encode(), f"# W {pin} Z\n+ OK\r\n".encode()) for pin in range(2, 14)]
+SETUP = [
+    (f"@{n} W {pin} Z\n".encode(), f"# @{n} W {pin} Z\n@{n} + OK\r\n".encode())
+    for n, pin in enumerate(range(2, 14), start=1)
+]
+
+
+def untagged(sent: bytes) -> bytes:
+    """The requests sent, without their request ids."""
+    return re.sub(rb"@[0-9]+ ", b"", sent)
 
 
 async def connect(
@@ -79,6 +88,7 @@ async def test_setup_sends_twelve_input_modes_against_the_simulator() -> None:
     board, _, stream = await connect(sim)
     assert board.firmware_version == "2019.6.0"
     assert stream.sent == b"".join(request for request, _ in SETUP)
+    assert untagged(stream.sent).startswith(b"W 2 Z\nW 3 Z\n")
     assert sim.pin_mode(2).name == "INPUT"
     await board.close()
 
@@ -89,13 +99,13 @@ async def test_digital_output_input_and_led() -> None:
     stream.clear()
     await board.pins[2].set_mode(GPIOPinMode.DIGITAL_OUTPUT)
     await board.pins[2].digital_write(True)
-    assert stream.sent == b"W 2 L\nW 2 H\n"
+    assert untagged(stream.sent) == b"W 2 L\nW 2 H\n"
     assert sim.output_level(2) is True
     assert await board.pins[2].get_last_digital_write() is True
     # The cached level is re-applied when the mode changes back to output.
     await board.pins[2].set_mode(GPIOPinMode.DIGITAL_INPUT_PULLUP)
     await board.pins[2].set_mode(GPIOPinMode.DIGITAL_OUTPUT)
-    assert stream.sent.endswith(b"W 2 P\nW 2 H\n")
+    assert untagged(stream.sent).endswith(b"W 2 P\nW 2 H\n")
     await board.pins[13].set_mode(GPIOPinMode.DIGITAL_OUTPUT)
     await board.led.set_state(True)
     assert sim.output_level(13) is True
@@ -162,7 +172,7 @@ async def test_ultrasound_and_pin_modes_afterwards() -> None:
     sim.set_ultrasound_echo(3, 4, 2345)
     stream.clear()
     assert await backend.get_ultrasound_pulse(3, 4) == timedelta(microseconds=2345)
-    assert stream.sent == b"T 3 4\n"
+    assert untagged(stream.sent) == b"T 3 4\n"
     sim.set_ultrasound_distance(3, 4, 1.23)
     assert await backend.get_ultrasound_distance(3, 4) == 1.23
     assert await backend.get_gpio_pin_mode(3) is GPIOPinMode.DIGITAL_OUTPUT
@@ -182,7 +192,7 @@ async def test_servos_on_2019_6_0_and_refusal_on_2019_8_0() -> None:
     await board.servos[3].set_position(0.0)
     await board.servos[4].set_position(-1.0)
     await board.servos[4].set_position(None)
-    assert stream.sent == b"S 3 350\nS 4 150\nS 4 0\n"
+    assert untagged(stream.sent) == b"S 3 350\nS 4 150\nS 4 0\n"
     assert await board.servos[3].get_position() == 0.0
     assert await backend.get_servo_position(4) is None
     with pytest.raises(ValueError, match="servos 0 to 15"):
@@ -199,10 +209,10 @@ async def test_servos_on_2019_6_0_and_refusal_on_2019_8_0() -> None:
 
 async def test_error_and_garbage_replies() -> None:
     script = [
-        (b"R 2\n", b"# R 2\n- Error: pin must be between 2 and 13\r\n"),
-        (b"R 2\n", b"? garbage\r\n"),
-        (b"A\n", b"> a1 7\r\n+ OK\r\n"),
-        (b"R 2\n", b""),
+        (b"@1 R 2\n", b"# @1 R 2\n@1 - Error: pin must be between 2 and 13\r\n"),
+        (b"@2 R 2\n", b"# @2 R 2\n? garbage\r\n"),
+        (b"@3 A\n", b"# @3 A\n@3 > a1 7\r\n@3 + OK\r\n"),
+        (b"@4 R 2\n", b""),
     ]
     stream = ScriptedStream(script, banner=BANNER)
     board = await Backend.from_stream(stream, port="scripted", serial_number="A1")

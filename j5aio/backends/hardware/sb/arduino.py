@@ -4,20 +4,25 @@ Handshake: the board reboots when the port opens; lines are read until the first
 non-empty one, which must be ``# Booted``, then the version line
 (``# SBDuino GPIO v2019.8.0``), all within 33 s times the time scale. The pins' initial
 modes are then applied by the board's ``setup()``.
+
+Correlation guarantee: every request carries a request id (``@<n> ``, cycling through
+1 to 32767), and a reply is taken only if its echo or final line carries that id. A reply
+that arrives after its request timed out is skipped by later requests however late it
+comes, so it is never taken as their answer (unless 32767 requests have gone meanwhile).
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from datetime import timedelta
 from typing import ClassVar
 
 import anyio
 
 from j5aio.backends.hardware.arduino import ArduinoHardwareBackend
-from j5aio.backends.hardware.arduino_pins import DIGITAL_PINS
+from j5aio.backends.hardware.arduino_pins import DIGITAL_PINS, DigitalPinState
 from j5aio.backends.hardware.sb import arduino_2019_codec as codec
 from j5aio.backends.hardware.serial_backend import scaled
-from j5aio.backends.hardware.transports.readers import read_lines_until
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.boards.sb.arduino import SBArduinoBoard
 from j5aio.components.derived.ultrasound import UltrasoundInterface
@@ -31,10 +36,10 @@ from j5aio.errors import (
 
 __all__ = ["SBArduinoHardwareBackend"]
 
-_REPLY = read_lines_until(codec.is_final_line)
 
-
-class SBArduinoHardwareBackend(ServoInterface, UltrasoundInterface, ArduinoHardwareBackend):
+class SBArduinoHardwareBackend(
+    ServoInterface, UltrasoundInterface, ArduinoHardwareBackend[SBArduinoBoard],
+):
     """Drives a SourceBots Arduino over the 2019 line protocol."""
 
     board = SBArduinoBoard
@@ -52,6 +57,12 @@ class SBArduinoHardwareBackend(ServoInterface, UltrasoundInterface, ArduinoHardw
     def __init__(self, link: SerialLink, *, port: str) -> None:
         super().__init__(link, port=port)
         self._servos: list[ServoPosition] = [None] * codec.SERVO_COUNT
+        self._request_id = 0
+
+    def reset_board_state(self) -> None:
+        """Forget what was remembered: pins are inputs and servos unpowered after a reset."""
+        super().reset_board_state()
+        self._servos = [None] * codec.SERVO_COUNT
 
     async def _handshake(self, *, time_scale: float) -> None:
         limit = scaled(self.BOOT_TIMEOUT, time_scale)
@@ -75,13 +86,38 @@ class SBArduinoHardwareBackend(ServoInterface, UltrasoundInterface, ArduinoHardw
         codec.check_version(version)
         self._firmware_version = version
 
-    async def _command(self, request: bytes, timeout: float | None = None) -> codec.Reply:
-        """Send a request and return the data of its reply."""
-        return codec.parse_reply(await self._exchange(request, _REPLY, timeout))
+    def _next_request_id(self) -> int:
+        self._request_id = self._request_id % codec.MAX_REQUEST_ID + 1
+        return self._request_id
 
-    async def _apply_pin(self, identifier: int, *, mode_changed: bool) -> None:
-        state = self._pins.digital(identifier)
-        await self._command(codec.encode_pin_state(identifier, state.mode, state.level))
+    async def _command(
+        self,
+        request: bytes,
+        timeout: float | None = None,
+        then: Callable[[codec.Reply], None] | None = None,
+    ) -> codec.Reply:
+        """Send a request (with a fresh request id) and return the data of its reply.
+
+        :param then: called with the reply once the board has accepted the command
+            (``+ OK``), even if the caller has been cancelled meanwhile.
+        """
+        tagged = codec.with_request_id(request, self._next_request_id())
+
+        def parse(lines: list[bytes]) -> codec.Reply:
+            reply = codec.parse_reply(lines)
+            if then is not None:
+                then(reply)
+            return reply
+
+        return await self._exchange(tagged, codec.reply_to(tagged), timeout, then=parse)
+
+    async def _apply_pin(
+        self, identifier: int, wanted: DigitalPinState, *, mode_changed: bool
+    ) -> None:
+        await self._command(
+            codec.encode_pin_state(identifier, wanted.mode, wanted.level),
+            then=lambda _: self._remember_pin(identifier, wanted.mode, wanted.level),
+        )
 
     async def _read_digital(self, identifier: int) -> bool:
         return codec.parse_digital(await self._command(codec.encode_digital_read(identifier)))
@@ -106,8 +142,11 @@ class SBArduinoHardwareBackend(ServoInterface, UltrasoundInterface, ArduinoHardw
         """Move a servo (``S``; firmware 2019.6.0 with the servo shield only)."""
         self._check_servo(identifier)
         request = codec.encode_servo(identifier, position)
-        await self._command(request)
-        self._servos[identifier] = position
+
+        def remember(_: codec.Reply) -> None:
+            self._servos[identifier] = position
+
+        await self._command(request, then=remember)
 
     # -- ultrasound ---------------------------------------------------------------------
 
@@ -122,18 +161,15 @@ class SBArduinoHardwareBackend(ServoInterface, UltrasoundInterface, ArduinoHardw
 
     def _ultrasound_done(self, trigger: int, echo: int) -> None:
         """Remember the modes the firmware left the pins in: trigger low output, echo input."""
-        trigger_state = self._pins.digital(trigger)
-        trigger_state.mode = GPIOPinMode.DIGITAL_OUTPUT
-        trigger_state.level = False
-        self._pins.digital(echo).mode = GPIOPinMode.DIGITAL_INPUT
+        self._remember_pin(trigger, GPIOPinMode.DIGITAL_OUTPUT, False)
+        self._remember_pin(echo, GPIOPinMode.DIGITAL_INPUT, self._pins.digital(echo).level)
 
     async def _ultrasound(self, trigger: int, echo: int, *, distance: bool) -> codec.Reply:
         self._check_ultrasound_pins(trigger, echo)
         request = codec.encode_ultrasound(trigger, echo, distance=distance)
-        try:
-            return await self._command(request, self.ULTRASOUND_TIMEOUT)
-        finally:
-            self._ultrasound_done(trigger, echo)
+        return await self._command(
+            request, self.ULTRASOUND_TIMEOUT, then=lambda _: self._ultrasound_done(trigger, echo)
+        )
 
     async def get_ultrasound_pulse(
         self,

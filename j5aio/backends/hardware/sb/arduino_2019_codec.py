@@ -9,10 +9,17 @@ This module does no I/O: the hardware backend and the SB Arduino simulator both 
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from datetime import timedelta
 from typing import Final
 
+from j5aio.backends.hardware.transports.readers import (
+    LinesUntilReader,
+    MatchingReader,
+    matching,
+    read_lines_until,
+)
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
 
@@ -20,6 +27,7 @@ __all__ = [
     "ANALOGUE_CHANNELS",
     "BOARD_NAME",
     "BOOT_LINE",
+    "MAX_REQUEST_ID",
     "MINIMUM_VERSION",
     "SERVO_COUNT",
     "SUPPORTED_VERSIONS",
@@ -39,7 +47,9 @@ __all__ = [
     "parse_ultrasound_distance",
     "parse_ultrasound_pulse",
     "parse_version_line",
+    "reply_to",
     "servo_level",
+    "with_request_id",
 ]
 
 #: The board's name in errors.
@@ -60,6 +70,16 @@ _ADC_STEPS = 1024
 _ADC_REFERENCE = 5.0
 _SERVO_MIN = 150
 _SERVO_MAX = 550
+#: The largest request id (the firmware holds it in a 16-bit signed int; 0 means none).
+MAX_REQUEST_ID: Final = 32767
+
+_ID_PREFIX = re.compile(rb"@-?[0-9]+ ")
+_ADC_READING = re.compile(r"[0-9]{1,4}")
+_MILLIMETRES = re.compile(r"[0-9]{1,5}")
+_MICROSECONDS = re.compile(r"[0-9]{1,10}(?:\.[0-9]{1,2})?")
+_VERSION_PART = re.compile(r"[0-9]{1,9}")
+_UINT16_MAX = 65535
+_UINT32_MAX = 2**32 - 1
 
 
 class ArduinoError(CommunicationError):
@@ -73,14 +93,40 @@ class Reply:
     data: tuple[str, ...]
 
 
-def encode_command(letter: str, *args: object) -> bytes:
+def encode_command(letter: str, *args: object, request_id: int | None = None) -> bytes:
     r"""Return the request line: the letter and the arguments, space separated, then ``\n``.
 
-    :raises ValueError: ``letter`` is not exactly one character.
+    :param request_id: prefix the request with ``@<request_id> `` (1 to 32767), so that
+        its echo and reply lines carry it.
+    :raises ValueError: ``letter`` is not exactly one character, or a bad request id.
     """
     if len(letter) != 1:
         raise ValueError(f"an SB Arduino command is one character, not {letter!r}")
-    return (" ".join([letter, *map(str, args)]) + "\n").encode("ascii")
+    words = [letter, *map(str, args)]
+    if request_id is not None:
+        if not 1 <= request_id <= MAX_REQUEST_ID:
+            raise ValueError(f"a request id is 1 to {MAX_REQUEST_ID}, not {request_id!r}")
+        words.insert(0, f"@{request_id}")
+    return (" ".join(words) + "\n").encode("ascii")
+
+
+def with_request_id(request: bytes, request_id: int) -> bytes:
+    """Return ``request`` (a line made by an ``encode_`` function) with a request id.
+
+    :raises ValueError: a bad request id, or ``request`` already has one.
+    """
+    if not 1 <= request_id <= MAX_REQUEST_ID:
+        raise ValueError(f"a request id is 1 to {MAX_REQUEST_ID}, not {request_id!r}")
+    if request.startswith(b"@"):
+        raise ValueError(f"{request!r} already has a request id")
+    return b"@%d " % request_id + request
+
+
+def _strip_id(line: bytes) -> bytes:
+    if not line.startswith(b"@"):
+        return line
+    match = _ID_PREFIX.match(line)
+    return line[match.end() :] if match else line
 
 
 def encode_pin_state(pin: int, mode: GPIOPinMode, state: bool) -> bytes:
@@ -141,24 +187,53 @@ def encode_servo(servo: int, position: float | None) -> bytes:
 def is_final_line(line: bytes) -> bool:
     """Whether ``line`` ends a reply: anything but a ``#`` or ``>`` line or a blank one.
 
-    A reply ends with ``+ OK`` or ``- Error…``; any other unexpected line ends it too,
-    so that :func:`parse_reply` reports it at once rather than after a timeout.
+    A reply ends with ``+ OK`` or ``- Error…`` (after any ``@<n> `` request id); any
+    other unexpected line ends it too, so that :func:`parse_reply` reports it at once
+    rather than after a timeout.
     """
-    stripped = line.strip()
+    stripped = _strip_id(line.strip())
     return bool(stripped) and not stripped.startswith((b"#", b">"))
+
+
+_LINES: Final[LinesUntilReader] = read_lines_until(is_final_line)
+
+
+def reply_to(request: bytes) -> MatchingReader[list[bytes]]:
+    """Return the reader of the reply to ``request``, skipping replies to other requests.
+
+    ``request`` must carry a request id (see :func:`with_request_id`). A reply is taken
+    as this request's when its echo line is ``# <request>`` or its final line starts
+    with the request's ``@<n> ``; whole replies to other requests are skipped.
+
+    :raises ValueError: ``request`` has no request id.
+    """
+    line = request.strip()
+    match = _ID_PREFIX.match(line)
+    if match is None:
+        raise ValueError(f"{request!r} has no request id; see with_request_id")
+    echo = b"# " + b" ".join(line.split())
+    prefix = match.group()
+
+    def answers_request(lines: list[bytes]) -> bool:
+        return lines[-1].strip().startswith(prefix) or any(
+            item.strip() == echo for item in lines
+        )
+
+    answers_request.__name__ = f"answers {line.decode('ascii', 'replace')!r}"
+    return matching(_LINES, answers_request)
 
 
 def parse_reply(lines: list[bytes]) -> Reply:
     """Return the data of a reply's lines, the final ``+``/``-`` line included.
 
-    ``#`` lines (the echo) are skipped.
+    ``#`` lines (the echo) are skipped, and ``@<n> `` request ids removed.
 
     :raises ArduinoError: the board reported an error.
     :raises UnexpectedReplyError: a line that fits no kind of reply line.
     """
     data: list[str] = []
     for raw in lines:
-        line = raw.decode("ascii", errors="replace").strip()
+        line = _strip_id(raw.strip()).decode("ascii", errors="replace").strip()
         code, _, rest = line.partition(" ")
         if code in ("#", ""):
             continue
@@ -167,16 +242,22 @@ def parse_reply(lines: list[bytes]) -> Reply:
         elif code == "+":
             return Reply(tuple(data))
         elif code.startswith("-"):
-            raise ArduinoError(f"the SB Arduino reported an error: {line.lstrip('- ')}")
+            raise ArduinoError(f"the {BOARD_NAME} reported an error: {line.lstrip('- ')}")
         else:
-            raise UnexpectedReplyError(f"the SB Arduino sent an unrecognised line: {line!r}")
-    raise UnexpectedReplyError(f"the SB Arduino's reply has no final '+' or '-' line: {lines!r}")
+            raise UnexpectedReplyError(f"the {BOARD_NAME} sent an unrecognised line: {line!r}")
+    raise UnexpectedReplyError(f"the {BOARD_NAME}'s reply has no final '+' or '-' line: {lines!r}")
+
+
+def _bad(what: str, value: object, expected: str) -> UnexpectedReplyError:
+    return UnexpectedReplyError(
+        f"the {BOARD_NAME} sent {value!r} as its {what}; expected {expected}",
+    )
 
 
 def _single(reply: Reply, what: str) -> str:
     if len(reply.data) != 1:
         raise UnexpectedReplyError(
-            f"expected one '>' line from the SB Arduino {what}, got {list(reply.data)!r}",
+            f"expected one '>' line from the {BOARD_NAME} {what}, got {list(reply.data)!r}",
         )
     return reply.data[0]
 
@@ -191,11 +272,15 @@ def parse_digital(reply: Reply) -> bool:
         return True
     if value == "L":
         return False
-    raise UnexpectedReplyError(f"expected 'H' or 'L' from the SB Arduino pin read, got {value!r}")
+    raise UnexpectedReplyError(
+        f"expected 'H' or 'L' from the {BOARD_NAME} pin read, got {value!r}",
+    )
 
 
 def parse_analogue(reply: Reply, pin: int) -> float:
     """Return the voltage of analogue ``pin`` (14…17) from an ``A`` reply: ``value / 1024 x 5``.
+
+    Each reading is the decimal ADC value, 0 to 1023, with no sign or padding.
 
     :raises UnexpectedReplyError: the reply has no line for that channel, or it is malformed.
     """
@@ -203,42 +288,39 @@ def parse_analogue(reply: Reply, pin: int) -> float:
     for item in reply.data:
         name, _, reading = item.partition(" ")
         if name == wanted:
-            try:
-                return int(reading) / _ADC_STEPS * _ADC_REFERENCE
-            except ValueError:
-                raise UnexpectedReplyError(
-                    f"expected a number for {wanted} from the SB Arduino, got {reading!r}",
-                ) from None
+            if not _ADC_READING.fullmatch(reading) or int(reading) >= _ADC_STEPS:
+                raise _bad(f"reading of {wanted}", reading, "a number 0 to 1023")
+            return int(reading) / _ADC_STEPS * _ADC_REFERENCE
     raise UnexpectedReplyError(
-        f"the SB Arduino's analogue reply has no reading for {wanted}: {list(reply.data)!r}",
+        f"the {BOARD_NAME}'s analogue reply has no reading for {wanted}: {list(reply.data)!r}",
     )
-
-
-def _number(reply: Reply, what: str) -> float:
-    value = _single(reply, what)
-    try:
-        return float(value)
-    except ValueError:
-        raise UnexpectedReplyError(
-            f"expected a number from the SB Arduino {what}, got {value!r}",
-        ) from None
 
 
 def parse_ultrasound_pulse(reply: Reply) -> timedelta | None:
     """Return the echo time of a ``T`` reply, or ``None`` when no echo came (0).
 
-    :raises UnexpectedReplyError: the reply is not one number.
+    The firmware prints microseconds, optionally with up to two decimals.
+
+    :raises UnexpectedReplyError: the reply is not one such number of 32-bit range.
     """
-    microseconds = _number(reply, "ultrasound pulse")
+    value = _single(reply, "ultrasound pulse")
+    if not _MICROSECONDS.fullmatch(value) or float(value) > _UINT32_MAX:
+        raise _bad("ultrasound pulse", value, "microseconds, 0 to 4294967295")
+    microseconds = float(value)
     return None if microseconds == 0 else timedelta(microseconds=microseconds)
 
 
 def parse_ultrasound_distance(reply: Reply) -> float | None:
     """Return the distance in metres of a ``U`` reply, or ``None`` when no echo came (0).
 
-    :raises UnexpectedReplyError: the reply is not one number.
+    The firmware prints whole millimetres, 0 to 65535.
+
+    :raises UnexpectedReplyError: the reply is not one such number.
     """
-    millimetres = _number(reply, "ultrasound distance")
+    value = _single(reply, "ultrasound distance")
+    if not _MILLIMETRES.fullmatch(value) or int(value) > _UINT16_MAX:
+        raise _bad("ultrasound distance", value, "whole millimetres, 0 to 65535")
+    millimetres = int(value)
     return None if millimetres == 0 else millimetres / 1000
 
 
@@ -262,9 +344,9 @@ def check_version(version: str) -> tuple[int, int, int]:
     :raises UnsupportedFirmwareError: not three integers, or older than 2019.6.0.
     """
     parts = version.split(".")
-    try:
+    if all(_VERSION_PART.fullmatch(part) for part in parts):
         numbers = tuple(int(part) for part in parts)
-    except ValueError:
+    else:
         numbers = ()
     if len(numbers) != 3 or numbers < MINIMUM_VERSION:
         raise UnsupportedFirmwareError(BOARD_NAME, version, SUPPORTED_VERSIONS)

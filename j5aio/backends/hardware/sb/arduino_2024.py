@@ -30,7 +30,7 @@ __all__ = ["SBArduino2024HardwareBackend"]
 _LINE = read_line()
 
 
-class SBArduino2024HardwareBackend(ArduinoGPIOBackend):
+class SBArduino2024HardwareBackend(ArduinoGPIOBackend[SBArduino2024Board]):
     """Drives a SourceBots Arduino over the sb2024 colon protocol."""
 
     board = SBArduino2024Board

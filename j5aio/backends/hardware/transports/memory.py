@@ -155,6 +155,7 @@ class SimulatorStream(ByteStream):
         self._pending: deque[tuple[float, bytes]] = deque()
         self._last_due = time.monotonic()
         self._wakeup: anyio.Event | None = None
+        self._connection = getattr(simulator, "connection", None)
         self._queue_output(simulator.open(), after=simulator.boot_delay * time_scale)
 
     @property
@@ -210,7 +211,12 @@ class SimulatorStream(ByteStream):
     def _check_usable(self) -> None:
         if self._closed:
             raise BoardDisconnectionError(f"{self._name}: the stream is closed")
-        if not self._simulator.connected:
+        if (
+            not self._simulator.connected
+            or getattr(self._simulator, "connection", None) != self._connection
+        ):
+            # Unplugged, or unplugged and back since this port was opened: like a real
+            # port, this one is dead for good; the board must be opened again.
             self._pending.clear()
             raise BoardDisconnectionError(
                 f"{self._name}: the simulated board has been disconnected"

@@ -9,6 +9,11 @@ be kept at module level and shared::
 
     line = await link.exchange(b"v", read_line(), timeout=0.5)    # Ruggeduino
     version = await link.exchange(b"\x01", read_line(), timeout=0.25)  # motor fw 3
+
+**Correlation.** A reader that can tell its own reply from a late reply to an earlier
+request says so with :attr:`ReplyReader.correlates` (see :func:`matching`): the link
+then needs no guess about when the line is quiet, since the reader itself skips whole
+replies that belong to other requests.
 """
 
 from __future__ import annotations
@@ -24,8 +29,10 @@ __all__ = [
     "ExactReader",
     "LineReader",
     "LinesUntilReader",
+    "MatchingReader",
     "ReplyReader",
     "line_starts_with",
+    "matching",
     "read_exactly",
     "read_line",
     "read_lines_until",
@@ -53,6 +60,15 @@ class ReplyReader(abc.ABC, Generic[T_co]):
     @abc.abstractmethod
     def describe(self) -> str:
         """Say in a few words what this reader waits for, for error messages."""
+
+    @property
+    def correlates(self) -> bool:
+        """Whether this reader recognises, and skips, replies to other requests.
+
+        False by default: a reader that only finds where a reply ends cannot tell a late
+        reply to an earlier request from its own.
+        """
+        return False
 
 
 def _split_line(
@@ -218,3 +234,59 @@ def line_starts_with(*prefixes: bytes) -> Callable[[bytes], bool]:
 
     starts_with_prefix.__name__ = f"line_starts_with{prefixes!r}"
     return starts_with_prefix
+
+
+#: The most whole foreign replies a :class:`MatchingReader` skips before giving up.
+DEFAULT_MAX_SKIPPED = 32
+
+
+@dataclass(frozen=True)
+class MatchingReader(ReplyReader[T_co]):
+    """Replies of ``reader`` that ``belongs`` accepts; others are skipped whole.
+
+    See :func:`matching`.
+    """
+
+    reader: ReplyReader[T_co]
+    belongs: Callable[[T_co], bool]
+    max_skipped: int = DEFAULT_MAX_SKIPPED
+
+    def parse(self, buffer: bytes | bytearray) -> tuple[T_co, int] | None:
+        """Return the first reply in ``buffer`` that belongs to this request."""
+        position = 0
+        for _ in range(self.max_skipped + 1):
+            parsed = self.reader.parse(buffer[position:])
+            if parsed is None:
+                return None
+            reply, used = parsed
+            position += used
+            if self.belongs(reply):
+                return reply, position
+        raise UnexpectedReplyError(
+            f"received {self.max_skipped + 1} replies that belong to other requests"
+        )
+
+    def describe(self) -> str:
+        """Describe this reader."""
+        name = getattr(self.belongs, "__name__", repr(self.belongs))
+        return f"{self.reader.describe()}, for which {name} holds"
+
+    @property
+    def correlates(self) -> bool:
+        """Always true: foreign replies are recognised and skipped."""
+        return True
+
+
+def matching(
+    reader: ReplyReader[T_co],
+    belongs: Callable[[T_co], bool],
+    *,
+    max_skipped: int = DEFAULT_MAX_SKIPPED,
+) -> MatchingReader[T_co]:
+    """Read replies with ``reader``, skipping whole those for which ``belongs`` is false.
+
+    For a firmware that marks each reply with something of its request (an echo, a
+    request id): a reply that arrives after its request timed out is then skipped by the
+    next request instead of being taken as its answer, whatever its timing.
+    """
+    return MatchingReader(reader, belongs, max_skipped)

@@ -35,11 +35,37 @@ buffer when an exchange starts (the rest of a boot banner, extra bytes after a r
 are never a reply to the new request: they are discarded, and extra bytes after a reply
 mark the link dirty.
 
-**Cancel through anyio.** ``asyncio.Task.cancel()`` breaks through anyio shields. Cancel
-tasks that use a link through anyio cancel scopes (``move_on_after``, ``fail_after``,
-task groups). If a shielded exchange is torn anyway, the link is marked dirty, so the
-torn exchange's reply is drained rather than taken by the next caller (as long as it
-arrives within the quiet time of the next exchange's drain).
+**Native asyncio cancellation.** ``asyncio.Task.cancel()`` (used by ``asyncio.timeout``
+and ``asyncio.wait_for``) breaks through anyio shields. So, once the lock is held, the
+exchange runs to completion (:func:`~.completion.run_to_completion`) in a task that no
+caller's cancellation reaches; the caller waits for it either way and is cancelled
+afterwards. For an exchange that task is made only when needed (a task for every
+exchange would cost tens of microseconds): the exchange runs in the caller's task, and
+if ``Task.cancel`` tears it after its request has gone, a task of its own reads the reply
+to its end, by the same deadline, while the caller waits. (A stream sends all of a
+request or, cancelled, none of it, so a request torn before it went needs no reply.) An
+exchange is therefore never torn half way, whoever cancels. A ``then`` callback given to
+:meth:`~SerialLink.exchange` or :meth:`~SerialLink.send` runs as soon as the board has
+answered (or the bytes have gone), even for a cancelled caller: that is where a backend
+updates what it remembers of the board, so its caches change when, and only when, the
+board has been told.
+
+**Correlation: which reply belongs to which request.** After a timeout the reply may
+still be on its way, and the next request must not take it. Each protocol gets the
+strongest rule its firmware allows:
+
+1. *Correlated replies.* A reader whose :attr:`~.readers.ReplyReader.correlates` is
+   true (see :func:`~.readers.matching`) recognises replies to other requests and skips
+   them, however late they come. A dirty link then needs no draining at all (the SB
+   Arduino 2019 firmware: request ids and command echoes).
+2. *A resynchronisation probe.* Where nothing in a reply names its request, a backend
+   can name a harmless probe whose answer is known (:meth:`~SerialLink.set_resync`).
+   The first exchange or send on a dirty link sends the probe and discards every byte up
+   to and including the known answer. The board answers in order, so everything owed
+   to earlier requests came before it (the Ruggeduino's ``v``, the motor board's
+   ``00 01``).
+3. *Otherwise,* input is discarded until the line has been quiet for ``quiet_time``.
+   This is a guess about timing, and only as good as the guess.
 
 **Errors.** A timeout raises :class:`~j5aio.errors.CommunicationTimeoutError` naming the
 port and what was sent; a vanished port raises
@@ -53,9 +79,11 @@ from a stream is wrapped in :class:`~j5aio.errors.CommunicationError`.
 
 from __future__ import annotations
 
+import asyncio
 import logging
 import math
-from typing import TypeVar
+from collections.abc import Callable
+from typing import Any, TypeVar, overload
 
 import anyio
 from anyio.abc import AsyncResource
@@ -67,13 +95,25 @@ from j5aio.errors import (
     UnexpectedReplyError,
 )
 
+from .completion import run_to_completion
 from .readers import ReplyReader, read_line
 from .stream import ByteStream
 from .trace import log_wire, wire_logger
 
 __all__ = ["SerialLink"]
 
+
+class _Progress:
+    """How far an exchange got: ``deadline`` is set once its request has gone."""
+
+    __slots__ = ("deadline", "seconds")
+
+    def __init__(self) -> None:
+        self.deadline: float | None = None
+        self.seconds = 0.0
+
 T = TypeVar("T")
+U = TypeVar("U")
 
 _log = logging.getLogger(__name__)
 
@@ -126,6 +166,7 @@ class SerialLink(AsyncResource):
         self._dirty = False
         self._closed = False
         self._wire = wire_logger(self._name)
+        self._resync: tuple[bytes, bytes] | None = None
 
     # -- state ---------------------------------------------------------------------------
 
@@ -162,60 +203,148 @@ class SerialLink(AsyncResource):
         """
         self._dirty = True
 
+    @property
+    def resync_probe(self) -> tuple[bytes, bytes] | None:
+        """The ``(probe, answer)`` used to resynchronise a dirty link, if one is set."""
+        return self._resync
+
+    def set_resync(self, probe: bytes, answer: bytes) -> None:
+        """Resynchronise a dirty link by sending ``probe`` and waiting for ``answer``.
+
+        For a protocol whose replies cannot be told apart: ``probe`` must change nothing
+        on the board, and ``answer`` must be the exact bytes the board sends back (a
+        version line, say). The first exchange or send on a dirty link then sends
+        ``probe`` and discards input up to and including ``answer``, for at most
+        ``drain_limit`` seconds, instead of waiting for a quiet line.
+
+        :raises ValueError: an empty probe or answer.
+        """
+        if not probe or not answer:
+            raise ValueError("a resynchronisation probe and its answer must not be empty")
+        self._resync = (bytes(probe), bytes(answer))
+
     # -- requests ------------------------------------------------------------------------
 
-    async def send(self, data: bytes, *, timeout: float | None = None) -> None:
+    async def send(
+        self,
+        data: bytes,
+        *,
+        timeout: float | None = None,
+        then: Callable[[], None] | None = None,
+    ) -> None:
         """Send ``data`` with no reply expected (for example a motor speed command).
 
-        Serialised with the exchanges, and shielded like them: a cancelled caller never
-        leaves a command half sent.
+        Serialised with the exchanges, and run to completion like them: a cancelled
+        caller never leaves a command half sent.
 
+        :param then: called once the bytes have gone, even if the caller has been
+            cancelled meanwhile (to update what a backend remembers).
         :raises CommunicationTimeoutError: the bytes could not be sent in time.
         :raises BoardDisconnectionError: the port has gone or the link is closed.
         """
         seconds = self._timeout(timeout)
         data = bytes(data)
         async with self._lock:
-            with anyio.CancelScope(shield=True):
-                self._check_open()
-                finished = False
-                try:
-                    with anyio.move_on_after(seconds):
-                        await self._write(data)
-                        finished = True
-                        return
-                    raise CommunicationTimeoutError(
-                        f"{self._name}: could not send {_preview(data)} within {seconds} s"
-                    )
-                finally:
-                    if not finished:
-                        self._dirty = True
+            await run_to_completion(lambda: self._send_locked(data, seconds, then))
 
+    async def _send_locked(
+        self, data: bytes, seconds: float, then: Callable[[], None] | None
+    ) -> None:
+        self._check_open()
+        finished = False
+        try:
+            if self._dirty and self._resync is not None:
+                await self._resync_locked()
+            with anyio.move_on_after(seconds):
+                await self._write(data)
+                finished = True
+            if not finished:
+                raise CommunicationTimeoutError(
+                    f"{self._name}: could not send {_preview(data)} within {seconds} s"
+                )
+        finally:
+            if not finished:
+                self._dirty = True
+        if then is not None:
+            then()
+
+    @overload
     async def exchange(
         self, request: bytes, reader: ReplyReader[T], *, timeout: float | None = None
-    ) -> T:
+    ) -> T: ...
+
+    @overload
+    async def exchange(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        *,
+        timeout: float | None = None,
+        then: Callable[[T], U],
+    ) -> U: ...
+
+    async def exchange(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        *,
+        timeout: float | None = None,
+        then: Callable[[T], object] | None = None,
+    ) -> object:
         """Send ``request`` and return the reply that ``reader`` parses.
 
-        The exchange is shielded from cancellation, with ``timeout`` applying inside the
-        shield, so a cancelled caller's exchange still completes and consumes its reply.
-        If the link is dirty, input is first drained until the line is quiet (this does
-        not count towards ``timeout``).
+        Once the link's lock is held, the exchange runs to completion whoever cancels
+        the caller (anyio or ``Task.cancel``), with ``timeout`` applying inside, so a
+        cancelled caller's exchange still consumes its own reply. A dirty link is first
+        cleaned (see the module's notes; this does not count towards ``timeout``).
 
         :param request: the bytes to send; ``b""`` only reads a reply.
         :param reader: where the reply ends, e.g. :func:`~.readers.read_line`.
         :param timeout: seconds allowed for sending and the whole reply; defaults to
             the link's ``default_timeout``.
+        :param then: called with the reply as soon as it has arrived, even if the caller
+            has been cancelled meanwhile; its result is returned instead of the reply,
+            and its exceptions reach the caller. Parse the reply and update caches here.
         :raises CommunicationTimeoutError: no complete reply in time; the link becomes dirty.
         :raises UnexpectedReplyError: ``reader`` could not parse what arrived.
         :raises BoardDisconnectionError: the port has gone or the link is closed.
-        :raises CommunicationError: the line never went quiet while draining.
+        :raises CommunicationError: the line never went quiet, or the resynchronisation
+            probe was not answered.
         """
         seconds = self._timeout(timeout)
         request = bytes(request)
+        progress = _Progress()
         async with self._lock:
             with anyio.CancelScope(shield=True):
-                reply = await self._exchange_locked(request, reader, seconds)
-        return reply
+                try:
+                    reply = await self._exchange_locked(request, reader, seconds, progress)
+                except asyncio.CancelledError:
+                    # Task.cancel broke through the shield. Once the request has gone,
+                    # its reply is read (and ``then`` run) in a task of its own, which
+                    # the caller waits for before being cancelled; before that, nothing
+                    # was sent (a stream sends all or, cancelled, nothing).
+                    if progress.deadline is not None:
+                        await self._finish_torn(request, reader, progress, then)
+                    raise
+                result = reply if then is None else then(reply)
+        return result
+
+    async def _finish_torn(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        progress: _Progress,
+        then: Callable[[T], object] | None,
+    ) -> None:
+        async def finish() -> None:
+            reply = await self._finish_reply(request, reader, progress)
+            if then is not None:
+                then(reply)
+
+        try:
+            await run_to_completion(finish)
+        except Exception as exc:
+            _log.debug("%s: the reply to a cancelled caller's %r: %r", self._name, request, exc)
 
     async def read(self, reader: ReplyReader[T], *, timeout: float | None = None) -> T:
         """Read what ``reader`` parses without sending anything (a boot banner, say).
@@ -287,35 +416,99 @@ class SerialLink(AsyncResource):
         if self._closed:
             raise BoardDisconnectionError(f"{self._name}: the link is closed")
 
-    async def _exchange_locked(self, request: bytes, reader: ReplyReader[T], seconds: float) -> T:
+    async def _exchange_locked(
+        self, request: bytes, reader: ReplyReader[T], seconds: float, progress: _Progress
+    ) -> T:
         self._check_open()
         finished = False
         try:
-            if self._dirty:
+            if reader.correlates:
+                pass  # foreign replies, late or left over, are recognised and skipped
+            elif self._dirty and self._resync is not None:
+                await self._resync_locked()
+            elif self._dirty:
                 await self._drain_locked(self._quiet_time, self._drain_limit)
-            if self._buffer:
+            if self._buffer and not reader.correlates:
                 _log.debug("%s: discarding stale input %s", self._name, _preview(self._buffer))
                 self._buffer.clear()
             with anyio.move_on_after(seconds):
+                deadline = anyio.current_time() + seconds
                 await self._write(request)
+                progress.deadline, progress.seconds = deadline, seconds
                 reply = await self._read_reply(reader, request)
                 finished = True
-                if self._buffer:
-                    _log.debug(
-                        "%s: reply to %r followed by %s; the next exchange drains first",
-                        self._name,
-                        request,
-                        _preview(self._buffer),
-                    )
-                    self._dirty = True
+                self._after_reply(request, reader)
                 return reply
-            raise CommunicationTimeoutError(
-                f"{self._name}: no complete reply ({reader.describe()}) to {_preview(request)} "
-                f"within {seconds} s (received so far: {_preview(self._buffer)})"
-            )
+            raise self._timed_out(request, reader, seconds)
         finally:
             if not finished:
                 self._dirty = True
+
+    async def _finish_reply(
+        self, request: bytes, reader: ReplyReader[T], progress: _Progress
+    ) -> T:
+        """Read the reply to ``request`` (already sent) by the exchange's deadline."""
+        assert progress.deadline is not None
+        finished = False
+        try:
+            with anyio.move_on_after(max(0.0, progress.deadline - anyio.current_time())):
+                reply = await self._read_reply(reader, request)
+                finished = True
+                self._after_reply(request, reader)
+                return reply
+            raise self._timed_out(request, reader, progress.seconds)
+        finally:
+            if not finished:
+                self._dirty = True
+
+    def _after_reply(self, request: bytes, reader: ReplyReader[Any]) -> None:
+        # The line was clean when the exchange began (drained, resynchronised, or
+        # correlated), so it is dirty now only if more than the reply came.
+        self._dirty = False
+        if self._buffer and not reader.correlates:
+            _log.debug(
+                "%s: reply to %r followed by %s; the next exchange drains first",
+                self._name,
+                request,
+                _preview(self._buffer),
+            )
+            self._dirty = True
+
+    def _timed_out(
+        self, request: bytes, reader: ReplyReader[Any], seconds: float
+    ) -> CommunicationTimeoutError:
+        return CommunicationTimeoutError(
+            f"{self._name}: no complete reply ({reader.describe()}) to {_preview(request)} "
+            f"within {seconds:g} s (received so far: {_preview(self._buffer)})"
+        )
+
+    async def _resync_locked(self) -> None:
+        """Send the probe and discard input up to and including its known answer."""
+        assert self._resync is not None
+        probe, answer = self._resync
+        discarded = 0
+        with anyio.move_on_after(self._drain_limit):
+            await self._write(probe)
+            while (found := self._buffer.find(answer)) < 0:
+                keep = len(answer) - 1
+                if len(self._buffer) > keep:
+                    discarded += len(self._buffer) - keep
+                    del self._buffer[: len(self._buffer) - keep]
+                self._buffer += await self._receive()
+            discarded += found
+            del self._buffer[: found + len(answer)]
+            _log.debug(
+                "%s: resynchronised with %r (discarded %d stale bytes)",
+                self._name,
+                probe,
+                discarded,
+            )
+            self._dirty = False
+            return
+        raise CommunicationError(
+            f"{self._name}: could not resynchronise with the board: its answer {answer!r} "
+            f"to {probe!r} did not come within {self._drain_limit} s"
+        )
 
     async def _read_reply(self, reader: ReplyReader[T], request: bytes) -> T:
         while True:

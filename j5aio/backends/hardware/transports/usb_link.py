@@ -10,6 +10,10 @@ Cancellation: a transfer is a job on the thread's queue with its own future.
 * A caller cancelled once its job has started is released at once; the transfer
   completes on the thread and its result is dropped.
 * Results travel only through the job's own future, so they never reach another caller.
+* A ``then`` callback given with a transfer runs on the event loop as soon as the
+  transfer has succeeded, even if its caller was cancelled meanwhile (anyio or
+  ``Task.cancel``): backends update what they remember of the board there, so their
+  caches change when, and only when, the board has been told.
 
 Errors: a pyusb error becomes :class:`~j5aio.errors.USBCommunicationError` naming the
 board, with the pyusb exception kept as ``usb_error``. errno 19 (``ENODEV``: unplugged)
@@ -115,11 +119,16 @@ class _Job(Generic[T]):
     """One transfer waiting for, or running on, the worker thread."""
 
     def __init__(
-        self, work: Callable[[], T], loop: asyncio.AbstractEventLoop, future: asyncio.Future[Any]
+        self,
+        work: Callable[[], T],
+        loop: asyncio.AbstractEventLoop,
+        future: asyncio.Future[Any],
+        then: Callable[[T], object] | None = None,
     ) -> None:
         self.work = work
         self.loop = loop
         self.future = future
+        self.then = then
         self._state = _State.QUEUED
         self._lock = threading.Lock()
 
@@ -138,13 +147,40 @@ class _Job(Generic[T]):
                 self._state = _State.WITHDRAWN
 
     def finish(self, outcome: tuple[bool, Any]) -> None:
-        """Hand ``(succeeded, value_or_exception)`` to the waiting caller, if any."""
-        _post(self.loop, self.future, outcome)
+        """Hand ``(succeeded, value_or_exception)`` to the waiting caller, if any.
+
+        On success ``then`` runs first, on the event loop, whether or not the caller
+        still waits.
+        """
+        if self.then is None or not outcome[0]:
+            _post(self.loop, self.future, outcome)
+            return
+        with contextlib.suppress(RuntimeError):  # the loop has closed: nobody to tell
+            self.loop.call_soon_threadsafe(_then_resolve, self.future, outcome, self.then)
 
 
 def _resolve(future: asyncio.Future[Any], outcome: Any) -> None:
     if not future.done():
         future.set_result(outcome)
+
+
+class _CallbackFailed:
+    """A ``then`` callback raised ``error`` (which is not a transfer error)."""
+
+    def __init__(self, error: Exception) -> None:
+        self.error = error
+
+
+def _then_resolve(
+    future: asyncio.Future[Any], outcome: tuple[bool, Any], then: Callable[[Any], object]
+) -> None:
+    try:
+        then(outcome[1])
+    except Exception as exc:
+        if future.done():
+            _log.debug("a USB transfer's callback failed after its caller left: %r", exc)
+        outcome = (False, _CallbackFailed(exc))
+    _resolve(future, outcome)
 
 
 def _post(loop: asyncio.AbstractEventLoop, future: asyncio.Future[Any], outcome: Any) -> None:
@@ -240,11 +276,14 @@ class USBLink(AsyncResource):
         data: bytes = b"",
         *,
         errors: Mapping[int, str] | None = None,
+        then: Callable[[], None] | None = None,
     ) -> None:
         """Write with a vendor control transfer (0x00, request 64).
 
         :param errors: messages for specific errnos of this transfer, such as
             ``{32: "the piezo queue is full: buzzing too fast"}``.
+        :param then: called once the board has accepted the write, even if the caller
+            has been cancelled meanwhile (see the module's notes).
         """
         payload = bytes(data)
         description = f"writing wIndex {w_index} wValue {w_value} data {payload!r}"
@@ -256,11 +295,15 @@ class USBLink(AsyncResource):
             )
             return written
 
-        written = await self.call(transfer, description=description, errors=errors)
-        if written != len(payload):
-            raise USBCommunicationError(
-                f"{self._board_name}: {description} wrote only {written} bytes"
-            )
+        def accepted(written: int) -> None:
+            if written != len(payload):
+                raise USBCommunicationError(
+                    f"{self._board_name}: {description} wrote only {written} bytes"
+                )
+            if then is not None:
+                then()
+
+        await self.call(transfer, description=description, errors=errors, then=accepted)
 
     async def read_serial_number(self) -> str | None:
         """Read the device's serial number string (a transfer, so on the worker thread)."""
@@ -274,6 +317,7 @@ class USBLink(AsyncResource):
         *,
         description: str,
         errors: Mapping[int, str] | None = None,
+        then: Callable[[T], object] | None = None,
     ) -> T:
         """Run ``work`` on the worker thread, after every transfer asked for before it.
 
@@ -282,10 +326,13 @@ class USBLink(AsyncResource):
 
         :param description: what ``work`` does, for error messages.
         :param errors: messages for specific errnos.
+        :param then: called on the event loop with ``work``'s result once it has
+            succeeded, even if the caller has been cancelled meanwhile; an exception it
+            raises reaches the caller.
         """
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
-        job = _Job(work, loop, future)
+        job = _Job(work, loop, future, then)
         with self._state_lock:
             if self._closed:
                 raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
@@ -298,6 +345,8 @@ class USBLink(AsyncResource):
         if succeeded:
             result: T = value
             return result
+        if isinstance(value, _CallbackFailed):
+            raise value.error
         raise self._translate(value, description, errors or {}) from value
 
     # -- closing -------------------------------------------------------------------------
@@ -322,6 +371,9 @@ class USBLink(AsyncResource):
             self._stop_waiters.append((loop, stopped))
         self._request_stop()
         await stopped
+        # The thread has posted its last word and only returns now: wait for that, so
+        # that a closed link never has a live thread.
+        self._thread.join(1.0)
 
     def _request_stop(self) -> None:
         with self._state_lock:

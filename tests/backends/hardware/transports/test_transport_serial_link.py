@@ -500,22 +500,59 @@ async def test_a_caller_cancelled_while_waiting_for_the_lock_sends_nothing(
         tg.cancel_scope.cancel()
 
 
-async def test_native_task_cancel_that_tears_an_exchange_marks_the_link_dirty(
+async def test_native_task_cancel_does_not_tear_an_exchange(
     peer_pair: tuple[MemoryStream, MemoryStream],
 ) -> None:
     host, board = peer_pair
     link = SerialLink(host, quiet_time=0.02)
+    seen: list[bytes] = []
     async with anyio.create_task_group() as tg:
         await start_peer(tg, board, upper, delay=lambda: 0.01)
-        task = asyncio.ensure_future(link.exchange(b"torn\n", read_line(), timeout=1))
+        task = asyncio.ensure_future(
+            link.exchange(b"torn\n", read_line(), timeout=1, then=seen.append)
+        )
         await anyio.sleep(0.002)
-        task.cancel()  # asyncio-native: breaks through the anyio shield
+        task.cancel()  # asyncio-native: breaks through anyio shields, not through this
         with pytest.raises(asyncio.CancelledError):
             await task
-        assert link.is_dirty
-        # The torn exchange's reply arrives ~8 ms later and is drained, not taken.
+        # The exchange ran to its end: its reply was consumed and its callback ran.
+        assert seen == [b"TORN"]
+        assert not link.is_dirty and link.buffered == b""
         assert await link.exchange(b"next\n", read_line(), timeout=1) == b"NEXT"
         tg.cancel_scope.cancel()
+
+
+async def test_asyncio_timeout_around_an_exchange_becomes_timeout_error(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    seen: list[bytes] = []
+    async with anyio.create_task_group() as tg:
+        await start_peer(tg, board, upper, delay=lambda: 0.02)
+        with pytest.raises(TimeoutError):
+            async with asyncio.timeout(0.005):
+                await link.exchange(b"slow\n", read_line(), timeout=1, then=seen.append)
+        assert seen == [b"SLOW"]
+        assert await asyncio.wait_for(link.exchange(b"x\n", read_line(), timeout=1), 1) == b"X"
+        tg.cancel_scope.cancel()
+
+
+async def test_then_runs_after_a_send_and_its_errors_reach_the_caller(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    sent: list[str] = []
+    await link.send(b"\x02\x80", then=lambda: sent.append("done"))
+    assert sent == ["done"]
+    await board.send(b"reply\n")
+
+    def refuse(reply: bytes) -> None:
+        raise ValueError(f"refused {reply!r}")
+
+    with pytest.raises(ValueError, match="refused b'reply'"):
+        await link.exchange(b"", read_line(), timeout=1, then=refuse)
 
 
 @dataclass
@@ -657,3 +694,54 @@ async def test_the_stress_detects_strays_when_the_exchange_is_not_shielded() -> 
                 strays += reply != b"REP %d" % n
         tg.cancel_scope.cancel()
     assert strays > 0
+
+
+async def test_a_dirty_link_with_a_probe_resynchronises_before_its_next_exchange(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    with pytest.raises(ValueError, match="must not be empty"):
+        link.set_resync(b"", b"x")
+    link.set_resync(b"v\n", b"V\r\n")
+    assert link.resync_probe == (b"v\n", b"V\r\n")
+    async with anyio.create_task_group() as tg:
+        peer = await start_peer(tg, board, upper)
+        await board.send(b"STALE\r\nOLD")  # late replies to requests that timed out
+        link.mark_dirty()
+        assert await link.exchange(b"next\n", read_line(), timeout=1) == b"NEXT"
+        assert not link.is_dirty
+        assert peer.lines == [b"v", b"next"]
+        tg.cancel_scope.cancel()
+
+
+async def test_a_probe_that_is_never_answered_leaves_the_link_dirty(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, _ = peer_pair
+    link = SerialLink(host, drain_limit=0.05)
+    link.set_resync(b"v", b"SRduino:1\n")
+    link.mark_dirty()
+    with pytest.raises(CommunicationError, match="could not resynchronise"):
+        await link.send(b"x")
+    assert link.is_dirty
+
+
+async def test_run_to_completion_logs_the_error_of_a_cancelled_callers_work(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    from j5aio.backends.hardware.transports.completion import run_to_completion
+
+    async def failing() -> None:
+        await anyio.sleep(0.02)
+        raise CommunicationError("the board said no")
+
+    task = asyncio.ensure_future(run_to_completion(failing))
+    await anyio.sleep(0.005)
+    task.cancel()
+    with (
+        caplog.at_level(logging.DEBUG, logger="j5aio.backends.hardware.transports"),
+        pytest.raises(asyncio.CancelledError),
+    ):
+        await task
+    assert "the board said no" in caplog.text

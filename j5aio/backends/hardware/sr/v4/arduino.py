@@ -30,7 +30,9 @@ __all__ = ["SRArduinoHardwareBackend"]
 _LINE = read_line()
 
 
-class SRArduinoHardwareBackend(StringCommandComponentInterface, ArduinoGPIOBackend):
+class SRArduinoHardwareBackend(
+    StringCommandComponentInterface, ArduinoGPIOBackend[SRArduinoBoard],
+):
     """Drives an SR Arduino over the single-character protocol (firmware 2)."""
 
     board = SRArduinoBoard

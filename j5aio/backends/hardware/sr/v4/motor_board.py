@@ -9,6 +9,12 @@ A power ``p`` is sent as ``round(p x 100) + 128``, so the board drives a duty of
 A robot tuned against j5, which sent ``round(p x 125) + 128`` (full speed from 0.8), can
 opt in to j5's bytes with :class:`SRV4MotorBoardJ5ScaleHardwareBackend`, or by setting
 :attr:`SRV4MotorBoardHardwareBackend.SPEED_SCALE` to ``J5_SCALE`` on a subclass.
+
+Correlation guarantee: the board answers only the version query, so no reply can be
+mistaken for another. A motor command that did not go out whole (a timeout part way)
+marks the link dirty; the next command is then preceded by ``00 01``, and the link
+waits for the version line: the ``00`` swallows the half-sent command, and the answer
+shows the board is listening again.
 """
 
 from __future__ import annotations
@@ -46,12 +52,17 @@ class SRV4MotorBoardHardwareBackend(MotorInterface, SerialHardwareBackend):
         super().__init__(link, port=port)
         self._states: list[MotorState] = [MotorSpecialState.BRAKE] * codec.MOTOR_COUNT
 
+    def reset_board_state(self) -> None:
+        """Forget the motor states: the handshake brakes both motors again."""
+        self._states = [MotorSpecialState.BRAKE] * codec.MOTOR_COUNT
+
     async def _handshake(self, *, time_scale: float) -> None:
         line = await self._exchange(codec.RESYNC_AND_VERSION_QUERY, _VERSION_LINE)
         version = codec.parse_version_reply(line)
         if version not in codec.SUPPORTED_VERSIONS:
             raise UnsupportedFirmwareError(self.board.name, version, codec.SUPPORTED_VERSIONS)
         self._firmware_version = version
+        self._link.set_resync(codec.RESYNC_AND_VERSION_QUERY, codec.encode_version_reply(version))
         for motor in range(codec.MOTOR_COUNT):
             await self.set_motor_state(motor, MotorSpecialState.BRAKE)
 
@@ -67,8 +78,12 @@ class SRV4MotorBoardHardwareBackend(MotorInterface, SerialHardwareBackend):
     async def set_motor_state(self, identifier: int, power: MotorState) -> None:
         """Set a motor to a power in [-1, 1] (``round(p x SPEED_SCALE) + 128``), BRAKE or COAST."""
         self._check_motor(identifier)
-        await self._send(codec.encode_motor_command(identifier, power, scale=self.SPEED_SCALE))
-        self._states[identifier] = power
+        command = codec.encode_motor_command(identifier, power, scale=self.SPEED_SCALE)
+
+        def remember() -> None:
+            self._states[identifier] = power
+
+        await self._send(command, then=remember)
 
 
 class SRV4MotorBoardJ5ScaleHardwareBackend(SRV4MotorBoardHardwareBackend):

@@ -16,6 +16,7 @@ This module does no I/O: the hardware backend and the motor board simulator both
 
 from __future__ import annotations
 
+import re
 from typing import Final
 
 from j5aio.components.motor import MotorSpecialState, MotorState
@@ -68,6 +69,7 @@ MOTOR_COUNT: Final = 2
 #: What the host sends to ask for the version, resynchronising the parser first.
 RESYNC_AND_VERSION_QUERY: Final = bytes((CMD_RESYNC, CMD_VERSION))
 
+_VERSION = re.compile(r"[0-9]{1,5}")
 #: Speed steps per unit of power that make the duty equal the power (1.0 → 100 %).
 LINEAR_SCALE: Final = 100
 #: j5's speed steps per unit of power: byte-compatible with j5, saturating from 0.8.
@@ -144,11 +146,12 @@ def encode_version_reply(version: str = "3") -> bytes:
 def parse_version_reply(line: bytes) -> str:
     """Return the firmware version from the version line (without its line ending).
 
-    :raises UnexpectedReplyError: the line is not ``MCV4B:<version>``.
+    :raises UnexpectedReplyError: the line is not ``MCV4B:<version>``, the version
+        being a whole number.
     """
     text = line.decode("ascii", errors="replace").rstrip("\r\n")
     model, separator, version = text.partition(":")
-    if model != MODEL or not separator:
+    if model != MODEL or not separator or not _VERSION.fullmatch(version):
         raise UnexpectedReplyError(
             f"expected a motor board version line like '{MODEL}:3', got {text!r}; is this "
             "port really an SR v4 motor board?",

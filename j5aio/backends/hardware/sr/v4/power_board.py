@@ -1,7 +1,9 @@
 """The hardware backend of the SR v4 Power Board, firmware 3 (USB control transfers).
 
 Handshake: one read of ``wIndex`` 9 (4 bytes), which must be 3. The outputs and LEDs
-cannot be read back, so their states are the ones last written (all off at first).
+cannot be read back, so their states are the ones last written; at first they are the
+board's power-up state: outputs off, RUN LED on, ERROR LED off (cleared when the host
+enumerates the board).
 """
 
 from __future__ import annotations
@@ -53,7 +55,12 @@ class SRV4PowerBoardHardwareBackend(
     def __init__(self, link: USBLink, *, key: str) -> None:
         super().__init__(link, key=key)
         self._outputs = [False] * codec.OUTPUT_COUNT
-        self._leds = [False, False]
+        self._leds = [True, False]
+
+    def reset_board_state(self) -> None:
+        """Forget what was remembered: the board is at its power-up state again."""
+        self._outputs = [False] * codec.OUTPUT_COUNT
+        self._leds = [True, False]
 
     async def _handshake(self) -> None:
         version = str(codec.parse_u32(await self._read_command(codec.FIRMWARE_VERSION)))
@@ -81,8 +88,11 @@ class SRV4PowerBoardHardwareBackend(
     async def set_power_output_enabled(self, identifier: int, enabled: bool) -> None:
         """Switch an output on or off."""
         self._check_output(identifier)
-        await self._write(identifier, int(enabled))
-        self._outputs[identifier] = enabled
+
+        def remember() -> None:
+            self._outputs[identifier] = enabled
+
+        await self._write(identifier, int(enabled), then=remember)
 
     async def get_power_output_current(self, identifier: int) -> float:
         """Read the current an output draws, in amperes."""
@@ -99,7 +109,8 @@ class SRV4PowerBoardHardwareBackend(
         """
         self._check_single(identifier, "piezo")
         note = codec.encode_piezo_note(duration, pitch)
-        await self._write(codec.PIEZO_WRITE, 0, note, errors=_PIEZO_ERRORS)
+        # Not idempotent: a note sent again after the board came back would play twice.
+        await self._write(codec.PIEZO_WRITE, 0, note, errors=_PIEZO_ERRORS, idempotent=False)
 
     # -- start button -------------------------------------------------------------------
 
@@ -135,5 +146,8 @@ class SRV4PowerBoardHardwareBackend(
     async def set_led_state(self, identifier: int, state: bool) -> None:
         """Light (``True``) or clear LED 0 (run) or 1 (error)."""
         index = codec.led_write_index(identifier)
-        await self._write(index, int(state))
-        self._leds[identifier] = state
+
+        def remember() -> None:
+            self._leds[identifier] = state
+
+        await self._write(index, int(state), then=remember)

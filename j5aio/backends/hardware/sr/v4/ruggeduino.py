@@ -4,13 +4,25 @@ Handshake: after the port opens the board reboots, so ``v`` is sent and re-sent 
 the answer is empty or late (at most 26 attempts, 1.25 s each, times the time scale);
 the text after the last ``:`` of the answer must be ``1``. The pins' initial modes are
 then applied by the board's ``setup()``.
+
+Correlation guarantee: a reply names nothing of its request (``h``, ``l``, a number or an
+empty line), so after a timeout the link resynchronises with ``v``, whose answer is the
+version line read in the handshake: every byte up to and including that answer is
+discarded, and since the board answers in order, nothing owed to an earlier request can
+come after it. ``v`` is sent only by the handshake and by this probe, so the one
+remaining risk is a probe that itself timed out; its answer, a version line, is no
+valid reply to any pin command, so it fails as an :class:`~j5aio.errors.UnexpectedReplyError`
+rather than being taken as a value. (A team's own firmware answering ``v`` with a line
+that other commands also send would weaken this; string commands get no guarantee.)
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import ClassVar
 
 from j5aio.backends.hardware.arduino import ArduinoHardwareBackend
+from j5aio.backends.hardware.arduino_pins import DigitalPinState
 from j5aio.backends.hardware.serial_backend import scaled
 from j5aio.backends.hardware.sr.v4 import ruggeduino_fw1_codec as codec
 from j5aio.backends.hardware.transports.readers import read_line
@@ -28,9 +40,12 @@ from j5aio.errors import (
 __all__ = ["SRV4RuggeduinoHardwareBackend"]
 
 _LINE = read_line()
+_LINE_WITH_END = read_line(keep_ends=True)
 
 
-class SRV4RuggeduinoHardwareBackend(StringCommandComponentInterface, ArduinoHardwareBackend):
+class SRV4RuggeduinoHardwareBackend(
+    StringCommandComponentInterface, ArduinoHardwareBackend[Ruggeduino],
+):
     """Drives a Ruggeduino over its single-character protocol (firmware 1)."""
 
     board = Ruggeduino
@@ -54,9 +69,10 @@ class SRV4RuggeduinoHardwareBackend(StringCommandComponentInterface, ArduinoHard
         line = b""
         for _ in range(self.VERSION_ATTEMPTS):
             try:
-                line = await self._exchange(codec.VERSION_QUERY, _LINE, timeout=wait)
+                raw = await self._exchange(codec.VERSION_QUERY, _LINE_WITH_END, timeout=wait)
             except CommunicationTimeoutError:
                 continue
+            line = raw.rstrip(b"\r\n")
             if line.strip():
                 break
         else:
@@ -72,19 +88,48 @@ class SRV4RuggeduinoHardwareBackend(StringCommandComponentInterface, ArduinoHard
             )
         self._version = version
         self._firmware_version = version.version.strip()
+        self._link.set_resync(codec.VERSION_QUERY, raw)
 
-    async def _command(self, command: bytes) -> bytes:
-        """Send one command and return its reply line (often empty)."""
-        return await self._exchange(command, _LINE)
+    async def _command(self, command: bytes, then: Callable[[], None] | None = None) -> bytes:
+        """Send one command and return its reply line (often empty).
 
-    async def _apply_pin(self, identifier: int, *, mode_changed: bool) -> None:
-        state = self._pins.digital(identifier)
-        if state.mode is GPIOPinMode.DIGITAL_OUTPUT:
+        :param then: called once the reply has arrived, even for a cancelled caller.
+        """
+        if then is None:
+            return await self._exchange(command, _LINE)
+
+        def done(line: bytes) -> bytes:
+            then()
+            return line
+
+        return await self._exchange(command, _LINE, then=done)
+
+    async def _apply_pin(
+        self, identifier: int, wanted: DigitalPinState, *, mode_changed: bool
+    ) -> None:
+        current = self._pins.digital(identifier)
+        if wanted.mode is GPIOPinMode.DIGITAL_OUTPUT:
             if mode_changed:
-                await self._command(codec.encode_mode(identifier, state.mode))
-            await self._command(codec.encode_digital_write(identifier, state.level))
+                # An output drives its latch: high after a pull-up input, low after a
+                # plain input, its last level if it was an output already.
+                latch = (
+                    current.level
+                    if current.mode is GPIOPinMode.DIGITAL_OUTPUT
+                    else current.mode is GPIOPinMode.DIGITAL_INPUT_PULLUP
+                )
+                await self._command(
+                    codec.encode_mode(identifier, wanted.mode),
+                    then=lambda: self._remember_pin(identifier, wanted.mode, latch),
+                )
+            await self._command(
+                codec.encode_digital_write(identifier, wanted.level),
+                then=lambda: self._remember_pin(identifier, wanted.mode, wanted.level),
+            )
         else:
-            await self._command(codec.encode_mode(identifier, state.mode))
+            await self._command(
+                codec.encode_mode(identifier, wanted.mode),
+                then=lambda: self._remember_pin(identifier, wanted.mode, current.level),
+            )
 
     async def _read_digital(self, identifier: int) -> bool:
         return codec.parse_digital(await self._command(codec.encode_digital_read(identifier)))

@@ -10,6 +10,7 @@ This module does no I/O: the hardware backend and the Ruggeduino simulator both 
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from typing import Final
 
@@ -43,6 +44,7 @@ SUPPORTED_VERSIONS: Final = ("1",)
 #: Analogue channels A0 to A5; pins 14 to 19 are read as channels 0 to 5.
 ANALOGUE_CHANNELS: Final = 6
 
+_ADC_READING = re.compile(rb"[0-9]{1,4}")
 _FIRST_ANALOGUE_PIN = 14
 _ADC_STEPS = 1024
 _ADC_REFERENCE = 5.0
@@ -156,16 +158,13 @@ def parse_digital(line: bytes) -> bool:
 def parse_analogue(line: bytes) -> float:
     """Return the voltage of an analogue read reply: ``value / 1024 x 5``.
 
-    :raises UnexpectedReplyError: the reply is not an integer in 0…1023.
+    The firmware prints the ADC reading in decimal, with no sign, spaces or padding.
+
+    :raises UnexpectedReplyError: the reply is not such an integer in 0…1023.
     """
-    try:
-        value = int(line.decode("ascii"))
-    except (UnicodeDecodeError, ValueError):
+    if not _ADC_READING.fullmatch(line) or int(line) >= _ADC_STEPS:
         raise UnexpectedReplyError(
             f"expected a number 0 to 1023 from a Ruggeduino analogue read, got {line!r}",
-        ) from None
-    if not 0 <= value < _ADC_STEPS:
-        raise UnexpectedReplyError(
-            f"expected a number 0 to 1023 from a Ruggeduino analogue read, got {value}",
         )
+    value = int(line)
     return value / _ADC_STEPS * _ADC_REFERENCE

@@ -42,6 +42,10 @@ class SRV4ServoBoardHardwareBackend(ServoInterface, USBHardwareBackend):
         super().__init__(link, key=key)
         self._positions: list[ServoPosition] = [0.0] * codec.SERVO_COUNT
 
+    def reset_board_state(self) -> None:
+        """Forget the positions: the handshake centres every servo again."""
+        self._positions = [0.0] * codec.SERVO_COUNT
+
     async def _handshake(self) -> None:
         command = codec.FIRMWARE_VERSION
         reply = await self._read(command.index, command.length, errors=_HANDSHAKE_ERRORS)
@@ -68,5 +72,9 @@ class SRV4ServoBoardHardwareBackend(ServoInterface, USBHardwareBackend):
                 f"{self.board.name} cannot unpower a servo (position None); give a "
                 "position between -1 and 1",
             )
-        await self._write(index, codec.encode_position(position))
-        self._positions[index] = position
+        value = codec.encode_position(position)
+
+        def remember() -> None:
+            self._positions[index] = position
+
+        await self._write(index, value, then=remember)

@@ -1,0 +1,362 @@
+"""Reconnection: a board that vanishes and comes back works again through the same object."""
+
+from __future__ import annotations
+
+from datetime import timedelta
+from types import SimpleNamespace
+from typing import Any
+
+import anyio
+import pytest
+
+from j5aio.backends.hardware import registry
+from j5aio.backends.hardware.options import DiscoveryOptions
+from j5aio.backends.hardware.reconnect import ReconnectPolicy
+from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
+from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
+from j5aio.backends.hardware.transports.memory import SimulatorStream
+from j5aio.boards.sr.v4.power_board import PowerBoard
+from j5aio.components.gpio_pin import GPIOPinMode
+from j5aio.errors import BoardDisconnectionError
+from j5aio.simulator import SBArduinoSimulator
+from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+from j5aio.simulator.kit import KitConfig, use_kit
+from j5aio.testing.reliability import BACKEND_NAMES, replug_trials
+
+QUICK = ReconnectPolicy(interval=0.0)
+
+
+def comport(device: str, serial_number: str) -> SimpleNamespace:
+    return SimpleNamespace(
+        device=device,
+        vid=0x2341,
+        pid=0x0043,
+        serial_number=serial_number,
+        manufacturer="Arduino (www.arduino.cc)",
+        product=None,
+        description="Arduino Uno",
+    )
+
+
+async def test_a_board_back_on_another_path_is_the_same_board() -> None:
+    sim = SBArduinoSimulator("SER1")
+    ports = [comport("/dev/ttyACM0", "SER1")]
+    opened: list[str] = []
+
+    async def opener(port: str, baudrate: int) -> Any:
+        opened.append(port)
+        return SimulatorStream(sim, time_scale=0)
+
+    options = DiscoveryOptions(port_source=lambda: ports, opener=opener, time_scale=0.01)
+    (board,) = await SBArduinoHardwareBackend.discover(options=options)
+    backend = board.backend
+    assert isinstance(backend, SBArduinoHardwareBackend)
+    backend.reconnect_policy = QUICK
+    await board.setup()
+    await board.pins[4].set_mode(GPIOPinMode.DIGITAL_OUTPUT)
+    await board.pins[4].digital_write(True)
+
+    sim.unplug()
+    ports.clear()
+    with pytest.raises(BoardDisconnectionError):
+        await board.pins[5].digital_read()
+    with pytest.raises(BoardDisconnectionError, match="disconnected"):
+        await board.pins[5].digital_read()
+    assert not backend.is_connected
+    assert registry.holder("/dev/ttyACM0") is board
+
+    ports.append(comport("/dev/ttyACM1", "SER1"))  # the adapter came back elsewhere
+    sim.plug()
+    sim.set_input_level(5, True)
+    assert await board.pins[5].digital_read() is True
+    assert opened == ["/dev/ttyACM0", "/dev/ttyACM1"]
+    assert backend.port == "/dev/ttyACM1"
+    assert registry.holder("/dev/ttyACM1") is board
+    assert registry.holder("/dev/ttyACM0") is None
+    # The board was reset: the backend forgot pin 4 was a high output.
+    assert await board.pins[4].get_mode() is GPIOPinMode.DIGITAL_INPUT
+    # Looking again gives the same board, not a second one.
+    assert await SBArduinoHardwareBackend.discover(options=options) == [board]
+    await board.close()
+
+
+async def _discovered_then_lost(
+    serial_number: str,
+) -> tuple[SBArduinoSimulator, list[SimpleNamespace], DiscoveryOptions, Any]:
+    """Discover a simulated Arduino on a listed port, then unplug it and notice."""
+    sim = SBArduinoSimulator(serial_number)
+    ports = [comport("/dev/ttyACM0", serial_number)]
+
+    async def opener(port: str, baudrate: int) -> Any:
+        return SimulatorStream(sim, time_scale=0)
+
+    options = DiscoveryOptions(port_source=lambda: ports, opener=opener, time_scale=0.01)
+    (board,) = await SBArduinoHardwareBackend.discover(options=options)
+    sim.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.pins[14].analogue_read()
+    return sim, ports, options, board
+
+
+async def test_a_lost_board_found_by_discovery_is_reconnected_then() -> None:
+    sim, ports, options, board = await _discovered_then_lost("SER2")
+    ports[0] = comport("/dev/ttyACM3", "SER2")
+    sim.plug()
+    assert await SBArduinoHardwareBackend.discover(options=options) == [board]
+    assert board.backend.is_connected
+    await board.close()
+
+
+async def test_idempotent_calls_retry_once_and_a_buzz_never() -> None:
+    kit = use_kit(KitConfig(power_boards=1, motor_boards=0, servo_boards=0, sb_arduinos=0))
+    board = (await SIMULATED_ENVIRONMENT.get_board_group(PowerBoard)).singular()
+    backend = board.backend
+    assert isinstance(backend, SRV4PowerBoardHardwareBackend)
+    sim = kit.power_boards[0]
+    # A brief brown-out: gone and back before the next call. A read is retried.
+    sim.unplug()
+    sim.plug()
+    assert await board.battery_sensor.get_voltage() == pytest.approx(12.0)
+    assert backend.reconnections == 1
+    # A note is not: it fails, though the board is back.
+    sim.unplug()
+    sim.plug()
+    with pytest.raises(BoardDisconnectionError):
+        await backend.buzz(0, timedelta(seconds=0.1), 440)
+    assert sim.note_queue == []
+    await anyio.sleep(backend.reconnect_policy.interval)
+    assert await board.battery_sensor.get_voltage() == pytest.approx(12.0)  # found again
+    backend.reconnect_policy = ReconnectPolicy(interval=0.0, retry_idempotent=False)
+    sim.unplug()
+    sim.plug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.battery_sensor.get_voltage()
+    assert await board.battery_sensor.get_voltage() == pytest.approx(12.0)  # back by now
+    await board.close()
+
+
+async def test_a_retry_waits_for_the_board_as_long_as_the_policy_says() -> None:
+    kit = use_kit(KitConfig(power_boards=1, motor_boards=0, servo_boards=0, sb_arduinos=0))
+    board = (await SIMULATED_ENVIRONMENT.get_board_group(PowerBoard)).singular()
+    backend = board.backend
+    assert isinstance(backend, SRV4PowerBoardHardwareBackend)
+    backend.reconnect_policy = ReconnectPolicy(interval=0.01, retry_wait=2.0)
+    sim = kit.power_boards[0]
+    sim.unplug()
+
+    async def plug_later() -> None:
+        await anyio.sleep(0.1)
+        sim.plug()
+
+    async with anyio.create_task_group() as group:
+        group.start_soon(plug_later)
+        await backend.set_power_output_enabled(0, True)
+    assert sim.outputs[0] is True
+    await board.close()
+
+
+async def test_a_board_with_reconnection_off_stays_lost_and_frees_its_port() -> None:
+    kit = use_kit(KitConfig(power_boards=1, motor_boards=0, servo_boards=0, sb_arduinos=0))
+    board = (await SIMULATED_ENVIRONMENT.get_board_group(PowerBoard)).singular()
+    backend = board.backend
+    assert isinstance(backend, SRV4PowerBoardHardwareBackend)
+    backend.reconnect_policy = ReconnectPolicy(enabled=False)
+    kit.power_boards[0].unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.battery_sensor.get_voltage()
+    assert registry.holder(backend.port) is None
+    kit.power_boards[0].plug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.battery_sensor.get_voltage()
+    assert not await backend.reconnect() or backend.is_connected
+    await board.close()
+    assert not await backend.reconnect()
+
+
+def test_a_policy_refuses_bad_values() -> None:
+    with pytest.raises(ValueError, match="interval"):
+        ReconnectPolicy(interval=-1)
+    with pytest.raises(ValueError, match="retry_wait"):
+        ReconnectPolicy(retry_wait=float("inf"))
+    backend: Any = SRV4PowerBoardHardwareBackend
+    with pytest.raises(TypeError, match="ReconnectPolicy"):
+        backend.reconnect_policy.fset(object(), "fast")
+
+
+async def test_a_stream_backend_cannot_be_reopened() -> None:
+    sim = SBArduinoSimulator("S3")
+    board = await SBArduinoHardwareBackend.from_stream(
+        SimulatorStream(sim, time_scale=0), port="s", serial_number="S3", time_scale=0.01
+    )
+    board.backend.reconnect_policy = QUICK  # type: ignore[attr-defined]
+    sim.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.pins[14].analogue_read()
+    sim.plug()
+    with pytest.raises(BoardDisconnectionError, match="disconnected"):
+        await board.pins[14].analogue_read()
+    await board.close()
+
+
+@pytest.mark.parametrize("name", BACKEND_NAMES)
+async def test_r3_replugged_boards_answer_again_with_nothing_stale(name: str) -> None:
+    report = await replug_trials(name, 3, seed=5)
+    assert report.trials == report.disconnection_errors == 3
+    assert (report.wrong_outcomes, report.stale, report.duplicates) == (0, 0, 0), report.details
+    assert report.make_safe_failures == 0
+    assert len(report.back_after) == 3
+    assert max(report.back_after) < 5  # liveness only; the bench measures the time
+
+
+class _Bus:
+    """A stand-in USB bus: the devices it lists, found as ``usb.core.find`` would."""
+
+    def __init__(self, *devices: Any) -> None:
+        self.devices = list(devices)
+
+    def __call__(self, *, find_all: bool, idVendor: int, idProduct: int) -> list[Any]:  # noqa: N803
+        return [d for d in self.devices if (d.idVendor, d.idProduct) == (idVendor, idProduct)]
+
+
+class _Unreadable:
+    """A device whose serial number cannot be read (it vanished while being looked at)."""
+
+    idVendor = 0x1BDA  # noqa: N815
+    idProduct = 0x0010  # noqa: N815
+    bus = 9
+    address = 9
+
+    @property
+    def serial_number(self) -> str:
+        raise OSError(19, "No such device")
+
+    def ctrl_transfer(self, *args: Any, **kwargs: Any) -> Any:
+        raise OSError(19, "No such device")
+
+
+class _Placed:
+    """A simulator at a place on the stand-in bus (a new place after each replug)."""
+
+    def __init__(self, simulator: Any, address: int) -> None:
+        self._simulator = simulator
+        self._connection = simulator.connection
+        self.bus = 1
+        self.address = address
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._simulator, name)
+
+    def ctrl_transfer(self, *args: Any, **kwargs: Any) -> Any:
+        if self._simulator.connection != self._connection:
+            raise OSError(19, "No such device")
+        return self._simulator.ctrl_transfer(*args, **kwargs)
+
+
+async def test_a_usb_board_is_found_again_among_other_devices_at_a_new_address() -> None:
+    from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
+
+    ours, theirs, stranger = (SRPowerBoardFw3Simulator(n) for n in ("OURS", "THEIRS", "NEW"))
+    bus = _Bus(_Placed(ours, 1), _Placed(theirs, 2))
+    options = DiscoveryOptions(usb_finder=bus)
+    boards = await SRV4PowerBoardHardwareBackend.discover(options=options)
+    board = next(b for b in boards if b.serial_number == "OURS")
+    backend = board.backend
+    assert isinstance(backend, SRV4PowerBoardHardwareBackend)
+    backend.reconnect_policy = QUICK
+    assert await backend.reconnect()  # connected: nothing to do
+    ours.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await backend.set_power_output_enabled(0, True)
+    # Back at a new address, after a stranger and an unreadable device; the other
+    # board's device is held, so it is not even looked at.
+    ours.plug()
+    bus.devices = [_Placed(theirs, 2), _Placed(stranger, 3), _Unreadable(), _Placed(ours, 7)]
+    await backend.set_power_output_enabled(0, True)
+    assert ours.outputs[0] is True
+    assert backend.port == "usb:1bda:0010@1.7"
+    assert registry.holder("usb:1bda:0010@1.7") is board
+    assert registry.holder("usb:1bda:0010@1.1") is None
+    for each in boards:
+        await each.close()
+
+
+async def test_a_usb_board_whose_handshake_fails_on_return_stays_lost_until_it_passes() -> None:
+    from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator
+
+    sim = SRServoBoardFw2Simulator("SERVO")
+    bus = _Bus(_Placed(sim, 1))
+    options = DiscoveryOptions(usb_finder=bus)
+    (board,) = await SRV4ServoBoardHardwareBackend.discover(options=options)
+    backend = board.backend
+    assert isinstance(backend, SRV4ServoBoardHardwareBackend)
+    backend.reconnect_policy = QUICK
+    sim.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await backend.set_servo_position(0, 0.5)
+    sim.has_12v = False  # back on USB, but without its 12 V it cannot start
+    sim.plug()
+    bus.devices = [_Placed(sim, 2)]
+    with pytest.raises(BoardDisconnectionError):
+        await backend.set_servo_position(0, 0.5)
+    assert not backend.is_connected
+    sim.has_12v = True
+    sim.power_cycle()
+    bus.devices = [_Placed(sim, 3)]
+    await backend.set_servo_position(0, 0.5)
+    assert sim.positions[0] == 50
+    await board.close()
+
+
+async def test_a_serial_board_whose_handshake_fails_on_return_stays_lost_until_it_passes() -> None:
+    from j5aio.testing.transports import ScriptedStream
+
+    sim = SBArduinoSimulator("FLAKY")
+    nonsense = [False]
+
+    async def opener(port: str, baudrate: int) -> Any:
+        if nonsense[0]:  # the board comes back talking nonsense once
+            nonsense[0] = False
+            return ScriptedStream([], banner=b"# Hello\n# SBDuino GPIO v2019.8.0\r\n")
+        return SimulatorStream(sim, time_scale=0)
+
+    board = await SBArduinoHardwareBackend.attach("/dev/flaky", opener=opener, time_scale=0.01)
+    backend = board.backend
+    assert isinstance(backend, SBArduinoHardwareBackend)
+    backend.reconnect_policy = QUICK
+    sim.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.pins[14].analogue_read()
+    nonsense[0] = True
+    sim.plug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.pins[14].analogue_read()
+    assert not nonsense[0] and not backend.is_connected
+    assert 0 <= await board.pins[14].analogue_read() <= 5
+    await board.close()
+
+
+async def test_a_serial_board_with_reconnection_off_frees_its_port() -> None:
+    sim = SBArduinoSimulator("OFF")
+
+    async def opener(port: str, baudrate: int) -> Any:
+        return SimulatorStream(sim, time_scale=0)
+
+    board = await SBArduinoHardwareBackend.attach("/dev/off", opener=opener, time_scale=0.01)
+    board.backend.reconnect_policy = ReconnectPolicy(enabled=False)  # type: ignore[attr-defined]
+    sim.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.pins[14].analogue_read()
+    assert registry.holder("/dev/off") is None
+    await board.close()
+
+
+async def test_looking_with_another_search_does_not_take_over_a_lost_board() -> None:
+    sim, ports, options, board = await _discovered_then_lost("SER9")
+    sim.plug()
+    other = DiscoveryOptions(
+        port_source=lambda: list(ports), opener=options.opener, time_scale=0.01
+    )
+    # Its port is still held by the lost board, which is handed back as it is.
+    assert await SBArduinoHardwareBackend.discover(options=other) == [board]
+    await board.close()
