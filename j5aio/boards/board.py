@@ -8,6 +8,8 @@ from typing import TYPE_CHECKING, ClassVar
 
 import anyio
 
+from j5aio import lifetime
+
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
     from j5aio.components.component import Component
@@ -38,6 +40,7 @@ class Board(ABC):
         self._backend = backend
         self._is_set_up = False
         self._is_closed = False
+        lifetime.track(self)
 
     @property
     def serial_number(self) -> str:
@@ -87,7 +90,17 @@ class Board(ABC):
             return
         self._is_closed = True
         Board.BOARDS.discard(self)
+        lifetime.untrack(self)
         await self._backend.close()
+
+    def close_now(self) -> None:
+        """Release the board's port at once, synchronously, and forget it (for exit paths)."""
+        if self._is_closed:
+            return
+        self._is_closed = True
+        Board.BOARDS.discard(self)
+        lifetime.untrack(self)
+        self._backend.close_now()
 
     @staticmethod
     async def make_all_safe() -> list[BaseException]:
@@ -106,6 +119,8 @@ class Board(ABC):
             except Exception as exc:
                 LOGGER.error("Could not make %s safe: %s", board, exc)
                 failures.append(exc)
+            else:
+                lifetime.mark_settled(board)
 
         async with anyio.create_task_group() as group:
             for board in list(Board.BOARDS):

@@ -229,7 +229,8 @@ class BaseRobot(_SyncWrapper):
 
     Use it as an async context manager. On the way in it takes the single-robot lock and
     runs :meth:`setup`, where a subclass finds its boards; on the way out (normally, by
-    an exception, by cancellation, or on SIGINT / SIGTERM) every board is made safe::
+    an exception, by cancellation, or on SIGINT / SIGTERM / SIGHUP) every board is made
+    safe; a signal then ends the program with status ``128 + signal``::
 
         class MyRobot(BaseRobot):
             async def setup(self) -> None:
@@ -321,6 +322,10 @@ class Board(_SyncWrapper):
     def close(self) -> None:
         """Release the board's port and forget it. The board is not made safe first."""
         _call(self._core.close)
+
+    def close_now(self) -> None:
+        """Release the board's port at once, synchronously, and forget it (for exit paths)."""
+        self._core.close_now()
 
     @staticmethod
     def make_all_safe() -> list[BaseException]:

@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-import _thread
 import asyncio
+import signal
 import threading
 import time
 
 import anyio
 import anyio.lowlevel
+import anyio.to_thread
 import pytest
 
 from j5aio.sync import _runtime
@@ -60,8 +61,15 @@ def test_call_from_inside_the_portal_loop_is_refused() -> None:
         call(nested)
 
 
+def ctrl_c() -> None:
+    """Send SIGINT to the main thread, as the terminal's Ctrl-C reaches a sync program."""
+    main = threading.main_thread().ident
+    assert main is not None
+    signal.pthread_kill(main, signal.SIGINT)
+
+
 def interrupt_main_after(delay: float) -> threading.Timer:
-    timer = threading.Timer(delay, _thread.interrupt_main)
+    timer = threading.Timer(delay, ctrl_c)
     timer.start()
     return timer
 
@@ -109,15 +117,25 @@ def test_cancellation_respects_anyio_shields() -> None:
 
 def test_call_cancelled_before_it_starts_never_runs() -> None:
     ran: list[bool] = []
+    portal = _runtime._LoopThread()
+    blocker = threading.Event()
+
+    async def busy() -> None:
+        await anyio.to_thread.run_sync(blocker.wait)
 
     async def never() -> None:
         ran.append(True)
 
-    request = _runtime._Call(never())
-    request.cancel()
-    asyncio.run(request.run())
+    first = portal.submit(busy())
+    second = portal.submit(never())
+    portal.cancel(second)
+    assert second.done.acquire(timeout=2)
+    blocker.set()
+    assert first.done.acquire(timeout=2)
+    portal.stop(2)
     assert ran == []
-    assert request.done.acquire(blocking=False)
+    assert isinstance(second.error, RuntimeError)
+    assert "before it started" in str(second.error)
 
 
 def test_portal_that_has_stopped_refuses_new_calls() -> None:
@@ -151,6 +169,6 @@ def test_shutdown_then_call_starts_a_new_portal() -> None:
     assert get_loop() is not first
 
 
-def test_wait_keeps_waiting_across_slices() -> None:
-    slices = _runtime.WAIT_SLICE * 3
-    assert call(anyio.sleep, slices) is None
+def test_wait_keeps_waiting_across_slices(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(_runtime, "LONG_WAIT_SLICE", 0.02)
+    assert call(anyio.sleep, 0.1) is None
