@@ -107,7 +107,9 @@ anyio.run(main)
 }
 
 
-def run_child(source: str, *, env: dict[str, str], signum: int | None = None) -> tuple[int, str, str]:
+def run_child(
+    source: str, *, env: dict[str, str], signum: int | None = None
+) -> tuple[int, str, str]:
     process = subprocess.Popen(
         [sys.executable, "-c", source],
         stdout=subprocess.PIPE,
@@ -275,8 +277,8 @@ def test_a_board_attached_by_port_ends_safe(ending: str) -> None:
         assert process.returncode == 0, err
 
 
-def test_the_log_names_each_rescued_board_once(tmp_path: Path) -> None:
-    code, out, err = run_child(DUMP_AT_THE_VERY_END + DRIVE + ENDINGS["loop end"], env=sim_env())
+def test_the_log_names_each_rescued_board_once() -> None:
+    code, _, err = run_child(DUMP_AT_THE_VERY_END + DRIVE + ENDINGS["loop end"], env=sim_env())
     assert code == 0
     rescued = sorted(line for line in err.splitlines() if "safety net" in line)
     assert len(rescued) == len(set(rescued)) == 3
