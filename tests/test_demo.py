@@ -8,8 +8,8 @@ from collections.abc import AsyncIterator
 import pytest
 
 from j5aio.boards.board import Board
-from j5aio.robot import BaseRobot, UnableToObtainLock
 from j5aio.demo import all_motors_braked, demo, describe_boards, run_demo
+from j5aio.robot import BaseRobot, UnableToObtainLock
 from j5aio.simulator import kit as kit_module
 from j5aio.simulator.kit import KitConfig, SimulatedKit
 from j5aio.simulator.sr_motor_fw3 import MotorMode

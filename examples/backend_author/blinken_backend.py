@@ -72,6 +72,19 @@ class BlinkenBoardBackend(LEDInterface, ButtonInterface, SerialHardwareBackend):
             raise UnexpectedReplyError(f"expected OK after setting LED {identifier}, got {reply!r}")
         self._leds[identifier] = state
 
+    def make_safe_now(self, timeout: float) -> bool:
+        """Darken every LED at once, synchronously: the safety net's last word at exit.
+
+        The same safe state as :meth:`BlinkenBoard.make_safe`, sent without waiting for
+        the replies (the link drains them if it is used again).
+        """
+        if self._link.is_closed:
+            return False
+        commands = b"".join(b"L%d0\n" % led for led in range(BlinkenBoard.LED_COUNT))
+        self._link.send_now(commands, timeout=timeout)
+        self._leds = [False] * BlinkenBoard.LED_COUNT
+        return True
+
     async def get_button_state(self, identifier: int) -> bool:
         """Read whether the button is held."""
         if identifier != 0:

@@ -188,3 +188,20 @@ async def test_the_backend_reports_a_refusal_and_a_stranger() -> None:
     stranger = ScriptedStream([(b"?\n", b"TOASTER:1\n")])
     with pytest.raises(UnexpectedReplyError, match="not a Blinkenboard"):
         await BlinkenBoardBackend.from_stream(stranger, port="script", serial_number="B1")
+
+
+async def test_the_safe_state_is_sent_synchronously() -> None:
+    simulator = BlinkenSimulator()
+    stream = SimulatorStream(simulator, name="sim", time_scale=0)
+    board = await BlinkenBoardBackend.from_stream(stream, port="sim", serial_number="B1")
+    assert isinstance(board, BlinkenBoard)
+    await board.setup()
+    await board.leds[1].set_state(True)
+    assert simulator.leds[1]
+    assert board.backend.make_safe_now(0.5) is True
+    assert simulator.leds == [False] * 4
+    assert await board.leds[1].get_state() is False
+    await board.leds[3].set_state(True)  # the link drained the replies it skipped
+    assert simulator.leds == [False, False, False, True]
+    await board.close()
+    assert board.backend.make_safe_now(0.5) is False
