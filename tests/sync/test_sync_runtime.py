@@ -171,3 +171,49 @@ def test_shutdown_then_call_starts_a_new_portal() -> None:
 def test_wait_keeps_waiting_across_slices(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(_runtime, "LONG_WAIT_SLICE", 0.02)
     assert call(anyio.sleep, 0.1) is None
+
+
+class InterruptedJustAfterAcquiring:
+    """A lock whose first acquire succeeds and is then interrupted, as by a late Ctrl-C."""
+
+    def __init__(self, lock: threading.Lock) -> None:
+        self.lock = lock
+        self.calls = 0
+
+    def acquire(self, blocking: bool = True, timeout: float = -1) -> bool:
+        self.calls += 1
+        taken = self.lock.acquire(blocking, timeout)
+        if self.calls == 1:
+            assert taken
+            raise KeyboardInterrupt
+        return taken
+
+
+def test_an_interrupt_just_after_the_call_finished_does_not_wait(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    portal = _runtime._LoopThread()
+    try:
+        request = portal.submit(add(1, 2))
+        deadline = time.monotonic() + 2
+        while request.state != _runtime._DONE:
+            assert time.monotonic() < deadline
+            time.sleep(0.001)
+        late = InterruptedJustAfterAcquiring(request.done)
+        request.done = late  # type: ignore[assignment]
+        started = time.monotonic()
+        with pytest.raises(KeyboardInterrupt):
+            _runtime._wait(portal, request)
+        assert time.monotonic() - started < 0.5  # not CANCEL_GRACE: the lock was ours
+        assert late.calls == 1
+        assert "did not stop" not in caplog.text
+    finally:
+        portal.stop(2)
+
+
+def test_the_worker_keeps_serving_after_a_cancelled_call() -> None:
+    interrupt_main_after(0.05)
+    with pytest.raises(KeyboardInterrupt):
+        call(anyio.sleep, 5)
+    assert call(add, 2, 3) == 5  # a fresh cancel scope: the next call is not cancelled
+    assert call(add, 4, 3) == 7
