@@ -107,17 +107,22 @@ anyio.run(main)
 }
 
 
-def run_child(
-    source: str, *, env: dict[str, str], signum: int | None = None
-) -> tuple[int, str, str]:
-    process = subprocess.Popen(
-        [sys.executable, "-c", source],
+def start_child(source: str, *args: str, env: dict[str, str]) -> subprocess.Popen[str]:
+    """Start ``source`` in a child Python with pipes for its output."""
+    return subprocess.Popen(
+        [sys.executable, "-c", source, *args],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
         env=env,
         cwd=ROOT,
     )
+
+
+def run_child(
+    source: str, *, env: dict[str, str], signum: int | None = None
+) -> tuple[int, str, str]:
+    process = start_child(source, env=env)
     try:
         assert process.stdout is not None
         before = []
@@ -241,14 +246,7 @@ def test_a_board_attached_by_port_ends_safe(ending: str) -> None:
         signum = getattr(signal, ending, None)
         env = child_env()
         env.pop("J5AIO_ENV", None)
-        process = subprocess.Popen(
-            [sys.executable, "-c", ATTACH + ATTACH_ENDINGS[ending], server.path],
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            text=True,
-            env=env,
-            cwd=ROOT,
-        )
+        process = start_child(ATTACH + ATTACH_ENDINGS[ending], server.path, env=env)
         try:
             assert process.stdout is not None
             first = process.stdout.readline()

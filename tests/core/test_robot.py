@@ -128,9 +128,8 @@ SIGTERM_PROGRAM = textwrap.dedent(
 )
 
 
-@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
-@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP, signal.SIGINT])
-def test_signal_makes_boards_safe_and_stops(signum: int) -> None:
+def start_running_robot() -> subprocess.Popen[str]:
+    """Start SIGTERM_PROGRAM in a child Python and wait until its robot runs."""
     tests = os.path.dirname(os.path.dirname(__file__))
     proc = subprocess.Popen(
         [sys.executable, "-c", SIGTERM_PROGRAM.format(tests=tests)],
@@ -140,6 +139,13 @@ def test_signal_makes_boards_safe_and_stops(signum: int) -> None:
     )
     assert proc.stdout is not None
     assert proc.stdout.readline().strip() == "running"
+    return proc
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP, signal.SIGINT])
+def test_signal_makes_boards_safe_and_stops(signum: int) -> None:
+    proc = start_running_robot()
     started = time.monotonic()
     proc.send_signal(signum)
     out, err = proc.communicate(timeout=10)
@@ -156,15 +162,7 @@ def test_signal_makes_boards_safe_and_stops(signum: int) -> None:
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 def test_ctrl_c_twice_prints_one_line() -> None:
-    tests = os.path.dirname(os.path.dirname(__file__))
-    proc = subprocess.Popen(
-        [sys.executable, "-c", SIGTERM_PROGRAM.format(tests=tests)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    assert proc.stdout is not None
-    assert proc.stdout.readline().strip() == "running"
+    proc = start_running_robot()
     proc.send_signal(signal.SIGINT)
     time.sleep(0.002)
     proc.send_signal(signal.SIGINT)

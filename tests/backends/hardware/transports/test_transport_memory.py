@@ -262,19 +262,10 @@ async def test_simulator_stream_validates_its_arguments() -> None:
 
 
 async def test_a_simulator_stream_sends_synchronously() -> None:
-    class Echo:
-        baudrate = 9600
-        boot_delay = 0.0
-        connected = True
-
-        def open(self) -> bytes:
-            return b""
-
-        def receive(self, data: bytes) -> bytes:
-            return data.upper()
-
-    stream = SimulatorStream(Echo(), time_scale=0)
+    simulator = EchoSimulator(banner=b"")
+    stream = SimulatorStream(simulator, time_scale=0)
     stream.send_now(b"brake", 0.1)
+    assert simulator.received == [b"brake"]
     assert await stream.receive() == b"BRAKE"
     stream.close_now()
     with pytest.raises(BoardDisconnectionError, match="closed"):
