@@ -79,6 +79,8 @@ _terminate_handlers: list[tuple[asyncio.AbstractEventLoop, Callable[[int], None]
 _installed = False
 _signals_installed = False
 _finished = False
+#: How many boards the net could not make safe (for the line printed on Ctrl-C).
+_failures = 0
 
 
 # -- which boards are open ---------------------------------------------------------------
@@ -206,6 +208,7 @@ def _in_loop(
 
 
 def _make_safe(boards: list[Board], reason: str, close: bool, deadline: float) -> list[Board]:
+    global _failures
     rescued = []
     for board in boards:
         left = deadline - time.monotonic()
@@ -215,11 +218,13 @@ def _make_safe(boards: list[Board], reason: str, close: bool, deadline: float) -
             settled = board in _settled
         if left <= 0:
             LOGGER.error("No time left to make %s safe (%s).", board, reason)
+            _failures += 1
             continue
         try:
             sent = board.backend.make_safe_now(min(left, PER_BOARD_TIMEOUT))
         except Exception as exc:
             LOGGER.error("Could not make %s safe when %s: %s", board, reason, exc)
+            _failures += 1
             sent = False
         if sent and not settled:
             rescued.append(board)
@@ -298,7 +303,11 @@ def _excepthook(
         and not interactive
         and not logging.getLogger("j5aio").isEnabledFor(logging.DEBUG)
     ):
-        print("Stopped (Ctrl-C); every board was made safe.", file=sys.stderr, flush=True)
+        if _failures:
+            message = "Stopped (Ctrl-C); some boards could not be made safe (see above)."
+        else:
+            message = "Stopped (Ctrl-C); every board was made safe."
+        print(message, file=sys.stderr, flush=True)
         return
     _previous_excepthook(kind, value, traceback)
 

@@ -50,6 +50,7 @@ def _only_these_boards(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
     """Let the net see only the boards a test makes."""
     monkeypatch.setattr(lifetime, "_open", {})
     monkeypatch.setattr(lifetime, "_settled", set())
+    monkeypatch.setattr(lifetime, "_failures", 0)
     yield
 
 
@@ -207,10 +208,13 @@ def test_ctrl_c_ending_the_program_prints_one_line(
     assert capsys.readouterr().err == "Stopped (Ctrl-C); every board was made safe.\n"
     lifetime._excepthook(RuntimeError, RuntimeError("bug"), None)
     assert previous == [RuntimeError]
-    assert reasons == [
+    assert reasons[:2] == [
         "the program was stopped with Ctrl-C",
         "the program stopped on an unhandled RuntimeError",
     ]
+    monkeypatch.setattr(lifetime, "_failures", 1)
+    lifetime._excepthook(KeyboardInterrupt, KeyboardInterrupt(), None)
+    assert "some boards could not be made safe" in capsys.readouterr().err
     logging.getLogger("j5aio").setLevel(logging.DEBUG)
     try:
         lifetime._excepthook(KeyboardInterrupt, KeyboardInterrupt(), None)
