@@ -69,7 +69,7 @@ LONG_WAIT_SLICE: Final = 1.0
 #: How long an interrupted caller waits for its coroutine's cancellation to land.
 CANCEL_GRACE: Final = 2.0
 #: How long making boards safe in order, and closing them, may each take at exit.
-SHUTDOWN_TIMEOUT: Final = 1.0
+SHUTDOWN_TIMEOUT: Final = 0.5
 
 #: Whether a lock wait is interrupted by signals (POSIX); otherwise wait in slices.
 _INTERRUPTIBLE_WAIT: Final = sys.platform != "win32" and hasattr(signal, "pthread_sigmask")
