@@ -239,8 +239,10 @@ async def _run(kit: SimulatedKit, kit_summary: str, seconds: float, out: TextIO)
         flush=True,
     )
     log = _Log(out)
+    started = False
     try:
         async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+            started = True
             log("robot", f"found {len(_boards(robot))} boards; starting the tasks")
             send, receive = anyio.create_memory_object_stream[float](10)
             shared = _Shared()
@@ -253,8 +255,10 @@ async def _run(kit: SimulatedKit, kit_summary: str, seconds: float, out: TextIO)
                     tasks.start_soon(_signal, robot, receive, log)
             log("robot", "time is up: tasks cancelled, making every board safe")
     finally:
-        # Also when the demo is interrupted (Ctrl-C): the robot made the boards safe.
-        braked = _report(kit, log, out)
+        # Also when the demo is interrupted (Ctrl-C): the robot made the boards safe. A
+        # robot that never started (its lock was taken, say) ran no motor: no report.
+        if started:
+            braked = _report(kit, log, out)
     return braked
 
 

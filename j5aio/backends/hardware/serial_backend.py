@@ -535,6 +535,12 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
             registry.release(self._port, self)
         self._link.close_now()
 
+    def close_now(self) -> None:
+        """Close the port at once, synchronously, and free it; it is not looked for again."""
+        self._closed_for_good = True
+        registry.release(self._port, self)
+        self._link.close_now()
+
     async def close(self) -> None:
         """Close the port and free it for rediscovery; the board is not looked for again."""
         self._closed_for_good = True

@@ -261,6 +261,15 @@ class USBHardwareBackend(Reconnecting, Backend):
         if not self.reconnect_policy.enabled or not self._found_by_discovery:
             registry.release(self._key, self)
 
+    #: The longest :meth:`close_now` waits for the worker thread's last transfers.
+    CLOSE_NOW_TIMEOUT: ClassVar[float] = 0.25
+
+    def close_now(self) -> None:
+        """Stop the device's worker thread (bounded wait) and free it; not looked for again."""
+        self._closed_for_good = True
+        registry.release(self._key, self)
+        self._link.close_now(self.CLOSE_NOW_TIMEOUT)
+
     async def close(self) -> None:
         """Stop the device's worker thread and free it for rediscovery."""
         self._closed_for_good = True

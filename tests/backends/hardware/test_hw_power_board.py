@@ -231,3 +231,16 @@ async def test_discovery_leaves_a_firmware_4_board_to_its_serial_backend() -> No
     assert not SRV4PowerBoardHardwareBackend.drives_device(fw4)
     assert SRV4PowerBoardHardwareBackend.drives_device(_Unreadable())
     assert SRV4PowerBoardHardwareBackend.drives_device(object())  # type: ignore[arg-type]
+
+
+async def test_make_safe_now_switches_every_output_off_synchronously() -> None:
+    sim = SRPowerBoardFw3Simulator("PB1")
+    board, backend = await connect(sim)
+    await board.outputs.power_on()
+    assert all(sim.outputs)
+    assert backend.make_safe_now(0.5) is True
+    assert not any(sim.outputs)
+    assert await board.outputs[PowerOutputPosition.H0].get_is_enabled() is False
+    backend.close_now()
+    assert backend.make_safe_now(0.5) is False
+    await board.close()
