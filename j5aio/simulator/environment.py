@@ -43,6 +43,7 @@ from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.backends.hardware.transports.stream import ByteStream
 from j5aio.boards.board import Board
 
+from .camera import SimulatedCameraBackend
 from .base import SerialBoardSimulator, UsbBoardSimulator
 from .kit import SimulatedKit, current_kit
 from .sb_arduino_2019 import SBArduinoSimulator
@@ -282,3 +283,4 @@ SIMULATED_BACKENDS = (
 SIMULATED_ENVIRONMENT = Environment("SimulatedEnvironment")
 for _backend in SIMULATED_BACKENDS:
     SIMULATED_ENVIRONMENT.register_backend(_backend)
+SIMULATED_ENVIRONMENT.register_backend(SimulatedCameraBackend)

@@ -22,14 +22,18 @@ from __future__ import annotations
 import itertools
 from collections.abc import Iterator
 from dataclasses import dataclass, fields
-from typing import Final
+from typing import TYPE_CHECKING, Final
 
+from .arena import SimulatedWorld
 from .base import SerialBoardSimulator, UsbBoardSimulator
 from .sb_arduino_2019 import SBArduinoSimulator
 from .sr_motor_fw3 import SRMotorBoardFw3Simulator
 from .sr_power_fw3 import SRPowerBoardFw3Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from .sr_servo_fw2 import SRServoBoardFw2Simulator
+
+if TYPE_CHECKING:
+    from .camera import SimulatedCamera
 
 __all__ = ["KitConfig", "SimulatedKit", "current_kit", "use_kit"]
 
@@ -94,6 +98,11 @@ class SimulatedKit:
     def __init__(self, config: KitConfig | None = None) -> None:
         self._config = config if config is not None else KitConfig()
         self._name = f"kit{next(_kit_numbers)}"
+        #: The arena, the robot's pose and its drive (see :mod:`j5aio.simulator.arena`).
+        self.world = SimulatedWorld()
+        #: The robot's camera (a :class:`~j5aio.simulator.camera.SimulatedCamera`), or
+        #: ``None`` for a robot without one.
+        self.camera: SimulatedCamera | None = _default_camera()
         c = self._config
         self._power_boards = tuple(
             SRPowerBoardFw3Simulator(_serial("SIMPB", i, c.power_boards))
@@ -173,6 +182,12 @@ class SimulatedKit:
 
     def __repr__(self) -> str:
         return f"<SimulatedKit {self._name} {self._config!r}>"
+
+
+def _default_camera() -> SimulatedCamera:
+    from .camera import SimulatedCamera
+
+    return SimulatedCamera()
 
 
 def _serial(prefix: str, index: int, count: int) -> str:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from j5aio.backends.console.camera import CameraConsoleBackend
 from j5aio.backends.console.sb.arduino import SBArduinoConsoleBackend
 from j5aio.backends.console.sr.v4 import (
     SRV4MotorBoardConsoleBackend,
@@ -22,5 +23,6 @@ for _backend in (
     SRV4ServoBoardConsoleBackend,
     SRV4RuggeduinoConsoleBackend,
     SBArduinoConsoleBackend,
+    CameraConsoleBackend,
 ):
     CONSOLE_ENVIRONMENT.register_backend(_backend)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from j5aio.backends.camera.opencv import OpenCVCameraBackend
 from j5aio.backends.environment import Environment
 from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
@@ -27,3 +28,5 @@ HARDWARE_BACKENDS = (
 HARDWARE_ENVIRONMENT = Environment("HardwareEnvironment")
 for _backend in HARDWARE_BACKENDS:
     HARDWARE_ENVIRONMENT.register_backend(_backend)
+# Webcams (the optional extra j5aio[vision]; without it none is found).
+HARDWARE_ENVIRONMENT.register_backend(OpenCVCameraBackend)

@@ -12,7 +12,9 @@ from j5aio.backends.console.sr.v4 import (
     SRV4RuggeduinoConsoleBackend,
     SRV4ServoBoardConsoleBackend,
 )
+from j5aio.backends.console.camera import CameraConsoleBackend
 from j5aio.boards.board import Board
+from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduinoBoard
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
 
@@ -24,6 +26,7 @@ BACKENDS: dict[type[Board], type[ConsoleBackend]] = {
     ServoBoard: SRV4ServoBoardConsoleBackend,
     Ruggeduino: SRV4RuggeduinoConsoleBackend,
     SBArduinoBoard: SBArduinoConsoleBackend,
+    CameraBoard: CameraConsoleBackend,
 }
 
 
