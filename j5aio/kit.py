@@ -15,8 +15,8 @@ hardware, unless ``J5AIO_ENV`` or ``python -m j5aio run --sim`` chose otherwise:
 
 from __future__ import annotations
 
-from j5aio.backends.environment import Environment
 from j5aio.backends.camera.files import FileCameraBackend
+from j5aio.backends.environment import Environment
 from j5aio.boards.board_group import BoardGroup
 from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduinoBoard

@@ -132,14 +132,15 @@ def scene(world: SimulatedWorld) -> list[QuadItem | MarkerItem]:
     items: list[QuadItem | MarkerItem] = [
         QuadItem(tuple(convert((x, y, 0.0), True) for x, y in corners), _FLOOR)  # type: ignore[arg-type]
     ]
-    walls = []
+    walls: list[QuadItem] = []
     for i in range(4):
         (x0, y0), (x1, y1) = corners[i], corners[(i + 1) % 4]
         quad = tuple(
             convert(p, True) for p in ((x0, y0, 0.0), (x1, y1, 0.0), (x1, y1, h), (x0, y0, h))
         )
         walls.append(QuadItem(quad, _WALL))  # type: ignore[arg-type]
-    items += sorted(walls, key=lambda q: -_depth(q.corners))
+    walls.sort(key=lambda wall: -_depth(wall.corners))
+    items += walls
     items += [_marker_item(m, convert) for m in arena.markers]
     tokens = []
     for token in arena.tokens:

@@ -43,8 +43,8 @@ from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.backends.hardware.transports.stream import ByteStream
 from j5aio.boards.board import Board
 
-from .camera import SimulatedCameraBackend
 from .base import SerialBoardSimulator, UsbBoardSimulator
+from .camera import SimulatedCameraBackend
 from .kit import SimulatedKit, current_kit
 from .sb_arduino_2019 import SBArduinoSimulator
 from .sr_motor_fw3 import SRMotorBoardFw3Simulator

@@ -40,7 +40,7 @@ def annotate(image: Image, markers: Sequence[Marker]) -> Image:
                     thickness + 2, cv2.LINE_AA)
         cv2.putText(out, label, origin, cv2.FONT_HERSHEY_SIMPLEX, scale, (0, 255, 255),
                     thickness, cv2.LINE_AA)
-    return out  # type: ignore[no-any-return]
+    return out
 
 
 def write_image(path: Path, image: Image) -> None:

@@ -35,7 +35,7 @@ _M: Matrix3 = ((0.0, 0.0, -1.0), (-1.0, 0.0, 0.0), (0.0, 1.0, 0.0))
 
 
 def transpose(a: Sequence[Sequence[float]]) -> Matrix3:
-    """Return the transpose of a 3×3 matrix."""
+    """Return the transpose of a 3x3 matrix."""
     return (
         (a[0][0], a[1][0], a[2][0]),
         (a[0][1], a[1][1], a[2][1]),
@@ -44,7 +44,7 @@ def transpose(a: Sequence[Sequence[float]]) -> Matrix3:
 
 
 def matmul(a: Sequence[Sequence[float]], b: Sequence[Sequence[float]]) -> Matrix3:
-    """Return the product of two 3×3 matrices."""
+    """Return the product of two 3x3 matrices."""
     rows = [
         (
             sum(a[i][k] * b[k][0] for k in range(3)),

@@ -108,7 +108,9 @@ def _marker_texture(marker_id: int, cell: int) -> Any:
     return texture
 
 
-def _project(points: Sequence[Vector3], calibration: CameraCalibration) -> list[tuple[float, float]]:
+def _project(
+    points: Sequence[Vector3], calibration: CameraCalibration
+) -> list[tuple[float, float]]:
     return [
         (calibration.fx * x / z + calibration.cx, calibration.fy * y / z + calibration.cy)
         for x, y, z in points
@@ -150,7 +152,7 @@ def render(
     :param background: the colour where nothing is drawn.
     :param lighting: brightness, blur and noise; none by default.
     """
-    np, cv2 = require("numpy"), require("cv2")
+    np = require("numpy")
     width, height = resolution
     frame = np.empty((height, width, 3), dtype=np.uint8)
     frame[:] = background

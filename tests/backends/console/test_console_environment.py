@@ -5,6 +5,7 @@ from collections.abc import Iterator
 import pytest
 
 from j5aio.backends.console import CONSOLE_ENVIRONMENT, ConsoleBackend
+from j5aio.backends.console.camera import CameraConsoleBackend
 from j5aio.backends.console.sb import SBArduinoConsoleBackend
 from j5aio.backends.console.sr.v4 import (
     SRV4MotorBoardConsoleBackend,
@@ -12,7 +13,6 @@ from j5aio.backends.console.sr.v4 import (
     SRV4RuggeduinoConsoleBackend,
     SRV4ServoBoardConsoleBackend,
 )
-from j5aio.backends.console.camera import CameraConsoleBackend
 from j5aio.boards.board import Board
 from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduinoBoard
