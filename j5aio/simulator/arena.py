@@ -225,14 +225,16 @@ class SimulatedWorld:
     :param pose: where the robot starts.
     :param drive: the drive model.
     :param camera_height: height of the camera's lens above the floor, mm.
-    :param camera_forward: how far in front of the robot's centre the camera is, mm.
+    :param camera_forward: how far in front of the robot's centre the camera is, mm (by
+        default at the front edge of the robot, so the camera's distance to a wall is the
+        gap between the robot and the wall).
     """
 
     arena: Arena = field(default_factory=Arena.standard)
     pose: Pose = field(default_factory=lambda: Pose(2875.0, 1000.0, math.pi / 2))
     drive: DifferentialDrive = field(default_factory=DifferentialDrive)
     camera_height: float = 200.0
-    camera_forward: float = 0.0
+    camera_forward: float = 200.0
     _powers: tuple[float, float] = (0.0, 0.0)
     _time: float | None = None
 

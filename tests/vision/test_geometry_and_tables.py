@@ -86,7 +86,8 @@ def test_marker_without_pose_says_so() -> None:
 
 
 def test_marker_sizes_give_sizes_and_name_a_missing_id() -> None:
-    sizes = MarkerSizes({0: 150, 1: 150, 2: 150, 7: 200}) | MarkerSizes.of_range(range(100, 104), 80)
+    sizes = MarkerSizes({0: 150, 1: 150, 2: 150, 7: 200})
+    sizes = sizes | MarkerSizes.of_range(range(100, 104), 80)
     assert sizes.size_of(7) == 200.0
     assert sizes.size_of(101) == 80.0
     assert len(sizes) == 8

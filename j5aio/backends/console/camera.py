@@ -1,7 +1,8 @@
 """The console camera: ``see()`` asks the user which markers the robot would see.
 
 Answer with one marker per comma-separated item, each ``id distance_mm bearing_deg``
-(bearing positive to the right), optionally followed by ``elevation_deg``; an empty answer
+(bearing positive to the right), optionally followed by ``elevation_deg`` (positive
+upwards); an empty answer
 means no marker::
 
     Camera(SERIAL): Markers seen (id distance_mm bearing_deg, ...): 3 1500 10, 7 2200 -4
@@ -81,10 +82,13 @@ class CameraConsoleBackend(ConsoleBackend, MarkerCameraInterface):
         markers = []
         for marker_id, distance, bearing, elevation in answer:
             size = marker_sizes.size_of(marker_id)
-            forward = distance * math.cos(elevation) * math.cos(bearing)
-            right = distance * math.cos(elevation) * math.sin(bearing)
-            down = -distance * math.sin(elevation)
-            position, cartesian = position_from_translation((right, down, forward))
+            # The angles are those of the conventions: atan2(right, forward) and
+            # atan2(up, forward).
+            right, up = math.tan(bearing), math.tan(elevation)
+            scale = distance / math.sqrt(1 + right * right + up * up)
+            position, cartesian = position_from_translation(
+                (right * scale, -up * scale, scale)
+            )
             markers.append(
                 Marker(
                     marker_id,
