@@ -52,9 +52,9 @@ def draw_map(world: SimulatedWorld, camera: SimulatedCamera) -> np.ndarray:
                     cv2.FONT_HERSHEY_SIMPLEX, 0.4, (255, 255, 255), 1, cv2.LINE_AA)
     for token in arena.tokens:
         half = token.side / 2
+        c, s = math.cos(token.heading), math.sin(token.heading)
         corners = [
-            to_map(token.x + sx * half * math.cos(token.heading) - sy * half * math.sin(token.heading),
-                   token.y + sx * half * math.sin(token.heading) + sy * half * math.cos(token.heading),
+            to_map(token.x + half * (sx * c - sy * s), token.y + half * (sx * s + sy * c),
                    arena.length)
             for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))
         ]
@@ -64,7 +64,7 @@ def draw_map(world: SimulatedWorld, camera: SimulatedCamera) -> np.ndarray:
     calibration, (width, _) = camera.model()
     half_fov = math.atan2(width / 2, calibration.fx)
     cx, cy, _ = world.camera_position()
-    reach = 2500.0
+    reach = 3500.0
     fov = [to_map(cx, cy, arena.length)] + [
         to_map(cx + reach * math.cos(world.pose.heading + s * half_fov),
                cy + reach * math.sin(world.pose.heading + s * half_fov), arena.length)
@@ -72,7 +72,7 @@ def draw_map(world: SimulatedWorld, camera: SimulatedCamera) -> np.ndarray:
     ]
     overlay = image.copy()
     cv2.fillConvexPoly(overlay, np.array(fov, dtype=np.int32), (0, 220, 255), cv2.LINE_AA)
-    image = cv2.addWeighted(overlay, 0.35, image, 0.65, 0)
+    image = cv2.addWeighted(overlay, 0.35, image, 0.65, 0).astype(np.uint8)
     centre = to_map(world.pose.x, world.pose.y, arena.length)
     cv2.circle(image, centre, round(world.drive.radius * SCALE), (40, 40, 200), -1, cv2.LINE_AA)
     nose = to_map(world.pose.x + world.drive.radius * math.cos(world.pose.heading),
@@ -82,6 +82,7 @@ def draw_map(world: SimulatedWorld, camera: SimulatedCamera) -> np.ndarray:
 
 
 async def main() -> None:
+    """Write both pictures, and print the markers the robot sees."""
     STATIC.mkdir(parents=True, exist_ok=True)
     kit = use_kit()
     kit.world.place_robot(POSE)

@@ -16,6 +16,7 @@ from j5aio.components.gpio_pin import (
     PinMode,
 )
 from j5aio.components.led import LED, LEDInterface
+from j5aio.components.marker_camera import MarkerCamera, MarkerCameraInterface
 from j5aio.components.motor import (
     Motor,
     MotorInterface,
@@ -48,6 +49,8 @@ __all__ = [
     "GPIOPinMode",
     "Interface",
     "LEDInterface",
+    "MarkerCamera",
+    "MarkerCameraInterface",
     "Motor",
     "MotorInterface",
     "MotorSpecialState",

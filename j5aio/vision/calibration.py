@@ -13,20 +13,22 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Final
 
+from j5aio.components._checks import check_number
+
 __all__ = ["KNOWN_CALIBRATIONS", "CameraCalibration", "known_calibration"]
 
 
-def _positive(name: str, value: object) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        raise TypeError(f"{name} must be a number, not {value!r}")
-    if not (math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be a finite number more than 0, not {value}")
-    return float(value)
+def _pixels(name: str, value: object, low: float) -> float:
+    return check_number(
+        value, name=name, low=low, high=sys.float_info.max, allowed="a finite number of pixels"
+        + (", more than 0" if low > 0 else ", 0 or more"),
+    )
 
 
 @dataclass(frozen=True)
@@ -53,14 +55,9 @@ class CameraCalibration:
     resolution: tuple[int, int] | None = None
 
     def __post_init__(self) -> None:
-        _positive("fx", self.fx)
-        _positive("fy", self.fy)
-        for name in ("cx", "cy"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int | float):
-                raise TypeError(f"{name} must be a number, not {value!r}")
-            if not (math.isfinite(value) and value >= 0):
-                raise ValueError(f"{name} must be a finite number of pixels, 0 or more")
+        for name in ("fx", "fy", "cx", "cy"):
+            low = sys.float_info.min if name.startswith("f") else 0.0
+            object.__setattr__(self, name, _pixels(name, getattr(self, name), low))
         coefficients = tuple(self.distortion)
         if len(coefficients) not in (0, 4, 5, 8, 12, 14):
             raise ValueError(

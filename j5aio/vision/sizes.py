@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
-import math
+import sys
 from collections.abc import Iterable, Iterator, Mapping
+
+from j5aio.components._checks import check_number
 
 __all__ = ["MarkerSizes", "UnknownMarkerError"]
 
@@ -16,11 +18,13 @@ class UnknownMarkerError(LookupError):
 
 
 def _check_size(marker_id: int, size: object) -> float:
-    if isinstance(size, bool) or not isinstance(size, int | float):
-        raise TypeError(f"the size of marker {marker_id} must be a number of mm, not {size!r}")
-    if not (math.isfinite(size) and size > 0):
-        raise ValueError(f"the size of marker {marker_id} must be more than 0 mm, not {size}")
-    return float(size)
+    return check_number(
+        size,
+        name=f"the size of marker {marker_id}",
+        low=sys.float_info.min,
+        high=sys.float_info.max,
+        allowed="a number of mm more than 0",
+    )
 
 
 def _check_id(marker_id: object) -> int:
