@@ -75,7 +75,7 @@ def april_vision_processor(calibration: CameraCalibration, sizes_m: dict[int, fl
     except ImportError:
         return None
 
-    class Frames(FrameSource):
+    class Frames(FrameSource):  # type: ignore[misc,unused-ignore]
         def __init__(self) -> None:
             pass
 
