@@ -27,6 +27,9 @@ __all__ = ["MarkerDetector", "detect_marker_ids", "detect_markers"]
 #: The marker family every SR and SourceBots game uses.
 FAMILY = "tag36h11"
 
+#: The RMS reprojection error (pixels) below which IPPE's pose is taken as it is.
+GOOD_REPROJECTION = 0.5
+
 
 def _as_sizes(marker_sizes: Mapping[int, float] | MarkerSizes) -> MarkerSizes:
     if isinstance(marker_sizes, MarkerSizes):
@@ -115,17 +118,21 @@ class MarkerDetector:
     def _solve_pose(
         self, object_points: Any, image_points: Any, camera_matrix: Any, distortion: Any
     ) -> tuple[Any, Any]:
-        """The marker's pose: both IPPE solutions, each polished by Levenberg-Marquardt.
+        """The marker's pose, from the IPPE method for planar squares.
 
         IPPE alone sometimes lands well away from the true pose on a large, oblique marker
-        (tens of pixels of reprojection error); polishing both of its solutions and keeping
-        the one that reprojects best fixes that for the cost of a few microseconds.
+        (tens of pixels of reprojection error). When its better solution reprojects worse
+        than :data:`GOOD_REPROJECTION` pixels, both solutions are polished by
+        Levenberg-Marquardt and the one that then reprojects best is kept.
         """
         np, cv2 = self._np, self._cv2
-        _, rvecs, tvecs, _ = cv2.solvePnPGeneric(
+        _, rvecs, tvecs, errors = cv2.solvePnPGeneric(
             object_points, image_points, camera_matrix, distortion, flags=cv2.SOLVEPNP_IPPE
         )
-        best: tuple[float, Any, Any] | None = None
+        best = int(np.argmin(errors))
+        if float(errors[best][0]) <= GOOD_REPROJECTION:
+            return rvecs[best], tvecs[best]
+        polished: tuple[float, Any, Any] | None = None
         for rvec, tvec in zip(rvecs, tvecs, strict=True):
             rvec, tvec = cv2.solvePnPRefineLM(
                 object_points, image_points, camera_matrix, distortion, rvec, tvec
@@ -134,10 +141,10 @@ class MarkerDetector:
                 object_points, rvec, tvec, camera_matrix, distortion
             )
             error = float(np.sum((projected.reshape(-1, 2) - image_points) ** 2))
-            if best is None or error < best[0]:
-                best = (error, rvec, tvec)
-        assert best is not None
-        return best[1], best[2]
+            if polished is None or error < polished[0]:
+                polished = (error, rvec, tvec)
+        assert polished is not None
+        return polished[1], polished[2]
 
     def _marker(
         self,
