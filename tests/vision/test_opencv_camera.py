@@ -131,3 +131,12 @@ async def test_a_known_camera_at_an_unknown_shape_and_other_platforms(
 
 def test_usb_ids_come_from_sysfs_or_are_unknown(tmp_path: Path) -> None:
     assert opencv_backend.usb_id_of("/dev/video-that-is-not-there") is None
+    usb_device = tmp_path / "usb1" / "1-2"
+    (usb_device / "1-2:1.0").mkdir(parents=True)
+    (usb_device / "idVendor").write_text("046d\n")
+    (usb_device / "idProduct").write_text("0825\n")
+    (tmp_path / "video4linux" / "video0").mkdir(parents=True)
+    (tmp_path / "video4linux" / "video0" / "device").symlink_to(usb_device / "1-2:1.0")
+    sysfs = tmp_path / "video4linux"
+    assert opencv_backend.usb_id_of("/dev/video0", sysfs) == "046d:0825"
+    assert opencv_backend.usb_id_of("/dev/video1", sysfs) is None

@@ -34,10 +34,15 @@ LOGGER = logging.getLogger(__name__)
 DEFAULT_RESOLUTION = (1280, 960)
 
 
-def usb_id_of(device: str) -> str | None:
-    """Return ``"vvvv:pppp"`` of a Linux video device, or ``None`` if it cannot be read."""
+def usb_id_of(device: str, sysfs: Path = Path("/sys/class/video4linux")) -> str | None:
+    """Return ``"vvvv:pppp"`` of a Linux video device, or ``None`` if it cannot be read.
+
+    :param device: the device path, e.g. ``/dev/video0``.
+    :param sysfs: where the kernel lists video devices.
+    """
     name = Path(device).name
-    base = Path("/sys/class/video4linux") / name / "device" / ".."
+    # device/ is the USB interface; its parent is the USB device, with its ids.
+    base = sysfs / name / "device" / ".."
     try:
         vendor = (base / "idVendor").read_text().strip()
         product = (base / "idProduct").read_text().strip()
