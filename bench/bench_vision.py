@@ -53,19 +53,27 @@ def arena_images(calibration: CameraCalibration, resolution: tuple[int, int]) ->
     return images
 
 
-def rate(function: Callable[[Any], object], images: list[Any], seconds: float) -> float:
-    """Frames per second of ``function`` over ``images``, median of 5 rounds."""
-    for image in images:
-        function(image)  # warm up
-    rates = []
+def rates(
+    functions: dict[str, Callable[[Any], object]], images: list[Any], seconds: float
+) -> dict[str, float]:
+    """Frames per second of each function over ``images``: the median of 5 rounds.
+
+    The functions take turns within each round, so that a change in the machine's load
+    falls on all of them alike.
+    """
+    for function in functions.values():
+        for image in images:
+            function(image)  # warm up
+    measured: dict[str, list[float]] = {name: [] for name in functions}
     for _ in range(5):
-        count = 0
-        start = time.perf_counter()
-        while time.perf_counter() - start < seconds / 5:
-            function(images[count % len(images)])
-            count += 1
-        rates.append(count / (time.perf_counter() - start))
-    return statistics.median(rates)
+        for name, function in functions.items():
+            count = 0
+            start = time.perf_counter()
+            while time.perf_counter() - start < seconds / 5 / len(functions):
+                function(images[count % len(images)])
+                count += 1
+            measured[name].append(count / (time.perf_counter() - start))
+    return {name: statistics.median(values) for name, values in measured.items()}
 
 
 def april_vision_processor(calibration: CameraCalibration, sizes_m: dict[int, float]) -> Any:
@@ -98,21 +106,25 @@ def detection_speed(seconds: float) -> None:
         images = arena_images(calibration, resolution)
         count = sum(len(MarkerDetector().detect(i, calibration, sizes)) for i in images)
         ours = MarkerDetector()
-        ours_fps = rate(lambda i: ours.detect(i, calibration, sizes), images, seconds)  # noqa: B023
-        ids_fps = rate(ours.detect_ids, images, seconds)
+        functions: dict[str, Callable[[Any], object]] = {
+            "ours": lambda i: ours.detect(i, calibration, sizes),  # noqa: B023
+            "ids": ours.detect_ids,
+        }
+        processor = april_vision_processor(calibration, sizes_m)
+        if processor is not None:
+            functions["theirs"] = lambda i: processor.see(frame=i)  # noqa: B023
+        fps = rates(functions, images, seconds)
         line = (
             f"{resolution[0]}x{resolution[1]}: {count} markers in {len(images)} views; "
-            f"j5aio detect_markers {ours_fps:6.1f} fps, see_ids path {ids_fps:6.1f} fps"
+            f"j5aio detect_markers {fps['ours']:6.1f} fps, see_ids path {fps['ids']:6.1f} fps"
         )
-        processor = april_vision_processor(calibration, sizes_m)
         if processor is None:
             line += "; april_vision not installed (pip install april_vision) - no comparison"
         else:
-            theirs = rate(lambda i: processor.see(frame=i), images, seconds)  # noqa: B023
             found = sum(len(processor.see(frame=i)) for i in images)
             line += (
-                f"; april_vision Processor.see {theirs:6.1f} fps ({found} markers) "
-                f"-> ratio j5aio/april_vision {ours_fps / theirs:4.2f}"
+                f"; april_vision Processor.see {fps['theirs']:6.1f} fps ({found} markers) "
+                f"-> ratio j5aio/april_vision {fps['ours'] / fps['theirs']:4.2f}"
             )
         print(line)
 

@@ -228,8 +228,7 @@ class SimulatedCameraBackend(FrameCameraBackend):
         self._camera = world_camera
         #: The table of the arena's marker sizes, which the camera starts with.
         self.marker_sizes = kit.world.arena.marker_sizes()
-        self._timer: asyncio.TimerHandle | None = None
-        self._loop: asyncio.AbstractEventLoop | None = None
+        self._ticking = False
 
     @classmethod
     async def discover(cls) -> Sequence[Board]:
@@ -247,13 +246,8 @@ class SimulatedCameraBackend(FrameCameraBackend):
         return self._kit
 
     def _start_ticking(self) -> None:
-        self._loop = asyncio.get_running_loop()
-        self._tick()
-
-    def _tick(self) -> None:
-        update_world(self._kit)
-        if self._loop is not None and not self._loop.is_closed():
-            self._timer = self._loop.call_later(TICK, self._tick)
+        _WorldClock.join(self._kit, asyncio.get_running_loop())
+        self._ticking = True
 
     def grab(self) -> Image:
         """Render the view from the pose the robot has now (call on the event loop)."""
@@ -270,11 +264,52 @@ class SimulatedCameraBackend(FrameCameraBackend):
 
     async def close(self) -> None:
         """Stop moving the world on, and stop the worker thread."""
-        if self._timer is not None:
-            self._timer.cancel()
-            self._timer = None
-        self._loop = None
+        if self._ticking:
+            self._ticking = False
+            _WorldClock.leave(self._kit)
         await super().close()
+
+
+class _WorldClock:
+    """Moves a kit's world on every :data:`TICK` while any of its cameras is open.
+
+    One timer a kit, on the event loop of the camera that started it, however many camera
+    backends have been made for the kit.
+    """
+
+    _clocks: ClassVar[dict[int, _WorldClock]] = {}
+
+    def __init__(self, kit: SimulatedKit, loop: asyncio.AbstractEventLoop) -> None:
+        self.kit = kit
+        self.loop = loop
+        self.users = 0
+        self.timer: asyncio.TimerHandle | None = None
+
+    @classmethod
+    def join(cls, kit: SimulatedKit, loop: asyncio.AbstractEventLoop) -> None:
+        clock = cls._clocks.get(id(kit))
+        if clock is None or clock.kit is not kit or clock.loop is not loop or loop.is_closed():
+            if clock is not None and clock.timer is not None:
+                clock.timer.cancel()
+            clock = cls._clocks[id(kit)] = cls(kit, loop)
+            clock.tick()
+        clock.users += 1
+
+    @classmethod
+    def leave(cls, kit: SimulatedKit) -> None:
+        clock = cls._clocks.get(id(kit))
+        if clock is None or clock.kit is not kit:
+            return
+        clock.users -= 1
+        if clock.users <= 0:
+            if clock.timer is not None:
+                clock.timer.cancel()
+            del cls._clocks[id(kit)]
+
+    def tick(self) -> None:
+        update_world(self.kit)
+        if not self.loop.is_closed():
+            self.timer = self.loop.call_later(TICK, self.tick)
 
 
 def update_world(kit: SimulatedKit, now: float | None = None) -> None:

@@ -148,3 +148,20 @@ def test_a_marker_turned_away_is_not_drawn() -> None:
     kit.world.place_robot(Pose(2875.0, 300.0, math.pi / 2))  # back to the south wall
     truth = {t.marker_id for t in visible_markers(kit.world, kit.camera)}
     assert not truth & set(range(7))  # the south wall's markers face away from the camera
+
+
+async def test_cameras_of_one_kit_share_one_clock_that_stops_with_the_last() -> None:
+    from j5aio.simulator.camera import _WorldClock
+
+    kit = use_kit(KitConfig(motor_boards=1))
+    first = await SimulatedCameraBackend.discover()
+    second = await SimulatedCameraBackend.discover()
+    clock = _WorldClock._clocks[id(kit)]
+    assert clock.users == 2
+    kit.world.place_robot(Pose(2875.0, 1000.0, math.pi / 2))
+    await first[0].close()
+    await first[0].close()  # twice is harmless
+    assert clock.users == 1 and clock.timer is not None
+    await second[0].close()
+    assert id(kit) not in _WorldClock._clocks
+    _WorldClock.leave(kit)  # a kit without a clock: nothing to do
