@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from functools import partial
 
+from j5aio.backends.camera.opencv import OpenCVCameraBackend
+from j5aio.backends.console.camera import CameraConsoleBackend
 from j5aio.backends.console.sb.arduino import SBArduinoConsoleBackend
 from j5aio.backends.console.sb.arduino_2024 import SBArduino2024ConsoleBackend
 from j5aio.backends.console.sr.kch import KCHConsoleBackend
@@ -37,6 +39,7 @@ from j5aio.backends.hardware.sr.v4.servo_board_fw4 import (
     SRV4ServoBoardFw4HardwareBackend,
 )
 from j5aio.board_kinds import DEFAULT_KIT, BoardKind, KitDefinition, SimulatorEntry
+from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduino2024Board, SBArduinoBoard, SBServoBoard
 from j5aio.boards.sr.kch import KCHBoard
 from j5aio.boards.sr.v4 import (
@@ -49,6 +52,7 @@ from j5aio.boards.sr.v4 import (
     ServoBoardFw4,
     SRArduinoBoard,
 )
+from j5aio.simulator.camera import SimulatedCameraBackend
 from j5aio.simulator.kch import KCHSimulatedBackend, KCHSimulator
 from j5aio.simulator.sb_arduino_2019 import SBArduinoSimulator
 from j5aio.simulator.sb_arduino_2024 import SBArduino2024Simulator
@@ -246,6 +250,15 @@ def entries() -> list[BoardKind | KitDefinition]:
                 ),
             ),
             simulated=KCHSimulatedBackend,
+        ),
+        BoardKind(
+            name="camera",
+            board=CameraBoard,
+            description="a webcam finding AprilTag markers (the optional extra j5aio[vision])",
+            hardware=OpenCVCameraBackend,
+            console=CameraConsoleBackend,
+            # Every simulated kit has the robot's camera in its arena (kit.camera).
+            simulated=SimulatedCameraBackend,
         ),
         KitDefinition(
             DEFAULT_KIT,

@@ -15,10 +15,13 @@ hardware, unless ``J5AIO_ENV`` or ``python -m j5aio run --sim`` chose otherwise:
 
 from __future__ import annotations
 
+from j5aio.backends.camera.files import FileCameraBackend
 from j5aio.backends.environment import Environment
 from j5aio.boards.board_group import BoardGroup
+from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduinoBoard
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
+from j5aio.components.marker_camera import MarkerCamera
 from j5aio.environments import get_default_environment, hint_no_hardware
 from j5aio.robot import BaseRobot
 
@@ -34,7 +37,10 @@ class KitRobot(BaseRobot):
       exactly one);
     - ``robot.motor_boards``, ``robot.servo_boards``, ``robot.arduinos`` (SourceBots
       Arduinos) and ``robot.ruggeduinos``: groups of every such board found, possibly
-      empty, reached by position or serial number.
+      empty, reached by position or serial number;
+    - ``robot.cameras``: the cameras found (webcams; the simulated kit's camera), and
+      ``robot.camera``: the first one's :class:`~j5aio.components.marker_camera.MarkerCamera`
+      (``None`` without a camera), so that ``await robot.camera.see()`` finds markers.
 
     :param environment: where to find the boards; the default environment if omitted.
     :raises TypeError: ``environment`` is not an Environment.
@@ -46,6 +52,8 @@ class KitRobot(BaseRobot):
     servo_boards: BoardGroup[ServoBoard]
     arduinos: BoardGroup[SBArduinoBoard]
     ruggeduinos: BoardGroup[Ruggeduino]
+    cameras: BoardGroup[CameraBoard]
+    camera: MarkerCamera | None
 
     def __init__(self, *, environment: Environment | None = None) -> None:
         if environment is not None and not isinstance(environment, Environment):
@@ -79,6 +87,11 @@ class KitRobot(BaseRobot):
         self.servo_boards = await environment.get_board_group(ServoBoard)
         self.arduinos = await environment.get_board_group(SBArduinoBoard)
         self.ruggeduinos = await environment.get_board_group(Ruggeduino)
+        if CameraBoard in environment.supported_boards:
+            self.cameras = await environment.get_board_group(CameraBoard)
+        else:
+            self.cameras = BoardGroup(CameraBoard, FileCameraBackend)
+        self.camera = self.cameras[0].camera if self.cameras else None
         groups = (
             self.power_boards,
             self.motor_boards,

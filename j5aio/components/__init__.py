@@ -19,6 +19,7 @@ from j5aio.components.gpio_pin import (
     PinMode,
 )
 from j5aio.components.led import LED, LEDInterface
+from j5aio.components.marker_camera import MarkerCamera, MarkerCameraInterface
 from j5aio.components.monitored_motor import MonitoredMotor, MonitoredMotorInterface
 from j5aio.components.motor import (
     Motor,
@@ -67,6 +68,8 @@ __all__ = [
     "Interface",
     "LEDInterface",
     "LEDMode",
+    "MarkerCamera",
+    "MarkerCameraInterface",
     "MonitoredMotor",
     "MonitoredMotorInterface",
     "Motor",

@@ -26,16 +26,20 @@ import itertools
 import os
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, fields
-from typing import Final
+from typing import TYPE_CHECKING, Final
 
 from j5aio.board_kinds import DEFAULT_KIT, BoardKind, KitDefinition, get_kit, simulator_entries
 
+from .arena import SimulatedWorld
 from .base import SerialBoardSimulator, UsbBoardSimulator
 from .sb_arduino_2019 import SBArduinoSimulator
 from .sr_motor_fw3 import SRMotorBoardFw3Simulator
 from .sr_power_fw3 import SRPowerBoardFw3Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from .sr_servo_fw2 import SRServoBoardFw2Simulator
+
+if TYPE_CHECKING:
+    from .camera import SimulatedCamera
 
 __all__ = [
     "KIT_VARIABLE",
@@ -171,6 +175,11 @@ class SimulatedKit:
                 f"{type(config).__name__}"
             )
         self._name = f"kit{next(_kit_numbers)}"
+        #: The arena, the robot's pose and its drive (see :mod:`j5aio.simulator.arena`).
+        self.world = SimulatedWorld()
+        #: The robot's camera (a :class:`~j5aio.simulator.camera.SimulatedCamera`), or
+        #: ``None`` for a robot without one.
+        self.camera: SimulatedCamera | None = _default_camera()
         self._boards: dict[str, tuple[BoardSimulator, ...]] = {}
         self._kinds: dict[int, BoardKind] = {}
         entries = simulator_entries()
@@ -291,6 +300,12 @@ class SimulatedKit:
     def __repr__(self) -> str:
         what = self._definition.name if self._definition is not None else repr(self._config)
         return f"<SimulatedKit {self._name} {what}>"
+
+
+def _default_camera() -> SimulatedCamera:
+    from .camera import SimulatedCamera
+
+    return SimulatedCamera()
 
 
 def _serial(prefix: str, index: int, count: int) -> str:

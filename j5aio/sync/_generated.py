@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Mapping, Sequence, Set
 from datetime import timedelta
+from pathlib import Path
 from typing import Any, ClassVar, Final, Generic, Self, TypeVar, cast, overload
 
 import j5aio.backends.backend as _backends_backend
@@ -21,6 +22,7 @@ import j5aio.boards.arduino.all_digital as _boards_arduino_all_digital
 import j5aio.boards.arduino.uno as _boards_arduino_uno
 import j5aio.boards.board as _boards_board
 import j5aio.boards.board_group as _boards_board_group
+import j5aio.boards.camera as _boards_camera
 import j5aio.boards.sb.arduino as _boards_sb_arduino
 import j5aio.boards.sb.arduino_2024 as _boards_sb_arduino_2024
 import j5aio.boards.sb.servo_board as _boards_sb_servo_board
@@ -43,6 +45,7 @@ import j5aio.components.flag as _components_flag
 import j5aio.components.flashing_led as _components_flashing_led
 import j5aio.components.gpio_pin as _components_gpio_pin
 import j5aio.components.led as _components_led
+import j5aio.components.marker_camera as _components_marker_camera
 import j5aio.components.monitored_motor as _components_monitored_motor
 import j5aio.components.motor as _components_motor
 import j5aio.components.piezo as _components_piezo
@@ -57,6 +60,9 @@ import j5aio.components.temperature_sensor as _components_temperature_sensor
 import j5aio.components.voltage_sensor as _components_voltage_sensor
 import j5aio.environments as _environments
 import j5aio.robot as _robot
+import j5aio.vision.calibration as _vision_calibration
+import j5aio.vision.markers as _vision_markers
+import j5aio.vision.sizes as _vision_sizes
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt as _adopt
 from j5aio.sync.wrapping import adopt_into as _adopt_into
@@ -77,6 +83,7 @@ __all__ = [
     "Board",
     "BoardGroup",
     "Button",
+    "CameraBoard",
     "Colour",
     "Component",
     "DerivedComponent",
@@ -87,6 +94,7 @@ __all__ = [
     "GPIOPin",
     "IdentifiedComponent",
     "KCHBoard",
+    "MarkerCamera",
     "MonitoredMotor",
     "Motor",
     "MotorBoard",
@@ -277,6 +285,10 @@ class Environment(_SyncWrapper):
         self,
         board: type[_boards_arduino_uno.ArduinoUno],
     ) -> BoardGroup[ArduinoUno]:
+        ...
+
+    @overload
+    def get_board_group(self, board: type[_boards_camera.CameraBoard]) -> BoardGroup[CameraBoard]:
         ...
 
     @overload
@@ -660,6 +672,17 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
+        board_type: type[_boards_camera.CameraBoard],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        *,
+        ports: Sequence[str] = (),
+    ) -> BoardGroup[CameraBoard]:
+        ...
+
+    @overload
+    @classmethod
+    def get_board_group(
+        cls,
         board_type: type[_boards_sr_kch.KCHBoard],
         backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
@@ -919,6 +942,38 @@ class ArduinoUno(Board):
 
     def make_safe(self) -> None:
         """Do nothing: a pin has no safe state that suits every circuit."""
+        _call(self._core.make_safe)
+
+
+class CameraBoard(Board):
+    """A camera plugged into the robot: a webcam, a file of pictures, or a simulated one.
+
+    :param serial_number: the camera's name (its device path, or its place in a kit).
+    :param backend: the backend that takes its pictures; if it has a ``marker_sizes``
+        attribute (a simulated arena knows its markers), the camera starts with that table.
+    """
+
+    __slots__ = ()
+
+    _core: _boards_camera.CameraBoard
+
+    def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
+        _adopt_into(self, _boards_camera.CameraBoard(serial_number, backend))
+
+    name: ClassVar[str] = _boards_camera.CameraBoard.name
+
+    @property
+    def camera(self) -> MarkerCamera:
+        """The camera's marker finder: ``await board.camera.see()``."""
+        return cast("MarkerCamera", _wrap(self._core.camera))
+
+    @staticmethod
+    def supported_components() -> set[type[_components_component.Component]]:
+        """The component classes of a camera: :class:`MarkerCamera`."""
+        return _boards_camera.CameraBoard.supported_components()
+
+    def make_safe(self) -> None:
+        """Do nothing: a camera has nothing to stop."""
         _call(self._core.make_safe)
 
 
@@ -1897,6 +1952,87 @@ class LED(IdentifiedComponent[_components_led.LEDInterface]):
         return _components_led.LED.interface_class()
 
 
+class MarkerCamera(IdentifiedComponent[_components_marker_camera.MarkerCameraInterface]):
+    """A camera that finds fiducial markers (AprilTag 36h11) and says where they are.
+
+    :param identifier: the number of the camera on its board.
+    :param backend: the backend that takes the pictures.
+    :param marker_sizes: the game's table of marker sizes (ids to mm); set it later with
+        :meth:`set_marker_sizes`. Until then, every marker seen is an error.
+    """
+
+    __slots__ = ()
+
+    _core: _components_marker_camera.MarkerCamera
+
+    def __init__(
+        self,
+        identifier: int,
+        backend: _components_marker_camera.MarkerCameraInterface,
+        marker_sizes: Mapping[int, float] | None = None,
+    ) -> None:
+        _adopt_into(self, _components_marker_camera.MarkerCamera(identifier, backend, marker_sizes))
+
+    @property
+    def calibration(self) -> _vision_calibration.CameraCalibration | None:
+        """Return the camera's calibration; ``None`` means distances are unknown."""
+        return _call(self._core.get_calibration)
+
+    @classmethod
+    def interface_class(cls) -> type[_components_marker_camera.MarkerCameraInterface]:
+        """The interface a backend implements: :class:`MarkerCameraInterface`."""
+        return _components_marker_camera.MarkerCamera.interface_class()
+
+    @property
+    def marker_sizes(self) -> _vision_sizes.MarkerSizes:
+        """The game's table of marker sizes, id to mm."""
+        return self._core.marker_sizes
+
+    def set_marker_sizes(self, marker_sizes: Mapping[int, float]) -> None:
+        """Set the game's table of marker sizes (ids to mm), as the competition says.
+
+        :raises TypeError: not a mapping of int ids to numbers.
+        :raises ValueError: an id is outside AprilTag 36h11, or a size is not above 0.
+        """
+        self._core.set_marker_sizes(marker_sizes)
+
+    def see(self) -> list[_vision_markers.Marker]:
+        """Take a picture and return the markers in it, nearest first.
+
+        Without a calibration each marker has its id and pixels, and NaN distances and
+        angles (``marker.has_pose`` is ``False``).
+
+        :raises UnknownMarkerError: a marker was seen whose id has no size in the table.
+        :raises VisionNotInstalledError: the vision libraries are not installed.
+        :raises CommunicationError: the camera gave no picture.
+        """
+        return _call(self._core.see)
+
+    def see_ids(self) -> list[int]:
+        """Take a picture and return the ids of the markers in it (fast: no distances).
+
+        :raises CommunicationError: the camera gave no picture.
+        """
+        return _call(self._core.see_ids)
+
+    def capture(self) -> Any:
+        """Take a picture and return it: a numpy array, height x width x 3, BGR.
+
+        :raises CommunicationError: the camera gave no picture.
+        """
+        return _call(self._core.capture)
+
+    def save(self, path: str | Path) -> None:
+        """Take a picture and write it to ``path``, with the markers found outlined.
+
+        :param path: where to write; the suffix (``.png``, ``.jpg``...) picks the format.
+        :raises TypeError: ``path`` is not a str or a Path.
+        :raises ValueError: ``path`` has no image suffix OpenCV can write.
+        :raises CommunicationError: the camera gave no picture.
+        """
+        _call(self._core.save, path)
+
+
 class Motor(IdentifiedComponent[_components_motor.MotorInterface]):
     """A DC motor, driven at a power between full reverse (-1) and full forward (1).
 
@@ -2519,6 +2655,7 @@ _register(_boards_board_group.BoardGroup, BoardGroup)
 _register(_components_component.Component, Component)
 _register(_components_power_output.PowerOutputGroup, PowerOutputGroup)
 _register(_boards_arduino_uno.ArduinoUno, ArduinoUno)
+_register(_boards_camera.CameraBoard, CameraBoard)
 _register(_boards_sr_kch.KCHBoard, KCHBoard)
 _register(_boards_sr_v4_motor_board.MotorBoard, MotorBoard)
 _register(_boards_sr_v4_power_board.PowerBoard, PowerBoard)
@@ -2541,6 +2678,7 @@ _register(_components_fan.Fan, Fan)
 _register(_components_flag.Flag, Flag)
 _register(_components_gpio_pin.GPIOPin, GPIOPin)
 _register(_components_led.LED, LED)
+_register(_components_marker_camera.MarkerCamera, MarkerCamera)
 _register(_components_motor.Motor, Motor)
 _register(_components_piezo.Piezo, Piezo)
 _register(_components_power_output.PowerOutput, PowerOutput)

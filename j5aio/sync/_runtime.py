@@ -168,7 +168,8 @@ class _LoopThread:
 
     async def _serve(self, scope: anyio.CancelScope) -> None:
         """Run calls until the portal stops or ``scope`` has cancelled one."""
-        while not scope.cancel_called:
+        # A stop that lands while the worker waits for a call must not let a call start.
+        while not scope.cancel_called and not self._stopping:
             request = self._queue.popleft() if self._queue else await self._next()
             if request is None:
                 return
@@ -199,7 +200,7 @@ class _LoopThread:
             finally:
                 self._idle = False
                 self._waiter = None
-            if self._queue:
+            if self._queue and not self._stopping:
                 return self._queue.popleft()
         return None
 

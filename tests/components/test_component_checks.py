@@ -52,7 +52,7 @@ def test_every_component_names_an_exported_interface() -> None:
     classes = [c for c in exported if isinstance(c, type) and issubclass(c, Component)]
     concrete = [c for c in classes if not getattr(c, "__abstractmethods__", None)]
     assert {c.__name__ for c in concrete} == {
-        "LED", "RGBLED", "BatterySensor", "Button", "GPIOPin", "Motor", "Piezo",
+        "LED", "RGBLED", "BatterySensor", "Button", "GPIOPin", "MarkerCamera", "Motor", "Piezo",
         "PowerOutput", "Servo", "StringCommandComponent", "UltrasoundSensor",
         "PulseServo", "SupplySensor", "Flag", "FlashingLED",
         "ProtectedPowerOutput", "MonitoredMotor", "TemperatureSensor",

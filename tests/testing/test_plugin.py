@@ -39,7 +39,8 @@ async def test_sim_kit_has_the_default_kit_set_up(j5aio_sim_kit: OpenSimulatedKi
     assert len(j5aio_sim_kit.group(MotorBoard)) == len(kit.motor_boards) == 2
     assert len(j5aio_sim_kit.group(PowerBoard)) == len(kit.power_boards) == 1
     assert set(j5aio_sim_kit.boards) <= Board.BOARDS
-    assert len(j5aio_sim_kit.boards) == len(kit)
+    # every board simulator, and the camera of the kit's world
+    assert len(j5aio_sim_kit.boards) == len(kit) + (kit.camera is not None)
 
 
 async def test_sim_kit_drives_the_simulators(j5aio_sim_kit: OpenSimulatedKit) -> None:

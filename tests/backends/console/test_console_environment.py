@@ -5,6 +5,7 @@ from collections.abc import Iterator
 import pytest
 
 from j5aio.backends.console import CONSOLE_ENVIRONMENT, ConsoleBackend
+from j5aio.backends.console.camera import CameraConsoleBackend
 from j5aio.backends.console.sb import SBArduino2024ConsoleBackend, SBArduinoConsoleBackend
 from j5aio.backends.console.sr.kch import KCHConsoleBackend
 from j5aio.backends.console.sr.v4 import (
@@ -17,6 +18,7 @@ from j5aio.backends.console.sr.v4 import (
     SRV4ServoBoardFw4ConsoleBackend,
 )
 from j5aio.boards.board import Board
+from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduino2024Board, SBArduinoBoard, SBServoBoard
 from j5aio.boards.sr.kch import KCHBoard
 from j5aio.boards.sr.v4 import (
@@ -41,6 +43,7 @@ BACKENDS: dict[type[Board], type[ConsoleBackend]] = {
     KCHBoard: KCHConsoleBackend,
     SRArduinoBoard: SRArduinoConsoleBackend,
     SBArduino2024Board: SBArduino2024ConsoleBackend,
+    CameraBoard: CameraConsoleBackend,
 }
 
 

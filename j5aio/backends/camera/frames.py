@@ -1,0 +1,122 @@
+"""FrameCameraBackend: the shared part of every camera backend that has real pictures.
+
+A subclass says how to get one picture (:meth:`FrameCameraBackend.grab`, a blocking call);
+this base runs it and the detector on the camera's own worker thread, so the event loop is
+never blocked by a capture or a detection.
+"""
+
+from __future__ import annotations
+
+from abc import abstractmethod
+from collections.abc import Callable
+from pathlib import Path
+from typing import TYPE_CHECKING, ClassVar
+
+from j5aio.backends.backend import Backend
+from j5aio.boards.camera import CameraBoard
+from j5aio.components.marker_camera import MarkerCameraInterface
+from j5aio.vision.annotate import annotate, write_image
+from j5aio.vision.detect import MarkerDetector
+from j5aio.vision.worker import CameraWorker
+
+if TYPE_CHECKING:
+    from j5aio.boards.board import Board
+    from j5aio.vision.calibration import CameraCalibration
+    from j5aio.vision.image import Image
+    from j5aio.vision.markers import Marker
+    from j5aio.vision.sizes import MarkerSizes
+
+__all__ = ["FrameCameraBackend"]
+
+
+class FrameCameraBackend(Backend, MarkerCameraInterface):
+    """A camera whose pictures come from :meth:`grab`, detected on a worker thread.
+
+    :param name: the camera's name (the serial number of its board).
+    :param calibration: the camera's calibration; ``None`` for ids and pixels only.
+    :param quad_decimate: passed to the :class:`~j5aio.vision.detect.MarkerDetector`.
+    """
+
+    board: ClassVar[type[Board]] = CameraBoard
+
+    def __init__(
+        self,
+        name: str,
+        calibration: CameraCalibration | None = None,
+        *,
+        quad_decimate: float = 2.0,
+    ) -> None:
+        self._name = name
+        self._calibration = calibration
+        self._quad_decimate = quad_decimate
+        self._detector: MarkerDetector | None = None
+        self._worker = CameraWorker(f"camera {name}")
+
+    @property
+    def name(self) -> str:
+        """The camera's name."""
+        return self._name
+
+    @property
+    def firmware_version(self) -> None:
+        """Always ``None``: a camera has no firmware j5aio knows of."""
+        return None
+
+    @abstractmethod
+    def grab(self) -> Image:
+        """Take one picture (blocking; runs on the worker thread).
+
+        :raises CommunicationError: no picture could be had.
+        """
+        raise NotImplementedError
+
+    def _detector_here(self) -> MarkerDetector:
+        # Made on the worker thread, the only thread that uses it.
+        if self._detector is None:
+            self._detector = MarkerDetector(quad_decimate=self._quad_decimate)
+        return self._detector
+
+    async def frame_source(self) -> Callable[[], Image]:
+        """Return the blocking call that takes the next picture on the worker thread.
+
+        :meth:`grab` by default; a simulated camera first notes, on the event loop, where
+        the robot is, and returns a call that renders that view.
+        """
+        return self.grab
+
+    def _see(self, source: Callable[[], Image], sizes: MarkerSizes) -> list[Marker]:
+        return self._detector_here().detect(source(), self._calibration, sizes)
+
+    def _see_ids(self, source: Callable[[], Image]) -> list[int]:
+        return self._detector_here().detect_ids(source())
+
+    def _save(self, source: Callable[[], Image], path: Path, sizes: MarkerSizes) -> None:
+        frame = source()
+        markers = self._detector_here().detect(frame, self._calibration, sizes)
+        write_image(path, annotate(frame, markers))
+
+    async def see_markers(self, identifier: int, marker_sizes: MarkerSizes) -> list[Marker]:
+        """Take a picture and return the markers in it, nearest first."""
+        return await self._worker.run(self._see, await self.frame_source(), marker_sizes)
+
+    async def see_marker_ids(self, identifier: int) -> list[int]:
+        """Take a picture and return the ids of the markers in it, sorted."""
+        return await self._worker.run(self._see_ids, await self.frame_source())
+
+    async def capture_frame(self, identifier: int) -> Image:
+        """Take a picture and return it."""
+        return await self._worker.run(await self.frame_source())
+
+    async def save_annotated_frame(
+        self, identifier: int, path: Path, marker_sizes: MarkerSizes
+    ) -> None:
+        """Take a picture, outline the markers found, and write it to ``path``."""
+        await self._worker.run(self._save, await self.frame_source(), path, marker_sizes)
+
+    async def get_calibration(self, identifier: int) -> CameraCalibration | None:
+        """Return the camera's calibration, or ``None``."""
+        return self._calibration
+
+    async def close(self) -> None:
+        """Stop the camera's worker thread (and release the device, in subclasses)."""
+        self._worker.close()
