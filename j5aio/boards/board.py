@@ -103,7 +103,10 @@ class Board(ABC):
         self._is_closed = True
         Board.BOARDS.discard(self)
         lifetime.untrack(self)
-        self._backend.close_now()
+        # A stand-in backend that is not a Backend (a test's) may have nothing to close.
+        close_now = getattr(self._backend, "close_now", None)
+        if close_now is not None:
+            close_now()
 
     @staticmethod
     async def make_all_safe() -> list[BaseException]:
