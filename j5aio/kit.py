@@ -15,12 +15,18 @@ hardware, unless ``J5AIO_ENV`` or ``python -m j5aio run --sim`` chose otherwise:
 
 from __future__ import annotations
 
+from types import TracebackType
+from typing import TYPE_CHECKING
+
 from j5aio.backends.environment import Environment
 from j5aio.boards.board_group import BoardGroup
 from j5aio.boards.sb import SBArduinoBoard
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
 from j5aio.environments import get_default_environment, hint_no_hardware
 from j5aio.robot import BaseRobot
+
+if TYPE_CHECKING:
+    from j5aio.view import LiveView
 
 __all__ = ["KitRobot"]
 
@@ -37,6 +43,9 @@ class KitRobot(BaseRobot):
       empty, reached by position or serial number.
 
     :param environment: where to find the boards; the default environment if omitted.
+    :param view: serve the live view of the boards while the robot runs (see
+        :mod:`j5aio.view`; needs the ``view`` extra). ``None`` (the default) follows the
+        environment: ``python -m j5aio run --view`` sets ``J5AIO_VIEW=1``.
     :raises TypeError: ``environment`` is not an Environment.
     """
 
@@ -47,7 +56,9 @@ class KitRobot(BaseRobot):
     arduinos: BoardGroup[SBArduinoBoard]
     ruggeduinos: BoardGroup[Ruggeduino]
 
-    def __init__(self, *, environment: Environment | None = None) -> None:
+    def __init__(
+        self, *, environment: Environment | None = None, view: bool | None = None
+    ) -> None:
         if environment is not None and not isinstance(environment, Environment):
             self.release_lock()
             raise TypeError(
@@ -57,6 +68,8 @@ class KitRobot(BaseRobot):
         super().__init__()
         self._environment = environment
         self._chosen_by_default = environment is None
+        self._view_wanted = view
+        self._view: LiveView | None = None
 
     @property
     def environment(self) -> Environment:
@@ -74,6 +87,7 @@ class KitRobot(BaseRobot):
             on the simulated kit instead.
         """
         environment = self.environment
+        self._start_view()
         self.power_boards = await environment.get_board_group(PowerBoard)
         self.motor_boards = await environment.get_board_group(MotorBoard)
         self.servo_boards = await environment.get_board_group(ServoBoard)
@@ -89,3 +103,25 @@ class KitRobot(BaseRobot):
         if self._chosen_by_default and not any(groups):
             hint_no_hardware()
         self.power_board = self.power_boards.singular()
+
+    # --- the live view (j5aio.view): started in setup, stopped on the way out ---
+
+    def _start_view(self) -> None:
+        from j5aio.view import start_view, view_requested
+
+        wanted = self._view_wanted if self._view_wanted is not None else view_requested()
+        if wanted and self._view is None:
+            self._view = start_view()
+
+    async def __aexit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        traceback: TracebackType | None,
+    ) -> bool:
+        try:
+            return await super().__aexit__(exc_type, exc, traceback)
+        finally:
+            if self._view is not None:
+                self._view.close()
+                self._view = None

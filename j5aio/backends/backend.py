@@ -14,7 +14,20 @@ from j5aio.errors import NotSupportedByHardwareError
 if TYPE_CHECKING:
     from j5aio.boards.board import Board
 
-__all__ = ["Backend", "BackendMeta"]
+__all__ = ["CALL_OBSERVERS", "Backend", "BackendMeta", "CallObserver"]
+
+CallObserver = Callable[["Backend", str, tuple[Any, ...], Any, BaseException | None], None]
+"""A function told of every interface call: ``(backend, method_name, arguments, result, error)``.
+
+``arguments`` are the call's arguments after ``self``, in the order the interface declares
+them; ``error`` is the exception the call raised (then ``result`` is ``None``).
+"""
+
+#: The observers of every backend's interface calls (the live view adds one). Each is called
+#: in the event loop's thread right after a call returns or raises, so it must be quick (store
+#: the value, never wait) and must not raise; a failing observer is logged and ignored. While
+#: this list is empty a call costs one truth test more than it did without observers.
+CALL_OBSERVERS: list[CallObserver] = []
 
 
 class BackendMeta(ABCMeta):
@@ -76,7 +89,14 @@ def _logged(
 
     @functools.wraps(method)
     async def logged_method(*args: Any, **kwargs: Any) -> Any:
-        result = await method(*args, **kwargs)
+        try:
+            result = await method(*args, **kwargs)
+        except Exception as error:
+            if CALL_OBSERVERS:
+                _tell_observers(signature, method_name, args, kwargs, None, error)
+            raise
+        if CALL_OBSERVERS:
+            _tell_observers(signature, method_name, args, kwargs, result, None)
         if logger.isEnabledFor(logging.DEBUG):
             arguments = signature.bind(*args, **kwargs).arguments
             shown = ", ".join(f"{k}={v!r}" for k, v in arguments.items() if k != "self")
@@ -86,6 +106,24 @@ def _logged(
 
     logged_method.__j5aio_logged__ = True  # type: ignore[attr-defined]
     return logged_method
+
+
+def _tell_observers(
+    signature: inspect.Signature,
+    method_name: str,
+    args: tuple[Any, ...],
+    kwargs: dict[str, Any],
+    result: Any,
+    error: BaseException | None,
+) -> None:
+    arguments = args[1:]
+    if kwargs:
+        arguments = tuple(signature.bind(*args, **kwargs).arguments.values())[1:]
+    for observer in list(CALL_OBSERVERS):
+        try:
+            observer(args[0], method_name, arguments, result, error)
+        except Exception:
+            logging.getLogger(__name__).exception("call observer %r failed", observer)
 
 
 class Backend(metaclass=BackendMeta):
