@@ -29,6 +29,7 @@ examples:
   python -m j5aio demo                        watch a robot run on the simulated kit
   python -m j5aio run --sim robot.py          run your program on the simulated kit
   python -m j5aio run robot.py                run it on the boards plugged in
+  python -m j5aio run --sim --view robot.py   ... and watch its boards in the browser
   python -m j5aio list                        which boards are plugged in?
   python -m j5aio simulate sb-arduino --pty   serve a simulated board on a serial port
 
@@ -79,6 +80,7 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="S",
         help="how long the robot runs, in seconds (default 6)",
     )
+    _add_view_options(demo)
     demo.set_defaults(handler=_demo)
 
     run = commands.add_parser(
@@ -105,6 +107,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument(
         "arguments", nargs=argparse.REMAINDER, help="arguments passed on to the program"
     )
+    _add_view_options(run)
     run.set_defaults(handler=_run)
 
     simulate = commands.add_parser(
@@ -165,6 +168,64 @@ def _time_scale(text: str) -> float:
     return value
 
 
+# --- the live view (j5aio.view): --view, --view-port, --view-host on run and demo ---
+
+#: How long the demo runs with --view unless --seconds says otherwise: time to look.
+VIEW_DEMO_SECONDS: Final = 120.0
+
+
+def _add_view_options(parser: argparse.ArgumentParser) -> None:
+    view = parser.add_argument_group("live view")
+    view.add_argument(
+        "--view",
+        action="store_true",
+        help="serve a live view of the boards in the browser (needs j5aio[view]); "
+        "prints its address",
+    )
+    view.add_argument(
+        "--view-port",
+        type=_port,
+        default=None,
+        metavar="N",
+        help="the view's port (default: a free one)",
+    )
+    view.add_argument(
+        "--view-host",
+        default=None,
+        metavar="ADDR",
+        help="the address the view listens on (default 127.0.0.1: this computer only)",
+    )
+
+
+def _port(text: str) -> int:
+    value = int(_number(text, "a port number"))
+    if str(value) != text.strip() or not 0 <= value <= 65535:
+        raise argparse.ArgumentTypeError(f"{text} is not a port number: give 0 to 65535")
+    return value
+
+
+def _apply_view_options(args: argparse.Namespace) -> bool:
+    """Ask robots for the live view through the environment; False if it cannot run."""
+    if not args.view:
+        if args.view_port is not None or args.view_host is not None:
+            print("j5aio: --view-port and --view-host need --view", file=sys.stderr)
+            return False
+        return True
+    import importlib.util
+
+    from j5aio.view import INSTALL_HINT, VIEW_HOST_VARIABLE, VIEW_PORT_VARIABLE, VIEW_VARIABLE
+
+    if importlib.util.find_spec("aiohttp") is None:
+        print(f"j5aio: the live view needs the 'view' extra: {INSTALL_HINT}", file=sys.stderr)
+        return False
+    os.environ[VIEW_VARIABLE] = "1"
+    if args.view_port is not None:
+        os.environ[VIEW_PORT_VARIABLE] = str(args.view_port)
+    if args.view_host is not None:
+        os.environ[VIEW_HOST_VARIABLE] = args.view_host
+    return True
+
+
 def _list(args: argparse.Namespace) -> int:
     import functools
 
@@ -188,8 +249,11 @@ def _list(args: argparse.Namespace) -> int:
 def _demo(args: argparse.Namespace) -> int:
     from j5aio.demo import DEFAULT_SECONDS, run_demo
 
+    if not _apply_view_options(args):
+        return 2
+    default = VIEW_DEMO_SECONDS if args.view else DEFAULT_SECONDS
     try:
-        braked = run_demo(args.seconds if args.seconds is not None else DEFAULT_SECONDS)
+        braked = run_demo(args.seconds if args.seconds is not None else default)
     except KeyboardInterrupt:
         print("Interrupted.", file=sys.stderr)
         return 130
@@ -200,6 +264,8 @@ def _run(args: argparse.Namespace) -> int:
     program = Path(args.program)
     if not program.is_file():
         print(f"j5aio: cannot run {args.program}: no such file", file=sys.stderr)
+        return 2
+    if not _apply_view_options(args):
         return 2
     if args.environment is not None:
         os.environ[ENVIRONMENT_VARIABLE] = args.environment

@@ -163,17 +163,18 @@ def _label(value: object) -> str:
 
 
 def jsonable(value: object) -> Any:
-    """``value`` as JSON can carry it: enums by name, durations in seconds, others as text."""
+    """``value`` as JSON can carry it: enums by name (a note by its pitch), durations in
+    seconds, others as text."""
     if value is None or isinstance(value, bool):
         return value
+    if isinstance(value, enum.Enum) and not isinstance(value, float):
+        return value.name
     if isinstance(value, int):
         return int(value)
     if isinstance(value, float):
         return float(value) if math.isfinite(value) else str(value)
     if isinstance(value, str):
         return str(value)
-    if isinstance(value, enum.Enum):
-        return value.name
     if isinstance(value, timedelta):
         return value.total_seconds()
     if isinstance(value, tuple | list):

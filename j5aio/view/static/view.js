@@ -133,7 +133,7 @@ function setValue(cid, field, value, now) {
   let entry = values.get(cid);
   if (!entry) { entry = { fields: {}, last: null }; values.set(cid, entry); }
   entry.fields[field] = value;
-  entry.last = field;
+  if (!field.endsWith("_mode") || entry.last === null) entry.last = field;  // a reading, not a mode
   let tile = tiles.get(cid);
   if (!tile) {  // a component first seen in a call (an ultrasound sensor): show it now
     const [serial, kind, identifier] = cid.split(":");
@@ -176,7 +176,7 @@ function gauge(v) {
 
 function dot(lit, colour) {
   const d = el("span", { class: lit ? "dot lit" : "dot" });
-  if (colour) { d.style.background = colour; d.style.boxShadow = `0 0 6px ${colour}`; }
+  if (lit && colour) { d.style.background = colour; d.style.boxShadow = `0 0 6px ${colour}`; }
   return d;
 }
 
@@ -237,7 +237,7 @@ const RENDERERS = {
     if ("gpio_pin_digital_state" in f) parts.push(f.gpio_pin_digital_state ? "HIGH" : "LOW");
     if ("gpio_pin_analogue_value" in f) parts.push(fmt(f.gpio_pin_analogue_value, 2, " V"));
     if ("gpio_pin_pwm_value" in f) parts.push(`PWM ${fmt(f.gpio_pin_pwm_value)}`);
-    return [el("span", { class: "text", text: `${mode ? mode.replace(/_/g, " ").toLowerCase() : "—"}${parts.length ? " · " + parts.join(" ") : ""}` })];
+    return [el("span", { class: "text", text: `${mode ? String(mode).replace(/_/g, " ").toLowerCase() : "—"}${parts.length ? " · " + parts.join(" ") : ""}` })];
   },
 };
 
@@ -373,7 +373,11 @@ function makeControl(id, c, shown) {
     shown.controls.append(el("label", {}, name, input));
   } else {
     input = el("input", { "data-control": id, type: "number", min: c.min, max: c.max, step: c.step });
-    input.onchange = () => send(id, input.value === "" ? null : Number(input.value), shown);
+    input.onchange = () => {
+      if (input.value !== "" || name.startsWith("ultrasound")) {  // empty: no echo
+        send(id, input.value === "" ? null : Number(input.value), shown);
+      }
+    };
     const unit = name.startsWith("ultrasound") ? "m" : "V";
     shown.controls.append(el("label", {}, name, input, unit));
   }
