@@ -23,7 +23,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
-from typing import IO, TYPE_CHECKING, Any
+from typing import IO, TYPE_CHECKING
 
 if TYPE_CHECKING:
     from selenium.webdriver.remote.webdriver import WebDriver
@@ -104,17 +104,16 @@ def _read_url(stream: IO[str] | None, *, deadline: float) -> str | None:
     return None
 
 
-def stop(process: subprocess.Popen[Any]) -> None:
-    """Interrupt a demo (as Ctrl-C does) and wait for it to end."""
+def stop(process: subprocess.Popen[str]) -> str:
+    """Interrupt a demo (as Ctrl-C does), wait for it to end; return what it printed last."""
     if process.poll() is None:
         process.send_signal(signal.SIGINT)
-        try:
-            process.wait(10)
-        except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait()
-    if process.stdout is not None:
-        process.stdout.close()
+    try:
+        rest, _ = process.communicate(timeout=10)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        rest, _ = process.communicate()
+    return rest or ""
 
 
 def take_screenshot(path: Path, *, settle: float = 5.0) -> None:
