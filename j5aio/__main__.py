@@ -211,11 +211,15 @@ def _apply_view_options(args: argparse.Namespace) -> bool:
             print("j5aio: --view-port and --view-host need --view", file=sys.stderr)
             return False
         return True
-    import importlib.util
+    from j5aio.view import (
+        INSTALL_HINT,
+        VIEW_HOST_VARIABLE,
+        VIEW_PORT_VARIABLE,
+        VIEW_VARIABLE,
+        web_stack_installed,
+    )
 
-    from j5aio.view import INSTALL_HINT, VIEW_HOST_VARIABLE, VIEW_PORT_VARIABLE, VIEW_VARIABLE
-
-    if importlib.util.find_spec("aiohttp") is None:
+    if not web_stack_installed():
         print(f"j5aio: the live view needs the 'view' extra: {INSTALL_HINT}", file=sys.stderr)
         return False
     os.environ[VIEW_VARIABLE] = "1"

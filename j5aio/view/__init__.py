@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import importlib.util
 import os
 import sys
 from collections.abc import AsyncIterator
@@ -42,6 +41,7 @@ __all__ = [
     "serve_view",
     "start_view",
     "view_requested",
+    "web_stack_installed",
 ]
 
 #: The address the view binds unless told otherwise: this computer only.
@@ -85,6 +85,15 @@ class LiveView:
         self.server.stop()
 
 
+def web_stack_installed() -> bool:
+    """Whether the view's web stack (the ``view`` extra) can be imported. Imports it if so."""
+    try:
+        import aiohttp  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
 def view_requested() -> bool:
     """Whether the environment asks for a view (``J5AIO_VIEW=1``, set by ``--view``)."""
     return os.environ.get(VIEW_VARIABLE, "") not in ("", "0")
@@ -112,7 +121,7 @@ def start_view(
     :raises ValueError: ``port`` is not 0 to 65535.
     :raises OSError: the address could not be bound.
     """
-    if importlib.util.find_spec("aiohttp") is None:
+    if not web_stack_installed():
         raise ViewNotInstalledError(
             f"the live view needs the 'view' extra: {INSTALL_HINT} (it brings aiohttp)"
         )

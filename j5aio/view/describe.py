@@ -163,8 +163,11 @@ def _label(value: object) -> str:
 
 
 def jsonable(value: object) -> Any:
-    """``value`` as JSON can carry it: enums by name (a note by its pitch), durations in
-    seconds, others as text."""
+    """``value`` as JSON can carry it.
+
+    Enums go by name (a note, a float enum, by its pitch), durations in seconds, sequences
+    as lists, anything else as text.
+    """
     if value is None or isinstance(value, bool):
         return value
     if isinstance(value, enum.Enum) and not isinstance(value, float):

@@ -1,0 +1,152 @@
+"""Starting the view: the command line, KitRobot(view=...), and without the view extra."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from j5aio.__main__ import main
+
+ROOT = Path(__file__).resolve().parents[2]
+
+# A meta-path finder that makes the web stack look uninstalled, for a child Python.
+BLOCK_AIOHTTP = textwrap.dedent(
+    """
+    import sys
+    class _NoAiohttp:
+        def find_spec(self, name, path=None, target=None):
+            if name == "aiohttp" or name.startswith("aiohttp."):
+                raise ModuleNotFoundError(f"No module named {name!r}")
+            return None
+    sys.meta_path.insert(0, _NoAiohttp())
+    """
+)
+
+PROGRAM = textwrap.dedent(
+    """
+    import anyio
+    from j5aio.kit import KitRobot
+
+    async def main():
+        async with KitRobot() as robot:
+            await robot.motor_boards[0].motors[0].set_power(0.5)
+            print("program ran", flush=True)
+
+    anyio.run(main)
+    """
+)
+
+
+def run_python(
+    code: str, *arguments: str, cwd: Path | None = None
+) -> subprocess.CompletedProcess[str]:
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    env.pop("J5AIO_VIEW", None)
+    return subprocess.run(
+        [sys.executable, "-c", code, *arguments],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env=env,
+        cwd=cwd,
+    )
+
+
+def test_import_j5aio_never_imports_the_web_stack() -> None:
+    result = run_python(
+        "import sys, j5aio, j5aio.kit, j5aio.view, j5aio.demo, j5aio.__main__\n"
+        "print(sorted(m for m in sys.modules if m.split('.')[0] in ('aiohttp', 'selenium')))"
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "[]"
+
+
+def test_without_the_extra_the_view_says_what_to_install(tmp_path: Path) -> None:
+    code = BLOCK_AIOHTTP + textwrap.dedent(
+        """
+        import anyio
+        from j5aio.view import ViewNotInstalledError, start_view
+
+        async def main():
+            try:
+                start_view()
+            except ViewNotInstalledError as error:
+                print("refused:", error)
+
+        anyio.run(main)
+        """
+    )
+    result = run_python(code)
+    assert result.returncode == 0, result.stderr
+    assert "refused:" in result.stdout and "pip install 'j5aio[view]'" in result.stdout
+
+    program = tmp_path / "robot.py"
+    program.write_text(PROGRAM)
+    cli = (
+        BLOCK_AIOHTTP + "import sys\nfrom j5aio.__main__ import main\nsys.exit(main(sys.argv[1:]))"
+    )
+    result = run_python(cli, "run", "--sim", "--view", str(program))
+    assert result.returncode == 2
+    assert "pip install 'j5aio[view]'" in result.stderr
+    assert "program ran" not in result.stdout
+
+
+def test_run_sim_view_prints_one_view_line(tmp_path: Path) -> None:
+    pytest.importorskip("aiohttp", reason="the view extra is not installed")
+    program = tmp_path / "robot.py"
+    program.write_text(PROGRAM)
+    cli = "import sys\nfrom j5aio.__main__ import main\nsys.exit(main(sys.argv[1:]))"
+    result = run_python(cli, "run", "--sim", "--view", "--view-port", "0", str(program))
+    assert result.returncode == 0, result.stderr
+    view_lines = [line for line in result.stdout.splitlines() if line.startswith("View: ")]
+    assert len(view_lines) == 1
+    assert view_lines[0].startswith("View: http://127.0.0.1:") and "/?token=" in view_lines[0]
+    assert "program ran" in result.stdout
+    assert "WARNING" not in result.stderr
+
+
+def test_view_options_are_checked(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    program = tmp_path / "robot.py"
+    program.write_text("")
+    assert main(["run", "--view-port", "8000", str(program)]) == 2
+    assert "need --view" in capsys.readouterr().err
+    assert main(["demo", "--view-host", "0.0.0.0"]) == 2
+    for bad in ("http", "70000", "-1", "1.5"):
+        with pytest.raises(SystemExit):
+            main(["run", "--view", "--view-port", bad, str(program)])
+        assert "port number" in capsys.readouterr().err
+
+
+def test_view_options_set_the_environment(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    pytest.importorskip("aiohttp", reason="the view extra is not installed")
+    for name in ("J5AIO_VIEW", "J5AIO_VIEW_PORT", "J5AIO_VIEW_HOST", "J5AIO_ENV"):
+        monkeypatch.delenv(name, raising=False)
+    program = tmp_path / "robot.py"
+    program.write_text("import os\nSEEN = dict(os.environ)\n")
+    monkeypatch.setattr(sys, "argv", list(sys.argv))
+    monkeypatch.setattr(sys, "path", list(sys.path))
+    assert main(["run", "--view", "--view-port", "8123", "--view-host", "::1", str(program)]) == 0
+    assert os.environ["J5AIO_VIEW"] == "1"
+    assert os.environ["J5AIO_VIEW_PORT"] == "8123"
+    assert os.environ["J5AIO_VIEW_HOST"] == "::1"
+
+
+def test_demo_view_runs_longer_by_default(monkeypatch: pytest.MonkeyPatch) -> None:
+    pytest.importorskip("aiohttp", reason="the view extra is not installed")
+    monkeypatch.delenv("J5AIO_VIEW", raising=False)
+    seen: list[float] = []
+
+    def fake_demo(seconds: float) -> bool:
+        seen.append(seconds)
+        return True
+
+    monkeypatch.setattr("j5aio.demo.run_demo", fake_demo)
+    assert main(["demo", "--view"]) == 0
+    assert main(["demo", "--view", "--seconds", "2"]) == 0
+    assert seen == [120.0, 2.0]
+    assert os.environ["J5AIO_VIEW"] == "1"
