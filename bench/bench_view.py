@@ -92,6 +92,7 @@ def demo_cpu(mode: str, seconds: float, tool: Any) -> float:
     finally:
         if driver is not None:
             driver.quit()
+        if profile is not None:
             shutil.rmtree(profile, ignore_errors=True)
         process.send_signal(signal.SIGINT)
         process.communicate(timeout=20)
