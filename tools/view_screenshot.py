@@ -1,6 +1,6 @@
 """Take the live view's screenshot for the docs, in a real browser (Debian's chromium).
 
-    python tools/view_screenshot.py            # writes docs/_static/live-view-sr2019.png
+    python tools/view_screenshot.py            # writes docs/images/live-view-sr2019.png
 
 It runs ``python -m j5aio demo --view`` (the sr2019 kit, simulated), opens the printed
 address in headless chromium driven by selenium and chromedriver, waits until the robot
@@ -29,7 +29,7 @@ if TYPE_CHECKING:
     from selenium.webdriver.remote.webdriver import WebDriver
 
 ROOT = Path(__file__).resolve().parent.parent
-SCREENSHOT = ROOT / "docs" / "_static" / "live-view-sr2019.png"
+SCREENSHOT = ROOT / "docs" / "images" / "live-view-sr2019.png"
 
 #: The flags chromium needs to run headless in a container, quietly.
 CHROMIUM_FLAGS = (
@@ -76,7 +76,9 @@ def launch_chromium(width: int = 1280, height: int = 1000) -> tuple[WebDriver, P
         raise
 
 
-def start_demo(seconds: float, *, env: dict[str, str] | None = None) -> tuple[subprocess.Popen[str], str]:
+def start_demo(
+    seconds: float, *, env: dict[str, str] | None = None
+) -> tuple[subprocess.Popen[str], str]:
     """Run ``python -m j5aio demo --view`` for ``seconds``; return it and the view's address."""
     process = subprocess.Popen(
         [sys.executable, "-m", "j5aio", "demo", "--view", "--seconds", str(seconds)],
@@ -135,6 +137,7 @@ def take_screenshot(path: Path, *, settle: float = 5.0) -> None:
 
 
 def main() -> int:
+    """Take the docs' screenshot (or say why not); return the exit status."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=SCREENSHOT, help="where to save the PNG")
     args = parser.parse_args()

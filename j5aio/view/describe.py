@@ -14,9 +14,8 @@ import enum
 import functools
 import math
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
 from datetime import timedelta
-from typing import Any
+from typing import Any, NamedTuple
 
 from j5aio.boards.board import Board
 from j5aio.components.component import Component, DerivedComponent
@@ -35,8 +34,7 @@ _WRITERS = ("set_", "write_")
 _READERS = ("get_", "read_")
 
 
-@dataclass(frozen=True)
-class ComponentInfo:
+class ComponentInfo(NamedTuple):
     """One component as the page lists it.
 
     :param kind: the component's class name in lower case (``motor``, ``gpiopin``...).
@@ -48,8 +46,7 @@ class ComponentInfo:
     identifier: str
 
 
-@dataclass(frozen=True)
-class Update:
+class Update(NamedTuple):
     """A value the page shows: ``field`` of the component ``kind``/``identifier``."""
 
     kind: str
@@ -113,6 +110,33 @@ def _kinds_by_method(board_class: type[Board]) -> Mapping[str, tuple[str, ...]]:
     return {method: tuple(k) for method, k in kinds.items()}
 
 
+class _Plan(NamedTuple):
+    """How the calls of one method of one board class become values (worked out once)."""
+
+    kinds: tuple[str, ...]
+    field: str
+    how: str  # "write": the last argument; "read": the result; "wait", "buzz"
+    pins: int  # how many leading arguments identify the component
+
+
+@functools.cache
+def _plan(board_class: type[Board], method_name: str) -> _Plan | None:
+    kinds = _kinds_by_method(board_class).get(method_name)
+    if not kinds:
+        return None
+    pins = 2 if "ultrasound" in method_name else 1
+    if method_name.startswith("wait_until_") and method_name.endswith("_pressed"):
+        field = method_name[len("wait_until_") : -len("_pressed")] + "_state"
+        return _Plan(kinds, field, "wait", pins)
+    if method_name == "buzz":
+        return _Plan(kinds, "note", "buzz", pins)
+    if method_name.startswith(_WRITERS):
+        return _Plan(kinds, method_name.split("_", 1)[1], "write", pins)
+    if method_name.startswith(_READERS):
+        return _Plan(kinds, method_name.split("_", 1)[1], "read", pins)
+    return _Plan(kinds, method_name, "read", pins)
+
+
 def describe_call(
     board: Board,
     method_name: str,
@@ -130,29 +154,26 @@ def describe_call(
     :returns: the update, or ``None`` for a call that shows nothing (one without an
         identifier, such as a string command).
     """
-    kinds = _kinds_by_method(type(board)).get(method_name)
-    if not kinds or not arguments:
+    plan = _plan(type(board), method_name)
+    if plan is None or len(arguments) < plan.pins:
         return None
-    if "ultrasound" in method_name and len(arguments) >= 2:
-        identifier, extra = f"{arguments[0]}-{arguments[1]}", arguments[2:]
-    else:
-        identifier, extra = str(arguments[0]), arguments[1:]
-    kind = kinds[0]
-    if len(kinds) > 1:
+    identifier = f"{arguments[0]}-{arguments[1]}" if plan.pins == 2 else str(arguments[0])
+    extra = arguments[plan.pins :]
+    kind = plan.kinds[0]
+    if len(plan.kinds) > 1:
         present = {c.kind for c in known if c.identifier == identifier}
-        kind = next((k for k in kinds if k in present), kind)
-    if method_name.startswith("wait_until_") and method_name.endswith("_pressed"):
-        field = method_name[len("wait_until_") : -len("_pressed")] + "_state"
+        kind = next((k for k in plan.kinds if k in present), kind)
+    field, value = plan.field, result
+    if plan.how == "wait":
         return Update(kind, identifier, field, True)
-    if method_name == "buzz" and len(extra) >= 2:
+    if plan.how == "buzz":
+        if len(extra) < 2:
+            return None
         duration, pitch = extra[0], extra[1]
         seconds = duration.total_seconds() if isinstance(duration, timedelta) else duration
-        return Update(kind, identifier, "note", {"pitch": jsonable(pitch), "seconds": seconds})
-    field, value = method_name, result
-    if method_name.startswith(_WRITERS) and extra:
-        field, extra, value = method_name.split("_", 1)[1], extra[:-1], extra[-1]
-    elif method_name.startswith(_READERS) or method_name.startswith(_WRITERS):
-        field = method_name.split("_", 1)[1]
+        return Update(kind, identifier, field, {"pitch": jsonable(pitch), "seconds": seconds})
+    if plan.how == "write" and extra:
+        extra, value = extra[:-1], extra[-1]
     if extra:
         field += "." + ".".join(_label(e) for e in extra)
     return Update(kind, identifier, field, jsonable(value))

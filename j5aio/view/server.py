@@ -244,7 +244,7 @@ class ViewServer:
             backend_state = getattr(board.backend, "connection_state", None)
             if record.closed:
                 state = "closed"
-            elif not plugged or record.error is not None:
+            elif not plugged or self._state.error_of(board) is not None:
                 state = "disconnected"
             elif backend_state is not None:
                 state = str(getattr(backend_state, "value", backend_state))
@@ -256,7 +256,7 @@ class ViewServer:
                 "type": type(board).__name__,
                 "firmware": board.firmware_version,
                 "state": state,
-                "error": record.error,
+                "error": self._state.error_of(board),
                 "simulated": bool(controls),
                 "components": [
                     {"id": component_id(board.serial_number, c), "kind": c.kind,

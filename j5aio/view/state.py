@@ -1,12 +1,14 @@
 """The observer that feeds the live view: the latest value of everything the program did.
 
 :class:`ViewState` is a :data:`~j5aio.backends.backend.CallObserver`. Each interface call
-of every backend stores one value (the newest replaces the older), so however often the
-program calls, what waits to be sent is bounded by the number of values on the kit. The
+of every backend is stored under what it is about (the newest replaces the older), so
+however often the program calls, what waits to be sent is bounded by the number of values
+on the kit. The
 web server reads the values changed since it last looked, at most 20 times a second.
 
-The observer runs in the program's event-loop thread; the web server runs in its own
-thread. A lock guards the shared tables; the observer holds it for a dictionary store.
+The observer runs in the program's event-loop thread and only stores the call; the web
+server's thread turns stored calls into values when a page asks. A lock guards the
+shared tables; the observer holds it for two dictionary operations.
 """
 
 from __future__ import annotations
@@ -15,7 +17,6 @@ import itertools
 import logging
 import threading
 import time
-import weakref
 from collections import deque
 from dataclasses import dataclass, field
 from typing import Any, Final
@@ -32,6 +33,9 @@ __all__ = ["WIRE_LOG_LINES", "BoardRecord", "Changes", "ViewState"]
 #: How many wire-log lines the view keeps (all boards together); older lines are dropped.
 WIRE_LOG_LINES: Final = 2000
 
+# Whether each interface method writes (its last argument is the value), worked out once.
+_WRITES: dict[str, bool] = {}
+
 
 @dataclass
 class BoardRecord:
@@ -39,8 +43,11 @@ class BoardRecord:
 
     board: Board
     components: list[ComponentInfo]
-    error: str | None = None
     closed: bool = False
+    known: set[ComponentInfo] = field(default_factory=set)
+
+    def __post_init__(self) -> None:
+        self.known.update(self.components)
 
 
 @dataclass
@@ -62,10 +69,10 @@ class ViewState:
         self._seq = itertools.count(1)
         self._last_seq = 0
         self._values: dict[tuple[str, str], tuple[int, Any]] = {}
+        self._calls: dict[tuple[Backend, str, tuple[Any, ...]], tuple[tuple[Any, ...], Any]] = {}
+        self._errors: dict[Backend, str] = {}
         self._records: dict[str, BoardRecord] = {}
-        self._by_backend: weakref.WeakKeyDictionary[Backend, BoardRecord] = (
-            weakref.WeakKeyDictionary()
-        )
+        self._by_backend: dict[Backend, BoardRecord] = {}
         self._log: deque[tuple[int, str, str]] = deque(maxlen=WIRE_LOG_LINES)
         self._log_seq = 0
         self._log_handler = _WireHandler(self)
@@ -83,28 +90,54 @@ class ViewState:
         result: Any,
         error: BaseException | None,
     ) -> None:
-        """Take note of one interface call (the :data:`CallObserver` signature)."""
-        record = self._by_backend.get(backend)
-        if record is None:
-            record = self._find(backend)
-            if record is None:
-                return
+        """Take note of one interface call (the :data:`CallObserver` signature).
+
+        Only the call is stored here, keyed so that a newer call to the same thing replaces
+        the older one; it becomes a value when a page asks (:meth:`changes`), so a program
+        nobody watches pays for a dictionary store and no more.
+        """
         if error is not None:
             if isinstance(error, CommunicationError):
-                record.error = str(error) or type(error).__name__
+                self._errors[backend] = str(error) or type(error).__name__
             return
-        record.error = None
-        update = describe_call(record.board, method_name, arguments, result, record.components)
-        if update is None:
+        if self._errors:
+            self._errors.pop(backend, None)
+        writes = _WRITES.get(method_name)
+        if writes is None:
+            writes = _WRITES[method_name] = method_name.startswith(("set_", "write_"))
+        key = (backend, method_name, arguments[:-1] if writes else arguments)
+        try:
+            with self._lock:
+                self._calls.pop(key, None)  # the newest call goes last
+                self._calls[key] = (arguments, result)
+        except TypeError:  # an unhashable argument: a call the view cannot key
             return
-        info = ComponentInfo(update.kind, update.identifier)
-        if info not in record.components:
-            record.components = [*record.components, info]
-        key = (component_id(record.board.serial_number, info), update.field)
+
+    def error_of(self, board: Board) -> str | None:
+        """The error of the board's last call, if it was a link error (else ``None``)."""
+        return self._errors.get(board.backend)
+
+    def _digest(self) -> None:
+        """Turn the calls stored since last time into values (in the server's thread)."""
         with self._lock:
-            seq = next(self._seq)
-            self._values[key] = (seq, update.value)
-            self._last_seq = seq
+            calls, self._calls = self._calls, {}
+        for (backend, method_name, _), (arguments, result) in calls.items():
+            record = self._by_backend.get(backend) or self._find(backend)
+            if record is None:
+                continue
+            board = record.board
+            update = describe_call(board, method_name, arguments, result, record.components)
+            if update is None:
+                continue
+            info = ComponentInfo(update.kind, update.identifier)
+            if info not in record.known:
+                record.known.add(info)
+                record.components = [*record.components, info]
+            key = (component_id(board.serial_number, info), update.field)
+            with self._lock:
+                seq = next(self._seq)
+                self._values[key] = (seq, update.value)
+                self._last_seq = seq
 
     def _find(self, backend: Backend) -> BoardRecord | None:
         for board in list(Board.BOARDS):
@@ -144,6 +177,7 @@ class ViewState:
 
     def changes(self, value_mark: int, log_mark: int) -> Changes:
         """Every value stored after ``value_mark`` and wire-log line after ``log_mark``."""
+        self._digest()
         with self._lock:
             if self._last_seq > value_mark:
                 values = [

@@ -125,7 +125,8 @@ def test_view_options_are_checked(capsys: pytest.CaptureFixture[str], tmp_path: 
 def test_view_options_set_the_environment(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
     pytest.importorskip("aiohttp", reason="the view extra is not installed")
     for name in ("J5AIO_VIEW", "J5AIO_VIEW_PORT", "J5AIO_VIEW_HOST", "J5AIO_ENV"):
-        monkeypatch.delenv(name, raising=False)
+        monkeypatch.setenv(name, "")  # so that monkeypatch puts back what main() sets
+        monkeypatch.delenv(name)
     program = tmp_path / "robot.py"
     program.write_text("import os\nSEEN = dict(os.environ)\n")
     monkeypatch.setattr(sys, "argv", list(sys.argv))
@@ -138,7 +139,8 @@ def test_view_options_set_the_environment(monkeypatch: pytest.MonkeyPatch, tmp_p
 
 def test_demo_view_runs_longer_by_default(monkeypatch: pytest.MonkeyPatch) -> None:
     pytest.importorskip("aiohttp", reason="the view extra is not installed")
-    monkeypatch.delenv("J5AIO_VIEW", raising=False)
+    monkeypatch.setenv("J5AIO_VIEW", "")
+    monkeypatch.delenv("J5AIO_VIEW")
     seen: list[float] = []
 
     def fake_demo(seconds: float) -> bool:

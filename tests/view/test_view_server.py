@@ -145,6 +145,7 @@ async def test_controls_of_each_simulated_board() -> None:
         assert names == ["start-button", "battery-voltage", "plug"]
         state = ViewState()
         state(arduino.backend, "get_ultrasound_distance", (4, 5), None, None)
+        state.changes(0, 0)
         record = next(r for r in state.boards() if r.board is arduino)
         named = {c["name"]: c for c in controls_of(arduino, record.components)}
         assert {f"pin-{n}" for n in range(2, 14)} | {f"analog-{n}" for n in range(14, 20)} <= set(
@@ -202,19 +203,20 @@ async def test_errors_and_closed_boards_show_as_states() -> None:
         from j5aio.errors import BoardDisconnectionError
 
         state(board.backend, "set_motor_state", (0, 0.5), None, BoardDisconnectionError("gone"))
-        record = next(r for r in state.boards() if r.board is board)
-        assert record.error == "gone"
+        assert state.error_of(board) == "gone"
         state(board.backend, "set_motor_state", (0, 0.5), None, ValueError("not a link error"))
-        assert record.error == "gone"
-        state(board.backend, "set_motor_state", (0, 0.5), None, None)
-        assert record.error is None
+        assert state.error_of(board) == "gone"
+        state(board.backend, "set_motor_state", (0, 0.25), None, None)
+        state(board.backend, "get_motor_state", (0,), 0.5, None)  # newer: shown
+        assert state.error_of(board) is None
+        state(board.backend, "set_motor_state", ([1], 0.1), None, None)  # unhashable: not kept
         assert state.changes(0, 0).values == [("SIMMB0:motor:0", "motor_state", 0.5)]
         assert state.changes(state.changes(0, 0).value_mark, 0).values == []
 
         class Stranger:
             pass
 
-        state(Stranger(), "set_motor_state", (0, 0.5), None, None)
+        state(Stranger(), "set_motor_state", (0, 0.5), None, None)  # type: ignore[arg-type]
         assert len(state.changes(0, 0).values) == 1
         assert kit
         await board.close()
