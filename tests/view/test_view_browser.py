@@ -160,17 +160,24 @@ async def test_a_program_seen_and_poked_in_the_browser(browser: Any) -> None:
 
         def type_voltage() -> None:
             field = browser.find_element("css selector", control)
-            field.clear()
-            field.send_keys("2.5\n")
-            browser.execute_script("arguments[0].blur()", field)
+            field.click()  # focused: the page no longer refreshes the field's value
+            browser.execute_script("arguments[0].select()", field)
+            field.send_keys("2.5\n")  # typed over the selection; Enter sends it
 
         await in_thread(type_voltage)
-        for _ in range(250):  # the page's request reaches the simulator soon after
+        for _ in range(500):  # the page's request reaches the simulator soon after
             if abs(await arduino.pins[14].analogue_read() - 2.5) < 0.01:
                 break
             await anyio.sleep(0.02)
         else:
-            pytest.fail("the program never read the voltage set on the page")
+            typed = await in_thread(attribute, browser, control, "value")
+            problem = await in_thread(
+                lambda: browser.execute_script(
+                    "return [...document.querySelectorAll('.controls .error')]"
+                    ".map(e => e.textContent).join(' ')"
+                )
+            )
+            pytest.fail(f"the program never read the voltage typed ({typed!r}; {problem!r})")
         pin = f'[data-component="{arduino.serial_number}:gpiopin:14"]'
 
         def shows_volts() -> bool:
