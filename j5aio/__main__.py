@@ -17,10 +17,13 @@ import threading
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from types import FrameType
-from typing import Final
+from typing import TYPE_CHECKING, Final
 
 from j5aio.environments import ENVIRONMENT_NAMES, ENVIRONMENT_VARIABLE
 from j5aio.simulator import SERIAL_SIMULATORS
+
+if TYPE_CHECKING:
+    from j5aio.view import LiveView
 
 __all__ = ["SIMULATOR_NAMES", "build_parser", "main"]
 
@@ -204,30 +207,25 @@ def _port(text: str) -> int:
     return value
 
 
-def _apply_view_options(args: argparse.Namespace) -> bool:
-    """Ask robots for the live view through the environment; False if it cannot run."""
+def _start_view_option(args: argparse.Namespace) -> tuple[bool, LiveView | None]:
+    """Start the live view if ``--view`` asks for it: (whether to go on, the view)."""
     if not args.view:
         if args.view_port is not None or args.view_host is not None:
             print("j5aio: --view-port and --view-host need --view", file=sys.stderr)
-            return False
-        return True
-    from j5aio.view import (
-        INSTALL_HINT,
-        VIEW_HOST_VARIABLE,
-        VIEW_PORT_VARIABLE,
-        VIEW_VARIABLE,
-        web_stack_installed,
-    )
+            return False, None
+        return True, None
+    from j5aio.view import INSTALL_HINT, start_view, web_stack_installed
 
     if not web_stack_installed():
         print(f"j5aio: the live view needs the 'view' extra: {INSTALL_HINT}", file=sys.stderr)
-        return False
-    os.environ[VIEW_VARIABLE] = "1"
-    if args.view_port is not None:
-        os.environ[VIEW_PORT_VARIABLE] = str(args.view_port)
-    if args.view_host is not None:
-        os.environ[VIEW_HOST_VARIABLE] = args.view_host
-    return True
+        return False, None
+    try:
+        # Started before the program's event loop: the view learns it from the first board
+        # call, so it shows any robot (KitRobot, sync BaseRobot, ...) the program makes.
+        return True, start_view(host=args.view_host, port=args.view_port or 0)
+    except OSError as error:
+        print(f"j5aio: could not start the live view: {error}", file=sys.stderr)
+        return False, None
 
 
 def _list(args: argparse.Namespace) -> int:
@@ -253,7 +251,8 @@ def _list(args: argparse.Namespace) -> int:
 def _demo(args: argparse.Namespace) -> int:
     from j5aio.demo import DEFAULT_SECONDS, run_demo
 
-    if not _apply_view_options(args):
+    go_on, view = _start_view_option(args)
+    if not go_on:
         return 2
     default = VIEW_DEMO_SECONDS if args.view else DEFAULT_SECONDS
     try:
@@ -261,6 +260,9 @@ def _demo(args: argparse.Namespace) -> int:
     except KeyboardInterrupt:
         print("Interrupted.", file=sys.stderr)
         return 130
+    finally:
+        if view is not None:
+            view.close()
     return 0 if braked else 1
 
 
@@ -269,13 +271,18 @@ def _run(args: argparse.Namespace) -> int:
     if not program.is_file():
         print(f"j5aio: cannot run {args.program}: no such file", file=sys.stderr)
         return 2
-    if not _apply_view_options(args):
+    go_on, view = _start_view_option(args)
+    if not go_on:
         return 2
     if args.environment is not None:
         os.environ[ENVIRONMENT_VARIABLE] = args.environment
     sys.argv = [str(program), *args.arguments]
     sys.path.insert(0, str(program.resolve().parent))
-    runpy.run_path(str(program), run_name="__main__")
+    try:
+        runpy.run_path(str(program), run_name="__main__")
+    finally:
+        if view is not None:
+            view.close()
     return 0
 
 

@@ -107,11 +107,11 @@ class KitRobot(BaseRobot):
     # --- the live view (j5aio.view): started in setup, stopped on the way out ---
 
     def _start_view(self) -> None:
-        from j5aio.view import start_view, view_requested
+        from j5aio.view import current_view, start_view, view_requested
 
         wanted = self._view_wanted if self._view_wanted is not None else view_requested()
-        if wanted and self._view is None:
-            self._view = start_view()
+        if wanted and self._view is None and current_view() is None:
+            self._view = start_view()  # (a view already running, the CLI's, shows the robot)
 
     async def __aexit__(
         self,

@@ -38,6 +38,7 @@ __all__ = [
     "VIEW_VARIABLE",
     "LiveView",
     "ViewNotInstalledError",
+    "current_view",
     "serve_view",
     "start_view",
     "view_requested",
@@ -80,9 +81,20 @@ class LiveView:
 
     def close(self) -> None:
         """Stop observing and serving. Safe to call twice."""
+        global _current
         if self.state in CALL_OBSERVERS:
             CALL_OBSERVERS.remove(self.state)
         self.server.stop()
+        if _current is self:
+            _current = None
+
+
+_current: LiveView | None = None
+
+
+def current_view() -> LiveView | None:
+    """The live view running in this program, if one is (the first one started)."""
+    return _current
 
 
 def web_stack_installed() -> bool:
@@ -108,14 +120,16 @@ def start_view(
 ) -> LiveView:
     """Start observing every board and serving the page; print its one ``View:`` line.
 
-    Call it from the program's event loop (or pass that loop). Without ``host`` and
+    It may be called before the program's event loop runs (``python -m j5aio run --view``
+    does): simulator controls then go to the loop of the latest board call. Without ``host`` and
     ``port`` the environment's :data:`VIEW_HOST_VARIABLE` / :data:`VIEW_PORT_VARIABLE`
     apply, else 127.0.0.1 on a free port. Any other address than the loopback prints a
     warning: anyone who can reach it and has the token sees the robot.
 
     :param host: the address to bind.
     :param port: the port to bind (0: a free one).
-    :param loop: the program's event loop; the running one by default.
+    :param loop: the program's event loop; by default the running one, if any, else the
+        loop of the latest board call.
     :param out: where the ``View:`` line goes (standard output by default).
     :raises ViewNotInstalledError: the ``view`` extra is not installed.
     :raises ValueError: ``port`` is not 0 to 65535.
@@ -144,11 +158,17 @@ def start_view(
             file=sys.stderr,
             flush=True,
         )
+    if loop is None:
+        with contextlib.suppress(RuntimeError):
+            loop = asyncio.get_running_loop()
     state = ViewState()
-    server = ViewServer(state, loop if loop is not None else asyncio.get_running_loop(), host, port)
+    server = ViewServer(state, loop, host, port)
     server.start()
     CALL_OBSERVERS.append(state)
     view = LiveView(server.url, server, state)
+    global _current
+    if _current is None:
+        _current = view
     print(f"View: {view.url}", file=out if out is not None else sys.stdout, flush=True)
     return view
 

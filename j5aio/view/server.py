@@ -61,7 +61,8 @@ class ViewServer:
     """The web server of the live view, fed by a :class:`ViewState`.
 
     :param state: the values to show.
-    :param program_loop: the program's event loop, where simulator controls run.
+    :param program_loop: the program's event loop, where simulator controls run; ``None``:
+        the loop of the latest board call the state observed.
     :param host: the address to bind.
     :param port: the port to bind (0: a free one).
     """
@@ -69,7 +70,7 @@ class ViewServer:
     def __init__(
         self,
         state: ViewState,
-        program_loop: asyncio.AbstractEventLoop,
+        program_loop: asyncio.AbstractEventLoop | None,
         host: str,
         port: int,
     ) -> None:
@@ -226,7 +227,10 @@ class ViewServer:
         async def call() -> _T:
             return function()
 
-        future = asyncio.run_coroutine_threadsafe(call(), self._program_loop)
+        loop = self._program_loop or self._state.loop
+        if loop is None:
+            raise RuntimeError("the program has not called a board yet")
+        future = asyncio.run_coroutine_threadsafe(call(), loop)
         return await asyncio.wait_for(asyncio.wrap_future(future), CONTROL_TIMEOUT)
 
     async def _boards_if_running(self) -> list[dict[str, Any]] | None:
@@ -281,4 +285,7 @@ class ViewServer:
             await self._in_program(lambda: apply_control(board, name, value))
         except ControlError as error:
             return web.json_response({"error": str(error)}, status=400)
+        except (RuntimeError, TimeoutError) as error:
+            message = f"the program's event loop cannot take the control now ({error})"
+            return web.json_response({"error": message}, status=503)
         return web.json_response({"ok": True})

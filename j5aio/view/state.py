@@ -13,6 +13,7 @@ shared tables; the observer holds it for two dictionary operations.
 
 from __future__ import annotations
 
+import asyncio
 import itertools
 import logging
 import threading
@@ -69,6 +70,8 @@ class ViewState:
         self._seq = itertools.count(1)
         self._last_seq = 0
         self._values: dict[tuple[str, str], tuple[int, Any]] = {}
+        #: The event loop of the latest board call: the program's (``None`` before a call).
+        self.loop: asyncio.AbstractEventLoop | None = None
         self._calls: dict[tuple[Backend, str, tuple[Any, ...]], tuple[tuple[Any, ...], Any]] = {}
         self._errors: dict[Backend, str] = {}
         self._records: dict[str, BoardRecord] = {}
@@ -96,6 +99,7 @@ class ViewState:
         the older one; it becomes a value when a page asks (:meth:`changes`), so a program
         nobody watches pays for a dictionary store and no more.
         """
+        self.loop = asyncio.get_running_loop()  # where the boards live (for controls)
         if error is not None:
             if isinstance(error, CommunicationError):
                 self._errors[backend] = str(error) or type(error).__name__

@@ -122,19 +122,47 @@ def test_view_options_are_checked(capsys: pytest.CaptureFixture[str], tmp_path: 
         assert "port number" in capsys.readouterr().err
 
 
-def test_view_options_set_the_environment(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+SYNC_PROGRAM = textwrap.dedent(
+    """
+    import time
+    from j5aio.boards.sr.v4 import MotorBoard
+    from j5aio.simulator.environment import SRV4MotorBoardSimulatedBackend
+    from j5aio.simulator.kit import KitConfig, use_kit
+    from j5aio.sync import BoardGroup
+    from j5aio.view import current_view
+
+    kit = use_kit(KitConfig(motor_boards=1))
+    board = BoardGroup.get_board_group(MotorBoard, SRV4MotorBoardSimulatedBackend).singular()
+    board.motors[0].power = 0.5
+    view = current_view()
+    assert ("SIMMB0:motor:0", "motor_state", 0.5) in view.state.changes(0, 0).values
+    assert view.state.loop is not None and view.state.loop.is_running()  # the portal's
+    SEEN.append(view.url)
+    """
+)
+
+
+def test_run_view_shows_a_sync_program_too(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
     pytest.importorskip("aiohttp", reason="the view extra is not installed")
-    for name in ("J5AIO_VIEW", "J5AIO_VIEW_PORT", "J5AIO_VIEW_HOST", "J5AIO_ENV"):
-        monkeypatch.setenv(name, "")  # so that monkeypatch puts back what main() sets
-        monkeypatch.delenv(name)
-    program = tmp_path / "robot.py"
-    program.write_text("import os\nSEEN = dict(os.environ)\n")
+    from j5aio.view import current_view
+
+    program = tmp_path / "sync_robot.py"
+    program.write_text("from builtins import SEEN\n" + SYNC_PROGRAM)
+    seen: list[str] = []
+    monkeypatch.setattr("builtins.SEEN", seen, raising=False)
     monkeypatch.setattr(sys, "argv", list(sys.argv))
     monkeypatch.setattr(sys, "path", list(sys.path))
-    assert main(["run", "--view", "--view-port", "8123", "--view-host", "::1", str(program)]) == 0
-    assert os.environ["J5AIO_VIEW"] == "1"
-    assert os.environ["J5AIO_VIEW_PORT"] == "8123"
-    assert os.environ["J5AIO_VIEW_HOST"] == "::1"
+    from j5aio.sync import shutdown
+
+    try:
+        assert main(["run", "--view", str(program)]) == 0
+    finally:
+        shutdown()  # the sync portal's boards made safe and closed
+    out = capsys.readouterr().out
+    assert seen and out.startswith(f"View: {seen[0]}")
+    assert current_view() is None  # closed when the program ended
 
 
 def test_demo_view_runs_longer_by_default(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -151,4 +179,3 @@ def test_demo_view_runs_longer_by_default(monkeypatch: pytest.MonkeyPatch) -> No
     assert main(["demo", "--view"]) == 0
     assert main(["demo", "--view", "--seconds", "2"]) == 0
     assert seen == [120.0, 2.0]
-    assert os.environ["J5AIO_VIEW"] == "1"
