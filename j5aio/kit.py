@@ -44,8 +44,9 @@ class KitRobot(BaseRobot):
 
     :param environment: where to find the boards; the default environment if omitted.
     :param view: serve the live view of the boards while the robot runs (see
-        :mod:`j5aio.view`; needs the ``view`` extra). ``None`` (the default) follows the
-        environment: ``python -m j5aio run --view`` sets ``J5AIO_VIEW=1``.
+        :mod:`j5aio.view`; needs the ``view`` extra). ``None`` (the default) follows
+        ``J5AIO_VIEW``. A view already running (``python -m j5aio run --view`` starts
+        one) shows this robot's boards, and no second one is started.
     :raises TypeError: ``environment`` is not an Environment.
     """
 
