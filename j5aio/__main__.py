@@ -22,13 +22,16 @@ import threading
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from types import FrameType
-from typing import Any, Final
+from typing import TYPE_CHECKING, Any, Final
 
 from j5aio import syncgen
 from j5aio.board_kinds import get_kit, kits, simulator_entries
 from j5aio.environments import ENVIRONMENT_NAMES, ENVIRONMENT_VARIABLE
 from j5aio.simulator.kit import KIT_VARIABLE
 from j5aio.simulator.pin_options import apply_pin_options, parse_analog, parse_digital
+
+if TYPE_CHECKING:
+    from j5aio.view import LiveView
 
 __all__ = ["SIMULATOR_NAMES", "build_parser", "main"]
 
@@ -38,6 +41,7 @@ examples:
   python -m j5aio run --sim robot.py          run your program on the simulated kit
   python -m j5aio run --sim --kit sr2019 robot.py   ... on a named simulated kit
   python -m j5aio run robot.py                run it on the boards plugged in
+  python -m j5aio run --sim --view robot.py   ... and watch its boards in the browser
   python -m j5aio list                        which boards are plugged in?
   python -m j5aio simulate sb-arduino --pty   serve a simulated board on a serial port
 
@@ -84,6 +88,7 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="S",
         help="how long the robot runs, in seconds (default 6)",
     )
+    _add_view_options(demo)
     demo.set_defaults(handler=_demo)
 
     run = commands.add_parser(
@@ -111,6 +116,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument(
         "arguments", nargs=argparse.REMAINDER, help="arguments passed on to the program"
     )
+    _add_view_options(run)
     run.set_defaults(handler=_run)
 
     simulate = commands.add_parser(
@@ -235,6 +241,63 @@ def _time_scale(text: str) -> float:
     return value
 
 
+# --- the live view (j5aio.view): --view, --view-port, --view-host on run and demo ---
+
+#: How long the demo runs with --view unless --seconds says otherwise: time to look.
+VIEW_DEMO_SECONDS: Final = 120.0
+
+
+def _add_view_options(parser: argparse.ArgumentParser) -> None:
+    view = parser.add_argument_group("live view")
+    view.add_argument(
+        "--view",
+        action="store_true",
+        help="serve a live view of the boards in the browser (needs j5aio[view]); "
+        "prints its address",
+    )
+    view.add_argument(
+        "--view-port",
+        type=_port,
+        default=None,
+        metavar="N",
+        help="the view's port (default: a free one)",
+    )
+    view.add_argument(
+        "--view-host",
+        default=None,
+        metavar="ADDR",
+        help="the address the view listens on (default 127.0.0.1: this computer only)",
+    )
+
+
+def _port(text: str) -> int:
+    value = int(_number(text, "a port number"))
+    if str(value) != text.strip() or not 0 <= value <= 65535:
+        raise argparse.ArgumentTypeError(f"{text} is not a port number: give 0 to 65535")
+    return value
+
+
+def _start_view_option(args: argparse.Namespace) -> tuple[bool, LiveView | None]:
+    """Start the live view if ``--view`` asks for it: (whether to go on, the view)."""
+    if not args.view:
+        if args.view_port is not None or args.view_host is not None:
+            print("j5aio: --view-port and --view-host need --view", file=sys.stderr)
+            return False, None
+        return True, None
+    from j5aio.view import INSTALL_HINT, start_view, web_stack_installed
+
+    if not web_stack_installed():
+        print(f"j5aio: the live view needs the 'view' extra: {INSTALL_HINT}", file=sys.stderr)
+        return False, None
+    try:
+        # Started before the program's event loop: the view learns it from the first board
+        # call, so it shows any robot (KitRobot, sync BaseRobot, ...) the program makes.
+        return True, start_view(host=args.view_host, port=args.view_port or 0)
+    except OSError as error:
+        print(f"j5aio: could not start the live view: {error}", file=sys.stderr)
+        return False, None
+
+
 def _list(args: argparse.Namespace) -> int:
     import functools
 
@@ -264,13 +327,18 @@ def _list(args: argparse.Namespace) -> int:
 def _demo(args: argparse.Namespace) -> int:
     from j5aio.demo import DEFAULT_SECONDS, run_demo
 
+    go_on, view = _start_view_option(args)
+    if not go_on:
+        return 2
+    default = VIEW_DEMO_SECONDS if args.view else DEFAULT_SECONDS
     try:
-        braked = run_demo(
-            args.seconds if args.seconds is not None else DEFAULT_SECONDS, kit=args.kit
-        )
+        braked = run_demo(args.seconds if args.seconds is not None else default, kit=args.kit)
     except KeyboardInterrupt:
         print("Interrupted.", file=sys.stderr)
         return 130
+    finally:
+        if view is not None:
+            view.close()
     return 0 if braked else 1
 
 
@@ -289,11 +357,18 @@ def _run(args: argparse.Namespace) -> int:
             return 2
         args.environment = "sim"
         os.environ[KIT_VARIABLE] = args.kit
+    go_on, view = _start_view_option(args)
+    if not go_on:
+        return 2
     if args.environment is not None:
         os.environ[ENVIRONMENT_VARIABLE] = args.environment
     sys.argv = [str(program), *args.arguments]
     sys.path.insert(0, str(program.resolve().parent))
-    runpy.run_path(str(program), run_name="__main__")
+    try:
+        runpy.run_path(str(program), run_name="__main__")
+    finally:
+        if view is not None:
+            view.close()
     return 0
 
 

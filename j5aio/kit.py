@@ -15,6 +15,9 @@ hardware, unless ``J5AIO_ENV`` or ``python -m j5aio run --sim`` chose otherwise:
 
 from __future__ import annotations
 
+from types import TracebackType
+from typing import TYPE_CHECKING
+
 from j5aio.backends.camera.files import FileCameraBackend
 from j5aio.backends.environment import Environment
 from j5aio.boards.board_group import BoardGroup
@@ -24,6 +27,9 @@ from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
 from j5aio.components.marker_camera import MarkerCamera
 from j5aio.environments import get_default_environment, hint_no_hardware
 from j5aio.robot import BaseRobot
+
+if TYPE_CHECKING:
+    from j5aio.view import LiveView
 
 __all__ = ["KitRobot"]
 
@@ -43,6 +49,10 @@ class KitRobot(BaseRobot):
       (``None`` without a camera), so that ``await robot.camera.see()`` finds markers.
 
     :param environment: where to find the boards; the default environment if omitted.
+    :param view: serve the live view of the boards while the robot runs (see
+        :mod:`j5aio.view`; needs the ``view`` extra). ``None`` (the default) follows
+        ``J5AIO_VIEW``. A view already running (``python -m j5aio run --view`` starts
+        one) shows this robot's boards, and no second one is started.
     :raises TypeError: ``environment`` is not an Environment.
     """
 
@@ -55,7 +65,9 @@ class KitRobot(BaseRobot):
     cameras: BoardGroup[CameraBoard]
     camera: MarkerCamera | None
 
-    def __init__(self, *, environment: Environment | None = None) -> None:
+    def __init__(
+        self, *, environment: Environment | None = None, view: bool | None = None
+    ) -> None:
         if environment is not None and not isinstance(environment, Environment):
             self.release_lock()
             raise TypeError(
@@ -65,6 +77,8 @@ class KitRobot(BaseRobot):
         super().__init__()
         self._environment = environment
         self._chosen_by_default = environment is None
+        self._view_wanted = view
+        self._view: LiveView | None = None
 
     @property
     def environment(self) -> Environment:
@@ -82,6 +96,7 @@ class KitRobot(BaseRobot):
             on the simulated kit instead.
         """
         environment = self.environment
+        self._start_view()
         self.power_boards = await environment.get_board_group(PowerBoard)
         self.motor_boards = await environment.get_board_group(MotorBoard)
         self.servo_boards = await environment.get_board_group(ServoBoard)
@@ -102,3 +117,25 @@ class KitRobot(BaseRobot):
         if self._chosen_by_default and not any(groups):
             hint_no_hardware()
         self.power_board = self.power_boards.singular()
+
+    # --- the live view (j5aio.view): started in setup, stopped on the way out ---
+
+    def _start_view(self) -> None:
+        from j5aio.view import current_view, start_view, view_requested
+
+        wanted = self._view_wanted if self._view_wanted is not None else view_requested()
+        if wanted and self._view is None and current_view() is None:
+            self._view = start_view()  # (a view already running, the CLI's, shows the robot)
+
+    async def __aexit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        traceback: TracebackType | None,
+    ) -> bool:
+        try:
+            return await super().__aexit__(exc_type, exc, traceback)
+        finally:
+            if self._view is not None:
+                self._view.close()
+                self._view = None

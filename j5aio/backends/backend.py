@@ -14,7 +14,7 @@ from typing_extensions import TypeVar
 from j5aio.boards.board import Board
 from j5aio.errors import NotSupportedByHardwareError
 
-__all__ = ["Backend", "BackendMeta", "BoardT"]
+__all__ = ["CALL_OBSERVERS", "Backend", "BackendMeta", "BoardT", "CallObserver"]
 
 BoardT = TypeVar("BoardT", bound=Board, default=Board, covariant=True)
 """The class of board a backend drives, for typing: ``Backend[MotorBoard]``.
@@ -23,6 +23,19 @@ It defaults to :class:`~j5aio.boards.board.Board`, so a backend declared without
 (``class MyBackend(Backend)``) still type-checks; name the board to have
 :meth:`Backend.attach` and friends return it typed.
 """
+
+CallObserver = Callable[["Backend", str, tuple[Any, ...], Any, BaseException | None], None]
+"""A function told of every interface call: ``(backend, method_name, arguments, result, error)``.
+
+``arguments`` are the call's arguments after ``self``, in the order the interface declares
+them; ``error`` is the exception the call raised (then ``result`` is ``None``).
+"""
+
+#: The observers of every backend's interface calls (the live view adds one). Each is called
+#: in the event loop's thread right after a call returns or raises, so it must be quick (store
+#: the value, never wait) and must not raise; a failing observer is logged and ignored. While
+#: this list is empty a call costs one truth test more than it did without observers.
+CALL_OBSERVERS: list[CallObserver] = []
 
 
 class BackendMeta(ABCMeta):
@@ -84,7 +97,14 @@ def _logged(
 
     @functools.wraps(method)
     async def logged_method(*args: Any, **kwargs: Any) -> Any:
-        result = await method(*args, **kwargs)
+        try:
+            result = await method(*args, **kwargs)
+        except Exception as error:
+            if CALL_OBSERVERS:
+                _tell_observers(signature, method_name, args, kwargs, None, error)
+            raise
+        if CALL_OBSERVERS:
+            _tell_observers(signature, method_name, args, kwargs, result, None)
         if logger.isEnabledFor(logging.DEBUG):
             arguments = signature.bind(*args, **kwargs).arguments
             shown = ", ".join(f"{k}={v!r}" for k, v in arguments.items() if k != "self")
@@ -94,6 +114,24 @@ def _logged(
 
     logged_method.__j5aio_logged__ = True  # type: ignore[attr-defined]
     return logged_method
+
+
+def _tell_observers(
+    signature: inspect.Signature,
+    method_name: str,
+    args: tuple[Any, ...],
+    kwargs: dict[str, Any],
+    result: Any,
+    error: BaseException | None,
+) -> None:
+    arguments = args[1:]
+    if kwargs:
+        arguments = tuple(signature.bind(*args, **kwargs).arguments.values())[1:]
+    for observer in list(CALL_OBSERVERS):
+        try:
+            observer(args[0], method_name, arguments, result, error)
+        except Exception:
+            logging.getLogger(__name__).exception("call observer %r failed", observer)
 
 
 class Backend(Generic[BoardT], metaclass=BackendMeta):
