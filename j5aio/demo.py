@@ -226,8 +226,10 @@ async def demo(seconds: float = DEFAULT_SECONDS, *, out: TextIO | None = None) -
         flush=True,
     )
     log = _Log(out)
+    started = False
     try:
         async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+            started = True
             log("robot", f"found {len(_boards(robot))} boards; starting the tasks")
             send, receive = anyio.create_memory_object_stream[float](10)
             shared = _Shared()
@@ -240,8 +242,10 @@ async def demo(seconds: float = DEFAULT_SECONDS, *, out: TextIO | None = None) -
                     tasks.start_soon(_signal, robot, receive, log)
             log("robot", "time is up: tasks cancelled, making every board safe")
     finally:
-        # Also when the demo is interrupted (Ctrl-C): the robot made the boards safe.
-        braked = _report(kit, log, out)
+        # Also when the demo is interrupted (Ctrl-C): the robot made the boards safe. A
+        # robot that never started (its lock was taken, say) ran no motor: no report.
+        if started:
+            braked = _report(kit, log, out)
     return braked
 
 

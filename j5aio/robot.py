@@ -3,17 +3,15 @@
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import logging
 import os
-import signal
 import socket
-import threading
 from types import TracebackType
 from typing import Any, ClassVar, Self
 
 import anyio
 
+from j5aio import lifetime
 from j5aio.boards.board import Board
 from j5aio.errors import UnableToObtainLock
 from j5aio.safety import make_all_safe_uncancellably
@@ -31,7 +29,8 @@ class BaseRobot:
 
     Use it as an async context manager. On the way in it takes the single-robot lock and
     runs :meth:`setup`, where a subclass finds its boards; on the way out (normally, by
-    an exception, by cancellation, or on SIGINT / SIGTERM) every board is made safe::
+    an exception, by cancellation, or on SIGINT / SIGTERM / SIGHUP) every board is made
+    safe; a signal then ends the program with status ``128 + signal``::
 
         class MyRobot(BaseRobot):
             async def setup(self) -> None:
@@ -55,6 +54,7 @@ class BaseRobot:
         robot = super().__new__(cls)
         robot._lock = None
         robot._obtain_lock()
+        lifetime.install()
         return robot
 
     def _obtain_lock(self) -> None:
@@ -65,8 +65,11 @@ class BaseRobot:
         except OSError:
             lock.close()
             raise UnableToObtainLock(
-                "Unable to obtain the robot lock: another robot program is already running "
-                "(or another Robot object exists in this one). Stop it, then try again.",
+                f"Unable to obtain the robot lock (TCP port {port} on localhost is taken): "
+                "another robot program is already running (or another Robot object exists "
+                "in this one). Stop it, then try again. To run robots side by side (tests, "
+                "say), give each its own free port in the J5AIO_LOCK_PORT environment "
+                "variable.",
             ) from None
         self._lock = lock
 
@@ -86,8 +89,10 @@ class BaseRobot:
     async def __aenter__(self) -> Self:
         self._sigterm_scope = anyio.CancelScope()
         self._sigterm_scope.__enter__()
-        self._terminated = False
-        self._signal_installed = self._install_sigterm_handler()
+        self._terminated_by: int | None = None
+        self._stop_handling_signals = lifetime.on_terminate(
+            asyncio.get_running_loop(), self._on_terminate
+        )
         try:
             await self.setup()
         except BaseException:
@@ -102,29 +107,20 @@ class BaseRobot:
         traceback: TracebackType | None,
     ) -> bool:
         try:
-            await make_all_safe_uncancellably()
+            # Shielded: the robot's own SIGTERM cancellation must not cut this short.
+            with anyio.CancelScope(shield=True):
+                await make_all_safe_uncancellably()
         finally:
-            if self._signal_installed:
-                with contextlib.suppress(Exception):
-                    asyncio.get_running_loop().remove_signal_handler(signal.SIGTERM)
+            self._stop_handling_signals()
             self.release_lock()
             swallowed = self._sigterm_scope.__exit__(exc_type, exc, traceback)
-        if self._terminated:
-            raise SystemExit(128 + signal.SIGTERM)
+        if self._terminated_by is not None:
+            raise SystemExit(128 + self._terminated_by)
         return bool(swallowed)
 
-    def _install_sigterm_handler(self) -> bool:
-        if threading.current_thread() is not threading.main_thread():
-            return False
-        try:
-            asyncio.get_running_loop().add_signal_handler(signal.SIGTERM, self._on_sigterm)
-        except (NotImplementedError, RuntimeError):  # pragma: no cover - Windows
-            return False
-        return True
-
-    def _on_sigterm(self) -> None:
-        LOGGER.error("Terminated by SIGTERM: making every board safe.")
-        self._terminated = True
+    def _on_terminate(self, signum: int) -> None:
+        """SIGTERM / SIGHUP (from :mod:`j5aio.lifetime`): stop the block, then exit."""
+        self._terminated_by = signum
         self._sigterm_scope.cancel()
 
     @staticmethod

@@ -9,6 +9,7 @@ import pytest
 
 from j5aio.boards.board import Board
 from j5aio.demo import all_motors_braked, demo, describe_boards, run_demo
+from j5aio.robot import BaseRobot, UnableToObtainLock
 from j5aio.simulator import kit as kit_module
 from j5aio.simulator.kit import KitConfig, SimulatedKit
 from j5aio.simulator.sr_motor_fw3 import MotorMode
@@ -48,6 +49,23 @@ def test_run_demo_runs_it_in_its_own_event_loop() -> None:
     out = io.StringIO()
     assert run_demo(0.3, out=out) is True
     assert "every simulated motor is braked" in out.getvalue()
+
+
+async def test_a_demo_that_could_not_start_does_not_warn_about_motors(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setenv("J5AIO_LOCK_PORT", "0")
+    holder = BaseRobot()
+    assert holder._lock is not None
+    monkeypatch.setenv("J5AIO_LOCK_PORT", str(holder._lock.getsockname()[1]))
+    out = io.StringIO()
+    try:
+        with pytest.raises(UnableToObtainLock):
+            await demo(0.3, out=out)
+    finally:
+        holder.release_lock()
+    assert "left running" not in out.getvalue()
+    assert "has stopped" not in out.getvalue()
 
 
 @pytest.mark.parametrize("seconds", [0, -1.0, float("nan")])

@@ -140,5 +140,37 @@ class Backend(Generic[BoardT], metaclass=BackendMeta):
         """The firmware version the board reported, or ``None`` if it has none."""
         raise NotImplementedError
 
+    def make_safe_now(self, timeout: float) -> bool:
+        """Put the board in its safe state at once, synchronously, through its own link.
+
+        This is the safety net's contract with a backend (see :mod:`j5aio.lifetime`); every
+        backend of a board that can move or power something must override it:
+
+        * **Synchronous**: it needs no running event loop. It is called from the thread that
+          runs the board's event loop (between callbacks, never during an await of this
+          backend), or after that loop has stopped, or at interpreter exit.
+        * **Own link only**: it sends through the backend's own link with the link's
+          synchronous path (:meth:`.SerialLink.send_now`,
+          :meth:`.USBLink.control_write_now`); no discovery, no other board.
+        * **Bounded**: it returns or raises within ``timeout`` seconds.
+        * **Idempotent** and harmless on a link that is already closed (return ``False``).
+        * **The same safe state as the board's** :meth:`~j5aio.boards.board.Board.make_safe`
+          (motors braked, power outputs off); where that leaves things as they are (a
+          servo, an Arduino pin), there is nothing to send.
+        * Failures raise :class:`~j5aio.errors.CommunicationError` (or a subclass); the
+          caller logs them and goes on to the next board.
+
+        :param timeout: the most seconds it may take.
+        :returns: whether anything was sent (``False``: nothing to send). The default
+            sends nothing, which suits backends with no actuators (consoles, sensors).
+        """
+        return False
+
+    def close_now(self) -> None:
+        """Release the backend's port synchronously (at exit); does nothing here.
+
+        Like :meth:`make_safe_now`, it needs no running event loop; idempotent.
+        """
+
     async def close(self) -> None:
         """Release whatever the backend holds (a port, a USB handle). Does nothing here."""

@@ -8,6 +8,8 @@ from typing import TYPE_CHECKING, ClassVar
 
 import anyio
 
+from j5aio import lifetime
+
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
     from j5aio.components.component import Component
@@ -21,7 +23,10 @@ class Board(ABC):
     """A physical board: a set of components driven through one backend.
 
     Every board that has been set up is kept in :attr:`BOARDS` until it is closed, so
-    that :meth:`make_all_safe` can reach all of them when a program stops.
+    that :meth:`make_all_safe` can reach all of them when a program stops. Every board
+    made at all is also known to the safety net (:mod:`j5aio.lifetime`) until it is
+    closed, which makes it safe through its backend's
+    :meth:`~j5aio.backends.backend.Backend.make_safe_now` however the program ends.
 
     :param serial_number: the board's serial number, as the backend found it.
     :param backend: the backend that drives this board.
@@ -38,6 +43,7 @@ class Board(ABC):
         self._backend = backend
         self._is_set_up = False
         self._is_closed = False
+        lifetime.track(self)
 
     @property
     def serial_number(self) -> str:
@@ -87,7 +93,17 @@ class Board(ABC):
             return
         self._is_closed = True
         Board.BOARDS.discard(self)
+        lifetime.untrack(self)
         await self._backend.close()
+
+    def close_now(self) -> None:
+        """Release the board's port at once, synchronously, and forget it (for exit paths)."""
+        if self._is_closed:
+            return
+        self._is_closed = True
+        Board.BOARDS.discard(self)
+        lifetime.untrack(self)
+        self._backend.close_now()
 
     @staticmethod
     async def make_all_safe() -> list[BaseException]:
@@ -106,6 +122,8 @@ class Board(ABC):
             except Exception as exc:
                 LOGGER.error("Could not make %s safe: %s", board, exc)
                 failures.append(exc)
+            else:
+                lifetime.mark_settled(board)
 
         async with anyio.create_task_group() as group:
             for board in list(Board.BOARDS):

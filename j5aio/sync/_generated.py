@@ -321,7 +321,8 @@ class BaseRobot(_SyncWrapper):
 
     Use it as an async context manager. On the way in it takes the single-robot lock and
     runs :meth:`setup`, where a subclass finds its boards; on the way out (normally, by
-    an exception, by cancellation, or on SIGINT / SIGTERM) every board is made safe::
+    an exception, by cancellation, or on SIGINT / SIGTERM / SIGHUP) every board is made
+    safe; a signal then ends the program with status ``128 + signal``::
 
         class MyRobot(BaseRobot):
             async def setup(self) -> None:
@@ -366,7 +367,10 @@ class Board(_SyncWrapper):
     """A physical board: a set of components driven through one backend.
 
     Every board that has been set up is kept in :attr:`BOARDS` until it is closed, so
-    that :meth:`make_all_safe` can reach all of them when a program stops.
+    that :meth:`make_all_safe` can reach all of them when a program stops. Every board
+    made at all is also known to the safety net (:mod:`j5aio.lifetime`) until it is
+    closed, which makes it safe through its backend's
+    :meth:`~j5aio.backends.backend.Backend.make_safe_now` however the program ends.
 
     :param serial_number: the board's serial number, as the backend found it.
     :param backend: the backend that drives this board.
@@ -413,6 +417,10 @@ class Board(_SyncWrapper):
     def close(self) -> None:
         """Release the board's port and forget it. The board is not made safe first."""
         _call(self._core.close)
+
+    def close_now(self) -> None:
+        """Release the board's port at once, synchronously, and forget it (for exit paths)."""
+        self._core.close_now()
 
     @staticmethod
     def make_all_safe() -> list[BaseException]:

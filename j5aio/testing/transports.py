@@ -115,6 +115,11 @@ class RecordingStream(ByteStream):
         self.events.append(WireEvent("received", data, time.monotonic()))
         return data
 
+    def send_now(self, data: bytes, timeout: float) -> None:
+        """Send through the wrapped stream synchronously, and record ``data``."""
+        self._inner.send_now(data, timeout)
+        self.events.append(WireEvent("sent", bytes(data), time.monotonic()))
+
     def close_now(self) -> None:
         """Close the wrapped stream."""
         self._inner.close_now()
@@ -320,6 +325,10 @@ class FaultyStream(ByteStream):
                 chunk = await self._interruptible(self._inner.receive(max_bytes))
                 if chunk is not None and not self._silent:
                     self._process(chunk)
+
+    def send_now(self, data: bytes, timeout: float) -> None:
+        """Send through the wrapped stream synchronously (no fault applies)."""
+        self._inner.send_now(data, timeout)
 
     def close_now(self) -> None:
         """Close the wrapped stream."""

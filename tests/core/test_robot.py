@@ -77,6 +77,19 @@ async def test_failed_setup_releases_the_lock_and_makes_safe() -> None:
     robot.release_lock()
 
 
+def test_the_lock_message_names_the_port_and_the_variable(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("J5AIO_LOCK_PORT", "0")
+    first = BaseRobot()
+    assert first._lock is not None
+    port = first._lock.getsockname()[1]
+    monkeypatch.setenv("J5AIO_LOCK_PORT", str(port))
+    try:
+        with pytest.raises(UnableToObtainLock, match=f"TCP port {port} .*J5AIO_LOCK_PORT"):
+            BaseRobot()
+    finally:
+        first.release_lock()
+
+
 def test_lock_held_by_another_process() -> None:
     code = "import time, j5aio; r = j5aio.BaseRobot(); print('ready', flush=True); time.sleep(30)"
     proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
@@ -115,9 +128,8 @@ SIGTERM_PROGRAM = textwrap.dedent(
 )
 
 
-@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
-@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
-def test_signal_makes_boards_safe_and_stops(signum: int) -> None:
+def start_running_robot() -> subprocess.Popen[str]:
+    """Start SIGTERM_PROGRAM in a child Python and wait until its robot runs."""
     tests = os.path.dirname(os.path.dirname(__file__))
     proc = subprocess.Popen(
         [sys.executable, "-c", SIGTERM_PROGRAM.format(tests=tests)],
@@ -127,9 +139,34 @@ def test_signal_makes_boards_safe_and_stops(signum: int) -> None:
     )
     assert proc.stdout is not None
     assert proc.stdout.readline().strip() == "running"
+    return proc
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP, signal.SIGINT])
+def test_signal_makes_boards_safe_and_stops(signum: int) -> None:
+    proc = start_running_robot()
     started = time.monotonic()
     proc.send_signal(signum)
-    out, _ = proc.communicate(timeout=10)
+    out, err = proc.communicate(timeout=10)
     assert time.monotonic() - started < 5
     assert "safe [1, 1]" in out
-    assert proc.returncode != 0
+    if signum == signal.SIGINT:
+        assert proc.returncode in (-signal.SIGINT, 128 + signal.SIGINT)
+        assert err == "Stopped (Ctrl-C); every board was made safe.\n"
+    else:
+        # One clear line and the conventional status; no CancelledError traceback.
+        assert proc.returncode == 128 + signum
+        assert err == f"Terminated by {signal.Signals(signum).name}: making every board safe.\n"
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+def test_ctrl_c_twice_prints_one_line() -> None:
+    proc = start_running_robot()
+    proc.send_signal(signal.SIGINT)
+    time.sleep(0.002)
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=10)
+    assert "safe [1, 1]" in out
+    assert "Traceback" not in err
+    assert "Exception ignored" not in err

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import _thread
-import asyncio
+import signal
 import threading
 import time
 
 import anyio
 import anyio.lowlevel
+import anyio.to_thread
 import pytest
 
 from j5aio.sync import _runtime
@@ -60,8 +60,15 @@ def test_call_from_inside_the_portal_loop_is_refused() -> None:
         call(nested)
 
 
+def ctrl_c() -> None:
+    """Send SIGINT to the main thread, as the terminal's Ctrl-C reaches a sync program."""
+    main = threading.main_thread().ident
+    assert main is not None
+    signal.pthread_kill(main, signal.SIGINT)
+
+
 def interrupt_main_after(delay: float) -> threading.Timer:
-    timer = threading.Timer(delay, _thread.interrupt_main)
+    timer = threading.Timer(delay, ctrl_c)
     timer.start()
     return timer
 
@@ -109,15 +116,25 @@ def test_cancellation_respects_anyio_shields() -> None:
 
 def test_call_cancelled_before_it_starts_never_runs() -> None:
     ran: list[bool] = []
+    portal = _runtime._LoopThread()
+    blocker = threading.Event()
+
+    async def busy() -> None:
+        await anyio.to_thread.run_sync(blocker.wait)
 
     async def never() -> None:
         ran.append(True)
 
-    request = _runtime._Call(never())
-    request.cancel()
-    asyncio.run(request.run())
+    first = portal.submit(busy())
+    second = portal.submit(never())
+    portal.cancel(second)
+    assert second.done.acquire(timeout=2)
+    blocker.set()
+    assert first.done.acquire(timeout=2)
+    portal.stop(2)
     assert ran == []
-    assert request.done.acquire(blocking=False)
+    assert isinstance(second.error, RuntimeError)
+    assert "before it started" in str(second.error)
 
 
 def test_portal_that_has_stopped_refuses_new_calls() -> None:
@@ -151,6 +168,52 @@ def test_shutdown_then_call_starts_a_new_portal() -> None:
     assert get_loop() is not first
 
 
-def test_wait_keeps_waiting_across_slices() -> None:
-    slices = _runtime.WAIT_SLICE * 3
-    assert call(anyio.sleep, slices) is None
+def test_wait_keeps_waiting_across_slices(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(_runtime, "LONG_WAIT_SLICE", 0.02)
+    assert call(anyio.sleep, 0.1) is None
+
+
+class InterruptedJustAfterAcquiring:
+    """A lock whose first acquire succeeds and is then interrupted, as by a late Ctrl-C."""
+
+    def __init__(self, lock: threading.Lock) -> None:
+        self.lock = lock
+        self.calls = 0
+
+    def acquire(self, blocking: bool = True, timeout: float = -1) -> bool:
+        self.calls += 1
+        taken = self.lock.acquire(blocking, timeout)
+        if self.calls == 1:
+            assert taken
+            raise KeyboardInterrupt
+        return taken
+
+
+def test_an_interrupt_just_after_the_call_finished_does_not_wait(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    portal = _runtime._LoopThread()
+    try:
+        request = portal.submit(add(1, 2))
+        deadline = time.monotonic() + 2
+        while request.state != _runtime._DONE:
+            assert time.monotonic() < deadline
+            time.sleep(0.001)
+        late = InterruptedJustAfterAcquiring(request.done)
+        request.done = late  # type: ignore[assignment]
+        started = time.monotonic()
+        with pytest.raises(KeyboardInterrupt):
+            _runtime._wait(portal, request)
+        assert time.monotonic() - started < 0.5  # not CANCEL_GRACE: the lock was ours
+        assert late.calls == 1
+        assert "did not stop" not in caplog.text
+    finally:
+        portal.stop(2)
+
+
+def test_the_worker_keeps_serving_after_a_cancelled_call() -> None:
+    interrupt_main_after(0.05)
+    with pytest.raises(KeyboardInterrupt):
+        call(anyio.sleep, 5)
+    assert call(add, 2, 3) == 5  # a fresh cancel scope: the next call is not cancelled
+    assert call(add, 4, 3) == 7

@@ -53,6 +53,10 @@ class ConsoleBackend(Backend):
         """Always ``None``: there is no firmware on the console."""
         return None
 
+    def make_safe_now(self, timeout: float) -> bool:
+        """Send nothing: a console drives no hardware (see :meth:`.Backend.make_safe_now`)."""
+        return False
+
     @staticmethod
     def _check_identifier(kind: str, identifier: int, valid: range) -> None:
         """Refuse an identifier the board does not have.

@@ -44,6 +44,14 @@ class ArduinoHardwareBackend(GPIOPinInterface, LEDInterface, SerialHardwareBacke
         super().__init__(link, port=port)
         self._pins = ArduinoPins(self.board.name)
 
+    def make_safe_now(self, timeout: float) -> bool:
+        """Send nothing: like :meth:`.ArduinoUno.make_safe`, pins stay as they are.
+
+        No pin state suits every circuit (an output low may start a pump); see
+        :meth:`.Backend.make_safe_now`.
+        """
+        return False
+
     @abstractmethod
     async def _apply_pin(self, identifier: int, *, mode_changed: bool) -> None:
         """Send the remembered mode and level of digital pin ``identifier`` to the board."""

@@ -326,6 +326,10 @@ class SerialHardwareBackend(Backend[BoardT]):
         registry.release(self._port, self)
         self._link.close_now()
 
+    def close_now(self) -> None:
+        """Close the port at once, synchronously, and free it for rediscovery."""
+        self._forget()
+
     async def close(self) -> None:
         """Close the port and free it for rediscovery."""
         registry.release(self._port, self)

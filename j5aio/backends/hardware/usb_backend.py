@@ -163,6 +163,14 @@ class USBHardwareBackend(Backend):
     def _forget(self) -> None:
         registry.release(self._key, self)
 
+    #: The longest :meth:`close_now` waits for the worker thread's last transfers.
+    CLOSE_NOW_TIMEOUT: ClassVar[float] = 0.25
+
+    def close_now(self) -> None:
+        """Stop the device's worker thread (bounded wait) and free it for rediscovery."""
+        self._forget()
+        self._link.close_now(self.CLOSE_NOW_TIMEOUT)
+
     async def close(self) -> None:
         """Stop the device's worker thread and free it for rediscovery."""
         self._forget()

@@ -72,3 +72,7 @@ async def test_unknown_servo(identifier: int) -> None:
     with pytest.raises(ValueError, match="invalid servo identifier"):
         await backend.get_servo_position(identifier)
     assert terminal.lines == []
+
+
+def test_a_console_has_no_safe_state_to_send() -> None:
+    assert SRV4MotorBoardConsoleBackend("SERIAL").make_safe_now(0.5) is False

@@ -139,3 +139,26 @@ async def test_a_vanished_port_is_a_disconnection_and_frees_the_port() -> None:
     assert registry.holder("sim://motor") is None
     with pytest.raises(BoardDisconnectionError):
         await board.backend.set_motor_state(0, 0.5)  # type: ignore[attr-defined]
+
+
+async def test_make_safe_now_brakes_both_motors_synchronously() -> None:
+    sim = SRMotorBoardFw3Simulator("SR0M")
+    board, stream = await connect(sim)
+    await board.motors[0].set_power(0.6)
+    await board.motors[1].set_power(MotorSpecialState.COAST)
+    stream.clear()
+    assert board.backend.make_safe_now(0.5) is True
+    assert stream.sent == b"\x00\x02\x02\x03\x02"  # resync first, then brake each
+    assert [m.mode for m in sim.motors] == [MotorMode.BRAKE, MotorMode.BRAKE]
+    assert await board.motors[0].get_power() is MotorSpecialState.BRAKE
+    await board.close()
+    assert board.backend.make_safe_now(0.5) is False  # a closed link: nothing to send
+
+
+async def test_close_now_closes_the_port_synchronously() -> None:
+    sim = SRMotorBoardFw3Simulator("SR0M")
+    board, stream = await connect(sim)
+    board.close_now()
+    assert stream.is_closed
+    assert board not in MotorBoard.BOARDS
+    await board.close()  # already closed

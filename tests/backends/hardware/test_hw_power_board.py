@@ -189,3 +189,16 @@ async def test_usb_errors_are_usb_communication_errors() -> None:
     with pytest.raises(USBCommunicationError, match="Input/Output"):
         await board.backend.set_led_state(0, True)  # type: ignore[attr-defined]
     await board.close()
+
+
+async def test_make_safe_now_switches_every_output_off_synchronously() -> None:
+    sim = SRPowerBoardFw3Simulator("PB1")
+    board, backend = await connect(sim)
+    await board.outputs.power_on()
+    assert all(sim.outputs)
+    assert backend.make_safe_now(0.5) is True
+    assert not any(sim.outputs)
+    assert await board.outputs[PowerOutputPosition.H0].get_is_enabled() is False
+    backend.close_now()
+    assert backend.make_safe_now(0.5) is False
+    await board.close()

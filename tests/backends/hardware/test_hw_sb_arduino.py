@@ -291,3 +291,7 @@ async def test_attach_to_a_missing_port_is_a_disconnection() -> None:
     with pytest.raises(BoardDisconnectionError, match="no such port"):
         await Backend.attach("/dev/ttyDOESNOTEXIST")
     assert registry.holder("/dev/ttyDOESNOTEXIST") is None
+
+
+def test_make_safe_now_leaves_the_pins_as_they_are() -> None:
+    assert SBArduinoHardwareBackend.make_safe_now(object(), 0.5) is False  # type: ignore[arg-type]

@@ -108,3 +108,7 @@ async def test_handshake_stall_points_at_the_firmware() -> None:
 async def test_unsupported_firmware() -> None:
     with pytest.raises(UnsupportedFirmwareError, match="'3'"):
         await Backend.from_usb_device(StandIn(version=3))
+
+
+def test_make_safe_now_leaves_the_servos_where_they_are() -> None:
+    assert SRV4ServoBoardHardwareBackend.make_safe_now(object(), 0.5) is False  # type: ignore[arg-type]

@@ -55,6 +55,15 @@ class MemoryStream(ByteStream):
             raise BoardDisconnectionError(f"{self._name}: the other end has gone away")
         peer._inbox.feed(data)
 
+    def send_now(self, data: bytes, timeout: float) -> None:
+        """Deliver ``data`` to the other end at once; see :meth:`ByteStream.send_now`."""
+        if self._closed:
+            raise BoardDisconnectionError(f"{self._name}: the stream is closed")
+        peer = self._peer
+        if peer is None or peer._closed:
+            raise BoardDisconnectionError(f"{self._name}: the other end has gone away")
+        peer._inbox.feed(bytes(data))
+
     async def receive(self, max_bytes: int = 4096) -> bytes:
         """Return bytes sent by the other end; see :meth:`ByteStream.receive`."""
         return await self._inbox.take(max_bytes)
@@ -181,6 +190,12 @@ class SimulatorStream(ByteStream):
         await anyio.lowlevel.checkpoint()
         self._check_usable()
         response = self._simulator.receive(data)
+        self._queue_output(response, after=self._wire_time(data))
+
+    def send_now(self, data: bytes, timeout: float) -> None:
+        """Hand ``data`` to the simulator at once; see :meth:`ByteStream.send_now`."""
+        self._check_usable()
+        response = self._simulator.receive(bytes(data))
         self._queue_output(response, after=self._wire_time(data))
 
     async def receive(self, max_bytes: int = 4096) -> bytes:

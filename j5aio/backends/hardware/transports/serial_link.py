@@ -12,7 +12,8 @@ requests, and the protocols driven through it (SR, SB, Ruggeduino) only ever spe
 reply to the host, apart from a boot banner which is read on purpose. Without a task the
 link needs no task group, no start-up and no owner: it can be made anywhere, used from
 any task, and closed synchronously with :meth:`~SerialLink.close_now` (in ``atexit``,
-say). A reader task would only add a second place where bytes wait.
+say); :meth:`~SerialLink.send_now` likewise sends a board's safe state synchronously.
+A reader task would only add a second place where bytes wait.
 
 **Serialisation.** One :class:`anyio.Lock` (FIFO) per link: sends, exchanges, plain reads
 and drains run one at a time, in the order they asked.
@@ -255,6 +256,33 @@ class SerialLink(AsyncResource):
         async with self._lock:
             self._check_open()
             return await self._drain_locked(quiet, bound)
+
+    def send_now(self, data: bytes, *, timeout: float | None = None) -> None:
+        """Send ``data`` at once, synchronously, bypassing the lock (the safe state at exit).
+
+        For the safety net (:mod:`j5aio.lifetime`): it needs no running event loop. It
+        does not wait for an exchange in progress, so the link is marked dirty: a reply
+        that such an exchange was waiting for is drained, not taken for another. Output
+        still queued may be dropped (see :meth:`.ByteStream.send_now`). Call it from the
+        thread that runs the link's event loop, or once that loop has stopped.
+
+        :raises CommunicationError: the bytes could not be sent within ``timeout``
+            (the link's ``default_timeout`` if not given).
+        :raises BoardDisconnectionError: the port has gone or the link is closed.
+        """
+        seconds = self._timeout(timeout)
+        data = bytes(data)
+        self._check_open()
+        self._dirty = True
+        log_wire(self._wire, "->", data)
+        try:
+            self._stream.send_now(data, seconds)
+        except CommunicationError:
+            raise
+        except OSError as exc:
+            raise CommunicationError(
+                f"{self._name}: sending {_preview(data)} failed: {exc}"
+            ) from exc
 
     # -- closing -------------------------------------------------------------------------
 

@@ -20,7 +20,10 @@ import asyncio
 import errno
 import functools
 import logging
+import os
+import select
 import sys
+import time
 from typing import Any
 
 import anyio
@@ -71,6 +74,38 @@ class SerialStream(ByteStream):
 
     def _closed_error(self) -> BoardDisconnectionError:
         return BoardDisconnectionError(f"{self._name}: the port is closed")
+
+    def _write_now(self, data: bytes, timeout: float) -> None:
+        """Write ``data`` to the port synchronously, waiting at most ``timeout`` seconds."""
+        deadline = time.monotonic() + timeout
+        remaining = memoryview(data)
+        fileno = self._port.fileno() if _has_file_descriptor(self._port) else None
+        while remaining:
+            try:
+                # os.write on the descriptor: pyserial's non-blocking write spins on EAGAIN.
+                written = (
+                    os.write(fileno, remaining)
+                    if fileno is not None
+                    else self._port.write(remaining)
+                )
+            except (BlockingIOError, InterruptedError):
+                written = 0
+            except (serial.SerialException, OSError) as exc:
+                raise BoardDisconnectionError(
+                    f"{self._name}: writing to the port failed ({exc})"
+                ) from exc
+            remaining = remaining[written or 0 :]
+            left = deadline - time.monotonic()
+            if not remaining:
+                return
+            if left <= 0:
+                raise CommunicationError(
+                    f"{self._name}: could not send {bytes(data)!r} within {timeout} s"
+                )
+            if fileno is not None:
+                select.select([], [fileno], [], min(left, 0.01))
+            else:
+                time.sleep(min(left, 0.001))
 
     def _close_port(self) -> None:
         try:
@@ -137,6 +172,13 @@ class _EventSerialStream(SerialStream):
     async def receive(self, max_bytes: int = 4096) -> bytes:
         """Return received bytes; see :meth:`ByteStream.receive`."""
         return await self._inbox.take(max_bytes)
+
+    def send_now(self, data: bytes, timeout: float) -> None:
+        """Drop output still queued, then write ``data`` synchronously; see :class:`ByteStream`."""
+        self._check_writable()
+        assert self._transport is not None
+        self._transport.flush()  # queued output would otherwise follow ``data``
+        self._write_now(bytes(data), timeout)
 
     def close_now(self) -> None:
         """Stop watching the port and close it, synchronously; idempotent."""
@@ -234,6 +276,11 @@ class _PolledSerialStream(SerialStream):
             if data:
                 return data
             await anyio.sleep(self._poll_interval)
+
+    def send_now(self, data: bytes, timeout: float) -> None:
+        """Write ``data`` synchronously; see :meth:`ByteStream.send_now`."""
+        self._check_open()
+        self._write_now(bytes(data), timeout)
 
     def close_now(self) -> None:
         """Close the port, synchronously; idempotent."""

@@ -28,6 +28,8 @@ import abc
 import anyio.lowlevel
 from anyio.abc import AsyncResource
 
+from j5aio.errors import CommunicationError
+
 __all__ = ["ByteStream"]
 
 
@@ -72,6 +74,23 @@ class ByteStream(AsyncResource):
         A task waiting in :meth:`receive` is woken and gets
         :class:`~j5aio.errors.BoardDisconnectionError`.
         """
+
+    def send_now(self, data: bytes, timeout: float) -> None:
+        """Send ``data`` at once, synchronously, within ``timeout`` seconds.
+
+        For the last word a program has with its board (the safe state at exit, from the
+        safety net in :mod:`j5aio.lifetime`): no event loop needs to be running. Output
+        still queued by :meth:`send` may be dropped, so send a protocol's resynchronising
+        bytes first if a half-sent command could swallow ``data``. Call it from the thread
+        that runs the event loop, or after that loop has stopped.
+
+        The default refuses: a stream that can do this overrides it.
+
+        :raises BoardDisconnectionError: the far end has gone or the stream is closed.
+        :raises CommunicationError: the bytes could not be sent in time, or this stream
+            cannot send synchronously.
+        """
+        raise CommunicationError(f"{self.name}: this stream cannot send synchronously")
 
     async def aclose(self) -> None:
         """Close the stream; idempotent.

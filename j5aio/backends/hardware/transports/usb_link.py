@@ -142,6 +142,24 @@ class _Job(Generic[T]):
         _post(self.loop, self.future, outcome)
 
 
+class _NowJob:
+    """A transfer whose caller waits synchronously (see :meth:`USBLink.control_write_now`)."""
+
+    def __init__(self, work: Callable[[], Any]) -> None:
+        self.work = work
+        self.done = threading.Event()
+        self.outcome: tuple[bool, Any] = (False, None)
+
+    def start(self) -> bool:
+        """Always run: a synchronous caller cannot withdraw."""
+        return True
+
+    def finish(self, outcome: tuple[bool, Any]) -> None:
+        """Hand the outcome to the waiting caller."""
+        self.outcome = outcome
+        self.done.set()
+
+
 def _resolve(future: asyncio.Future[Any], outcome: Any) -> None:
     if not future.done():
         future.set_result(outcome)
@@ -173,7 +191,7 @@ class USBLink(AsyncResource):
         # Guards _closed, _stopped and _stop_waiters, so that no job is queued behind
         # the stop sentinel even if close_now runs on another thread.
         self._state_lock = threading.Lock()
-        self._jobs: queue.SimpleQueue[_Job[Any] | None] = queue.SimpleQueue()
+        self._jobs: queue.SimpleQueue[_Job[Any] | _NowJob | None] = queue.SimpleQueue()
         self._wire = wire_logger(f"usb:{board_name}")
         self._thread = threading.Thread(
             target=self._run, name=f"j5aio USB {board_name}", daemon=True
@@ -299,6 +317,45 @@ class USBLink(AsyncResource):
             result: T = value
             return result
         raise self._translate(value, description, errors or {}) from value
+
+    def control_write_now(
+        self, w_index: int, w_value: int, data: bytes = b"", *, timeout: float
+    ) -> None:
+        """Write like :meth:`control_write`, synchronously, from any thread (the safe state).
+
+        For the safety net (:mod:`j5aio.lifetime`): no event loop is needed. The transfer
+        runs on the worker thread after those already asked for, and the caller waits at
+        most ``timeout`` seconds for it.
+
+        :raises USBDisconnectionError: the link is closed or the board has gone.
+        :raises USBTransferTimeoutError: the transfer did not finish within ``timeout``.
+        :raises USBCommunicationError: the transfer failed.
+        """
+        payload = bytes(data)
+        description = f"writing wIndex {w_index} wValue {w_value} data {payload!r}"
+        log_wire(self._wire, f"-> wIndex={w_index} wValue={w_value}", payload)
+        job = _NowJob(
+            lambda: self._device.ctrl_transfer(
+                WRITE_REQUEST_TYPE, CONTROL_REQUEST, w_value, w_index, payload, self._timeout_ms
+            )
+        )
+        if threading.current_thread() is self._thread:  # pragma: no cover - a transfer's own code
+            try:
+                job.finish((True, job.work()))
+            except Exception as exc:
+                job.finish((False, exc))
+        else:
+            with self._state_lock:
+                if self._closed:
+                    raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
+                self._jobs.put(job)
+            if not job.done.wait(timeout):
+                raise USBTransferTimeoutError(
+                    f"{self._board_name}: {description} did not finish within {timeout} s"
+                )
+        succeeded, value = job.outcome
+        if not succeeded:
+            raise self._translate(value, description, {}) from value
 
     # -- closing -------------------------------------------------------------------------
 

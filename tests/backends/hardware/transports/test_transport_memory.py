@@ -259,3 +259,14 @@ async def test_simulator_stream_validates_its_arguments() -> None:
         SimulatorStream(EchoSimulator(), time_scale=-1)
     with pytest.raises(ValueError, match="max_bytes"):
         await SimulatorStream(EchoSimulator()).receive(0)
+
+
+async def test_a_simulator_stream_sends_synchronously() -> None:
+    simulator = EchoSimulator(banner=b"")
+    stream = SimulatorStream(simulator, time_scale=0)
+    stream.send_now(b"brake", 0.1)
+    assert simulator.received == [b"brake"]
+    assert await stream.receive() == b"BRAKE"
+    stream.close_now()
+    with pytest.raises(BoardDisconnectionError, match="closed"):
+        stream.send_now(b"x", 0.1)

@@ -657,3 +657,52 @@ async def test_the_stress_detects_strays_when_the_exchange_is_not_shielded() -> 
                 strays += reply != b"REP %d" % n
         tg.cancel_scope.cancel()
     assert strays > 0
+
+
+# -- sending synchronously (the safety net) ------------------------------------------------
+
+
+async def test_send_now_reaches_the_board_without_awaiting() -> None:
+    host, board = memory_stream_pair("host", "board")
+    recorder = RecordingStream(FaultyStream(host))
+    link = SerialLink(recorder, name="memory")
+    link.send_now(b"brake\n")
+    assert await board.receive() == b"brake\n"
+    assert recorder.sent == b"brake\n"
+    assert link.is_dirty
+    board.close_now()
+    with pytest.raises(BoardDisconnectionError, match="other end has gone"):
+        link.send_now(b"x")
+    link.close_now()
+    with pytest.raises(BoardDisconnectionError, match="link is closed"):
+        link.send_now(b"x")
+    with pytest.raises(BoardDisconnectionError, match="stream is closed"):
+        host.send_now(b"x", 0.1)
+
+
+class NoSyncStream(ByteStream):
+    """A stream that keeps the default: it cannot send synchronously."""
+
+    name = "no-sync"
+    is_closed = False
+
+    async def send(self, data: bytes) -> None:
+        raise OSError("not used")
+
+    async def receive(self, max_bytes: int = 4096) -> bytes:
+        raise OSError("not used")
+
+    def close_now(self) -> None:
+        pass
+
+
+class OSErrorStream(NoSyncStream):
+    def send_now(self, data: bytes, timeout: float) -> None:
+        raise OSError("the device is gone")
+
+
+def test_send_now_failures_are_communication_errors() -> None:
+    with pytest.raises(CommunicationError, match="cannot send synchronously"):
+        SerialLink(NoSyncStream()).send_now(b"x")
+    with pytest.raises(CommunicationError, match="sending b'x' failed: the device is gone"):
+        SerialLink(OSErrorStream()).send_now(b"x")

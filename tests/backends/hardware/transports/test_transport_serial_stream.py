@@ -9,6 +9,7 @@ import os
 import socket
 import sys
 import threading
+import time
 import tty
 from collections.abc import AsyncIterator, Callable, Iterator
 from typing import Any
@@ -466,3 +467,65 @@ async def test_a_polled_receive_waits_for_data() -> None:
         with anyio.fail_after(1):
             assert await stream.receive() == b"late"
     stream.close_now()
+
+
+# -- sending synchronously (the safety net) ------------------------------------------------
+
+
+async def test_send_now_writes_at_once_through_a_pty(board: PtyBoard, stream: SerialStream) -> None:
+    link = SerialLink(stream, name="pty")
+    stream.send_now(b"first\n", 0.5)
+    link.send_now(b"safe\n", timeout=0.5)
+    assert link.is_dirty  # a reply it skipped must not be taken for another's
+    assert read_master(board, len(b"first\nsafe\n")) == b"first\nsafe\n"
+
+
+def test_send_now_works_after_the_event_loop_has_gone(board: PtyBoard) -> None:
+    async def open_it() -> SerialStream:
+        return await open_serial_stream(board.path, 115200)
+
+    stream = anyio.run(open_it)
+    stream.send_now(b"made safe\n", 0.5)
+    stream.close_now()
+    assert read_master(board, len(b"made safe\n")) == b"made safe\n"
+    with pytest.raises(BoardDisconnectionError):
+        stream.send_now(b"x", 0.5)
+
+
+async def test_send_now_on_a_polled_port() -> None:
+    stream = await open_serial_stream("loop://", poll_interval=0.0005)
+    stream.send_now(b"echo\n", 0.5)
+    assert await stream.receive() == b"echo\n"
+    stream.close_now()
+    with pytest.raises(BoardDisconnectionError, match="closed"):
+        stream.send_now(b"x", 0.5)
+
+
+async def test_send_now_gives_up_after_its_timeout(monkeypatch: pytest.MonkeyPatch) -> None:
+    stream = await open_serial_stream("loop://", poll_interval=0.0005)
+    monkeypatch.setattr(stream.serial, "write", lambda data: 0)
+    with pytest.raises(CommunicationError, match=r"within 0\.01 s"):
+        stream.send_now(b"never taken", 0.01)
+    monkeypatch.setattr(stream.serial, "write", _raise(serial.SerialException("unplugged")))
+    with pytest.raises(BoardDisconnectionError, match="writing to the port failed"):
+        stream.send_now(b"x", 0.1)
+    stream.close_now()
+
+
+def read_master(board: PtyBoard, count: int) -> bytes:
+    """Read what the program wrote to the port, straight from the master side."""
+    data = b""
+    deadline = time.monotonic() + 2
+    while len(data) < count and time.monotonic() < deadline:
+        try:
+            data += os.read(board.master, 4096)
+        except BlockingIOError:
+            time.sleep(0.005)
+    return data
+
+
+def _raise(error: BaseException) -> Any:
+    def fail(*args: Any) -> Any:
+        raise error
+
+    return fail

@@ -323,3 +323,25 @@ async def test_the_worker_survives_any_exception(link: USBLink) -> None:
         await link.call(exit_thread, description="misbehaving")
     assert link.thread.is_alive()
     assert await link.control_read(5, 4) == struct.pack("<I", 5)
+
+
+# -- writing synchronously (the safety net) ------------------------------------------------
+
+
+def test_control_write_now_runs_on_the_worker_thread_in_order(device: StandInDevice) -> None:
+    link = USBLink(device, board_name="Power Board SRABC1", timeout_ms=250)
+    try:
+        link.control_write_now(3, 0, timeout=1)
+        assert device.calls == [(0x00, 64, 0, 3, b"", 250)]
+        assert threading.get_ident() not in device.threads
+        device.errors[4] = usb.core.USBError("gone", errno=errno.ENODEV)
+        with pytest.raises(USBDisconnectionError, match="disconnected"):
+            link.control_write_now(4, 0, timeout=1)
+        device.gate = threading.Event()
+        with pytest.raises(USBTransferTimeoutError, match=r"did not finish within 0\.05 s"):
+            link.control_write_now(5, 0, timeout=0.05)
+        device.gate.set()
+    finally:
+        link.close_now()
+    with pytest.raises(USBDisconnectionError, match="closed"):
+        link.control_write_now(3, 0, timeout=1)

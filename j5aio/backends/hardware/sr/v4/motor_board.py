@@ -61,3 +61,19 @@ class SRV4MotorBoardHardwareBackend(MotorInterface, SerialHardwareBackend):
         self._check_motor(identifier)
         await self._send(codec.encode_motor_command(identifier, power))
         self._states[identifier] = power
+
+    def make_safe_now(self, timeout: float) -> bool:
+        """Brake both motors at once, synchronously (the safety net; see :class:`.Backend`).
+
+        A resync byte goes first, so that a speed command cut in half by the program's end
+        cannot swallow the first brake command.
+        """
+        if self._link.is_closed:
+            return False
+        brake = MotorSpecialState.BRAKE
+        commands = b"".join(
+            codec.encode_motor_command(motor, brake) for motor in range(codec.MOTOR_COUNT)
+        )
+        self._link.send_now(bytes((codec.CMD_RESYNC,)) + commands, timeout=timeout)
+        self._states = [brake] * codec.MOTOR_COUNT
+        return True

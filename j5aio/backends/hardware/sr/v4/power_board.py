@@ -6,6 +6,7 @@ cannot be read back, so their states are the ones last written (all off at first
 
 from __future__ import annotations
 
+import time
 from datetime import timedelta
 from typing import ClassVar
 
@@ -80,6 +81,20 @@ class SRV4PowerBoardHardwareBackend(
         self._check_output(identifier)
         await self._write(identifier, int(enabled))
         self._outputs[identifier] = enabled
+
+    def make_safe_now(self, timeout: float) -> bool:
+        """Switch every output off at once, synchronously (the safety net; see :class:`.Backend`).
+
+        ``timeout`` bounds the whole, shared between the outputs.
+        """
+        if self._link.is_closed:
+            return False
+        deadline = time.monotonic() + timeout
+        for output in range(codec.OUTPUT_COUNT):
+            left = max(deadline - time.monotonic(), 0.001)
+            self._link.control_write_now(output, 0, timeout=left)
+            self._outputs[output] = False
+        return True
 
     async def get_power_output_current(self, identifier: int) -> float:
         """Read the current an output draws, in amperes."""

@@ -51,6 +51,14 @@ class SRV4ServoBoardHardwareBackend(ServoInterface, USBHardwareBackend):
         for servo in range(codec.SERVO_COUNT):
             await self.set_servo_position(servo, 0.0)
 
+    def make_safe_now(self, timeout: float) -> bool:
+        """Send nothing: like :meth:`.ServoBoard.make_safe`, servos stay where they are.
+
+        Firmware 2 cannot unpower a servo, and moving one at exit could hurt whatever
+        it holds; see :meth:`.Backend.make_safe_now`.
+        """
+        return False
+
     async def get_servo_position(self, identifier: int) -> ServoPosition:
         """Return the position last written to a servo (the board cannot report it)."""
         return self._positions[codec.servo_write_index(identifier)]

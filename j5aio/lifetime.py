@@ -1,0 +1,417 @@
+"""The safety net: every board j5aio opened is made safe when the program ends.
+
+However a program is written (a robot, the sync facade, or a quick ``anyio.run`` script
+with no robot at all) and however it ends, a board that was opened and not closed is made
+safe through its own link:
+
+* when the event loop it was opened in finishes (``asyncio.run`` / ``anyio.run`` cancel
+  their remaining tasks at the end; a watcher task per loop notices);
+* when the interpreter exits (a hook that runs before Python joins its threads);
+* on SIGTERM and SIGHUP (turned into ``SystemExit(128 + signal)``, or handed to a
+  running :class:`~j5aio.robot.BaseRobot`, which stops in order and exits the same way);
+* when an unhandled exception ends the program (from ``sys.excepthook``, before the
+  traceback is printed; Ctrl-C prints one short line instead of a traceback unless debug
+  logging is on).
+
+How: :func:`make_all_safe_now` calls each open board's
+:meth:`~j5aio.backends.backend.Backend.make_safe_now`, the synchronous safe state that
+every backend provides (see there for the contract), within :data:`NET_BUDGET` seconds in
+all. It works from any thread: a board whose event loop is running in another thread is
+made safe by a callback in that loop (so its bytes never interleave with a command being
+written there), and directly if that loop does not answer in time. Each board it had to
+rescue gets one log line, so that a team knows their program relied on it; boards that
+were made safe in order first (:meth:`~j5aio.boards.board.Board.make_all_safe`, as a
+robot and the sync facade do on the way out) are made safe again without a line.
+
+Orderly shutdowns (the sync facade's) register with :func:`add_exit_step`: they run first,
+then the net catches whatever they left. A robot asks for SIGTERM with
+:func:`on_terminate`. So there is one exit hook, one set of signal handlers and one
+excepthook for the whole library.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import atexit
+import contextlib
+import logging
+import signal
+import sys
+import threading
+import time
+from collections.abc import Callable, Iterator
+from types import FrameType, TracebackType
+from typing import TYPE_CHECKING, Final
+
+if TYPE_CHECKING:
+    from j5aio.boards.board import Board
+
+__all__ = [
+    "NET_BUDGET",
+    "PER_BOARD_TIMEOUT",
+    "add_exit_step",
+    "install",
+    "make_all_safe_now",
+    "mark_settled",
+    "on_terminate",
+    "open_boards",
+    "quiet_interrupts",
+    "track",
+    "untrack",
+]
+
+LOGGER = logging.getLogger(__name__)
+
+#: The most seconds the net may spend on all boards together.
+NET_BUDGET: Final = 1.0
+#: The most seconds one board may take to be made safe (within the budget).
+PER_BOARD_TIMEOUT: Final = 0.5
+
+_lock = threading.RLock()
+#: Every board opened and not closed -> the event loop it was opened in (None: none ran).
+_open: dict[Board, asyncio.AbstractEventLoop | None] = {}
+#: Boards made safe in order since they were opened (no log line if the net sends again).
+_settled: set[Board] = set()
+#: id(loop) -> its watcher task (held here: asyncio keeps only weak references to tasks).
+_watchers: dict[int, asyncio.Task[None]] = {}
+_exit_steps: list[Callable[[], None]] = []
+_terminate_handlers: list[tuple[asyncio.AbstractEventLoop, Callable[[int], None]]] = []
+_installed = False
+_signals_installed = False
+_finished = False
+#: How many boards the net could not make safe (for the line printed on Ctrl-C).
+_failures = 0
+
+
+# -- which boards are open ---------------------------------------------------------------
+
+
+def track(board: Board) -> None:
+    """Remember ``board`` as opened (boards call this when they are made).
+
+    The event loop running now, if any, is the board's: when it finishes, the board is
+    made safe and closed.
+    """
+    try:
+        loop: asyncio.AbstractEventLoop | None = asyncio.get_running_loop()
+    except RuntimeError:
+        loop = None
+    with _lock:
+        _open[board] = loop
+        _settled.discard(board)
+    install()
+    if loop is not None:
+        _watch(loop)
+
+
+def untrack(board: Board) -> None:
+    """Forget ``board``: it has been closed cleanly."""
+    with _lock:
+        _open.pop(board, None)
+        _settled.discard(board)
+
+
+def mark_settled(board: Board) -> None:
+    """Note that ``board`` was made safe in order (the net then sends again silently)."""
+    with _lock:
+        if board in _open:
+            _settled.add(board)
+
+
+def open_boards() -> list[Board]:
+    """Every board opened and not yet closed."""
+    with _lock:
+        return list(_open)
+
+
+# -- the net -----------------------------------------------------------------------------
+
+
+def make_all_safe_now(
+    reason: str,
+    *,
+    close: bool = False,
+    loop: asyncio.AbstractEventLoop | None = None,
+    budget: float = NET_BUDGET,
+) -> list[Board]:
+    """Make every open board safe now, synchronously, through its own link.
+
+    Callable from any thread, also while the boards' event loops run (a game-over
+    watchdog can call it): boards whose loop runs in another thread are made safe by a
+    callback in that loop, or directly if the loop does not run it within the budget.
+    A board that fails is logged and skipped.
+
+    :param reason: why, for the log lines ("the program exited", ...).
+    :param close: also close each board's port and forget the board (at the end of its
+        loop or of the program); otherwise the boards stay usable.
+    :param loop: only the boards opened in this loop.
+    :param budget: the most seconds to spend, for all boards together.
+    :returns: the boards that had to be rescued (something was sent to them and they had
+        not been made safe in order before).
+    """
+    deadline = time.monotonic() + budget
+    with _lock:
+        chosen = [(b, lp) for b, lp in _open.items() if loop is None or lp is loop]
+    by_loop: dict[asyncio.AbstractEventLoop | None, list[Board]] = {}
+    for board, board_loop in chosen:
+        by_loop.setdefault(board_loop, []).append(board)
+    rescued: list[Board] = []
+    for board_loop, boards in by_loop.items():
+        if board_loop is not None and _runs_elsewhere(board_loop):
+            rescued += _in_loop(board_loop, boards, reason, close, deadline)
+        else:
+            rescued += _make_safe(boards, reason, close, deadline)
+    return rescued
+
+
+def _runs_elsewhere(loop: asyncio.AbstractEventLoop) -> bool:
+    """Whether ``loop`` is running in a thread other than this one."""
+    if loop.is_closed() or not loop.is_running():
+        return False
+    try:
+        current = asyncio.get_running_loop()
+    except RuntimeError:
+        current = None
+    return current is not loop
+
+
+def _in_loop(
+    loop: asyncio.AbstractEventLoop,
+    boards: list[Board],
+    reason: str,
+    close: bool,
+    deadline: float,
+) -> list[Board]:
+    done = threading.Event()
+    result: list[Board] = []
+    claimed = threading.Lock()
+
+    def run() -> None:
+        if claimed.acquire(blocking=False):
+            try:
+                result.extend(_make_safe(boards, reason, close, deadline))
+            finally:
+                done.set()
+
+    try:
+        loop.call_soon_threadsafe(run)
+    except RuntimeError:  # the loop closed meanwhile
+        pass
+    else:
+        if done.wait(max(deadline - time.monotonic(), 0) / 2):
+            return result
+    if claimed.acquire(blocking=False):  # the loop did not answer: do it from here
+        LOGGER.debug("The event loop of %s did not answer; making them safe directly", boards)
+        return _make_safe(boards, reason, close, deadline)
+    done.wait(max(deadline - time.monotonic(), 0))  # the loop started it: let it finish
+    return result
+
+
+def _make_safe(boards: list[Board], reason: str, close: bool, deadline: float) -> list[Board]:
+    global _failures
+    rescued = []
+    for board in boards:
+        left = deadline - time.monotonic()
+        with _lock:
+            if board not in _open:
+                continue  # closed meanwhile
+            settled = board in _settled
+        if left <= 0:
+            LOGGER.error("No time left to make %s safe (%s).", board, reason)
+            _failures += 1
+            continue
+        try:
+            sent = board.backend.make_safe_now(min(left, PER_BOARD_TIMEOUT))
+        except Exception as exc:
+            LOGGER.error("Could not make %s safe when %s: %s", board, reason, exc)
+            _failures += 1
+            sent = False
+        if sent and not settled:
+            rescued.append(board)
+            LOGGER.warning(
+                "%s was made safe by j5aio's safety net when %s (it was never closed).",
+                board,
+                reason,
+            )
+        if close:
+            board.close_now()
+    return rescued
+
+
+# -- when: the end of a loop ---------------------------------------------------------------
+
+
+def _watch(loop: asyncio.AbstractEventLoop) -> None:
+    with _lock:
+        if id(loop) in _watchers:
+            return
+        _watchers[id(loop)] = loop.create_task(_watch_loop(loop), name="j5aio safety net")
+
+
+async def _watch_loop(loop: asyncio.AbstractEventLoop) -> None:
+    """Wait for the end of the loop (its runner cancels this task), then rescue its boards."""
+    try:
+        await loop.create_future()
+    finally:
+        with _lock:
+            _watchers.pop(id(loop), None)
+        make_all_safe_now("its event loop finished", close=True, loop=loop)
+
+
+# -- when: the end of the program ----------------------------------------------------------
+
+
+def add_exit_step(step: Callable[[], None]) -> None:
+    """Run ``step`` when the program ends, before the net (an orderly shutdown)."""
+    with _lock:
+        if step not in _exit_steps:
+            _exit_steps.append(step)
+
+
+def _finish(reason: str) -> None:
+    """Run the exit steps, then the net over every board still open; once."""
+    global _finished
+    with _lock:
+        if _finished:
+            return
+        _finished = True
+        steps = list(_exit_steps)
+    with quiet_interrupts():
+        for step in steps:
+            try:
+                step()
+            except Exception as exc:
+                LOGGER.error("Stopping: %r failed: %s", step, exc)
+        make_all_safe_now(reason, close=True)
+
+
+def _at_exit() -> None:
+    _finish("the program exited")
+
+
+def _excepthook(
+    kind: type[BaseException], value: BaseException, traceback: TracebackType | None
+) -> None:
+    interactive = hasattr(sys, "ps1") or sys.flags.interactive
+    if not interactive:
+        if issubclass(kind, KeyboardInterrupt):
+            _finish("the program was stopped with Ctrl-C")
+        else:
+            _finish(f"the program stopped on an unhandled {kind.__name__}")
+    if (
+        issubclass(kind, KeyboardInterrupt)
+        and not interactive
+        and not logging.getLogger("j5aio").isEnabledFor(logging.DEBUG)
+    ):
+        if _failures:
+            message = "Stopped (Ctrl-C); some boards could not be made safe (see above)."
+        else:
+            message = "Stopped (Ctrl-C); every board was made safe."
+        print(message, file=sys.stderr, flush=True)
+        return
+    _previous_excepthook(kind, value, traceback)
+
+
+_previous_excepthook = sys.excepthook
+
+
+@contextlib.contextmanager
+def quiet_interrupts() -> Iterator[None]:
+    """Ignore Ctrl-C for a while (in the main thread), so that stopping is not torn.
+
+    A second Ctrl-C while boards are being made safe would otherwise interrupt that
+    with a traceback (``Exception ignored in threading``).
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    try:
+        previous = signal.signal(signal.SIGINT, _ignore_interrupt)
+    except (ValueError, OSError):  # pragma: no cover - not the main interpreter
+        yield
+        return
+    try:
+        yield
+    finally:
+        with contextlib.suppress(ValueError, OSError):
+            signal.signal(signal.SIGINT, previous)
+
+
+def _ignore_interrupt(signum: int, frame: FrameType | None) -> None:
+    LOGGER.debug("Ctrl-C again while stopping: ignored, the boards are being made safe")
+
+
+# -- when: a signal ---------------------------------------------------------------------------
+
+
+def on_terminate(
+    loop: asyncio.AbstractEventLoop, handler: Callable[[int], None]
+) -> Callable[[], None]:
+    """Have SIGTERM / SIGHUP call ``handler(signum)`` in ``loop`` instead of exiting at once.
+
+    A robot uses this to stop in order (cancel its work, make its boards safe) and then
+    exit with ``128 + signum`` itself. The most recent handler wins.
+
+    :returns: a function that removes the handler again.
+    """
+    entry = (loop, handler)
+    with _lock:
+        _terminate_handlers.append(entry)
+    install()
+
+    def remove() -> None:
+        with _lock, contextlib.suppress(ValueError):
+            _terminate_handlers.remove(entry)
+
+    return remove
+
+
+def _on_terminate(signum: int, frame: FrameType | None) -> None:
+    name = signal.Signals(signum).name
+    with _lock:
+        handlers = list(_terminate_handlers)
+    while handlers:
+        loop, handler = handlers.pop()
+        if loop.is_closed():
+            continue
+        LOGGER.error("Terminated by %s: making every board safe.", name)
+        with contextlib.suppress(RuntimeError):
+            loop.call_soon_threadsafe(handler, signum)
+            return
+    LOGGER.error("Terminated by %s: making every board safe.", name)
+    raise SystemExit(128 + signum)
+
+
+# -- installing -------------------------------------------------------------------------------
+
+
+def install() -> None:
+    """Install the exit hook, the excepthook and (from the main thread) the signal handlers.
+
+    Idempotent; boards, robots and the sync facade call it. Signal handlers are only
+    installed where nobody else installed one (the signal's action is the default).
+    """
+    global _installed, _signals_installed
+    with _lock:
+        if not _installed:
+            _installed = True
+            register = getattr(threading, "_register_atexit", None)
+            try:
+                # Runs before the interpreter joins non-daemon threads, while ports can
+                # still be closed and the sync facade's loop thread still runs.
+                if register is None:  # pragma: no cover - every CPython we support has it
+                    raise RuntimeError
+                register(_at_exit)
+            except RuntimeError:  # pragma: no cover - already shutting down
+                atexit.register(_at_exit)
+            if sys.excepthook is _previous_excepthook:
+                sys.excepthook = _excepthook
+        if _signals_installed or threading.current_thread() is not threading.main_thread():
+            return
+        _signals_installed = True
+    names = ["SIGTERM"] if sys.platform == "win32" else ["SIGTERM", "SIGHUP"]
+    for name in names:
+        signum = getattr(signal, name)
+        with contextlib.suppress(ValueError, OSError):
+            if signal.getsignal(signum) is signal.SIG_DFL:
+                signal.signal(signum, _on_terminate)
