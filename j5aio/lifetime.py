@@ -81,6 +81,8 @@ _signals_installed = False
 _finished = False
 #: How many boards the net could not make safe (for the line printed on Ctrl-C).
 _failures = 0
+#: Whether a terminating signal has been asked to stop a running loop.
+_terminating = False
 
 
 # -- which boards are open ---------------------------------------------------------------
@@ -367,6 +369,7 @@ def on_terminate(
 
 
 def _on_terminate(signum: int, frame: FrameType | None) -> None:
+    global _terminating
     name = signal.Signals(signum).name
     with _lock:
         handlers = list(_terminate_handlers)
@@ -378,7 +381,26 @@ def _on_terminate(signum: int, frame: FrameType | None) -> None:
         with contextlib.suppress(RuntimeError):
             loop.call_soon_threadsafe(handler, signum)
             return
-    LOGGER.error("Terminated by %s: making every board safe.", name)
+    try:
+        running: asyncio.AbstractEventLoop | None = asyncio.get_running_loop()
+    except RuntimeError:  # this (main) thread is not running a loop
+        running = None
+    if running is not None and not _terminating:
+        # Raising here could tear a task in the middle of a step (a lock half released, a
+        # shielded write whose wake-up is lost), and the loop's runner would then wait
+        # for it for ever. Raise between two callbacks instead: the runner cancels the
+        # tasks and finishes the loop, which makes its boards safe. A second signal while
+        # the loop is stuck in blocking code raises at once.
+        _terminating = True
+        LOGGER.error("Terminated by %s: making every board safe.", name)
+        running.call_soon_threadsafe(_exit, signum)
+        return
+    if not _terminating:
+        LOGGER.error("Terminated by %s: making every board safe.", name)
+    raise SystemExit(128 + signum)
+
+
+def _exit(signum: int) -> None:
     raise SystemExit(128 + signum)
 
 

@@ -239,6 +239,10 @@ class RecordingMotorSimulator(SRMotorBoardFw3Simulator):
         return reply
 
 
+def safe(simulator: SRMotorBoardFw3Simulator) -> bool:
+    return {motor.mode.name for motor in simulator.motors} <= SAFE_MODES
+
+
 @pytest.mark.parametrize("ending", list(ATTACH_ENDINGS))
 def test_a_board_attached_by_port_ends_safe(ending: str) -> None:
     simulator = RecordingMotorSimulator("PTY")
@@ -261,8 +265,9 @@ def test_a_board_attached_by_port_ends_safe(ending: str) -> None:
             _, err = process.communicate(timeout=20)
         finally:
             process.kill()
-        deadline = time.monotonic() + 2
-        while server.is_port_open and time.monotonic() < deadline:
+        # The child has gone; give the server thread time to apply its last bytes.
+        deadline = time.monotonic() + 3
+        while not safe(simulator) and time.monotonic() < deadline:
             time.sleep(0.01)
         modes = {motor.mode.name for motor in simulator.motors}
     assert modes <= SAFE_MODES, (modes, err)

@@ -51,6 +51,7 @@ def _only_these_boards(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
     monkeypatch.setattr(lifetime, "_open", {})
     monkeypatch.setattr(lifetime, "_settled", set())
     monkeypatch.setattr(lifetime, "_failures", 0)
+    monkeypatch.setattr(lifetime, "_terminating", False)
     yield
 
 
@@ -270,6 +271,32 @@ def test_a_terminating_signal_exits_unless_a_robot_asked_for_it() -> None:
 
     asyncio.run(main())
     assert got == [signal.SIGHUP]
+
+
+def test_a_terminating_signal_stops_a_running_loop_between_callbacks() -> None:
+    steps: list[str] = []
+
+    async def main() -> None:
+        lifetime._on_terminate(signal.SIGTERM, None)  # as if it arrived mid-step
+        steps.append("the step finished")  # nothing was torn
+        await asyncio.sleep(5)
+        steps.append("never")
+
+    with pytest.raises(SystemExit) as stopped:
+        asyncio.run(main())
+    assert stopped.value.code == 128 + signal.SIGTERM
+    assert steps == ["the step finished"]
+
+
+def test_a_second_terminating_signal_raises_at_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(lifetime, "_terminating", True)
+
+    async def main() -> None:
+        lifetime._on_terminate(signal.SIGHUP, None)
+
+    with pytest.raises(SystemExit) as stopped:
+        asyncio.run(main())
+    assert stopped.value.code == 128 + signal.SIGHUP
 
 
 def test_install_is_idempotent() -> None:
