@@ -34,11 +34,14 @@ __all__ = ["GRACE", "LOOP_WAIT", "MatchTimer", "add_game_over_hook"]
 LOGGER = logging.getLogger(__name__)
 
 #: The most seconds the boards' event loop gets to start making them safe itself.
-LOOP_WAIT: Final = 0.015
+LOOP_WAIT: Final = 0.005
 #: The seconds a program gets to end by itself after game over, boards already safe.
 GRACE: Final = 0.25
-#: The GIL switch interval from game over on, so a busy thread cannot delay the watchdog.
+#: The GIL switch interval from just before game over on, so that a busy thread cannot
+#: hold the watchdog back for long (Python's default is 5 ms).
 _SWITCH_INTERVAL: Final = 0.0005
+#: How long before the end the switch interval is shortened, in seconds.
+_GET_READY: Final = 0.1
 
 _hooks: list[Callable[[], None]] = []
 
@@ -118,12 +121,16 @@ class MatchTimer:
 
     def _run(self) -> None:
         assert self._ends_at is not None
+        ready = False
         while not self._stopped.is_set():
             left = self._ends_at - time.monotonic()
             if left <= 0:
                 self.game_over()
                 return
-            self._stopped.wait(left)
+            if left <= _GET_READY and not ready:
+                ready = True
+                sys.setswitchinterval(_SWITCH_INTERVAL)
+            self._stopped.wait(left if ready else left - _GET_READY)
 
     def game_over(self) -> None:
         """End the match now (see the module's documentation for what happens)."""
@@ -134,6 +141,8 @@ class MatchTimer:
                 self._cancel()
             except Exception as exc:  # the loop closed meanwhile: nothing to cancel
                 LOGGER.debug("Could not cancel the robot's work: %r", exc)
+        for board in lifetime.open_boards():
+            lifetime.mark_settled(board)  # the end of a match is no program's mistake
         lifetime.make_all_safe_now("the match ended", close=True, loop_wait=LOOP_WAIT)
         LOGGER.warning("Game over: the match has ended and every board is safe.")
         for hook in list(_hooks):
