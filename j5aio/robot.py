@@ -63,6 +63,7 @@ class BaseRobot:
     _metadata: Metadata | None
     _clock: MatchClock
     _match_timer: MatchTimer | None
+    _started: bool
 
     def __new__(cls, *args: Any, **kwargs: Any) -> Self:
         """Create the robot and take the machine-wide lock (before any ``__init__``)."""
@@ -71,6 +72,7 @@ class BaseRobot:
         robot._metadata = None
         robot._clock = MatchClock()
         robot._match_timer = None
+        robot._started = False
         robot._obtain_lock()
         lifetime.install()
         return robot
@@ -218,9 +220,10 @@ class BaseRobot:
         :raises MetadataError: the metadata file is malformed (naming file and field).
         :raises RuntimeError: the robot has started already.
         """
-        if self._match_timer is not None:
+        if self._started:
             raise RuntimeError("the robot has started already: wait_start runs once")
         await wait_for_start(self.boards(), timeout)
+        self._started = True
         self._metadata = metadata = load_metadata()
         self._clock = MatchClock(self._clock.scale)
         LOGGER.info("Match metadata: %s", describe(metadata))

@@ -244,14 +244,17 @@ def media_roots() -> list[Path]:
 def find_usb_sticks(
     roots: Iterable[Path] | None = None,
     *,
-    is_mount: Callable[[Path], bool] = os.path.ismount,
+    is_mount: Callable[[Path], bool] | None = None,
 ) -> list[Path]:
     """Every mounted removable drive: mount points one or two levels below a root.
 
     :param roots: where to look; :func:`media_roots` if omitted.
-    :param is_mount: says whether a directory is a mount point (tests replace it).
+    :param is_mount: says whether a directory is a mount point; ``os.path.ismount`` if
+        omitted.
     :returns: the drives' paths, sorted.
     """
+    if is_mount is None:
+        is_mount = os.path.ismount
     found: list[Path] = []
     for root in media_roots() if roots is None else roots:
         for child in _subdirectories(root):
