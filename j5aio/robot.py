@@ -118,6 +118,7 @@ class BaseRobot:
         except BaseException:
             await self.__aexit__(None, None, None)
             raise
+        self._log_kit()
         return self
 
     async def __aexit__(
@@ -222,6 +223,7 @@ class BaseRobot:
         """
         if self._started:
             raise RuntimeError("the robot has started already: wait_start runs once")
+        self._log_kit()
         await wait_for_start(self.boards(), timeout)
         self._started = True
         self._metadata = metadata = load_metadata()
@@ -237,6 +239,19 @@ class BaseRobot:
                 self._clock.to_real(metadata.duration), cancel=cancel
             )
             self._match_timer.start()
+
+    def _log_kit(self) -> None:
+        """Log each board found, once (the run log's record of the kit)."""
+        if getattr(self, "_kit_logged", False):
+            return
+        self._kit_logged = True
+        for board in sorted(self.boards(), key=lambda b: (b.name, b.serial_number)):
+            LOGGER.info(
+                "Kit: %s, serial %s, firmware %s",
+                board.name,
+                board.serial_number,
+                board.firmware_version or "(none reported)",
+            )
 
     def _cancel_work(self) -> None:
         """Cancel the robot's ``async with`` block (game over), if it is in one."""

@@ -25,7 +25,7 @@ import math
 import os
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from enum import Enum
+from enum import StrEnum
 from pathlib import Path
 from typing import Final
 
@@ -65,8 +65,11 @@ _MAX_ARENA_LENGTH: Final = 32
 _MAX_FILE_BYTES: Final = 64 * 1024
 
 
-class Mode(Enum):
-    """Whether the robot is in a match (``COMP``) or being developed (``DEV``)."""
+class Mode(StrEnum):
+    """Whether the robot is in a match (``COMP``) or being developed (``DEV``).
+
+    Each compares equal to (and prints as) its name: ``robot.mode == "COMP"``.
+    """
 
     COMP = "COMP"
     DEV = "DEV"
@@ -309,7 +312,7 @@ def load_metadata(sticks: Sequence[Path] | None = None) -> Metadata:
     if path is None:
         return DEV_DEFAULTS
     metadata = read_metadata_file(path)
-    LOGGER.info("Metadata from %s: %s", path, describe(metadata))
+    LOGGER.debug("Metadata from %s: %s", path, describe(metadata))
     return metadata
 
 
