@@ -41,7 +41,7 @@ import threading
 import time
 from collections.abc import Callable, Iterator
 from types import FrameType, TracebackType
-from typing import TYPE_CHECKING, Final
+from typing import TYPE_CHECKING, Any, Final
 
 if TYPE_CHECKING:
     from j5aio.boards.board import Board
@@ -66,6 +66,10 @@ LOGGER = logging.getLogger(__name__)
 NET_BUDGET: Final = 1.0
 #: The most seconds one board may take to be made safe (within the budget).
 PER_BOARD_TIMEOUT: Final = 0.5
+
+_STOPPING_SIGNALS: Final = tuple(
+    getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name)
+)
 
 _lock = threading.RLock()
 #: Every board opened and not closed -> the event loop it was opened in (None: none ran).
@@ -325,28 +329,30 @@ _previous_excepthook = sys.excepthook
 
 @contextlib.contextmanager
 def quiet_interrupts() -> Iterator[None]:
-    """Ignore Ctrl-C for a while (in the main thread), so that stopping is not torn.
+    """Ignore Ctrl-C (and SIGTERM / SIGHUP, when ours) for a while, in the main thread.
 
-    A second Ctrl-C while boards are being made safe would otherwise interrupt that
-    with a traceback (``Exception ignored in threading``).
+    So that stopping is not torn: a second Ctrl-C while boards are being made safe would
+    otherwise interrupt that with a traceback (``Exception ignored in threading``).
     """
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    try:
-        previous = signal.signal(signal.SIGINT, _ignore_interrupt)
-    except (ValueError, OSError):  # pragma: no cover - not the main interpreter
-        yield
-        return
+    previous: dict[int, Any] = {}
+    for signum in _STOPPING_SIGNALS:
+        with contextlib.suppress(ValueError, OSError):
+            handler = signal.getsignal(signum)
+            if signum == signal.SIGINT or handler is _on_terminate:
+                previous[signum] = signal.signal(signum, _ignore_interrupt)
     try:
         yield
     finally:
-        with contextlib.suppress(ValueError, OSError):
-            signal.signal(signal.SIGINT, previous)
+        for signum, handler in previous.items():
+            with contextlib.suppress(ValueError, OSError):
+                signal.signal(signum, handler)
 
 
 def _ignore_interrupt(signum: int, frame: FrameType | None) -> None:
-    LOGGER.debug("Ctrl-C again while stopping: ignored, the boards are being made safe")
+    LOGGER.debug("%s while stopping: ignored, the boards are being made safe", signum)
 
 
 # -- when: a signal ---------------------------------------------------------------------------

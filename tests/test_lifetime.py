@@ -234,8 +234,10 @@ class RecordingMotorSimulator(SRMotorBoardFw3Simulator):
         self.history: list[str] = []
 
     def receive(self, data: bytes) -> bytes:
-        reply = super().receive(data)
-        self.history.append(self.motors[0].mode.name)
+        reply = b""
+        for byte in data:  # a chunk may hold the drive and the brake commands both
+            reply += super().receive(bytes((byte,)))
+            self.history.append(self.motors[0].mode.name)
         return reply
 
 

@@ -235,9 +235,15 @@ def test_an_interactive_session_is_not_stopped(monkeypatch: pytest.MonkeyPatch) 
 
 def test_ctrl_c_is_ignored_while_stopping() -> None:
     before = signal.getsignal(signal.SIGINT)
-    with lifetime.quiet_interrupts():
-        signal.raise_signal(signal.SIGINT)  # would raise KeyboardInterrupt otherwise
-    assert signal.getsignal(signal.SIGINT) is before
+    term = signal.signal(signal.SIGTERM, lifetime._on_terminate)
+    try:
+        with lifetime.quiet_interrupts():
+            signal.raise_signal(signal.SIGINT)  # would raise KeyboardInterrupt otherwise
+            signal.raise_signal(signal.SIGTERM)  # would raise SystemExit otherwise
+        assert signal.getsignal(signal.SIGINT) is before
+        assert signal.getsignal(signal.SIGTERM) is lifetime._on_terminate
+    finally:
+        signal.signal(signal.SIGTERM, term)
 
     outcome: list[bool] = []
 

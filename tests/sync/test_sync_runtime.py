@@ -217,3 +217,45 @@ def test_the_worker_keeps_serving_after_a_cancelled_call() -> None:
         call(anyio.sleep, 5)
     assert call(add, 2, 3) == 5  # a fresh cancel scope: the next call is not cancelled
     assert call(add, 4, 3) == 7
+
+
+def test_calls_still_queued_when_the_portal_stops_are_refused() -> None:
+    portal = _runtime._LoopThread()
+    first = portal.submit(anyio.sleep(5))
+    queued = portal.submit(add(1, 1))
+    portal.stop(2)
+    assert first.done.acquire(timeout=1) and queued.done.acquire(timeout=1)
+    assert isinstance(queued.error, RuntimeError)
+    assert "portal is stopping" in str(queued.error)
+
+
+def test_shutdown_cancels_a_call_in_progress_in_another_thread() -> None:
+    errors: list[BaseException] = []
+
+    def caller() -> None:
+        try:
+            call(anyio.sleep, 5)
+        except RuntimeError as exc:
+            errors.append(exc)
+
+    get_loop()
+    thread = threading.Thread(target=caller)
+    thread.start()
+    time.sleep(0.1)
+    started = time.monotonic()
+    shutdown()
+    thread.join(3)
+    assert time.monotonic() - started < 3
+    assert len(errors) == 1 and "portal is stopping" in str(errors[0])
+
+
+def test_a_failure_to_make_boards_safe_at_shutdown_is_logged(
+    monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
+) -> None:
+    async def broken(timeout: float) -> None:
+        raise OSError("the registry is broken")
+
+    monkeypatch.setattr(_runtime, "make_all_safe_uncancellably", broken)
+    get_loop()
+    shutdown()
+    assert "Could not make the boards safe: OSError('the registry is broken')" in caplog.text
