@@ -298,6 +298,8 @@ def _match(args: argparse.Namespace, program: Path) -> Iterator[bool]:
     from j5aio.competition.runlog import RunLog, choose_log_folder, teeing
 
     with contextlib.ExitStack() as stack:
+        saved = {name: os.environ.get(name) for name in (METADATA_VARIABLE, TIME_SCALE_VARIABLE)}
+        stack.callback(_restore_environment, saved)
         if any(x is not None for x in (args.arena, args.zone, args.mode, args.duration)):
             folder = Path(stack.enter_context(tempfile.TemporaryDirectory(prefix="j5aio-")))
             path = folder / "metadata.json"
@@ -335,6 +337,14 @@ def _match(args: argparse.Namespace, program: Path) -> Iterator[bool]:
                 print(f"j5aio: logging this run to {log.path}", file=sys.stderr)
                 stack.enter_context(teeing(log))
         yield True
+
+
+def _restore_environment(saved: dict[str, str | None]) -> None:
+    for name, value in saved.items():
+        if value is None:
+            os.environ.pop(name, None)
+        else:
+            os.environ[name] = value
 
 
 def _metadata_fields(args: argparse.Namespace) -> dict[str, object]:

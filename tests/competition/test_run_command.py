@@ -43,7 +43,8 @@ anyio.run(main)
 @pytest.fixture(autouse=True)
 def _isolated(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
     for name in (METADATA_VARIABLE, TIME_SCALE_VARIABLE, LOG_DIR_VARIABLE, ENVIRONMENT_VARIABLE):
-        monkeypatch.delenv(name, raising=False)
+        monkeypatch.setenv(name, "")  # recorded, so that teardown restores it
+        monkeypatch.delenv(name)
     monkeypatch.setenv(MEDIA_ROOTS_VARIABLE, str(tmp_path / "media"))
     monkeypatch.setenv(START_FILE_VARIABLE, str(tmp_path / "start"))
     monkeypatch.setattr(kit_module, "_current", kit_module._current)
@@ -96,6 +97,8 @@ def test_dev_run_with_log_dir_and_options(
     assert main(["run", "--sim", "--zone", "4", "--time-scale", "2", "--log-dir",
                  str(tmp_path / "logs"), "--start-after", "30", str(program)]) == 0
     assert kit_module.current_kit().config.time_scale == 2
+    assert METADATA_VARIABLE not in os.environ  # the run's settings end with it
+    assert TIME_SCALE_VARIABLE not in os.environ
     out = capsys.readouterr()
     assert "scale 2.0" in out.out and "zone 4" in out.out
     assert "logging this run to" in out.err
