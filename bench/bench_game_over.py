@@ -31,9 +31,16 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-GOAL_MS = 50.0
-SAFE = {"BRAKE", "COAST"}
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from bench_signals import (  # type: ignore[import-not-found]
+    GOAL_MS,
+    ROOT,
+    SAFE,
+    braked_after,
+)
+
+__all__ = ["GOAL_MS", "PROGRAMS", "Trial", "braked_after", "report", "run_trial", "run_trials"]
 #: The match's length in the trials, in seconds.
 DURATION = 0.6
 
@@ -169,22 +176,6 @@ class Trial:
     drove: bool  # a motor was driven during the match (the trial means something)
     returncode: int
     stderr: str
-
-
-def braked_after(history: list[tuple[float, str, list[str]]], end: float) -> float | None:
-    """Seconds from ``end`` until every board's motors were safe for good, or None."""
-    latest: dict[str, list[str]] = {}
-    safe_since: float | None = None
-    for when, serial, modes in history:
-        latest[serial] = modes
-        all_safe = all(set(m) <= SAFE for m in latest.values())
-        if all_safe and safe_since is None:
-            safe_since = when
-        elif not all_safe:
-            safe_since = None
-    if safe_since is None or not latest:
-        return None
-    return max(safe_since - end, 0.0)
 
 
 def run_trial(kind: str, *, duration: float = DURATION, timeout: float = 30.0) -> Trial:

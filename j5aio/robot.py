@@ -150,7 +150,8 @@ class BaseRobot:
     def metadata(self) -> Metadata:
         """The match's metadata: read at the start, or looked for now if not started yet.
 
-        :raises ~j5aio.competition.metadata.MetadataError: the metadata file is malformed (naming file and field).
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
+            malformed (the message names the file and the field).
         """
         if self._metadata is None:
             self._metadata = load_metadata()
@@ -218,7 +219,8 @@ class BaseRobot:
 
         :param timeout: give up after this many seconds; ``None`` waits for ever.
         :raises TimeoutError: nothing started the robot within ``timeout`` seconds.
-        :raises ~j5aio.competition.metadata.MetadataError: the metadata file is malformed (naming file and field).
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
+            malformed (the message names the file and the field).
         :raises RuntimeError: the robot has started already.
         """
         if self._started:

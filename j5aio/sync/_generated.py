@@ -371,7 +371,8 @@ class BaseRobot(_SyncWrapper):
     def metadata(self) -> _competition_metadata.Metadata:
         """The match's metadata: read at the start, or looked for now if not started yet.
 
-        :raises ~j5aio.competition.metadata.MetadataError: the metadata file is malformed (naming file and field).
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
+            malformed (the message names the file and the field).
         """
         return self._core.metadata
 
@@ -432,7 +433,8 @@ class BaseRobot(_SyncWrapper):
 
         :param timeout: give up after this many seconds; ``None`` waits for ever.
         :raises TimeoutError: nothing started the robot within ``timeout`` seconds.
-        :raises ~j5aio.competition.metadata.MetadataError: the metadata file is malformed (naming file and field).
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
+            malformed (the message names the file and the field).
         :raises RuntimeError: the robot has started already.
         """
         _call(self._core.wait_start, timeout)

@@ -121,3 +121,22 @@ async def test_a_bad_metadata_file_fails_the_start(
             await robot.wait_start(timeout=5)
     finally:
         robot.release_lock()
+
+
+def test_the_sync_facade_has_plain_properties(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    from j5aio import sync
+
+    monkeypatch.setenv(METADATA_VARIABLE, str(metadata_file(tmp_path, mode="DEV", zone=5)))
+    robot = sync.BaseRobot()
+    try:
+        assert (robot.zone, robot.arena, robot.mode, robot.is_competition) == (5, "B", "DEV", False)
+        assert robot.usb_stick is None and robot.metadata.zone == 5
+        trigger_start()
+        robot.wait_start(timeout=5)
+        assert robot.match_timer is None
+        robot.sleep(0.01)
+        assert robot.time() >= 0.01
+    finally:
+        robot.release_lock()

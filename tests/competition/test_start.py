@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import AsyncIterator
+from datetime import timedelta
 from pathlib import Path
 
 import anyio
@@ -19,6 +20,7 @@ from j5aio.competition.start import (
     wait_for_start,
 )
 from j5aio.components.button import Button
+from j5aio.components.piezo import Duration, Note, Piezo, Pitch
 from j5aio.simulator import kit as kit_module
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kch import KCHSimulator
@@ -51,6 +53,16 @@ def test_start_file_default_and_override(monkeypatch: pytest.MonkeyPatch) -> Non
 
 async def test_the_simulated_start_button_starts(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(start, "_FLASH_POLLS", 1)
+    beeps: list[tuple[object, object]] = []
+    original_buzz = Piezo.buzz
+
+    async def buzz(
+        piezo: Piezo, duration: Duration, pitch: Pitch, *, blocking: bool = False
+    ) -> None:
+        beeps.append((duration, pitch))
+        await original_buzz(piezo, duration, pitch, blocking=blocking)
+
+    monkeypatch.setattr(Piezo, "buzz", buzz)
     kit, board = await power_board()
     simulator = kit.power_boards[0]
     seen_led: set[bool] = set()
@@ -64,6 +76,7 @@ async def test_the_simulated_start_button_starts(monkeypatch: pytest.MonkeyPatch
     async with anyio.create_task_group() as tasks:
         tasks.start_soon(press_later)
         assert await wait_for_start([board], timeout=5) == "button"
+    assert beeps == [(timedelta(milliseconds=100), Note.A6)]  # one short beep
     assert seen_led == {True, False}  # the run LED flashed while waiting
     assert simulator.run_led  # and is lit after the start
 
