@@ -1,17 +1,20 @@
 """The command line: ``python -m j5aio`` (or ``j5aio``) with one subcommand per job.
 
-- ``list``: the boards plugged into this computer;
-- ``demo``: an example robot on the simulated kit, showing what the boards do;
-- ``run [--sim] program.py``: a robot program, on the hardware or the simulated kit;
+- ``list``: the boards plugged into this computer, and every kind of board looked for;
+- ``demo [--kit NAME]``: an example robot on the simulated kit, showing what the boards do;
+- ``run [--sim [--kit NAME]] program.py``: a robot program, on the hardware or the
+  simulated kit;
 - ``simulate NAME --pty``: a simulated board on a pseudo-terminal, for any program to open;
 - ``sync-gen MODULE -o FILE [--check]``: the typed sync facade of a kit's own boards.
+
+Boards, simulators and kits come from the registry of board kinds
+(:mod:`j5aio.board_kinds`), so those of installed plugins appear here too.
 """
 
 from __future__ import annotations
 
 import argparse
 import contextlib
-import dataclasses
 import json
 import os
 import runpy
@@ -22,11 +25,13 @@ import threading
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from types import FrameType
-from typing import Final
+from typing import Any, Final
 
 from j5aio import syncgen
+from j5aio.board_kinds import get_kit, kits, simulator_entries
 from j5aio.environments import ENVIRONMENT_NAMES, ENVIRONMENT_VARIABLE
-from j5aio.simulator import SERIAL_SIMULATORS
+from j5aio.simulator.kit import KIT_VARIABLE
+from j5aio.simulator.pin_options import apply_pin_options, parse_analog, parse_digital
 
 __all__ = ["SIMULATOR_NAMES", "build_parser", "main"]
 
@@ -34,6 +39,7 @@ _EPILOG: Final = """\
 examples:
   python -m j5aio demo                        watch a robot run on the simulated kit
   python -m j5aio run --sim robot.py          run your program on the simulated kit
+  python -m j5aio run --sim --kit sr2019 robot.py   ... on a named simulated kit
   python -m j5aio run robot.py                run it on the boards plugged in
   python -m j5aio run --sim --zone 2 --mode comp --duration 20 --start-after 1 robot.py
                                               simulate a 20 s match starting from zone 2
@@ -43,18 +49,11 @@ examples:
 Run 'python -m j5aio COMMAND --help' for a command's options.
 """
 
-_DESCRIPTIONS: Final = {
-    "sr-motor": "SR v4 motor board, firmware 3 (1 Mbaud)",
-    "sr-ruggeduino": "SR Ruggeduino, firmware 1 (115200 baud)",
-    "sb-arduino": "SourceBots Arduino, 2019 firmware (115200 baud)",
-    "sr-arduino-fw2": "SR Arduino, firmware 2 (115200 baud)",
-    "sb-arduino-2024": "SourceBots Arduino, sb2024 firmware 2.0 (115200 baud)",
-}
-
-#: The boards ``simulate`` can serve, with what each is.
+#: The boards ``simulate`` can serve (the registry's serial simulators), with what each is.
 SIMULATOR_NAMES: Final = {
-    name: _DESCRIPTIONS.get(name, getattr(factory, "__name__", name))
-    for name, factory in SERIAL_SIMULATORS.items()
+    name: entry.description
+    for name, (kind, entry) in simulator_entries().items()
+    if entry.is_serial
 }
 
 
@@ -82,6 +81,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Run an example robot (drive, sense and signal tasks at once) on the "
         "simulated kit, printing what the simulated boards do. No hardware is needed.",
     )
+    _add_kit_option(demo)
     demo.add_argument(
         "--seconds",
         type=_seconds,
@@ -111,6 +111,7 @@ def build_parser() -> argparse.ArgumentParser:
         dest="environment",
         help="choose the environment by name",
     )
+    _add_kit_option(run, " (implies --sim)")
     _add_match_arguments(run)
     run.add_argument("program", help="the program to run, e.g. robot.py")
     run.add_argument(
@@ -135,9 +136,28 @@ def build_parser() -> argparse.ArgumentParser:
         help="serve on a pseudo-terminal (the default, and the only transport so far)",
     )
     simulate.add_argument(
+        "--serial",
         "--serial-number",
+        dest="serial_number",
         default="SIM0",
-        help="the serial number the simulated board reports (default SIM0)",
+        metavar="TEXT",
+        help="the serial number (asset tag) the simulated board reports (default SIM0)",
+    )
+    simulate.add_argument(
+        "--analog",
+        type=_pin_option(parse_analog),
+        action="append",
+        default=[],
+        metavar="A0=2.5",
+        help="Arduinos: hold this many volts (0 to 5) on an analogue pin; repeatable",
+    )
+    simulate.add_argument(
+        "--digital",
+        type=_pin_option(parse_digital),
+        action="append",
+        default=[],
+        metavar="3=0|1",
+        help="Arduinos: hold an input pin (2 to 13, A0 to A5) low (0) or high (1); repeatable",
     )
     simulate.add_argument(
         "--time-scale",
@@ -163,6 +183,35 @@ def build_parser() -> argparse.ArgumentParser:
     syncgen.add_arguments(sync_gen)
     sync_gen.set_defaults(handler=syncgen.run)
     return parser
+
+
+def _add_kit_option(parser: argparse.ArgumentParser, implies: str = "") -> None:
+    names = ", ".join(kits())
+    parser.add_argument(
+        "--kit",
+        type=_kit_name,
+        default=None,
+        metavar="NAME",
+        help=f"the simulated kit: one of {names} (default: ${KIT_VARIABLE}, else "
+        f"'default'){implies}",
+    )
+
+
+def _kit_name(text: str) -> str:
+    try:
+        return get_kit(text).name
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+
+
+def _pin_option(parse: Callable[[str], tuple[int, Any]]) -> Callable[[str], tuple[int, Any]]:
+    def parse_option(text: str) -> tuple[int, Any]:
+        try:
+            return parse(text)
+        except ValueError as error:
+            raise argparse.ArgumentTypeError(str(error)) from None
+
+    return parse_option
 
 
 def _number(text: str, what: str) -> float:
@@ -192,6 +241,7 @@ def _list(args: argparse.Namespace) -> int:
     import anyio
 
     from j5aio.backends.hardware.listing import find_boards, format_boards
+    from j5aio.board_kinds import board_kinds
     from j5aio.errors import CommunicationError
 
     problems: list[str] = []
@@ -201,6 +251,11 @@ def _list(args: argparse.Namespace) -> int:
         print(f"j5aio: could not look for boards: {error}", file=sys.stderr)
         return 1
     print(format_boards(boards))
+    print("\nKinds of board looked for:")
+    for kind in board_kinds():
+        if kind.hardware is not None:
+            source = "" if kind.package == "j5aio" else f"  [{kind.package}]"
+            print(f"  {kind.name:<22}{kind.description}{source}")
     for problem in problems:
         print(f"j5aio: could not look for every board: {problem}", file=sys.stderr)
     return 1 if problems and not boards else 0
@@ -210,7 +265,9 @@ def _demo(args: argparse.Namespace) -> int:
     from j5aio.demo import DEFAULT_SECONDS, run_demo
 
     try:
-        braked = run_demo(args.seconds if args.seconds is not None else DEFAULT_SECONDS)
+        braked = run_demo(
+            args.seconds if args.seconds is not None else DEFAULT_SECONDS, kit=args.kit
+        )
     except KeyboardInterrupt:
         print("Interrupted.", file=sys.stderr)
         return 130
@@ -222,6 +279,16 @@ def _run(args: argparse.Namespace) -> int:
     if not program.is_file():
         print(f"j5aio: cannot run {args.program}: no such file", file=sys.stderr)
         return 2
+    if args.kit is not None:
+        if args.environment not in (None, "sim"):
+            print(
+                f"j5aio: --kit chooses a simulated kit, so it cannot be used with "
+                f"--env {args.environment}",
+                file=sys.stderr,
+            )
+            return 2
+        args.environment = "sim"
+        os.environ[KIT_VARIABLE] = args.kit
     if args.environment is not None:
         os.environ[ENVIRONMENT_VARIABLE] = args.environment
     sys.argv = [str(program), *args.arguments]
@@ -308,10 +375,9 @@ def _match(args: argparse.Namespace, program: Path) -> Iterator[bool]:
         if args.time_scale is not None:
             os.environ[TIME_SCALE_VARIABLE] = repr(args.time_scale)
             if args.environment == "sim":
-                from j5aio.simulator.kit import KitConfig, current_kit, use_kit
+                from j5aio.simulator.kit import kit_from_environment, use_kit
 
-                fields = dataclasses.asdict(current_kit().config)
-                use_kit(KitConfig(**{**fields, "time_scale": args.time_scale}))
+                use_kit(kit_from_environment(), time_scale=args.time_scale)
         try:
             metadata = load_metadata()
         except MetadataError as error:
@@ -370,9 +436,17 @@ def _simulate(args: argparse.Namespace) -> int:
     if sys.platform == "win32":  # pragma: no cover - tested on POSIX only
         print("j5aio: simulate needs pseudo-terminals, which Windows lacks", file=sys.stderr)
         return 2
+    from j5aio.simulator.base import SerialBoardSimulator
     from j5aio.simulator.serve import serve_on_pty
 
-    simulator = SERIAL_SIMULATORS[args.board](args.serial_number)
+    _kind, entry = simulator_entries()[args.board]
+    simulator = entry.factory(args.serial_number)
+    assert isinstance(simulator, SerialBoardSimulator)  # only serial ones are choices
+    try:
+        apply_pin_options(simulator, args.analog, args.digital)
+    except TypeError as error:
+        print(f"j5aio: {error}", file=sys.stderr)
+        return 2
     stop = threading.Event()
 
     def on_signal(signum: int, frame: FrameType | None) -> None:

@@ -26,9 +26,10 @@ from typing import Final, TextIO
 import anyio
 from anyio.abc import ObjectReceiveStream, ObjectSendStream
 
+from j5aio.board_kinds import simulator_entries
 from j5aio.kit import KitRobot
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
-from j5aio.simulator.kit import KitConfig, SimulatedKit, use_kit
+from j5aio.simulator.kit import SimulatedKit, kit_from_environment, use_kit
 from j5aio.simulator.sr_motor_fw3 import MotorMode, MotorOutput
 
 __all__ = ["DEFAULT_SECONDS", "all_motors_braked", "demo", "run_demo"]
@@ -114,12 +115,15 @@ async def _drive(robot: KitRobot, shared: _Shared, log: _Log) -> None:
 async def _sense(
     robot: KitRobot, shared: _Shared, alerts: ObjectSendStream[float], log: _Log
 ) -> None:
-    sensor = robot.arduinos[0].ultrasound_sensors[TRIGGER_PIN, ECHO_PIN]
+    # A kit without a SourceBots Arduino has no ultrasound sensor: drive turns on time.
+    sensor = (
+        robot.arduinos[0].ultrasound_sensors[TRIGGER_PIN, ECHO_PIN] if robot.arduinos else None
+    )
     battery = robot.power_board.battery_sensor
     warned = False
     next_battery = 0.0
     while True:
-        distance = await sensor.distance()
+        distance = await sensor.distance() if sensor is not None else None
         if distance is not None and distance < TURN_DISTANCE and not warned:
             log("sense", f"wall {distance:.2f} m ahead: asking drive to turn")
             shared.wall_ahead.set()
@@ -203,23 +207,32 @@ def all_motors_braked(kit: SimulatedKit) -> bool:
     )
 
 
-async def demo(seconds: float = DEFAULT_SECONDS, *, out: TextIO | None = None) -> bool:
-    """Run the demo robot for ``seconds`` on a fresh default simulated kit.
+async def demo(
+    seconds: float = DEFAULT_SECONDS, *, out: TextIO | None = None, kit: str | None = None
+) -> bool:
+    """Run the demo robot for ``seconds`` on a fresh simulated kit.
 
     :param seconds: how long the robot's tasks run.
     :param out: where to print; standard output by default.
+    :param kit: the name of the kit (:func:`j5aio.board_kinds.kits`); the one
+        ``J5AIO_KIT`` names, or else the default kit, if omitted.
     :returns: whether every simulated motor was braked at the end.
-    :raises ValueError: ``seconds`` is not positive.
+    :raises ValueError: ``seconds`` is not positive, or there is no such kit.
     """
     if not seconds > 0:
         raise ValueError(f"seconds must be more than 0, not {seconds}")
     out = out if out is not None else sys.stdout
-    kit = use_kit(KitConfig())
+    simulated = use_kit(kit if kit is not None else kit_from_environment())
+    kit_summary = _kit_summary(simulated)
+    return await _run(simulated, kit_summary, seconds, out)
+
+
+async def _run(kit: SimulatedKit, kit_summary: str, seconds: float, out: TextIO) -> bool:
     world = _World(kit)
     world.step(0.0)
     print(
         f"j5aio demo: a robot on the simulated kit for {seconds:g} s. The kit: "
-        f"{_kit_summary(kit)}.\n"
+        f"{kit_summary}.\n"
         "Three tasks run at once (drive, sense, signal); every 0.5 s a 'boards' line shows "
         "what the simulated boards are doing.\n",
         file=out,
@@ -270,16 +283,18 @@ def _boards(robot: KitRobot) -> list[object]:
 
 
 def _kit_summary(kit: SimulatedKit) -> str:
-    counts = [
-        (len(kit.power_boards), "power board"),
-        (len(kit.motor_boards), "motor board"),
-        (len(kit.servo_boards), "servo board"),
-        (len(kit.sb_arduinos), "SourceBots Arduino"),
-        (len(kit.ruggeduinos), "Ruggeduino"),
+    entries = simulator_entries()
+    parts = [
+        f"{len(kit.simulators(name))} x {entries[name][1].description}"
+        for name in kit.simulator_names()
+        if kit.simulators(name)
     ]
-    return ", ".join(f"{n} {what}{'s' if n != 1 else ''}" for n, what in counts if n)
+    named = f"'{kit.definition.name}': " if kit.definition is not None else ""
+    return named + ", ".join(parts)
 
 
-def run_demo(seconds: float = DEFAULT_SECONDS, *, out: TextIO | None = None) -> bool:
+def run_demo(
+    seconds: float = DEFAULT_SECONDS, *, out: TextIO | None = None, kit: str | None = None
+) -> bool:
     """Run :func:`demo` in a new event loop; return whether every motor ended braked."""
-    return anyio.run(lambda: demo(seconds, out=out))
+    return anyio.run(lambda: demo(seconds, out=out, kit=kit))

@@ -11,7 +11,9 @@ unset or ``hardware``   the boards plugged into this computer
 ``console``             print what the boards would do, and ask for readings
 ======================  ==========================================================
 
-``python -m j5aio run --sim program.py`` sets ``J5AIO_ENV=sim`` for the program.
+``python -m j5aio run --sim program.py`` sets ``J5AIO_ENV=sim`` for the program. Which
+simulated kit it is comes from ``J5AIO_KIT`` (``--kit NAME``): see
+:mod:`j5aio.simulator.kit`.
 
 When a program looked for real boards only because nobody chose otherwise, and found none,
 :func:`hint_no_hardware` prints one line saying how to try the program without hardware.
@@ -116,8 +118,9 @@ class _HardwareByDefault(Environment):
     """
 
     def __init__(self, hardware: Environment) -> None:
-        super().__init__(hardware.name)
+        super().__init__(hardware.name, gather=hardware.gather)
         self.board_backend_mapping = hardware.board_backend_mapping
+        self.backends = hardware.backends
 
     async def get_board_group(self, board: type[BoardT]) -> BoardGroup[BoardT]:
         """Find every ``board`` on the hardware; see :meth:`Environment.get_board_group`."""

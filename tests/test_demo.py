@@ -30,7 +30,9 @@ async def test_the_demo_drives_senses_signals_and_ends_braked() -> None:
     text = out.getvalue()
     lines = text.splitlines()
     assert lines[0].startswith("j5aio demo: a robot on the simulated kit for 2.5 s")
-    assert "1 power board, 2 motor boards, 1 servo board, 1 SourceBots Arduino" in lines[0]
+    assert "The kit: 'default': 1 x SR v4 power board" in lines[0]
+    assert "2 x SR v4 motor board" in lines[0]
+    assert "1 x SourceBots Arduino" in lines[0]
     # The three tasks ran side by side and talked to each other.
     assert "drive   forwards: both motors at +0.6" in text
     assert "sense   battery" in text
@@ -38,8 +40,8 @@ async def test_the_demo_drives_senses_signals_and_ends_braked() -> None:
     assert "drive   turning on the spot" in text
     assert "signal  beep" in text
     # The boards lines come from the simulators: the motors really drove, and turned.
-    assert "SIMMB0 [forward 75%, forward 75%]" in text
-    assert "SIMMB0 [forward 62%, reverse 62%]" in text or "flag servo +1.0" in text
+    assert "SIMMB0 [forward 60%, forward 60%]" in text  # power 0.6 drives at 60 % duty
+    assert "SIMMB0 [forward 50%, reverse 50%]" in text or "flag servo +1.0" in text
     assert lines[-1] == "The robot has stopped: every simulated motor is braked."
     final = lines[-3]
     assert "SIMMB0 [brake, brake] | SIMMB1 [brake, brake]" in final
@@ -96,3 +98,26 @@ def test_describe_boards_shows_each_board() -> None:
     assert "run LED on, piezo quiet" in line
     assert "flag servo +0.0" in line
     assert "wall" not in line
+
+
+@pytest.mark.parametrize("kit", ["sr2019", "sb2019"])
+async def test_the_demo_runs_on_each_named_kit_and_ends_braked(kit: str) -> None:
+    out = io.StringIO()
+    assert await demo(1.0, out=out, kit=kit) is True
+    text = out.getvalue()
+    assert f"The kit: '{kit}'" in text.splitlines()[0]
+    assert "found 4 boards" in text
+    assert "drive   forwards" in text
+    assert ("Ruggeduino" in text) == (kit == "sr2019")
+
+
+async def test_the_demo_follows_j5aio_kit(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("J5AIO_KIT", "sr2019")
+    out = io.StringIO()
+    assert await demo(0.3, out=out) is True
+    assert "The kit: 'sr2019'" in out.getvalue()
+
+
+async def test_the_demo_refuses_an_unknown_kit_listing_the_kits() -> None:
+    with pytest.raises(ValueError, match="no kit called 'moon'; choose one of: default, sr2019"):
+        await demo(1.0, out=io.StringIO(), kit="moon")

@@ -98,6 +98,8 @@ async def test_hardware_chosen_explicitly_gets_no_hint(
     monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
     monkeypatch.setattr(environments, "hardware_environment", unreachable_hardware)
+    # get_environment("hardware") looks the factory up in this table, not the module.
+    monkeypatch.setitem(environments._ENVIRONMENTS, "hardware", unreachable_hardware)
     monkeypatch.setenv(ENVIRONMENT_VARIABLE, "hardware")
     with pytest.raises(CommunicationError, match="libusb"):
         await get_default_environment().get_board_group(PowerBoard)

@@ -2,20 +2,28 @@
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Sequence
 
 import pytest
 
 from j5aio import environments
 from j5aio.backends.environment import Environment
+from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.boards.board import Board
+from j5aio.boards.sr.v4 import PowerBoard
 from j5aio.environments import ENVIRONMENT_VARIABLE
 from j5aio.errors import CommunicationError
 from j5aio.kit import KitRobot
 from j5aio.simulator import kit as kit_module
-from j5aio.simulator.environment import SIMULATED_BACKENDS, SIMULATED_ENVIRONMENT
-from j5aio.simulator.kit import KitConfig, use_kit
+from j5aio.simulator.environment import (
+    SIMULATED_BACKENDS,
+    SIMULATED_ENVIRONMENT,
+    SimulatedUSBDevice,
+    SRV4PowerBoardSimulatedBackend,
+)
+from j5aio.simulator.kit import KitConfig, current_kit, use_kit
 from j5aio.simulator.sr_motor_fw3 import MotorMode
+from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
 
 
 @pytest.fixture(autouse=True)
@@ -122,3 +130,58 @@ def test_environment_must_be_an_environment() -> None:
     # The lock was given back: another robot can be made.
     robot = KitRobot(environment=SIMULATED_ENVIRONMENT)
     robot.release_lock()
+
+
+class PowerBoardGen2(PowerBoard):
+    """A second generation of the power board: the same components, another protocol."""
+
+    name = "Power Board (gen 2)"
+
+
+GEN2_SIMULATOR = SRPowerBoardFw3Simulator("GEN2PB")
+
+
+class PowerBoardGen2Backend(SRV4PowerBoardSimulatedBackend):
+    """Finds the one gen 2 power board (standing in for a serial fw 4 board)."""
+
+    board = PowerBoardGen2
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        kit = current_kit()
+        return await super().discover(
+            options=DiscoveryOptions(
+                usb_finder=lambda **_: [SimulatedUSBDevice(GEN2_SIMULATOR, kit)]
+            )
+        )
+
+
+def with_gen2(config: KitConfig) -> Environment:
+    use_kit(config)
+    environment = Environment.from_backends("Gen2", SIMULATED_BACKENDS)
+    environment.register_backend(PowerBoardGen2Backend)
+    return environment
+
+
+async def test_a_second_generation_power_board_is_the_kits_power_board() -> None:
+    environment = with_gen2(KitConfig(power_boards=0))
+    async with KitRobot(environment=environment) as robot:
+        assert isinstance(robot.power_board, PowerBoardGen2)
+        assert robot.power_board.serial_number == "GEN2PB"
+        # the environment's own power board backends (fw 3 and fw 4), then the added one
+        assert robot.power_boards.backend_classes[0] is SRV4PowerBoardSimulatedBackend
+        assert robot.power_boards.backend_classes[-1] is PowerBoardGen2Backend
+        await robot.power_board.run_led.set_state(True)
+        assert GEN2_SIMULATOR.run_led is True
+        assert [b.serial_number for b in robot.motor_boards] == ["SIMMB0", "SIMMB1"]
+
+
+async def test_both_generations_are_gathered_so_two_power_boards_are_an_error() -> None:
+    environment = with_gen2(KitConfig(power_boards=1))
+    robot = KitRobot(environment=environment)
+    try:
+        with pytest.raises(CommunicationError, match=r"one PowerBoard.*2 \(GEN2PB, SIMPB0\)"):
+            await robot.setup()
+        assert [type(b) for b in robot.power_boards] == [PowerBoardGen2, PowerBoard]
+    finally:
+        robot.release_lock()

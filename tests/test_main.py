@@ -40,8 +40,13 @@ async def _fresh(monkeypatch: pytest.MonkeyPatch) -> AsyncIterator[None]:
     kit_module._current = saved
 
 
-def python_m_j5aio(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
-    environment = {k: v for k, v in os.environ.items() if k != ENVIRONMENT_VARIABLE}
+def python_m_j5aio(
+    *args: str, cwd: Path | None = None, **variables: str
+) -> subprocess.CompletedProcess[str]:
+    environment = {
+        k: v for k, v in os.environ.items() if k not in (ENVIRONMENT_VARIABLE, "J5AIO_KIT")
+    }
+    environment.update(variables)
     return subprocess.run(
         [sys.executable, "-m", "j5aio", *args],
         capture_output=True,
@@ -125,7 +130,7 @@ def test_list_prints_each_board_found(
     assert "5 boards found." in text
 
 
-def test_list_says_plainly_when_there_are_none(
+def test_list_says_plainly_when_there_are_none_and_what_it_looked_for(
     monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
     async def nothing(*, problems: list[str]) -> list[FoundBoard]:
@@ -133,7 +138,11 @@ def test_list_says_plainly_when_there_are_none(
 
     monkeypatch.setattr(listing, "find_boards", nothing)
     assert main(["list"]) == 0
-    assert "No boards found." in capsys.readouterr().out
+    text = capsys.readouterr().out
+    assert "No boards found." in text
+    for kind in ("sr-v4-power-fw3", "sr-v4-motor-fw3", "sr-v4-servo-fw2", "sb-arduino-2019"):
+        assert kind in text
+    assert "SR Ruggeduino, firmware 1" in text
 
 
 def test_list_reports_a_failure_to_look(
@@ -370,3 +379,89 @@ def test_an_interrupted_demo_still_leaves_every_motor_braked() -> None:
     lines = rest.splitlines()
     assert "SIMMB0 [brake, brake] | SIMMB1 [brake, brake]" in lines[-3]
     assert lines[-1] == "The robot has stopped: every simulated motor is braked."
+
+
+# --- kits and simulator options ------------------------------------------------------------
+
+
+def test_run_with_kit_chooses_the_simulated_environment_and_the_kit(tmp_path: Path) -> None:
+    (tmp_path / "robot.py").write_text(
+        KIT_PROGRAM + "\nimport os\nprint('kit', os.environ['J5AIO_KIT'])\n"
+        "from j5aio.simulator.kit import current_kit\n"
+        "print('ruggeduinos', len(current_kit().ruggeduinos))\n"
+    )
+    result = python_m_j5aio("run", "--kit", "sr2019", "robot.py", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "environment SimulatedEnvironment" in result.stdout
+    assert "motor boards ['SIMMB0']" in result.stdout
+    assert "kit sr2019" in result.stdout
+    assert "ruggeduinos 1" in result.stdout
+
+
+def test_j5aio_kit_chooses_the_kit_of_run_sim(tmp_path: Path) -> None:
+    (tmp_path / "robot.py").write_text(KIT_PROGRAM)
+    result = python_m_j5aio("run", "--sim", "robot.py", cwd=tmp_path, J5AIO_KIT="sb2019")
+    assert result.returncode == 0, result.stderr
+    assert "motor boards ['SIMMB0']" in result.stdout
+
+
+def test_run_refuses_a_kit_on_another_environment(
+    program: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["run", "--env", "console", "--kit", "sr2019", str(program)]) == 2
+    assert "--kit chooses a simulated kit" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("arguments", "message"),
+    [
+        (["demo", "--kit", "moon"], "no kit called 'moon'; choose one of: default, sr2019, sb2019"),
+        (["run", "--kit", "moon", "x.py"], "no kit called 'moon'"),
+        (["simulate", "sb-arduino", "--analog", "A6=1"], "'A6' is not an analogue pin: use A0"),
+        (["simulate", "sb-arduino", "--analog", "A0=6"], "6 V is out of range: give 0 to 5 V"),
+        (["simulate", "sb-arduino", "--analog", "A0=x"], "'x' is not a number of volts"),
+        (["simulate", "sb-arduino", "--analog", "A0"], "'A0' is not PIN=VALUE"),
+        (["simulate", "sb-arduino", "--digital", "1=1"], "'1' is not a pin an input can be held"),
+        (["simulate", "sb-arduino", "--digital", "3=2"], "'2' is not a level: use 0 (low) or 1"),
+    ],
+)
+def test_bad_kit_and_pin_options_say_what_is_allowed(
+    arguments: list[str], message: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        main(arguments)
+    assert exit_info.value.code == 2
+    assert message in capsys.readouterr().err
+
+
+def test_pin_options_are_refused_for_a_board_that_is_not_an_arduino(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    assert main(["simulate", "sr-motor", "--digital", "3=1"]) == 2
+    assert "apply to Arduino simulators only, not to SRMotorBoardFw3Simulator" in (
+        capsys.readouterr().err
+    )
+
+
+@posix_only
+def test_simulate_holds_analogue_and_digital_inputs_and_reports_the_serial() -> None:
+    options = ("--time-scale", "0", "--serial", "RD77", "--analog", "a1=2.5", "--digital", "3=1")
+    with simulating("sr-ruggeduino", *options, "--digital", "A2=0") as (process, path):
+        with serial.Serial(path, 115200, timeout=5) as port:
+            port.write(b"v")
+            assert port.readline() == b"SRduino:1\n"
+            port.write(b"ab")  # fw 1: analogue read of A1
+            assert port.readline() == b"512\n"
+            port.write(b"id")  # input on pin 3 ...
+            port.readline()
+            port.write(b"rd")  # ... read it: held high
+            assert port.readline() == b"h\n"
+        errors = stop(process, signal.SIGTERM)
+    assert "(serial number RD77)" in errors
+
+
+def test_simulate_help_lists_kits_on_demo(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit):
+        main(["demo", "--help"])
+    text = capsys.readouterr().out
+    assert "default, sr2019, sb2019" in text

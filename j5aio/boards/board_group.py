@@ -1,4 +1,4 @@
-"""BoardGroup: every connected board of one type, found through one backend."""
+"""BoardGroup: every connected board of one type, found through its backend(s)."""
 
 from __future__ import annotations
 
@@ -33,17 +33,19 @@ class BoardGroup(Generic[BoardT]):
     def __init__(
         self,
         board_type: type[BoardT],
-        backend_class: type[Backend],
+        backend_class: type[Backend] | Sequence[type[Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> None:
-        if not issubclass(backend_class.board, board_type):
-            raise TypeError(
-                f"{backend_class.__name__} drives {backend_class.board.__name__}, not "
-                f"{board_type.__name__}: choose a backend for {board_type.__name__}.",
-            )
+        backends = _backend_tuple(backend_class)
+        for backend in backends:
+            if not issubclass(backend.board, board_type):
+                raise TypeError(
+                    f"{backend.__name__} drives {backend.board.__name__}, not "
+                    f"{board_type.__name__}: choose a backend for {board_type.__name__}.",
+                )
         self._board_type = board_type
-        self._backend_class = backend_class
+        self._backend_classes = backends
         self._ports = tuple(ports)
         self._boards: dict[str, BoardT] = {}
 
@@ -51,33 +53,51 @@ class BoardGroup(Generic[BoardT]):
     async def get_board_group(
         cls,
         board_type: type[BoardT],
-        backend_class: type[Backend],
+        backend_class: type[Backend] | Sequence[type[Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[BoardT]:
         """Find every board of ``board_type`` that ``backend_class`` can reach.
 
         :param board_type: the class of board wanted, e.g. ``PowerBoard``.
-        :param backend_class: the backend to find and drive them with.
+        :param backend_class: the backend to find and drive them with, or several (one
+            per generation of the board: their boards are gathered into one group).
         :param ports: explicit ports (device paths or pyserial URLs) to attach to, on top
-            of discovery, for unusual adapters and simulators.
+            of discovery, for unusual adapters and simulators; they are attached with the
+            first backend.
         :returns: the group, ordered by serial number.
+        :raises TypeError: a backend drives another kind of board, or none was given.
+        :raises CommunicationError: two boards report the same serial number.
         """
         group = cls(board_type, backend_class, ports=ports)
         await group.update_boards()
         return group
 
     async def update_boards(self) -> None:
-        """Look for boards again, so that boards connected since are included."""
-        found: list[Board] = list(await self._backend_class.discover())
+        """Look for boards again, so that boards connected since are included.
+
+        :raises CommunicationError: two boards report the same serial number.
+        """
+        found: list[tuple[Board, type[Backend]]] = []
+        for backend in self._backend_classes:
+            found.extend((board, backend) for board in await backend.discover())
         for port in self._ports:
-            found.append(await self._backend_class.attach(port))
+            first = self._backend_classes[0]
+            found.append((await first.attach(port), first))
         boards: dict[str, BoardT] = {}
-        for board in sorted(found, key=lambda b: b.serial_number):
+        finders: dict[str, type[Backend]] = {}
+        for board, backend in sorted(found, key=lambda item: item[0].serial_number):
             if not isinstance(board, self._board_type):  # pragma: no cover - backend bug
-                raise TypeError(f"{self._backend_class.__name__} returned {board!r}")
+                raise TypeError(f"{backend.__name__} returned {board!r}")
+            if board.serial_number in boards and boards[board.serial_number] is not board:
+                raise CommunicationError(
+                    f"two {self._board_type.__name__}s report serial number "
+                    f"{board.serial_number!r} (found by {finders[board.serial_number].__name__} "
+                    f"and {backend.__name__}): a board's serial number must be unique.",
+                )
             await board.setup()
             boards[board.serial_number] = board
+            finders[board.serial_number] = backend
         self._boards = boards
 
     def singular(self) -> BoardT:
@@ -101,8 +121,13 @@ class BoardGroup(Generic[BoardT]):
 
     @property
     def backend_class(self) -> type[Backend]:
-        """The backend that finds and drives the boards."""
-        return self._backend_class
+        """The backend that finds and drives the boards (the first, if there are several)."""
+        return self._backend_classes[0]
+
+    @property
+    def backend_classes(self) -> tuple[type[Backend], ...]:
+        """Every backend the boards are found through (one per generation of the board)."""
+        return self._backend_classes
 
     @property
     def board_type(self) -> type[BoardT]:
@@ -158,5 +183,19 @@ class BoardGroup(Generic[BoardT]):
     def __repr__(self) -> str:
         return (
             f"BoardGroup(board_type={self._board_type.__name__}, "
-            f"backend_class={self._backend_class.__name__})"
+            f"backend_class={', '.join(b.__name__ for b in self._backend_classes)})"
         )
+
+
+def _backend_tuple(
+    backend_class: type[Backend] | Sequence[type[Backend]],
+) -> tuple[type[Backend], ...]:
+    if isinstance(backend_class, type):
+        return (backend_class,)
+    backends = tuple(backend_class)
+    if not backends or not all(isinstance(backend, type) for backend in backends):
+        raise TypeError(
+            f"backend_class must be a backend class or a non-empty sequence of them, "
+            f"not {backend_class!r}",
+        )
+    return backends

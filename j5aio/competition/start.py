@@ -111,16 +111,20 @@ async def wait_for_start(boards: Iterable[Board], timeout: float | None = None) 
     limit = check_timeout(timeout)
     boards = list(boards)
     buttons = _components(boards, "start_button", Button)
-    run_leds = _components(boards, "run_led", LED)
-    start_leds = _components(boards, "start_led", FlashingLED)
+    leds = _components(boards, "run_led", LED)
+    # An LED that flashes by itself (a KCH's start LED, a fw 4 power board's run LED) is
+    # told to; the others are switched by the wait below.
+    flashing = [led for led in leds if isinstance(led, FlashingLED)]
+    flashing += _components(boards, "start_led", FlashingLED)
+    run_leds = [led for led in leds if not isinstance(led, FlashingLED)]
     path = start_file()
     _take_start_file(path)  # a file left from an earlier run does not count
     for button in buttons:
         await button.get_is_pressed()  # discard a press latched before the wait
     for piezo in _components(boards, "piezo", Piezo):
         await piezo.buzz(_BEEP, Note.A6)
-    for start_led in start_leds:
-        await start_led.flash()
+    for flasher in flashing:
+        await flasher.flash()
     LOGGER.info(
         "Waiting for the start: press the start button, or create %s", path
     )
@@ -144,10 +148,11 @@ async def wait_for_start(boards: Iterable[Board], timeout: float | None = None) 
                     await led.set_state(led_on)
             polls += 1
             await anyio.sleep(POLL_INTERVAL)
-    for led in run_leds:
-        await led.set_state(True)
-    for start_led in start_leds:
-        await start_led.set_state(False)
+    for led in leds:
+        await led.set_state(True)  # the run LED: lit while the robot runs
+    for flasher in flashing:
+        if flasher not in leds:
+            await flasher.set_state(False)  # a KCH's start LED: off once started
     LOGGER.info("Started (by the %s).", how)
     return how
 

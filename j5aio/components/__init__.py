@@ -8,8 +8,9 @@ from j5aio.components.battery_sensor import BatterySensor, BatterySensorInterfac
 from j5aio.components.button import Button, ButtonInterface
 from j5aio.components.component import Component, DerivedComponent, Interface
 from j5aio.components.derived.ultrasound import UltrasoundInterface, UltrasoundSensor
+from j5aio.components.fan import Fan, FanInterface
 from j5aio.components.flag import Flag, FlagInterface
-from j5aio.components.flashing_led import FlashingLED, FlashingLEDInterface
+from j5aio.components.flashing_led import FlashingLED, FlashingLEDInterface, LEDMode
 from j5aio.components.gpio_pin import (
     FirmwareMode,
     GPIOPin,
@@ -18,6 +19,7 @@ from j5aio.components.gpio_pin import (
     PinMode,
 )
 from j5aio.components.led import LED, LEDInterface
+from j5aio.components.monitored_motor import MonitoredMotor, MonitoredMotorInterface
 from j5aio.components.motor import (
     Motor,
     MotorInterface,
@@ -27,6 +29,10 @@ from j5aio.components.motor import (
 )
 from j5aio.components.piezo import Duration, Note, Piezo, PiezoInterface, Pitch
 from j5aio.components.power_output import PowerOutput, PowerOutputGroup, PowerOutputInterface
+from j5aio.components.protected_power_output import (
+    ProtectedPowerOutput,
+    ProtectedPowerOutputInterface,
+)
 from j5aio.components.pulse_servo import PulseLimits, PulseServo, PulseServoInterface
 from j5aio.components.rgb_led import RGBLED, RGBChannel, RGBColour, RGBLEDInterface
 from j5aio.components.servo import Servo, ServoInterface, ServoPosition
@@ -35,6 +41,8 @@ from j5aio.components.string_command import (
     StringCommandComponentInterface,
 )
 from j5aio.components.supply_sensor import SupplySensor, SupplySensorInterface
+from j5aio.components.temperature_sensor import TemperatureSensor, TemperatureSensorInterface
+from j5aio.components.voltage_sensor import VoltageSensor, VoltageSensorInterface
 
 __all__ = [
     "LED",
@@ -46,6 +54,8 @@ __all__ = [
     "Component",
     "DerivedComponent",
     "Duration",
+    "Fan",
+    "FanInterface",
     "FirmwareMode",
     "Flag",
     "FlagInterface",
@@ -56,6 +66,9 @@ __all__ = [
     "GPIOPinMode",
     "Interface",
     "LEDInterface",
+    "LEDMode",
+    "MonitoredMotor",
+    "MonitoredMotorInterface",
     "Motor",
     "MotorInterface",
     "MotorSpecialState",
@@ -68,6 +81,8 @@ __all__ = [
     "PowerOutput",
     "PowerOutputGroup",
     "PowerOutputInterface",
+    "ProtectedPowerOutput",
+    "ProtectedPowerOutputInterface",
     "PulseLimits",
     "PulseServo",
     "PulseServoInterface",
@@ -81,7 +96,11 @@ __all__ = [
     "StringCommandComponentInterface",
     "SupplySensor",
     "SupplySensorInterface",
+    "TemperatureSensor",
+    "TemperatureSensorInterface",
     "UltrasoundInterface",
     "UltrasoundSensor",
+    "VoltageSensor",
+    "VoltageSensorInterface",
     "check_motor_state",
 ]

@@ -1,43 +1,49 @@
-"""Flashing LEDs: LEDs that can also flash on their own."""
+"""Flashing LEDs: an LED that is off, on, or flashing by itself."""
 
 from __future__ import annotations
 
 from abc import abstractmethod
+from enum import Enum
 from typing import cast
 
-from j5aio.components._checks import check_number
+from j5aio.components._checks import describe
 from j5aio.components.led import LED, LEDInterface
 
-__all__ = ["FlashingLED", "FlashingLEDInterface"]
+__all__ = ["FlashingLED", "FlashingLEDInterface", "LEDMode"]
 
-#: The longest flash period accepted, in seconds.
-MAX_FLASH_PERIOD = 60.0
-#: The shortest flash period accepted, in seconds.
-MIN_FLASH_PERIOD = 0.02
+
+class LEDMode(Enum):
+    """What an LED that can flash by itself is doing."""
+
+    OFF = "off"  #: dark
+    ON = "on"  #: lit
+    FLASH = "flash"  #: the board toggles it on its own (once a second on the SR power board)
 
 
 class FlashingLEDInterface(LEDInterface):
-    """The coroutines a backend implements to drive LEDs that can flash."""
+    """The coroutines a backend implements to drive LEDs that can flash by themselves.
+
+    ``get_led_state`` / ``set_led_state`` of :class:`LEDInterface` still work: a flashing
+    LED reads as lit, and setting a state stops the flashing.
+    """
 
     @abstractmethod
-    async def get_led_flashing(self, identifier: int) -> bool:
-        """Return whether LED ``identifier`` is flashing."""
+    async def get_led_mode(self, identifier: int) -> LEDMode:
+        """Return what LED ``identifier`` is doing."""
         raise NotImplementedError
 
     @abstractmethod
-    async def set_led_flashing(self, identifier: int, period: float) -> None:
-        """Flash LED ``identifier``, on for half of ``period`` seconds, off for the other half.
-
-        Setting the LED's state afterwards stops the flashing.
-        """
+    async def set_led_mode(self, identifier: int, mode: LEDMode) -> None:
+        """Switch LED ``identifier`` off, on, or to flashing."""
         raise NotImplementedError
 
 
 class FlashingLED(LED):
-    """An LED that is on, off, or flashing by itself.
+    """An LED that can be off, on, or flashing without the program's help.
 
-    ``await led.flash()`` starts it flashing once a second; ``await led.set_state(...)``
-    stops the flashing and leaves it on or off.
+    It is an :class:`~j5aio.components.led.LED` too: ``set_state(True)`` lights it
+    steadily, and ``get_state()`` is ``True`` while it is lit or flashing. Use
+    ``await led.set_mode(LEDMode.FLASH)`` to make it flash.
 
     :param identifier: the number of the LED on its board.
     :param backend: the backend that drives the LED.
@@ -47,28 +53,32 @@ class FlashingLED(LED):
 
     @classmethod
     def interface_class(cls) -> type[FlashingLEDInterface]:
-        """The interface a backend implements for flashing LEDs: :class:`FlashingLEDInterface`."""
+        """The interface a backend implements: :class:`FlashingLEDInterface`."""
         return FlashingLEDInterface
 
-    @property
-    def _flashing(self) -> FlashingLEDInterface:
-        return cast(FlashingLEDInterface, self._backend)
+    async def get_mode(self) -> LEDMode:
+        """Return whether the LED is off, on or flashing.
 
-    async def flash(self, period: float = 1.0) -> None:
-        """Flash the LED: on for half of ``period`` seconds, then off for the other half.
-
-        :raises TypeError: ``period`` is not a number (or is a bool).
-        :raises ValueError: ``period`` is outside 0.02 to 60 seconds, or NaN.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
-        seconds = check_number(
-            period,
-            name="flash period",
-            low=MIN_FLASH_PERIOD,
-            high=MAX_FLASH_PERIOD,
-            allowed=f"a number of seconds from {MIN_FLASH_PERIOD} to {MAX_FLASH_PERIOD:g}",
-        )
-        await self._flashing.set_led_flashing(self._identifier, seconds)
+        return await cast(FlashingLEDInterface, self._backend).get_led_mode(self._identifier)
 
-    async def get_is_flashing(self) -> bool:
-        """Return whether the LED is flashing."""
-        return await self._flashing.get_led_flashing(self._identifier)
+    async def set_mode(self, mode: LEDMode) -> None:
+        """Switch the LED off, on, or to flashing.
+
+        :raises TypeError: ``mode`` is not an :class:`LEDMode`.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        if not isinstance(mode, LEDMode):
+            raise TypeError(
+                "LED mode must be LEDMode.OFF, LEDMode.ON or LEDMode.FLASH; "
+                f"got {describe(mode)}",
+            )
+        await cast(FlashingLEDInterface, self._backend).set_led_mode(self._identifier, mode)
+
+    async def flash(self) -> None:
+        """Make the LED flash by itself: the same as ``set_mode(LEDMode.FLASH)``.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        await self.set_mode(LEDMode.FLASH)

@@ -7,6 +7,8 @@ no clock; transports wrap them.
 Serial boards (:class:`SerialBoardSimulator`):
 
 - :class:`SRMotorBoardFw3Simulator`: SR Motor Board v4, firmware 3, binary, 1 Mbaud.
+- :class:`SRMotorBoardFw4Simulator`: SR Motor Board v4, firmware 4.4 / 4.5, text, 115 200 baud.
+- :class:`SRPowerBoardFw4Simulator`: SR Power Board v4, firmware 4.4, CDC serial, text.
 - :class:`SRRuggeduinoSimulator`: SR Ruggeduino single-character firmware 1 or 2.
 - :class:`SBArduinoSimulator`: SourceBots Arduino, 2019 line protocol (2019.6.0 / 2019.8.0).
 - :class:`SRServoBoardFw4Simulator` / :class:`SBServoBoardFw4Simulator`: SR Servo Board v4,
@@ -23,9 +25,7 @@ USB control-transfer boards (:class:`UsbBoardSimulator`, shaped like a pyusb dev
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from functools import partial
-from types import MappingProxyType
+from collections.abc import Iterator, Mapping
 from typing import Final, Protocol
 
 from .arduino_base import ARDUINO_UNO_R3, ArduinoBoardSimulator, UsbIdentity
@@ -34,7 +34,9 @@ from .base import SerialBoardSimulator, SimulatorUnpluggedError, UsbBoardSimulat
 from .sb_arduino_2019 import SBArduinoFirmware, SBArduinoSimulator
 from .sb_arduino_2024 import SBArduino2024Simulator
 from .sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
+from .sr_motor_fw4 import MotorChannel, MotorDrive, SRMotorBoardFw4Simulator
 from .sr_power_fw3 import PiezoNote, SRPowerBoardFw3Simulator
+from .sr_power_fw4 import BuzzerNote, SRPowerBoardFw4Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from .sr_servo_fw2 import SRServoBoardFw2Simulator
 from .sr_servo_fw4 import SBServoBoardFw4Simulator, SRServoBoardFw4Simulator
@@ -44,6 +46,9 @@ __all__ = [
     "SERIAL_SIMULATORS",
     "ArduinoBoardSimulator",
     "ArduinoUnoPins",
+    "BuzzerNote",
+    "MotorChannel",
+    "MotorDrive",
     "MotorMode",
     "MotorOutput",
     "PiezoNote",
@@ -53,7 +58,9 @@ __all__ = [
     "SBArduinoSimulator",
     "SBServoBoardFw4Simulator",
     "SRMotorBoardFw3Simulator",
+    "SRMotorBoardFw4Simulator",
     "SRPowerBoardFw3Simulator",
+    "SRPowerBoardFw4Simulator",
     "SRRuggeduinoSimulator",
     "SRServoBoardFw2Simulator",
     "SRServoBoardFw4Simulator",
@@ -73,15 +80,32 @@ class SerialSimulatorFactory(Protocol):
         ...
 
 
-#: Serial board simulators by command-line name (``python -m j5aio simulate <name>``).
-SERIAL_SIMULATORS: Final[Mapping[str, SerialSimulatorFactory]] = MappingProxyType(
-    {
-        "sr-motor": SRMotorBoardFw3Simulator,
-        "sr-ruggeduino": SRRuggeduinoSimulator,
-        "sb-arduino": SBArduinoSimulator,
-        "sr-servo-fw4": SRServoBoardFw4Simulator,
-        "sb-servo-fw4": SBServoBoardFw4Simulator,
-        "sr-arduino-fw2": partial(SRRuggeduinoSimulator, firmware_version=2),
-        "sb-arduino-2024": SBArduino2024Simulator,
-    }
-)
+class _SerialSimulators(Mapping[str, SerialSimulatorFactory]):
+    """The serial simulators of the board kind registry, by name; read-only."""
+
+    def _factories(self) -> dict[str, SerialSimulatorFactory]:
+        from j5aio.board_kinds import simulator_entries
+
+        return {
+            name: entry.factory  # type: ignore[misc]
+            for name, (kind, entry) in simulator_entries().items()
+            if entry.is_serial
+        }
+
+    def __getitem__(self, name: str) -> SerialSimulatorFactory:
+        return self._factories()[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._factories())
+
+    def __len__(self) -> int:
+        return len(self._factories())
+
+    def __repr__(self) -> str:
+        return f"SERIAL_SIMULATORS({', '.join(self)})"
+
+
+#: Serial board simulators by command-line name (``python -m j5aio simulate <name>``),
+#: from the registry of board kinds (:func:`j5aio.board_kinds.simulator_entries`), so
+#: plugins' simulators are here too.
+SERIAL_SIMULATORS: Final[Mapping[str, SerialSimulatorFactory]] = _SerialSimulators()

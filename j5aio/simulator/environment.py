@@ -29,8 +29,9 @@ from __future__ import annotations
 import time
 import weakref
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, cast
 
+from j5aio.backends.backend import Backend, BackendMeta
 from j5aio.backends.environment import Environment
 from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
@@ -41,6 +42,7 @@ from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBack
 from j5aio.backends.hardware.transports.discovery import PortInfo
 from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.backends.hardware.transports.stream import ByteStream
+from j5aio.board_kinds import BoardKind, board_kinds
 from j5aio.boards.board import Board
 
 from .base import SerialBoardSimulator, UsbBoardSimulator
@@ -62,6 +64,7 @@ __all__ = [
     "SimulatedUSBDevice",
     "kit_discovery_options",
     "port_name",
+    "simulated_backend",
 ]
 
 
@@ -161,6 +164,7 @@ def kit_discovery_options(
     serial_type: type[SerialBoardSimulator] = SerialBoardSimulator,
     *,
     timeout_scale: float | None = None,
+    kind: BoardKind | None = None,
 ) -> DiscoveryOptions:
     """Return discovery options that find the plugged-in boards of ``kit``.
 
@@ -177,13 +181,14 @@ def kit_discovery_options(
     :param timeout_scale: the factor for the backends' timeouts (waiting for a board to
         boot, say); by default the kit's time scale, but at least
         :data:`MINIMUM_TIMEOUT_SCALE`.
+    :param kind: list only the boards (serial and USB) simulating this board kind.
     """
     if timeout_scale is None:
         timeout_scale = max(kit.time_scale, MINIMUM_TIMEOUT_SCALE)
     simulators = {
         port_name(kit, simulator): simulator
         for simulator in kit.serial_simulators()
-        if isinstance(simulator, serial_type)
+        if isinstance(simulator, serial_type) and _of_kind(kit, simulator, kind)
     }
 
     def list_ports() -> list[PortInfo]:
@@ -209,12 +214,24 @@ def kit_discovery_options(
             SimulatedUSBDevice(simulator, kit)
             for simulator in kit.usb_simulators()
             if simulator.connected
+            and _of_kind(kit, simulator, kind)
             and (simulator.idVendor, simulator.idProduct) == (idVendor, idProduct)
         ]
 
     return DiscoveryOptions(
-        port_source=list_ports, opener=open_port, usb_finder=find, time_scale=timeout_scale
+        port_source=list_ports,
+        opener=open_port,
+        usb_finder=find,
+        time_scale=timeout_scale,
+        # Each simulated backend lists its own kind's boards only.
+        identify_shared_ports=serial_type is SerialBoardSimulator and kind is None,
     )
+
+
+def _of_kind(
+    kit: SimulatedKit, simulator: SerialBoardSimulator | UsbBoardSimulator, kind: BoardKind | None
+) -> bool:
+    return kind is None or kit.kind_of(simulator) is kind
 
 
 class SRV4PowerBoardSimulatedBackend(SRV4PowerBoardHardwareBackend):
@@ -268,17 +285,63 @@ class SRV4RuggeduinoSimulatedBackend(SRV4RuggeduinoHardwareBackend):
         )
 
 
-#: Every simulated backend.
-SIMULATED_BACKENDS = (
-    SRV4PowerBoardSimulatedBackend,
-    SRV4MotorBoardSimulatedBackend,
-    SRV4ServoBoardSimulatedBackend,
-    SBArduinoSimulatedBackend,
-    SRV4RuggeduinoSimulatedBackend,
+#: The simulated backends of j5aio's own board kinds, by their hardware backend.
+_NAMED_SIMULATED_BACKENDS: dict[type[Backend], type[Backend]] = {
+    SRV4PowerBoardHardwareBackend: SRV4PowerBoardSimulatedBackend,
+    SRV4MotorBoardHardwareBackend: SRV4MotorBoardSimulatedBackend,
+    SRV4ServoBoardHardwareBackend: SRV4ServoBoardSimulatedBackend,
+    SBArduinoHardwareBackend: SBArduinoSimulatedBackend,
+    SRV4RuggeduinoHardwareBackend: SRV4RuggeduinoSimulatedBackend,
+}
+
+
+def simulated_backend(kind: BoardKind) -> type[Backend] | None:
+    """Return the backend that finds ``kind``'s boards in the current simulated kit.
+
+    That is the kind's own :attr:`~j5aio.board_kinds.BoardKind.simulated` backend if it
+    has one, else a subclass of its hardware backend whose ``discover`` looks at the
+    boards of :func:`~j5aio.simulator.kit.current_kit` made from the kind's simulators
+    (the hardware backend's ``discover`` must take ``options``, as the serial and USB
+    hardware backends' do). ``None`` for a kind with no simulator or no backend.
+    """
+    if kind.simulated is not None:
+        return kind.simulated
+    hardware = kind.hardware
+    if hardware is None or not kind.simulators:
+        return None
+    named = _NAMED_SIMULATED_BACKENDS.get(hardware)
+    if named is not None:
+        return named
+
+    async def discover(
+        cls: type[Backend], *, options: DiscoveryOptions | None = None
+    ) -> Sequence[Board]:
+        parent: Any = super(derived, cls)  # a hardware backend: discover takes options
+        found: Sequence[Board] = await parent.discover(
+            options=options or kit_discovery_options(current_kit(), kind=kind)
+        )
+        return found
+
+    derived = cast(type[Backend], BackendMeta(
+        f"{hardware.__name__}Simulated",
+        (hardware,),
+        {
+            "__doc__": f"{hardware.__name__}, finding the simulated kit's {kind.description}.",
+            "__module__": hardware.__module__,
+            "discover": classmethod(discover),
+        },
+    ))
+    _NAMED_SIMULATED_BACKENDS[hardware] = derived
+    return derived
+
+
+#: Every simulated backend, one per registered board kind with a simulator.
+SIMULATED_BACKENDS: tuple[type[Backend], ...] = tuple(
+    backend
+    for backend in (simulated_backend(kind) for kind in board_kinds())
+    if backend is not None
 )
 
 #: The simulated kit: the hardware backends, talking to the boards of
 #: :func:`~j5aio.simulator.kit.current_kit`.
-SIMULATED_ENVIRONMENT = Environment("SimulatedEnvironment")
-for _backend in SIMULATED_BACKENDS:
-    SIMULATED_ENVIRONMENT.register_backend(_backend)
+SIMULATED_ENVIRONMENT = Environment.from_backends("SimulatedEnvironment", SIMULATED_BACKENDS)

@@ -18,14 +18,15 @@ from the backend.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from itertools import pairwise
-from typing import TYPE_CHECKING, Any, Final, cast
+from typing import Any, Final, cast
 
-if TYPE_CHECKING:
-    from j5aio.backends.hardware.sr.kch import KCHHardwareBackend
-    from j5aio.boards.board import Board
+from j5aio.backends.hardware.options import DiscoveryOptions
+from j5aio.backends.hardware.sr.kch import KCHHardwareBackend
+from j5aio.boards.board import Board
 
-__all__ = ["KCHSimulator"]
+__all__ = ["KCHSimulatedBackend", "KCHSimulator"]
 
 _START: Final = 9
 _USER_LEDS: Final = ((24, 10, 25), (27, 23, 22), (4, 18, 17))
@@ -35,9 +36,11 @@ class KCHSimulator:
     """A KCH's LEDs on mock GPIO pins, with their state readable.
 
     :param pin_factory: a gpiozero ``MockFactory`` to use; a new one by default.
+    :param serial_number: the asset code the KCH's board gets by default.
     """
 
-    def __init__(self, pin_factory: Any = None) -> None:
+    def __init__(self, pin_factory: Any = None, *, serial_number: str = "SIMKCH") -> None:
+        self.serial_number = serial_number
         if pin_factory is None:
             from gpiozero.pins.mock import MockFactory
 
@@ -52,7 +55,7 @@ class KCHSimulator:
 
     def board(
         self,
-        serial_number: str = "SIMKCH",
+        serial_number: str | None = None,
         *,
         backend_class: type[KCHHardwareBackend] | None = None,
     ) -> Board:
@@ -62,18 +65,19 @@ class KCHSimulator:
         gives back the same board (as discovering a real KCH twice does); once it is
         closed, a new one.
 
-        :param serial_number: the KCH's asset code (for a new board).
+        :param serial_number: the KCH's asset code (for a new board);
+            :attr:`serial_number` by default.
         :param backend_class: the backend to drive it with (for a new board), a subclass
             of :class:`~j5aio.backends.hardware.sr.kch.KCHHardwareBackend` such as a
             simulated environment's; that class itself by default.
         """
-        from j5aio.backends.hardware.sr.kch import KCHHardwareBackend
-
         board = self._board
         if board is not None and not cast(KCHHardwareBackend, board.backend).closed:
             return board
         backend = backend_class or KCHHardwareBackend
-        self._board = backend.from_pin_factory(self._factory, serial_number)
+        self._board = backend.from_pin_factory(
+            self._factory, self.serial_number if serial_number is None else serial_number,
+        )
         return self._board
 
     def _level(self, pin: int) -> bool:
@@ -97,3 +101,25 @@ class KCHSimulator:
         """How many times the start LED's pin has changed level (it flashes if this grows)."""
         states = self._factory.pin(_START).states
         return sum(1 for before, after in pairwise(states) if before.state != after.state)
+
+
+class KCHSimulatedBackend(KCHHardwareBackend):
+    """The KCH backend of the simulated environment: it finds the current kit's KCH.
+
+    The board is driven by the real :class:`KCHHardwareBackend` code over the simulated
+    KCH's mock pins.
+    """
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Return the KCH of the current simulated kit (none if the kit has none).
+
+        :param options: ignored, as by :meth:`KCHHardwareBackend.discover`.
+        """
+        from j5aio.simulator.kit import current_kit
+
+        return [
+            simulator.board(backend_class=cls)
+            for simulator in current_kit().simulators("kch")
+            if isinstance(simulator, KCHSimulator)
+        ]

@@ -1,17 +1,20 @@
 """The simulated kit: which board simulators exist, and which kit is in use now.
 
-A :class:`KitConfig` says how many of each board the kit has; a :class:`SimulatedKit`
-holds one simulator per board, each with its own serial number, so that a program or a
-test can look at what the boards are doing::
+A kit is made from a named kit of the registry (:func:`j5aio.board_kinds.kits`:
+``"default"``, ``"sr2019"``, ``"sb2019"`` and any a plugin adds) or from a
+:class:`KitConfig`, which says how many of each seed-generation board the kit has. A
+:class:`SimulatedKit` holds one simulator per board, each with its own serial number, so
+that a program or a test can look at what the boards are doing::
 
     kit = use_kit(KitConfig(motor_boards=1))
+    kit = use_kit("sr2019")                 # or a named kit
     ...  # run a robot on the simulated environment
     kit.motor_boards[0].motors[0].mode      # MotorMode.BRAKE
 
 The simulated environment (:mod:`j5aio.simulator.environment`) finds the boards of the
-kit returned by :func:`current_kit`. Without a call to :func:`use_kit` that is the
-default kit: one power board, two motor boards, one servo board and one SourceBots
-Arduino.
+kit returned by :func:`current_kit`. Without a call to :func:`use_kit` that is the kit
+named by the ``J5AIO_KIT`` environment variable, or else the default kit: one power
+board, two motor boards, one servo board and one SourceBots Arduino.
 
 Simulators are plain state machines: read their state from the thread that runs the
 event loop, between awaits.
@@ -20,9 +23,12 @@ event loop, between awaits.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterator
+import os
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, fields
 from typing import Final
+
+from j5aio.board_kinds import DEFAULT_KIT, BoardKind, KitDefinition, get_kit, simulator_entries
 
 from .base import SerialBoardSimulator, UsbBoardSimulator
 from .sb_arduino_2019 import SBArduinoSimulator
@@ -31,12 +37,37 @@ from .sr_power_fw3 import SRPowerBoardFw3Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from .sr_servo_fw2 import SRServoBoardFw2Simulator
 
-__all__ = ["KitConfig", "SimulatedKit", "current_kit", "use_kit"]
+__all__ = [
+    "KIT_VARIABLE",
+    "BoardSimulator",
+    "KitConfig",
+    "SimulatedKit",
+    "current_kit",
+    "kit_from_environment",
+    "use_kit",
+]
 
 #: The most boards of one kind a simulated kit may have.
 MAX_BOARDS_OF_A_KIND: Final = 99
 
+#: The environment variable that names the kit of the simulated environment.
+KIT_VARIABLE: Final = "J5AIO_KIT"
+
+BoardSimulator = object
+"""A simulator of one board: usually a :class:`SerialBoardSimulator` or a
+:class:`UsbBoardSimulator`, but a board reached otherwise (a Raspberry Pi HAT's GPIO, say)
+has a simulator of its own shape."""
+
 _kit_numbers = itertools.count(1)
+
+#: The simulator (by registry name) each count of a :class:`KitConfig` makes.
+_CONFIG_SIMULATORS: Final = {
+    "power_boards": "sr-power",
+    "motor_boards": "sr-motor",
+    "servo_boards": "sr-servo",
+    "sb_arduinos": "sb-arduino",
+    "ruggeduinos": "sr-ruggeduino",
+}
 
 
 @dataclass(frozen=True)
@@ -66,58 +97,114 @@ class KitConfig:
         for field in fields(self):
             value = getattr(self, field.name)
             if field.name == "time_scale":
-                if isinstance(value, bool) or not isinstance(value, int | float):
-                    raise TypeError(f"time_scale must be a number, not {type(value).__name__}")
-                if not value >= 0:
-                    raise ValueError(f"time_scale must be 0 or more, not {value}")
+                _check_time_scale(value)
                 continue
-            if isinstance(value, bool) or not isinstance(value, int):
-                raise TypeError(f"{field.name} must be an int, not {type(value).__name__}")
-            if not 0 <= value <= MAX_BOARDS_OF_A_KIND:
-                raise ValueError(
-                    f"{field.name} must be between 0 and {MAX_BOARDS_OF_A_KIND}, not {value}"
-                )
+            _check_count(field.name, value)
+
+    def boards(self) -> dict[str, int]:
+        """The simulators (by registry name) this configuration makes, and how many."""
+        return {name: getattr(self, count) for count, name in _CONFIG_SIMULATORS.items()}
+
+    @classmethod
+    def from_boards(cls, boards: Mapping[str, int], time_scale: float = 0.0) -> KitConfig:
+        """The configuration with the seed-generation boards among ``boards``."""
+        counts = {count: boards.get(name, 0) for count, name in _CONFIG_SIMULATORS.items()}
+        return cls(**counts, time_scale=time_scale)
+
+
+def _check_time_scale(value: object) -> None:
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise TypeError(f"time_scale must be a number, not {type(value).__name__}")
+    if not value >= 0:
+        raise ValueError(f"time_scale must be 0 or more, not {value}")
+
+
+def _check_count(name: str, value: object) -> None:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise TypeError(f"{name} must be an int, not {type(value).__name__}")
+    if not 0 <= value <= MAX_BOARDS_OF_A_KIND:
+        raise ValueError(f"{name} must be between 0 and {MAX_BOARDS_OF_A_KIND}, not {value}")
 
 
 class SimulatedKit:
-    """One simulator for each board of a :class:`KitConfig`.
+    """One simulator for each board of a kit.
 
     Serial numbers are distinct and sort in board order, so that ``kit.motor_boards[i]``
-    is the board a robot sees as ``robot.motor_boards[i]``: ``SIMPB0`` for the first power
-    board, ``SIMMB0`` and ``SIMMB1`` for motor boards, ``SIMSB0`` for a servo board,
-    ``SIMSBA0`` for a SourceBots Arduino and ``SIMRD0`` for a Ruggeduino (``SIMMB00`` to
-    ``SIMMB11`` in a kit of twelve motor boards).
+    is the board a robot sees as ``robot.motor_boards[i]``: each simulator's
+    :attr:`~j5aio.board_kinds.SimulatorEntry.serial_prefix` and the board's index,
+    ``SIMPB0`` for the first power board, ``SIMMB0`` and ``SIMMB1`` for motor boards,
+    ``SIMSB0`` for a servo board, ``SIMSBA0`` for a SourceBots Arduino and ``SIMRD0`` for a
+    Ruggeduino (``SIMMB00`` to ``SIMMB11`` in a kit of twelve motor boards).
 
-    :param config: the boards to make; the default kit if omitted.
+    :param config: the kit: a :class:`KitConfig`, a registry kit
+        (:class:`~j5aio.board_kinds.KitDefinition`) or a kit's name; the default kit if
+        omitted.
+    :param time_scale: the time scale of a named kit (a :class:`KitConfig` has its own).
+    :raises TypeError: ``config`` is none of those.
+    :raises ValueError: there is no kit of that name (the message lists the kits), or two
+        of its simulators would share serial numbers.
     """
 
-    def __init__(self, config: KitConfig | None = None) -> None:
-        self._config = config if config is not None else KitConfig()
+    def __init__(
+        self,
+        config: KitConfig | KitDefinition | str | None = None,
+        *,
+        time_scale: float | None = None,
+    ) -> None:
+        if config is None:
+            config = DEFAULT_KIT
+        if isinstance(config, str):
+            config = get_kit(config)
+        if isinstance(config, KitConfig):
+            if time_scale is not None:
+                raise TypeError("give the time scale in the KitConfig, not beside it")
+            boards, self._definition = config.boards(), None
+            self._config = config
+        elif isinstance(config, KitDefinition):
+            scale = 0.0 if time_scale is None else time_scale
+            _check_time_scale(scale)
+            boards, self._definition = dict(config.boards), config
+            self._config = KitConfig.from_boards(boards, scale)
+        else:
+            raise TypeError(
+                "a kit is a KitConfig, a KitDefinition or a kit's name, not "
+                f"{type(config).__name__}"
+            )
         self._name = f"kit{next(_kit_numbers)}"
-        c = self._config
-        self._power_boards = tuple(
-            SRPowerBoardFw3Simulator(_serial("SIMPB", i, c.power_boards))
-            for i in range(c.power_boards)
-        )
-        self._motor_boards = tuple(
-            SRMotorBoardFw3Simulator(_serial("SIMMB", i, c.motor_boards))
-            for i in range(c.motor_boards)
-        )
-        self._servo_boards = tuple(
-            SRServoBoardFw2Simulator(_serial("SIMSB", i, c.servo_boards))
-            for i in range(c.servo_boards)
-        )
-        self._sb_arduinos = tuple(
-            SBArduinoSimulator(_serial("SIMSBA", i, c.sb_arduinos)) for i in range(c.sb_arduinos)
-        )
-        self._ruggeduinos = tuple(
-            SRRuggeduinoSimulator(_serial("SIMRD", i, c.ruggeduinos)) for i in range(c.ruggeduinos)
-        )
+        self._boards: dict[str, tuple[BoardSimulator, ...]] = {}
+        self._kinds: dict[int, BoardKind] = {}
+        entries = simulator_entries()
+        prefixes: dict[str, str] = {}
+        for simulator_name, count in boards.items():
+            _check_count(simulator_name, count)
+            try:
+                kind, entry = entries[simulator_name]
+            except KeyError:
+                raise ValueError(
+                    f"the kit needs a simulator called {simulator_name!r}, which is not "
+                    f"registered; there are: {', '.join(entries)}"
+                ) from None
+            if count and prefixes.setdefault(entry.serial_prefix, entry.name) != entry.name:
+                raise ValueError(
+                    f"simulators {prefixes[entry.serial_prefix]!r} and {entry.name!r} both "
+                    f"number their boards {entry.serial_prefix}...: give one another prefix"
+                )
+            made = tuple(
+                entry.factory(_serial(entry.serial_prefix, i, count)) for i in range(count)
+            )
+            self._boards[simulator_name] = made
+            for simulator in made:
+                self._kinds[id(simulator)] = kind
 
     @property
     def config(self) -> KitConfig:
-        """The configuration this kit was made from."""
+        """The configuration of the kit's seed-generation boards, and its time scale."""
         return self._config
+
+    @property
+    def definition(self) -> KitDefinition | None:
+        """The registry kit it was made from, or ``None`` if from a :class:`KitConfig`."""
+        return self._definition
 
     @property
     def name(self) -> str:
@@ -129,50 +216,81 @@ class SimulatedKit:
         """The factor applied to every simulated delay."""
         return self._config.time_scale
 
+    def simulator_names(self) -> tuple[str, ...]:
+        """The registry names of the simulators the kit was made from, in order."""
+        return tuple(self._boards)
+
+    def simulators(self, name: str) -> tuple[BoardSimulator, ...]:
+        """The simulators made from the registry's simulator ``name`` (e.g. ``"sr-motor"``)."""
+        return self._boards.get(name, ())
+
+    def kind_of(self, simulator: BoardSimulator) -> BoardKind:
+        """The board kind ``simulator`` stands in for.
+
+        :raises KeyError: ``simulator`` is not one of this kit's.
+        """
+        try:
+            return self._kinds[id(simulator)]
+        except KeyError:
+            raise KeyError(f"{simulator!r} is not a board of {self._name}") from None
+
+    def _all(self) -> Iterator[BoardSimulator]:
+        for made in self._boards.values():
+            yield from made
+
     @property
     def power_boards(self) -> tuple[SRPowerBoardFw3Simulator, ...]:
         """The simulated power boards."""
-        return self._power_boards
+        return tuple(sim for sim in self._all() if isinstance(sim, SRPowerBoardFw3Simulator))
 
     @property
     def motor_boards(self) -> tuple[SRMotorBoardFw3Simulator, ...]:
         """The simulated motor boards."""
-        return self._motor_boards
+        return tuple(sim for sim in self._all() if isinstance(sim, SRMotorBoardFw3Simulator))
 
     @property
     def servo_boards(self) -> tuple[SRServoBoardFw2Simulator, ...]:
         """The simulated servo boards."""
-        return self._servo_boards
+        return tuple(sim for sim in self._all() if isinstance(sim, SRServoBoardFw2Simulator))
 
     @property
     def sb_arduinos(self) -> tuple[SBArduinoSimulator, ...]:
         """The simulated SourceBots Arduinos."""
-        return self._sb_arduinos
+        return tuple(sim for sim in self._all() if isinstance(sim, SBArduinoSimulator))
 
     @property
     def ruggeduinos(self) -> tuple[SRRuggeduinoSimulator, ...]:
         """The simulated Ruggeduinos."""
-        return self._ruggeduinos
+        return tuple(sim for sim in self._all() if isinstance(sim, SRRuggeduinoSimulator))
 
     def serial_simulators(self) -> tuple[SerialBoardSimulator, ...]:
         """Every board reached through a serial port."""
-        return (*self._motor_boards, *self._sb_arduinos, *self._ruggeduinos)
+        return tuple(sim for sim in self._all() if isinstance(sim, SerialBoardSimulator))
 
     def usb_simulators(self) -> tuple[UsbBoardSimulator, ...]:
         """Every board reached through USB control transfers."""
-        return (*self._power_boards, *self._servo_boards)
+        return tuple(sim for sim in self._all() if isinstance(sim, UsbBoardSimulator))
+
+    def other_simulators(self) -> tuple[BoardSimulator, ...]:
+        """Every board reached neither by serial port nor by USB (a HAT's GPIO, say)."""
+        return tuple(
+            sim
+            for sim in self._all()
+            if not isinstance(sim, SerialBoardSimulator | UsbBoardSimulator)
+        )
 
     def __iter__(self) -> Iterator[SerialBoardSimulator | UsbBoardSimulator]:
-        """Iterate over every board of the kit."""
+        """Iterate over every board of the kit reached by USB or a serial port."""
         yield from self.usb_simulators()
         yield from self.serial_simulators()
 
     def __len__(self) -> int:
-        """How many boards the kit has."""
+        """How many boards reached by USB or a serial port the kit has."""
         return len(self.usb_simulators()) + len(self.serial_simulators())
 
     def __repr__(self) -> str:
-        return f"<SimulatedKit {self._name} {self._config!r}>"
+        what = self._definition.name if self._definition is not None else repr(self._config)
+        return f"<SimulatedKit {self._name} {what}>"
 
 
 def _serial(prefix: str, index: int, count: int) -> str:
@@ -183,27 +301,53 @@ def _serial(prefix: str, index: int, count: int) -> str:
 _current: SimulatedKit | None = None
 
 
-def use_kit(kit: KitConfig | SimulatedKit | None = None) -> SimulatedKit:
+def use_kit(
+    kit: KitConfig | KitDefinition | SimulatedKit | str | None = None,
+    *,
+    time_scale: float | None = None,
+) -> SimulatedKit:
     """Make a fresh kit the current one, and return it.
 
     The simulated environment finds this kit's boards from now on. Boards found before
     keep talking to the simulators they were found on.
 
-    :param kit: the configuration of the new kit (the default kit if omitted), or a kit
-        already made.
-    :raises TypeError: ``kit`` is neither a :class:`KitConfig` nor a :class:`SimulatedKit`.
+    :param kit: the new kit: a configuration, a registry kit or a kit's name
+        (``"sr2019"``), or a kit already made; the default kit if omitted.
+    :param time_scale: the time scale of a named kit (see :class:`SimulatedKit`).
+    :raises TypeError: ``kit`` is none of those.
+    :raises ValueError: there is no kit of that name; the message lists the kits.
     """
     global _current
-    if kit is None or isinstance(kit, KitConfig):
-        kit = SimulatedKit(kit)
+    if kit is None or isinstance(kit, KitConfig | KitDefinition | str):
+        kit = SimulatedKit(kit, time_scale=time_scale)
     elif not isinstance(kit, SimulatedKit):
-        raise TypeError(f"use_kit takes a KitConfig or a SimulatedKit, not {type(kit).__name__}")
+        raise TypeError(
+            "use_kit takes a KitConfig, a KitDefinition, a kit's name or a SimulatedKit, "
+            f"not {type(kit).__name__}"
+        )
     _current = kit
     return kit
 
 
+def kit_from_environment() -> str:
+    """The kit named by ``J5AIO_KIT``, or the default kit's name when it is unset.
+
+    :raises ValueError: ``J5AIO_KIT`` names no kit; the message lists the kits.
+    """
+    name = os.environ.get(KIT_VARIABLE, "").strip()
+    if not name:
+        return DEFAULT_KIT
+    try:
+        return get_kit(name).name
+    except ValueError as error:
+        raise ValueError(f"{KIT_VARIABLE}={name!r}: {error}") from None
+
+
 def current_kit() -> SimulatedKit:
-    """Return the kit in use, making the default kit on first use."""
+    """Return the kit in use, making the ``J5AIO_KIT`` kit (or the default) on first use.
+
+    :raises ValueError: ``J5AIO_KIT`` names no kit; the message lists the kits.
+    """
     if _current is None:
-        return use_kit()
+        return use_kit(kit_from_environment())
     return _current

@@ -9,13 +9,13 @@ the portal (:func:`j5aio.sync.wrapping.call`); no wrapper contains logic of its 
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping, Sequence, Set
+from collections.abc import Iterable, Iterator, Mapping, Sequence, Set
 from datetime import timedelta
 from pathlib import Path
 from typing import Any, ClassVar, Final, Generic, Self, TypeVar, cast, overload
 
 import j5aio.backends.backend as _backends_backend
-import j5aio.backends.console as _backends_console
+import j5aio.backends.console.env as _backends_console_env
 import j5aio.backends.environment as _backends_environment
 import j5aio.backends.hardware.env as _backends_hardware_env
 import j5aio.boards.arduino.all_digital as _boards_arduino_all_digital
@@ -28,7 +28,9 @@ import j5aio.boards.sb.servo_board as _boards_sb_servo_board
 import j5aio.boards.sr.kch as _boards_sr_kch
 import j5aio.boards.sr.v4.arduino as _boards_sr_v4_arduino
 import j5aio.boards.sr.v4.motor_board as _boards_sr_v4_motor_board
+import j5aio.boards.sr.v4.motor_board_fw4 as _boards_sr_v4_motor_board_fw4
 import j5aio.boards.sr.v4.power_board as _boards_sr_v4_power_board
+import j5aio.boards.sr.v4.power_board_fw4 as _boards_sr_v4_power_board_fw4
 import j5aio.boards.sr.v4.ruggeduino as _boards_sr_v4_ruggeduino
 import j5aio.boards.sr.v4.servo_board as _boards_sr_v4_servo_board
 import j5aio.boards.sr.v4.servo_board_fw4 as _boards_sr_v4_servo_board_fw4
@@ -39,18 +41,23 @@ import j5aio.components.battery_sensor as _components_battery_sensor
 import j5aio.components.button as _components_button
 import j5aio.components.component as _components_component
 import j5aio.components.derived.ultrasound as _components_derived_ultrasound
+import j5aio.components.fan as _components_fan
 import j5aio.components.flag as _components_flag
 import j5aio.components.flashing_led as _components_flashing_led
 import j5aio.components.gpio_pin as _components_gpio_pin
 import j5aio.components.led as _components_led
+import j5aio.components.monitored_motor as _components_monitored_motor
 import j5aio.components.motor as _components_motor
 import j5aio.components.piezo as _components_piezo
 import j5aio.components.power_output as _components_power_output
+import j5aio.components.protected_power_output as _components_protected_power_output
 import j5aio.components.pulse_servo as _components_pulse_servo
 import j5aio.components.rgb_led as _components_rgb_led
 import j5aio.components.servo as _components_servo
 import j5aio.components.string_command as _components_string_command
 import j5aio.components.supply_sensor as _components_supply_sensor
+import j5aio.components.temperature_sensor as _components_temperature_sensor
+import j5aio.components.voltage_sensor as _components_voltage_sensor
 import j5aio.environments as _environments
 import j5aio.robot as _robot
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
@@ -77,17 +84,23 @@ __all__ = [
     "Component",
     "DerivedComponent",
     "Environment",
+    "Fan",
     "Flag",
     "FlashingLED",
     "GPIOPin",
     "IdentifiedComponent",
     "KCHBoard",
+    "MonitoredMotor",
     "Motor",
     "MotorBoard",
+    "MotorBoardFw4",
     "Piezo",
     "PowerBoard",
+    "PowerBoardFw4",
+    "PowerBoardOutputGroup",
     "PowerOutput",
     "PowerOutputGroup",
+    "ProtectedPowerOutput",
     "PulseServo",
     "Ruggeduino",
     "SBArduino2024Board",
@@ -99,8 +112,10 @@ __all__ = [
     "ServoBoardFw4",
     "StringCommandComponent",
     "SupplySensor",
+    "TemperatureSensor",
     "UltrasoundSensor",
     "UltrasoundSensors",
+    "VoltageSensor",
     "console_environment",
     "get_default_environment",
     "get_environment",
@@ -115,42 +130,83 @@ InterfaceT = TypeVar("InterfaceT", bound="_components_component.Interface")
 
 
 class Environment(_SyncWrapper):
-    """A set of backends that work together: one backend per kind of board.
+    """A set of backends that work together: the backends of each kind of board.
 
     The same robot code runs on the console, on real hardware or on the simulated kit by
     handing it a different environment.
 
+    Usually one backend drives each board class. A board family with several
+    generations (the SR power board's USB firmware 3 and serial firmware 4, say) has one
+    backend per generation: register the later ones with ``alongside=True``, or give each
+    generation a subclass of the family's board class. :meth:`get_board_group` gathers
+    the boards of every backend registered for the class asked for or a subclass of it.
+
     :param name: a name to show to people, e.g. ``"HardwareEnvironment"``.
+    :param gather: find a family's boards through every backend registered for it (as
+        on hardware); if false, through the first one only (the console environment,
+        where every backend makes up one board).
     """
 
     __slots__ = ()
 
     _core: _backends_environment.Environment
 
-    def __init__(self, name: str) -> None:
-        _adopt_into(self, _backends_environment.Environment(name))
+    def __init__(self, name: str, *, gather: bool = True) -> None:
+        _adopt_into(self, _backends_environment.Environment(name, gather=gather))
+
+    @classmethod
+    def from_backends(
+        cls,
+        name: str,
+        backends: Iterable[type[_backends_backend.Backend]],
+        *,
+        gather: bool = True,
+    ) -> Environment:
+        """Make an environment of ``backends``, later generations registered alongside.
+
+        :raises RuntimeError: a backend is listed twice.
+        """
+        return cast("Environment", _wrap(_backends_environment.Environment.from_backends(name, backends, gather=gather)))
 
     @property
     def supported_boards(self) -> set[type[_boards_board.Board]]:
         """The kinds of board this environment has a backend for."""
         return self._core.supported_boards
 
-    def register_backend(self, backend: type[_backends_backend.Backend]) -> None:
+    def register_backend(
+        self,
+        backend: type[_backends_backend.Backend],
+        *,
+        alongside: bool = False,
+    ) -> None:
         """Use ``backend`` for the kind of board it drives.
 
-        :raises RuntimeError: this environment already has a backend for that board.
+        :param alongside: ``backend`` drives another generation of a board class that
+            already has a backend here: use both, and find boards through each.
+        :raises RuntimeError: this environment already has ``backend``, or already has a
+            backend for its board and ``alongside`` is false.
         """
-        self._core.register_backend(backend)
+        self._core.register_backend(backend, alongside=alongside)
 
     def get_backend(
         self,
         board: type[_boards_board.Board | Board],
     ) -> type[_backends_backend.Backend]:
-        """Return the backend this environment uses for ``board``.
+        """Return the (first) backend this environment uses for ``board``.
 
         :raises NotImplementedError: the environment has no backend for that board.
         """
         return self._core.get_backend(_unwrap(board))
+
+    def backends_for(
+        self,
+        board: type[_boards_board.Board | Board],
+    ) -> tuple[type[_backends_backend.Backend], ...]:
+        """Return every backend for ``board`` or a subclass of it, in registration order.
+
+        :raises NotImplementedError: the environment has no backend for such a board.
+        """
+        return self._core.backends_for(_unwrap(board))
 
     @overload
     def get_board_group(self, board: type[SyncBoardT]) -> BoardGroup[SyncBoardT]:
@@ -182,6 +238,20 @@ class Environment(_SyncWrapper):
         self,
         board: type[_boards_arduino_all_digital.AllDigitalUno],
     ) -> BoardGroup[AllDigitalUno]:
+        ...
+
+    @overload
+    def get_board_group(
+        self,
+        board: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
+    ) -> BoardGroup[MotorBoardFw4]:
+        ...
+
+    @overload
+    def get_board_group(
+        self,
+        board: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
+    ) -> BoardGroup[PowerBoardFw4]:
         ...
 
     @overload
@@ -242,14 +312,17 @@ class Environment(_SyncWrapper):
         ...
 
     def get_board_group(self, board: type[_boards_board.Board | Board]) -> BoardGroup[Board]:
-        """Find every ``board`` through this environment's backend for it.
+        """Find every ``board`` through each backend this environment has for it.
+
+        Boards of every generation (backends for ``board`` or a subclass) are gathered
+        into one group.
 
         :raises NotImplementedError: the environment has no backend for that board.
         """
         return cast("BoardGroup[Board]", _wrap(_call(self._core.get_board_group, _unwrap(board))))
 
     def merge(self, other: Environment) -> None:
-        """Add every board-to-backend mapping of ``other`` to this environment.
+        """Add every backend of ``other`` to this environment.
 
         :raises RuntimeError: both environments have a backend for the same board; nothing
             is merged.
@@ -262,11 +335,21 @@ class Environment(_SyncWrapper):
         return self._core.name
 
     @property
+    def gather(self) -> bool:
+        """The ``gather`` of the wrapped object."""
+        return self._core.gather
+
+    @property
     def board_backend_mapping(
         self,
     ) -> dict[type[_boards_board.Board], type[_backends_backend.Backend]]:
         """The ``board_backend_mapping`` of the wrapped object."""
         return self._core.board_backend_mapping
+
+    @property
+    def backends(self) -> list[type[_backends_backend.Backend]]:
+        """The ``backends`` of the wrapped object."""
+        return self._core.backends
 
 
 class UltrasoundSensors(_SyncWrapper):
@@ -539,7 +622,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[SyncBoardT],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SyncBoardT]:
@@ -550,7 +633,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_v4_arduino.SRArduinoBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SRArduinoBoard]:
@@ -561,7 +644,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sb_arduino_2024.SBArduino2024Board],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SBArduino2024Board]:
@@ -572,7 +655,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sb_servo_board.SBServoBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SBServoBoard]:
@@ -583,7 +666,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_arduino_all_digital.AllDigitalUno],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[AllDigitalUno]:
@@ -593,8 +676,30 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
+        board_type: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        *,
+        ports: Sequence[str] = (),
+    ) -> BoardGroup[MotorBoardFw4]:
+        ...
+
+    @overload
+    @classmethod
+    def get_board_group(
+        cls,
+        board_type: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        *,
+        ports: Sequence[str] = (),
+    ) -> BoardGroup[PowerBoardFw4]:
+        ...
+
+    @overload
+    @classmethod
+    def get_board_group(
+        cls,
         board_type: type[_boards_sr_v4_ruggeduino.Ruggeduino],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[Ruggeduino]:
@@ -605,7 +710,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sb_arduino.SBArduinoBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SBArduinoBoard]:
@@ -616,7 +721,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[ServoBoardFw4]:
@@ -627,7 +732,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_arduino_uno.ArduinoUno],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[ArduinoUno]:
@@ -638,7 +743,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_kch.KCHBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[KCHBoard]:
@@ -649,7 +754,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_v4_motor_board.MotorBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[MotorBoard]:
@@ -660,7 +765,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_v4_power_board.PowerBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[PowerBoard]:
@@ -671,7 +776,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_sr_v4_servo_board.ServoBoard],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[ServoBoard]:
@@ -682,7 +787,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_board.Board],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[Board]:
@@ -692,22 +797,29 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     def get_board_group(
         cls,
         board_type: type[_boards_board.Board | Board],
-        backend_class: type[_backends_backend.Backend],
+        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[Board]:
         """Find every board of ``board_type`` that ``backend_class`` can reach.
 
         :param board_type: the class of board wanted, e.g. ``PowerBoard``.
-        :param backend_class: the backend to find and drive them with.
+        :param backend_class: the backend to find and drive them with, or several (one
+            per generation of the board: their boards are gathered into one group).
         :param ports: explicit ports (device paths or pyserial URLs) to attach to, on top
-            of discovery, for unusual adapters and simulators.
+            of discovery, for unusual adapters and simulators; they are attached with the
+            first backend.
         :returns: the group, ordered by serial number.
+        :raises TypeError: a backend drives another kind of board, or none was given.
+        :raises CommunicationError: two boards report the same serial number.
         """
         return cast("BoardGroup[Board]", _wrap(_call(_boards_board_group.BoardGroup.get_board_group, _unwrap(board_type), backend_class, ports=ports)))
 
     def update_boards(self) -> None:
-        """Look for boards again, so that boards connected since are included."""
+        """Look for boards again, so that boards connected since are included.
+
+        :raises CommunicationError: two boards report the same serial number.
+        """
         _call(self._core.update_boards)
 
     def singular(self) -> BoardT:
@@ -723,8 +835,13 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
 
     @property
     def backend_class(self) -> type[_backends_backend.Backend]:
-        """The backend that finds and drives the boards."""
+        """The backend that finds and drives the boards (the first, if there are several)."""
         return self._core.backend_class
+
+    @property
+    def backend_classes(self) -> tuple[type[_backends_backend.Backend], ...]:
+        """Every backend the boards are found through (one per generation of the board)."""
+        return self._core.backend_classes
 
     @property
     def board_type(self) -> type[_boards_board.Board]:
@@ -1053,6 +1170,45 @@ class PowerBoard(Board):
         _call(self._core.wait_for_start_flash, timeout)
 
 
+class PowerBoardOutputGroup(PowerOutputGroup[_boards_sr_v4_power_board.PowerOutputPosition]):
+    """The outputs of a firmware 4 power board.
+
+    Look an output up by :class:`PowerBoardOutput`, by the seed kit's
+    :class:`~j5aio.boards.sr.v4.power_board.PowerOutputPosition`, or by number.
+    :meth:`power_on` and :meth:`power_off` switch every output but L2, the brain's.
+
+    :param outputs: the outputs, each under its name.
+    """
+
+    __slots__ = ()
+
+    _core: _boards_sr_v4_power_board_fw4.PowerBoardOutputGroup
+
+    def __init__(
+        self,
+        outputs: Mapping[_boards_sr_v4_power_board_fw4.PowerBoardOutput, PowerOutput],
+    ) -> None:
+        _adopt_into(self, _boards_sr_v4_power_board_fw4.PowerBoardOutputGroup(_unwrap(outputs)))
+
+    def __getitem__(
+        self,
+        key: _boards_sr_v4_power_board_fw4.PowerBoardOutput | _boards_sr_v4_power_board.PowerOutputPosition | int,
+    ) -> PowerOutput:
+        """Return the output under ``key`` (a name of either kind, or a number).
+
+        :raises KeyError: there is no output under ``key``.
+        """
+        return cast("PowerOutput", _wrap(self._core.__getitem__(key)))
+
+    def power_on(self) -> None:
+        """Switch on every output but L2 (the brain's, which is always on)."""
+        _call(self._core.power_on)
+
+    def power_off(self) -> None:
+        """Switch off every output but L2 (the brain's, which cannot be switched)."""
+        _call(self._core.power_off)
+
+
 class ServoBoard(Board):
     """The Student Robotics v4 Servo Board: twelve servo outputs.
 
@@ -1179,6 +1335,133 @@ class SBArduinoBoard(ArduinoUno):
     def supported_components() -> set[type[_components_component.Component]]:
         """The component classes on a SourceBots Arduino."""
         return _boards_sb_arduino.SBArduinoBoard.supported_components()
+
+
+class MotorBoardFw4(MotorBoard):
+    """The Student Robotics v4 Motor Board with firmware 4.4 or 4.5 (the SR 2023+ kit).
+
+    Everything a :class:`~j5aio.boards.sr.v4.motor_board.MotorBoard` has; each motor
+    also reports its current and whether its driver has a fault, and the board reports
+    its input voltage. The power is linear in the PWM duty, in steps of 0.001.
+
+    :param serial_number: the board's asset tag.
+    :param backend: the backend that drives the board.
+    :param safe_state: what :meth:`make_safe` sets both motors to (brake by default).
+    """
+
+    __slots__ = ()
+
+    _core: _boards_sr_v4_motor_board_fw4.MotorBoardFw4
+
+    def __init__(
+        self,
+        serial_number: str,
+        backend: _backends_backend.Backend,
+        *,
+        safe_state: float | _components_motor.MotorSpecialState = _components_motor.MotorSpecialState.BRAKE,
+    ) -> None:
+        _adopt_into(self, _boards_sr_v4_motor_board_fw4.MotorBoardFw4(serial_number, backend, safe_state=safe_state))
+
+    name: ClassVar[str] = _boards_sr_v4_motor_board_fw4.MotorBoardFw4.name
+
+    @property
+    def motors(self) -> tuple[MonitoredMotor, ...]:
+        """The motors, numbered 0 and 1."""
+        return cast("tuple[MonitoredMotor, ...]", _wrap(self._core.motors))
+
+    @property
+    def input_voltage_sensor(self) -> VoltageSensor:
+        """The voltmeter on the board's power input."""
+        return cast("VoltageSensor", _wrap(self._core.input_voltage_sensor))
+
+    @staticmethod
+    def supported_components() -> set[type[_components_component.Component]]:
+        """The component classes on a firmware 4 Motor Board."""
+        return _boards_sr_v4_motor_board_fw4.MotorBoardFw4.supported_components()
+
+
+class PowerBoardFw4(PowerBoard):
+    """The Student Robotics v4 Power Board with firmware 4.4 (the SR 2023+ kit).
+
+    Everything a :class:`~j5aio.boards.sr.v4.power_board.PowerBoard` has, and: output 6
+    (the 5 V rail); outputs that tell whether their over-current trip has switched them
+    off (``get_is_overcurrent``); LEDs that flash on their own
+    (``await board.run_led.set_mode(LEDMode.FLASH)``); the board's temperature, fan and
+    5 V regulator voltage. Switching L2, the brain's output, raises
+    :class:`~j5aio.errors.NotSupportedByHardwareError` before anything is sent.
+
+    The start button is latched by the board: it reads as pressed if it was pressed
+    at any time since the previous read (the internal or the external button). A note
+    on the piezo replaces the note playing: the board keeps no queue.
+
+    :meth:`make_safe` resets the board (``*RESET``): every output off but the brain's,
+    LEDs dark, the buzzer silent, over-current trips cleared.
+
+    :param serial_number: the board's asset tag.
+    :param backend: the backend that drives the board.
+    :raises TypeError: the backend cannot reset the board.
+    """
+
+    __slots__ = ()
+
+    _core: _boards_sr_v4_power_board_fw4.PowerBoardFw4
+
+    def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
+        _adopt_into(self, _boards_sr_v4_power_board_fw4.PowerBoardFw4(serial_number, backend))
+
+    name: ClassVar[str] = _boards_sr_v4_power_board_fw4.PowerBoardFw4.name
+
+    @property
+    def outputs(self) -> PowerBoardOutputGroup:
+        """The seven outputs, by :class:`PowerBoardOutput`, ``PowerOutputPosition`` or number."""
+        return cast("PowerBoardOutputGroup", _wrap(self._core.outputs))
+
+    @property
+    def run_led(self) -> FlashingLED:
+        """The run LED (LED 0), which can flash by itself."""
+        return cast("FlashingLED", _wrap(self._core.run_led))
+
+    @property
+    def error_led(self) -> FlashingLED:
+        """The error LED (LED 1), which can flash by itself."""
+        return cast("FlashingLED", _wrap(self._core.error_led))
+
+    @property
+    def temperature_sensor(self) -> TemperatureSensor:
+        """The board's thermometer."""
+        return cast("TemperatureSensor", _wrap(self._core.temperature_sensor))
+
+    @property
+    def fan(self) -> Fan:
+        """The board's fan, which runs above 40 °C."""
+        return cast("Fan", _wrap(self._core.fan))
+
+    @property
+    def regulator_sensor(self) -> VoltageSensor:
+        """The voltmeter on the 5 V regulator's output."""
+        return cast("VoltageSensor", _wrap(self._core.regulator_sensor))
+
+    @staticmethod
+    def supported_components() -> set[type[_components_component.Component]]:
+        """The component classes on a firmware 4 Power Board."""
+        return _boards_sr_v4_power_board_fw4.PowerBoardFw4.supported_components()
+
+    def make_safe(self) -> None:
+        """Reset the board: every output off but the brain's, LEDs dark, buzzer silent."""
+        _call(self._core.make_safe)
+
+    def wait_for_start_flash(self, timeout: float | None = None) -> None:
+        """Flash the run LED (the board flashes it) until start is pressed, then light it.
+
+        A press before the wait began does not count: the board's button latch is read
+        once and forgotten first.
+
+        :param timeout: give up after this many seconds; ``None`` waits for ever.
+        :raises TimeoutError: the button was not pressed within ``timeout`` seconds.
+        :raises TypeError: ``timeout`` is not a number or ``None``.
+        :raises ValueError: ``timeout`` is negative or not a number (NaN).
+        """
+        _call(self._core.wait_for_start_flash, timeout)
 
 
 class Ruggeduino(ArduinoUno):
@@ -1452,6 +1735,31 @@ class Button(IdentifiedComponent[_components_button.ButtonInterface]):
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         _call(self._core.wait_until_pressed, timeout)
+
+
+class Fan(IdentifiedComponent[_components_fan.FanInterface]):
+    """A cooling fan that the board switches on when it gets warm.
+
+    :param identifier: the number of the fan on its board.
+    :param backend: the backend that reads the fan.
+    """
+
+    __slots__ = ()
+
+    _core: _components_fan.Fan
+
+    @property
+    def is_running(self) -> bool:
+        """Return ``True`` if the fan is running.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.get_is_running)
+
+    @classmethod
+    def interface_class(cls) -> type[_components_fan.FanInterface]:
+        """The interface a backend implements: :class:`FanInterface`."""
+        return _components_fan.Fan.interface_class()
 
 
 class Flag(IdentifiedComponent[_components_flag.FlagInterface]):
@@ -2017,6 +2325,56 @@ class SupplySensor(IdentifiedComponent[_components_supply_sensor.SupplySensorInt
         return _components_supply_sensor.SupplySensor.interface_class()
 
 
+class TemperatureSensor(IdentifiedComponent[_components_temperature_sensor.TemperatureSensorInterface]):
+    """A thermometer on a board, such as the power board's.
+
+    :param identifier: the number of the sensor on its board.
+    :param backend: the backend that reads the sensor.
+    """
+
+    __slots__ = ()
+
+    _core: _components_temperature_sensor.TemperatureSensor
+
+    @property
+    def temperature(self) -> float:
+        """Return the temperature, in degrees Celsius.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.get_temperature)
+
+    @classmethod
+    def interface_class(cls) -> type[_components_temperature_sensor.TemperatureSensorInterface]:
+        """The interface a backend implements: :class:`TemperatureSensorInterface`."""
+        return _components_temperature_sensor.TemperatureSensor.interface_class()
+
+
+class VoltageSensor(IdentifiedComponent[_components_voltage_sensor.VoltageSensorInterface]):
+    """A voltmeter on a board: a regulator's output, or the board's input supply.
+
+    :param identifier: the number of the sensor on its board.
+    :param backend: the backend that reads the sensor.
+    """
+
+    __slots__ = ()
+
+    _core: _components_voltage_sensor.VoltageSensor
+
+    @property
+    def voltage(self) -> float:
+        """Return the voltage, in volts.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.get_voltage)
+
+    @classmethod
+    def interface_class(cls) -> type[_components_voltage_sensor.VoltageSensorInterface]:
+        """The interface a backend implements: :class:`VoltageSensorInterface`."""
+        return _components_voltage_sensor.VoltageSensor.interface_class()
+
+
 class SRArduinoBoard(AllDigitalUno, Ruggeduino):
     """The Student Robotics Arduino (an Uno running SR firmware 2, ``SRduino:2``).
 
@@ -2043,10 +2401,11 @@ class SRArduinoBoard(AllDigitalUno, Ruggeduino):
 
 
 class FlashingLED(LED):
-    """An LED that is on, off, or flashing by itself.
+    """An LED that can be off, on, or flashing without the program's help.
 
-    ``await led.flash()`` starts it flashing once a second; ``await led.set_state(...)``
-    stops the flashing and leaves it on or off.
+    It is an :class:`~j5aio.components.led.LED` too: ``set_state(True)`` lights it
+    steadily, and ``get_state()`` is ``True`` while it is lit or flashing. Use
+    ``await led.set_mode(LEDMode.FLASH)`` to make it flash.
 
     :param identifier: the number of the LED on its board.
     :param backend: the backend that drives the LED.
@@ -2057,22 +2416,96 @@ class FlashingLED(LED):
     _core: _components_flashing_led.FlashingLED
 
     @property
-    def is_flashing(self) -> bool:
-        """Return whether the LED is flashing."""
-        return _call(self._core.get_is_flashing)
+    def mode(self) -> _components_flashing_led.LEDMode:
+        """Return whether the LED is off, on or flashing.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+
+        Setting it: Switch the LED off, on, or to flashing.
+
+        :raises TypeError: ``mode`` is not an :class:`LEDMode`.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.get_mode)
+
+    @mode.setter
+    def mode(self, mode: _components_flashing_led.LEDMode) -> None:
+        _call(self._core.set_mode, mode)
 
     @classmethod
     def interface_class(cls) -> type[_components_flashing_led.FlashingLEDInterface]:
-        """The interface a backend implements for flashing LEDs: :class:`FlashingLEDInterface`."""
+        """The interface a backend implements: :class:`FlashingLEDInterface`."""
         return _components_flashing_led.FlashingLED.interface_class()
 
-    def flash(self, period: float = 1.0) -> None:
-        """Flash the LED: on for half of ``period`` seconds, then off for the other half.
+    def flash(self) -> None:
+        """Make the LED flash by itself: the same as ``set_mode(LEDMode.FLASH)``.
 
-        :raises TypeError: ``period`` is not a number (or is a bool).
-        :raises ValueError: ``period`` is outside 0.02 to 60 seconds, or NaN.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
         """
-        _call(self._core.flash, period)
+        _call(self._core.flash)
+
+
+class MonitoredMotor(Motor):
+    """A :class:`~j5aio.components.motor.Motor` whose driver measures its current and faults.
+
+    :param identifier: the number of the motor on its board.
+    :param backend: the backend that drives the motor.
+    """
+
+    __slots__ = ()
+
+    _core: _components_monitored_motor.MonitoredMotor
+
+    @property
+    def current(self) -> float:
+        """Return the current the motor draws, in amps.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.get_current)
+
+    @property
+    def has_fault(self) -> bool:
+        """Return ``True`` if the motor's driver reports a fault (it pulled its enable low).
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.get_has_fault)
+
+    @classmethod
+    def interface_class(cls) -> type[_components_monitored_motor.MonitoredMotorInterface]:
+        """The interface a backend implements: :class:`MonitoredMotorInterface`."""
+        return _components_monitored_motor.MonitoredMotor.interface_class()
+
+
+class ProtectedPowerOutput(PowerOutput):
+    """A power output that the board switches off, and keeps off, when it draws too much.
+
+    While the trip is latched, switching the output on does nothing; the board clears
+    the latch only when it is reset.
+
+    :param identifier: the number of the output on its board.
+    :param backend: the backend that drives the output.
+    """
+
+    __slots__ = ()
+
+    _core: _components_protected_power_output.ProtectedPowerOutput
+
+    @property
+    def is_overcurrent(self) -> bool:
+        """Return ``True`` if the output has been switched off for drawing too much current.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.get_is_overcurrent)
+
+    @classmethod
+    def interface_class(
+        cls,
+    ) -> type[_components_protected_power_output.ProtectedPowerOutputInterface]:
+        """The interface a backend implements: :class:`ProtectedPowerOutputInterface`."""
+        return _components_protected_power_output.ProtectedPowerOutput.interface_class()
 
 
 class PulseServo(Servo):
@@ -2168,10 +2601,13 @@ _register(_boards_arduino_uno.ArduinoUno, ArduinoUno)
 _register(_boards_sr_kch.KCHBoard, KCHBoard)
 _register(_boards_sr_v4_motor_board.MotorBoard, MotorBoard)
 _register(_boards_sr_v4_power_board.PowerBoard, PowerBoard)
+_register(_boards_sr_v4_power_board_fw4.PowerBoardOutputGroup, PowerBoardOutputGroup)
 _register(_boards_sr_v4_servo_board.ServoBoard, ServoBoard)
 _register(_components_component.DerivedComponent, DerivedComponent)
 _register(_boards_arduino_all_digital.AllDigitalUno, AllDigitalUno)
 _register(_boards_sb_arduino.SBArduinoBoard, SBArduinoBoard)
+_register(_boards_sr_v4_motor_board_fw4.MotorBoardFw4, MotorBoardFw4)
+_register(_boards_sr_v4_power_board_fw4.PowerBoardFw4, PowerBoardFw4)
 _register(_boards_sr_v4_ruggeduino.Ruggeduino, Ruggeduino)
 _register(_boards_sr_v4_servo_board_fw4.ServoBoardFw4, ServoBoardFw4)
 _register(_components_identified.IdentifiedComponent, IdentifiedComponent)
@@ -2180,6 +2616,7 @@ _register(_boards_sb_arduino_2024.SBArduino2024Board, SBArduino2024Board)
 _register(_boards_sb_servo_board.SBServoBoard, SBServoBoard)
 _register(_components_battery_sensor.BatterySensor, BatterySensor)
 _register(_components_button.Button, Button)
+_register(_components_fan.Fan, Fan)
 _register(_components_flag.Flag, Flag)
 _register(_components_gpio_pin.GPIOPin, GPIOPin)
 _register(_components_led.LED, LED)
@@ -2190,11 +2627,15 @@ _register(_components_rgb_led.RGBLED, RGBLED)
 _register(_components_servo.Servo, Servo)
 _register(_components_string_command.StringCommandComponent, StringCommandComponent)
 _register(_components_supply_sensor.SupplySensor, SupplySensor)
+_register(_components_temperature_sensor.TemperatureSensor, TemperatureSensor)
+_register(_components_voltage_sensor.VoltageSensor, VoltageSensor)
 _register(_boards_sr_v4_arduino.SRArduinoBoard, SRArduinoBoard)
 _register(_components_flashing_led.FlashingLED, FlashingLED)
+_register(_components_monitored_motor.MonitoredMotor, MonitoredMotor)
+_register(_components_protected_power_output.ProtectedPowerOutput, ProtectedPowerOutput)
 _register(_components_pulse_servo.PulseServo, PulseServo)
 
-CONSOLE_ENVIRONMENT: Final[Environment] = cast("Environment", _wrap(_backends_console.CONSOLE_ENVIRONMENT))
-"""The sync face of ``j5aio.backends.console.CONSOLE_ENVIRONMENT``."""
+CONSOLE_ENVIRONMENT: Final[Environment] = cast("Environment", _wrap(_backends_console_env.CONSOLE_ENVIRONMENT))
+"""The sync face of ``j5aio.backends.console.env.CONSOLE_ENVIRONMENT``."""
 HARDWARE_ENVIRONMENT: Final[Environment] = cast("Environment", _wrap(_backends_hardware_env.HARDWARE_ENVIRONMENT))
 """The sync face of ``j5aio.backends.hardware.env.HARDWARE_ENVIRONMENT``."""

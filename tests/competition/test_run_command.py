@@ -72,6 +72,49 @@ def test_a_simulated_match_from_the_command_line(tmp_path: Path) -> None:
     assert "it ends in 0.5 s" in text  # a 1 s match at half the real time per robot second
 
 
+SR2023_PROGRAM = """
+import anyio
+from j5aio.boards.sr.v4 import MotorBoard, PowerBoard
+from j5aio.environments import get_default_environment
+from j5aio.robot import BaseRobot
+
+class Robot(BaseRobot):
+    async def setup(self):
+        environment = get_default_environment()
+        self.power_board = (await environment.get_board_group(PowerBoard)).singular()
+        self.motor_boards = await environment.get_board_group(MotorBoard)
+
+async def main():
+    async with Robot() as robot:
+        await robot.wait_start(timeout=20)
+        print("started", robot.zone, type(robot.power_board).__name__)
+        while True:
+            try:
+                await robot.motor_boards[0].motors[0].set_power(0.5)
+                await robot.sleep(0.05)
+            except BaseException:
+                pass
+
+anyio.run(main)
+"""
+
+
+def test_a_match_on_the_named_sr2023_kit(tmp_path: Path) -> None:
+    (tmp_path / "robot.py").write_text(SR2023_PROGRAM)
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([str(ROOT), env.get("PYTHONPATH", "")])
+    result = subprocess.run(
+        [sys.executable, "-m", "j5aio", "run", "--sim", "--kit", "sr2023", "--zone", "2",
+         "--mode", "comp", "--duration", "0.5", "--start-after", "0.2", "robot.py"],
+        capture_output=True, text=True, timeout=60, env=env, cwd=tmp_path, check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "started 2 PowerBoardFw4" in result.stdout
+    assert "Game over" in result.stderr
+    (log,) = (tmp_path / "j5aio-logs").glob("run-*.log")
+    assert "Kit: Student Robotics v4 Motor Board (firmware 4)" in log.read_text()
+
+
 def test_a_bad_metadata_file_stops_before_the_program(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -96,7 +139,7 @@ def test_dev_run_with_log_dir_and_options(
     monkeypatch.setattr(sys, "path", sys.path[:])
     assert main(["run", "--sim", "--zone", "4", "--time-scale", "2", "--log-dir",
                  str(tmp_path / "logs"), "--start-after", "30", str(program)]) == 0
-    assert kit_module.current_kit().config.time_scale == 2
+    assert kit_module.current_kit().time_scale == 2
     assert METADATA_VARIABLE not in os.environ  # the run's settings end with it
     assert TIME_SCALE_VARIABLE not in os.environ
     out = capsys.readouterr()

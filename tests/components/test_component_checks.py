@@ -55,6 +55,8 @@ def test_every_component_names_an_exported_interface() -> None:
         "LED", "RGBLED", "BatterySensor", "Button", "GPIOPin", "Motor", "Piezo",
         "PowerOutput", "Servo", "StringCommandComponent", "UltrasoundSensor",
         "PulseServo", "SupplySensor", "Flag", "FlashingLED",
+        "ProtectedPowerOutput", "MonitoredMotor", "TemperatureSensor",
+        "VoltageSensor", "Fan",
     }
     for component in concrete:
         interface = component.interface_class()

@@ -1,6 +1,5 @@
 """The components added for today's kits: PulseServo, SupplySensor, Flag and FlashingLED."""
 
-import math
 
 import pytest
 
@@ -16,6 +15,7 @@ from j5aio.components import (
     SupplySensor,
     SupplySensorInterface,
 )
+from j5aio.components.flashing_led import LEDMode
 
 Call = tuple[str, tuple[object, ...]]
 
@@ -67,12 +67,12 @@ class Recorder(PulseServoInterface, SupplySensorInterface, FlagInterface, Flashi
     async def set_led_state(self, identifier: int, state: bool) -> None:
         self.calls.append(("set_led_state", (identifier, state)))
 
-    async def get_led_flashing(self, identifier: int) -> bool:
-        self.calls.append(("get_led_flashing", (identifier,)))
-        return True
+    async def get_led_mode(self, identifier: int) -> LEDMode:
+        self.calls.append(("get_led_mode", (identifier,)))
+        return LEDMode.FLASH
 
-    async def set_led_flashing(self, identifier: int, period: float) -> None:
-        self.calls.append(("set_led_flashing", (identifier, period)))
+    async def set_led_mode(self, identifier: int, mode: LEDMode) -> None:
+        self.calls.append(("set_led_mode", (identifier, mode)))
 
 
 def test_interfaces() -> None:
@@ -126,22 +126,9 @@ async def test_flashing_led() -> None:
     backend = Recorder()
     led = FlashingLED(0, backend)
     await led.flash()
-    await led.flash(0.5)
-    assert await led.get_is_flashing() is True
+    assert await led.get_mode() is LEDMode.FLASH
     await led.set_state(True)
     assert backend.calls == [
-        ("set_led_flashing", (0, 1.0)), ("set_led_flashing", (0, 0.5)),
-        ("get_led_flashing", (0,)), ("set_led_state", (0, True)),
+        ("set_led_mode", (0, LEDMode.FLASH)),
+        ("get_led_mode", (0,)), ("set_led_state", (0, True)),
     ]
-
-
-@pytest.mark.parametrize(
-    ("period", "error"),
-    [(0, ValueError), (0.01, ValueError), (61, ValueError), (math.nan, ValueError),
-     ("1", TypeError), (True, TypeError)],
-)
-async def test_flashing_led_refuses_bad_periods(period: object, error: type[Exception]) -> None:
-    backend = Recorder()
-    with pytest.raises(error, match="flash period"):
-        await FlashingLED(0, backend).flash(period)  # type: ignore[arg-type]
-    assert backend.calls == []

@@ -1,11 +1,15 @@
 import anyio
+import pytest
 from gpiozero.pins.mock import MockFactory
 
+from j5aio.backends.hardware.sr.kch import KCHHardwareBackend
 from j5aio.boards.sr.kch import Colour, KCHBoard
 from j5aio.simulator.kch import KCHSimulator
 
 
-async def test_the_simulated_kch_runs_the_real_backend_and_shows_the_leds() -> None:
+async def test_the_simulated_kch_runs_the_real_backend_and_shows_the_leds(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
     simulator = KCHSimulator()
     board = simulator.board("SR0SIM")
     assert isinstance(board, KCHBoard)
@@ -20,7 +24,8 @@ async def test_the_simulated_kch_runs_the_real_backend_and_shows_the_leds() -> N
     await board.start_led.set_state(True)
     assert simulator.start_led
     before = simulator.start_led_changes
-    await board.start_led.flash(0.04)
+    monkeypatch.setattr(KCHHardwareBackend, "FLASH_PERIOD", 0.04)
+    await board.start_led.flash()
     with anyio.fail_after(5):
         while simulator.start_led_changes < before + 4:  # noqa: ASYNC110 - a thread flashes it
             await anyio.sleep(0.01)

@@ -75,7 +75,7 @@ async def test_commands_travel_through_the_real_protocol_to_the_simulators() -> 
     await motor_board.motors[1].set_power(-0.6)
     await motor_board.motors[0].set_power(MotorSpecialState.COAST)
     assert kit.motor_boards[0].motors[1].mode is MotorMode.REVERSE
-    assert kit.motor_boards[0].motors[1].duty_percent == 75
+    assert kit.motor_boards[0].motors[1].duty_percent == 60  # duty = power
     assert kit.motor_boards[0].motors[0].mode is MotorMode.COAST
 
     await power_board.run_led.set_state(False)

@@ -115,5 +115,5 @@ def test_use_kit_replaces_the_current_kit() -> None:
 
 
 def test_use_kit_refuses_other_things() -> None:
-    with pytest.raises(TypeError, match="use_kit takes a KitConfig or a SimulatedKit, not dict"):
+    with pytest.raises(TypeError, match=r"use_kit takes a KitConfig, .* SimulatedKit, not dict"):
         use_kit({"motor_boards": 1})  # type: ignore[arg-type]

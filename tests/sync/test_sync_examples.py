@@ -47,13 +47,15 @@ def test_drive_forward_then_stop() -> None:
     result = run_example("sync_drive_forward.py", "")
     assert result.returncode == 0, result.stderr
     lines = result.stdout.splitlines()
-    assert lines[:4] == [
+    assert lines[:6] == [
         "MotorBoard(SERIAL): Setting motor 0 to 0.6.",
+        "MotorBoard(SERIAL): Motor 0: forward at 60% duty.",
         "MotorBoard(SERIAL): Setting motor 1 to 0.6.",
+        "MotorBoard(SERIAL): Motor 1: forward at 60% duty.",
         "MotorBoard(SERIAL): Setting motor 0 to BRAKE.",
         "MotorBoard(SERIAL): Setting motor 1 to BRAKE.",
     ]
-    assert lines[4] == "Stopped: left is MotorSpecialState.BRAKE, right is MotorSpecialState.BRAKE."
+    assert lines[6] == "Stopped: left is MotorSpecialState.BRAKE, right is MotorSpecialState.BRAKE."
 
 
 def test_wait_for_start_then_buzz() -> None:
@@ -86,13 +88,15 @@ def test_the_j5_program_prints_what_j5_would() -> None:
     assert lines[2].endswith("PowerBoard(SERIAL): Set LED 0 to True")
     assert lines[3:5] == ["Found 1 Motor Board(s):", " - SERIAL - Version None"]
     assert lines[5:11] == SAFE_POWER_BOARD
-    assert lines[11:13] == [
+    # j5's line, then the duty the board really drives (j5aio only).
+    assert lines[11:14] == [
         "PowerBoard(SERIAL): Setting output 0 to True",
         "MotorBoard(SERIAL): Setting motor 0 to 0.5.",
+        "MotorBoard(SERIAL): Motor 0: forward at 50% duty.",
     ]
-    assert lines[13].startswith("PowerBoard(SERIAL): Buzzing at 440")
-    assert lines[13].endswith("Hz for 250ms")
-    assert lines[14:16] == [
+    assert lines[14].startswith("PowerBoard(SERIAL): Buzzing at 440")
+    assert lines[14].endswith("Hz for 250ms")
+    assert lines[15:17] == [
         "MotorBoard(SERIAL): Setting motor 0 to BRAKE.",
         "MotorBoard(SERIAL): Setting motor 1 to BRAKE.",
     ]

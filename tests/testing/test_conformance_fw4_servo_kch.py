@@ -185,12 +185,8 @@ class TestKCHStartLED(FlashingLEDInterfaceConformance):
         async def observe(identifier: int) -> bool:
             return simulator.start_led
 
-        async def observe_changes(identifier: int) -> int:
-            return simulator.start_led_changes
-
         return FlashingLEDSubject(
-            backend=board.backend, identifiers=[0], observe=observe,
-            observe_changes=observe_changes, cleanup=board.close,
+            backend=board.backend, identifiers=[0], observe=observe, cleanup=board.close,
         )
 
 

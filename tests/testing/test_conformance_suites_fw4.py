@@ -12,6 +12,7 @@ import pytest
 
 from j5aio.backends.console.sr.kch import KCHConsoleBackend
 from j5aio.backends.console.sr.v4 import SRV4ServoBoardFw4ConsoleBackend
+from j5aio.components.flashing_led import LEDMode
 from j5aio.components.pulse_servo import PulseLimits
 from j5aio.components.servo import ServoPosition
 from j5aio.testing.conformance import (
@@ -121,16 +122,16 @@ async def test_flashing_led_suite_catches_flashing_that_never_stops() -> None:
 
     subject = FlashingLEDSubject(backend=Stuck("SERIAL", ConsoleScript().console_class()),
                                  identifiers=[0])
-    with pytest.raises(AssertionError, match=r"LED 0 still flashes after its state was set"):
-        await run(FlashingLEDInterfaceConformance, "test_flash_then_set", subject)
+    with pytest.raises(AssertionError, match=r"LED 0 was set to LEDMode.OFF but reads back"):
+        await run(FlashingLEDInterfaceConformance, "test_state_and_mode_agree", subject)
 
 
 async def test_flashing_led_suite_catches_flashing_not_reported() -> None:
     class Forgetful(KCHConsoleBackend):
-        async def get_led_flashing(self, identifier: int) -> bool:
-            return False
+        async def get_led_mode(self, identifier: int) -> LEDMode:
+            return LEDMode.OFF
 
     subject = FlashingLEDSubject(backend=Forgetful("SERIAL", ConsoleScript().console_class()),
                                  identifiers=[0])
-    with pytest.raises(AssertionError, match=r"LED 0 was told to flash but does not say"):
-        await run(FlashingLEDInterfaceConformance, "test_flash_then_set", subject)
+    with pytest.raises(AssertionError, match=r"LED 0 was set to LEDMode.FLASH but reads back"):
+        await run(FlashingLEDInterfaceConformance, "test_mode_round_trips", subject)

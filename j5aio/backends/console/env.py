@@ -1,36 +1,21 @@
-"""CONSOLE_ENVIRONMENT: every board on the console, printing and asking instead of hardware."""
+"""CONSOLE_ENVIRONMENT: every board on the console, printing and asking instead of hardware.
+
+Its backends are the console backends of the registered board kinds
+(:func:`j5aio.board_kinds.board_kinds`). A console backend makes up one board, so a board
+family is shown through the backend registered for exactly that class, or else its
+first generation's.
+"""
 
 from __future__ import annotations
 
-from j5aio.backends.console.sb.arduino import SBArduinoConsoleBackend
-from j5aio.backends.console.sb.arduino_2024 import SBArduino2024ConsoleBackend
-from j5aio.backends.console.sr.kch import KCHConsoleBackend
-from j5aio.backends.console.sr.v4 import (
-    SBServoBoardConsoleBackend,
-    SRArduinoConsoleBackend,
-    SRV4MotorBoardConsoleBackend,
-    SRV4PowerBoardConsoleBackend,
-    SRV4RuggeduinoConsoleBackend,
-    SRV4ServoBoardConsoleBackend,
-    SRV4ServoBoardFw4ConsoleBackend,
-)
 from j5aio.backends.environment import Environment
+from j5aio.board_kinds import board_kinds
 
 __all__ = ["CONSOLE_ENVIRONMENT"]
 
-CONSOLE_ENVIRONMENT = Environment("ConsoleEnvironment")
+CONSOLE_ENVIRONMENT = Environment.from_backends(
+    "ConsoleEnvironment",
+    (kind.console for kind in board_kinds() if kind.console is not None),
+    gather=False,
+)
 """The console environment: each board is printed to and asked about on the terminal."""
-
-for _backend in (
-    SRV4PowerBoardConsoleBackend,
-    SRV4MotorBoardConsoleBackend,
-    SRV4ServoBoardConsoleBackend,
-    SRV4RuggeduinoConsoleBackend,
-    SBArduinoConsoleBackend,
-    SRV4ServoBoardFw4ConsoleBackend,
-    SBServoBoardConsoleBackend,
-    KCHConsoleBackend,
-    SRArduinoConsoleBackend,
-    SBArduino2024ConsoleBackend,
-):
-    CONSOLE_ENVIRONMENT.register_backend(_backend)

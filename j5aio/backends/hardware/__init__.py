@@ -1,7 +1,8 @@
 """Backends that drive real boards, and the hardware environment.
 
-``HARDWARE_ENVIRONMENT`` (from :mod:`.env`) maps every supported board to its backend.
-It is loaded on first use, so importing the transports alone stays light.
+``HARDWARE_ENVIRONMENT`` (from :mod:`.env`) maps every supported board to its backend,
+and ``await attach(port)`` (from :mod:`.identify`) identifies the serial board on a
+port. They are loaded on first use, so importing the transports alone stays light.
 """
 
 from __future__ import annotations
@@ -10,8 +11,9 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from j5aio.backends.hardware.env import HARDWARE_ENVIRONMENT
+    from j5aio.backends.hardware.identify import attach
 
-__all__ = ["HARDWARE_ENVIRONMENT"]
+__all__ = ["HARDWARE_ENVIRONMENT", "attach"]
 
 
 def __getattr__(name: str) -> Any:
@@ -19,4 +21,8 @@ def __getattr__(name: str) -> Any:
         from j5aio.backends.hardware.env import HARDWARE_ENVIRONMENT
 
         return HARDWARE_ENVIRONMENT
+    if name == "attach":
+        from j5aio.backends.hardware.identify import attach
+
+        return attach
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -120,7 +120,7 @@ class ArduinoGPIOBackend(
 
     @classmethod
     @abstractmethod
-    async def identify(
+    async def identify_firmware(
         cls, link: SerialLink, *, time_scale: float = 1.0, attempts: int | None = None,
     ) -> str:
         """Ask the board on ``link`` who it is; return its version if this backend drives it.
@@ -135,7 +135,7 @@ class ArduinoGPIOBackend(
     # -- helpers for subclasses ---------------------------------------------------------
 
     async def _handshake(self, *, time_scale: float) -> None:
-        self._firmware_version = await self.identify(self._link, time_scale=time_scale)
+        self._firmware_version = await self.identify_firmware(self._link, time_scale=time_scale)
 
     async def _send_mode(self, pin: int, mode: GPIOPinMode) -> None:
         """Put ``pin`` in digital ``mode`` (INPUT, INPUT_PULLUP or OUTPUT)."""

@@ -1,29 +1,23 @@
-"""The hardware environment: the backend that drives each kind of real board."""
+"""The hardware environment: the backends that find and drive each kind of real board.
+
+Its backends are the hardware backends of the registered board kinds
+(:func:`j5aio.board_kinds.board_kinds`): j5aio's own and those of installed plugins.
+"""
 
 from __future__ import annotations
 
+from j5aio.backends.backend import Backend
 from j5aio.backends.environment import Environment
-from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
-from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
-from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
-from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
-from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
+from j5aio.board_kinds import board_kinds
 
 __all__ = ["HARDWARE_BACKENDS", "HARDWARE_ENVIRONMENT"]
 
-#: Every hardware backend, in the order listing tries them. The SourceBots Arduino
-#: comes before the Ruggeduino: both use the same USB IDs, and an Arduino that fails
-#: the SourceBots handshake is then tried as a Ruggeduino.
-HARDWARE_BACKENDS = (
-    SRV4PowerBoardHardwareBackend,
-    SRV4MotorBoardHardwareBackend,
-    SRV4ServoBoardHardwareBackend,
-    SBArduinoHardwareBackend,
-    SRV4RuggeduinoHardwareBackend,
+#: Every hardware backend, in the order listing tries them (the registry's order). The
+#: SourceBots Arduino comes before the Ruggeduino: both use the same USB IDs.
+HARDWARE_BACKENDS: tuple[type[Backend], ...] = tuple(
+    kind.hardware for kind in board_kinds() if kind.hardware is not None
 )
 
 #: Real boards: SR v4 power (fw 3), motor (fw 3), servo (fw 2) boards and Ruggeduino
-#: (fw 1), and the SourceBots Arduino (2019 protocol).
-HARDWARE_ENVIRONMENT = Environment("HardwareEnvironment")
-for _backend in HARDWARE_BACKENDS:
-    HARDWARE_ENVIRONMENT.register_backend(_backend)
+#: (fw 1), the SourceBots Arduino (2019 protocol), and every plugin's boards.
+HARDWARE_ENVIRONMENT = Environment.from_backends("HardwareEnvironment", HARDWARE_BACKENDS)

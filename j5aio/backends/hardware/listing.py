@@ -1,6 +1,9 @@
 """List the boards connected to this computer (``python -m j5aio list``).
 
-:func:`find_boards` runs every backend of the hardware environment's discovery, notes
+:func:`find_boards` runs the discovery of every backend of the hardware environment (the
+serial ones together, through
+:func:`~j5aio.backends.hardware.identify.discover_serial_boards`, so that a port the
+Arduinos share is asked once and each board is found once), notes
 each board's kind, serial number, firmware version and port, and closes again the
 boards it opened (a board that a running robot already holds is reported and left
 alone). :func:`format_boards` turns the list into text for people.
@@ -9,23 +12,27 @@ alone). :func:`format_boards` turns the list into text for people.
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
+import functools
+from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import dataclass
-from typing import Final
+from typing import Any, Final, cast
 
 import anyio
 
 from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.env import HARDWARE_BACKENDS
+from j5aio.backends.hardware.identify import discover_serial_boards, serial_backends
 from j5aio.backends.hardware.options import DiscoveryOptions
+from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
 from j5aio.boards.board import Board
 from j5aio.errors import CommunicationError
 
 __all__ = ["LISTING_TIME_SCALE", "FoundBoard", "find_boards", "format_boards"]
 
-#: Listing waits this fraction of the usual time for an Arduino to boot (about 5 s
-#: instead of 33 s), so that an Arduino of one kind is soon tried as the other kind.
-LISTING_TIME_SCALE: Final = 0.15
+#: Listing multiplies the backends' waits by this. Ports that several kinds share (the
+#: Arduinos) are identified with each kind's shorter identification waits
+#: (``IDENTIFY_TIME_SCALE``), so the usual waits serve elsewhere.
+LISTING_TIME_SCALE: Final = 1.0
 
 
 @dataclass(frozen=True)
@@ -69,13 +76,29 @@ async def find_boards(
     found: list[FoundBoard] = []
     opened: list[Board] = []
     try:
-        for backend in HARDWARE_BACKENDS:
+        serial = [b for b in HARDWARE_BACKENDS if issubclass(b, SerialHardwareBackend)]
+        searches: list[tuple[object, Callable[[], Awaitable[Sequence[Board]]]]] = [
+            # Hardware backends' discovery takes options (serial and USB ones do).
+            (backend, functools.partial(cast(Any, backend).discover, options=options))
+            for backend in HARDWARE_BACKENDS
+            if backend not in serial
+        ]
+        if serial:
+            ordered = sorted(serial, key=lambda b: serial_backends().index(b))
+            searches.append(
+                (
+                    "serial boards",
+                    functools.partial(discover_serial_boards, options=options, backends=ordered),
+                )
+            )
+        for what, search in searches:
             try:
-                boards = await backend.discover(options=options)
+                boards = await search()
             except CommunicationError as error:
                 if problems is None:
                     raise
-                problems.append(f"{backend.board.name}: {error}")
+                label = what if isinstance(what, str) else cast(Any, what).board.name
+                problems.append(f"{label}: {error}")
                 continue
             for board in boards:
                 port = str(getattr(board.backend, "port", ""))

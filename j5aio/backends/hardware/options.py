@@ -33,6 +33,11 @@ class DiscoveryOptions:
     time_scale: float = 1.0
     #: Log a board that fails its handshake and carry on, rather than raise.
     skip_failures: bool = False
+    #: Tell apart the kinds of board that share a port's USB IDs (the Arduinos) by
+    #: identifying each such port once (see :mod:`j5aio.backends.hardware.identify`),
+    #: rather than trying every matching port as the kind asked for. Off where the ports
+    #: listed are known to be of the kind asked for (a simulated kit's).
+    identify_shared_ports: bool = True
 
     def __post_init__(self) -> None:
         if not self.time_scale >= 0:

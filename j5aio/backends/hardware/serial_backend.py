@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import logging
 from abc import abstractmethod
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from typing import ClassVar, TypeVar, cast
 
 import anyio
@@ -30,15 +30,18 @@ from j5aio.backends.hardware.options import DiscoveryOptions, StreamOpener
 from j5aio.backends.hardware.transports.discovery import (
     PortInfo,
     find_port,
-    list_serial_ports,
-    match_ports,
 )
 from j5aio.backends.hardware.transports.readers import ReplyReader
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.backends.hardware.transports.serial_stream import open_serial_stream
 from j5aio.backends.hardware.transports.stream import ByteStream
 from j5aio.boards.board import Board
-from j5aio.errors import BoardDisconnectionError, DeviceMissingSerialNumberError
+from j5aio.errors import (
+    BoardDisconnectionError,
+    CommunicationError,
+    DeviceMissingSerialNumberError,
+    UnsupportedFirmwareError,
+)
 
 __all__ = ["SerialHardwareBackend", "scaled"]
 
@@ -95,6 +98,10 @@ class SerialHardwareBackend(Backend[BoardT]):
     USB_PRODUCT: ClassVar[str | None] = None
     #: Skip a port without a USB serial number (with a warning) instead of raising.
     SKIP_PORTS_WITHOUT_SERIAL: ClassVar[bool] = False
+    #: Multiplies the handshake's waits when :meth:`identify` asks whether a board is of
+    #: this kind (a board that boots and answers in time needs far less than a handshake
+    #: allows for a slow one).
+    IDENTIFY_TIME_SCALE: ClassVar[float] = 1.0
 
     def __init__(self, link: SerialLink, *, port: str) -> None:
         self._link = link
@@ -186,44 +193,93 @@ class SerialHardwareBackend(Backend[BoardT]):
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[BoardT]:
         """Open every port whose USB identity matches this board and return the boards.
 
-        Boards are opened concurrently. A port this backend already holds gives back its
-        board; a port held by another kind of backend is skipped.
+        When other registered kinds of board use the same USB IDs (the Arduinos), each
+        such port is identified once among them instead
+        (:func:`~j5aio.backends.hardware.identify.discover_serial_boards`): this backend's
+        boards are returned, and the others' stay held for their own discovery to give
+        back without opening the port again. Boards are opened concurrently. A port this
+        backend already holds gives back its board; a port held by another kind of
+        backend is skipped.
 
         :param options: stand-in port lists and openers, a time scale, and whether a
             failing board is skipped; the real thing by default.
         :raises DeviceMissingSerialNumberError: a matching port has no serial number.
         :raises CommunicationError: a board failed its handshake (unless skipped).
         """
+        from j5aio.backends.hardware.identify import discover_serial_boards
+
         options = options or DiscoveryOptions()
-        ports = await anyio.to_thread.run_sync(list_serial_ports, options.port_source)
-        matched = match_ports(ports, set(cls.USB_IDS), cls.USB_MANUFACTURER, cls.USB_PRODUCT)
-        wanted = [port for port in matched if cls._has_serial_number(port)]
-        results: dict[str, BoardT | Exception] = {}
+        sharing = cls._kinds_sharing_ports() if options.identify_shared_ports else ()
+        backends = sharing if len(sharing) > 1 else (cls,)
+        found = await discover_serial_boards(options=options, backends=backends)
+        # Boards of the other kinds stay held, for their own discovery to give back.
+        return [cast(BoardT, board) for board in found if isinstance(board.backend, cls)]
 
-        async def connect_one(port: PortInfo) -> None:
-            serial_number = port.serial_number or port.device
+    @classmethod
+    async def identify(
+        cls,
+        port: str,
+        *,
+        serial_number: str,
+        opener: StreamOpener | None = None,
+        time_scale: float = 1.0,
+    ) -> BoardT | None:
+        """Open ``port`` at this board's baud rate and return the board if it is one.
 
-            async def connect() -> BoardT:
-                return await cls._open(
-                    port.device,
-                    serial_number,
-                    options.opener,
-                    options.time_scale,
-                )
+        This is how :func:`j5aio.backends.hardware.attach` and discovery of ports that
+        several kinds share tell boards apart: the handshake runs with its waits scaled
+        by ``time_scale`` and :data:`IDENTIFY_TIME_SCALE`. A board whose answers show it
+        is another kind (a wrong reply, no reply) gives ``None``, and the port is closed
+        again. Override it when the handshake alone cannot tell, or would disturb other
+        kinds of board.
 
-            try:
-                results[port.device] = cast(
-                    BoardT, await registry.claim(port.device, cls, connect),
-                )
-            except registry.PortInUseError as exc:
-                _log.info("Skipping %s: %s", port.device, exc)
-            except Exception as exc:
-                results[port.device] = exc
+        :param port: the port's path or URL.
+        :param serial_number: the serial number to give the board.
+        :param opener: opens the port; the real serial port by default.
+        :param time_scale: multiplies the waits for the board to boot and answer.
+        :raises UnsupportedFirmwareError: the board is of this kind but runs firmware this
+            backend cannot drive.
+        :raises CommunicationError: the port could not be opened.
+        """
+        stream = await cls._open_stream(port, opener)  # a port that will not open: raise
+        try:
+            return await cls.from_stream(
+                stream,
+                port=port,
+                serial_number=serial_number,
+                time_scale=time_scale * cls.IDENTIFY_TIME_SCALE,
+            )
+        except UnsupportedFirmwareError:
+            raise
+        except CommunicationError as error:
+            _log.debug("%s on %s: not this kind: %s", cls.__name__, port, error)
+            return None
 
-        async with anyio.create_task_group() as group:
-            for port in wanted:
-                group.start_soon(connect_one, port)
-        return cast(list[BoardT], cls._collect(results, skip_failures=options.skip_failures))
+    @classmethod
+    def _kinds_sharing_ports(cls) -> tuple[type[SerialHardwareBackend], ...]:
+        """Return this backend and the registered kinds that use any of its USB IDs, in order.
+
+        Empty when no registered kind is this backend or one of its bases.
+        """
+        from j5aio.backends.hardware.identify import serial_backends
+
+        registered = serial_backends()
+        if not any(issubclass(cls, backend) for backend in registered):
+            return ()
+        return tuple(
+            cls if issubclass(cls, backend) else backend
+            for backend in registered
+            if issubclass(cls, backend) or backend.USB_IDS & cls.USB_IDS
+        )
+
+    @classmethod
+    def has_serial_number(cls, port: PortInfo) -> bool:
+        """Whether ``port`` has a USB serial number; without one, skip it or raise.
+
+        :raises DeviceMissingSerialNumberError: it has none and
+            :data:`SKIP_PORTS_WITHOUT_SERIAL` is false.
+        """
+        return cls._has_serial_number(port)
 
     @classmethod
     def _has_serial_number(cls, port: PortInfo) -> bool:
@@ -241,9 +297,11 @@ class SerialHardwareBackend(Backend[BoardT]):
         )
 
     @staticmethod
-    def _collect(
-        results: Mapping[str, Board | Exception], *, skip_failures: bool,
-    ) -> list[Board]:
+    def collect(results: dict[str, Board | Exception], *, skip_failures: bool) -> list[Board]:
+        """Return the boards among ``results`` (by port), sorted by serial number.
+
+        Failures are logged; the first is raised unless ``skip_failures``.
+        """
         boards = [item for item in results.values() if isinstance(item, Board)]
         failures = [(port, item) for port, item in results.items() if isinstance(item, Exception)]
         for port, failure in failures:
@@ -253,6 +311,26 @@ class SerialHardwareBackend(Backend[BoardT]):
         return sorted(boards, key=lambda board: board.serial_number)
 
     @classmethod
+    async def open_port(
+        cls,
+        port: str,
+        serial_number: str,
+        opener: StreamOpener | None = None,
+        time_scale: float = 1.0,
+    ) -> BoardT:
+        """Open ``port`` and run the handshake (no claim in the port registry).
+
+        :raises CommunicationError: the port could not be opened, or the handshake failed.
+        """
+        return await cls._open(port, serial_number, opener, time_scale)
+
+    @classmethod
+    async def _open_stream(cls, port: str, opener: StreamOpener | None) -> ByteStream:
+        if opener is None:
+            return await open_serial_stream(port, cls.BAUDRATE)
+        return await opener(port, cls.BAUDRATE)
+
+    @classmethod
     async def _open(
         cls,
         port: str,
@@ -260,10 +338,7 @@ class SerialHardwareBackend(Backend[BoardT]):
         opener: StreamOpener | None,
         time_scale: float,
     ) -> BoardT:
-        if opener is None:
-            stream: ByteStream = await open_serial_stream(port, cls.BAUDRATE)
-        else:
-            stream = await opener(port, cls.BAUDRATE)
+        stream = await cls._open_stream(port, opener)
         return await cls.from_stream(
             stream,
             port=port,

@@ -112,7 +112,8 @@ class USBHardwareBackend(Backend):
         """
         options = options or DiscoveryOptions()
         find = functools.partial(find_usb_devices, cls.VID, cls.PID, finder=options.usb_finder)
-        devices = await anyio.to_thread.run_sync(find)
+        found = await anyio.to_thread.run_sync(find)
+        devices = [device for device in found if cls.drives_device(device)]
         boards: list[Board] = []
         for device in devices:
             try:
@@ -131,6 +132,30 @@ class USBHardwareBackend(Backend):
                 continue
             boards.append(board)
         return sorted(boards, key=lambda board: board.serial_number)
+
+    #: Whether the board has exactly one USB interface. The SR power and servo boards'
+    #: serial firmwares (4.x) keep their control-transfer predecessors' IDs but are CDC
+    #: serial devices with more interfaces, driven through their serial ports instead.
+    SINGLE_INTERFACE: ClassVar[bool] = False
+
+    @classmethod
+    def drives_device(cls, device: USBDeviceLike) -> bool:
+        """Whether ``device``, found by this backend's vendor and product ID, is its board.
+
+        Every such device is, unless :attr:`SINGLE_INTERFACE` is set: then only a device
+        with one USB interface is (one whose configuration cannot be read is tried, and
+        its handshake decides). A backend may override this for other rules.
+        """
+        if not cls.SINGLE_INTERFACE:
+            return True
+        get_configuration = getattr(device, "get_active_configuration", None)
+        if get_configuration is None:
+            return True
+        try:
+            interfaces = int(get_configuration().bNumInterfaces)
+        except Exception:  # no permission, not configured: let the handshake tell
+            return True
+        return interfaces == 1
 
     @abstractmethod
     async def _handshake(self) -> None:

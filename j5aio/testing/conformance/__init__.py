@@ -45,6 +45,7 @@ from .flag import FlagInterfaceConformance, FlagSubject
 from .flashing_led import FlashingLEDInterfaceConformance, FlashingLEDSubject
 from .gpio_pin import GPIOPinInterfaceConformance, GPIOPinSubject, pin_modes
 from .led import LEDInterfaceConformance, LEDSubject
+from .monitored_motor import MonitoredMotorInterfaceConformance, MonitoredMotorSubject
 from .motor import MotorInterfaceConformance, MotorSubject
 from .piezo import PiezoInterfaceConformance, PiezoSubject
 from .power_output import PowerOutputInterfaceConformance, PowerOutputSubject
@@ -69,6 +70,8 @@ __all__ = [
     "InterfaceConformance",
     "LEDInterfaceConformance",
     "LEDSubject",
+    "MonitoredMotorInterfaceConformance",
+    "MonitoredMotorSubject",
     "MotorInterfaceConformance",
     "MotorSubject",
     "PiezoInterfaceConformance",

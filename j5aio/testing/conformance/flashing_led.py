@@ -5,9 +5,7 @@ from __future__ import annotations
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
 
-import anyio
-
-from j5aio.components.flashing_led import FlashingLEDInterface
+from j5aio.components.flashing_led import FlashingLEDInterface, LEDMode
 
 from .led import LEDInterfaceConformance, LEDSubject
 
@@ -18,12 +16,12 @@ __all__ = ["FlashingLEDInterfaceConformance", "FlashingLEDSubject"]
 class FlashingLEDSubject(LEDSubject):
     """A backend implementing :class:`FlashingLEDInterface`.
 
-    :param observe_changes: returns how many times LED ``identifier`` has changed
-        between lit and dark so far (from a simulator, say).
+    :param observe_mode: returns the mode LED ``identifier`` is really in (read from a
+        simulator, say).
     """
 
     backend: FlashingLEDInterface
-    observe_changes: Callable[[int], Awaitable[int]] | None = None
+    observe_mode: Callable[[int], Awaitable[LEDMode]] | None = None
 
 
 class FlashingLEDInterfaceConformance(LEDInterfaceConformance):
@@ -31,41 +29,47 @@ class FlashingLEDInterfaceConformance(LEDInterfaceConformance):
 
     Everything :class:`~.led.LEDInterfaceConformance` checks, and:
 
-    * an LED told to flash says it is flashing, and (when observed) really changes;
-    * setting its state stops the flashing;
-    * an identifier the board does not have is refused.
+    * the mode last set (off, on, flashing) is read back, for every LED;
+    * a flashing LED reads as lit, and setting a state stops the flashing;
+    * an identifier the board does not have is refused by the mode calls, sending nothing.
     """
 
-    async def test_flash_then_set(self, subject: FlashingLEDSubject) -> None:
-        """Flashing is reported (and seen) until the state is set."""
-        backend = subject.backend
+    async def _check_mode(
+        self, subject: FlashingLEDSubject, identifier: int, mode: LEDMode,
+    ) -> None:
+        got = await subject.backend.get_led_mode(identifier)
+        assert got is mode, f"LED {identifier} was set to {mode} but reads back {got!r}"
+        if subject.observe_mode is not None:
+            seen = await subject.observe_mode(identifier)
+            assert seen is mode, f"LED {identifier} was set to {mode} but the board shows {seen}"
+
+    async def test_mode_round_trips(self, subject: FlashingLEDSubject) -> None:
+        """Each mode set on each LED is read back."""
         with self.bounded():
             for identifier in subject.identifiers:
-                before = (
-                    await subject.observe_changes(identifier) if subject.observe_changes else 0
-                )
-                await backend.set_led_flashing(identifier, 0.04)
-                assert await backend.get_led_flashing(identifier) is True, (
-                    f"LED {identifier} was told to flash but does not say it is flashing"
-                )
-                if subject.observe_changes is not None:
-                    # The LED is flashed by the board (or a thread): poll what it shows.
-                    while await subject.observe_changes(identifier) < before + 2:  # noqa: ASYNC110
-                        await anyio.sleep(0.01)
-                await backend.set_led_state(identifier, False)
-                assert await backend.get_led_flashing(identifier) is False, (
-                    f"LED {identifier} still flashes after its state was set"
-                )
-                assert await backend.get_led_state(identifier) is False, (
-                    f"LED {identifier} was set off after flashing but reads lit"
-                )
+                for mode in (LEDMode.FLASH, LEDMode.ON, LEDMode.OFF, LEDMode.FLASH, LEDMode.OFF):
+                    await subject.backend.set_led_mode(identifier, mode)
+                    await self._check_mode(subject, identifier, mode)
 
-    async def test_out_of_range_identifier_raises_for_flashing(
+    async def test_state_and_mode_agree(self, subject: FlashingLEDSubject) -> None:
+        """A flashing LED reads as lit; setting a state stops the flashing."""
+        identifier = subject.identifiers[0]
+        backend = subject.backend
+        with self.bounded():
+            await backend.set_led_mode(identifier, LEDMode.FLASH)
+            assert await backend.get_led_state(identifier) is True
+            await backend.set_led_state(identifier, False)
+            await self._check_mode(subject, identifier, LEDMode.OFF)
+            await backend.set_led_mode(identifier, LEDMode.FLASH)
+            await backend.set_led_state(identifier, True)
+            await self._check_mode(subject, identifier, LEDMode.ON)
+
+    async def test_out_of_range_identifier_raises_for_modes(
         self, subject: FlashingLEDSubject,
     ) -> None:
-        """An LED the board does not have is refused by the flashing methods too."""
+        """An LED the board does not have is refused by the mode calls."""
         backend = subject.backend
-        await self.assert_refused(subject, backend.get_led_flashing, "get_led_flashing")
+        await self.assert_refused(subject, backend.get_led_mode, "get_led_mode")
         await self.assert_refused(
-            subject, lambda i: backend.set_led_flashing(i, 1.0), "set_led_flashing",
+            subject, lambda i: backend.set_led_mode(i, LEDMode.FLASH), "set_led_mode",
         )

@@ -144,7 +144,7 @@ class MotorInterfaceConformance(InterfaceConformance[MotorSubject]):
 
     async def test_every_identifier(self, subject: MotorSubject) -> None:
         """Every motor can be driven on its own; its siblings keep their state."""
-        baseline = 0.0
+        baseline = -0.25  # a plain power: no BRAKE needed, and no 0.0 a board may show as BRAKE
         with self.bounded():
             for identifier in subject.identifiers:
                 await subject.backend.set_motor_state(identifier, baseline)

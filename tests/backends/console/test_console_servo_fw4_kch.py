@@ -10,6 +10,7 @@ from j5aio.backends.console.sr.v4 import (
 from j5aio.boards.sb import SBServoBoard
 from j5aio.boards.sr.kch import Colour, KCHBoard
 from j5aio.boards.sr.v4 import ServoBoardFw4
+from j5aio.components.flashing_led import LEDMode
 from j5aio.components.rgb_led import RGBChannel
 
 from .console_script import Terminal
@@ -76,19 +77,19 @@ async def test_kch_prints_colours_and_the_start_led() -> None:
     await board.leds[2].set_red(0.2)
     assert await board.leds[2].get_red() == 1.0
     await board.start_led.flash()
-    assert await board.start_led.get_is_flashing()
-    assert not await board.start_led.get_state()
+    assert await board.start_led.get_mode() is LEDMode.FLASH
+    assert await board.start_led.get_state()  # a flashing LED reads as lit
     await board.make_safe()
-    assert not await board.start_led.get_is_flashing()
+    assert await board.start_led.get_mode() is LEDMode.OFF
     assert terminal.lines == [
         "KCHBoard(SERIAL): User LED A is now off.",
         "KCHBoard(SERIAL): User LED A is now green.",
         "KCHBoard(SERIAL): User LED A is now cyan.",
         "KCHBoard(SERIAL): User LED C is now red.",
-        "KCHBoard(SERIAL): Start LED flashing every 1 s.",
+        "KCHBoard(SERIAL): Start LED flashing.",
         "KCHBoard(SERIAL): Start LED off.",
     ]
     with pytest.raises(ValueError, match="invalid user LED identifier 3"):
         await KCHConsoleBackend("S").get_rgb_led_channel_duty_cycle(3, RGBChannel.RED)
     with pytest.raises(ValueError, match="invalid start LED identifier 1"):
-        await KCHConsoleBackend("S").get_led_flashing(1)
+        await KCHConsoleBackend("S").get_led_mode(1)

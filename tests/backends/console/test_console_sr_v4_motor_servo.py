@@ -25,8 +25,10 @@ async def test_motors_start_braked_and_print_every_change() -> None:
     await board.make_safe()
     assert terminal.lines == [
         "MotorBoard(SERIAL): Setting motor 0 to 0.5.",
+        "MotorBoard(SERIAL): Motor 0: forward at 50% duty.",
         "MotorBoard(SERIAL): Setting motor 1 to COAST.",
         "MotorBoard(SERIAL): Setting motor 1 to -1.0.",
+        "MotorBoard(SERIAL): Motor 1: reverse at 100% duty.",
         "MotorBoard(SERIAL): Setting motor 0 to BRAKE.",
         "MotorBoard(SERIAL): Setting motor 1 to BRAKE.",
     ]

@@ -38,11 +38,11 @@ async def probe(link: SerialLink) -> str:
     if first == b"# Booted":
         return "sb2019"
     try:
-        await SRArduinoHardwareBackend.identify(link, time_scale=SCALE, attempts=1)
+        await SRArduinoHardwareBackend.identify_firmware(link, time_scale=SCALE, attempts=1)
     except UnsupportedFirmwareError as error:
         return f"sr-fw{error.found}"
     except CommunicationError:
-        version = await SBArduino2024HardwareBackend.identify(
+        version = await SBArduino2024HardwareBackend.identify_firmware(
             link, time_scale=SCALE, attempts=2,
         )
         return f"sb{version}"
@@ -71,7 +71,7 @@ async def test_an_sb2019_board_whose_banner_was_missed_fails_both_cleanly() -> N
     await link.drain()  # the banner went by unread
     for backend in (SRArduinoHardwareBackend, SBArduino2024HardwareBackend):
         with pytest.raises(CommunicationError):
-            await backend.identify(link, time_scale=SCALE, attempts=2)
+            await backend.identify_firmware(link, time_scale=SCALE, attempts=2)
     await link.aclose()
 
 

@@ -12,6 +12,7 @@ from j5aio.backends.hardware.sr.kch import (
     read_hat,
 )
 from j5aio.boards.sr.kch import Colour, KCHBoard
+from j5aio.components.flashing_led import LEDMode
 from j5aio.components.rgb_led import RGBChannel
 from j5aio.errors import CommunicationError
 
@@ -51,16 +52,19 @@ async def test_user_leds_drive_their_pins() -> None:
     await board.close()
 
 
-async def test_start_led_flashes_in_the_background_until_set() -> None:
+async def test_start_led_flashes_in_the_background_until_set(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
     factory = MockFactory()
     board = await kch(factory)
-    await board.start_led.flash(0.04)
-    assert await board.start_led.get_is_flashing()
+    monkeypatch.setattr(KCHHardwareBackend, "FLASH_PERIOD", 0.04)
+    await board.start_led.flash()
+    assert await board.start_led.get_mode() is LEDMode.FLASH
     with anyio.fail_after(5):
         while len(factory.pin(START_PIN).states) < 5:  # noqa: ASYNC110 - a thread toggles it
             await anyio.sleep(0.01)
     await board.start_led.set_state(True)
-    assert not await board.start_led.get_is_flashing()
+    assert await board.start_led.get_mode() is LEDMode.ON
     assert factory.pin(START_PIN).state
     assert await board.start_led.get_state()
     await board.make_safe()
@@ -77,7 +81,7 @@ async def test_identifiers_are_checked() -> None:
     with pytest.raises(ValueError, match="start LED 0 to 0"):
         await backend.get_led_state(1)
     with pytest.raises(ValueError, match="start LED"):
-        await backend.set_led_flashing(True, 1.0)
+        await backend.set_led_mode(True, LEDMode.FLASH)
     await board.close()
 
 

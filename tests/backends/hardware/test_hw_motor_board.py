@@ -72,7 +72,7 @@ async def test_resync_byte_recovers_a_board_waiting_for_a_speed() -> None:
 
 @pytest.mark.parametrize(
     ("power", "byte"),
-    [(1.0, 0xFD), (0.65, 0xD1), (-1.0, 0x03), (0.0, 0x80), (0.5, 190)],
+    [(1.0, 0xE4), (0.65, 0xC1), (-1.0, 0x1C), (0.0, 0x80), (0.5, 178)],
 )
 async def test_set_power_sends_the_scaled_byte(power: float, byte: int) -> None:
     sim = SRMotorBoardFw3Simulator("SR0M")

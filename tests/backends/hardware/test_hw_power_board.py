@@ -202,3 +202,44 @@ async def test_make_safe_now_switches_every_output_off_synchronously() -> None:
     backend.close_now()
     assert backend.make_safe_now(0.5) is False
     await board.close()
+
+class _Configuration:
+    def __init__(self, interfaces: int) -> None:
+        self.bNumInterfaces = interfaces
+
+
+class _CdcPowerBoard:
+    """A firmware 4 power board as pyusb sees it: the fw 3 IDs, two (CDC) interfaces."""
+
+    idVendor = 0x1BDA  # noqa: N815 - pyusb's names
+    idProduct = 0x0010  # noqa: N815
+    serial_number = "SRFW4"
+
+    def get_active_configuration(self) -> _Configuration:
+        return _Configuration(2)
+
+    def ctrl_transfer(self, *args: Any, **kwargs: Any) -> Any:
+        raise AssertionError("a fw 4 board must not be sent fw 3 control transfers")
+
+
+class _Unreadable(_CdcPowerBoard):
+    def get_active_configuration(self) -> _Configuration:
+        raise usb.core.USBError("Access denied")
+
+
+async def test_discovery_leaves_a_firmware_4_board_to_its_serial_backend() -> None:
+    from j5aio.backends.hardware.options import DiscoveryOptions
+
+    fw3 = SRPowerBoardFw3Simulator("SRFW3")
+    fw4 = _CdcPowerBoard()
+    options = DiscoveryOptions(usb_finder=lambda **_: [fw4, fw3])
+    boards = await SRV4PowerBoardHardwareBackend.discover(options=options)
+    try:
+        assert [board.serial_number for board in boards] == ["SRFW3"]
+    finally:
+        for board in boards:
+            await board.close()
+    assert SRV4PowerBoardHardwareBackend.drives_device(fw3)
+    assert not SRV4PowerBoardHardwareBackend.drives_device(fw4)
+    assert SRV4PowerBoardHardwareBackend.drives_device(_Unreadable())
+    assert SRV4PowerBoardHardwareBackend.drives_device(object())  # type: ignore[arg-type]

@@ -89,7 +89,7 @@ async def test_a_silent_board_gives_up_after_the_bounded_attempts() -> None:
     stream = ScriptedStream([(b"*IDN?\n", b"")] * 3)
     link = SerialLink(stream, name="scripted", default_timeout=1)
     with pytest.raises(CommunicationTimeoutError, match="3 tries"):
-        await Backend.identify(link, time_scale=0.001, attempts=3)
+        await Backend.identify_firmware(link, time_scale=0.001, attempts=3)
     stream.assert_all_used()
 
 
@@ -98,7 +98,7 @@ async def test_identify_on_an_open_link() -> None:
     link = SerialLink(SimulatorStream(sim, time_scale=0), name="sim")
     # A single-character probe left in the line buffer earns a NACK first.
     assert sim.receive(b"v") == b""
-    assert await Backend.identify(link, time_scale=0.01, attempts=2) == "2.0"
+    assert await Backend.identify_firmware(link, time_scale=0.01, attempts=2) == "2.0"
     await link.aclose()
 
 

@@ -92,12 +92,12 @@ async def test_a_silent_board_gives_up_after_the_bounded_attempts() -> None:
     stream = ScriptedStream([(b"v", b"")] * 2)
     link = SerialLink(stream, name="scripted", default_timeout=1)
     with pytest.raises(CommunicationTimeoutError, match="2 tries"):
-        await Backend.identify(link, time_scale=0.001, attempts=2)
+        await Backend.identify_firmware(link, time_scale=0.001, attempts=2)
 
 
 async def test_identify_on_an_open_link() -> None:
     link = SerialLink(SimulatorStream(fw2(), time_scale=0), name="sim")
-    assert await Backend.identify(link, attempts=1) == "2"
+    assert await Backend.identify_firmware(link, attempts=1) == "2"
     await link.aclose()
 
 

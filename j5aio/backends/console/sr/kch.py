@@ -5,7 +5,7 @@ from __future__ import annotations
 from j5aio.backends.console.backend import ConsoleBackend
 from j5aio.backends.console.console import Console
 from j5aio.boards.sr.kch import KCHBoard
-from j5aio.components.flashing_led import FlashingLEDInterface
+from j5aio.components.flashing_led import FlashingLEDInterface, LEDMode
 from j5aio.components.rgb_led import RGBChannel, RGBLEDInterface
 
 __all__ = ["KCHConsoleBackend"]
@@ -56,7 +56,7 @@ class KCHConsoleBackend(RGBLEDInterface, FlashingLEDInterface, ConsoleBackend):
         await self._console.info(f"User LED {_NAMES[identifier]} is now {colour}.")
 
     async def get_led_state(self, identifier: int) -> bool:
-        """Return whether the start LED is on (a flashing LED counts as off)."""
+        """Return whether the start LED is lit (a flashing LED counts as lit)."""
         self._check_identifier("start LED", identifier, range(1))
         return self._start
 
@@ -67,14 +67,19 @@ class KCHConsoleBackend(RGBLEDInterface, FlashingLEDInterface, ConsoleBackend):
         self._flashing = False
         await self._console.info(f"Start LED {'on' if state else 'off'}.")
 
-    async def get_led_flashing(self, identifier: int) -> bool:
-        """Return whether the start LED is flashing."""
+    async def get_led_mode(self, identifier: int) -> LEDMode:
+        """Return whether the start LED is off, on or flashing."""
         self._check_identifier("start LED", identifier, range(1))
-        return self._flashing
+        if self._flashing:
+            return LEDMode.FLASH
+        return LEDMode.ON if self._start else LEDMode.OFF
 
-    async def set_led_flashing(self, identifier: int, period: float) -> None:
-        """Print that the start LED flashes."""
+    async def set_led_mode(self, identifier: int, mode: LEDMode) -> None:
+        """Print the start LED's new mode."""
         self._check_identifier("start LED", identifier, range(1))
-        self._start = False
+        if mode is not LEDMode.FLASH:
+            await self.set_led_state(identifier, mode is LEDMode.ON)
+            return
+        self._start = True
         self._flashing = True
-        await self._console.info(f"Start LED flashing every {period:g} s.")
+        await self._console.info("Start LED flashing.")

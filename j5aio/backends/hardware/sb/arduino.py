@@ -42,6 +42,9 @@ class SBArduinoHardwareBackend(ServoInterface, UltrasoundInterface, ArduinoHardw
     ANALOGUE_CHANNELS: ClassVar[int] = codec.ANALOGUE_CHANNELS
     #: The longest wait for ``# Booted`` and the version line (j5 allowed about 33 s).
     BOOT_TIMEOUT: ClassVar[float] = 33.0
+    #: Identification waits about 3.3 s for the banner: an Uno's bootloader hands over
+    #: within 2 s, and a Ruggeduino (which prints nothing) is not kept waiting 33 s.
+    IDENTIFY_TIME_SCALE: ClassVar[float] = 0.1
     #: The longest wait for an ultrasound reading (the firmware's ``pulseIn`` can take
     #: over a second with no echo).
     ULTRASOUND_TIMEOUT: ClassVar[float] = 3.0

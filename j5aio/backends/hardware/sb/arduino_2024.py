@@ -37,7 +37,7 @@ class SBArduino2024HardwareBackend(ArduinoGPIOBackend):
     CODEC: ClassVar[PinCodec] = codec
 
     @classmethod
-    async def identify(
+    async def identify_firmware(
         cls, link: SerialLink, *, time_scale: float = 1.0, attempts: int | None = None,
     ) -> str:
         """Send ``*IDN?`` until the board answers; return its version (``2.0``).

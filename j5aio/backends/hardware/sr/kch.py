@@ -29,9 +29,10 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Final
 
 from j5aio.backends.backend import Backend
+from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.boards.board import Board
 from j5aio.boards.sr.kch import KCHBoard
-from j5aio.components.flashing_led import FlashingLEDInterface
+from j5aio.components.flashing_led import FlashingLEDInterface, LEDMode
 from j5aio.components.rgb_led import RGBChannel, RGBLEDInterface
 from j5aio.errors import CommunicationError
 
@@ -90,6 +91,8 @@ class KCHHardwareBackend(RGBLEDInterface, FlashingLEDInterface, Backend):
 
     #: The directory discovery reads the HAT EEPROM from.
     hat_directory: ClassVar[Path] = HAT_DIRECTORY
+    #: Seconds for one on-and-off cycle of the flashing start LED.
+    FLASH_PERIOD: ClassVar[float] = 1.0
 
     def __init__(self, pin_factory: Any = None) -> None:
         from gpiozero import DigitalOutputDevice, GPIOZeroError, PinFactoryFallback
@@ -142,8 +145,12 @@ class KCHHardwareBackend(RGBLEDInterface, FlashingLEDInterface, Backend):
         return cls.from_pin_factory(None, hat.asset_code or "KCH")
 
     @classmethod
-    async def discover(cls) -> Sequence[Board]:
-        """Return the KCH of this Raspberry Pi, or nothing where there is none."""
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Return the KCH of this Raspberry Pi, or nothing where there is none.
+
+        :param options: ignored (the KCH is not found on a serial port or USB); accepted
+            so that listing can pass the same options to every backend.
+        """
         if not _is_kch(read_hat(cls.hat_directory)):
             _log.info("No KCH: %s does not show a Student Robotics HAT.", cls.hat_directory)
             return []
@@ -178,9 +185,9 @@ class KCHHardwareBackend(RGBLEDInterface, FlashingLEDInterface, Backend):
         self._channel(identifier, channel).value = duty_cycle > 0
 
     async def get_led_state(self, identifier: int) -> bool:
-        """Return whether the start LED is lit at this moment."""
+        """Return whether the start LED is lit; a flashing LED counts as lit."""
         self._check("start LED", identifier, 1)
-        return bool(self._start.value)
+        return self._flashing or bool(self._start.value)
 
     async def set_led_state(self, identifier: int, state: bool) -> None:
         """Light or darken the start LED, stopping any flashing."""
@@ -188,16 +195,26 @@ class KCHHardwareBackend(RGBLEDInterface, FlashingLEDInterface, Backend):
         self._start.value = state
         self._flashing = False
 
-    async def get_led_flashing(self, identifier: int) -> bool:
-        """Return whether the start LED is flashing."""
+    async def get_led_mode(self, identifier: int) -> LEDMode:
+        """Return whether the start LED is off, lit, or flashing."""
         self._check("start LED", identifier, 1)
-        return self._flashing
+        if self._flashing:
+            return LEDMode.FLASH
+        return LEDMode.ON if self._start.value else LEDMode.OFF
 
-    async def set_led_flashing(self, identifier: int, period: float) -> None:
-        """Flash the start LED in the background (gpiozero's ``blink``)."""
+    async def set_led_mode(self, identifier: int, mode: LEDMode) -> None:
+        """Light, darken, or flash the start LED.
+
+        It flashes in the background (gpiozero's ``blink``), once every
+        :attr:`FLASH_PERIOD` seconds.
+        """
         self._check("start LED", identifier, 1)
-        self._start.blink(on_time=period / 2, off_time=period / 2, background=True)
-        self._flashing = True
+        if mode is LEDMode.FLASH:
+            half = self.FLASH_PERIOD / 2
+            self._start.blink(on_time=half, off_time=half, background=True)
+            self._flashing = True
+        else:
+            await self.set_led_state(identifier, mode is LEDMode.ON)
 
     # -- closing ------------------------------------------------------------------------
 

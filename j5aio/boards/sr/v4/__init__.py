@@ -2,14 +2,26 @@
 
 from j5aio.boards.sr.v4.arduino import SRArduinoBoard
 from j5aio.boards.sr.v4.motor_board import MotorBoard
+from j5aio.boards.sr.v4.motor_board_fw4 import MotorBoardFw4
 from j5aio.boards.sr.v4.power_board import PowerBoard, PowerOutputGroup, PowerOutputPosition
+from j5aio.boards.sr.v4.power_board_fw4 import (
+    BoardResetInterface,
+    PowerBoardFw4,
+    PowerBoardOutput,
+    PowerBoardOutputGroup,
+)
 from j5aio.boards.sr.v4.ruggeduino import Ruggeduino
 from j5aio.boards.sr.v4.servo_board import ServoBoard
 from j5aio.boards.sr.v4.servo_board_fw4 import ServoBoardFw4
 
 __all__ = [
+    "BoardResetInterface",
     "MotorBoard",
+    "MotorBoardFw4",
     "PowerBoard",
+    "PowerBoardFw4",
+    "PowerBoardOutput",
+    "PowerBoardOutputGroup",
     "PowerOutputGroup",
     "PowerOutputPosition",
     "Ruggeduino",

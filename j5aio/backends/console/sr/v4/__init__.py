@@ -2,7 +2,9 @@
 
 from j5aio.backends.console.sr.v4.arduino import SRArduinoConsoleBackend
 from j5aio.backends.console.sr.v4.motor_board import SRV4MotorBoardConsoleBackend
+from j5aio.backends.console.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4ConsoleBackend
 from j5aio.backends.console.sr.v4.power_board import SRV4PowerBoardConsoleBackend
+from j5aio.backends.console.sr.v4.power_board_fw4 import SRV4PowerBoardFw4ConsoleBackend
 from j5aio.backends.console.sr.v4.ruggeduino import SRV4RuggeduinoConsoleBackend
 from j5aio.backends.console.sr.v4.servo_board import SRV4ServoBoardConsoleBackend
 from j5aio.backends.console.sr.v4.servo_board_fw4 import (
@@ -14,7 +16,9 @@ __all__ = [
     "SBServoBoardConsoleBackend",
     "SRArduinoConsoleBackend",
     "SRV4MotorBoardConsoleBackend",
+    "SRV4MotorBoardFw4ConsoleBackend",
     "SRV4PowerBoardConsoleBackend",
+    "SRV4PowerBoardFw4ConsoleBackend",
     "SRV4RuggeduinoConsoleBackend",
     "SRV4ServoBoardConsoleBackend",
     "SRV4ServoBoardFw4ConsoleBackend",

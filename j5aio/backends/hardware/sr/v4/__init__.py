@@ -1,8 +1,14 @@
 """Hardware backends for the Student Robotics v4 kit."""
 
 from j5aio.backends.hardware.sr.v4.arduino import SRArduinoHardwareBackend
-from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.motor_board import (
+    SRV4MotorBoardHardwareBackend,
+    SRV4MotorBoardJ5ScaleHardwareBackend,
+)
+from j5aio.backends.hardware.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4HardwareBackend
+from j5aio.backends.hardware.sr.v4.motor_identify import MotorBoardIdentity, identify_motor_board
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.power_board_fw4 import SRV4PowerBoardFw4HardwareBackend
 from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board_fw4 import (
@@ -13,11 +19,16 @@ from j5aio.backends.hardware.sr.v4.servo_board_fw4 import (
 
 __all__ = [
     "SERVO_FW4_BACKENDS",
+    "MotorBoardIdentity",
     "SBServoBoardHardwareBackend",
     "SRArduinoHardwareBackend",
+    "SRV4MotorBoardFw4HardwareBackend",
     "SRV4MotorBoardHardwareBackend",
+    "SRV4MotorBoardJ5ScaleHardwareBackend",
+    "SRV4PowerBoardFw4HardwareBackend",
     "SRV4PowerBoardHardwareBackend",
     "SRV4RuggeduinoHardwareBackend",
     "SRV4ServoBoardFw4HardwareBackend",
     "SRV4ServoBoardHardwareBackend",
+    "identify_motor_board",
 ]

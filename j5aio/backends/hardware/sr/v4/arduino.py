@@ -46,7 +46,7 @@ class SRArduinoHardwareBackend(StringCommandComponentInterface, ArduinoGPIOBacke
         return self._version is not None and self._version.is_official
 
     @classmethod
-    async def identify(
+    async def identify_firmware(
         cls, link: SerialLink, *, time_scale: float = 1.0, attempts: int | None = None,
     ) -> str:
         """Send ``v`` until the board answers a version line; return the version (``2``).

@@ -4,6 +4,11 @@ Handshake: ``00 01`` (a resync byte, which the firmware ignores when idle and wh
 swallows a half-sent speed command, then the version query), answered ``MCV4B:3\n``;
 then both motors are braked: ``02 02 03 02``. The board cannot be read back, so the
 motor states are the ones last sent.
+
+A power ``p`` is sent as ``round(p x 100) + 128``, so the board drives a duty of ``|p|``.
+A robot tuned against j5, which sent ``round(p x 125) + 128`` (full speed from 0.8), can
+opt in to j5's bytes with :class:`SRV4MotorBoardJ5ScaleHardwareBackend`, or by setting
+:attr:`SRV4MotorBoardHardwareBackend.SPEED_SCALE` to ``J5_SCALE`` on a subclass.
 """
 
 from __future__ import annotations
@@ -18,7 +23,7 @@ from j5aio.boards.sr.v4.motor_board import MotorBoard
 from j5aio.components.motor import MotorInterface, MotorSpecialState, MotorState
 from j5aio.errors import UnsupportedFirmwareError
 
-__all__ = ["SRV4MotorBoardHardwareBackend"]
+__all__ = ["SRV4MotorBoardHardwareBackend", "SRV4MotorBoardJ5ScaleHardwareBackend"]
 
 _VERSION_LINE = read_line(max_length=64)
 
@@ -33,6 +38,9 @@ class SRV4MotorBoardHardwareBackend(MotorInterface, SerialHardwareBackend):
     USB_IDS: ClassVar[frozenset[tuple[int, int]]] = frozenset({(0x0403, 0x6001)})
     USB_MANUFACTURER: ClassVar[str | None] = "Student Robotics"
     USB_PRODUCT: ClassVar[str | None] = "MCV4B"
+    #: Speed steps per unit of power: ``LINEAR_SCALE`` (duty = power, the default) or
+    #: ``J5_SCALE`` (j5's bytes, full duty from power 0.8).
+    SPEED_SCALE: ClassVar[int] = codec.LINEAR_SCALE
 
     def __init__(self, link: SerialLink, *, port: str) -> None:
         super().__init__(link, port=port)
@@ -57,9 +65,9 @@ class SRV4MotorBoardHardwareBackend(MotorInterface, SerialHardwareBackend):
         return self._states[identifier]
 
     async def set_motor_state(self, identifier: int, power: MotorState) -> None:
-        """Set a motor to a power in [-1, 1] (``round(p x 125) + 128``), BRAKE or COAST."""
+        """Set a motor to a power in [-1, 1] (``round(p x SPEED_SCALE) + 128``), BRAKE or COAST."""
         self._check_motor(identifier)
-        await self._send(codec.encode_motor_command(identifier, power))
+        await self._send(codec.encode_motor_command(identifier, power, scale=self.SPEED_SCALE))
         self._states[identifier] = power
 
     def make_safe_now(self, timeout: float) -> bool:
@@ -77,3 +85,14 @@ class SRV4MotorBoardHardwareBackend(MotorInterface, SerialHardwareBackend):
         self._link.send_now(bytes((codec.CMD_RESYNC,)) + commands, timeout=timeout)
         self._states = [brake] * codec.MOTOR_COUNT
         return True
+
+
+class SRV4MotorBoardJ5ScaleHardwareBackend(SRV4MotorBoardHardwareBackend):
+    """Drives a firmware 3 Motor Board with j5's bytes, ``round(p x 125) + 128``.
+
+    For a robot tuned against j5: the duty is ``1.25 x |p|``, full from ``|p| = 0.8``.
+    Choose it with ``BoardGroup.get_board_group(MotorBoard,
+    SRV4MotorBoardJ5ScaleHardwareBackend)``, or register it in an environment.
+    """
+
+    SPEED_SCALE: ClassVar[int] = codec.J5_SCALE

@@ -6,6 +6,11 @@ two bytes, ``[0x02 + motor, speed]``, where the speed byte ``b`` means ``b - 128
 and ``0`` is ignored. A lone ``0x00`` is ignored when the board is idle and swallowed as
 a discarded speed when it is waiting for one, so it resynchronises the board's parser.
 
+A power ``p`` is sent as ``round(p x 100) + 128`` (:data:`LINEAR_SCALE`), so the duty
+the board drives is ``|p|``, in steps of 1 %. j5 sent ``round(p x 125) + 128``
+(:data:`J5_SCALE`), which saturates from ``|p| = 0.8``; the functions take ``scale`` to
+send j5's bytes for a robot tuned against j5.
+
 This module does no I/O: the hardware backend and the motor board simulator both use it.
 """
 
@@ -22,6 +27,8 @@ __all__ = [
     "CMD_MOTOR",
     "CMD_RESYNC",
     "CMD_VERSION",
+    "J5_SCALE",
+    "LINEAR_SCALE",
     "MODEL",
     "MOTOR_COUNT",
     "RESYNC_AND_VERSION_QUERY",
@@ -61,15 +68,28 @@ MOTOR_COUNT: Final = 2
 #: What the host sends to ask for the version, resynchronising the parser first.
 RESYNC_AND_VERSION_QUERY: Final = bytes((CMD_RESYNC, CMD_VERSION))
 
-_SCALE = 125
+#: Speed steps per unit of power that make the duty equal the power (1.0 → 100 %).
+LINEAR_SCALE: Final = 100
+#: j5's speed steps per unit of power: byte-compatible with j5, saturating from 0.8.
+J5_SCALE: Final = 125
 _OFFSET = 128
 
 
-def encode_speed(state: MotorState) -> int:
+def _check_scale(scale: int) -> int:
+    if scale not in (LINEAR_SCALE, J5_SCALE):
+        raise ValueError(
+            f"the speed scale must be LINEAR_SCALE ({LINEAR_SCALE}) or J5_SCALE ({J5_SCALE}), "
+            f"not {scale!r}",
+        )
+    return scale
+
+
+def encode_speed(state: MotorState, *, scale: int = LINEAR_SCALE) -> int:
     """Return the speed byte for ``state``.
 
-    A power ``p`` becomes ``round(p x 125) + 128`` (Python's round, half to even, as j5),
-    so 1.0 → 253, 0.0 → 128, -1.0 → 3.
+    A power ``p`` becomes ``round(p x scale) + 128`` (Python's round, half to even, as
+    j5): with the default linear scale 1.0 → 228, 0.0 → 128, -1.0 → 28, the duty
+    being ``|p|``; with :data:`J5_SCALE` 1.0 → 253 and -1.0 → 3, as j5 sent.
 
     :raises ValueError: a power outside [-1, 1].
     :raises TypeError: ``state`` is neither a number nor a :class:`MotorSpecialState`.
@@ -84,13 +104,13 @@ def encode_speed(state: MotorState) -> int:
         )
     if not -1 <= state <= 1:
         raise ValueError(f"a motor power must be between -1 and 1, not {state}")
-    return round(state * _SCALE) + _OFFSET
+    return round(state * _check_scale(scale)) + _OFFSET
 
 
-def decode_speed(speed: int) -> MotorState | None:
+def decode_speed(speed: int, *, scale: int = LINEAR_SCALE) -> MotorState | None:
     """Return the state a speed byte asks for, or ``None`` for the ignored byte 0.
 
-    Drive bytes decode to ``(speed - 128) / 125``, the inverse of :func:`encode_speed`.
+    Drive bytes decode to ``(speed - 128) / scale``, the inverse of :func:`encode_speed`.
 
     :raises ValueError: ``speed`` is not a byte.
     """
@@ -102,17 +122,18 @@ def decode_speed(speed: int) -> MotorState | None:
         return MotorSpecialState.COAST
     if speed == SPEED_BRAKE:
         return MotorSpecialState.BRAKE
-    return (speed - _OFFSET) / _SCALE
+    return (speed - _OFFSET) / _check_scale(scale)
 
 
-def encode_motor_command(motor: int, state: MotorState) -> bytes:
+def encode_motor_command(motor: int, state: MotorState, *, scale: int = LINEAR_SCALE) -> bytes:
     """Return the two bytes that set ``motor`` (0 or 1) to ``state``.
 
+    :param scale: :data:`LINEAR_SCALE` (duty = power) or :data:`J5_SCALE` (j5's bytes).
     :raises ValueError: no such motor, or a power outside [-1, 1].
     """
     if motor not in range(MOTOR_COUNT):
         raise ValueError(f"the motor board has motors 0 and 1, not {motor!r}")
-    return bytes((CMD_MOTOR[motor], encode_speed(state)))
+    return bytes((CMD_MOTOR[motor], encode_speed(state, scale=scale)))
 
 
 def encode_version_reply(version: str = "3") -> bytes:

@@ -45,6 +45,9 @@ class SRV4PowerBoardHardwareBackend(
     VID: ClassVar[int] = codec.VID
     PID: ClassVar[int] = codec.PID
 
+    # Firmware 4 (same IDs) is a CDC serial device, found through its serial port.
+    SINGLE_INTERFACE: ClassVar[bool] = True
+
     #: How often :meth:`wait_until_button_pressed` reads the button, in seconds.
     BUTTON_POLL_INTERVAL: ClassVar[float] = 0.05
 

@@ -37,6 +37,8 @@ class SRV4RuggeduinoHardwareBackend(StringCommandComponentInterface, ArduinoHard
 
     #: How many times ``v`` is sent before the board is declared silent.
     VERSION_ATTEMPTS: ClassVar[int] = 26
+    #: Identification asks for the version for about 5 s rather than 33 s.
+    IDENTIFY_TIME_SCALE: ClassVar[float] = 0.15
 
     def __init__(self, link: SerialLink, *, port: str) -> None:
         super().__init__(link, port=port)

@@ -33,6 +33,8 @@ class SRV4ServoBoardHardwareBackend(ServoInterface, USBHardwareBackend):
     """Drives an SR v4 Servo Board running firmware 2."""
 
     board = ServoBoard
+    # Firmware 4.x (same IDs) is a CDC serial device, found through its serial port.
+    SINGLE_INTERFACE: ClassVar[bool] = True
     VID: ClassVar[int] = codec.VID
     PID: ClassVar[int] = codec.PID
 

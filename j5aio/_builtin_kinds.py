@@ -1,0 +1,283 @@
+"""j5aio's own board kinds and named kits, as :mod:`j5aio.board_kinds` registers them.
+
+A new board of j5aio's is added here with one :class:`~j5aio.board_kinds.BoardKind`
+entry in :func:`entries` (and a new kit with one :class:`~j5aio.board_kinds.KitDefinition`).
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+from j5aio.backends.console.sb.arduino import SBArduinoConsoleBackend
+from j5aio.backends.console.sb.arduino_2024 import SBArduino2024ConsoleBackend
+from j5aio.backends.console.sr.kch import KCHConsoleBackend
+from j5aio.backends.console.sr.v4 import (
+    SBServoBoardConsoleBackend,
+    SRArduinoConsoleBackend,
+    SRV4MotorBoardConsoleBackend,
+    SRV4MotorBoardFw4ConsoleBackend,
+    SRV4PowerBoardConsoleBackend,
+    SRV4PowerBoardFw4ConsoleBackend,
+    SRV4RuggeduinoConsoleBackend,
+    SRV4ServoBoardConsoleBackend,
+    SRV4ServoBoardFw4ConsoleBackend,
+)
+from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
+from j5aio.backends.hardware.sb.arduino_2024 import SBArduino2024HardwareBackend
+from j5aio.backends.hardware.sr.kch import KCHHardwareBackend
+from j5aio.backends.hardware.sr.v4.arduino import SRArduinoHardwareBackend
+from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4HardwareBackend
+from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.power_board_fw4 import SRV4PowerBoardFw4HardwareBackend
+from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
+from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.servo_board_fw4 import (
+    SBServoBoardHardwareBackend,
+    SRV4ServoBoardFw4HardwareBackend,
+)
+from j5aio.board_kinds import DEFAULT_KIT, BoardKind, KitDefinition, SimulatorEntry
+from j5aio.boards.sb import SBArduino2024Board, SBArduinoBoard, SBServoBoard
+from j5aio.boards.sr.kch import KCHBoard
+from j5aio.boards.sr.v4 import (
+    MotorBoard,
+    MotorBoardFw4,
+    PowerBoard,
+    PowerBoardFw4,
+    Ruggeduino,
+    ServoBoard,
+    ServoBoardFw4,
+    SRArduinoBoard,
+)
+from j5aio.simulator.kch import KCHSimulatedBackend, KCHSimulator
+from j5aio.simulator.sb_arduino_2019 import SBArduinoSimulator
+from j5aio.simulator.sb_arduino_2024 import SBArduino2024Simulator
+from j5aio.simulator.sr_motor_fw3 import SRMotorBoardFw3Simulator
+from j5aio.simulator.sr_motor_fw4 import SRMotorBoardFw4Simulator
+from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
+from j5aio.simulator.sr_power_fw4 import SRPowerBoardFw4Simulator
+from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
+from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator
+from j5aio.simulator.sr_servo_fw4 import SBServoBoardFw4Simulator, SRServoBoardFw4Simulator
+
+__all__ = ["entries"]
+
+
+def entries() -> list[BoardKind | KitDefinition]:
+    """j5aio's board kinds, in the order discovery and listing try them, then its kits.
+
+    The SourceBots Arduino comes before the Ruggeduino: both use the same USB IDs, and
+    the SourceBots firmware announces itself when the port opens, while the Ruggeduino
+    has to be asked. Of today's boards, those that share USB IDs with an older
+    generation (power 1BDA:0010, servo 1BDA:0011 as CDC serial; the motor board's FTDI
+    adapter; the Arduinos) are told apart by what they answer.
+    """
+    return [
+        BoardKind(
+            name="sr-v4-power-fw3",
+            board=PowerBoard,
+            description="SR v4 power board, firmware 3 (USB)",
+            hardware=SRV4PowerBoardHardwareBackend,
+            console=SRV4PowerBoardConsoleBackend,
+            simulators=(
+                SimulatorEntry(
+                    "sr-power", SRPowerBoardFw3Simulator,
+                    "SR v4 power board, firmware 3 (USB control transfers)", "SIMPB",
+                ),
+            ),
+        ),
+        BoardKind(
+            name="sr-v4-motor-fw3",
+            board=MotorBoard,
+            description="SR v4 motor board, firmware 3 (serial, 1 Mbaud)",
+            hardware=SRV4MotorBoardHardwareBackend,
+            console=SRV4MotorBoardConsoleBackend,
+            simulators=(
+                SimulatorEntry(
+                    "sr-motor", SRMotorBoardFw3Simulator,
+                    "SR v4 motor board, firmware 3 (1 Mbaud)", "SIMMB",
+                ),
+            ),
+            # Its probe (a resync byte and a version query at 1 Mbaud) is quick, and
+            # nothing sent at 115200 baud can reach it as a motor command first.
+            identify_order=10,
+        ),
+        BoardKind(
+            name="sr-v4-servo-fw2",
+            board=ServoBoard,
+            description="SR v4 servo board, firmware 2 (USB)",
+            hardware=SRV4ServoBoardHardwareBackend,
+            console=SRV4ServoBoardConsoleBackend,
+            simulators=(
+                SimulatorEntry(
+                    "sr-servo", SRServoBoardFw2Simulator,
+                    "SR v4 servo board, firmware 2 (USB control transfers)", "SIMSB",
+                ),
+            ),
+        ),
+        BoardKind(
+            name="sb-arduino-2019",
+            board=SBArduinoBoard,
+            description="SourceBots Arduino, 2019 firmware (serial, 115200 baud)",
+            hardware=SBArduinoHardwareBackend,
+            console=SBArduinoConsoleBackend,
+            simulators=(
+                SimulatorEntry(
+                    "sb-arduino", SBArduinoSimulator,
+                    "SourceBots Arduino, 2019 firmware (115200 baud)", "SIMSBA",
+                ),
+            ),
+            identify_order=50,
+        ),
+        BoardKind(
+            name="sr-ruggeduino-fw1",
+            board=Ruggeduino,
+            description="SR Ruggeduino, firmware 1 (serial, 115200 baud)",
+            hardware=SRV4RuggeduinoHardwareBackend,
+            console=SRV4RuggeduinoConsoleBackend,
+            simulators=(
+                SimulatorEntry(
+                    "sr-ruggeduino", SRRuggeduinoSimulator,
+                    "SR Ruggeduino, firmware 1 (115200 baud)", "SIMRD",
+                ),
+            ),
+            identify_order=60,
+        ),
+        BoardKind(
+            name="sr-v4-power-fw4",
+            board=PowerBoardFw4,
+            description="SR v4 power board, firmware 4.4 (CDC serial)",
+            hardware=SRV4PowerBoardFw4HardwareBackend,
+            console=SRV4PowerBoardFw4ConsoleBackend,
+            simulators=(
+                SimulatorEntry(
+                    "sr-power-fw4", SRPowerBoardFw4Simulator,
+                    "SR v4 power board, firmware 4.4 (CDC serial)", "SIMPB",
+                ),
+            ),
+            identify_order=20,
+        ),
+        BoardKind(
+            name="sr-v4-motor-fw4",
+            board=MotorBoardFw4,
+            description="SR v4 motor board, firmware 4.4 / 4.5 (serial, 115200 baud)",
+            hardware=SRV4MotorBoardFw4HardwareBackend,
+            console=SRV4MotorBoardFw4ConsoleBackend,
+            simulators=(
+                SimulatorEntry(
+                    "sr-motor-fw4", SRMotorBoardFw4Simulator,
+                    "SR v4 motor board, firmware 4.4 (115200 baud)", "SIMMB",
+                ),
+                SimulatorEntry(
+                    "sb-motor-fw4", partial(SRMotorBoardFw4Simulator, version="4.5.0"),
+                    "SR v4 motor board, SourceBots firmware 4.5 (115200 baud)", "SIMMB",
+                ),
+            ),
+            # Its probe (a NUL, then *IDN? at 115200 baud) is harmless to a firmware 3
+            # board, which takes the NUL as a resync and ignores the rest.
+            identify_order=12,
+        ),
+        BoardKind(
+            name="sr-v4-servo-fw4",
+            board=ServoBoardFw4,
+            description="SR v4 servo board, firmware 4.3 (CDC serial, 12 servos)",
+            hardware=SRV4ServoBoardFw4HardwareBackend,
+            console=SRV4ServoBoardFw4ConsoleBackend,
+            simulators=(
+                SimulatorEntry(
+                    "sr-servo-fw4", SRServoBoardFw4Simulator,
+                    "SR v4 servo board, firmware 4.3 (CDC serial, 12 servos)", "SIMSB",
+                ),
+            ),
+            identify_order=30,
+        ),
+        BoardKind(
+            name="sb-servo-fw4",
+            board=SBServoBoard,
+            description="SR v4 servo board, SourceBots firmware 4.4 (CDC serial, 8 servos)",
+            hardware=SBServoBoardHardwareBackend,
+            console=SBServoBoardConsoleBackend,
+            simulators=(
+                SimulatorEntry(
+                    "sb-servo-fw4", SBServoBoardFw4Simulator,
+                    "SR v4 servo board, SourceBots firmware 4.4 (8 servos)", "SIMSB",
+                ),
+            ),
+            identify_order=31,
+        ),
+        BoardKind(
+            name="sr-arduino-fw2",
+            board=SRArduinoBoard,
+            description="SR Arduino, firmware 2 (serial, 115200 baud)",
+            hardware=SRArduinoHardwareBackend,
+            console=SRArduinoConsoleBackend,
+            simulators=(
+                SimulatorEntry(
+                    "sr-arduino-fw2", partial(SRRuggeduinoSimulator, firmware_version=2),
+                    "SR Arduino, firmware 2 (115200 baud)", "SIMSRA",
+                ),
+            ),
+            identify_order=55,
+        ),
+        BoardKind(
+            name="sb-arduino-2024",
+            board=SBArduino2024Board,
+            description="SourceBots Arduino, sb2024 firmware 2.0 (serial, 115200 baud)",
+            hardware=SBArduino2024HardwareBackend,
+            console=SBArduino2024ConsoleBackend,
+            simulators=(
+                SimulatorEntry(
+                    "sb-arduino-2024", SBArduino2024Simulator,
+                    "SourceBots Arduino, sb2024 firmware 2.0 (115200 baud)", "SIMSBA",
+                ),
+            ),
+            identify_order=70,
+        ),
+        BoardKind(
+            name="sr-kch",
+            board=KCHBoard,
+            description="SR KCH, the Raspberry Pi HAT (GPIO: user and start LEDs)",
+            hardware=KCHHardwareBackend,
+            console=KCHConsoleBackend,
+            simulators=(
+                SimulatorEntry(
+                    "kch", lambda serial: KCHSimulator(serial_number=serial),
+                    "SR KCH (mock GPIO pins)", "SIMKCH",
+                ),
+            ),
+            simulated=KCHSimulatedBackend,
+        ),
+        KitDefinition(
+            DEFAULT_KIT,
+            "one power board, two motor boards, one servo board and a SourceBots Arduino",
+            {"sr-power": 1, "sr-motor": 2, "sr-servo": 1, "sb-arduino": 1},
+        ),
+        KitDefinition(
+            "sr2019",
+            "Student Robotics' kit of 2019 to 2022: SR v4 power (fw 3), motor (fw 3) and "
+            "servo (fw 2) boards and a Ruggeduino (fw 1)",
+            {"sr-power": 1, "sr-motor": 1, "sr-servo": 1, "sr-ruggeduino": 1},
+        ),
+        KitDefinition(
+            "sb2019",
+            "SourceBots' kit of 2019 to 2023: SR v4 power (fw 3), motor (fw 3) and servo "
+            "(fw 2) boards and a SourceBots Arduino (2019 firmware)",
+            {"sr-power": 1, "sr-motor": 1, "sr-servo": 1, "sb-arduino": 1},
+        ),
+        KitDefinition(
+            "sr2023",
+            "Student Robotics' kit from 2023: SR v4 power (fw 4.4), motor (fw 4.4) and servo "
+            "(fw 4.3) boards, an SR Arduino (fw 2) and the KCH on the Raspberry Pi",
+            {
+                "sr-power-fw4": 1, "sr-motor-fw4": 1, "sr-servo-fw4": 1,
+                "sr-arduino-fw2": 1, "kch": 1,
+            },
+        ),
+        KitDefinition(
+            "sb2024",
+            "SourceBots' kit from 2024: SR v4 power (fw 4.4), motor (SourceBots fw 4.5) "
+            "and servo (SourceBots fw 4.4, 8 servos) boards and a SourceBots Arduino "
+            "(sb2024 firmware)",
+            {"sr-power-fw4": 1, "sb-motor-fw4": 1, "sb-servo-fw4": 1, "sb-arduino-2024": 1},
+        ),
+    ]

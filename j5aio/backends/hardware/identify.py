@@ -1,0 +1,191 @@
+"""Telling which board answers on a serial port: :func:`attach`, and discovery that asks once.
+
+Every registered board kind (:mod:`j5aio.board_kinds`) whose hardware backend is a
+:class:`~j5aio.backends.hardware.serial_backend.SerialHardwareBackend` can be identified:
+its :meth:`~j5aio.backends.hardware.serial_backend.SerialHardwareBackend.identify` runs
+its handshake over a freshly opened port (at its own baud rate) and says whether the
+board is one of its kind. The kinds are tried in their ``identify_order``; a port listed
+with a USB vendor and product ID is tried only with the kinds that use that ID.
+
+:func:`discover_serial_boards` finds every serial board on this computer's ports, asking
+each port once: a port whose USB identity only one kind uses is opened by that kind, and
+a port that several kinds share (the Arduinos) is identified as :func:`attach` does,
+with the shorter waits of identification, so no port is opened by one backend after
+another with a full boot wait each.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Sequence
+
+import anyio
+import anyio.to_thread
+
+from j5aio.backends.hardware import registry
+from j5aio.backends.hardware.options import DiscoveryOptions, StreamOpener
+from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
+from j5aio.backends.hardware.transports.discovery import (
+    PortInfo,
+    find_port,
+    list_serial_ports,
+    match_ports,
+)
+from j5aio.boards.board import Board
+from j5aio.errors import CommunicationError, UnsupportedFirmwareError
+
+__all__ = ["REOPEN_DELAY", "attach", "discover_serial_boards", "serial_backends"]
+
+_log = logging.getLogger(__name__)
+
+#: Seconds between one kind's probe closing the port and the next kind's opening it, so
+#: that the board (or a simulator serving a pseudo-terminal) sees the port close, and the
+#: reopening resets it as a fresh open does.
+REOPEN_DELAY = 0.1
+
+
+def serial_backends() -> tuple[type[SerialHardwareBackend], ...]:
+    """The registered serial hardware backends, in the order identification tries them."""
+    from j5aio.board_kinds import board_kinds
+
+    found = [
+        (kind.identify_order, kind.hardware)
+        for kind in board_kinds()
+        if isinstance(kind.hardware, type) and issubclass(kind.hardware, SerialHardwareBackend)
+    ]
+    return tuple(backend for _, backend in sorted(found, key=lambda item: item[0]))
+
+
+def _candidates(
+    port: PortInfo | None, backends: Sequence[type[SerialHardwareBackend]]
+) -> tuple[type[SerialHardwareBackend], ...]:
+    """The backends worth trying on ``port``: those using its USB ID, if it has one."""
+    if port is None or port.vid is None or port.pid is None:
+        return tuple(backends)
+    matching = tuple(backend for backend in backends if (port.vid, port.pid) in backend.USB_IDS)
+    return matching or tuple(backends)
+
+
+async def _identify(
+    port: str,
+    serial_number: str,
+    backends: Sequence[type[SerialHardwareBackend]],
+    opener: StreamOpener | None,
+    time_scale: float,
+) -> Board:
+    """Try each backend on ``port`` in turn; return the first board that answers as its kind."""
+    unsupported: list[UnsupportedFirmwareError] = []
+    for index, backend in enumerate(backends):
+        if index:
+            await anyio.sleep(REOPEN_DELAY)
+        try:
+            board = await backend.identify(
+                port, serial_number=serial_number, opener=opener, time_scale=time_scale
+            )
+        except UnsupportedFirmwareError as error:
+            _log.info("%s on %s: %s", backend.__name__, port, error)
+            unsupported.append(error)
+            continue
+        if board is not None:
+            return board
+    if unsupported:
+        raise unsupported[0]
+    tried = ", ".join(f"{backend.board.name} ({backend.__name__})" for backend in backends)
+    raise CommunicationError(
+        f"no supported board answered on {port}; tried: {tried}. Is it plugged in and "
+        "powered, and does it run its usual firmware?"
+    )
+
+
+async def attach(
+    port: str, *, time_scale: float = 1.0, opener: StreamOpener | None = None
+) -> Board:
+    """Identify the serial board on ``port`` and return it, set up and ready.
+
+    Each registered serial board kind is tried in its ``identify_order``, each opening
+    the port afresh at its own baud rate, until one recognises the board. The board's
+    ``firmware_version`` is what it reported. A port already held by a board gives back
+    that board.
+
+    :param port: a device path (a pseudo-terminal works) or a pyserial URL.
+    :param time_scale: multiplies the waits for the board to boot and answer.
+    :param opener: opens the port at a baud rate; the real serial port by default.
+    :raises UnsupportedFirmwareError: a known board answered, but runs firmware j5aio
+        cannot drive (and no other kind recognised it).
+    :raises CommunicationError: no kind recognised the board; the message lists what
+        was tried.
+    """
+    backends = serial_backends()
+
+    async def connect() -> Board:
+        found = await anyio.to_thread.run_sync(find_port, port)
+        serial_number = found.serial_number if found and found.serial_number else port
+        candidates = _candidates(found, backends)
+        return await _identify(port, serial_number, candidates, opener, time_scale)
+
+    board = await registry.claim(port, SerialHardwareBackend, connect)
+    try:
+        await board.setup()
+    except BaseException:
+        with anyio.CancelScope(shield=True):
+            await board.close()
+        raise
+    return board
+
+
+async def discover_serial_boards(
+    *,
+    options: DiscoveryOptions | None = None,
+    backends: Sequence[type[SerialHardwareBackend]] | None = None,
+) -> list[Board]:
+    """Find the serial boards of every registered kind, opening each port once.
+
+    A port whose USB identity matches one kind is opened by that kind's backend; a port
+    that matches several (the Arduinos share their USB IDs) is identified among them in
+    their ``identify_order``. Ports are looked at concurrently. Boards already held are
+    given back; ports held by something else are skipped. The boards are not set up.
+
+    :param options: stand-in port lists and openers, a time scale, and whether a failing
+        board is skipped (logged) rather than raised.
+    :param backends: the serial backends to look with, in identification order; every
+        registered one (:func:`serial_backends`) by default.
+    :raises CommunicationError: a board could not be identified or failed its handshake
+        (unless ``options.skip_failures``).
+    """
+    options = options or DiscoveryOptions()
+    backends = serial_backends() if backends is None else backends
+    ports = await anyio.to_thread.run_sync(list_serial_ports, options.port_source)
+    wanted: dict[str, tuple[PortInfo, list[type[SerialHardwareBackend]]]] = {}
+    for backend in backends:
+        matched = match_ports(
+            ports, set(backend.USB_IDS), backend.USB_MANUFACTURER, backend.USB_PRODUCT
+        )
+        for port in matched:
+            if backend.has_serial_number(port):
+                wanted.setdefault(port.device, (port, []))[1].append(backend)
+    results: dict[str, Board | Exception] = {}
+
+    async def connect_one(port: PortInfo, kinds: list[type[SerialHardwareBackend]]) -> None:
+        serial_number = port.serial_number or port.device
+
+        async def connect() -> Board:
+            if len(kinds) == 1:
+                return await kinds[0].open_port(
+                    port.device, serial_number, options.opener, options.time_scale
+                )
+            return await _identify(
+                port.device, serial_number, kinds, options.opener, options.time_scale
+            )
+
+        claimant = kinds[0] if len(kinds) == 1 else SerialHardwareBackend
+        try:
+            results[port.device] = await registry.claim(port.device, claimant, connect)
+        except registry.PortInUseError as exc:
+            _log.info("Skipping %s: %s", port.device, exc)
+        except Exception as exc:
+            results[port.device] = exc
+
+    async with anyio.create_task_group() as group:
+        for port, kinds in wanted.values():
+            group.start_soon(connect_one, port, kinds)
+    return SerialHardwareBackend.collect(results, skip_failures=options.skip_failures)

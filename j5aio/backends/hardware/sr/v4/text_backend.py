@@ -1,0 +1,36 @@
+"""The shared base of the backends of the SR v4 boards' 2023 text firmwares.
+
+Each command is one line and gets one reply line (see :mod:`.text_protocol`). This base
+sends a command and reads its reply, turning a NACK or a reply the firmware cannot send
+into a :class:`~j5aio.errors.CommunicationError` that names the board and the command.
+"""
+
+from __future__ import annotations
+
+from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
+from j5aio.backends.hardware.sr.v4.text_protocol import check_ack, check_not_nack
+from j5aio.backends.hardware.transports.readers import read_line
+
+__all__ = ["SRTextBackend"]
+
+#: The longest reply line of these firmwares (their reply buffers are 64 bytes).
+_REPLY = read_line(max_length=128)
+
+
+class SRTextBackend(SerialHardwareBackend):
+    """Sends the one-line commands of an SR 2023 text firmware and checks the replies."""
+
+    async def _query(self, command: bytes) -> bytes:
+        """Send ``command`` and return its reply line (a NACK raises :class:`NackError`)."""
+        reply = await self._exchange(command, _REPLY)
+        return check_not_nack(self.board.name, command, reply)
+
+    async def _act(self, command: bytes) -> None:
+        """Send an action ``command`` and check that the board acknowledges it."""
+        reply = await self._exchange(command, _REPLY)
+        check_ack(self.board.name, command, reply)
+
+    @staticmethod
+    def _check_single(identifier: int, what: str, board: str) -> None:
+        if identifier != 0:
+            raise ValueError(f"{board} has only {what} 0, not {identifier!r}")

@@ -1,0 +1,417 @@
+"""The registry of board kinds: every kind of board j5aio (or a plugin) knows how to drive.
+
+A :class:`BoardKind` is one generation of one board: its board class, the hardware
+backend that finds it, the simulators that stand in for it (each with a command-line
+name), its console backend, and the named simulated kits it belongs to. Everything that
+needs a list of boards reads it from here:
+
+- the hardware environment and ``python -m j5aio list`` (hardware backends);
+- :func:`j5aio.backends.hardware.attach` (serial backends' identification);
+- the simulated environment, ``J5AIO_ENV=sim`` and ``run --sim`` (simulators);
+- ``python -m j5aio simulate NAME`` (serial simulators, by name);
+- the named kits (``--kit NAME``, ``J5AIO_KIT``, :func:`~j5aio.simulator.kit.use_kit`);
+- the console environment (console backends).
+
+j5aio's own boards are registered in :mod:`j5aio._builtin_kinds`. Other packages register
+theirs through the ``j5aio.boards`` entry point group (:data:`ENTRY_POINT_GROUP`). An
+entry point names an object that is one of:
+
+- a :class:`BoardKind`;
+- a :class:`KitDefinition` (a named simulated kit);
+- an iterable of those;
+- a callable taking no arguments that returns any of the above.
+
+For example, in a plugin's ``pyproject.toml``::
+
+    [project.entry-points."j5aio.boards"]
+    blinken = "j5aio_blinken.kinds:BLINKEN"
+
+Plugins are loaded the first time the registry is read. A plugin that cannot be loaded,
+or that returns something else, or that reuses a name already taken, is left out with a
+:class:`BoardPluginWarning` naming the package and the entry point; j5aio itself carries
+on.
+
+This registry is not :mod:`j5aio.backends.hardware.registry`, which records which
+board holds each open port.
+"""
+
+from __future__ import annotations
+
+import importlib.metadata
+import warnings
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Final
+
+from j5aio.backends.backend import Backend
+from j5aio.boards.board import Board
+
+__all__ = [
+    "DEFAULT_KIT",
+    "ENTRY_POINT_GROUP",
+    "BoardKind",
+    "BoardPluginWarning",
+    "KitDefinition",
+    "SimulatorEntry",
+    "SimulatorFactory",
+    "board_kinds",
+    "find_simulator",
+    "get_kit",
+    "kits",
+    "register",
+    "simulator_entries",
+    "unregister",
+]
+
+#: The entry point group through which other packages register board kinds and kits.
+ENTRY_POINT_GROUP: Final = "j5aio.boards"
+
+#: The name of the kit the simulated environment uses when none is chosen.
+DEFAULT_KIT: Final = "default"
+
+SimulatorFactory = Callable[[str], object]
+"""Makes a simulator given the serial number it reports: a
+:class:`~j5aio.simulator.base.SerialBoardSimulator` (which ``simulate`` can serve on a
+pty), a :class:`~j5aio.simulator.base.UsbBoardSimulator`, or, for a board reached
+otherwise (a HAT's GPIO), a simulator of its own that the kind's ``simulated`` backend
+finds in the kit."""
+
+
+class BoardPluginWarning(UserWarning):
+    """A plugin's entry in the ``j5aio.boards`` entry point group was left out."""
+
+
+def _check_name(what: str, name: object) -> str:
+    if not isinstance(name, str) or not name or name != name.strip() or " " in name:
+        raise ValueError(f"a {what} name must be a non-empty string without spaces, not {name!r}")
+    return name
+
+
+@dataclass(frozen=True)
+class SimulatorEntry:
+    """A simulator of a board kind, as the command line and the simulated kits know it.
+
+    :param name: the command-line name, e.g. ``"sr-motor"`` (``simulate NAME``, kits).
+    :param factory: makes the simulator, given its serial number.
+    :param description: what it is, for people (``"SR v4 motor board, firmware 3"``).
+    :param serial_prefix: the start of the serial numbers of this simulator's boards in
+        a simulated kit (``"SIMMB"`` gives ``SIMMB0``, ``SIMMB1``...).
+    :param kits: the named kits this simulator joins, with how many boards of it each
+        gets: ``{"default": 1}`` puts one in the default kit. A plugin uses this to add
+        its board to j5aio's kits.
+    :raises ValueError: a name is empty or has spaces, or a count is negative.
+    """
+
+    name: str
+    factory: SimulatorFactory
+    description: str
+    serial_prefix: str
+    kits: Mapping[str, int] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        _check_name("simulator", self.name)
+        _check_name("serial prefix", self.serial_prefix)
+        if not callable(self.factory):
+            raise TypeError(f"the factory of simulator {self.name!r} must be callable")
+        for kit, count in self.kits.items():
+            if isinstance(count, bool) or not isinstance(count, int) or count < 0:
+                raise ValueError(
+                    f"simulator {self.name!r} joins kit {kit!r} with {count!r} boards: "
+                    "give a whole number of 0 or more"
+                )
+
+    @property
+    def is_serial(self) -> bool:
+        """Whether the simulator speaks over a serial port (and so can be served on a pty)."""
+        from j5aio.simulator.base import SerialBoardSimulator
+
+        if isinstance(self.factory, type):
+            return issubclass(self.factory, SerialBoardSimulator)
+        return isinstance(self.factory("SIM0"), SerialBoardSimulator)
+
+
+@dataclass(frozen=True)
+class BoardKind:
+    """One generation of one board, and everything that drives or stands in for it.
+
+    :param name: a unique name, e.g. ``"sr-v4-motor-fw3"``.
+    :param board: the board class programs ask for (a subclass of the family's class for
+        a new generation of a board family, or the family's class itself).
+    :param description: what it is, for people.
+    :param hardware: the hardware backend whose ``discover(options=...)`` finds it (a
+        :class:`~j5aio.backends.hardware.serial_backend.SerialHardwareBackend` or
+        :class:`~j5aio.backends.hardware.usb_backend.USBHardwareBackend` subclass), or
+        ``None`` for a board with no hardware.
+    :param console: its console backend, or ``None``.
+    :param simulators: its simulators.
+    :param simulated: the backend the simulated environment uses; by default the
+        hardware backend, finding the boards of the current simulated kit made from
+        this kind's simulators.
+    :param identify_order: where this kind's serial backend comes in
+        :func:`~j5aio.backends.hardware.attach` and in telling apart boards that share
+        USB IDs: lower first. Put a kind whose identification is quick and harmless to
+        other boards first.
+    :param package: the distribution that registered it (filled in for plugins).
+    """
+
+    name: str
+    board: type[Board]
+    description: str
+    hardware: type[Backend] | None = None
+    console: type[Backend] | None = None
+    simulators: tuple[SimulatorEntry, ...] = ()
+    simulated: type[Backend] | None = None
+    identify_order: int = 100
+    package: str = "j5aio"
+
+    def __post_init__(self) -> None:
+        _check_name("board kind", self.name)
+        if not (isinstance(self.board, type) and issubclass(self.board, Board)):
+            raise TypeError(f"board kind {self.name!r}: board must be a Board subclass")
+        for role in ("hardware", "console", "simulated"):
+            backend = getattr(self, role)
+            if backend is None:
+                continue
+            if not (isinstance(backend, type) and issubclass(backend, Backend)):
+                raise TypeError(f"board kind {self.name!r}: {role} must be a Backend subclass")
+            if not issubclass(backend.board, self.board):
+                raise TypeError(
+                    f"board kind {self.name!r}: its {role} backend {backend.__name__} drives "
+                    f"{backend.board.__name__}, not {self.board.__name__}"
+                )
+        object.__setattr__(self, "simulators", tuple(self.simulators))
+        for entry in self.simulators:
+            if not isinstance(entry, SimulatorEntry):
+                raise TypeError(f"board kind {self.name!r}: simulators must be SimulatorEntry")
+
+
+@dataclass(frozen=True)
+class KitDefinition:
+    """A named simulated kit: how many boards of each simulator it has.
+
+    :param name: the kit's name, e.g. ``"sr2019"``.
+    :param description: what it is, for people.
+    :param boards: simulator names (:attr:`SimulatorEntry.name`) and how many of each,
+        in the order the kit makes them.
+    :param package: the distribution that registered it (filled in for plugins).
+    """
+
+    name: str
+    description: str
+    boards: Mapping[str, int]
+    package: str = "j5aio"
+
+    def __post_init__(self) -> None:
+        _check_name("kit", self.name)
+        object.__setattr__(self, "boards", MappingProxyType(dict(self.boards)))
+        for simulator, count in self.boards.items():
+            if isinstance(count, bool) or not isinstance(count, int) or count < 0:
+                raise ValueError(
+                    f"kit {self.name!r} has {count!r} of {simulator!r}: give a whole number "
+                    "of 0 or more"
+                )
+
+
+class _Registry:
+    """The kinds and kits known so far; plugins are loaded on first use."""
+
+    def __init__(self) -> None:
+        self._kinds: dict[str, BoardKind] = {}
+        self._kits: dict[str, KitDefinition] = {}
+        self._loaded = False
+        self._loading = False
+
+    def _ensure_loaded(self) -> None:
+        if self._loaded:
+            return
+        if self._loading:
+            raise RuntimeError(
+                "the board kinds were read while they were being loaded: a module that "
+                "registers board kinds must not read them when it is imported"
+            )
+        self._loading = True
+        try:
+            from j5aio import _builtin_kinds
+
+            for item in _builtin_kinds.entries():
+                self._add(item)
+            self._load_plugins()
+            self._loaded = True
+        finally:
+            self._loading = False
+
+    def _load_plugins(self) -> None:
+        for entry_point in importlib.metadata.entry_points(group=ENTRY_POINT_GROUP):
+            package = entry_point.dist.name if entry_point.dist is not None else "?"
+            try:
+                loaded = entry_point.load()
+                items = _flatten(loaded() if callable(loaded) and not _is_entry(loaded) else loaded)
+                prepared = [_with_package(item, package) for item in items]
+                for item in prepared:
+                    self._check_new(item)
+            except Exception as error:  # a broken plugin must not break j5aio
+                warnings.warn(
+                    f"j5aio: left out the board plugin {entry_point.name!r} "
+                    f"({entry_point.value}) of package {package!r}: "
+                    f"{type(error).__name__}: {error}",
+                    BoardPluginWarning,
+                    stacklevel=2,
+                )
+                continue
+            for item in prepared:
+                self._add(item)
+
+    def _check_new(self, item: BoardKind | KitDefinition) -> None:
+        if isinstance(item, KitDefinition):
+            if item.name in self._kits:
+                raise ValueError(f"a kit called {item.name!r} is already registered")
+            return
+        if item.name in self._kinds:
+            raise ValueError(f"a board kind called {item.name!r} is already registered")
+        taken = {entry.name for kind in self._kinds.values() for entry in kind.simulators}
+        for entry in item.simulators:
+            if entry.name in taken:
+                raise ValueError(f"a simulator called {entry.name!r} is already registered")
+
+    def _add(self, item: BoardKind | KitDefinition) -> None:
+        self._check_new(item)
+        if isinstance(item, KitDefinition):
+            self._kits[item.name] = item
+        else:
+            self._kinds[item.name] = item
+
+    def add(self, item: BoardKind | KitDefinition) -> None:
+        self._ensure_loaded()
+        self._add(item)
+
+    def remove(self, name: str) -> None:
+        self._ensure_loaded()
+        if name in self._kinds:
+            del self._kinds[name]
+        elif name in self._kits:
+            del self._kits[name]
+        else:
+            raise KeyError(f"no board kind or kit called {name!r} is registered")
+
+    def kinds(self) -> tuple[BoardKind, ...]:
+        self._ensure_loaded()
+        return tuple(self._kinds.values())
+
+    def kits(self) -> dict[str, KitDefinition]:
+        self._ensure_loaded()
+        result = dict(self._kits)
+        # Simulators that join kits (a plugin's board in j5aio's kits, say).
+        for kind in self._kinds.values():
+            for entry in kind.simulators:
+                for kit_name, count in entry.kits.items():
+                    kit = result.get(kit_name)
+                    if kit is None or entry.name in kit.boards:
+                        continue
+                    result[kit_name] = KitDefinition(
+                        kit.name, kit.description, {**kit.boards, entry.name: count}, kit.package
+                    )
+        return result
+
+
+def _is_entry(obj: object) -> bool:
+    return isinstance(obj, BoardKind | KitDefinition | type)
+
+
+def _flatten(obj: object) -> list[BoardKind | KitDefinition]:
+    if isinstance(obj, BoardKind | KitDefinition):
+        return [obj]
+    if isinstance(obj, Iterable) and not isinstance(obj, str | bytes):
+        items = list(obj)
+        if all(isinstance(item, BoardKind | KitDefinition) for item in items):
+            return items
+    raise TypeError(
+        "the entry point must give a BoardKind, a KitDefinition, an iterable of them, or "
+        f"a callable returning one of those; it gave {obj!r}"
+    )
+
+
+def _with_package(item: BoardKind | KitDefinition, package: str) -> BoardKind | KitDefinition:
+    if item.package != "j5aio":
+        return item
+    from dataclasses import replace
+
+    return replace(item, package=package)
+
+
+_registry = _Registry()
+
+
+def board_kinds() -> tuple[BoardKind, ...]:
+    """Every registered board kind: j5aio's own, then the plugins', in registration order."""
+    return _registry.kinds()
+
+
+def register(item: BoardKind | KitDefinition) -> None:
+    """Register a board kind or a named kit from code (plugins use the entry point group).
+
+    Environments made before (the hardware and simulated environments are made on first
+    import) do not see it; it suits tests and programs that register before importing them.
+
+    :raises TypeError: ``item`` is neither a :class:`BoardKind` nor a :class:`KitDefinition`.
+    :raises ValueError: its name, or one of its simulators' names, is taken.
+    """
+    if not isinstance(item, BoardKind | KitDefinition):
+        raise TypeError(f"register takes a BoardKind or a KitDefinition, not {type(item).__name__}")
+    _registry.add(item)
+
+
+def unregister(name: str) -> None:
+    """Forget the board kind or kit called ``name``.
+
+    :raises KeyError: nothing of that name is registered.
+    """
+    _registry.remove(name)
+
+
+def simulator_entries() -> Mapping[str, tuple[BoardKind, SimulatorEntry]]:
+    """Every registered simulator by command-line name, with the kind it simulates."""
+    return MappingProxyType(
+        {entry.name: (kind, entry) for kind in board_kinds() for entry in kind.simulators}
+    )
+
+
+def find_simulator(name: str) -> tuple[BoardKind, SimulatorEntry]:
+    """Return the kind and simulator entry called ``name``.
+
+    :raises ValueError: no simulator has that name; the message lists those that do.
+    """
+    entries = simulator_entries()
+    try:
+        return entries[name]
+    except KeyError:
+        raise ValueError(
+            f"there is no simulator called {name!r}; choose one of: {', '.join(entries)}"
+        ) from None
+
+
+def kits() -> Mapping[str, KitDefinition]:
+    """Every named simulated kit, with the boards plugins added to it."""
+    return MappingProxyType(_registry.kits())
+
+
+def get_kit(name: str) -> KitDefinition:
+    """Return the kit called ``name``.
+
+    :raises TypeError: ``name`` is not a string.
+    :raises ValueError: there is no such kit (the message lists the kits), or it names a
+        simulator that is not registered.
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"a kit name must be a str, not {type(name).__name__}")
+    known = kits()
+    kit = known.get(name.strip().lower())
+    if kit is None:
+        raise ValueError(f"there is no kit called {name!r}; choose one of: {', '.join(known)}")
+    entries = simulator_entries()
+    missing = [simulator for simulator in kit.boards if simulator not in entries]
+    if missing:
+        raise ValueError(
+            f"kit {kit.name!r} needs simulators that are not registered: {', '.join(missing)}"
+        )
+    return kit

@@ -1,0 +1,202 @@
+"""The registry of board kinds: j5aio's own, registered ones and plugins' entry points."""
+
+from __future__ import annotations
+
+import importlib.metadata
+from collections.abc import Iterator
+from typing import Any
+
+import pytest
+
+from j5aio import board_kinds
+from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
+from j5aio.board_kinds import (
+    BoardKind,
+    BoardPluginWarning,
+    KitDefinition,
+    SimulatorEntry,
+    find_simulator,
+    get_kit,
+    kits,
+    register,
+    simulator_entries,
+    unregister,
+)
+from j5aio.boards.sr.v4 import MotorBoard, PowerBoard
+from j5aio.simulator import SERIAL_SIMULATORS
+from j5aio.simulator.sr_motor_fw3 import SRMotorBoardFw3Simulator
+from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
+
+from .kind_fakes import GEN9
+
+
+@pytest.fixture
+def gen9() -> Iterator[BoardKind]:
+    register(GEN9)
+    yield GEN9
+    unregister(GEN9.name)
+
+
+def test_j5aios_own_kinds_and_kits_are_registered() -> None:
+    names = [kind.name for kind in board_kinds.board_kinds()]
+    assert names[:5] == [
+        "sr-v4-power-fw3", "sr-v4-motor-fw3", "sr-v4-servo-fw2", "sb-arduino-2019",
+        "sr-ruggeduino-fw1",
+    ]
+    assert {"default", "sr2019", "sb2019"} <= set(kits())
+    assert dict(get_kit("sr2019").boards) == {
+        "sr-power": 1, "sr-motor": 1, "sr-servo": 1, "sr-ruggeduino": 1,
+    }
+    assert get_kit(" SB2019 ").name == "sb2019"
+    kind, entry = find_simulator("sr-power")
+    assert kind.board is PowerBoard
+    assert entry.factory is SRPowerBoardFw3Simulator
+    assert not entry.is_serial
+    assert find_simulator("sr-motor")[1].is_serial
+
+
+def test_unknown_names_list_what_there_is() -> None:
+    with pytest.raises(ValueError, match="no kit called 'moon'; choose one of: default, sr2019"):
+        get_kit("moon")
+    with pytest.raises(TypeError, match="a kit name must be a str, not int"):
+        get_kit(3)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="no simulator called 'sr-moon'; choose one of: sr-power"):
+        find_simulator("sr-moon")
+    with pytest.raises(KeyError, match="no board kind or kit called 'moon'"):
+        unregister("moon")
+
+
+def test_a_registered_kind_joins_the_simulators_and_the_kits_it_names(gen9: BoardKind) -> None:
+    assert simulator_entries()["test-motor-gen9"] == (gen9, gen9.simulators[0])
+    assert SERIAL_SIMULATORS["test-motor-gen9"] is SRMotorBoardFw3Simulator
+    assert "test-motor-gen9" in SERIAL_SIMULATORS
+    assert get_kit("sr2019").boards["test-motor-gen9"] == 2
+    assert "test-motor-gen9" not in get_kit("sb2019").boards
+    with pytest.raises(ValueError, match="board kind called 'test-motor-gen9' is already"):
+        register(gen9)
+
+
+def test_names_already_taken_are_refused() -> None:
+    clash = BoardKind(
+        "test-clash", MotorBoard, "x",
+        simulators=(SimulatorEntry("sr-motor", SRMotorBoardFw3Simulator, "x", "SIMX"),),
+    )
+    with pytest.raises(ValueError, match="simulator called 'sr-motor' is already registered"):
+        register(clash)
+    with pytest.raises(ValueError, match="kit called 'sr2019' is already registered"):
+        register(KitDefinition("sr2019", "again", {}))
+    with pytest.raises(TypeError, match="register takes a BoardKind or a KitDefinition, not str"):
+        register("sr2019")  # type: ignore[arg-type]
+
+
+def test_a_kit_needing_a_missing_simulator_says_so() -> None:
+    register(KitDefinition("test-broken", "needs a board nobody registered", {"nothing": 1}))
+    try:
+        with pytest.raises(ValueError, match="needs simulators that are not registered: nothing"):
+            get_kit("test-broken")
+    finally:
+        unregister("test-broken")
+
+
+@pytest.mark.parametrize(
+    ("make", "message"),
+    [
+        (lambda: BoardKind("has space", MotorBoard, "x"), "without spaces, not 'has space'"),
+        (lambda: BoardKind("k", int, "x"), "board must be a Board subclass"),  # type: ignore[arg-type]
+        (lambda: BoardKind("k", MotorBoard, "x", hardware=int), "hardware must be a Backend"),  # type: ignore[arg-type]
+        (
+            lambda: BoardKind("k", PowerBoard, "x", hardware=SRV4MotorBoardHardwareBackend),
+            "drives MotorBoard, not PowerBoard",
+        ),
+        (lambda: BoardKind("k", MotorBoard, "x", simulators=("s",)), "must be SimulatorEntry"),  # type: ignore[arg-type]
+        (lambda: SimulatorEntry("s", 3, "x", "P"), "must be callable"),  # type: ignore[arg-type]
+        (lambda: SimulatorEntry("s", SRMotorBoardFw3Simulator, "x", "P", {"k": -1}), "0 or more"),
+        (lambda: KitDefinition("k", "x", {"sr-motor": 1.5}), "give a whole number"),  # type: ignore[dict-item]
+        (lambda: SimulatorEntry("", SRMotorBoardFw3Simulator, "x", "P"), "non-empty string"),
+    ],
+)
+def test_entries_check_what_they_are_given(make: Any, message: str) -> None:
+    with pytest.raises((TypeError, ValueError), match=message):
+        make()
+
+
+# --- plugins through the entry point group ---------------------------------------------
+
+
+class FakeDistribution:
+    name = "j5aio-fake-plugin"
+
+
+class FakeEntryPoint:
+    def __init__(self, name: str, obj: object) -> None:
+        self.name = name
+        self.value = f"fake_plugin:{name}"
+        self.dist = FakeDistribution()
+        self._obj = obj
+
+    def load(self) -> object:
+        if isinstance(self._obj, Exception):
+            raise self._obj
+        return self._obj
+
+
+@pytest.fixture
+def fresh_registry(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[FakeEntryPoint]]:
+    plugins: list[FakeEntryPoint] = []
+
+    def entry_points(*, group: str) -> list[FakeEntryPoint]:
+        assert group == "j5aio.boards"
+        return plugins
+
+    monkeypatch.setattr(importlib.metadata, "entry_points", entry_points)
+    monkeypatch.setattr(board_kinds, "_registry", board_kinds._Registry())
+    yield plugins
+
+
+def test_plugins_are_loaded_and_marked_with_their_package(
+    fresh_registry: list[FakeEntryPoint],
+) -> None:
+    kit = KitDefinition("test-kit", "a plugin's kit", {"test-motor-gen9": 1})
+    fresh_registry.append(FakeEntryPoint("gen9", GEN9))
+    fresh_registry.append(FakeEntryPoint("kit", lambda: [kit]))
+    kinds = {kind.name: kind for kind in board_kinds.board_kinds()}
+    assert kinds["test-motor-gen9"].package == "j5aio-fake-plugin"
+    assert kinds["sr-v4-motor-fw3"].package == "j5aio"
+    assert get_kit("test-kit").package == "j5aio-fake-plugin"
+    assert get_kit("sr2019").boards["test-motor-gen9"] == 2
+
+
+@pytest.mark.parametrize(
+    ("obj", "message"),
+    [
+        (ImportError("No module named 'fake_plugin'"), "ImportError: No module named"),
+        (42, "must give a BoardKind, a KitDefinition, an iterable"),
+        (lambda: [GEN9, "x"], "must give a BoardKind"),
+        (
+            BoardKind(
+                "test-dup", MotorBoard, "x",
+                simulators=(SimulatorEntry("sr-motor", SRMotorBoardFw3Simulator, "x", "P"),),
+            ),
+            "simulator called 'sr-motor' is already registered",
+        ),
+    ],
+)
+def test_a_broken_plugin_is_left_out_with_a_warning_naming_its_package(
+    fresh_registry: list[FakeEntryPoint], obj: object, message: str
+) -> None:
+    fresh_registry.append(FakeEntryPoint("broken", obj))
+    with pytest.warns(BoardPluginWarning, match="left out the board plugin 'broken'") as caught:
+        kinds = board_kinds.board_kinds()
+    text = str(caught[0].message)
+    assert "of package 'j5aio-fake-plugin'" in text
+    assert message in text
+    assert {kind.name for kind in kinds} >= {"sr-v4-motor-fw3"}
+    assert "test-dup" not in {kind.name for kind in kinds}
+
+
+def test_reading_the_kinds_while_they_load_is_refused(
+    fresh_registry: list[FakeEntryPoint],
+) -> None:
+    fresh_registry.append(FakeEntryPoint("nested", lambda: board_kinds.board_kinds()))
+    with pytest.warns(BoardPluginWarning, match="RuntimeError: the board kinds were read while"):
+        board_kinds.board_kinds()
