@@ -7,7 +7,8 @@ The child starts at once, sets a motor going and then tries hard to survive game
 - ``sync``: the sync facade, ``motor.power = 0.5`` and ``time.sleep`` in a tight loop
   that swallows ``BaseException``;
 - ``blocking``: an async task that blocks the event loop in ``time.sleep``;
-- ``spin``: a tight synchronous ``while True`` loop in async code.
+- ``spin``: a tight synchronous ``while True`` loop in async code;
+- ``sr2023``: ``swallow`` on the SR 2023 kit (firmware 4 boards, text protocol).
 
 The child's motor simulators record the time of every change of state; "braked within"
 is the time from the scheduled end of the match to the moment every motor of the kit is
@@ -47,21 +48,31 @@ DURATION = 0.6
 RECORDER = """
 import json, time
 from j5aio.competition import add_game_over_hook
-from j5aio.simulator import sr_motor_fw3
+from j5aio.simulator import sr_motor_fw3, sr_motor_fw4
 
 _history = []
-_receive = sr_motor_fw3.SRMotorBoardFw3Simulator.receive
 
 
-def _recording_receive(self, data):
-    before = self.motors
-    reply = _receive(self, data)
-    if self.motors != before:
-        _history.append((time.monotonic(), self.serial_number, [m.mode.name for m in self.motors]))
-    return reply
+def _modes(sim):
+    return [m.mode.name if hasattr(m, "mode") else m.drive.name for m in sim.motors]
 
 
-sr_motor_fw3.SRMotorBoardFw3Simulator.receive = _recording_receive
+def _record(cls):
+    original = cls.receive
+
+    def recording(self, data):
+        before = _modes(self)
+        reply = original(self, data)
+        after = _modes(self)
+        if after != before:
+            _history.append((time.monotonic(), self.serial_number, after))
+        return reply
+
+    cls.receive = recording
+
+
+_record(sr_motor_fw3.SRMotorBoardFw3Simulator)
+_record(sr_motor_fw4.SRMotorBoardFw4Simulator)
 _robot = []
 
 
@@ -164,7 +175,39 @@ async def main():
 
 anyio.run(main)
 """,
+    "sr2023": RECORDER
+    + """
+import anyio
+from j5aio.boards.sr.v4 import MotorBoard
+from j5aio.competition import trigger_start
+from j5aio.environments import get_default_environment
+from j5aio.robot import BaseRobot
+
+
+class Robot(BaseRobot):
+    async def setup(self):
+        self.motor_boards = await get_default_environment().get_board_group(MotorBoard)
+
+
+async def main():
+    async with Robot() as robot:
+        _robot.append(robot)
+        trigger_start()
+        await robot.wait_start()
+        motor = robot.motor_boards[0].motors[0]
+        while True:
+            try:
+                await motor.set_power(0.5)
+                await anyio.sleep(0)
+            except BaseException:
+                pass
+
+
+anyio.run(main)
+""",
 }
+#: The named simulated kit each kind of program runs on (the default kit otherwise).
+KITS = {"sr2023": "sr2023"}
 
 
 @dataclass(frozen=True)
@@ -190,6 +233,7 @@ def run_trial(kind: str, *, duration: float = DURATION, timeout: float = 30.0) -
         )
         env = dict(os.environ)
         env["J5AIO_ENV"] = "sim"
+        env["J5AIO_KIT"] = KITS.get(kind, "")
         env["J5AIO_METADATA"] = str(metadata)
         env["J5AIO_START_FILE"] = str(Path(folder) / "start")
         env["J5AIO_MEDIA_ROOTS"] = str(Path(folder) / "media")

@@ -27,7 +27,7 @@ def load_bench() -> ModuleType:
     return module
 
 
-@pytest.mark.parametrize("kind", ["swallow", "sync", "blocking", "spin"])
+@pytest.mark.parametrize("kind", ["swallow", "sync", "blocking", "spin", "sr2023"])
 def test_a_program_that_tries_to_survive_game_over_is_stopped(kind: str) -> None:
     bench = load_bench()
     trial = bench.run_trial(kind)
