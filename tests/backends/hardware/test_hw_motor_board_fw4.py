@@ -187,7 +187,7 @@ async def test_nack_and_bad_replies() -> None:
 
 async def test_make_safe_now_brakes_both_motors_synchronously() -> None:
     sim = SRMotorBoardFw4Simulator("srM")
-    board, backend, stream = await connect(sim)
+    board, backend, _stream = await connect(sim)
     await board.motors[0].set_power(0.5)
     await board.motors[1].set_power(-0.5)
     assert backend.make_safe_now(0.5) is True
