@@ -335,25 +335,27 @@ def _add_match_arguments(run: argparse.ArgumentParser) -> None:
     match.add_argument("--no-log", action="store_true", help="keep no run log")
 
 
-def _seconds_long(text: str) -> float:
-    value = _number(text, "a number of seconds")
-    if not 0 < value <= 3600:
-        raise argparse.ArgumentTypeError(f"{text} s is out of range: give 0 < S <= 3600")
-    return value
+def _in_range(
+    what: str, unit: str, low: float, high: float, *, low_included: bool
+) -> Callable[[str], float]:
+    """An argparse type: a number from ``low`` (included or not) to ``high``."""
+    sign = "<=" if low_included else "<"
+
+    def parse(text: str) -> float:
+        value = _number(text, what)
+        if not ((low <= value) if low_included else (low < value)) or not value <= high:
+            raise argparse.ArgumentTypeError(
+                f"{text}{unit} is out of range: give {low:g} {sign} {unit.strip() or 'F'} "
+                f"<= {high:g}"
+            )
+        return value
+
+    return parse
 
 
-def _start_after(text: str) -> float:
-    value = _number(text, "a number of seconds")
-    if not 0 <= value <= 3600:
-        raise argparse.ArgumentTypeError(f"{text} s is out of range: give 0 <= S <= 3600")
-    return value
-
-
-def _positive_scale(text: str) -> float:
-    value = _number(text, "a number")
-    if not 0 < value <= 1000:
-        raise argparse.ArgumentTypeError(f"{text} is out of range: give 0 < F <= 1000")
-    return value
+_seconds_long = _in_range("a number of seconds", " s", 0, 3600, low_included=False)
+_start_after = _in_range("a number of seconds", " s", 0, 3600, low_included=True)
+_positive_scale = _in_range("a number", "", 0, 1000, low_included=False)
 
 
 @contextlib.contextmanager

@@ -50,15 +50,21 @@ def _isolated(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
     monkeypatch.setattr(kit_module, "_current", kit_module._current)
 
 
-def test_a_simulated_match_from_the_command_line(tmp_path: Path) -> None:
-    (tmp_path / "robot.py").write_text(MATCH_PROGRAM)
+def run_j5aio(folder: Path, program: str, *args: str) -> subprocess.CompletedProcess[str]:
+    """Run ``python -m j5aio run ARGS robot.py`` in ``folder`` on ``program``'s text."""
+    (folder / "robot.py").write_text(program)
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join([str(ROOT), env.get("PYTHONPATH", "")])
-    result = subprocess.run(
-        [sys.executable, "-m", "j5aio", "run", "--sim", "--zone", "2", "--mode", "comp",
-         "--arena", "B", "--duration", "1", "--start-after", "0.2", "--time-scale", "0.5",
-         "robot.py"],
-        capture_output=True, text=True, timeout=60, env=env, cwd=tmp_path, check=False,
+    return subprocess.run(
+        [sys.executable, "-m", "j5aio", "run", *args, "robot.py"],
+        capture_output=True, text=True, timeout=60, env=env, cwd=folder, check=False,
+    )
+
+
+def test_a_simulated_match_from_the_command_line(tmp_path: Path) -> None:
+    result = run_j5aio(
+        tmp_path, MATCH_PROGRAM, "--sim", "--zone", "2", "--mode", "comp", "--arena", "B",
+        "--duration", "1", "--start-after", "0.2", "--time-scale", "0.5",
     )
     assert result.returncode == 0, result.stderr
     assert "started 2 COMP B" in result.stdout
@@ -100,13 +106,9 @@ anyio.run(main)
 
 
 def test_a_match_on_the_named_sr2023_kit(tmp_path: Path) -> None:
-    (tmp_path / "robot.py").write_text(SR2023_PROGRAM)
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join([str(ROOT), env.get("PYTHONPATH", "")])
-    result = subprocess.run(
-        [sys.executable, "-m", "j5aio", "run", "--sim", "--kit", "sr2023", "--zone", "2",
-         "--mode", "comp", "--duration", "0.5", "--start-after", "0.2", "robot.py"],
-        capture_output=True, text=True, timeout=60, env=env, cwd=tmp_path, check=False,
+    result = run_j5aio(
+        tmp_path, SR2023_PROGRAM, "--sim", "--kit", "sr2023", "--zone", "2", "--mode", "comp",
+        "--duration", "0.5", "--start-after", "0.2",
     )
     assert result.returncode == 0, result.stderr
     assert "started 2 PowerBoardFw4" in result.stdout
@@ -159,6 +161,15 @@ def test_an_unwritable_log_folder_is_reported_not_fatal(
     assert main(["run", "--log-dir", str(tmp_path / "file" / "logs"), str(program)]) == 0
     out = capsys.readouterr()
     assert "ran" in out.out and "j5aio: no run log" in out.err
+
+
+def test_range_messages(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    with pytest.raises(SystemExit):
+        main(["run", "--duration", "4000", str(tmp_path / "robot.py")])
+    assert "4000 s is out of range: give 0 < s <= 3600" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main(["run", "--time-scale", "-2", str(tmp_path / "robot.py")])
+    assert "-2 is out of range: give 0 < F <= 1000" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize(
