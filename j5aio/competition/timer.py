@@ -40,6 +40,8 @@ GRACE: Final = 0.25
 #: The GIL switch interval from just before game over on, so that a busy thread cannot
 #: hold the watchdog back for long (Python's default is 5 ms).
 _SWITCH_INTERVAL: Final = 0.0005
+#: How many times game over goes over the boards still open.
+_PASSES: Final = 3
 #: How long before the end the switch interval is shortened, in seconds.
 _GET_READY: Final = 0.1
 
@@ -143,7 +145,15 @@ class MatchTimer:
                 LOGGER.debug("Could not cancel the robot's work: %r", exc)
         for board in lifetime.open_boards():
             lifetime.mark_settled(board)  # the end of a match is no program's mistake
-        lifetime.make_all_safe_now("the match ended", close=True, loop_wait=LOOP_WAIT)
+        # A board whose port fails to close stops the pass it is in (it is forgotten
+        # first), so the boards after it get another pass.
+        for _ in range(_PASSES):
+            try:
+                lifetime.make_all_safe_now("the match ended", close=True, loop_wait=LOOP_WAIT)
+            except Exception as exc:
+                LOGGER.error("Making the boards safe at game over failed: %r", exc)
+            if not lifetime.open_boards():
+                break
         LOGGER.warning("Game over: the match has ended and every board is safe.")
         for hook in list(_hooks):
             try:

@@ -11,6 +11,7 @@ from pathlib import Path
 import anyio
 import pytest
 
+from j5aio import lifetime
 from j5aio import robot as robot_module
 from j5aio.boards.board import Board
 from j5aio.competition import timer as timer_module
@@ -34,6 +35,8 @@ async def _fresh(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> AsyncIterat
     monkeypatch.delenv(METADATA_VARIABLE, raising=False)
     monkeypatch.delenv(TIME_SCALE_VARIABLE, raising=False)
     monkeypatch.setattr(timer_module, "_hooks", [])
+    for board in lifetime.open_boards():  # boards other tests left: not this test's kit
+        lifetime.untrack(board)
     clear_trigger()
     yield
     clear_trigger()

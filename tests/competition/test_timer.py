@@ -27,6 +27,8 @@ async def _fresh(monkeypatch: pytest.MonkeyPatch) -> AsyncIterator[None]:
     saved = kit_module._current
     interval = sys.getswitchinterval()
     monkeypatch.setattr(timer_module, "_hooks", [])
+    for board in lifetime.open_boards():  # boards other tests left: not this test's kit
+        lifetime.untrack(board)
     yield
     sys.setswitchinterval(interval)
     for board in list(Board.BOARDS):
@@ -98,6 +100,37 @@ async def test_game_over_brakes_cancels_runs_hooks_and_exits_0(
     assert "Game over" in caplog.text
     assert "A game-over hook failed" in caplog.text
     assert "safety net when" not in caplog.text  # game over's rescue is expected
+
+
+class _Unclosable:
+    """A backend whose port cannot be closed (a stand-in for a broken driver)."""
+
+    def make_safe_now(self, timeout: float) -> bool:
+        return True
+
+    def close_now(self) -> None:
+        raise OSError("stuck")
+
+
+async def test_a_board_that_cannot_be_closed_does_not_stop_game_over(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    kit = use_kit(KitConfig(0, 1, 0, 0, 0))
+    stuck = MotorBoard.__new__(MotorBoard)
+    stuck._backend = _Unclosable()  # type: ignore[assignment]
+    stuck._is_closed = False
+    stuck._serial_number = "STUCK"
+    lifetime.track(stuck)
+    board = (await SIMULATED_ENVIRONMENT.get_board_group(MotorBoard)).singular()
+    await board.motors[0].set_power(0.7)
+    codes: list[int] = []
+    timer = MatchTimer(0.01, end_process=codes.append, grace=0)
+    timer.start()
+    await anyio.to_thread.run_sync(timer.join, 5)
+    assert codes == [0]
+    assert kit.motor_boards[0].motors[0].mode is MotorMode.BRAKE
+    assert "stuck" in caplog.text  # reported, and the next pass braked the motors
+    lifetime.untrack(stuck)
 
 
 def test_a_failing_cancel_does_not_stop_game_over() -> None:
