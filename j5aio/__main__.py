@@ -14,12 +14,15 @@ Boards, simulators and kits come from the registry of board kinds
 from __future__ import annotations
 
 import argparse
+import contextlib
+import json
 import os
 import runpy
 import signal
 import sys
+import tempfile
 import threading
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from types import FrameType
 from typing import TYPE_CHECKING, Any, Final
@@ -42,6 +45,8 @@ examples:
   python -m j5aio run --sim --kit sr2019 robot.py   ... on a named simulated kit
   python -m j5aio run robot.py                run it on the boards plugged in
   python -m j5aio run --sim --view robot.py   ... and watch its boards in the browser
+  python -m j5aio run --sim --zone 2 --mode comp --duration 20 --start-after 1 robot.py
+                                              simulate a 20 s match starting from zone 2
   python -m j5aio list                        which boards are plugged in?
   python -m j5aio simulate sb-arduino --pty   serve a simulated board on a serial port
 
@@ -112,6 +117,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="choose the environment by name",
     )
     _add_kit_option(run, " (implies --sim)")
+    _add_match_arguments(run)
     run.add_argument("program", help="the program to run, e.g. robot.py")
     run.add_argument(
         "arguments", nargs=argparse.REMAINDER, help="arguments passed on to the program"
@@ -365,11 +371,148 @@ def _run(args: argparse.Namespace) -> int:
     sys.argv = [str(program), *args.arguments]
     sys.path.insert(0, str(program.resolve().parent))
     try:
-        runpy.run_path(str(program), run_name="__main__")
+        with _match(args, program) as ready:
+            if not ready:
+                return 2
+            runpy.run_path(str(program), run_name="__main__")
     finally:
         if view is not None:
             view.close()
     return 0
+
+
+# -- run: match settings, the start and the run log (issue 10) ------------------------------
+
+
+def _add_match_arguments(run: argparse.ArgumentParser) -> None:
+    match = run.add_argument_group(
+        "match",
+        "Simulate a match (these write a metadata file for the program, as a competition's "
+        "USB stick would), start it, and keep a log of the run.",
+    )
+    match.add_argument("--arena", help="the arena's name (default A)")
+    match.add_argument("--zone", type=int, help="the starting zone (default 0)")
+    match.add_argument(
+        "--mode", type=str.upper, choices=["COMP", "DEV"], help="COMP (a match) or DEV"
+    )
+    match.add_argument(
+        "--duration", type=_seconds_long, metavar="S", help="the match's length in seconds"
+    )
+    match.add_argument(
+        "--start-after",
+        type=_start_after,
+        metavar="S",
+        help="press start automatically after S seconds (with --sim, Enter in the console "
+        "starts the robot otherwise)",
+    )
+    match.add_argument(
+        "--time-scale",
+        type=_positive_scale,
+        metavar="F",
+        help="real seconds per robot second: robot.time(), robot.sleep(), the match and the "
+        "simulated boards' delays (default 1)",
+    )
+    match.add_argument("--log-dir", type=Path, metavar="DIR", help="write the run log here")
+    match.add_argument("--no-log", action="store_true", help="keep no run log")
+
+
+def _in_range(
+    what: str, unit: str, low: float, high: float, *, low_included: bool
+) -> Callable[[str], float]:
+    """An argparse type: a number from ``low`` (included or not) to ``high``."""
+    sign = "<=" if low_included else "<"
+
+    def parse(text: str) -> float:
+        value = _number(text, what)
+        if not ((low <= value) if low_included else (low < value)) or not value <= high:
+            raise argparse.ArgumentTypeError(
+                f"{text}{unit} is out of range: give {low:g} {sign} {unit.strip() or 'F'} "
+                f"<= {high:g}"
+            )
+        return value
+
+    return parse
+
+
+_seconds_long = _in_range("a number of seconds", " s", 0, 3600, low_included=False)
+_start_after = _in_range("a number of seconds", " s", 0, 3600, low_included=True)
+_positive_scale = _in_range("a number", "", 0, 1000, low_included=False)
+
+
+@contextlib.contextmanager
+def _match(args: argparse.Namespace, program: Path) -> Iterator[bool]:
+    """Set up the match's metadata, time scale, start and run log around the program."""
+    from j5aio.competition import start
+    from j5aio.competition.clock import TIME_SCALE_VARIABLE
+    from j5aio.competition.metadata import METADATA_VARIABLE, MetadataError, load_metadata
+    from j5aio.competition.runlog import RunLog, choose_log_folder, teeing
+
+    with contextlib.ExitStack() as stack:
+        saved = {name: os.environ.get(name) for name in (METADATA_VARIABLE, TIME_SCALE_VARIABLE)}
+        stack.callback(_restore_environment, saved)
+        if any(x is not None for x in (args.arena, args.zone, args.mode, args.duration)):
+            folder = Path(stack.enter_context(tempfile.TemporaryDirectory(prefix="j5aio-")))
+            path = folder / "metadata.json"
+            path.write_text(json.dumps(_metadata_fields(args)))
+            os.environ[METADATA_VARIABLE] = str(path)
+        if args.time_scale is not None:
+            os.environ[TIME_SCALE_VARIABLE] = repr(args.time_scale)
+            if args.environment == "sim":
+                from j5aio.simulator.kit import kit_from_environment, use_kit
+
+                use_kit(kit_from_environment(), time_scale=args.time_scale)
+        try:
+            metadata = load_metadata()
+        except MetadataError as error:
+            print(f"j5aio: {error}", file=sys.stderr)
+            yield False
+            return
+        if args.start_after is not None:
+            timer = threading.Timer(args.start_after, start.trigger_start)
+            timer.daemon = True
+            timer.start()
+            stack.callback(timer.cancel)
+        elif args.environment == "sim" and sys.stdin is not None and sys.stdin.isatty():
+            threading.Thread(target=_start_on_enter, daemon=True).start()
+        if not args.no_log:
+            folder = args.log_dir or choose_log_folder(program, metadata)
+            try:
+                log = RunLog(folder)
+            except OSError as error:
+                print(f"j5aio: no run log ({folder}: {error})", file=sys.stderr)
+            else:
+                stack.callback(log.close)
+                log.write_header(program.resolve(), metadata)
+                print(f"j5aio: logging this run to {log.path}", file=sys.stderr)
+                stack.enter_context(teeing(log))
+        yield True
+
+
+def _restore_environment(saved: dict[str, str | None]) -> None:
+    for name, value in saved.items():
+        if value is None:
+            os.environ.pop(name, None)
+        else:
+            os.environ[name] = value
+
+
+def _metadata_fields(args: argparse.Namespace) -> dict[str, object]:
+    return {
+        "arena": args.arena if args.arena is not None else "A",
+        "zone": args.zone if args.zone is not None else 0,
+        "mode": args.mode or "DEV",
+        "duration": args.duration,
+        "marker_offset": 0,
+    }
+
+
+def _start_on_enter() -> None:
+    from j5aio.competition.start import trigger_start
+
+    print("j5aio: press Enter to start the robot (the simulated start button).", file=sys.stderr)
+    with contextlib.suppress(OSError, ValueError, EOFError):
+        sys.stdin.readline()
+        trigger_start()
 
 
 def _simulate(args: argparse.Namespace) -> int:

@@ -8,6 +8,9 @@
         await robot.motor_boards[0].motors[0].set_power(0.5)
         volts = await robot.power_board.battery_sensor.get_voltage()
 
+On match day, ``await robot.wait_start()`` waits for the start button and reads the
+match's zone and arena (see :doc:`/match-day`).
+
 Its boards are found through the environment passed in, or else the default one (real
 hardware, unless ``J5AIO_ENV`` or ``python -m j5aio run --sim`` chose otherwise: see
 :mod:`j5aio.environments`).

@@ -139,6 +139,7 @@ def make_all_safe_now(
     close: bool = False,
     loop: asyncio.AbstractEventLoop | None = None,
     budget: float = NET_BUDGET,
+    loop_wait: float | None = None,
 ) -> list[Board]:
     """Make every open board safe now, synchronously, through its own link.
 
@@ -152,6 +153,9 @@ def make_all_safe_now(
         loop or of the program); otherwise the boards stay usable.
     :param loop: only the boards opened in this loop.
     :param budget: the most seconds to spend, for all boards together.
+    :param loop_wait: the most seconds to wait for a loop running in another thread to
+        start the work before doing it from here; half the budget if ``None``. A caller
+        with a deadline of its own (the match timer's game over) passes a short wait.
     :returns: the boards that had to be rescued (something was sent to them and they had
         not been made safe in order before).
     """
@@ -164,7 +168,7 @@ def make_all_safe_now(
     rescued: list[Board] = []
     for board_loop, boards in by_loop.items():
         if board_loop is not None and _runs_elsewhere(board_loop):
-            rescued += _in_loop(board_loop, boards, reason, close, deadline)
+            rescued += _in_loop(board_loop, boards, reason, close, deadline, loop_wait)
         else:
             rescued += _make_safe(boards, reason, close, deadline)
     return rescued
@@ -187,6 +191,7 @@ def _in_loop(
     reason: str,
     close: bool,
     deadline: float,
+    loop_wait: float | None = None,
 ) -> list[Board]:
     done = threading.Event()
     result: list[Board] = []
@@ -204,7 +209,8 @@ def _in_loop(
     except RuntimeError:  # the loop closed meanwhile
         pass
     else:
-        if done.wait(max(deadline - time.monotonic(), 0) / 2):
+        left = max(deadline - time.monotonic(), 0)
+        if done.wait(left / 2 if loop_wait is None else min(loop_wait, left)):
             return result
     if claimed.acquire(blocking=False):  # the loop did not answer: do it from here
         LOGGER.debug("The event loop of %s did not answer; making them safe directly", boards)

@@ -6,6 +6,7 @@ import asyncio
 import logging
 import os
 import socket
+from pathlib import Path
 from types import TracebackType
 from typing import Any, ClassVar, Self
 
@@ -13,6 +14,10 @@ import anyio
 
 from j5aio import lifetime
 from j5aio.boards.board import Board
+from j5aio.competition.clock import MatchClock
+from j5aio.competition.metadata import Metadata, Mode, describe, find_usb_sticks, load_metadata
+from j5aio.competition.start import wait_for_start
+from j5aio.competition.timer import MatchTimer
 from j5aio.errors import UnableToObtainLock
 from j5aio.safety import make_all_safe_uncancellably
 
@@ -42,17 +47,32 @@ class BaseRobot:
 
     Only one robot may run on a machine at a time: creating a second one, in any process,
     raises :class:`~j5aio.errors.UnableToObtainLock`.
+
+    On match day, ``await robot.wait_start()`` waits for the start button and reads the
+    match's metadata (:attr:`zone`, :attr:`arena`, :attr:`mode`); in a match with a
+    duration the match timer then ends the program when the match is over, every board
+    safe, however the program is written (see :mod:`j5aio.competition`). Use
+    :meth:`time` and :meth:`sleep` for timing, so that a simulation can run at another
+    speed.
     """
 
     #: The localhost TCP port used as the machine-wide lock. ``J5AIO_LOCK_PORT`` overrides it.
     lock_port: ClassVar[int] = DEFAULT_LOCK_PORT
 
     _lock: socket.socket | None
+    _metadata: Metadata | None
+    _clock: MatchClock
+    _match_timer: MatchTimer | None
+    _started: bool
 
     def __new__(cls, *args: Any, **kwargs: Any) -> Self:
         """Create the robot and take the machine-wide lock (before any ``__init__``)."""
         robot = super().__new__(cls)
         robot._lock = None
+        robot._metadata = None
+        robot._clock = MatchClock()
+        robot._match_timer = None
+        robot._started = False
         robot._obtain_lock()
         lifetime.install()
         return robot
@@ -98,6 +118,7 @@ class BaseRobot:
         except BaseException:
             await self.__aexit__(None, None, None)
             raise
+        self._log_kit()
         return self
 
     async def __aexit__(
@@ -122,6 +143,123 @@ class BaseRobot:
         """SIGTERM / SIGHUP (from :mod:`j5aio.lifetime`): stop the block, then exit."""
         self._terminated_by = signum
         self._sigterm_scope.cancel()
+
+    # -- match day (issue 10) ------------------------------------------------------------
+
+    @property
+    def metadata(self) -> Metadata:
+        """The match's metadata: read at the start, or looked for now if not started yet.
+
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
+            malformed (the message names the file and the field).
+        """
+        if self._metadata is None:
+            self._metadata = load_metadata()
+        return self._metadata
+
+    @property
+    def arena(self) -> str:
+        """The arena the robot is in (``"A"`` when developing)."""
+        return self.metadata.arena
+
+    @property
+    def zone(self) -> int:
+        """The zone the robot starts in (0 when developing)."""
+        return self.metadata.zone
+
+    @property
+    def mode(self) -> Mode:
+        """``Mode.COMP`` in a match, ``Mode.DEV`` otherwise."""
+        return self.metadata.mode
+
+    @property
+    def is_competition(self) -> bool:
+        """Whether the robot is in a match (COMP mode)."""
+        return self.metadata.is_competition
+
+    @property
+    def usb_stick(self) -> Path | None:
+        """The USB stick the metadata came from, else the first one mounted, else ``None``."""
+        source = self.metadata.source
+        sticks = find_usb_sticks()
+        for stick in sticks:
+            if source is not None and source.parent == stick:
+                return stick
+        return sticks[0] if sticks else None
+
+    @property
+    def match_timer(self) -> MatchTimer | None:
+        """The running match's timer; ``None`` before the start or outside a timed match."""
+        return self._match_timer
+
+    def time(self) -> float:
+        """Robot seconds since the start (since the robot was made, before the start).
+
+        They are real seconds, except on a simulated kit run at another speed
+        (``--time-scale``).
+        """
+        return self._clock.time()
+
+    async def sleep(self, seconds: float) -> None:
+        """Wait ``seconds`` robot seconds (see :meth:`time`), letting other tasks run.
+
+        :raises TypeError: ``seconds`` is not a number.
+        :raises ValueError: ``seconds`` is negative or NaN.
+        """
+        await self._clock.sleep(seconds)
+
+    async def wait_start(self, timeout: float | None = None) -> None:
+        """Wait for the start of the match, then read the metadata and start the timer.
+
+        Flashes the run LED (and a KCH's start LED) and beeps once while waiting; the
+        start button, the start file a competition runner creates, or
+        ``python -m j5aio run``'s console start the robot (:mod:`j5aio.competition.start`).
+        In COMP mode with a duration the match timer starts: when it runs out the
+        robot's work is cancelled, every board is made safe and the program ends.
+
+        :param timeout: give up after this many seconds; ``None`` waits for ever.
+        :raises TimeoutError: nothing started the robot within ``timeout`` seconds.
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
+            malformed (the message names the file and the field).
+        :raises RuntimeError: the robot has started already.
+        """
+        if self._started:
+            raise RuntimeError("the robot has started already: wait_start runs once")
+        self._log_kit()
+        await wait_for_start(self.boards(), timeout)
+        self._started = True
+        self._metadata = metadata = load_metadata()
+        self._clock = MatchClock(self._clock.scale)
+        LOGGER.info("Match metadata: %s", describe(metadata))
+        if metadata.is_competition and metadata.duration is not None:
+            loop = asyncio.get_running_loop()
+
+            def cancel() -> None:
+                loop.call_soon_threadsafe(self._cancel_work)
+
+            self._match_timer = MatchTimer(
+                self._clock.to_real(metadata.duration), cancel=cancel
+            )
+            self._match_timer.start()
+
+    def _log_kit(self) -> None:
+        """Log each board found, once (the run log's record of the kit)."""
+        if getattr(self, "_kit_logged", False):
+            return
+        self._kit_logged = True
+        for board in sorted(self.boards(), key=lambda b: (b.name, b.serial_number)):
+            LOGGER.info(
+                "Kit: %s, serial %s, firmware %s",
+                board.name,
+                board.serial_number,
+                board.firmware_version or "(none reported)",
+            )
+
+    def _cancel_work(self) -> None:
+        """Cancel the robot's ``async with`` block (game over), if it is in one."""
+        scope: anyio.CancelScope | None = getattr(self, "_sigterm_scope", None)
+        if scope is not None:
+            scope.cancel()
 
     @staticmethod
     def boards() -> set[Board]:

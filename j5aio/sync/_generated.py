@@ -35,6 +35,8 @@ import j5aio.boards.sr.v4.power_board_fw4 as _boards_sr_v4_power_board_fw4
 import j5aio.boards.sr.v4.ruggeduino as _boards_sr_v4_ruggeduino
 import j5aio.boards.sr.v4.servo_board as _boards_sr_v4_servo_board
 import j5aio.boards.sr.v4.servo_board_fw4 as _boards_sr_v4_servo_board_fw4
+import j5aio.competition.metadata as _competition_metadata
+import j5aio.competition.timer as _competition_timer
 import j5aio.components._identified as _components_identified
 import j5aio.components.battery_sensor as _components_battery_sensor
 import j5aio.components.button as _components_button
@@ -429,6 +431,13 @@ class BaseRobot(_SyncWrapper):
 
     Only one robot may run on a machine at a time: creating a second one, in any process,
     raises :class:`~j5aio.errors.UnableToObtainLock`.
+
+    On match day, ``await robot.wait_start()`` waits for the start button and reads the
+    match's metadata (:attr:`zone`, :attr:`arena`, :attr:`mode`); in a match with a
+    duration the match timer then ends the program when the match is over, every board
+    safe, however the program is written (see :mod:`j5aio.competition`). Use
+    :meth:`time` and :meth:`sleep` for timing, so that a simulation can run at another
+    speed.
     """
 
     __slots__ = ()
@@ -451,6 +460,78 @@ class BaseRobot(_SyncWrapper):
     def make_safe(self) -> None:
         """Make every board safe now. Cancellation cannot interrupt it."""
         _call(self._core.make_safe)
+
+    @property
+    def metadata(self) -> _competition_metadata.Metadata:
+        """The match's metadata: read at the start, or looked for now if not started yet.
+
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
+            malformed (the message names the file and the field).
+        """
+        return self._core.metadata
+
+    @property
+    def arena(self) -> str:
+        """The arena the robot is in (``"A"`` when developing)."""
+        return self._core.arena
+
+    @property
+    def zone(self) -> int:
+        """The zone the robot starts in (0 when developing)."""
+        return self._core.zone
+
+    @property
+    def mode(self) -> _competition_metadata.Mode:
+        """``Mode.COMP`` in a match, ``Mode.DEV`` otherwise."""
+        return self._core.mode
+
+    @property
+    def is_competition(self) -> bool:
+        """Whether the robot is in a match (COMP mode)."""
+        return self._core.is_competition
+
+    @property
+    def usb_stick(self) -> Path | None:
+        """The USB stick the metadata came from, else the first one mounted, else ``None``."""
+        return self._core.usb_stick
+
+    @property
+    def match_timer(self) -> _competition_timer.MatchTimer | None:
+        """The running match's timer; ``None`` before the start or outside a timed match."""
+        return self._core.match_timer
+
+    def time(self) -> float:
+        """Robot seconds since the start (since the robot was made, before the start).
+
+        They are real seconds, except on a simulated kit run at another speed
+        (``--time-scale``).
+        """
+        return self._core.time()
+
+    def sleep(self, seconds: float) -> None:
+        """Wait ``seconds`` robot seconds (see :meth:`time`), letting other tasks run.
+
+        :raises TypeError: ``seconds`` is not a number.
+        :raises ValueError: ``seconds`` is negative or NaN.
+        """
+        _call(self._core.sleep, seconds)
+
+    def wait_start(self, timeout: float | None = None) -> None:
+        """Wait for the start of the match, then read the metadata and start the timer.
+
+        Flashes the run LED (and a KCH's start LED) and beeps once while waiting; the
+        start button, the start file a competition runner creates, or
+        ``python -m j5aio run``'s console start the robot (:mod:`j5aio.competition.start`).
+        In COMP mode with a duration the match timer starts: when it runs out the
+        robot's work is cancelled, every board is made safe and the program ends.
+
+        :param timeout: give up after this many seconds; ``None`` waits for ever.
+        :raises TimeoutError: nothing started the robot within ``timeout`` seconds.
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
+            malformed (the message names the file and the field).
+        :raises RuntimeError: the robot has started already.
+        """
+        _call(self._core.wait_start, timeout)
 
     @staticmethod
     def boards() -> set[Board]:

@@ -183,3 +183,19 @@ async def test_nack_and_bad_replies() -> None:
     with pytest.raises(UnexpectedReplyError, match=r"\*STATUS\?"):
         await board.input_voltage_sensor.get_voltage()
     await board.close()
+
+
+async def test_make_safe_now_brakes_both_motors_synchronously() -> None:
+    sim = SRMotorBoardFw4Simulator("srM")
+    board, backend, _stream = await connect(sim)
+    await board.motors[0].set_power(0.5)
+    await board.motors[1].set_power(-0.5)
+    assert backend.make_safe_now(0.5) is True
+    assert [motor.drive for motor in sim.motors] == [MotorDrive.BRAKE, MotorDrive.BRAKE]
+    assert backend.last_sent == [MotorSpecialState.BRAKE] * 2
+    # The link drained the replies: the board is still usable.
+    await board.motors[0].set_power(0.25)
+    assert sim.motors[0].drive is not MotorDrive.BRAKE
+    backend.close_now()
+    assert backend.make_safe_now(0.5) is False
+    await board.close()

@@ -244,3 +244,16 @@ async def test_a_lost_or_corrupt_reply_is_an_error_and_the_next_call_works() -> 
     with pytest.raises(BoardDisconnectionError):
         await board.outputs[0].get_is_enabled()
     await board.close()
+
+
+async def test_make_safe_now_switches_the_outputs_off_synchronously() -> None:
+    sim = SRPowerBoardFw4Simulator("srP")
+    board, backend, stream = await connect(sim)
+    await board.outputs.power_on()
+    assert any(sim.outputs)
+    assert backend.make_safe_now(0.5) is True
+    assert b"\n*RESET\n" in stream.sent
+    assert await board.outputs[0].get_is_enabled() is False  # replies were drained
+    backend.close_now()
+    assert backend.make_safe_now(0.5) is False
+    await board.close()

@@ -25,7 +25,7 @@ from j5aio.backends.hardware.transports.readers import read_line
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.boards.sr.v4.motor_board_fw4 import MotorBoardFw4
 from j5aio.components.monitored_motor import MonitoredMotorInterface
-from j5aio.components.motor import MotorState
+from j5aio.components.motor import MotorSpecialState, MotorState
 from j5aio.components.voltage_sensor import VoltageSensorInterface
 from j5aio.errors import CommunicationTimeoutError, UnsupportedFirmwareError
 
@@ -52,6 +52,21 @@ class SRV4MotorBoardFw4HardwareBackend(
         self.asset_tag: str | None = None
         #: What this backend last sent to each motor (``None``: nothing yet).
         self.last_sent: list[MotorState | None] = [None] * codec.MOTOR_COUNT
+
+    def make_safe_now(self, timeout: float) -> bool:
+        """Brake both motors at once, synchronously (the safety net; see :class:`.Backend`).
+
+        A newline goes first, so that a command cut in half by the program's end becomes a
+        line of its own (NACKed) instead of swallowing the first brake command; the link
+        drains the replies.
+        """
+        if self._link.is_closed:
+            return False
+        brake = MotorSpecialState.BRAKE
+        commands = b"".join(codec.encode_set(motor, brake) for motor in range(codec.MOTOR_COUNT))
+        self._link.send_now(b"\n" + commands, timeout=timeout)
+        self.last_sent = [brake] * codec.MOTOR_COUNT
+        return True
 
     def forget_cached_state(self) -> None:
         """Forget what was last sent to the motors (after the board has reset, say)."""

@@ -82,6 +82,17 @@ class SRV4PowerBoardFw4HardwareBackend(
     async def _status(self) -> codec.PowerStatus:
         return codec.parse_status(self.board.name, await self._query(codec.STATUS))
 
+    def make_safe_now(self, timeout: float) -> bool:
+        """Reset the board at once, synchronously: every output off but the brain's.
+
+        The safety net's path (see :class:`.Backend`): the same ``*RESET`` as
+        :meth:`reset_board`, after a newline that ends any command cut in half.
+        """
+        if self._link.is_closed:
+            return False
+        self._link.send_now(b"\n" + codec.RESET, timeout=timeout)
+        return True
+
     async def reset_board(self) -> None:
         """Reset the board (``*RESET``): outputs off but the brain's, LEDs off, silence."""
         await self._act(codec.RESET)

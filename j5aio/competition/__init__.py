@@ -1,0 +1,29 @@
+"""Match day: metadata, the start, the match timer and run logs (for every kit).
+
+- :mod:`j5aio.competition.metadata`: the match's arena, zone, mode and duration, from
+  ``metadata.json`` (USB stick, ``J5AIO_METADATA``, or development defaults);
+- :mod:`j5aio.competition.start`: waiting for the start button or a runner's start file;
+- :mod:`j5aio.competition.timer`: the watchdog that ends a match with every board safe;
+- :mod:`j5aio.competition.clock`: robot time, scaled on a simulated kit;
+- :mod:`j5aio.competition.runlog`: ``python -m j5aio run``'s log files.
+
+A robot uses them through :meth:`~j5aio.robot.BaseRobot.wait_start` and its
+``arena`` / ``zone`` / ``mode`` / ``is_competition`` / ``usb_stick`` properties.
+"""
+
+from j5aio.competition.clock import MatchClock
+from j5aio.competition.metadata import Metadata, MetadataError, Mode, load_metadata
+from j5aio.competition.start import start_file, trigger_start
+from j5aio.competition.timer import MatchTimer, add_game_over_hook
+
+__all__ = [
+    "MatchClock",
+    "MatchTimer",
+    "Metadata",
+    "MetadataError",
+    "Mode",
+    "add_game_over_hook",
+    "load_metadata",
+    "start_file",
+    "trigger_start",
+]

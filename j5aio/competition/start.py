@@ -1,0 +1,164 @@
+"""Waiting for the start of a match: the start button, or a start from outside.
+
+:func:`wait_for_start` returns when any of these happens:
+
+- a start button is pressed (any board with a ``start_button``: the SR power boards;
+  on the simulated kit, ``kit.power_boards[0].press_start()``);
+- the *start file* appears: a competition runner on the same machine starts the robot
+  with ``touch /tmp/j5aio-start`` (the path is :func:`start_file`: ``J5AIO_START_FILE``
+  if set, else ``j5aio-start`` in the system's temporary directory). The file is
+  local to the machine, so nothing on the network can start a robot. It is removed when
+  the wait begins (a stale one from an earlier run does not count) and again when it
+  is seen;
+- :func:`trigger_start` is called in this process (``python -m j5aio run`` does so after
+  ``--start-after`` seconds, or when Enter is pressed in its console).
+
+While it waits, the run LED of every board that has one flashes, the start LED of a KCH
+flashes, and every piezo gives one short beep at the beginning.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import tempfile
+import threading
+from collections.abc import Iterable
+from datetime import timedelta
+from pathlib import Path
+from typing import Final, TypeVar
+
+import anyio
+
+from j5aio.boards.board import Board
+from j5aio.components._checks import check_timeout
+from j5aio.components.button import Button
+from j5aio.components.flashing_led import FlashingLED
+from j5aio.components.led import LED
+from j5aio.components.piezo import Note, Piezo
+
+__all__ = [
+    "POLL_INTERVAL",
+    "START_FILE_VARIABLE",
+    "clear_trigger",
+    "start_file",
+    "trigger_start",
+    "wait_for_start",
+]
+
+LOGGER = logging.getLogger(__name__)
+
+#: The environment variable naming the start file.
+START_FILE_VARIABLE: Final = "J5AIO_START_FILE"
+#: How often the buttons and the start file are looked at while waiting, in seconds.
+POLL_INTERVAL: Final = 0.05
+#: The run LED changes every this many looks (0.3 s).
+_FLASH_POLLS: Final = 6
+_BEEP: Final = timedelta(milliseconds=100)
+
+_triggered = threading.Event()
+
+
+def start_file() -> Path:
+    """The file whose appearance starts the robot (``J5AIO_START_FILE`` or the default)."""
+    named = os.environ.get(START_FILE_VARIABLE)
+    if named:
+        return Path(named)
+    return Path(tempfile.gettempdir()) / "j5aio-start"
+
+
+def trigger_start() -> None:
+    """Start the robot waiting in :func:`wait_for_start` (from any thread), or the next one."""
+    _triggered.set()
+
+
+def clear_trigger() -> None:
+    """Forget a :func:`trigger_start` that no wait has taken yet."""
+    _triggered.clear()
+
+
+_T = TypeVar("_T")
+
+
+def _components(boards: Iterable[Board], name: str, kind: type[_T]) -> list[_T]:
+    found = (getattr(board, name, None) for board in boards)
+    return [component for component in found if isinstance(component, kind)]
+
+
+def _take_start_file(path: Path) -> bool:
+    try:
+        path.unlink()
+    except FileNotFoundError:
+        return False
+    except OSError as exc:  # e.g. a directory: the runner's mistake, say so once a poll
+        LOGGER.error("Cannot remove the start file %s: %s", path, exc)
+        return path.exists()
+    return True
+
+
+async def wait_for_start(boards: Iterable[Board], timeout: float | None = None) -> str:
+    """Wait for the start (see the module's documentation), signalling on the boards.
+
+    :param boards: the robot's boards: their start buttons, run LEDs, KCH start LEDs and
+        piezos are used.
+    :param timeout: give up after this many seconds; ``None`` waits for ever.
+    :returns: what started the robot: ``"button"``, ``"start file"`` or ``"trigger"``.
+    :raises TimeoutError: nothing started the robot within ``timeout`` seconds.
+    :raises TypeError: ``timeout`` is not a number or ``None``.
+    :raises ValueError: ``timeout`` is negative or NaN.
+    :raises CommunicationError: a board did not answer.
+    """
+    limit = check_timeout(timeout)
+    boards = list(boards)
+    buttons = _components(boards, "start_button", Button)
+    leds = _components(boards, "run_led", LED)
+    # An LED that flashes by itself (a KCH's start LED, a fw 4 power board's run LED) is
+    # told to; the others are switched by the wait below.
+    flashing = [led for led in leds if isinstance(led, FlashingLED)]
+    flashing += _components(boards, "start_led", FlashingLED)
+    run_leds = [led for led in leds if not isinstance(led, FlashingLED)]
+    path = start_file()
+    _take_start_file(path)  # a file left from an earlier run does not count
+    for button in buttons:
+        await button.get_is_pressed()  # discard a press latched before the wait
+    for piezo in _components(boards, "piezo", Piezo):
+        await piezo.buzz(_BEEP, Note.A6)
+    for flasher in flashing:
+        await flasher.flash()
+    LOGGER.info(
+        "Waiting for the start: press the start button, or create %s", path
+    )
+    polls = 0
+    led_on = False
+    with anyio.fail_after(limit):
+        while True:
+            if _triggered.is_set():
+                _triggered.clear()
+                how = "trigger"
+                break
+            if _take_start_file(path):
+                how = "start file"
+                break
+            if await _any_pressed(buttons):
+                how = "button"
+                break
+            if polls % _FLASH_POLLS == 0:
+                led_on = not led_on
+                for led in run_leds:
+                    await led.set_state(led_on)
+            polls += 1
+            await anyio.sleep(POLL_INTERVAL)
+    for led in leds:
+        await led.set_state(True)  # the run LED: lit while the robot runs
+    for flasher in flashing:
+        if flasher not in leds:
+            await flasher.set_state(False)  # a KCH's start LED: off once started
+    LOGGER.info("Started (by the %s).", how)
+    return how
+
+
+async def _any_pressed(buttons: list[Button]) -> bool:
+    for button in buttons:
+        if await button.get_is_pressed():
+            return True
+    return False

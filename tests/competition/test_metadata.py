@@ -1,0 +1,220 @@
+"""Tests of the match metadata: parsing, validation, where the file is found."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from j5aio.competition.metadata import (
+    DEV_DEFAULTS,
+    MEDIA_ROOTS_VARIABLE,
+    METADATA_VARIABLE,
+    Metadata,
+    MetadataError,
+    Mode,
+    describe,
+    find_metadata_file,
+    find_usb_sticks,
+    load_metadata,
+    media_roots,
+    parse_metadata,
+    read_metadata_file,
+)
+
+COMP = {"arena": "B", "zone": 2, "mode": "COMP", "duration": 150, "marker_offset": 100}
+
+
+@pytest.fixture(autouse=True)
+def _no_outside_files(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    monkeypatch.delenv(METADATA_VARIABLE, raising=False)
+    monkeypatch.setenv(MEDIA_ROOTS_VARIABLE, str(tmp_path / "no-media"))
+
+
+def write(path: Path, data: object) -> Path:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(data))
+    return path
+
+
+def test_a_full_comp_file() -> None:
+    metadata = parse_metadata(COMP, Path("/stick/metadata.json"))
+    assert metadata == Metadata("B", 2, Mode.COMP, 150.0, 100, Path("/stick/metadata.json"))
+    assert metadata.is_competition
+    assert "zone 2" in describe(metadata) and "150 s" in describe(metadata)
+
+
+def test_dev_fills_in_missing_fields() -> None:
+    metadata = parse_metadata({"zone": 3})
+    assert (metadata.arena, metadata.zone, metadata.mode, metadata.duration) == (
+        "A", 3, Mode.DEV, None,
+    )
+    assert not metadata.is_competition
+    assert "no time limit" in describe(metadata) and "defaults" in describe(DEV_DEFAULTS)
+
+
+def test_mode_is_case_insensitive_and_null_duration_is_no_limit() -> None:
+    metadata = parse_metadata({**COMP, "mode": "comp", "duration": None})
+    assert metadata.mode is Mode.COMP and metadata.duration is None
+
+
+@pytest.mark.parametrize("field", sorted(COMP))
+def test_comp_never_defaults_a_field(field: str) -> None:
+    data = {k: v for k, v in COMP.items() if k != field}
+    if field == "mode":
+        return  # without a mode it is DEV
+    with pytest.raises(MetadataError, match=rf"x.json: in COMP mode every field.*'{field}'"):
+        parse_metadata(data, Path("x.json"))
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "allowed"),
+    [
+        ("zone", -1, "whole number from 0 to 99"),
+        ("zone", True, "whole number"),
+        ("zone", 1.5, "whole number"),
+        ("arena", "", "string of 1 to 32"),
+        ("arena", 7, "string of 1 to 32"),
+        ("arena", " A", "no surrounding spaces"),
+        ("mode", "MATCH", '"COMP" or "DEV"'),
+        ("mode", 1, '"COMP" or "DEV"'),
+        ("duration", 0, "more than 0"),
+        ("duration", "150", "more than 0"),
+        ("duration", 1e9, "at most 3600"),
+        ("marker_offset", -5, "from 0 to 10000"),
+    ],
+)
+def test_bad_fields_name_file_field_and_what_is_allowed(
+    field: str, value: object, allowed: str
+) -> None:
+    with pytest.raises(MetadataError) as caught:
+        parse_metadata({**COMP, field: value}, Path("/media/stick/metadata.json"))
+    message = str(caught.value)
+    assert message.startswith("/media/stick/metadata.json:")
+    assert repr(field) in message or field in message
+    assert allowed in message
+
+
+def test_not_an_object() -> None:
+    with pytest.raises(MetadataError, match=r"must hold a JSON object.*not a list"):
+        parse_metadata([1, 2])
+
+
+def test_direct_construction_is_checked() -> None:
+    with pytest.raises(MetadataError, match="'zone'"):
+        Metadata(zone=500)
+    with pytest.raises(MetadataError, match="mode must be a Mode"):
+        Metadata(mode="COMP")  # type: ignore[arg-type]
+    with pytest.raises(MetadataError, match="'duration'"):
+        Metadata(duration=float("nan"))
+
+
+def test_unknown_fields_are_logged_not_fatal(caplog: pytest.LogCaptureFixture) -> None:
+    caplog.set_level("INFO")
+    assert parse_metadata({**COMP, "wifi": "x"}).zone == 2
+    assert "wifi" in caplog.text
+
+
+def test_unreadable_and_malformed_files(tmp_path: Path) -> None:
+    with pytest.raises(MetadataError, match="cannot be read"):
+        read_metadata_file(tmp_path / "missing.json")
+    bad = tmp_path / "bad.json"
+    bad.write_text("{zone: 2")
+    with pytest.raises(MetadataError, match=r"bad.json: is not valid JSON"):
+        read_metadata_file(bad)
+    bad.write_bytes(b"\xff\xfe{}")
+    with pytest.raises(MetadataError, match="not UTF-8"):
+        read_metadata_file(bad)
+    bad.write_text("[" * 100_000)
+    with pytest.raises(MetadataError, match="larger than"):
+        read_metadata_file(bad)
+    bad.write_text("[" * 20_000 + "]" * 20_000)
+    with pytest.raises(MetadataError, match=r"not valid JSON|must hold a JSON object"):
+        read_metadata_file(bad)
+
+
+def test_environment_variable_wins(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    named = write(tmp_path / "here.json", COMP)
+    monkeypatch.setenv(METADATA_VARIABLE, str(named))
+    assert find_metadata_file([]) == named
+    assert load_metadata([]).source == named
+    monkeypatch.setenv(METADATA_VARIABLE, str(tmp_path / "gone.json"))
+    with pytest.raises(MetadataError, match=r"gone.json: no such file.*J5AIO_METADATA"):
+        load_metadata([])
+
+
+def test_sticks_are_mount_points_one_or_two_levels_down(tmp_path: Path) -> None:
+    (tmp_path / "media" / "STICK").mkdir(parents=True)
+    (tmp_path / "run" / "robot" / "USB").mkdir(parents=True)
+    (tmp_path / "run" / "robot" / "notmounted").mkdir()
+    mounts = {tmp_path / "media" / "STICK", tmp_path / "run" / "robot" / "USB"}
+    found = find_usb_sticks(
+        [tmp_path / "media", tmp_path / "run", tmp_path / "absent"],
+        is_mount=lambda path: path in mounts,
+    )
+    assert found == sorted(mounts)
+
+
+def test_media_roots_from_the_environment(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv(MEDIA_ROOTS_VARIABLE, os.pathsep.join(["/a", "", "/b"]))
+    assert media_roots() == [Path("/a"), Path("/b")]
+    monkeypatch.delenv(MEDIA_ROOTS_VARIABLE)
+    assert media_roots() == [Path("/media"), Path("/run/media")]
+
+
+def test_first_stick_with_a_file_is_used(tmp_path: Path, caplog: pytest.LogCaptureFixture) -> None:
+    empty, first, second = tmp_path / "a", tmp_path / "b", tmp_path / "c"
+    empty.mkdir()
+    write(first / "metadata.json", COMP)
+    write(second / "metadata.json", {"zone": 1})
+    assert load_metadata([empty, first, second]).source == first / "metadata.json"
+    assert "More than one USB stick" in caplog.text
+    assert load_metadata([empty]) is DEV_DEFAULTS
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    st.recursive(
+        st.none() | st.booleans() | st.integers() | st.floats() | st.text(max_size=40),
+        lambda inner: st.lists(inner, max_size=4)
+        | st.dictionaries(st.text(max_size=12), inner, max_size=6),
+        max_leaves=12,
+    )
+    | st.fixed_dictionaries(
+        {},
+        optional={
+            "arena": st.text(max_size=40) | st.integers(),
+            "zone": st.integers() | st.floats() | st.text(max_size=3) | st.booleans(),
+            "mode": st.sampled_from(["COMP", "DEV", "comp", "x", ""]) | st.integers(),
+            "duration": st.none() | st.floats() | st.integers() | st.text(max_size=3),
+            "marker_offset": st.integers() | st.floats(),
+        },
+    )
+)
+def test_fuzzed_files_give_metadata_or_a_clear_error(data: object) -> None:
+    try:
+        metadata = parse_metadata(data, Path("fuzz.json"))
+    except MetadataError as error:
+        assert str(error).startswith("fuzz.json: ")
+        assert "must" in str(error) or "missing" in str(error)
+    else:
+        assert 0 <= metadata.zone <= 99
+        assert metadata.duration is None or 0 < metadata.duration <= 3600
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.binary(max_size=200) | st.text(max_size=200).map(str.encode))
+def test_fuzzed_bytes_give_metadata_or_a_clear_error(raw: bytes) -> None:
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "metadata.json"
+        path.write_bytes(raw)
+        try:
+            read_metadata_file(path)
+        except MetadataError as error:
+            assert str(error).startswith(f"{path}: ")

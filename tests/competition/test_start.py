@@ -1,0 +1,157 @@
+"""Tests of the start flow: buttons, the start file, the trigger, LEDs and beep."""
+
+from __future__ import annotations
+
+from collections.abc import AsyncIterator
+from datetime import timedelta
+from pathlib import Path
+
+import anyio
+import pytest
+
+from j5aio.boards.board import Board
+from j5aio.boards.sr.v4 import PowerBoard
+from j5aio.competition import start
+from j5aio.competition.start import (
+    START_FILE_VARIABLE,
+    clear_trigger,
+    start_file,
+    trigger_start,
+    wait_for_start,
+)
+from j5aio.components.button import Button
+from j5aio.components.piezo import Duration, Note, Piezo, Pitch
+from j5aio.simulator import kit as kit_module
+from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+from j5aio.simulator.kch import KCHSimulator
+from j5aio.simulator.kit import KitConfig, SimulatedKit, use_kit
+
+
+@pytest.fixture(autouse=True)
+async def _fresh(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> AsyncIterator[None]:
+    saved = kit_module._current
+    monkeypatch.setenv(START_FILE_VARIABLE, str(tmp_path / "start"))
+    clear_trigger()
+    yield
+    clear_trigger()
+    for board in list(Board.BOARDS):
+        await board.close()
+    kit_module._current = saved
+
+
+async def power_board() -> tuple[SimulatedKit, PowerBoard]:
+    kit = use_kit(KitConfig(1, 0, 0, 0, 0))
+    board = (await SIMULATED_ENVIRONMENT.get_board_group(PowerBoard)).singular()
+    return kit, board
+
+
+def test_start_file_default_and_override(monkeypatch: pytest.MonkeyPatch) -> None:
+    assert start_file().name == "start"
+    monkeypatch.delenv(START_FILE_VARIABLE)
+    assert start_file().name == "j5aio-start"
+
+
+async def test_the_simulated_start_button_starts(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(start, "_FLASH_POLLS", 1)
+    beeps: list[tuple[object, object]] = []
+    original_buzz = Piezo.buzz
+
+    async def buzz(
+        piezo: Piezo, duration: Duration, pitch: Pitch, *, blocking: bool = False
+    ) -> None:
+        beeps.append((duration, pitch))
+        await original_buzz(piezo, duration, pitch, blocking=blocking)
+
+    monkeypatch.setattr(Piezo, "buzz", buzz)
+    kit, board = await power_board()
+    simulator = kit.power_boards[0]
+    seen_led: set[bool] = set()
+
+    async def press_later() -> None:
+        for _ in range(6):
+            await anyio.sleep(0.05)
+            seen_led.add(simulator.run_led)
+        simulator.press_start()
+
+    async with anyio.create_task_group() as tasks:
+        tasks.start_soon(press_later)
+        assert await wait_for_start([board], timeout=5) == "button"
+    assert beeps == [(timedelta(milliseconds=100), Note.A6)]  # one short beep
+    assert seen_led == {True, False}  # the run LED flashed while waiting
+    assert simulator.run_led  # and is lit after the start
+
+
+async def test_a_press_before_the_wait_is_discarded_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    kit, board = await power_board()
+    reads: list[bool] = []
+    original = Button.get_is_pressed
+
+    async def counting(button: Button) -> bool:
+        reads.append(await original(button))
+        return reads[-1]
+
+    monkeypatch.setattr(Button, "get_is_pressed", counting)
+    kit.power_boards[0].press_start()  # held (or latched) before the wait
+    trigger_start()
+    assert await wait_for_start([board], timeout=5) == "trigger"
+    assert reads == [True]  # the discarding read came first; the trigger then won
+
+
+async def test_the_start_file_starts_and_a_stale_one_does_not(tmp_path: Path) -> None:
+    path = tmp_path / "start"
+    path.touch()  # left over from an earlier run
+    with pytest.raises(TimeoutError):
+        await wait_for_start([], timeout=0.2)
+    assert not path.exists()
+
+    async def poke() -> None:
+        await anyio.sleep(0.1)
+        path.touch()
+
+    async with anyio.create_task_group() as tasks:
+        tasks.start_soon(poke)
+        assert await wait_for_start([], timeout=5) == "start file"
+    assert not path.exists()
+
+
+async def test_an_unremovable_start_file_is_reported(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    (tmp_path / "start").mkdir()
+    assert await wait_for_start([], timeout=5) == "start file"
+    assert "Cannot remove the start file" in caplog.text
+
+
+async def test_a_trigger_from_another_thread_starts() -> None:
+    async def later() -> None:
+        await anyio.to_thread.run_sync(trigger_start)
+
+    async with anyio.create_task_group() as tasks:
+        tasks.start_soon(later)
+        assert await wait_for_start([], timeout=5) == "trigger"
+    with pytest.raises(TimeoutError):  # taken: the next wait waits again
+        await wait_for_start([], timeout=0.1)
+
+
+async def test_the_kch_start_led_flashes_while_waiting() -> None:
+    simulator = KCHSimulator()
+    kch = simulator.board()
+    try:
+        async def later() -> None:
+            await anyio.sleep(0.4)
+            trigger_start()
+
+        async with anyio.create_task_group() as tasks:
+            tasks.start_soon(later)
+            await wait_for_start([kch], timeout=5)
+        assert simulator.start_led_changes >= 2
+        assert not simulator.start_led
+    finally:
+        await kch.close()
+
+
+async def test_bad_timeouts_are_refused() -> None:
+    with pytest.raises(TypeError):
+        await wait_for_start([], timeout="1")  # type: ignore[arg-type]
+    with pytest.raises(ValueError):
+        await wait_for_start([], timeout=-1)

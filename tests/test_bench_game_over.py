@@ -1,0 +1,50 @@
+"""A bounded run of bench/bench_game_over.py: programs that try to survive game over fail.
+
+Each kind of program (a loop swallowing BaseException, the sync facade sleeping in a
+tight loop, a blocking call in an async task, a tight synchronous loop) is run once as a
+child process in a short COMP match; its motors must end braked after the match's end,
+by the simulators' own record, and the process must end with status 0 and a Game over
+line. The 50 ms goal is measured by the bench itself; here the bound is for liveness.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+from pathlib import Path
+from types import ModuleType
+
+import pytest
+
+
+def load_bench() -> ModuleType:
+    path = Path(__file__).resolve().parents[1] / "bench" / "bench_game_over.py"
+    spec = importlib.util.spec_from_file_location("bench_game_over", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.mark.parametrize("kind", ["swallow", "sync", "blocking", "spin", "sr2023"])
+def test_a_program_that_tries_to_survive_game_over_is_stopped(kind: str) -> None:
+    bench = load_bench()
+    trial = bench.run_trial(kind)
+    assert trial.drove, trial  # a motor was driving when the match ended
+    assert trial.braked_after is not None, trial
+    assert trial.braked_after < 0.5, trial  # liveness; the bench measures the 50 ms goal
+    assert trial.returncode == 0, trial
+    assert "Game over" in trial.stderr, trial
+    assert "Traceback" not in trial.stderr, trial
+
+
+def test_report_and_braked_after(capsys: pytest.CaptureFixture[str]) -> None:
+    bench = load_bench()
+    history = [(1.0, "A", ["FORWARD", "BRAKE"]), (2.0, "A", ["BRAKE", "BRAKE"])]
+    assert bench.braked_after(history, 1.5) == pytest.approx(0.5)
+    assert bench.braked_after([], 1.0) is None
+    assert bench.braked_after([(1.0, "A", ["FORWARD", "BRAKE"])], 0.0) is None
+    bench.report([bench.Trial("spin", 0.01, True, 0, ""), bench.Trial("spin", None, True, 0, "")])
+    out = capsys.readouterr().out
+    assert "within 50 ms" in out and "still driving" in out
