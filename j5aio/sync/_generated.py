@@ -49,6 +49,7 @@ import j5aio.components.servo as _components_servo
 import j5aio.components.string_command as _components_string_command
 import j5aio.components.supply_sensor as _components_supply_sensor
 import j5aio.environments as _environments
+import j5aio.kit as _kit
 import j5aio.robot as _robot
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt as _adopt
@@ -79,6 +80,7 @@ __all__ = [
     "GPIOPin",
     "IdentifiedComponent",
     "KCHBoard",
+    "KitRobot",
     "Motor",
     "MotorBoard",
     "Piezo",
@@ -741,6 +743,80 @@ class PowerOutputGroup(_SyncWrapper, Generic[K]):
     def __len__(self) -> int:
         """Return how many outputs are in the group."""
         return self._core.__len__()
+
+
+class KitRobot(BaseRobot):
+    """A robot built from an SR v4 power board and any SR v4 / SourceBots boards beside it.
+
+    After ``async with KitRobot() as robot`` it has:
+
+    - ``robot.power_board``: the one power board (an error says so if there is not
+      exactly one);
+    - ``robot.motor_boards``, ``robot.servo_boards``, ``robot.arduinos`` (SourceBots
+      Arduinos) and ``robot.ruggeduinos``: groups of every such board found, possibly
+      empty, reached by position or serial number.
+
+    :param environment: where to find the boards; the default environment if omitted.
+    :raises TypeError: ``environment`` is not an Environment.
+    """
+
+    __slots__ = ()
+
+    _core: _kit.KitRobot
+
+    def __new__(cls, *args: Any, environment: Environment | None = None, **kwargs: Any) -> Self:
+        robot = _adopt(cls, _kit.KitRobot(environment=_unwrap(environment)))
+        try:
+            _call(robot._core.setup)
+        except BaseException:
+            robot._core.release_lock()
+            raise
+        return robot
+
+    @property
+    def environment(self) -> Environment:
+        """The environment the boards are found in."""
+        return cast("Environment", _wrap(self._core.environment))
+
+    def setup(self) -> None:
+        """Find every board of the kit, then the power board.
+
+        :raises CommunicationError: there is not exactly one power board, or a board
+            could not be reached. When the hardware was looked at only by default and
+            nothing was found (or it could not be looked at), one line says how to run
+            on the simulated kit instead.
+        """
+        _call(self._core.setup)
+
+    @property
+    def power_board(self) -> PowerBoard:
+        """The ``power_board`` of the wrapped object."""
+        return cast("PowerBoard", _wrap(self._core.power_board))
+
+    @property
+    def power_boards(self) -> BoardGroup[PowerBoard]:
+        """The ``power_boards`` of the wrapped object."""
+        return cast("BoardGroup[PowerBoard]", _wrap(self._core.power_boards))
+
+    @property
+    def motor_boards(self) -> BoardGroup[MotorBoard]:
+        """The ``motor_boards`` of the wrapped object."""
+        return cast("BoardGroup[MotorBoard]", _wrap(self._core.motor_boards))
+
+    @property
+    def servo_boards(self) -> BoardGroup[ServoBoard]:
+        """The ``servo_boards`` of the wrapped object."""
+        return cast("BoardGroup[ServoBoard]", _wrap(self._core.servo_boards))
+
+    @property
+    def arduinos(self) -> BoardGroup[SBArduinoBoard]:
+        """The ``arduinos`` of the wrapped object."""
+        return cast("BoardGroup[SBArduinoBoard]", _wrap(self._core.arduinos))
+
+    @property
+    def ruggeduinos(self) -> BoardGroup[Ruggeduino]:
+        """The ``ruggeduinos`` of the wrapped object."""
+        return cast("BoardGroup[Ruggeduino]", _wrap(self._core.ruggeduinos))
 
 
 class ArduinoUno(Board):
@@ -2074,6 +2150,7 @@ _register(_boards_board.Board, Board)
 _register(_boards_board_group.BoardGroup, BoardGroup)
 _register(_components_component.Component, Component)
 _register(_components_power_output.PowerOutputGroup, PowerOutputGroup)
+_register(_kit.KitRobot, KitRobot)
 _register(_boards_arduino_uno.ArduinoUno, ArduinoUno)
 _register(_boards_sr_kch.KCHBoard, KCHBoard)
 _register(_boards_sr_v4_motor_board.MotorBoard, MotorBoard)
