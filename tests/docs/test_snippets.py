@@ -59,7 +59,8 @@ def test_the_docs_have_snippets_of_both_kinds() -> None:
 def test_snippet_runs_on_the_simulated_kit(snippet: Snippet, tmp_path: Path) -> None:
     program = tmp_path / "snippet.py"
     program.write_text(snippet.code, encoding="utf-8")
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    path = os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])
+    env = {**os.environ, "PYTHONPATH": path}
     result = subprocess.run(
         [sys.executable, "-m", "j5aio", "run", "--sim", str(program)],
         stdin=subprocess.DEVNULL, capture_output=True, text=True,
