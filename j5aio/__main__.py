@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import runpy
 import signal
 import sys
 import threading
@@ -219,8 +218,9 @@ def _run(args: argparse.Namespace) -> int:
         os.environ[ENVIRONMENT_VARIABLE] = args.environment
     sys.argv = [str(program), *args.arguments]
     sys.path.insert(0, str(program.resolve().parent))
-    runpy.run_path(str(program), run_name="__main__")
-    return 0
+    from j5aio.tracebacks import run_program
+
+    return run_program(program)
 
 
 def _simulate(args: argparse.Namespace) -> int:

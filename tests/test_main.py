@@ -253,10 +253,10 @@ def test_a_program_finding_no_hardware_offers_the_sim_flag_in_one_line(tmp_path:
     (tmp_path / "robot.py").write_text(KIT_PROGRAM)
     result = python_m_j5aio("run", "robot.py", cwd=tmp_path)
     assert result.returncode != 0
-    hints = [line for line in result.stderr.splitlines() if "j5aio: no boards found." in line]
-    assert hints == [
-        "j5aio: no boards found. To try your program without hardware: "
-        "python -m j5aio run --sim robot.py (or set J5AIO_ENV=sim)"
+    hints = [line for line in result.stderr.splitlines() if line.startswith("j5aio: no ")]
+    assert hints == [  # the first search that finds nothing says so (the power board's)
+        "j5aio: no Student Robotics v4 Power Board found. To try your program without "
+        "hardware: python -m j5aio run --sim robot.py (or set J5AIO_ENV=sim)"
     ]
 
 

@@ -80,3 +80,28 @@ def test_a_failed_search_gives_up_the_robot_lock(tmp_path: Path) -> None:
     assert result.returncode == 0, result.stderr
     assert "refused:" in result.stdout
     assert "lock free" in result.stdout
+
+
+def test_a_misspelt_set_says_what_was_meant(tmp_path: Path) -> None:
+    result = run_program(
+        "from j5aio.sync import KitRobot\n"
+        "robot = KitRobot()\n"
+        "motor = robot.motor_boards[0].motors[0]\n"
+        "try:\n"
+        "    motor.powr = 0.5\n"
+        "except AttributeError as error:\n"
+        "    print(error)\n"
+        "try:\n"
+        "    robot.power_board.battery_sensor.voltage = 3\n"
+        "except AttributeError as error:\n"
+        "    print(error)\n"
+        "robot.motor_boards[0].motors[2]\n",
+        tmp_path, J5AIO_ENV="sim",
+    )
+    lines = result.stdout.splitlines()
+    assert lines[0] == "'Motor' object has no attribute 'powr' to set. Did you mean: 'power'?"
+    assert "has no setter" in lines[1]  # Python's own words for a read-only property
+    assert result.stderr.rstrip().endswith(
+        "NoSuchComponentError: Student Robotics v4 Motor Board - SIMMB0 has motors 0 to 1: "
+        "there is no motor 2",
+    )
