@@ -69,7 +69,7 @@ __all__ = [
 CORE_OUTPUT = Path(__file__).resolve().parent / "sync" / "_generated.py"
 
 #: Dunder methods forwarded when a core class defines them.
-FORWARDED_DUNDERS = ("__getitem__", "__iter__", "__len__", "__contains__", "__bool__")
+FORWARDED_DUNDERS = ("__getitem__", "__iter__", "__len__", "__contains__", "__bool__", "__call__")
 
 LINE_LENGTH = 100
 

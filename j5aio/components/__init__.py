@@ -35,6 +35,7 @@ from j5aio.components.string_command import (
     StringCommandComponentInterface,
 )
 from j5aio.components.supply_sensor import SupplySensor, SupplySensorInterface
+from j5aio.errors import NotSupportedByComponentError  # where j5 had it
 
 __all__ = [
     "LED",
@@ -60,6 +61,7 @@ __all__ = [
     "MotorInterface",
     "MotorSpecialState",
     "MotorState",
+    "NotSupportedByComponentError",
     "Note",
     "Piezo",
     "PiezoInterface",

@@ -450,8 +450,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[SyncBoardT],
-        backend_class: type[_backends_backend.Backend],
+        board: type[SyncBoardT],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SyncBoardT]:
@@ -461,8 +461,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_arduino.SRArduinoBoard],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_sr_v4_arduino.SRArduinoBoard],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SRArduinoBoard]:
@@ -472,8 +472,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sb_arduino_2024.SBArduino2024Board],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_sb_arduino_2024.SBArduino2024Board],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SBArduino2024Board]:
@@ -483,8 +483,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sb_servo_board.SBServoBoard],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_sb_servo_board.SBServoBoard],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SBServoBoard]:
@@ -494,8 +494,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_arduino_all_digital.AllDigitalUno],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_arduino_all_digital.AllDigitalUno],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[AllDigitalUno]:
@@ -505,8 +505,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_ruggeduino.Ruggeduino],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[Ruggeduino]:
@@ -516,8 +516,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sb_arduino.SBArduinoBoard],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_sb_arduino.SBArduinoBoard],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SBArduinoBoard]:
@@ -527,8 +527,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[ServoBoardFw4]:
@@ -538,8 +538,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_arduino_uno.ArduinoUno],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_arduino_uno.ArduinoUno],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[ArduinoUno]:
@@ -549,8 +549,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_kch.KCHBoard],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_sr_kch.KCHBoard],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[KCHBoard]:
@@ -560,8 +560,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_motor_board.MotorBoard],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_sr_v4_motor_board.MotorBoard],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[MotorBoard]:
@@ -571,8 +571,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_power_board.PowerBoard],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_sr_v4_power_board.PowerBoard],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[PowerBoard]:
@@ -582,8 +582,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_servo_board.ServoBoard],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_sr_v4_servo_board.ServoBoard],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[ServoBoard]:
@@ -593,8 +593,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_board.Board],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_board.Board],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[Board]:
@@ -603,20 +603,23 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_board.Board | Board],
-        backend_class: type[_backends_backend.Backend],
+        board: type[_boards_board.Board | Board],
+        backend: type[_backends_backend.Backend],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[Board]:
-        """Find every board of ``board_type`` that ``backend_class`` can reach.
+        """Find every board of class ``board`` that ``backend`` can reach.
 
-        :param board_type: the class of board wanted, e.g. ``PowerBoard``.
-        :param backend_class: the backend to find and drive them with.
+        The parameters have j5's names, so ``get_board_group(board=..., backend=...)``
+        works as it did there.
+
+        :param board: the class of board wanted, e.g. ``PowerBoard``.
+        :param backend: the backend class to find and drive them with.
         :param ports: explicit ports (device paths or pyserial URLs) to attach to, on top
             of discovery, for unusual adapters and simulators.
         :returns: the group, ordered by serial number.
         """
-        return cast("BoardGroup[Board]", _wrap(_call(_boards_board_group.BoardGroup.get_board_group, _unwrap(board_type), backend_class, ports=ports)))
+        return cast("BoardGroup[Board]", _wrap(_call(_boards_board_group.BoardGroup.get_board_group, _unwrap(board), backend, ports=ports)))
 
     def update_boards(self) -> None:
         """Look for boards again, so that boards connected since are included."""
@@ -1968,6 +1971,10 @@ class StringCommandComponent(IdentifiedComponent[_components_string_command.Stri
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         return _call(self._core.execute, command)
+
+    def __call__(self, command: str) -> str:
+        """Send ``command`` to the board and return its reply, as :meth:`execute`."""
+        return _call(self._core.__call__, command)
 
 
 class SupplySensor(IdentifiedComponent[_components_supply_sensor.SupplySensorInterface]):

@@ -105,3 +105,27 @@ def test_a_misspelt_set_says_what_was_meant(tmp_path: Path) -> None:
         "NoSuchComponentError: Student Robotics v4 Motor Board - SIMMB0 has motors 0 to 1: "
         "there is no motor 2",
     )
+
+
+def test_j5_calls_the_ruggeduino_command_and_names_get_board_group_arguments(
+    tmp_path: Path,
+) -> None:
+    result = run_program(
+        "from j5aio.backends.hardware import NotSupportedByHardwareError\n"
+        "from j5aio.boards.sr.v4 import Ruggeduino\n"
+        "from j5aio.simulator.environment import SRV4RuggeduinoSimulatedBackend\n"
+        "from j5aio.simulator.kit import KitConfig, use_kit\n"
+        "from j5aio.sync import BoardGroup\n"
+        "use_kit(KitConfig(ruggeduinos=1))\n"
+        "group = BoardGroup.get_board_group(board=Ruggeduino,"
+        " backend=SRV4RuggeduinoSimulatedBackend)\n"
+        "command = group[0].command\n"
+        "print(callable(command))\n"
+        "try:\n"
+        "    command('x')\n"
+        "except NotSupportedByHardwareError as error:\n"
+        "    print('refused by the official firmware')\n",
+        tmp_path,
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.splitlines() == ["True", "refused by the official firmware"]
