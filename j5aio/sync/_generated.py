@@ -50,6 +50,7 @@ import j5aio.components.string_command as _components_string_command
 import j5aio.components.supply_sensor as _components_supply_sensor
 import j5aio.environments as _environments
 import j5aio.kit as _kit
+import j5aio.numbered as _numbered
 import j5aio.robot as _robot
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt as _adopt
@@ -857,9 +858,12 @@ class ArduinoUno(Board):
     ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_arduino_uno.ArduinoUno.ANALOGUE_PIN_FIRMWARE_MODES
 
     @property
-    def pins(self) -> Mapping[int, GPIOPin]:
-        """The GPIO pins, by number or by :class:`AnaloguePin` (a read-only mapping)."""
-        return cast("Mapping[int, GPIOPin]", _wrap(self._core.pins))
+    def pins(self) -> _numbered.Pins[GPIOPin]:
+        """The GPIO pins, by number or by :class:`AnaloguePin`.
+
+        Iterating gives the pins themselves, as in j5; ``pins.keys()`` gives the numbers.
+        """
+        return cast("_numbered.Pins[GPIOPin]", _wrap(self._core.pins))
 
     @property
     def led(self) -> LED:

@@ -21,7 +21,7 @@ import weakref
 from collections.abc import Iterator, Mapping, Sequence, Set
 from typing import TYPE_CHECKING, Any, TypeVar
 
-from j5aio.numbered import NumberedComponents
+from j5aio.numbered import NumberedComponents, Pins
 from j5aio.sync._runtime import call
 
 __all__ = [
@@ -165,6 +165,8 @@ def wrap(obj: Any) -> Any:
         return [wrap(item) for item in obj]
     if isinstance(obj, NumberedComponents):
         return obj.replaced(wrap(item) for item in obj)
+    if isinstance(obj, Pins):
+        return obj.replaced({number: wrap(pin) for number, pin in obj.items()})
     if isinstance(obj, tuple):
         return tuple(wrap(item) for item in obj)
     if isinstance(obj, Mapping):

@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import pytest
 
+from j5aio.boards.arduino import AnaloguePin, ArduinoUno
 from j5aio.boards.sr.v4 import MotorBoard
-from j5aio.numbered import NoSuchComponentError, NumberedComponents
+from j5aio.components import GPIOPin
+from j5aio.numbered import NoSuchComponentError, NoSuchPinError, NumberedComponents
 
-from .board_fakes import FakeMotorBoardBackend
+from .board_fakes import FakeMotorBoardBackend, FakeUnoBackend
 
 
 def test_a_missing_motor_names_the_board_and_its_motors() -> None:
@@ -46,3 +48,27 @@ def test_the_facade_keeps_the_numbering_around_its_wrappers() -> None:
     with pytest.raises(NoSuchComponentError, match="B has servos 0 to 1: there is no servo 5"):
         replaced[5]
     assert replaced == ("a", "b")
+
+
+def test_iterating_the_pins_gives_pins_as_in_j5() -> None:
+    board = ArduinoUno("U1", FakeUnoBackend())
+    pins = list(board.pins)
+    assert all(isinstance(pin, GPIOPin) for pin in pins)
+    assert [pin.identifier for pin in pins] == list(range(2, 20))
+    assert list(board.pins.keys()) == list(range(2, 20))
+    assert list(board.pins.values()) == pins
+    assert dict(board.pins.items())[14] is board.pins[AnaloguePin.A0]
+    assert len(board.pins) == 18
+    assert 14 in board.pins and 0 not in board.pins and "3" not in board.pins
+    assert board.pins.get(0) is None and board.pins.get(2) is pins[0]
+    assert repr(board.pins).startswith("<pins 2, 3, 4,")
+
+
+def test_a_missing_pin_names_the_board_and_its_pins() -> None:
+    board = ArduinoUno("U1", FakeUnoBackend())
+    with pytest.raises(KeyError) as caught:
+        board.pins[0]
+    assert isinstance(caught.value, NoSuchPinError)
+    assert str(caught.value) == "Arduino Uno - U1 has no pin 0; its pins are 2 to 19"
+    with pytest.raises(TypeError, match="pins are numbered: use a whole number, not list"):
+        board.pins[[3]]  # type: ignore[index]

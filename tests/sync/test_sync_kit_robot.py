@@ -39,13 +39,16 @@ def test_kit_robot_drives_the_simulated_kit(tmp_path: Path) -> None:
         "assert isinstance(robot.motor_boards[0], MotorBoard)\n"
         "robot.motor_boards[0].motors[1].power = 0.25\n"
         "print(robot.environment.name, robot.motor_boards[0].motors[1].power)\n"
-        "print(robot.power_board.battery_sensor.voltage > 0)\n",
+        "print(robot.power_board.battery_sensor.voltage > 0)\n"
+        "from j5aio.sync import GPIOPin\n"
+        "print(all(isinstance(pin, GPIOPin) for pin in robot.arduinos[0].pins))\n"
+        "print([pin.mode.name for pin in robot.arduinos[0].pins][-1])\n",
         tmp_path, J5AIO_ENV="sim",
     )
     assert result.returncode == 0, result.stderr
     lines = result.stdout.split("\n")
     assert lines[0].endswith(" 0.25")
-    assert lines[1] == "True"
+    assert lines[1:4] == ["True", "True", "ANALOGUE_INPUT"]
 
 
 def test_a_student_subclass_adds_its_own_names(tmp_path: Path) -> None:

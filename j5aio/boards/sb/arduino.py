@@ -101,7 +101,7 @@ class UltrasoundSensors:
         if number not in pins:
             raise KeyError(
                 f"{self._board.name} has no pin {number}; its pins are "
-                f"{min(pins)} to {max(pins)}",
+                f"{min(pins.keys())} to {max(pins.keys())}",
             )
         return pins[number]
 
