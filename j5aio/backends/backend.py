@@ -12,10 +12,10 @@ from typing import Any, ClassVar, Generic
 from typing_extensions import TypeVar
 
 from j5aio.boards.board import Board
-from j5aio.errors import CommunicationError, NotSupportedByHardwareError
+from j5aio.errors import CommunicationError as CommunicationError  # j5's path to it
+from j5aio.errors import NotSupportedByHardwareError
 
-# CommunicationError is importable from here as in j5 (its home is j5aio.errors).
-__all__ = ["Backend", "BackendMeta", "BoardT", "CommunicationError"]
+__all__ = ["Backend", "BackendMeta", "BoardT"]
 
 BoardT = TypeVar("BoardT", bound=Board, default=Board, covariant=True)
 """The class of board a backend drives, for typing: ``Backend[MotorBoard]``.
