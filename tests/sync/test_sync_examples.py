@@ -32,7 +32,7 @@ def run_example(
 
 def test_every_sync_example_is_tested() -> None:
     tested = {"sync_blink_run_led.py", "sync_drive_forward.py", "sync_start_and_buzz.py",
-              "sync_read_battery.py", "sync_any_kit.py"}
+              "sync_read_battery.py", "sync_any_kit.py", "sync_blink_and_drive.py"}
     assert {path.name for path in EXAMPLES.glob("sync_*.py")} == tested
 
 
@@ -92,6 +92,12 @@ def test_start_and_buzz_starts_anyway_when_nobody_presses() -> None:
         "Nobody pressed start within 3 s: starting anyway.",
         "Tune played.",
     ]
+
+
+def test_blink_and_drive_zig_zags_with_the_pin_lit_on_the_straights() -> None:
+    out, kit = run_on_the_kit("sync_blink_and_drive.py")
+    assert out == ["Zig-zag done: both motors braked."]
+    assert "KIT motors ['BRAKE', 'BRAKE']" in kit
 
 
 def test_read_the_battery() -> None:
