@@ -36,26 +36,27 @@ def is_ours(filename: str) -> bool:
     return resolved.startswith(_PACKAGE) or resolved == _RUNPY
 
 
-def _trim(summary: traceback.TracebackException, seen: set[int]) -> int:
-    """Drop our frames from ``summary`` and its causes, in place; return how many went."""
-    if id(summary) in seen:
-        return 0
-    seen.add(id(summary))
+def _trim(summary: traceback.TracebackException) -> int:
+    """Drop our frames from ``summary`` and its causes, in place; return how many went.
+
+    A ``TracebackException`` is a tree (it breaks the cycles of the exceptions it
+    describes), so each node is visited once.
+    """
     kept = [frame for frame in summary.stack if not is_ours(frame.filename)]
     hidden = len(summary.stack) - len(kept)
     summary.stack = traceback.StackSummary.from_list(kept)
     for linked in (summary.__cause__, summary.__context__):
         if linked is not None:
-            hidden += _trim(linked, seen)
+            hidden += _trim(linked)
     for member in getattr(summary, "exceptions", None) or ():
-        hidden += _trim(member, seen)
+        hidden += _trim(member)
     return hidden
 
 
 def format_trimmed(error: BaseException) -> str:
     """The traceback of ``error`` without j5aio's and runpy's frames, with a note of them."""
     summary = traceback.TracebackException.from_exception(error)
-    hidden = _trim(summary, set())
+    hidden = _trim(summary)
     text = "".join(summary.format())
     if hidden:
         text += (

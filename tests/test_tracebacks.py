@@ -101,3 +101,17 @@ def test_a_failing_program_returns_1_and_prints_to_the_given_stream(tmp_path: Pa
     assert lines[-2] == "LookupError: nope"
     assert re.fullmatch(r"\(\d+ frames inside j5aio hidden; set J5AIO_FULL_TRACE.*", lines[-1])
     assert 'bad.py", line 1, in <module>' in lines[1]
+
+
+def test_the_members_of_an_exception_group_are_trimmed_too(tmp_path: Path) -> None:
+    program = tmp_path / "group.py"
+    program.write_text(
+        "raise ExceptionGroup('two', [ValueError('one'), KeyError('other')])\n",
+        encoding="utf-8",
+    )
+    out = io.StringIO()
+    assert run_program(program, stderr=out) == 1
+    text = out.getvalue()
+    assert "ExceptionGroup: two (2 sub-exceptions)" in text
+    assert "ValueError: one" in text and "KeyError: 'other'" in text
+    assert "runpy" not in text

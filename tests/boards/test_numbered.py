@@ -60,6 +60,7 @@ def test_iterating_the_pins_gives_pins_as_in_j5() -> None:
     assert dict(board.pins.items())[14] is board.pins[AnaloguePin.A0]
     assert len(board.pins) == 18
     assert 14 in board.pins and 0 not in board.pins and "3" not in board.pins
+    assert [3] not in board.pins  # unhashable: simply not a pin number
     assert board.pins.get(0) is None and board.pins.get(2) is pins[0]
     assert repr(board.pins).startswith("<pins 2, 3, 4,")
 
