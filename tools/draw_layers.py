@@ -1,7 +1,8 @@
 """Draw the docs' layer diagrams as SVG: one per reader, each marking the layers they use.
 
 Run ``python tools/draw_layers.py`` after changing the layers; it writes
-``docs/_static/layers-<reader>.svg`` for the student, the team and the volunteer.
+``docs/_static/layers-<reader>.svg`` for the student, the team and the volunteer, and
+``layers-overview.svg`` for the concepts page.
 ``--check`` only reports whether the committed pictures are up to date.
 """
 
@@ -44,6 +45,7 @@ LAYERS = (
 
 #: Per reader: the title, and the layers they write (strong) or meet (light).
 READERS: dict[str, tuple[str, set[str], set[str]]] = {
+    "overview": ("The layers of j5aio: requests flow down, results flow back up", set(), set()),
     "student": ("A first-time student's view", {"code"}, {"face", "robot", "component"}),
     "team": (
         "A team's view: several behaviours at once",
@@ -76,9 +78,10 @@ def draw(reader: str) -> str:
         if index:
             body.append(svg.line(width / 2 - 60, y - gap, width / 2 - 60, y, arrow=True))
     legend_x = width - 150
-    for offset, (fill, words) in enumerate(((STRONG, "you write this"),
-                                            (LIGHT, "you use this"),
-                                            (PLAIN, "works for you"))):
+    legend = () if not (writes or meets) else ((STRONG, "you write this"),
+                                               (LIGHT, "you use this"),
+                                               (PLAIN, "works for you"))
+    for offset, (fill, words) in enumerate(legend):
         y = top + offset * 26
         body.append(svg.box(legend_x, y, 18, 18, fill=fill, radius=3))
         body.append(svg.text(legend_x + 26, y + 14, words, size=12))

@@ -36,7 +36,7 @@ def test_a_stale_layer_diagram_is_reported(tmp_path: Path) -> None:
 
 def test_every_picture_the_docs_show_is_committed_and_well_formed() -> None:
     pages = "".join(p.read_text(encoding="utf-8") for p in (ROOT / "docs").glob("*.rst"))
-    for name in ("layers-student", "layers-team", "layers-volunteer",
+    for name in ("layers-overview", "layers-student", "layers-team", "layers-volunteer",
                  "run-student", "run-team"):
         assert f"_static/{name}.svg" in pages, name
         xml.dom.minidom.parse(str(STATIC / f"{name}.svg"))
