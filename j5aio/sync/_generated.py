@@ -1193,6 +1193,8 @@ class Ruggeduino(ArduinoUno):
 
     name: ClassVar[str] = _boards_sr_v4_ruggeduino.Ruggeduino.name
 
+    ANALOGUE_PIN_MODES: ClassVar[frozenset[_components_gpio_pin.GPIOPinMode]] = _boards_sr_v4_ruggeduino.Ruggeduino.ANALOGUE_PIN_MODES
+
     @property
     def command(self) -> StringCommandComponent:
         """Sends raw text commands to the board's firmware."""

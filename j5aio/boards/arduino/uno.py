@@ -57,8 +57,8 @@ class ArduinoUno(Board):
     )
 
     #: The hardware modes of the analogue pins. The Uno's chip could use them as digital
-    #: pins too, but none of the kit's firmwares offers that, so they claim only what the
-    #: backends can do: a digital mode is refused by the pin itself, before any traffic.
+    #: pins too; a board whose firmware offers that (the Ruggeduino) widens this, and
+    #: otherwise a digital mode is refused by the pin itself, before any traffic.
     ANALOGUE_PIN_MODES: ClassVar[frozenset[GPIOPinMode]] = frozenset(
         {GPIOPinMode.ANALOGUE_INPUT},
     )

@@ -34,6 +34,8 @@ class SRV4RuggeduinoHardwareBackend(StringCommandComponentInterface, ArduinoHard
     """Drives a Ruggeduino over its single-character protocol (firmware 1)."""
 
     board = Ruggeduino
+    #: Firmware 1 takes any pin letter up to ``t`` (pin 19) in its digital commands.
+    ANALOGUE_PINS_DIGITAL: ClassVar[bool] = True
 
     #: How many times ``v`` is sent before the board is declared silent.
     VERSION_ATTEMPTS: ClassVar[int] = 26
@@ -81,6 +83,8 @@ class SRV4RuggeduinoHardwareBackend(StringCommandComponentInterface, ArduinoHard
             if mode_changed:
                 await self._command(codec.encode_mode(identifier, state.mode))
             await self._command(codec.encode_digital_write(identifier, state.level))
+        elif state.mode is GPIOPinMode.ANALOGUE_INPUT:  # A0-A5 back from a digital mode
+            await self._command(codec.encode_mode(identifier, GPIOPinMode.DIGITAL_INPUT))
         else:
             await self._command(codec.encode_mode(identifier, state.mode))
 
