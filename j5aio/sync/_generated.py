@@ -760,6 +760,10 @@ class KitRobot(BaseRobot):
       Arduinos) and ``robot.ruggeduinos``: groups of every such board found, possibly
       empty, reached by position or serial number.
 
+    Through :mod:`j5aio.sync` (``from j5aio.sync import KitRobot``), ``robot = KitRobot()``
+    finds the boards at once, with no ``async with``, and they are made safe when the
+    program ends.
+
     :param environment: where to find the boards; the default environment if omitted.
     :raises TypeError: ``environment`` is not an Environment.
     """
