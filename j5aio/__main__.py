@@ -23,7 +23,7 @@ from j5aio import syncgen
 from j5aio.environments import ENVIRONMENT_NAMES, ENVIRONMENT_VARIABLE
 from j5aio.simulator import SERIAL_SIMULATORS
 
-__all__ = ["SIMULATOR_NAMES", "build_parser", "main"]
+__all__ = ["SIMULATOR_NAMES", "build_parser", "invoked_as", "main"]
 
 _EPILOG: Final = """\
 examples:
@@ -51,10 +51,23 @@ SIMULATOR_NAMES: Final = {
 }
 
 
+def invoked_as(argv0: str | None = None) -> str:
+    """How the command line was started: ``j5aio`` (the installed command) or ``python -m j5aio``.
+
+    :param argv0: the program's name as started (``sys.argv[0]`` by default).
+    """
+    if argv0 is None:
+        argv0 = sys.argv[0] if sys.argv else ""
+    name = argv0.replace("\\", "/").rsplit("/", 1)[-1]  # a Windows path too
+    if name.endswith(".py") or name in ("", "-c", "-m"):
+        return "python -m j5aio"
+    return name.removesuffix(".exe")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    """Make the argument parser of ``python -m j5aio``."""
+    """Make the argument parser of ``python -m j5aio`` (or of the ``j5aio`` command)."""
     parser = argparse.ArgumentParser(
-        prog="python -m j5aio",
+        prog=invoked_as(),
         description="j5aio: run robot programs on real boards or on a simulated kit.",
         epilog=_EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,

@@ -370,3 +370,28 @@ def test_an_interrupted_demo_still_leaves_every_motor_braked() -> None:
     lines = rest.splitlines()
     assert "SIMMB0 [brake, brake] | SIMMB1 [brake, brake]" in lines[-3]
     assert lines[-1] == "The robot has stopped: every simulated motor is braked."
+
+
+@pytest.mark.parametrize(
+    ("argv0", "expected"),
+    [
+        ("/home/me/.venv/bin/j5aio", "j5aio"),
+        ("C:\\venv\\Scripts\\j5aio.exe", "j5aio"),
+        ("/src/j5aio/j5aio/__main__.py", "python -m j5aio"),
+        ("-c", "python -m j5aio"),
+        ("", "python -m j5aio"),
+    ],
+)
+def test_the_usage_line_names_the_command_as_it_was_started(argv0: str, expected: str) -> None:
+    from j5aio.__main__ import invoked_as
+
+    assert invoked_as(argv0) == expected
+
+
+def test_the_installed_command_shows_its_own_name(monkeypatch: pytest.MonkeyPatch) -> None:
+    from j5aio.__main__ import build_parser
+
+    monkeypatch.setattr(sys, "argv", ["/usr/local/bin/j5aio"])
+    assert build_parser().format_usage().startswith("usage: j5aio ")
+    monkeypatch.setattr(sys, "argv", ["/x/j5aio/__main__.py"])
+    assert build_parser().format_usage().startswith("usage: python -m j5aio ")
