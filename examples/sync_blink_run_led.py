@@ -1,22 +1,22 @@
 """Blink the power board's run LED three times.
 
-Run it on the console boards::
+Run it on the simulated kit, or on the robot::
 
-    python examples/sync_blink_run_led.py
+    python -m j5aio run --sim examples/sync_blink_run_led.py
+    python -m j5aio run examples/sync_blink_run_led.py
 """
 
 import time
 
-from j5aio.backends.console.sr.v4 import SRV4PowerBoardConsoleBackend
-from j5aio.boards.sr.v4 import PowerBoard
-from j5aio.sync import BoardGroup
+from j5aio.sync import KitRobot
 
-power_board = BoardGroup.get_board_group(PowerBoard, SRV4PowerBoardConsoleBackend).singular()
+robot = KitRobot()
+run_led = robot.power_board.run_led
 
 for _ in range(3):
-    power_board.run_led.state = True
+    run_led.state = True
     time.sleep(0.2)
-    power_board.run_led.state = False
+    run_led.state = False
     time.sleep(0.2)
 
-print(f"The run LED is {'on' if power_board.run_led.state else 'off'}.")
+print(f"The run LED is {'on' if run_led.state else 'off'}.")

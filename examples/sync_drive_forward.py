@@ -1,19 +1,17 @@
 """Drive forwards for half a second, then brake.
 
-Run it on the console boards::
+Run it on the simulated kit, or on the robot::
 
-    python examples/sync_drive_forward.py
+    python -m j5aio run --sim examples/sync_drive_forward.py
 """
 
 import time
 
-from j5aio.backends.console.sr.v4 import SRV4MotorBoardConsoleBackend
-from j5aio.boards.sr.v4 import MotorBoard
 from j5aio.components.motor import MotorSpecialState
-from j5aio.sync import BoardGroup
+from j5aio.sync import KitRobot
 
-motor_board = BoardGroup.get_board_group(MotorBoard, SRV4MotorBoardConsoleBackend).singular()
-left, right = motor_board.motors
+robot = KitRobot()
+left, right = robot.motor_boards[0].motors
 
 left.power = 0.6
 right.power = 0.6

@@ -1,18 +1,16 @@
 """Read the battery's voltage and current, and warn when it is running low.
 
-Run it and type the readings the console asks for (or pipe them in)::
+Run it on the simulated kit, or on the robot::
 
-    printf '11.9\n2.5\n' | python examples/sync_read_battery.py
+    python -m j5aio run --sim examples/sync_read_battery.py
 """
 
-from j5aio.backends.console.sr.v4 import SRV4PowerBoardConsoleBackend
-from j5aio.boards.sr.v4 import PowerBoard
-from j5aio.sync import BoardGroup
+from j5aio.sync import KitRobot
 
 LOW_VOLTS = 11.0
 
-power_board = BoardGroup.get_board_group(PowerBoard, SRV4PowerBoardConsoleBackend).singular()
-battery = power_board.battery_sensor
+robot = KitRobot()
+battery = robot.power_board.battery_sensor
 
 volts = battery.voltage
 amps = battery.current

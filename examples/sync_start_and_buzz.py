@@ -1,20 +1,27 @@
-"""Wait for the start button, then play a short tune on the piezo.
+"""Wait for the start button (a few seconds at most), then play a short tune on the piezo.
 
-Run it and answer the start button prompt (or pipe the answer in)::
+Run it on the simulated kit, or on the robot::
 
-    echo true | python examples/sync_start_and_buzz.py
+    python -m j5aio run --sim examples/sync_start_and_buzz.py
+
+Nobody presses the simulated kit's button, so there the wait runs out and the robot
+starts anyway: every wait in j5aio can be given a ``timeout``.
 """
 
-from j5aio.backends.console.sr.v4 import SRV4PowerBoardConsoleBackend
-from j5aio.boards.sr.v4 import PowerBoard
 from j5aio.components.piezo import Note
-from j5aio.sync import BoardGroup
+from j5aio.sync import KitRobot
 
-power_board = BoardGroup.get_board_group(PowerBoard, SRV4PowerBoardConsoleBackend).singular()
+START_WAIT = 3.0
+
+robot = KitRobot()
 
 print("Press the start button to begin.")
-power_board.wait_for_start_flash(timeout=30)
-print("Started!")
+try:
+    robot.power_board.wait_for_start_flash(timeout=START_WAIT)
+    print("Started!")
+except TimeoutError:
+    print(f"Nobody pressed start within {START_WAIT:.0f} s: starting anyway.")
 
 for note in (Note.C6, Note.E6, Note.G6):
-    power_board.piezo.buzz(0.2, note, blocking=True)
+    robot.power_board.piezo.buzz(0.2, note, blocking=True)
+print("Tune played.")

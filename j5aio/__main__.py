@@ -17,7 +17,6 @@ import argparse
 import contextlib
 import json
 import os
-import runpy
 import signal
 import sys
 import tempfile
@@ -36,7 +35,7 @@ from j5aio.simulator.pin_options import apply_pin_options, parse_analog, parse_d
 if TYPE_CHECKING:
     from j5aio.view import LiveView
 
-__all__ = ["SIMULATOR_NAMES", "build_parser", "main"]
+__all__ = ["SIMULATOR_NAMES", "build_parser", "invoked_as", "main"]
 
 _EPILOG: Final = """\
 examples:
@@ -61,10 +60,23 @@ SIMULATOR_NAMES: Final = {
 }
 
 
+def invoked_as(argv0: str | None = None) -> str:
+    """How the command line was started: ``j5aio`` (the installed command) or ``python -m j5aio``.
+
+    :param argv0: the program's name as started (``sys.argv[0]`` by default).
+    """
+    if argv0 is None:
+        argv0 = sys.argv[0] if sys.argv else ""
+    name = argv0.replace("\\", "/").rsplit("/", 1)[-1]  # a Windows path too
+    if name.endswith(".py") or name in ("", "-c", "-m"):
+        return "python -m j5aio"
+    return name.removesuffix(".exe")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    """Make the argument parser of ``python -m j5aio``."""
+    """Make the argument parser of ``python -m j5aio`` (or of the ``j5aio`` command)."""
     parser = argparse.ArgumentParser(
-        prog="python -m j5aio",
+        prog=invoked_as(),
         description="j5aio: run robot programs on real boards or on a simulated kit.",
         epilog=_EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
@@ -370,15 +382,16 @@ def _run(args: argparse.Namespace) -> int:
         os.environ[ENVIRONMENT_VARIABLE] = args.environment
     sys.argv = [str(program), *args.arguments]
     sys.path.insert(0, str(program.resolve().parent))
+    from j5aio.tracebacks import run_program
+
     try:
         with _match(args, program) as ready:
             if not ready:
                 return 2
-            runpy.run_path(str(program), run_name="__main__")
+            return run_program(program)
     finally:
         if view is not None:
             view.close()
-    return 0
 
 
 # -- run: match settings, the start and the run log (issue 10) ------------------------------

@@ -121,14 +121,23 @@ class _HardwareByDefault(Environment):
         super().__init__(hardware.name, gather=hardware.gather)
         self.board_backend_mapping = hardware.board_backend_mapping
         self.backends = hardware.backends
+        self.found_any = False
 
     async def get_board_group(self, board: type[BoardT]) -> BoardGroup[BoardT]:
-        """Find every ``board`` on the hardware; see :meth:`Environment.get_board_group`."""
+        """Find every ``board`` on the hardware; see :meth:`Environment.get_board_group`.
+
+        Finding none, when no board at all has been found yet, prints the hint too.
+        """
         try:
-            return await super().get_board_group(board)
+            group = await super().get_board_group(board)
         except CommunicationError:
             hint_no_hardware()
             raise
+        if group:
+            self.found_any = True
+        elif not self.found_any:
+            hint_no_hardware(what=board.name)
+        return group
 
 
 @cache
@@ -158,26 +167,30 @@ def _program_name() -> str:
     return program if program.endswith(".py") else "program.py"
 
 
-def no_hardware_hint() -> str:
-    """The line :func:`hint_no_hardware` prints, naming the running program if it can."""
+def no_hardware_hint(what: str = "boards") -> str:
+    """The line :func:`hint_no_hardware` prints, naming the running program if it can.
+
+    :param what: what was not found: ``"boards"``, or the name of one kind of board.
+    """
     return (
-        "j5aio: no boards found. To try your program without hardware: "
+        f"j5aio: no {what} found. To try your program without hardware: "
         f"python -m j5aio run --sim {_program_name()} "
         f"(or set {ENVIRONMENT_VARIABLE}=sim)"
     )
 
 
-def hint_no_hardware(*, file: TextIO | None = None) -> bool:
+def hint_no_hardware(*, file: TextIO | None = None, what: str = "boards") -> bool:
     """Print, once per program, how to run without hardware; return whether it printed.
 
     Call it when real boards were looked for only by default and none were found. It
     prints nothing when ``J5AIO_ENV`` chose the environment, or when it already printed.
 
     :param file: where to print; standard error by default.
+    :param what: what was not found, for the message (see :func:`no_hardware_hint`).
     """
     global _hint_shown
     if _hint_shown or environment_was_chosen():
         return False
     _hint_shown = True
-    print(no_hardware_hint(), file=file if file is not None else sys.stderr, flush=True)
+    print(no_hardware_hint(what), file=file if file is not None else sys.stderr, flush=True)
     return True

@@ -51,6 +51,10 @@ class KitRobot(BaseRobot):
       ``robot.camera``: the first one's :class:`~j5aio.components.marker_camera.MarkerCamera`
       (``None`` without a camera), so that ``await robot.camera.see()`` finds markers.
 
+    Through :mod:`j5aio.sync` (``from j5aio.sync import KitRobot``), ``robot = KitRobot()``
+    finds the boards at once, with no ``async with``, and they are made safe when the
+    program ends.
+
     :param environment: where to find the boards; the default environment if omitted.
     :param view: serve the live view of the boards while the robot runs (see
         :mod:`j5aio.view`; needs the ``view`` extra). ``None`` (the default) follows

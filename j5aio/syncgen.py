@@ -69,7 +69,7 @@ __all__ = [
 CORE_OUTPUT = Path(__file__).resolve().parent / "sync" / "_generated.py"
 
 #: Dunder methods forwarded when a core class defines them.
-FORWARDED_DUNDERS = ("__getitem__", "__iter__", "__len__", "__contains__", "__bool__")
+FORWARDED_DUNDERS = ("__getitem__", "__iter__", "__len__", "__contains__", "__bool__", "__call__")
 
 LINE_LENGTH = 100
 
@@ -103,7 +103,11 @@ class Scope:
 #: j5aio's own facade, ``j5aio/sync/_generated.py``.
 CORE_SCOPE = Scope(
     modules=("j5aio.components", "j5aio.boards"),
-    extra_classes=(("j5aio.backends.environment", "Environment"), ("j5aio.robot", "BaseRobot")),
+    extra_classes=(
+        ("j5aio.backends.environment", "Environment"),
+        ("j5aio.robot", "BaseRobot"),
+        ("j5aio.kit", "KitRobot"),
+    ),
     environment_packages=("j5aio.backends",),
     function_modules=("j5aio.environments",),
     skipped_packages=("j5aio.sync",),
@@ -954,10 +958,24 @@ class _ClassWriter:
             else:
                 continue
             members.append(_Member(name, "\n".join(code)))
-        for name, annotation in self.init_attributes().items():
+        attributes = {**self.declared_attributes(), **self.init_attributes()}
+        for name, annotation in attributes.items():
             if name not in own:
                 members.append(_Member(name, "\n".join(self.instance_attribute(name, annotation))))
         return members
+
+    def declared_attributes(self) -> dict[str, Any]:
+        """Public instance attributes the class body declares (``power_board: PowerBoard``)."""
+        own = inspect.get_annotations(self.cls)
+        namespace = self.r.namespace.module_namespace(self.module)
+        found: dict[str, Any] = {}
+        for name, value in own.items():
+            if name.startswith("_") or name in self.cls.__dict__:
+                continue
+            annotation = eval(value, namespace) if isinstance(value, str) else value
+            if typing.get_origin(annotation) is not typing.ClassVar:
+                found[name] = annotation
+        return found
 
     def constructor(self) -> list[str]:
         cls = self.cls
@@ -976,8 +994,33 @@ class _ClassWriter:
         ):
             return []
         decls, call, _ = self.signature(init, skip_first=True)
+        if any("__new__" in base.__dict__ for base in cls.__mro__[1:] if base in self.r.wrapped):
+            return self.robot_constructor(decls, call)
         lines = self.def_line("    ", "__init__", ["self", *decls], "None")
         lines.append(f"        _adopt_into(self, {self.r.core_ref(cls)}({', '.join(call)}))")
+        return lines
+
+    def robot_constructor(self, decls: list[str], call: list[str]) -> list[str]:
+        """``__new__`` of a robot that finds its own boards, as j5's robots do on creation.
+
+        A base's ``__new__`` (the robot lock) must not run as well, and a subclass written
+        by a student may take arguments of its own (for its ``__init__``): they are let by.
+        Its ``setup`` runs at once; if it fails, the robot gives up its lock.
+        """
+        any_ = self.r.typing_ref("Any")
+        keywords = [d for d in decls if d not in ("*", "/") and not d.startswith("*")]
+        params = ["cls", f"*args: {any_}", *keywords, f"**kwargs: {any_}"]
+        keyword_call = [c if "=" in c else f"{c.split('(')[-1].rstrip(')')}={c}" for c in call]
+        lines = self.def_line("    ", "__new__", params, self.r.typing_ref("Self"))
+        lines += [
+            f"        robot = _adopt(cls, {self.r.core_ref(self.cls)}({', '.join(keyword_call)}))",
+            "        try:",
+            "            _call(robot._core.setup)",
+            "        except BaseException:",
+            "            robot._core.release_lock()",
+            "            raise",
+            "        return robot",
+        ]
         return lines
 
     def write(self, inherited: Mapping[str, str]) -> tuple[list[str], dict[str, str]]:

@@ -177,3 +177,30 @@ def test_the_hint_goes_where_it_is_told() -> None:
     out = io.StringIO()
     assert hint_no_hardware(file=out) is True
     assert out.getvalue().startswith("j5aio: no boards found.")
+
+
+async def test_an_empty_search_by_default_gets_the_hint_naming_the_board(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    use_kit(KitConfig(power_boards=0, motor_boards=1))
+    try:
+        default = environments._HardwareByDefault(SIMULATED_ENVIRONMENT)
+        assert len(await default.get_board_group(PowerBoard)) == 0
+        err = capsys.readouterr().err
+        assert err.startswith("j5aio: no Student Robotics v4 Power Board found. To try your")
+        assert "run --sim" in err
+    finally:
+        for board in list(Board.BOARDS):
+            await board.close()
+
+
+async def test_no_hint_once_a_board_was_found(capsys: pytest.CaptureFixture[str]) -> None:
+    use_kit(KitConfig(power_boards=0, motor_boards=1))
+    try:
+        default = environments._HardwareByDefault(SIMULATED_ENVIRONMENT)
+        assert len(await default.get_board_group(MotorBoard)) == 1
+        assert len(await default.get_board_group(PowerBoard)) == 0
+        assert capsys.readouterr().err == ""
+    finally:
+        for board in list(Board.BOARDS):
+            await board.close()

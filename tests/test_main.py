@@ -262,10 +262,10 @@ def test_a_program_finding_no_hardware_offers_the_sim_flag_in_one_line(tmp_path:
     (tmp_path / "robot.py").write_text(KIT_PROGRAM)
     result = python_m_j5aio("run", "robot.py", cwd=tmp_path)
     assert result.returncode != 0
-    hints = [line for line in result.stderr.splitlines() if "j5aio: no boards found." in line]
-    assert hints == [
-        "j5aio: no boards found. To try your program without hardware: "
-        "python -m j5aio run --sim robot.py (or set J5AIO_ENV=sim)"
+    hints = [line for line in result.stderr.splitlines() if line.startswith("j5aio: no ")]
+    assert hints == [  # the first search that finds nothing says so (the power board's)
+        "j5aio: no Student Robotics v4 Power Board found. To try your program without "
+        "hardware: python -m j5aio run --sim robot.py (or set J5AIO_ENV=sim)"
     ]
 
 
@@ -465,3 +465,26 @@ def test_simulate_help_lists_kits_on_demo(capsys: pytest.CaptureFixture[str]) ->
         main(["demo", "--help"])
     text = capsys.readouterr().out
     assert "default, sr2019, sb2019" in text
+@pytest.mark.parametrize(
+    ("argv0", "expected"),
+    [
+        ("/home/me/.venv/bin/j5aio", "j5aio"),
+        ("C:\\venv\\Scripts\\j5aio.exe", "j5aio"),
+        ("/src/j5aio/j5aio/__main__.py", "python -m j5aio"),
+        ("-c", "python -m j5aio"),
+        ("", "python -m j5aio"),
+    ],
+)
+def test_the_usage_line_names_the_command_as_it_was_started(argv0: str, expected: str) -> None:
+    from j5aio.__main__ import invoked_as
+
+    assert invoked_as(argv0) == expected
+
+
+def test_the_installed_command_shows_its_own_name(monkeypatch: pytest.MonkeyPatch) -> None:
+    from j5aio.__main__ import build_parser
+
+    monkeypatch.setattr(sys, "argv", ["/usr/local/bin/j5aio"])
+    assert build_parser().format_usage().startswith("usage: j5aio ")
+    monkeypatch.setattr(sys, "argv", ["/x/j5aio/__main__.py"])
+    assert build_parser().format_usage().startswith("usage: python -m j5aio ")

@@ -12,6 +12,7 @@ from typing import Any, ClassVar, Generic
 from typing_extensions import TypeVar
 
 from j5aio.boards.board import Board
+from j5aio.errors import CommunicationError as CommunicationError  # j5's path to it
 from j5aio.errors import NotSupportedByHardwareError
 
 __all__ = ["CALL_OBSERVERS", "Backend", "BackendMeta", "BoardT", "CallObserver"]

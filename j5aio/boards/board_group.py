@@ -52,16 +52,19 @@ class BoardGroup(Generic[BoardT]):
     @classmethod
     async def get_board_group(
         cls,
-        board_type: type[BoardT],
-        backend_class: type[Backend] | Sequence[type[Backend]],
+        board: type[BoardT],
+        backend: type[Backend] | Sequence[type[Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[BoardT]:
-        """Find every board of ``board_type`` that ``backend_class`` can reach.
+        """Find every board of class ``board`` that ``backend`` can reach.
 
-        :param board_type: the class of board wanted, e.g. ``PowerBoard``.
-        :param backend_class: the backend to find and drive them with, or several (one
-            per generation of the board: their boards are gathered into one group).
+        The parameters have j5's names, so ``get_board_group(board=..., backend=...)``
+        works as it did there.
+
+        :param board: the class of board wanted, e.g. ``PowerBoard``.
+        :param backend: the backend to find and drive them with, or several (one per
+            generation of the board: their boards are gathered into one group).
         :param ports: explicit ports (device paths or pyserial URLs) to attach to, on top
             of discovery, for unusual adapters and simulators; they are attached with the
             first backend.
@@ -69,7 +72,7 @@ class BoardGroup(Generic[BoardT]):
         :raises TypeError: a backend drives another kind of board, or none was given.
         :raises CommunicationError: two boards report the same serial number.
         """
-        group = cls(board_type, backend_class, ports=ports)
+        group = cls(board, backend, ports=ports)
         await group.update_boards()
         return group
 

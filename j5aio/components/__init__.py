@@ -44,6 +44,7 @@ from j5aio.components.string_command import (
 from j5aio.components.supply_sensor import SupplySensor, SupplySensorInterface
 from j5aio.components.temperature_sensor import TemperatureSensor, TemperatureSensorInterface
 from j5aio.components.voltage_sensor import VoltageSensor, VoltageSensorInterface
+from j5aio.errors import NotSupportedByComponentError  # where j5 had it
 
 __all__ = [
     "LED",
@@ -76,6 +77,7 @@ __all__ = [
     "MotorInterface",
     "MotorSpecialState",
     "MotorState",
+    "NotSupportedByComponentError",
     "Note",
     "Piezo",
     "PiezoInterface",

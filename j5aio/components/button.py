@@ -64,5 +64,10 @@ class Button(IdentifiedComponent[ButtonInterface]):
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         limit = check_timeout(timeout)
-        with anyio.fail_after(limit):
+        with anyio.move_on_after(limit) as scope:
             await self._backend.wait_until_button_pressed(self._identifier)
+        if scope.cancelled_caught:
+            raise TimeoutError(
+                f"the button was not pressed within {timeout} s; pass a longer timeout, "
+                "or timeout=None to wait for as long as it takes",
+            )

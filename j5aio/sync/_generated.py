@@ -61,6 +61,8 @@ import j5aio.components.supply_sensor as _components_supply_sensor
 import j5aio.components.temperature_sensor as _components_temperature_sensor
 import j5aio.components.voltage_sensor as _components_voltage_sensor
 import j5aio.environments as _environments
+import j5aio.kit as _kit
+import j5aio.numbered as _numbered
 import j5aio.robot as _robot
 import j5aio.vision.calibration as _vision_calibration
 import j5aio.vision.markers as _vision_markers
@@ -96,6 +98,7 @@ __all__ = [
     "GPIOPin",
     "IdentifiedComponent",
     "KCHBoard",
+    "KitRobot",
     "MarkerCamera",
     "MonitoredMotor",
     "Motor",
@@ -632,8 +635,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[SyncBoardT],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[SyncBoardT],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SyncBoardT]:
@@ -643,8 +646,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_arduino.SRArduinoBoard],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_sr_v4_arduino.SRArduinoBoard],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SRArduinoBoard]:
@@ -654,8 +657,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sb_arduino_2024.SBArduino2024Board],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_sb_arduino_2024.SBArduino2024Board],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SBArduino2024Board]:
@@ -665,8 +668,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sb_servo_board.SBServoBoard],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_sb_servo_board.SBServoBoard],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SBServoBoard]:
@@ -676,8 +679,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_arduino_all_digital.AllDigitalUno],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_arduino_all_digital.AllDigitalUno],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[AllDigitalUno]:
@@ -687,8 +690,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[MotorBoardFw4]:
@@ -698,8 +701,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[PowerBoardFw4]:
@@ -709,8 +712,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_ruggeduino.Ruggeduino],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[Ruggeduino]:
@@ -720,8 +723,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sb_arduino.SBArduinoBoard],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_sb_arduino.SBArduinoBoard],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[SBArduinoBoard]:
@@ -731,8 +734,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[ServoBoardFw4]:
@@ -742,8 +745,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_arduino_uno.ArduinoUno],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_arduino_uno.ArduinoUno],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[ArduinoUno]:
@@ -753,8 +756,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_camera.CameraBoard],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_camera.CameraBoard],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[CameraBoard]:
@@ -764,8 +767,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_kch.KCHBoard],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_sr_kch.KCHBoard],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[KCHBoard]:
@@ -775,8 +778,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_motor_board.MotorBoard],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_sr_v4_motor_board.MotorBoard],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[MotorBoard]:
@@ -786,8 +789,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_power_board.PowerBoard],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_sr_v4_power_board.PowerBoard],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[PowerBoard]:
@@ -797,8 +800,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_sr_v4_servo_board.ServoBoard],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_sr_v4_servo_board.ServoBoard],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[ServoBoard]:
@@ -808,8 +811,8 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_board.Board],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_board.Board],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[Board]:
@@ -818,16 +821,19 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @classmethod
     def get_board_group(
         cls,
-        board_type: type[_boards_board.Board | Board],
-        backend_class: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+        board: type[_boards_board.Board | Board],
+        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
     ) -> BoardGroup[Board]:
-        """Find every board of ``board_type`` that ``backend_class`` can reach.
+        """Find every board of class ``board`` that ``backend`` can reach.
 
-        :param board_type: the class of board wanted, e.g. ``PowerBoard``.
-        :param backend_class: the backend to find and drive them with, or several (one
-            per generation of the board: their boards are gathered into one group).
+        The parameters have j5's names, so ``get_board_group(board=..., backend=...)``
+        works as it did there.
+
+        :param board: the class of board wanted, e.g. ``PowerBoard``.
+        :param backend: the backend to find and drive them with, or several (one per
+            generation of the board: their boards are gathered into one group).
         :param ports: explicit ports (device paths or pyserial URLs) to attach to, on top
             of discovery, for unusual adapters and simulators; they are attached with the
             first backend.
@@ -835,7 +841,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         :raises TypeError: a backend drives another kind of board, or none was given.
         :raises CommunicationError: two boards report the same serial number.
         """
-        return cast("BoardGroup[Board]", _wrap(_call(_boards_board_group.BoardGroup.get_board_group, _unwrap(board_type), backend_class, ports=ports)))
+        return cast("BoardGroup[Board]", _wrap(_call(_boards_board_group.BoardGroup.get_board_group, _unwrap(board), backend, ports=ports)))
 
     def update_boards(self) -> None:
         """Look for boards again, so that boards connected since are included.
@@ -972,6 +978,107 @@ class PowerOutputGroup(_SyncWrapper, Generic[K]):
         return self._core.__len__()
 
 
+class KitRobot(BaseRobot):
+    """A robot built from an SR v4 power board and any SR v4 / SourceBots boards beside it.
+
+    After ``async with KitRobot() as robot`` it has:
+
+    - ``robot.power_board``: the one power board (an error says so if there is not
+      exactly one);
+    - ``robot.motor_boards``, ``robot.servo_boards``, ``robot.arduinos`` (SourceBots
+      Arduinos) and ``robot.ruggeduinos``: groups of every such board found, possibly
+      empty, reached by position or serial number;
+    - ``robot.cameras``: the cameras found (webcams; the simulated kit's camera), and
+      ``robot.camera``: the first one's :class:`~j5aio.components.marker_camera.MarkerCamera`
+      (``None`` without a camera), so that ``await robot.camera.see()`` finds markers.
+
+    Through :mod:`j5aio.sync` (``from j5aio.sync import KitRobot``), ``robot = KitRobot()``
+    finds the boards at once, with no ``async with``, and they are made safe when the
+    program ends.
+
+    :param environment: where to find the boards; the default environment if omitted.
+    :param view: serve the live view of the boards while the robot runs (see
+        :mod:`j5aio.view`; needs the ``view`` extra). ``None`` (the default) follows
+        ``J5AIO_VIEW``. A view already running (``python -m j5aio run --view`` starts
+        one) shows this robot's boards, and no second one is started.
+    :raises TypeError: ``environment`` is not an Environment.
+    """
+
+    __slots__ = ()
+
+    _core: _kit.KitRobot
+
+    def __new__(
+        cls,
+        *args: Any,
+        environment: Environment | None = None,
+        view: bool | None = None,
+        **kwargs: Any,
+    ) -> Self:
+        robot = _adopt(cls, _kit.KitRobot(environment=_unwrap(environment), view=view))
+        try:
+            _call(robot._core.setup)
+        except BaseException:
+            robot._core.release_lock()
+            raise
+        return robot
+
+    @property
+    def environment(self) -> Environment:
+        """The environment the boards are found in."""
+        return cast("Environment", _wrap(self._core.environment))
+
+    def setup(self) -> None:
+        """Find every board of the kit, then the power board.
+
+        :raises CommunicationError: there is not exactly one power board, or a board
+            could not be reached. When the hardware was looked at only by default and
+            nothing was found (or it could not be looked at), one line says how to run
+            on the simulated kit instead.
+        """
+        _call(self._core.setup)
+
+    @property
+    def power_board(self) -> PowerBoard:
+        """The ``power_board`` of the wrapped object."""
+        return cast("PowerBoard", _wrap(self._core.power_board))
+
+    @property
+    def power_boards(self) -> BoardGroup[PowerBoard]:
+        """The ``power_boards`` of the wrapped object."""
+        return cast("BoardGroup[PowerBoard]", _wrap(self._core.power_boards))
+
+    @property
+    def motor_boards(self) -> BoardGroup[MotorBoard]:
+        """The ``motor_boards`` of the wrapped object."""
+        return cast("BoardGroup[MotorBoard]", _wrap(self._core.motor_boards))
+
+    @property
+    def servo_boards(self) -> BoardGroup[ServoBoard]:
+        """The ``servo_boards`` of the wrapped object."""
+        return cast("BoardGroup[ServoBoard]", _wrap(self._core.servo_boards))
+
+    @property
+    def arduinos(self) -> BoardGroup[SBArduinoBoard]:
+        """The ``arduinos`` of the wrapped object."""
+        return cast("BoardGroup[SBArduinoBoard]", _wrap(self._core.arduinos))
+
+    @property
+    def ruggeduinos(self) -> BoardGroup[Ruggeduino]:
+        """The ``ruggeduinos`` of the wrapped object."""
+        return cast("BoardGroup[Ruggeduino]", _wrap(self._core.ruggeduinos))
+
+    @property
+    def cameras(self) -> BoardGroup[CameraBoard]:
+        """The ``cameras`` of the wrapped object."""
+        return cast("BoardGroup[CameraBoard]", _wrap(self._core.cameras))
+
+    @property
+    def camera(self) -> MarkerCamera | None:
+        """The ``camera`` of the wrapped object."""
+        return cast("MarkerCamera | None", _wrap(self._core.camera))
+
+
 class ArduinoUno(Board):
     """An Arduino Uno: digital pins 2 to 13, analogue pins A0 to A5 and the LED on pin 13.
 
@@ -1007,9 +1114,12 @@ class ArduinoUno(Board):
     ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_arduino_uno.ArduinoUno.ANALOGUE_PIN_FIRMWARE_MODES
 
     @property
-    def pins(self) -> Mapping[int, GPIOPin]:
-        """The GPIO pins, by number or by :class:`AnaloguePin` (a read-only mapping)."""
-        return cast("Mapping[int, GPIOPin]", _wrap(self._core.pins))
+    def pins(self) -> _numbered.Pins[GPIOPin]:
+        """The GPIO pins, by number or by :class:`AnaloguePin`.
+
+        Iterating gives the pins themselves, as in j5; ``pins.keys()`` gives the numbers.
+        """
+        return cast("_numbered.Pins[GPIOPin]", _wrap(self._core.pins))
 
     @property
     def led(self) -> LED:
@@ -1419,9 +1529,9 @@ class MotorBoardFw4(MotorBoard):
     name: ClassVar[str] = _boards_sr_v4_motor_board_fw4.MotorBoardFw4.name
 
     @property
-    def motors(self) -> tuple[MonitoredMotor, ...]:
+    def motors(self) -> _numbered.NumberedComponents[MonitoredMotor]:
         """The motors, numbered 0 and 1."""
-        return cast("tuple[MonitoredMotor, ...]", _wrap(self._core.motors))
+        return cast("_numbered.NumberedComponents[MonitoredMotor]", _wrap(self._core.motors))
 
     @property
     def input_voltage_sensor(self) -> VoltageSensor:
@@ -1536,6 +1646,8 @@ class Ruggeduino(ArduinoUno):
         _adopt_into(self, _boards_sr_v4_ruggeduino.Ruggeduino(serial_number, backend))
 
     name: ClassVar[str] = _boards_sr_v4_ruggeduino.Ruggeduino.name
+
+    ANALOGUE_PIN_MODES: ClassVar[frozenset[_components_gpio_pin.GPIOPinMode]] = _boards_sr_v4_ruggeduino.Ruggeduino.ANALOGUE_PIN_MODES
 
     @property
     def command(self) -> StringCommandComponent:
@@ -2429,6 +2541,10 @@ class StringCommandComponent(IdentifiedComponent[_components_string_command.Stri
         """
         return _call(self._core.execute, command)
 
+    def __call__(self, command: str) -> str:
+        """Send ``command`` to the board and return its reply, as :meth:`execute`."""
+        return _call(self._core.__call__, command)
+
 
 class SupplySensor(IdentifiedComponent[_components_supply_sensor.SupplySensorInterface]):
     """A meter on one of a board's power rails (such as a servo board's servo supply).
@@ -2735,6 +2851,7 @@ _register(_boards_board.Board, Board)
 _register(_boards_board_group.BoardGroup, BoardGroup)
 _register(_components_component.Component, Component)
 _register(_components_power_output.PowerOutputGroup, PowerOutputGroup)
+_register(_kit.KitRobot, KitRobot)
 _register(_boards_arduino_uno.ArduinoUno, ArduinoUno)
 _register(_boards_camera.CameraBoard, CameraBoard)
 _register(_boards_sr_kch.KCHBoard, KCHBoard)

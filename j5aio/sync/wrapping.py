@@ -16,10 +16,12 @@ its output, kept stable for generated modules of other packages.
 
 from __future__ import annotations
 
+import difflib
 import weakref
 from collections.abc import Iterator, Mapping, Sequence, Set
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
+from j5aio.numbered import NumberedComponents, Pins
 from j5aio.sync._runtime import call
 
 __all__ = [
@@ -64,11 +66,29 @@ class SyncWrapper:
         wrapper._core = core
         return wrapper
 
+    if not TYPE_CHECKING:  # hidden from type checkers, which must still refuse a misspelling
+
+        def __setattr__(self, name: str, value: Any) -> None:
+            try:
+                object.__setattr__(self, name, value)
+            except AttributeError:
+                if name.startswith("_") or hasattr(type(self), name):
+                    raise  # a read-only property, say: Python's own message says so
+                raise AttributeError(_no_such_attribute(self, name)) from None
+
     def __str__(self) -> str:
         return str(self._core)
 
     def __repr__(self) -> str:
         return f"<sync {self._core!r}>"
+
+
+def _no_such_attribute(wrapper: SyncWrapper, name: str) -> str:
+    """Say that ``wrapper`` has no attribute ``name`` to set, and which one was meant."""
+    message = f"{type(wrapper).__name__!r} object has no attribute {name!r} to set"
+    public = [n for n in dir(type(wrapper)) if not n.startswith("_")]
+    close = difflib.get_close_matches(name, public, n=1)
+    return f"{message}. Did you mean: {close[0]!r}?" if close else message
 
 
 def register(core_class: type, wrapper_class: type[SyncWrapper]) -> None:
@@ -143,6 +163,10 @@ def wrap(obj: Any) -> Any:
         return obj
     if isinstance(obj, list):
         return [wrap(item) for item in obj]
+    if isinstance(obj, NumberedComponents):
+        return obj.replaced(wrap(item) for item in obj)
+    if isinstance(obj, Pins):
+        return obj.replaced({number: wrap(pin) for number, pin in obj.items()})
     if isinstance(obj, tuple):
         return tuple(wrap(item) for item in obj)
     if isinstance(obj, Mapping):

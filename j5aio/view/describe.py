@@ -19,6 +19,7 @@ from typing import Any, NamedTuple
 
 from j5aio.boards.board import Board
 from j5aio.components.component import Component, DerivedComponent
+from j5aio.numbered import Pins
 
 __all__ = [
     "ComponentInfo",
@@ -91,7 +92,7 @@ def _number_first(identifier: str) -> tuple[int, str]:
 def _components_in(value: object) -> Iterable[Component]:
     if isinstance(value, Component):
         return (value,)
-    if isinstance(value, Mapping):
+    if isinstance(value, Mapping | Pins):  # board.pins iterates its pins, as in j5
         return tuple(v for v in value.values() if isinstance(v, Component))
     if isinstance(value, tuple | list) or type(value).__name__.endswith("Group"):
         try:

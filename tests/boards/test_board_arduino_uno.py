@@ -34,7 +34,7 @@ def test_analogue_pin_numbers() -> None:
 
 def test_pins_by_number_and_by_analogue_name() -> None:
     board = ArduinoUno("U1", FakeUnoBackend())
-    assert sorted(board.pins) == list(range(2, 20))
+    assert sorted(board.pins.keys()) == list(range(2, 20))
     assert 0 not in board.pins and 1 not in board.pins and 20 not in board.pins
     assert board.pins[AnaloguePin.A3] is board.pins[17]
     assert board.pins[17].identifier == 17
@@ -52,7 +52,7 @@ def test_pins_are_read_only() -> None:
     with pytest.raises(TypeError):
         board.pins[2] = board.pins[3]  # type: ignore[index]
     with pytest.raises(AttributeError):
-        board.pins = {}  # type: ignore[misc]
+        board.pins = {}  # type: ignore[misc, assignment]
     with pytest.raises(AttributeError):
         board.led = board.led  # type: ignore[misc]
 
@@ -96,7 +96,7 @@ def test_ruggeduino_is_an_uno_with_a_string_command() -> None:
     assert Ruggeduino.name == "Ruggeduino"
     assert Ruggeduino.supported_components() == {GPIOPin, LED, StringCommandComponent}
     assert isinstance(board.command, StringCommandComponent)
-    assert sorted(board.pins) == list(range(2, 20))
+    assert sorted(board.pins.keys()) == list(range(2, 20))
     with pytest.raises(AttributeError):
         board.command = board.command  # type: ignore[misc]
 

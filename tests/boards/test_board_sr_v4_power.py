@@ -151,7 +151,7 @@ async def test_wait_for_start_flash_lets_other_tasks_run() -> None:
 async def test_wait_for_start_flash_times_out() -> None:
     board, backend = make_board()
     start = anyio.current_time()
-    with pytest.raises(TimeoutError):
+    with pytest.raises(TimeoutError, match=r"start button was not pressed within 0\.2 s"):
         await board.wait_for_start_flash(timeout=0.2)
     elapsed = anyio.current_time() - start
     assert 0.19 <= elapsed < 2

@@ -45,7 +45,7 @@ async def test_wait_until_pressed_with_a_timeout_returns_when_pressed_in_time() 
 
 async def test_wait_until_pressed_raises_timeout_error_and_stops_waiting() -> None:
     backend = RecordingBackend()
-    with pytest.raises(TimeoutError):
+    with pytest.raises(TimeoutError, match=r"not pressed within 0\.01 s; pass a longer timeout"):
         await Button(1, backend).wait_until_pressed(timeout=0.01)
     assert backend.wait_cancelled is True
 

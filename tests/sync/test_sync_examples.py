@@ -1,9 +1,12 @@
-"""Every sync example runs on the console boards with its input piped in."""
+"""Every sync example runs on the simulated kit with no input; the console one with its input."""
 
 from __future__ import annotations
 
 import subprocess
 import sys
+from pathlib import Path
+
+import pytest
 
 from .sync_fakes import ROOT, child_env
 
@@ -29,58 +32,81 @@ def run_example(
 
 def test_every_sync_example_is_tested() -> None:
     tested = {"sync_blink_run_led.py", "sync_drive_forward.py", "sync_start_and_buzz.py",
-              "sync_read_battery.py", "sync_j5_compat.py", "sync_any_kit.py"}
+              "sync_read_battery.py", "sync_any_kit.py", "sync_blink_and_drive.py"}
     assert {path.name for path in EXAMPLES.glob("sync_*.py")} == tested
 
 
-def test_blink_run_led() -> None:
-    result = run_example("sync_blink_run_led.py", "")
+# Runs an example on the simulated kit in a child Python, as ``run --sim`` does, then
+# prints what the simulated boards themselves were left doing.
+_ON_THE_KIT = """
+import os, runpy, sys
+os.environ["J5AIO_ENV"] = "sim"
+from j5aio.simulator.kit import current_kit
+kit = current_kit()
+runpy.run_path(sys.argv[1], run_name="__main__")
+print("KIT motors", [m.mode.name for m in kit.motor_boards[0].motors])
+print("KIT run_led", kit.power_boards[0].run_led)
+"""
+
+
+def run_on_the_kit(name: str) -> tuple[list[str], list[str]]:
+    """Run example ``name`` on the simulated kit with no input: (its lines, the kit's lines)."""
+    result = subprocess.run(
+        [sys.executable, "-c", _ON_THE_KIT, str(EXAMPLES / name)],
+        stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=60,
+        env=child_env(), cwd=ROOT, check=False,
+    )
     assert result.returncode == 0, result.stderr
     lines = result.stdout.splitlines()
-    assert lines[:6] == ["PowerBoard(SERIAL): Set LED 0 to True",
-                         "PowerBoard(SERIAL): Set LED 0 to False"] * 3
-    assert lines[6] == "The run LED is off."
-    assert lines[7:] == SAFE_POWER_BOARD
+    kit = [line for line in lines if line.startswith("KIT ")]
+    return [line for line in lines if line not in kit], kit
+
+
+@pytest.mark.parametrize("path", sorted(EXAMPLES.glob("sync_*.py")), ids=lambda p: p.name)
+def test_every_sync_example_runs_under_run_sim_with_no_input(path: Path) -> None:
+    result = subprocess.run(
+        [sys.executable, "-m", "j5aio", "run", "--sim", str(path)],
+        stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=60,
+        env=child_env(), cwd=ROOT, check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "ran out of input" not in result.stderr
+
+
+def test_blink_run_led() -> None:
+    out, kit = run_on_the_kit("sync_blink_run_led.py")
+    assert out == ["The run LED is off."]
+    assert "KIT run_led False" in kit
 
 
 def test_drive_forward_then_stop() -> None:
-    result = run_example("sync_drive_forward.py", "")
-    assert result.returncode == 0, result.stderr
-    lines = result.stdout.splitlines()
-    assert lines[:6] == [
-        "MotorBoard(SERIAL): Setting motor 0 to 0.6.",
-        "MotorBoard(SERIAL): Motor 0: forward at 60% duty.",
-        "MotorBoard(SERIAL): Setting motor 1 to 0.6.",
-        "MotorBoard(SERIAL): Motor 1: forward at 60% duty.",
-        "MotorBoard(SERIAL): Setting motor 0 to BRAKE.",
-        "MotorBoard(SERIAL): Setting motor 1 to BRAKE.",
+    out, kit = run_on_the_kit("sync_drive_forward.py")
+    assert out == ["Stopped: left is MotorSpecialState.BRAKE, right is MotorSpecialState.BRAKE."]
+    assert "KIT motors ['BRAKE', 'BRAKE']" in kit
+
+
+def test_start_and_buzz_starts_anyway_when_nobody_presses() -> None:
+    out, _ = run_on_the_kit("sync_start_and_buzz.py")
+    assert out == [
+        "Press the start button to begin.",
+        "Nobody pressed start within 3 s: starting anyway.",
+        "Tune played.",
     ]
-    assert lines[6] == "Stopped: left is MotorSpecialState.BRAKE, right is MotorSpecialState.BRAKE."
 
 
-def test_wait_for_start_then_buzz() -> None:
-    result = run_example("sync_start_and_buzz.py", "false\nfalse\ntrue\n")
-    assert result.returncode == 0, result.stderr
-    out = result.stdout
-    assert out.count("Start button state [true/false]") == 3
-    assert out.index("Started!") > out.rindex("Start button state")
-    buzzes = [line for line in out.splitlines() if "Buzzing" in line]
-    assert len(buzzes) == 3
-    assert all(line.endswith("for 200ms") for line in buzzes)
+def test_blink_and_drive_zig_zags_with_the_pin_lit_on_the_straights() -> None:
+    out, kit = run_on_the_kit("sync_blink_and_drive.py")
+    assert out == ["Zig-zag done: both motors braked."]
+    assert "KIT motors ['BRAKE', 'BRAKE']" in kit
 
 
 def test_read_the_battery() -> None:
-    result = run_example("sync_read_battery.py", "10.5\n2\n")
-    assert result.returncode == 0, result.stderr
-    assert "Battery: 10.50 V, drawing 2.00 A (21.0 W)." in result.stdout
-    assert "The battery is low: charge it soon!" in result.stdout
-    healthy = run_example("sync_read_battery.py", "12.5\n1\n")
-    assert "Battery: 12.50 V, drawing 1.00 A (12.5 W)." in healthy.stdout
-    assert "low" not in healthy.stdout
+    out, _ = run_on_the_kit("sync_read_battery.py")
+    assert out == ["Battery: 12.00 V, drawing 0.00 A (0.0 W)."]
 
 
 def test_the_j5_program_prints_what_j5_would() -> None:
-    result = run_example("sync_j5_compat.py", "true\n")
+    result = run_example("console_j5_program.py", "true\n")
     assert result.returncode == 0, result.stderr
     lines = result.stdout.splitlines()
     assert lines[0] == "Found Power Board: SERIAL"

@@ -84,7 +84,7 @@ class HardwarePins(HardwareSuite, GPIOPinInterfaceConformance):
             self.sim.set_analogue(identifier, volts=volts)
 
         return GPIOPinSubject(
-            **args, identifiers=sorted(board.pins), modes=pin_modes(board.pins),
+            **args, identifiers=sorted(board.pins.keys()), modes=pin_modes(board.pins),
             observe_output=observe_output, set_input=set_input, set_voltage=set_voltage,
         )
 
@@ -206,7 +206,7 @@ class ConsolePins(ConsoleSuite, GPIOPinInterfaceConformance):
             self.script.answer(f"Pin {identifier} ADC", str(volts), replace=True)
 
         return GPIOPinSubject(
-            backend=backend, identifiers=sorted(board.pins), modes=pin_modes(board.pins),
+            backend=backend, identifiers=sorted(board.pins.keys()), modes=pin_modes(board.pins),
             set_input=set_input, set_voltage=set_voltage,
         )
 

@@ -64,7 +64,7 @@ class ConsoleSuite:
         board = backend.board("SERIAL", backend)
         assert isinstance(board, ArduinoUno)
         return GPIOPinSubject(
-            backend=backend, identifiers=sorted(board.pins), modes=pin_modes(board.pins),
+            backend=backend, identifiers=sorted(board.pins.keys()), modes=pin_modes(board.pins),
             set_input=self.answer_input, set_voltage=self.answer_voltage,
         )
 

@@ -9,11 +9,13 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+from j5aio.errors import NotSupportedByHardwareError  # importable from here, as in j5
+
 if TYPE_CHECKING:
     from j5aio.backends.hardware.env import HARDWARE_ENVIRONMENT
     from j5aio.backends.hardware.identify import attach
 
-__all__ = ["HARDWARE_ENVIRONMENT", "attach"]
+__all__ = ["HARDWARE_ENVIRONMENT", "NotSupportedByHardwareError", "attach"]
 
 
 def __getattr__(name: str) -> Any:

@@ -45,10 +45,14 @@ class ArduinoHardwareBackend(GPIOPinInterface, LEDInterface, SerialHardwareBacke
     SKIP_PORTS_WITHOUT_SERIAL: ClassVar[bool] = True
     #: How many analogue pins the firmware reads, from A0.
     ANALOGUE_CHANNELS: ClassVar[int] = 6
+    #: Whether the firmware drives A0 to A5 as digital pins too.
+    ANALOGUE_PINS_DIGITAL: ClassVar[bool] = False
 
     def __init__(self, link: SerialLink, *, port: str) -> None:
         super().__init__(link, port=port)
-        self._pins = ArduinoPins(self.board.name)
+        self._pins = ArduinoPins(
+            self.board.name, analogue_pins_digital=self.ANALOGUE_PINS_DIGITAL,
+        )
 
     def make_safe_now(self, timeout: float) -> bool:
         """Send nothing: like :meth:`.ArduinoUno.make_safe`, pins stay as they are.

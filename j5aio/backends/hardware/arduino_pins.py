@@ -1,7 +1,8 @@
 """The pin rules shared by every Arduino Uno backend (Ruggeduino, SourceBots Arduino).
 
 Pins 2 to 13 are digital: input, input with pull-up, or output. Pins 14 to 19 (A0 to
-A5) are analogue inputs only, although the board class offers more modes on them.
+A5) are analogue inputs, and digital pins as well where the firmware drives them
+(``analogue_pins_digital``: the Ruggeduino's firmware 1; not the SourceBots 2019 one).
 Pins 0 and 1 carry the serial link. The backend remembers each digital pin's mode and
 the level last written to it, because the firmware cannot report either.
 
@@ -57,9 +58,14 @@ class ArduinoPins:
     :param board_name: the board's name, for error messages.
     """
 
-    def __init__(self, board_name: str) -> None:
+    def __init__(self, board_name: str, *, analogue_pins_digital: bool = False) -> None:
         self._board_name = board_name
         self._digital = {pin: DigitalPinState() for pin in DIGITAL_PINS}
+        #: Whether A0 to A5 take the digital modes too (the firmware drives them).
+        self.analogue_pins_digital = analogue_pins_digital
+        if analogue_pins_digital:
+            for pin in ANALOGUE_PINS:
+                self._digital[pin] = DigitalPinState(mode=GPIOPinMode.ANALOGUE_INPUT)
 
     def digital(self, pin: int) -> DigitalPinState:
         """Return the state of digital ``pin``.
@@ -68,7 +74,7 @@ class ArduinoPins:
         :raises ValueError: ``pin`` is not a pin of the board.
         """
         self._check_exists(pin)
-        if pin in ANALOGUE_PINS:
+        if pin in ANALOGUE_PINS and not self.analogue_pins_digital:
             raise NotSupportedByHardwareError(
                 f"{self._board_name} pin {pin} is an analogue input; digital functions are "
                 f"available on pins {DIGITAL_PINS.start} to {DIGITAL_PINS.stop - 1} only",
@@ -78,7 +84,7 @@ class ArduinoPins:
     def mode(self, pin: int) -> GPIOPinMode:
         """Return the mode of ``pin`` (analogue pins are always ANALOGUE_INPUT)."""
         self._check_exists(pin)
-        if pin in ANALOGUE_PINS:
+        if pin in ANALOGUE_PINS and not self.analogue_pins_digital:
             return GPIOPinMode.ANALOGUE_INPUT
         return self._digital[pin].mode
 
@@ -90,11 +96,14 @@ class ArduinoPins:
         """
         self._check_exists(pin)
         if pin in ANALOGUE_PINS and mode is GPIOPinMode.ANALOGUE_INPUT:
-            return False
-        if pin in DIGITAL_PINS and mode in DIGITAL_MODES:
+            # back from a digital mode, the pin must stop driving: the board is told
+            return self.analogue_pins_digital and self._digital[pin].mode is not mode
+        if mode in DIGITAL_MODES and (pin in DIGITAL_PINS or self.analogue_pins_digital):
             return True
         allowed = (
-            "ANALOGUE_INPUT"
+            ", ".join(sorted(m.name for m in DIGITAL_MODES | {GPIOPinMode.ANALOGUE_INPUT}))
+            if pin in ANALOGUE_PINS and self.analogue_pins_digital
+            else "ANALOGUE_INPUT"
             if pin in ANALOGUE_PINS
             else ", ".join(sorted(m.name for m in DIGITAL_MODES))
         )

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from enum import IntEnum
-from types import MappingProxyType
 from typing import TYPE_CHECKING, ClassVar
 
 from j5aio.boards.board import Board
 from j5aio.components.gpio_pin import GPIOPin, GPIOPinMode
 from j5aio.components.led import LED
+from j5aio.numbered import Pins
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -58,8 +57,8 @@ class ArduinoUno(Board):
     )
 
     #: The hardware modes of the analogue pins. The Uno's chip could use them as digital
-    #: pins too, but none of the kit's firmwares offers that, so they claim only what the
-    #: backends can do: a digital mode is refused by the pin itself, before any traffic.
+    #: pins too; a board whose firmware offers that (the Ruggeduino) widens this, and
+    #: otherwise a digital mode is refused by the pin itself, before any traffic.
     ANALOGUE_PIN_MODES: ClassVar[frozenset[GPIOPinMode]] = frozenset(
         {GPIOPinMode.ANALOGUE_INPUT},
     )
@@ -91,11 +90,14 @@ class ArduinoUno(Board):
                 hardware_modes=self.ANALOGUE_PIN_MODES,
                 firmware_modes=self.ANALOGUE_PIN_FIRMWARE_MODES,
             )
-        self._pins: Mapping[int, GPIOPin] = MappingProxyType(pins)
+        self._pins = Pins(pins, owner=self)
 
     @property
-    def pins(self) -> Mapping[int, GPIOPin]:
-        """The GPIO pins, by number or by :class:`AnaloguePin` (a read-only mapping)."""
+    def pins(self) -> Pins[GPIOPin]:
+        """The GPIO pins, by number or by :class:`AnaloguePin`.
+
+        Iterating gives the pins themselves, as in j5; ``pins.keys()`` gives the numbers.
+        """
         return self._pins
 
     @property

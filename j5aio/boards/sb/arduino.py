@@ -9,6 +9,7 @@ from j5aio.components.derived.ultrasound import UltrasoundSensor
 from j5aio.components.gpio_pin import GPIOPin
 from j5aio.components.led import LED
 from j5aio.components.servo import Servo
+from j5aio.numbered import NumberedComponents
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -39,7 +40,9 @@ class SBArduinoBoard(ArduinoUno):
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
-        self._servos = tuple(Servo(i, backend) for i in range(self.SERVO_COUNT))
+        self._servos = NumberedComponents(
+            (Servo(i, backend) for i in range(self.SERVO_COUNT)), owner=self, kind="servo",
+        )
         self._ultrasound_sensors = UltrasoundSensors(self)
 
     @property
@@ -98,7 +101,7 @@ class UltrasoundSensors:
         if number not in pins:
             raise KeyError(
                 f"{self._board.name} has no pin {number}; its pins are "
-                f"{min(pins)} to {max(pins)}",
+                f"{min(pins.keys())} to {max(pins.keys())}",
             )
         return pins[number]
 

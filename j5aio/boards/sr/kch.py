@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, ClassVar
 from j5aio.boards.board import Board
 from j5aio.components.flashing_led import FlashingLED
 from j5aio.components.rgb_led import RGBLED, RGBColour
+from j5aio.numbered import NumberedComponents
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -47,7 +48,9 @@ class KCHBoard(Board):
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
-        self._leds = tuple(RGBLED(i, backend) for i in range(self.LED_COUNT))
+        self._leds = NumberedComponents(
+            (RGBLED(i, backend) for i in range(self.LED_COUNT)), owner=self, kind="LED",
+        )
         self._start_led = FlashingLED(0, backend)
 
     @property

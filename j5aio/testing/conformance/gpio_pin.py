@@ -10,6 +10,7 @@ from typing import ClassVar
 import pytest
 
 from j5aio.components.gpio_pin import GPIOPin, GPIOPinInterface, GPIOPinMode
+from j5aio.numbered import Pins
 
 from ._base import InterfaceConformance, Subject, require
 
@@ -56,7 +57,9 @@ class GPIOPinSubject(Subject):
         return found
 
 
-def pin_modes(pins: Mapping[int, GPIOPin]) -> dict[int, frozenset[GPIOPinMode]]:
+def pin_modes(
+    pins: Pins[GPIOPin] | Mapping[int, GPIOPin],
+) -> dict[int, frozenset[GPIOPinMode]]:
     """The hardware modes of each pin of a board, as its board definition claims them.
 
     Pass ``pin_modes(board.pins)`` as the ``modes`` of a :class:`GPIOPinSubject`, so that

@@ -126,3 +126,28 @@ async def test_bad_replies() -> None:
     with pytest.raises(UnexpectedReplyError, match="0 to 1023"):
         await backend.read_gpio_pin_analogue_value(14)
     stream.assert_all_used()
+
+
+async def test_analogue_pins_take_the_digital_modes_too() -> None:
+    sim = SRRuggeduinoSimulator("R1")
+    board, backend, stream = await connect(sim)
+    stream.clear()
+    a0 = board.pins[14]
+    await a0.set_mode(GPIOPinMode.DIGITAL_OUTPUT)
+    await a0.digital_write(True)
+    assert stream.sent == b"ooloho"  # pin 14 is the letter o
+    assert sim.output_level(14) is True
+    assert await backend.get_gpio_pin_mode(14) is GPIOPinMode.DIGITAL_OUTPUT
+    a5 = board.pins[19]
+    await a5.set_mode(GPIOPinMode.DIGITAL_INPUT_PULLUP)
+    sim.set_input_level(19, False)
+    assert await a5.digital_read() is False
+    stream.clear()
+    await a0.set_mode(GPIOPinMode.ANALOGUE_INPUT)  # stop driving it, then read volts
+    assert stream.sent == b"io"
+    sim.set_analogue(14, raw=512)
+    assert await a0.analogue_read() == 2.5
+    stream.clear()
+    await a0.set_mode(GPIOPinMode.ANALOGUE_INPUT)  # already an analogue input: no traffic
+    assert stream.sent == b""
+    await board.close()

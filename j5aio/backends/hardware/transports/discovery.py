@@ -25,6 +25,7 @@ __all__ = [
     "USBFinder",
     "find_port",
     "find_usb_devices",
+    "libusb_help",
     "list_serial_ports",
     "match_ports",
 ]
@@ -175,6 +176,29 @@ _LIBUSB_HELP = (
     "`pip install libusb-package`."
 )
 
+_LIBUSB_UNUSABLE_HELP = (
+    "libusb is installed ({library}), but pyusb could not use it, so USB boards cannot be "
+    "used. It may be built for another architecture than this Python, or too old: "
+    "`pip install libusb-package` brings one that fits, and running with "
+    "PYUSB_DEBUG=debug shows why pyusb refused it."
+)
+
+
+def libusb_help(find_library: Callable[[str], str | None] | None = None) -> str:
+    """What to do when pyusb has no backend: install libusb, or fix the one installed.
+
+    :param find_library: looks a shared library up by name (``ctypes.util.find_library``).
+    """
+    if find_library is None:
+        import ctypes.util
+
+        find_library = ctypes.util.find_library
+    for name in ("usb-1.0", "libusb-1.0"):
+        library = find_library(name)
+        if library:
+            return _LIBUSB_UNUSABLE_HELP.format(library=library)
+    return _LIBUSB_HELP
+
 
 def _pyusb_find(*, find_all: bool, idVendor: int, idProduct: int) -> Any:  # noqa: N803
     import usb.core
@@ -200,7 +224,7 @@ def find_usb_devices(vid: int, pid: int, *, finder: USBFinder | None = None) -> 
         devices: Iterable[USBDeviceLike] = search(find_all=True, idVendor=vid, idProduct=pid)
         return list(devices)
     except usb.core.NoBackendError as exc:
-        raise CommunicationError(_LIBUSB_HELP) from exc
+        raise CommunicationError(libusb_help()) from exc
     except usb.core.USBError as exc:
         raise USBCommunicationError(
             f"Could not scan the USB bus for devices {vid:04x}:{pid:04x}: {exc}", exc

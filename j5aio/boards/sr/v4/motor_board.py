@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, ClassVar
 from j5aio.boards.board import Board
 from j5aio.components._checks import check_number
 from j5aio.components.motor import Motor, MotorSpecialState, MotorState
+from j5aio.numbered import NumberedComponents
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -38,7 +39,9 @@ class MotorBoard(Board):
         safe_state: MotorState = MotorSpecialState.BRAKE,
     ) -> None:
         super().__init__(serial_number, backend)
-        self._motors = tuple(Motor(i, backend) for i in range(self.MOTOR_COUNT))
+        self._motors = NumberedComponents(
+            (Motor(i, backend) for i in range(self.MOTOR_COUNT)), owner=self, kind="motor",
+        )
         if not isinstance(safe_state, MotorSpecialState):
             safe_state = check_number(
                 safe_state,

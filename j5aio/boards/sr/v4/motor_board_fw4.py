@@ -5,9 +5,10 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, ClassVar, cast
 
 from j5aio.boards.sr.v4.motor_board import MotorBoard
-from j5aio.components.monitored_motor import MonitoredMotor, MonitoredMotorInterface
+from j5aio.components.monitored_motor import MonitoredMotor
 from j5aio.components.motor import Motor, MotorSpecialState, MotorState
-from j5aio.components.voltage_sensor import VoltageSensor, VoltageSensorInterface
+from j5aio.components.voltage_sensor import VoltageSensor
+from j5aio.numbered import NumberedComponents
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -38,14 +39,17 @@ class MotorBoardFw4(MotorBoard):
         safe_state: MotorState = MotorSpecialState.BRAKE,
     ) -> None:
         super().__init__(serial_number, backend, safe_state=safe_state)
-        motor_backend = cast(MonitoredMotorInterface, backend)
-        self._motors = tuple(MonitoredMotor(i, motor_backend) for i in range(self.MOTOR_COUNT))
-        self._input_voltage_sensor = VoltageSensor(0, cast(VoltageSensorInterface, backend))
+        self._motors = NumberedComponents(
+            (MonitoredMotor(i, backend) for i in range(self.MOTOR_COUNT)),
+            owner=self,
+            kind="motor",
+        )
+        self._input_voltage_sensor = VoltageSensor(0, backend)
 
     @property
-    def motors(self) -> tuple[MonitoredMotor, ...]:
+    def motors(self) -> NumberedComponents[MonitoredMotor]:
         """The motors, numbered 0 and 1."""
-        return cast(tuple[MonitoredMotor, ...], self._motors)
+        return cast(NumberedComponents[MonitoredMotor], self._motors)
 
     @property
     def input_voltage_sensor(self) -> VoltageSensor:

@@ -123,7 +123,7 @@ class PowerBoard(Board):
         :raises TypeError: ``timeout`` is not a number or ``None``.
         :raises ValueError: ``timeout`` is negative or not a number (NaN).
         """
-        with anyio.fail_after(check_timeout(timeout)):
+        with anyio.move_on_after(check_timeout(timeout)) as scope:
             polls = 0
             led_on = False
             while not await self._start_button.get_is_pressed():
@@ -132,5 +132,10 @@ class PowerBoard(Board):
                     await self._run_led.set_state(led_on)
                 await anyio.sleep(self.START_POLL_INTERVAL)
                 polls += 1
+        if scope.cancelled_caught:
+            raise TimeoutError(
+                f"the start button was not pressed within {timeout} s; pass a longer "
+                "timeout, or timeout=None to wait for as long as it takes",
+            )
         await self._run_led.set_state(True)
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, ClassVar
 
 from j5aio.boards.arduino.uno import ArduinoUno
-from j5aio.components.gpio_pin import GPIOPin
+from j5aio.components.gpio_pin import GPIOPin, GPIOPinMode
 from j5aio.components.led import LED
 from j5aio.components.string_command import (
     StringCommandComponent,
@@ -29,6 +29,11 @@ class Ruggeduino(ArduinoUno):
     """
 
     name: ClassVar[str] = "Ruggeduino"
+
+    #: Firmware 1 drives A0 to A5 (pins 14 to 19) as digital pins too, as the Uno can.
+    ANALOGUE_PIN_MODES: ClassVar[frozenset[GPIOPinMode]] = ArduinoUno.DIGITAL_PIN_MODES | {
+        GPIOPinMode.ANALOGUE_INPUT,
+    }
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)

@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING, ClassVar
 
 from j5aio.boards.board import Board
 from j5aio.components.servo import Servo
+from j5aio.numbered import NumberedComponents
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -28,7 +29,10 @@ class ServoBoard(Board):
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
-        self._servos = tuple(self._make_servo(i, backend) for i in range(self.SERVO_COUNT))
+        self._servos = NumberedComponents(
+            (self._make_servo(i, backend) for i in range(self.SERVO_COUNT)),
+            owner=self, kind="servo",
+        )
 
     def _make_servo(self, identifier: int, backend: Backend) -> Servo:
         """Make servo ``identifier``; subclasses with richer servos override this."""

@@ -21,7 +21,7 @@ from j5aio.backends.hardware.transports import (
     match_ports,
     wire_logger,
 )
-from j5aio.backends.hardware.transports.discovery import ComPortLike
+from j5aio.backends.hardware.transports.discovery import ComPortLike, libusb_help
 from j5aio.errors import CommunicationError, USBCommunicationError
 
 
@@ -119,13 +119,41 @@ def test_find_usb_devices_uses_the_finder() -> None:
     assert calls == [{"find_all": True, "vid": 0x1BDA, "pid": 0x0010}]
 
 
-def test_find_usb_devices_explains_a_missing_libusb() -> None:
+def test_find_usb_devices_explains_a_missing_libusb(monkeypatch: pytest.MonkeyPatch) -> None:
     def finder(*, find_all: bool, idVendor: int, idProduct: int) -> Any:  # noqa: N803
         raise usb.core.NoBackendError("No backend available")
 
+    monkeypatch.setattr("ctypes.util.find_library", lambda name: None)
     with pytest.raises(CommunicationError, match="libusb") as caught:
         find_usb_devices(1, 2, finder=finder)
     assert "apt install libusb-1.0-0" in str(caught.value)
+
+
+def test_find_usb_devices_explains_a_libusb_it_cannot_use(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    def finder(*, find_all: bool, idVendor: int, idProduct: int) -> Any:  # noqa: N803
+        raise usb.core.NoBackendError("No backend available")
+
+    monkeypatch.setattr("ctypes.util.find_library", lambda name: "libusb-1.0.so.0")
+    with pytest.raises(CommunicationError) as caught:
+        find_usb_devices(1, 2, finder=finder)
+    message = str(caught.value)
+    assert message.startswith("libusb is installed (libusb-1.0.so.0), but pyusb could not use it")
+    assert "apt install" not in message
+    assert "PYUSB_DEBUG=debug" in message
+
+
+def test_libusb_help_tries_both_library_names() -> None:
+    asked: list[str] = []
+
+    def only_the_windows_name(name: str) -> str | None:
+        asked.append(name)
+        return "C:\\libusb-1.0.dll" if name == "libusb-1.0" else None
+
+    assert "libusb is installed (C:\\libusb-1.0.dll)" in libusb_help(only_the_windows_name)
+    assert asked == ["usb-1.0", "libusb-1.0"]
+    assert "Install libusb" in libusb_help(lambda name: None)
 
 
 def test_find_usb_devices_wraps_usb_errors() -> None:

@@ -49,6 +49,8 @@ class SRV4RuggeduinoHardwareBackend(
     """Drives a Ruggeduino over its single-character protocol (firmware 1)."""
 
     board = Ruggeduino
+    #: Firmware 1 takes any pin letter up to ``t`` (pin 19) in its digital commands.
+    ANALOGUE_PINS_DIGITAL: ClassVar[bool] = True
 
     #: How many times ``v`` is sent before the board is declared silent.
     VERSION_ATTEMPTS: ClassVar[int] = 26
@@ -124,6 +126,11 @@ class SRV4RuggeduinoHardwareBackend(
             await self._command(
                 codec.encode_digital_write(identifier, wanted.level),
                 then=lambda: self._remember_pin(identifier, wanted.mode, wanted.level),
+            )
+        elif wanted.mode is GPIOPinMode.ANALOGUE_INPUT:  # A0-A5 back from a digital mode
+            await self._command(
+                codec.encode_mode(identifier, GPIOPinMode.DIGITAL_INPUT),
+                then=lambda: self._remember_pin(identifier, wanted.mode, False),
             )
         else:
             await self._command(

@@ -2,7 +2,9 @@
 
 Run it and answer the start button prompt (or pipe the answer in)::
 
-    echo true | python examples/sync_j5_compat.py
+    echo true | python examples/console_j5_program.py
+
+The console is the point here: it shows, line by line, what each board would be told.
 
 Only ``from j5 import ...`` became ``from j5aio.sync import ...``; the boards and
 backends come from ``j5aio.boards`` and ``j5aio.backends``.
