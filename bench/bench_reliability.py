@@ -3,7 +3,9 @@
 R1  random cancellations, through anyio (``move_on_after``) and through asyncio itself
     (``Task.cancel``, ``asyncio.timeout``): wrong answers and caches that disagree with
     the simulated board, per backend. Goal: 0 and 0.
-R2  signal trials (Ctrl-C / SIGTERM): measured by the process-lifetime work, not here.
+R2  signal trials: busy sync and async programs on the simulated kit stopped by SIGINT
+    or SIGTERM; time from the signal to every motor braked, from the simulators' own
+    state-change times (``bench_signals.py``). Goal: 100 of 100 within 50 ms.
 R3  unplug and replug: the same board object answers again (time from the board's
     return to its first answer; goal <= 1 s plus boot time), nothing stale, no duplicate
     object, make_safe works. In memory (every backend, the simulated kit) and over a real
@@ -24,6 +26,7 @@ import time
 from pathlib import Path
 
 import anyio
+import bench_signals  # type: ignore[import-not-found]  # beside this script
 
 from j5aio.backends.hardware.reconnect import ReconnectPolicy
 from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
@@ -60,8 +63,9 @@ async def r1(trials: int) -> None:
             )
 
 
-def r2() -> None:
-    print("R2  signal trials: not measured here (see the process-lifetime benchmark)")
+def r2(trials: int) -> None:
+    print(f"R2  signal trials ({trials} per kind of program, SIGINT and SIGTERM alternating)")
+    bench_signals.report(bench_signals.run_trials(trials))
 
 
 async def r3(replugs: int) -> None:
@@ -137,9 +141,12 @@ async def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--trials", type=int, default=2000, help="R1, R4 and R5 trials")
     parser.add_argument("--replugs", type=int, default=20, help="R3 replugs per backend")
+    parser.add_argument(
+        "--signal-trials", type=int, default=100, help="R2 trials per kind of program"
+    )
     args = parser.parse_args()
     await r1(args.trials)
-    r2()
+    r2(args.signal_trials)
     await r3(args.replugs)
     await r4(args.trials)
     await r5(args.trials)
