@@ -10,7 +10,6 @@ from beekit.simulator import BeeSimulator
 from j5aio.backends.hardware.transports import SimulatorStream, read_line
 from j5aio.components.motor import MotorState
 from j5aio.testing import RecordingStream
-from j5aio.testing.console import ConsoleScript
 from j5aio.testing.conformance import (
     ButtonInterfaceConformance,
     ButtonSubject,
@@ -19,6 +18,7 @@ from j5aio.testing.conformance import (
     MotorInterfaceConformance,
     MotorSubject,
 )
+from j5aio.testing.console import ConsoleScript
 
 
 class BeeSuite:

@@ -125,9 +125,12 @@ def test_run_sim_finds_the_bee_board_in_its_kit(tmp_path: Path) -> None:
 
 @pytest.mark.skipif(sys.platform == "win32", reason="pseudo-terminals exist on POSIX only")
 async def test_attach_identifies_a_bee_board_after_j5aios_own_boards() -> None:
-    with serve_on_pty(BeeSimulator("BEE1"), time_scale=0) as server:
+    simulator = BeeSimulator("BEE1")
+    with serve_on_pty(simulator, time_scale=0) as server:
         board = await attach(server.path, time_scale=0.05)
         assert isinstance(board, BeeBoard)
+        # j5aio's own kinds probed the port first (identify_order=200), and left it usable.
+        assert simulator.commands.index(b"?") > 0
         assert board.firmware_version == "2.1"
         await board.led.set_state(True)
         assert await board.led.get_state() is True
