@@ -31,12 +31,25 @@ from j5aio.simulator.serve import serve_on_pty
 
 PACKAGE = Path(__file__).parent
 
-installed = any(
-    entry_point.name == "beekit"
-    for entry_point in importlib.metadata.entry_points(group="j5aio.boards")
-)
+
+
+def _installed() -> bool:
+    """Whether beekit's entry point is installed where ``python -m j5aio`` will see it.
+
+    The kit's folder is on ``sys.path`` (conftest.py), so a ``beekit.egg-info`` that an
+    earlier ``pip install -e`` left there would make the entry point visible to this
+    process only: that is not an installation, so that folder is not searched.
+    """
+    elsewhere = [entry for entry in sys.path if Path(entry or ".").resolve() != PACKAGE.resolve()]
+    return any(
+        entry_point.name == "beekit" and entry_point.group == "j5aio.boards"
+        for distribution in importlib.metadata.distributions(path=elsewhere)
+        for entry_point in distribution.entry_points
+    )
+
+
 pytestmark = pytest.mark.skipif(
-    not installed,
+    not _installed(),
     reason=f"the example kit beekit is not installed (pip install -e {PACKAGE}; "
     "tox's tests environment installs it)",
 )
