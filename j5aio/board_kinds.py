@@ -24,7 +24,7 @@ entry point names an object that is one of:
 For example, in a plugin's ``pyproject.toml``::
 
     [project.entry-points."j5aio.boards"]
-    blinken = "j5aio_blinken.kinds:BLINKEN"
+    beekit = "beekit.kinds:entries"
 
 Plugins are loaded the first time the registry is read. A plugin that cannot be loaded,
 or that returns something else, or that reuses a name already taken, is left out with a

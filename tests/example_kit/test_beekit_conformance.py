@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 from beekit.backend import BeeBackend
+from beekit.console import BeeConsoleBackend
 from beekit.simulator import BeeSimulator
 
 from j5aio.backends.hardware.transports import SimulatorStream, read_line
@@ -17,6 +18,7 @@ from j5aio.testing.conformance import (
     MotorInterfaceConformance,
     MotorSubject,
 )
+from j5aio.testing.console import ConsoleScript
 
 
 class BeeSuite:
@@ -79,6 +81,44 @@ class TestBeeButton(BeeSuite, ButtonInterfaceConformance):
         return ButtonSubject(
             backend=backend, identifiers=[0], set_pressed=set_pressed,
             traffic=lambda: self.stream.sent,
+        )
+
+
+class BeeConsoleSuite:
+    """Makes a console backend whose prompts a :class:`ConsoleScript` answers."""
+
+    script: ConsoleScript
+
+    def console_backend(self) -> BeeConsoleBackend:
+        self.script = ConsoleScript()
+        return BeeConsoleBackend("SERIAL", self.script.console_class())
+
+
+class TestBeeConsoleMotors(BeeConsoleSuite, MotorInterfaceConformance):
+    async def make_backend(self) -> MotorSubject:
+        return MotorSubject(
+            backend=self.console_backend(), identifiers=[0, 1], special_states=(),
+            power_step=1 / 100,
+        )
+
+
+class TestBeeConsoleLED(BeeConsoleSuite, LEDInterfaceConformance):
+    async def make_backend(self) -> LEDSubject:
+        return LEDSubject(backend=self.console_backend(), identifiers=[0])
+
+
+class TestBeeConsoleButton(BeeConsoleSuite, ButtonInterfaceConformance):
+    async def make_backend(self) -> ButtonSubject:
+        backend = self.console_backend()
+
+        async def set_pressed(identifier: int, pressed: bool) -> None:
+            self.script.answer("Button held", str(pressed).lower(), replace=True)
+
+        async def press(identifier: int) -> None:
+            self.script.answer("Hit return to press the button", "")
+
+        return ButtonSubject(
+            backend=backend, identifiers=[0], set_pressed=set_pressed, press=press,
         )
 
 

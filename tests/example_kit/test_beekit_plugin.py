@@ -1,0 +1,150 @@
+"""beekit installed as a package finds its way into j5aio through its entry point.
+
+``pip install -e tests/example_kit`` installs it (tox's tests environment does); without
+it these tests are skipped, saying so.
+"""
+
+from __future__ import annotations
+
+import importlib.metadata
+import os
+import subprocess
+import sys
+import textwrap
+from collections.abc import AsyncIterator
+from pathlib import Path
+
+import pytest
+import serial
+from beekit.backend import BeeBackend
+from beekit.boards import BeeBoard
+from beekit.console import BeeConsoleBackend
+from beekit.simulator import BeeSimulator
+
+from j5aio.backends.console import CONSOLE_ENVIRONMENT
+from j5aio.backends.hardware import HARDWARE_ENVIRONMENT, attach
+from j5aio.board_kinds import board_kinds, get_kit
+from j5aio.boards.board import Board
+from j5aio.simulator import SERIAL_SIMULATORS
+from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+from j5aio.simulator.serve import serve_on_pty
+
+PACKAGE = Path(__file__).parent
+
+
+
+def _installed() -> bool:
+    """Whether beekit's entry point is installed where ``python -m j5aio`` will see it.
+
+    The kit's folder is on ``sys.path`` (conftest.py), so a ``beekit.egg-info`` that an
+    earlier ``pip install -e`` left there would make the entry point visible to this
+    process only: that is not an installation, so that folder is not searched.
+    """
+    elsewhere = [entry for entry in sys.path if Path(entry or ".").resolve() != PACKAGE.resolve()]
+    return any(
+        entry_point.name == "beekit" and entry_point.group == "j5aio.boards"
+        for distribution in importlib.metadata.distributions(path=elsewhere)
+        for entry_point in distribution.entry_points
+    )
+
+
+pytestmark = pytest.mark.skipif(
+    not _installed(),
+    reason=f"the example kit beekit is not installed (pip install -e {PACKAGE}; "
+    "tox's tests environment installs it)",
+)
+
+
+@pytest.fixture(autouse=True)
+async def _close_boards() -> AsyncIterator[None]:
+    yield
+    for board in list(Board.BOARDS):
+        await board.close()
+
+
+def python_m_j5aio(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+    """Run ``python -m j5aio`` as a student would, without this run's J5AIO_ settings."""
+    environment = {k: v for k, v in os.environ.items() if not k.startswith("J5AIO_")}
+    return subprocess.run(
+        [sys.executable, "-m", "j5aio", *args],
+        capture_output=True, text=True, timeout=60, env=environment, check=False, cwd=cwd,
+    )
+
+
+def test_the_entry_point_registers_every_part() -> None:
+    kind = next(kind for kind in board_kinds() if kind.name == "bee-fw2")
+    assert kind.package == "beekit"
+    assert SERIAL_SIMULATORS["bee"] is BeeSimulator
+    assert HARDWARE_ENVIRONMENT.get_backend(BeeBoard) is BeeBackend
+    assert CONSOLE_ENVIRONMENT.get_backend(BeeBoard) is BeeConsoleBackend
+    assert issubclass(SIMULATED_ENVIRONMENT.get_backend(BeeBoard), BeeBackend)
+    assert dict(get_kit("bee").boards) == {"sr-power": 1, "bee": 1}
+
+
+def test_list_shows_the_bee_board_and_its_package() -> None:
+    result = python_m_j5aio("list")
+    assert result.returncode == 0, result.stderr
+    line = next((line for line in result.stdout.splitlines() if "bee-fw2" in line), None)
+    assert line is not None, result.stdout
+    assert "[beekit]" in line
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="pseudo-terminals exist on POSIX only")
+def test_simulate_serves_a_bee_board_by_its_cli_name() -> None:
+    process = subprocess.Popen(
+        [sys.executable, "-m", "j5aio", "simulate", "bee", "--serial", "BEE7"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )
+    try:
+        assert process.stdout is not None
+        path = process.stdout.readline().strip()
+        with serial.Serial(path, 57600, timeout=5) as port:
+            port.write(b"?\n")
+            assert port.readline() == b"BEE:2.1\n"
+            port.write(b"M1 -40\nL1\nX\n")
+            assert port.readline() == b"OK\n"
+            assert port.readline() == b"OK\n"
+            assert port.readline() == b"ERR unknown command X\n"
+    finally:
+        process.terminate()
+        _, errors = process.communicate(timeout=10)
+    assert "Bee Board (serial number BEE7)" in errors
+
+
+def test_run_sim_finds_the_bee_board_in_its_kit(tmp_path: Path) -> None:
+    (tmp_path / "robot.py").write_text(
+        textwrap.dedent(
+            """
+            from beekit.sync import BeeBoard
+            from j5aio.simulator.kit import current_kit
+            from j5aio.sync import KitRobot
+
+            robot = KitRobot()
+            bee = robot.environment.get_board_group(BeeBoard).singular()
+            bee.motors[1].power = -0.333
+            bee.led.state = True
+            simulator = current_kit().simulators("bee")[0]
+            print("bee", bee.serial_number, simulator.motor_steps, simulator.led)
+            print("power", robot.power_board.serial_number)
+            """
+        )
+    )
+    result = python_m_j5aio("run", "--sim", "--kit", "bee", "robot.py", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "bee SIMBEE0 [0, -33] True" in result.stdout
+    assert "power SIMPB0" in result.stdout
+
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="pseudo-terminals exist on POSIX only")
+async def test_attach_identifies_a_bee_board_after_j5aios_own_boards() -> None:
+    simulator = BeeSimulator("BEE1")
+    with serve_on_pty(simulator, time_scale=0) as server:
+        board = await attach(server.path, time_scale=0.05)
+        assert isinstance(board, BeeBoard)
+        # j5aio's own kinds probed the port first (identify_order=200), and left it usable.
+        assert simulator.commands.index(b"?") > 0
+        assert board.firmware_version == "2.1"
+        await board.led.set_state(True)
+        assert await board.led.get_state() is True
+        await board.close()
