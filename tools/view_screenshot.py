@@ -1,8 +1,9 @@
 """Take the live view's screenshot for the docs, in a real browser (Debian's chromium).
 
-    python tools/view_screenshot.py            # writes docs/images/live-view-sr2019.png
+    python tools/view_screenshot.py              # writes docs/images/live-view-sr2019.png
+    python tools/view_screenshot.py --kit sr2023 # writes docs/images/live-view-sr2023.png
 
-It runs ``python -m j5aio demo --view`` (the sr2019 kit, simulated), opens the printed
+It runs ``python -m j5aio demo --view`` (the default kit, or ``--kit``), opens the printed
 address in headless chromium driven by selenium and chromedriver, waits until the robot
 has been driving for a few seconds, and saves the page. The browser tests load this file
 for :func:`launch_chromium` and :func:`start_demo`.
@@ -77,11 +78,13 @@ def launch_chromium(width: int = 1280, height: int = 1000) -> tuple[WebDriver, P
 
 
 def start_demo(
-    seconds: float, *, env: dict[str, str] | None = None
+    seconds: float, *, env: dict[str, str] | None = None, kit: str | None = None
 ) -> tuple[subprocess.Popen[str], str]:
     """Run ``python -m j5aio demo --view`` for ``seconds``; return it and the view's address."""
+    kit_arguments = ["--kit", kit] if kit is not None else []
     process = subprocess.Popen(
-        [sys.executable, "-m", "j5aio", "demo", "--view", "--seconds", str(seconds)],
+        [sys.executable, "-m", "j5aio", "demo", "--view", "--seconds", str(seconds),
+         *kit_arguments],
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
         text=True,
@@ -118,9 +121,9 @@ def stop(process: subprocess.Popen[str]) -> str:
     return rest or ""
 
 
-def take_screenshot(path: Path, *, settle: float = 5.0) -> None:
+def take_screenshot(path: Path, *, settle: float = 5.0, kit: str | None = None) -> None:
     """Screenshot the view of the demo after it has run ``settle`` seconds, into ``path``."""
-    process, url = start_demo(settle + 30)
+    process, url = start_demo(settle + 30, kit=kit)
     driver, profile = launch_chromium()
     try:
         driver.get(url)
@@ -139,13 +142,16 @@ def take_screenshot(path: Path, *, settle: float = 5.0) -> None:
 def main() -> int:
     """Take the docs' screenshot (or say why not); return the exit status."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", type=Path, default=SCREENSHOT, help="where to save the PNG")
+    parser.add_argument("--out", type=Path, default=None, help="where to save the PNG")
+    parser.add_argument("--kit", default=None, help="the simulated kit (default: the default)")
     args = parser.parse_args()
+    if args.out is None:
+        args.out = SCREENSHOT.with_name(f"live-view-{args.kit}.png") if args.kit else SCREENSHOT
     reason = missing_browser()
     if reason is not None:
         print(f"cannot take the screenshot: {reason}", file=sys.stderr)
         return 2
-    take_screenshot(args.out)
+    take_screenshot(args.out, kit=args.kit)
     print(args.out)
     return 0
 
