@@ -244,3 +244,38 @@ async def test_a_lost_or_corrupt_reply_is_an_error_and_the_next_call_works() -> 
     with pytest.raises(BoardDisconnectionError):
         await board.outputs[0].get_is_enabled()
     await board.close()
+
+
+async def test_make_safe_now_resets_the_board_synchronously() -> None:
+    sim = SRPowerBoardFw4Simulator("srABC")
+    board, backend, stream = await connect(sim)
+    await board.outputs.power_on()
+    await board.run_led.set_mode(LEDMode.FLASH)
+    stream.clear()
+    assert backend.make_safe_now(0.5) is True
+    assert stream.sent == b"\n*RESET\n"
+    assert sim.outputs == (False, False, False, False, True, False, False)
+    assert sim.led_modes == ("0", "0")
+    # The unanswered replies are drained; the next exchange gets its own reply.
+    assert await board.outputs[PowerBoardOutput.H0].get_is_enabled() is False
+    backend.close_now()
+    assert backend.make_safe_now(0.5) is False
+    await board.close()
+
+
+async def test_a_note_is_not_sent_again_after_a_reconnection(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    board, backend, _ = await connect(SRPowerBoardFw4Simulator("srABC"))
+    seen: list[bool] = []
+    original = backend._exchange
+
+    async def spy(*args: object, **kwargs: object) -> object:
+        seen.append(bool(kwargs.get("idempotent", True)))
+        return await original(*args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(backend, "_exchange", spy)
+    await board.piezo.buzz(0.1, Note.A6)
+    await board.outputs[PowerBoardOutput.H0].set_is_enabled(True)
+    assert seen == [False, True]
+    await board.close()

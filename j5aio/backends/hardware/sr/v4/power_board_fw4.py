@@ -82,6 +82,19 @@ class SRV4PowerBoardFw4HardwareBackend(
     async def _status(self) -> codec.PowerStatus:
         return codec.parse_status(self.board.name, await self._query(codec.STATUS))
 
+    def make_safe_now(self, timeout: float) -> bool:
+        """Reset the board at once, synchronously (the safety net; see :class:`.Backend`).
+
+        ``*RESET`` is the board's safe state, as :meth:`.PowerBoardFw4.make_safe`: every
+        output off but the brain's (L2), LEDs dark, the buzzer silent. A line ending goes
+        first, so that a command cut in half by the program's end cannot swallow it; the
+        replies are drained by the link before its next exchange.
+        """
+        if self._link.is_closed:
+            return False
+        self._link.send_now(b"\n" + codec.RESET, timeout=timeout)
+        return True
+
     async def reset_board(self) -> None:
         """Reset the board (``*RESET``): outputs off but the brain's, LEDs off, silence."""
         await self._act(codec.RESET)
@@ -118,7 +131,8 @@ class SRV4PowerBoardFw4HardwareBackend(
         :raises NotSupportedByHardwareError: outside 8-10000 Hz, or under 1 ms.
         """
         self._check_single_component(identifier, "piezo")
-        await self._act(codec.encode_note(duration, pitch))
+        # Not sent again after a reconnection: a note that already played must not repeat.
+        await self._act(codec.encode_note(duration, pitch), idempotent=False)
 
     # -- start button -------------------------------------------------------------------
 
