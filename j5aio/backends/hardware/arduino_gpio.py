@@ -101,6 +101,10 @@ class ArduinoGPIOBackend(
     #: How many times the identity query is sent while the board boots (each waits
     #: ``DEFAULT_TIMEOUT`` times the time scale): about 33 s in all, as j5 allowed.
     IDENTIFY_ATTEMPTS: ClassVar[int] = 26
+    #: Identification (``attach``, shared-port discovery) scales the waits by this much:
+    #: the attempts then span about 5 s, still longer than the Uno's boot, so that a
+    #: board of another kind that never answers costs seconds, not half a minute.
+    IDENTIFY_TIME_SCALE: ClassVar[float] = 0.15
     #: The firmware's codec module.
     CODEC: ClassVar[PinCodec]
 
