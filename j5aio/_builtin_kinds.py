@@ -72,9 +72,10 @@ def entries() -> list[BoardKind | KitDefinition]:
 
     The Arduinos share their USB IDs. The sb2024 firmware is asked first (see its
     entry); the SourceBots 2019 firmware comes before the Ruggeduino, since it announces
-    itself when the port opens, while the Ruggeduino has to be asked. Of today's boards, those that share USB IDs with an older
-    generation (power 1BDA:0010, servo 1BDA:0011 as CDC serial; the motor board's FTDI
-    adapter; the Arduinos) are told apart by what they answer.
+    itself when the port opens, while the Ruggeduino has to be asked. Of today's boards,
+    those that share USB IDs with an older generation (power 1BDA:0010, servo 1BDA:0011
+    as CDC serial; the motor board's FTDI adapter; the Arduinos) are told apart by what
+    they answer.
     """
     return [
         BoardKind(
