@@ -195,4 +195,4 @@ async def test_find_boards_lists_every_generation_of_both_kits() -> None:
     # What `python -m j5aio list` prints names every generation.
     text = format_boards(found)
     for _, board_type, version in listed:
-        assert board_type in text and version in text
+        assert board_type in text and str(version) in text

@@ -272,7 +272,7 @@ async def test_a_note_is_not_sent_again_after_a_reconnection(
 
     async def spy(*args: object, **kwargs: object) -> object:
         seen.append(bool(kwargs.get("idempotent", True)))
-        return await original(*args, **kwargs)  # type: ignore[arg-type]
+        return await original(*args, **kwargs)  # type: ignore[call-overload]
 
     monkeypatch.setattr(backend, "_exchange", spy)
     await board.piezo.buzz(0.1, Note.A6)

@@ -18,6 +18,7 @@ from j5aio.backends.hardware.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4Hardw
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
 from j5aio.backends.hardware.transports.memory import SimulatorStream
+from j5aio.boards.sr.v4.motor_board_fw4 import MotorBoardFw4
 from j5aio.boards.sr.v4.power_board import PowerBoard
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.components.motor import MotorSpecialState
@@ -388,6 +389,7 @@ async def test_a_replugged_fw4_motor_board_forgets_what_it_sent_and_works_again(
 
     options = DiscoveryOptions(port_source=lambda: ports, opener=opener, time_scale=0.01)
     (board,) = await SRV4MotorBoardFw4HardwareBackend.discover(options=options)
+    assert isinstance(board, MotorBoardFw4)
     backend = board.backend
     assert isinstance(backend, SRV4MotorBoardFw4HardwareBackend)
     backend.reconnect_policy = QUICK
