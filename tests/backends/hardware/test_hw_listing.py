@@ -27,6 +27,25 @@ def port_of(device: str, sim: SerialBoardSimulator) -> SimpleNamespace:
     )
 
 
+def kit_options(
+    serial: dict[str, SerialBoardSimulator], usb: list[Any]
+) -> DiscoveryOptions:
+    """Discovery options that find ``serial`` (by port) and ``usb`` simulators."""
+
+    async def opener(port: str, baudrate: int) -> SimulatorStream:
+        return SimulatorStream(serial[port], time_scale=0)
+
+    def finder(*, find_all: bool, idVendor: int, idProduct: int) -> list[Any]:  # noqa: N803
+        return [d for d in usb if (d.idVendor, d.idProduct) == (idVendor, idProduct)]
+
+    return DiscoveryOptions(
+        port_source=lambda: [port_of(device, sim) for device, sim in serial.items()],
+        usb_finder=finder,
+        opener=opener,
+        time_scale=0.01,
+    )
+
+
 async def test_find_boards_lists_every_kind_and_closes_them() -> None:
     serial: dict[str, SerialBoardSimulator] = {
         "/dev/ttyUSB0": SRMotorBoardFw3Simulator("SRMOTOR"),
@@ -35,18 +54,7 @@ async def test_find_boards_lists_every_kind_and_closes_them() -> None:
     }
     usb = [SRPowerBoardFw3Simulator("SRPOWER"), SRServoBoardFw2Simulator("SRSERVO")]
 
-    async def opener(port: str, baudrate: int) -> SimulatorStream:
-        return SimulatorStream(serial[port], time_scale=0)
-
-    def finder(*, find_all: bool, idVendor: int, idProduct: int) -> list[Any]:  # noqa: N803
-        return [d for d in usb if (d.idVendor, d.idProduct) == (idVendor, idProduct)]
-
-    options = DiscoveryOptions(
-        port_source=lambda: [port_of(device, sim) for device, sim in serial.items()],
-        usb_finder=finder,
-        opener=opener,
-        time_scale=0.01,
-    )
+    options = kit_options(serial, usb)
     found = await find_boards(options=options)
     assert {(b.board_type, b.serial_number, b.firmware_version) for b in found} == {
         ("Student Robotics v4 Power Board", "SRPOWER", "3"),
@@ -161,18 +169,7 @@ async def test_find_boards_lists_every_generation_of_both_kits() -> None:
     }
     usb = [SRPowerBoardFw3Simulator("SRPOWER"), SRServoBoardFw2Simulator("SRSERVO")]
 
-    async def opener(port: str, baudrate: int) -> SimulatorStream:
-        return SimulatorStream(serial[port], time_scale=0)
-
-    def finder(*, find_all: bool, idVendor: int, idProduct: int) -> list[Any]:  # noqa: N803
-        return [d for d in usb if (d.idVendor, d.idProduct) == (idVendor, idProduct)]
-
-    options = DiscoveryOptions(
-        port_source=lambda: [port_of(device, sim) for device, sim in serial.items()],
-        usb_finder=finder,
-        opener=opener,
-        time_scale=0.01,
-    )
+    options = kit_options(serial, usb)
     found = await find_boards(options=options)
     listed = {(b.serial_number, b.board_type, b.firmware_version) for b in found}
     assert listed == {
