@@ -279,3 +279,22 @@ async def test_a_note_is_not_sent_again_after_a_reconnection(
     await board.outputs[PowerBoardOutput.H0].set_is_enabled(True)
     assert seen == [False, True]
     await board.close()
+
+
+async def test_the_handshake_tolerates_leftovers_ahead_of_its_line() -> None:
+    # Another probe left "v" on the line: the board NACKs "v*IDN?"; the backend asks again.
+    stream = ScriptedStream([
+        (b"*IDN?\n", b"NACK:Unknown command: 'v*IDN?'\n"), IDN, (b"*RESET\n", b"ACK\n"),
+    ])
+    board = await Backend.from_stream(stream, port="scripted", serial_number="srABC")
+    stream.assert_all_used()
+    assert board.firmware_version == "4.4.2"
+    await board.close()
+
+
+async def test_the_simulator_with_leftovers_is_still_identified() -> None:
+    sim = SRPowerBoardFw4Simulator("srABC")
+    sim.receive(b"v")  # half a line from someone else
+    board, _, _ = await connect(sim)
+    assert board.firmware_version == "4.4.2"
+    await board.close()

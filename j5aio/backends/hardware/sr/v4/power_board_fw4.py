@@ -17,7 +17,7 @@ import anyio
 
 from j5aio.backends.hardware.sr.v4 import power_fw4_codec as codec
 from j5aio.backends.hardware.sr.v4.text_backend import SRTextBackend
-from j5aio.backends.hardware.sr.v4.text_protocol import Identity
+from j5aio.backends.hardware.sr.v4.text_protocol import Identity, NackError
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.boards.sr.v4.power_board_fw4 import BoardResetInterface, PowerBoardFw4
 from j5aio.components.battery_sensor import BatterySensorInterface
@@ -68,7 +68,12 @@ class SRV4PowerBoardFw4HardwareBackend(
         return None if self.identity is None else self.identity.asset_tag
 
     async def _handshake(self, *, time_scale: float) -> None:
-        reply = await self._query(codec.IDENTIFY)
+        try:
+            reply = await self._query(codec.IDENTIFY)
+        except NackError:
+            # Leftovers of another program's (or kind's) probe, ahead of our line on a
+            # port that does not reset when opened: the NACK ended them; ask again.
+            reply = await self._query(codec.IDENTIFY)
         identity = codec.parse_identity_reply(self.board.name, reply)
         if not codec.is_supported_version(identity.version):
             raise UnsupportedFirmwareError(self.board.name, identity.version, _SUPPORTED)
