@@ -70,11 +70,12 @@ __all__ = ["entries"]
 def entries() -> list[BoardKind | KitDefinition]:
     """j5aio's board kinds, in the order discovery and listing try them, then its kits.
 
-    The SourceBots Arduino comes before the Ruggeduino: both use the same USB IDs, and
-    the SourceBots firmware announces itself when the port opens, while the Ruggeduino
-    has to be asked. Of today's boards, those that share USB IDs with an older
-    generation (power 1BDA:0010, servo 1BDA:0011 as CDC serial; the motor board's FTDI
-    adapter; the Arduinos) are told apart by what they answer.
+    The Arduinos share their USB IDs. The sb2024 firmware is asked first (see its
+    entry); the SourceBots 2019 firmware comes before the Ruggeduino, since it announces
+    itself when the port opens, while the Ruggeduino has to be asked. Of today's boards,
+    those that share USB IDs with an older generation (power 1BDA:0010, servo 1BDA:0011
+    as CDC serial; the motor board's FTDI adapter; the Arduinos) are told apart by what
+    they answer.
     """
     return [
         BoardKind(
@@ -235,7 +236,11 @@ def entries() -> list[BoardKind | KitDefinition]:
                     "SourceBots Arduino, sb2024 firmware 2.0 (115200 baud)", "SIMSBA",
                 ),
             ),
-            identify_order=70,
+            # First of the Arduinos: every other Arduino firmware answers its probe
+            # (``*IDN?`` and a line end) at once, with a boot banner, an error or an empty
+            # line per byte, while this silent line-based firmware would leave their
+            # probes (waiting for a banner; ``v`` with no line end) to time out.
+            identify_order=45,
         ),
         BoardKind(
             name="sr-kch",

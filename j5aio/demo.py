@@ -21,18 +21,28 @@ from __future__ import annotations
 import sys
 import time
 from dataclasses import dataclass, field
-from typing import Final, TextIO
+from typing import Final, TextIO, TypeVar
 
 import anyio
 from anyio.abc import ObjectReceiveStream, ObjectSendStream
 
 from j5aio.board_kinds import simulator_entries
+from j5aio.boards.sb.arduino_2024 import SBArduino2024Board
+from j5aio.components.derived.ultrasound import UltrasoundSensor
 from j5aio.kit import KitRobot
+from j5aio.simulator.arduino_base import ArduinoBoardSimulator
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kit import SimulatedKit, kit_from_environment, use_kit
-from j5aio.simulator.sr_motor_fw3 import MotorMode, MotorOutput
+from j5aio.simulator.sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
+from j5aio.simulator.sr_motor_fw4 import MotorChannel, MotorDrive, SRMotorBoardFw4Simulator
+from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
+from j5aio.simulator.sr_power_fw4 import SRPowerBoardFw4Simulator
+from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator
+from j5aio.simulator.sr_servo_fw4 import SRServoBoardFw4Simulator
 
 __all__ = ["DEFAULT_SECONDS", "all_motors_braked", "demo", "run_demo"]
+
+T = TypeVar("T")
 
 #: How long the demo robot runs by default, in seconds.
 DEFAULT_SECONDS: Final = 6.0
@@ -46,6 +56,28 @@ TURN_DISTANCE: Final = 0.4
 BLINK_INTERVAL: Final = 0.3
 #: How far away the wall starts, in metres.
 START_DISTANCE: Final = 1.2
+
+
+def _of_type(kit: SimulatedKit, kinds: tuple[type[T], ...]) -> list[T]:
+    """The simulators of ``kit`` that are instances of ``kinds`` (any generation), in order."""
+    return [
+        simulator
+        for name in kit.simulator_names()
+        for simulator in kit.simulators(name)
+        if isinstance(simulator, kinds)
+    ]
+
+
+def _motor_boards(kit: SimulatedKit) -> list[SRMotorBoardFw3Simulator | SRMotorBoardFw4Simulator]:
+    return _of_type(kit, (SRMotorBoardFw3Simulator, SRMotorBoardFw4Simulator))
+
+
+def _power_boards(kit: SimulatedKit) -> list[SRPowerBoardFw3Simulator | SRPowerBoardFw4Simulator]:
+    return _of_type(kit, (SRPowerBoardFw3Simulator, SRPowerBoardFw4Simulator))
+
+
+def _servo_boards(kit: SimulatedKit) -> list[SRServoBoardFw2Simulator | SRServoBoardFw4Simulator]:
+    return _of_type(kit, (SRServoBoardFw2Simulator, SRServoBoardFw4Simulator))
 
 
 class _Log:
@@ -74,7 +106,7 @@ class _World:
 
     def step(self, seconds: float) -> None:
         """Move the world on by ``seconds``, from what the simulated motors do now."""
-        left, right = (output.power for output in self.kit.motor_boards[0].motors)
+        left, right = (output.power for output in _motor_boards(self.kit)[0].motors)
         forwards = (left + right) / 2
         turning = abs(left - right) / 2
         self.distance -= forwards * 0.6 * seconds
@@ -83,9 +115,9 @@ class _World:
         self.distance = min(max(self.distance, 0.05), 2.0)
         self.elapsed += seconds
         self.amps = 0.3 + 2.5 * (abs(left) + abs(right))
-        for arduino in self.kit.sb_arduinos:
+        for arduino in _of_type(self.kit, (ArduinoBoardSimulator,)):
             arduino.set_ultrasound_distance(TRIGGER_PIN, ECHO_PIN, self.distance)
-        for power in self.kit.power_boards:
+        for power in _power_boards(self.kit):
             power.battery_current = self.amps
             power.battery_voltage = 12.4 - 0.1 * self.amps - 0.02 * self.elapsed
 
@@ -112,13 +144,25 @@ async def _drive(robot: KitRobot, shared: _Shared, log: _Log) -> None:
         await anyio.sleep(0.6)
 
 
+async def _ultrasound(robot: KitRobot) -> UltrasoundSensor | None:
+    """The ultrasound sensor on the kit's Arduino; ``None`` if its Arduino has none."""
+    boards: list[object] = [*robot.arduinos, *robot.ruggeduinos]
+    if SBArduino2024Board in robot.environment.supported_boards:
+        boards += await robot.environment.get_board_group(SBArduino2024Board)
+    for board in boards:
+        sensors = getattr(board, "ultrasound_sensors", None)
+        if sensors is not None:
+            sensor: UltrasoundSensor = sensors[TRIGGER_PIN, ECHO_PIN]
+            return sensor
+    return None
+
+
 async def _sense(
     robot: KitRobot, shared: _Shared, alerts: ObjectSendStream[float], log: _Log
 ) -> None:
-    # A kit without a SourceBots Arduino has no ultrasound sensor: drive turns on time.
-    sensor = (
-        robot.arduinos[0].ultrasound_sensors[TRIGGER_PIN, ECHO_PIN] if robot.arduinos else None
-    )
+    # A kit without an Arduino that measures echoes has no ultrasound sensor: drive turns
+    # on time.
+    sensor = await _ultrasound(robot)
     battery = robot.power_board.battery_sensor
     warned = False
     next_battery = 0.0
@@ -161,25 +205,44 @@ async def _signal(robot: KitRobot, alerts: ObjectReceiveStream[float], log: _Log
             flag_down_at = None
 
 
-def _describe_motor(output: MotorOutput) -> str:
+def _describe_motor(output: MotorOutput | MotorChannel) -> str:
+    if isinstance(output, MotorChannel):
+        drive = output.drive
+        if drive in (MotorDrive.COAST, MotorDrive.BRAKE):
+            return str(drive.value)
+        return f"{drive.value} {round(output.duty * 100)}%"
     if output.mode in (MotorMode.COAST, MotorMode.BRAKE):
         return str(output.mode.value)
     return f"{output.mode.value} {output.duty_percent}%"
 
 
+def _is_braked(output: MotorOutput | MotorChannel) -> bool:
+    if isinstance(output, MotorChannel):
+        return output.drive is MotorDrive.BRAKE
+    return output.mode is MotorMode.BRAKE
+
+
 def describe_boards(kit: SimulatedKit, world: _World | None = None) -> str:
     """One line saying what the simulated boards of ``kit`` are doing now."""
     parts = []
-    for board in kit.motor_boards:
+    for board in _motor_boards(kit):
         motors = ", ".join(_describe_motor(output) for output in board.motors)
         parts.append(f"{board.serial_number} [{motors}]")
-    for power in kit.power_boards:
+    for power in _power_boards(kit):
         led = "on" if power.run_led else "off"
-        queue = power.note_queue
-        piezo = f"{queue[0].frequency} Hz" if queue else "quiet"
+        if isinstance(power, SRPowerBoardFw4Simulator):
+            frequency = None if power.playing is None else power.playing.frequency
+        else:
+            queue = power.note_queue
+            frequency = queue[0].frequency if queue else None
+        piezo = "quiet" if frequency is None else f"{frequency} Hz"
         parts.append(f"run LED {led}, piezo {piezo}")
-    for servos in kit.servo_boards:
-        parts.append(f"flag servo {servos.positions[0] / 100:+.1f}")
+    for servos in _servo_boards(kit):
+        if isinstance(servos, SRServoBoardFw4Simulator):
+            pulse = servos.pulse_widths[0]
+            parts.append("flag servo off" if pulse is None else f"flag servo {pulse} µs")
+        else:
+            parts.append(f"flag servo {servos.positions[0] / 100:+.1f}")
     if world is not None:
         parts.append(f"wall {world.distance:.2f} m")
     return " | ".join(parts)
@@ -202,9 +265,7 @@ async def _run_world(world: _World) -> None:
 
 def all_motors_braked(kit: SimulatedKit) -> bool:
     """Whether every motor of every simulated motor board in ``kit`` is braked."""
-    return all(
-        output.mode is MotorMode.BRAKE for board in kit.motor_boards for output in board.motors
-    )
+    return all(_is_braked(output) for board in _motor_boards(kit) for output in board.motors)
 
 
 async def demo(

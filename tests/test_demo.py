@@ -121,3 +121,17 @@ async def test_the_demo_follows_j5aio_kit(monkeypatch: pytest.MonkeyPatch) -> No
 async def test_the_demo_refuses_an_unknown_kit_listing_the_kits() -> None:
     with pytest.raises(ValueError, match="no kit called 'moon'; choose one of: default, sr2019"):
         await demo(1.0, out=io.StringIO(), kit="moon")
+
+
+@pytest.mark.parametrize("kit", ["sr2023", "sb2024"])
+async def test_the_demo_runs_on_todays_kits_sees_the_wall_and_ends_braked(kit: str) -> None:
+    out = io.StringIO()
+    assert await demo(4.0, out=out, kit=kit) is True
+    text = out.getvalue()
+    assert f"The kit: '{kit}'" in text.splitlines()[0]
+    assert "drive   forwards" in text
+    # The Arduino of today's kits measures the wall: drive turns when asked to.
+    assert "m ahead: asking drive to turn" in text
+    assert "flag servo" in text and "SIMMB0 [" in text
+    last = text.strip().splitlines()[-3]
+    assert "SIMMB0 [brake, brake]" in last

@@ -289,3 +289,59 @@ def test_the_log_names_each_rescued_board_once() -> None:
     assert len(rescued) == len(set(rescued)) == 3
     assert all("when its event loop finished" in line for line in rescued)
     assert os.linesep.join(rescued).count("SIMMB0") == 1
+
+
+SR2023_DUMP_AT_THE_VERY_END = """
+import atexit, json
+
+def _dump():
+    from j5aio.simulator.kit import current_kit
+    kit = current_kit()
+    state = {
+        "motors": [m.drive.name for b in kit.simulators("sr-motor-fw4") for m in b.motors],
+        "outputs": [o for b in kit.simulators("sr-power-fw4") for o in b.outputs],
+    }
+    print("STATE " + json.dumps(state), flush=True)
+
+atexit.register(_dump)  # first registered, so it runs last
+"""
+
+SR2023_DRIVE = """
+import anyio
+from j5aio.boards.sr.v4 import MotorBoardFw4, PowerBoardFw4, PowerBoardOutput
+from j5aio.environments import get_default_environment
+from j5aio.simulator.kit import current_kit
+
+
+async def main():
+    environment = get_default_environment()
+    motor = (await environment.get_board_group(MotorBoardFw4)).singular()
+    power = (await environment.get_board_group(PowerBoardFw4)).singular()
+    await motor.motors[0].set_power(0.5)
+    await motor.motors[1].set_power(-1)
+    await power.outputs[PowerBoardOutput.H0].set_is_enabled(True)
+    await power.outputs[PowerBoardOutput.L3].set_is_enabled(True)
+    kit = current_kit()
+    assert kit.simulators("sr-motor-fw4")[0].motors[0].drive.name == "FORWARD"
+    assert kit.simulators("sr-power-fw4")[0].outputs[0]
+    print("driving", flush=True)
+    await anyio.sleep(30)
+
+anyio.run(main)
+"""
+
+
+def test_the_sr2023_kit_ends_braked_and_powered_off_on_sigterm() -> None:
+    env = sim_env()
+    env["J5AIO_KIT"] = "sr2023"
+    code, out, err = run_child(
+        SR2023_DUMP_AT_THE_VERY_END + SR2023_DRIVE, env=env, signum=signal.SIGTERM
+    )
+    assert "driving" in out, err
+    assert code == 128 + signal.SIGTERM, err
+    state = final_state(out)
+    assert state["motors"] == ["BRAKE", "BRAKE"], state
+    # Every output off but L2, the brain's, which the board keeps on.
+    assert state["outputs"] == [False, False, False, False, True, False, False], state
+    rescued = [line for line in err.splitlines() if "made safe by j5aio's safety net" in line]
+    assert len(rescued) == 2, err

@@ -488,3 +488,61 @@ def test_the_installed_command_shows_its_own_name(monkeypatch: pytest.MonkeyPatc
     assert build_parser().format_usage().startswith("usage: j5aio ")
     monkeypatch.setattr(sys, "argv", ["/x/j5aio/__main__.py"])
     assert build_parser().format_usage().startswith("usage: python -m j5aio ")
+
+
+TODAYS_KIT_PROGRAM = """
+import anyio
+from j5aio.kit import KitRobot
+
+async def main():
+    async with KitRobot() as robot:
+        await robot.motor_boards[0].motors[0].set_power(0.5)
+        await robot.servo_boards[0].servos[0].set_position(0.5)
+        await robot.power_board.outputs[0].set_is_enabled(True)
+        print("power", type(robot.power_board).__name__, robot.power_board.firmware_version)
+        print("motor", type(robot.motor_boards[0]).__name__,
+              robot.motor_boards[0].firmware_version)
+        print("servo", type(robot.servo_boards[0]).__name__,
+              len(robot.servo_boards[0].servos))
+
+anyio.run(main)
+"""
+
+
+@pytest.mark.parametrize(
+    ("kit", "expected"),
+    [
+        ("sr2023", ["power PowerBoardFw4 4.4.2", "motor MotorBoardFw4 4.4.1",
+                    "servo ServoBoardFw4 12"]),
+        ("sb2024", ["power PowerBoardFw4 4.4.2", "motor MotorBoardFw4 4.5.0",
+                    "servo SBServoBoard 8"]),
+    ],
+)
+def test_run_sim_runs_a_kit_robot_on_todays_kits_and_ends(
+    tmp_path: Path, kit: str, expected: list[str]
+) -> None:
+    (tmp_path / "robot.py").write_text(TODAYS_KIT_PROGRAM)
+    result = python_m_j5aio("run", "--sim", "--kit", kit, "robot.py", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.splitlines()[-3:] == expected
+
+
+@pytest.mark.parametrize("kit", ["sr2023", "sb2024"])
+def test_the_j5_program_keeps_running_on_todays_simulated_kits(kit: str) -> None:
+    result = subprocess.run(
+        [sys.executable, "-m", "j5aio", "run", "--sim", "--kit", kit,
+         str(Path(__file__).resolve().parents[1] / "examples" / "console_j5_program.py")],
+        input="true\n", capture_output=True, text=True, timeout=60, check=False,
+        env={k: v for k, v in os.environ.items() if k not in (ENVIRONMENT_VARIABLE, "J5AIO_KIT")},
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.startswith("Found Power Board: SERIAL")
+    assert "MotorBoard(SERIAL): Setting motor 0 to 0.5." in result.stdout
+
+
+@pytest.mark.parametrize("kit", ["sr2019", "sb2019", "sr2023", "sb2024"])
+def test_demo_on_each_kit_ends_by_itself(kit: str) -> None:
+    result = python_m_j5aio("demo", "--kit", kit, "--seconds", "1")
+    assert result.returncode == 0, result.stderr
+    assert f"The kit: '{kit}'" in result.stdout
+    assert result.stdout.rstrip().endswith("every simulated motor is braked.")

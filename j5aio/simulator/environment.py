@@ -293,9 +293,19 @@ class SRV4RuggeduinoSimulatedBackend(SRV4RuggeduinoHardwareBackend):
     async def discover(
         cls, *, options: DiscoveryOptions | None = None,
     ) -> Sequence[Ruggeduino]:
-        """Find the Ruggeduinos of the current simulated kit (or where ``options`` say)."""
+        """Find the Ruggeduinos of the current simulated kit (or where ``options`` say).
+
+        Only the simulators standing in for a firmware 1 Ruggeduino: the SR Arduino's
+        simulator (firmware 2) is the same class, and is found by its own kind.
+        """
+        from j5aio.board_kinds import board_kinds
+
+        kind = next(
+            (k for k in board_kinds() if k.hardware is SRV4RuggeduinoHardwareBackend), None
+        )
         return await super().discover(
-            options=options or kit_discovery_options(current_kit(), SRRuggeduinoSimulator)
+            options=options
+            or kit_discovery_options(current_kit(), SRRuggeduinoSimulator, kind=kind)
         )
 
 

@@ -101,6 +101,10 @@ class ArduinoGPIOBackend(
     #: How many times the identity query is sent while the board boots (each waits
     #: ``DEFAULT_TIMEOUT`` times the time scale): about 33 s in all, as j5 allowed.
     IDENTIFY_ATTEMPTS: ClassVar[int] = 26
+    #: Identification (``attach``, shared-port discovery) scales the waits by this much:
+    #: the attempts then span about 5 s, still longer than the Uno's boot, so that a
+    #: board of another kind that never answers costs seconds, not half a minute.
+    IDENTIFY_TIME_SCALE: ClassVar[float] = 0.15
     #: The firmware's codec module.
     CODEC: ClassVar[PinCodec]
 
@@ -116,6 +120,10 @@ class ArduinoGPIOBackend(
     def forget_board_state(self) -> None:
         """Forget the cached pin modes and levels: the board has rebooted (power-on state)."""
         self._pins.reset()
+
+    def reset_board_state(self) -> None:
+        """The reconnection hook: a board that came back has rebooted, so forget the pins."""
+        self.forget_board_state()
 
     # -- what a firmware implements -----------------------------------------------------
 
@@ -138,13 +146,24 @@ class ArduinoGPIOBackend(
     async def _handshake(self, *, time_scale: float) -> None:
         self._firmware_version = await self.identify_firmware(self._link, time_scale=time_scale)
 
-    async def _send_mode(self, pin: int, mode: GPIOPinMode) -> None:
-        """Put ``pin`` in digital ``mode`` (INPUT, INPUT_PULLUP or OUTPUT)."""
-        await self._ask(self.CODEC.encode_mode(pin, mode), self.CODEC.parse_done)
+    async def _send_mode(
+        self, pin: int, mode: GPIOPinMode, *, then: Callable[[], None] | None = None,
+    ) -> None:
+        """Put ``pin`` in digital ``mode`` (INPUT, INPUT_PULLUP or OUTPUT).
 
-    async def _send_level(self, pin: int, level: bool) -> None:
-        """Set the output latch of ``pin`` (drives an output; pull-up of an input)."""
-        await self._ask(self.CODEC.encode_digital_write(pin, level), self.CODEC.parse_done)
+        :param then: runs once the board has confirmed it (update the pin table there).
+        """
+        await self._ask(self.CODEC.encode_mode(pin, mode), self.CODEC.parse_done, then=then)
+
+    async def _send_level(
+        self, pin: int, level: bool, *, then: Callable[[], None] | None = None,
+    ) -> None:
+        """Set the output latch of ``pin`` (drives an output; pull-up of an input).
+
+        :param then: runs once the board has confirmed it (update the pin table there).
+        """
+        request = self.CODEC.encode_digital_write(pin, level)
+        await self._ask(request, self.CODEC.parse_done, then=then)
 
     async def _query_digital(self, pin: int) -> bool:
         return await self._ask(self.CODEC.encode_digital_read(pin), self.CODEC.parse_digital)
@@ -152,27 +171,44 @@ class ArduinoGPIOBackend(
     async def _query_analogue(self, pin: int) -> float:
         return await self._ask(self.CODEC.encode_analogue_read(pin), self.CODEC.parse_analogue)
 
-    async def _query_ultrasound(self, trigger: int, echo: int) -> int:
+    async def _query_ultrasound(
+        self, trigger: int, echo: int, *, then: Callable[[], None] | None = None,
+    ) -> int:
         request = self.CODEC.encode_ultrasound(trigger, echo)
-        return await self._ask(request, self.CODEC.parse_ultrasound)
+        return await self._ask(request, self.CODEC.parse_ultrasound, then=then)
 
-    async def _ask(self, request: bytes, parse: Callable[[bytes], T]) -> T:
+    async def _ask(
+        self,
+        request: bytes,
+        parse: Callable[[bytes], T],
+        *,
+        then: Callable[[], None] | None = None,
+    ) -> T:
         """Send ``request``, read one reply line and parse it.
+
+        ``then`` runs once the reply has arrived and parsed, even for a cancelled caller:
+        where the pin table is updated, so that it changes only once the board has been told.
 
         :raises UnexpectedReplyError: the reply does not parse; the message names the
             board, its port, the request and the reply.
         :raises CommunicationTimeoutError: no reply in time; the message names the board.
         """
+        def finish(line: bytes) -> T:
+            try:
+                value = parse(line)
+            except UnexpectedReplyError as exc:
+                raise UnexpectedReplyError(
+                    f"{self.board.name} on {self.port}: bad reply {line!r} to {request!r}: "
+                    f"{exc}",
+                ) from exc
+            if then is not None:
+                then()
+            return value
+
         try:
-            line = await self._exchange(request, _LINE)
+            return await self._exchange(request, _LINE, then=finish)
         except CommunicationTimeoutError as exc:
             raise CommunicationTimeoutError(f"{self.board.name} did not answer: {exc}") from exc
-        try:
-            return parse(line)
-        except UnexpectedReplyError as exc:
-            raise UnexpectedReplyError(
-                f"{self.board.name} on {self.port}: bad reply {line!r} to {request!r}: {exc}",
-            ) from exc
 
     # -- pins ---------------------------------------------------------------------------
 
@@ -184,8 +220,11 @@ class ArduinoGPIOBackend(
         self._pins.check_mode(identifier, pin_mode)
         if pin_mode is GPIOPinMode.DIGITAL_OUTPUT:
             await self._send_level(identifier, self._pins.state(identifier).level)
-        await self._send_mode(identifier, wire_mode(pin_mode))
-        self._pins.record(identifier, mode=pin_mode)
+        await self._send_mode(
+            identifier,
+            wire_mode(pin_mode),
+            then=lambda: self._pins.record(identifier, mode=pin_mode),
+        )
 
     async def get_gpio_pin_mode(self, identifier: int) -> GPIOPinMode:
         """Return the mode last set on a pin."""
@@ -194,8 +233,9 @@ class ArduinoGPIOBackend(
     async def write_gpio_pin_digital_state(self, identifier: int, state: bool) -> None:
         """Drive an output pin high or low."""
         self._pins.check_output(identifier, "write to it")
-        await self._send_level(identifier, state)
-        self._pins.record(identifier, level=state)
+        await self._send_level(
+            identifier, state, then=lambda: self._pins.record(identifier, level=state),
+        )
 
     async def get_gpio_pin_digital_state(self, identifier: int) -> bool:
         """Return the level last written to an output pin."""
@@ -239,10 +279,12 @@ class ArduinoGPIOBackend(
         """Measure, then remember the modes the firmware left: trigger low output, echo input."""
         self._pins.mode(trigger)
         self._pins.mode(echo)
-        millimetres = await self._query_ultrasound(trigger, echo)
-        self._pins.record(trigger, mode=GPIOPinMode.DIGITAL_OUTPUT, level=False)
-        self._pins.record(echo, mode=GPIOPinMode.DIGITAL_INPUT)
-        return millimetres
+
+        def remember() -> None:
+            self._pins.record(trigger, mode=GPIOPinMode.DIGITAL_OUTPUT, level=False)
+            self._pins.record(echo, mode=GPIOPinMode.DIGITAL_INPUT)
+
+        return await self._query_ultrasound(trigger, echo, then=remember)
 
     async def get_ultrasound_pulse(
         self, trigger_pin_identifier: int, echo_pin_identifier: int,

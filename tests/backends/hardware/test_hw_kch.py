@@ -120,3 +120,24 @@ async def test_a_kch_without_usable_gpio_is_a_clear_error(
     # This machine has no GPIO (CI and developers' machines are not Raspberry Pis).
     with pytest.raises(CommunicationError, match="GPIO of a Raspberry Pi"):
         await KCHHardwareBackend.discover()
+
+
+async def test_make_safe_now_darkens_the_start_led_synchronously(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    factory = MockFactory()
+    board = await kch(factory)
+    backend = board.backend
+    assert isinstance(backend, KCHHardwareBackend)
+    monkeypatch.setattr(KCHHardwareBackend, "FLASH_PERIOD", 0.04)
+    await board.leds[0].set_colour(Colour.RED)
+    await board.start_led.flash()
+    assert backend.make_safe_now(0.5) is True
+    assert await board.start_led.get_mode() is LEDMode.OFF
+    assert not factory.pin(START_PIN).state
+    assert factory.pin(24).state  # the user LEDs keep their colours
+    backend.close_now()
+    assert backend.closed
+    assert backend.make_safe_now(0.5) is False
+    backend.close_now()  # idempotent
+    await board.close()

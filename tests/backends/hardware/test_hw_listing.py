@@ -27,6 +27,25 @@ def port_of(device: str, sim: SerialBoardSimulator) -> SimpleNamespace:
     )
 
 
+def kit_options(
+    serial: dict[str, SerialBoardSimulator], usb: list[Any]
+) -> DiscoveryOptions:
+    """Discovery options that find ``serial`` (by port) and ``usb`` simulators."""
+
+    async def opener(port: str, baudrate: int) -> SimulatorStream:
+        return SimulatorStream(serial[port], time_scale=0)
+
+    def finder(*, find_all: bool, idVendor: int, idProduct: int) -> list[Any]:  # noqa: N803
+        return [d for d in usb if (d.idVendor, d.idProduct) == (idVendor, idProduct)]
+
+    return DiscoveryOptions(
+        port_source=lambda: [port_of(device, sim) for device, sim in serial.items()],
+        usb_finder=finder,
+        opener=opener,
+        time_scale=0.01,
+    )
+
+
 async def test_find_boards_lists_every_kind_and_closes_them() -> None:
     serial: dict[str, SerialBoardSimulator] = {
         "/dev/ttyUSB0": SRMotorBoardFw3Simulator("SRMOTOR"),
@@ -35,18 +54,7 @@ async def test_find_boards_lists_every_kind_and_closes_them() -> None:
     }
     usb = [SRPowerBoardFw3Simulator("SRPOWER"), SRServoBoardFw2Simulator("SRSERVO")]
 
-    async def opener(port: str, baudrate: int) -> SimulatorStream:
-        return SimulatorStream(serial[port], time_scale=0)
-
-    def finder(*, find_all: bool, idVendor: int, idProduct: int) -> list[Any]:  # noqa: N803
-        return [d for d in usb if (d.idVendor, d.idProduct) == (idVendor, idProduct)]
-
-    options = DiscoveryOptions(
-        port_source=lambda: [port_of(device, sim) for device, sim in serial.items()],
-        usb_finder=finder,
-        opener=opener,
-        time_scale=0.01,
-    )
+    options = kit_options(serial, usb)
     found = await find_boards(options=options)
     assert {(b.board_type, b.serial_number, b.firmware_version) for b in found} == {
         ("Student Robotics v4 Power Board", "SRPOWER", "3"),
@@ -138,3 +146,50 @@ async def test_find_boards_still_lists_serial_boards_when_usb_cannot_be_searched
     ]
     with pytest.raises(CommunicationError, match="no libusb"):
         await find_boards(options=options)
+
+
+async def test_find_boards_lists_every_generation_of_both_kits() -> None:
+    from j5aio.simulator import SERIAL_SIMULATORS
+
+    names = {
+        "/dev/ttyUSB0": "sr-motor",
+        "/dev/ttyUSB1": "sr-motor-fw4",
+        "/dev/ttyUSB2": "sb-motor-fw4",
+        "/dev/ttyACM0": "sb-arduino",
+        "/dev/ttyACM1": "sr-ruggeduino",
+        "/dev/ttyACM2": "sr-arduino-fw2",
+        "/dev/ttyACM3": "sb-arduino-2024",
+        "/dev/ttyACM4": "sr-power-fw4",
+        "/dev/ttyACM5": "sr-servo-fw4",
+        "/dev/ttyACM6": "sb-servo-fw4",
+    }
+    serial: dict[str, SerialBoardSimulator] = {
+        device: SERIAL_SIMULATORS[name](f"S{index}") for index, (device, name)
+        in enumerate(names.items())
+    }
+    usb = [SRPowerBoardFw3Simulator("SRPOWER"), SRServoBoardFw2Simulator("SRSERVO")]
+
+    options = kit_options(serial, usb)
+    found = await find_boards(options=options)
+    listed = {(b.serial_number, b.board_type, b.firmware_version) for b in found}
+    assert listed == {
+        ("SRPOWER", "Student Robotics v4 Power Board", "3"),
+        ("SRSERVO", "Student Robotics v4 Servo Board", "2"),
+        ("S0", "Student Robotics v4 Motor Board", "3"),
+        ("S1", "Student Robotics v4 Motor Board (firmware 4)", "4.4.1"),
+        ("S2", "Student Robotics v4 Motor Board (firmware 4)", "4.5.0"),
+        ("S3", "SourceBots Arduino", "2019.6.0"),
+        ("S4", "Ruggeduino", "1"),
+        ("S5", "SR Arduino", "2"),
+        ("S6", "SourceBots Arduino (sb2024)", "2.0"),
+        ("S7", "Student Robotics v4 Power Board (firmware 4)", "4.4.2"),
+        ("S8", "Student Robotics v4 Servo Board (firmware 4.3)", "4.3"),
+        ("S9", "SourceBots Servo Board (firmware 4.4)", "4.4"),
+    }
+    assert {b.serial_number: b.port for b in found}["S6"] == "/dev/ttyACM3"
+    assert len(found) == len(listed)  # each board once
+    assert registry.held() == frozenset()
+    # What `python -m j5aio list` prints names every generation.
+    text = format_boards(found)
+    for _, board_type, version in listed:
+        assert board_type in text and str(version) in text

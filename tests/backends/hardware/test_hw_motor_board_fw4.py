@@ -187,15 +187,36 @@ async def test_nack_and_bad_replies() -> None:
 
 async def test_make_safe_now_brakes_both_motors_synchronously() -> None:
     sim = SRMotorBoardFw4Simulator("srM")
-    board, backend, _stream = await connect(sim)
+    board, backend, stream = await connect(sim)
     await board.motors[0].set_power(0.5)
-    await board.motors[1].set_power(-0.5)
+    await board.motors[1].set_power(MotorSpecialState.COAST)
+    stream.clear()
     assert backend.make_safe_now(0.5) is True
+    assert stream.sent == b"\nMOT:0:SET:0\nMOT:1:SET:0\n"
     assert [motor.drive for motor in sim.motors] == [MotorDrive.BRAKE, MotorDrive.BRAKE]
     assert backend.last_sent == [MotorSpecialState.BRAKE] * 2
-    # The link drained the replies: the board is still usable.
-    await board.motors[0].set_power(0.25)
-    assert sim.motors[0].drive is not MotorDrive.BRAKE
+    # The unanswered replies are drained; the next exchange gets its own reply.
+    assert await board.motors[1].get_power() is MotorSpecialState.BRAKE
     backend.close_now()
     assert backend.make_safe_now(0.5) is False
+    await board.close()
+
+
+async def test_the_motor_cache_changes_only_once_the_board_has_acknowledged() -> None:
+    stream = ScriptedStream([
+        (PROBE, PROBE_REPLY),
+        (b"MOT:0:SET:0\n", b"NACK:Invalid motor power\n"),
+        (b"MOT:0:SET:0\n", b"ACK\n"),
+    ])
+    board = await Backend.from_stream(stream, port="scripted", serial_number="srM")
+    backend = board.backend
+    assert isinstance(backend, Backend)
+    with pytest.raises(NackError):
+        await backend.set_motor_state(0, MotorSpecialState.BRAKE)
+    assert backend.last_sent == [None, None]
+    await backend.set_motor_state(0, MotorSpecialState.BRAKE)
+    assert backend.last_sent == [MotorSpecialState.BRAKE, None]
+    backend.reset_board_state()  # the board came back: it has reset
+    assert backend.last_sent == [None, None]
+    stream.assert_all_used()
     await board.close()

@@ -246,14 +246,55 @@ async def test_a_lost_or_corrupt_reply_is_an_error_and_the_next_call_works() -> 
     await board.close()
 
 
-async def test_make_safe_now_switches_the_outputs_off_synchronously() -> None:
-    sim = SRPowerBoardFw4Simulator("srP")
+async def test_make_safe_now_resets_the_board_synchronously() -> None:
+    sim = SRPowerBoardFw4Simulator("srABC")
     board, backend, stream = await connect(sim)
     await board.outputs.power_on()
-    assert any(sim.outputs)
+    await board.run_led.set_mode(LEDMode.FLASH)
+    stream.clear()
     assert backend.make_safe_now(0.5) is True
-    assert b"\n*RESET\n" in stream.sent
-    assert await board.outputs[0].get_is_enabled() is False  # replies were drained
+    assert stream.sent == b"\n*RESET\n"
+    assert sim.outputs == (False, False, False, False, True, False, False)
+    assert sim.led_modes == ("0", "0")
+    # The unanswered replies are drained; the next exchange gets its own reply.
+    assert await board.outputs[PowerBoardOutput.H0].get_is_enabled() is False
     backend.close_now()
     assert backend.make_safe_now(0.5) is False
+    await board.close()
+
+
+async def test_a_note_is_not_sent_again_after_a_reconnection(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    board, backend, _ = await connect(SRPowerBoardFw4Simulator("srABC"))
+    seen: list[bool] = []
+    original = backend._exchange
+
+    async def spy(*args: object, **kwargs: object) -> object:
+        seen.append(bool(kwargs.get("idempotent", True)))
+        return await original(*args, **kwargs)  # type: ignore[call-overload]
+
+    monkeypatch.setattr(backend, "_exchange", spy)
+    await board.piezo.buzz(0.1, Note.A6)
+    await board.outputs[PowerBoardOutput.H0].set_is_enabled(True)
+    assert seen == [False, True]
+    await board.close()
+
+
+async def test_the_handshake_tolerates_leftovers_ahead_of_its_line() -> None:
+    # Another probe left "v" on the line: the board NACKs "v*IDN?"; the backend asks again.
+    stream = ScriptedStream([
+        (b"*IDN?\n", b"NACK:Unknown command: 'v*IDN?'\n"), IDN, (b"*RESET\n", b"ACK\n"),
+    ])
+    board = await Backend.from_stream(stream, port="scripted", serial_number="srABC")
+    stream.assert_all_used()
+    assert board.firmware_version == "4.4.2"
+    await board.close()
+
+
+async def test_the_simulator_with_leftovers_is_still_identified() -> None:
+    sim = SRPowerBoardFw4Simulator("srABC")
+    sim.receive(b"v")  # half a line from someone else
+    board, _, _ = await connect(sim)
+    assert board.firmware_version == "4.4.2"
     await board.close()

@@ -13,13 +13,22 @@ from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.reconnect import ReconnectPolicy
 from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
+from j5aio.backends.hardware.sb.arduino_2024 import SBArduino2024HardwareBackend
+from j5aio.backends.hardware.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4HardwareBackend
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
 from j5aio.backends.hardware.transports.memory import SimulatorStream
+from j5aio.boards.sr.v4.motor_board_fw4 import MotorBoardFw4
 from j5aio.boards.sr.v4.power_board import PowerBoard
 from j5aio.components.gpio_pin import GPIOPinMode
+from j5aio.components.motor import MotorSpecialState
 from j5aio.errors import BoardDisconnectionError
-from j5aio.simulator import SBArduinoSimulator
+from j5aio.simulator import (
+    PinMode,
+    SBArduino2024Simulator,
+    SBArduinoSimulator,
+    SRMotorBoardFw4Simulator,
+)
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kit import KitConfig, use_kit
 from j5aio.testing.reliability import BACKEND_NAMES, replug_trials
@@ -70,7 +79,9 @@ async def test_a_board_back_on_another_path_is_the_same_board() -> None:
     sim.plug()
     sim.set_input_level(5, True)
     assert await board.pins[5].digital_read() is True
-    assert opened == ["/dev/ttyACM0", "/dev/ttyACM1"]
+    # Discovery opened the shared port twice (the sb2024 kind's probe, then this kind);
+    # reconnection opened the new path once.
+    assert opened == ["/dev/ttyACM0", "/dev/ttyACM0", "/dev/ttyACM1"]
     assert backend.port == "/dev/ttyACM1"
     assert registry.holder("/dev/ttyACM1") is board
     assert registry.holder("/dev/ttyACM0") is None
@@ -359,4 +370,75 @@ async def test_looking_with_another_search_does_not_take_over_a_lost_board() -> 
     )
     # Its port is still held by the lost board, which is handed back as it is.
     assert await SBArduinoHardwareBackend.discover(options=other) == [board]
+    await board.close()
+
+
+def usb_port(
+    device: str, serial_number: str, vid: int, pid: int, **strings: str
+) -> SimpleNamespace:
+    fields: dict[str, object] = {"manufacturer": None, "product": None, "description": ""}
+    fields.update(strings)
+    return SimpleNamespace(device=device, vid=vid, pid=pid, serial_number=serial_number, **fields)
+
+
+async def test_a_replugged_fw4_motor_board_forgets_what_it_sent_and_works_again() -> None:
+    sim = SRMotorBoardFw4Simulator("srM1")
+    ports = [usb_port("/dev/ttyUSB0", "srM1", 0x0403, 0x6001,
+                      manufacturer="Student Robotics", product="MCV4B")]
+
+    async def opener(port: str, baudrate: int) -> Any:
+        return SimulatorStream(sim, time_scale=0)
+
+    options = DiscoveryOptions(port_source=lambda: ports, opener=opener, time_scale=0.01)
+    (board,) = await SRV4MotorBoardFw4HardwareBackend.discover(options=options)
+    assert isinstance(board, MotorBoardFw4)
+    backend = board.backend
+    assert isinstance(backend, SRV4MotorBoardFw4HardwareBackend)
+    backend.reconnect_policy = QUICK
+    await board.setup()
+    await board.motors[0].set_power(MotorSpecialState.BRAKE)
+    assert backend.last_sent[0] is MotorSpecialState.BRAKE
+
+    sim.unplug()
+    ports.clear()
+    with pytest.raises(BoardDisconnectionError):
+        await board.motors[1].get_power()
+    ports.append(usb_port("/dev/ttyUSB1", "srM1", 0x0403, 0x6001,
+                          manufacturer="Student Robotics", product="MCV4B"))
+    sim.plug()
+    await board.motors[1].set_power(0.25)
+    assert backend.port == "/dev/ttyUSB1"
+    assert backend.last_sent == [None, 0.25]  # what was sent before is forgotten
+    assert sim.motors[1].value == 250
+    assert await board.motors[0].get_power() is MotorSpecialState.BRAKE  # read from the board
+    await board.close()
+
+
+async def test_a_replugged_sb2024_arduino_forgets_its_pins_and_works_again() -> None:
+    sim = SBArduino2024Simulator("SB24")
+    ports = [comport("/dev/ttyACM0", "SB24")]
+
+    async def opener(port: str, baudrate: int) -> Any:
+        return SimulatorStream(sim, time_scale=0)
+
+    options = DiscoveryOptions(port_source=lambda: ports, opener=opener, time_scale=0.01)
+    (board,) = await SBArduino2024HardwareBackend.discover(options=options)
+    backend = board.backend
+    assert isinstance(backend, SBArduino2024HardwareBackend)
+    backend.reconnect_policy = QUICK
+    await board.setup()
+    await board.pins[4].set_mode(GPIOPinMode.DIGITAL_OUTPUT)
+    await board.pins[4].digital_write(True)
+
+    sim.unplug()
+    ports[0] = comport("/dev/ttyACM1", "SB24")
+    with pytest.raises(BoardDisconnectionError):
+        await board.pins[5].digital_read()
+    sim.plug()
+    sim.set_input_level(5, True)
+    assert await board.pins[5].digital_read() is True
+    assert backend.port == "/dev/ttyACM1"
+    # The board rebooted: pin 4 is an input again, and the backend knows it.
+    assert await board.pins[4].get_mode() is GPIOPinMode.DIGITAL_INPUT
+    assert sim.pin_mode(4) is PinMode.INPUT
     await board.close()

@@ -293,7 +293,8 @@ async def test_attach_and_discover_over_a_real_pseudo_terminal(
             options=DiscoveryOptions(port_source=lambda: ports, time_scale=0.1)
         )
         assert [b.serial_number for b in found] == ["ARDUINO1"]
-        assert server.opened_count == 2
+        # Opened twice more: the sb2024 kind's probe, then this kind's handshake.
+        assert server.opened_count == 3
         await found[0].close()
 
 

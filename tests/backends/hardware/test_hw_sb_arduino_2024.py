@@ -282,3 +282,15 @@ async def test_a_board_that_stops_answering_is_named() -> None:
     with pytest.raises(CommunicationTimeoutError, match=r"SourceBots Arduino \(sb2024\) did not"):
         await board.pins[3].digital_read()
     await board.close()
+
+
+async def test_make_safe_now_sends_nothing_and_a_reset_forgets_the_pins() -> None:
+    board, backend, stream = await connect(SBArduino2024Simulator("SB1"))
+    await board.pins[3].set_mode(GPIOPinMode.DIGITAL_OUTPUT)
+    stream.clear()
+    assert backend.make_safe_now(0.5) is False
+    assert stream.sent == b""
+    assert await board.pins[3].get_mode() is GPIOPinMode.DIGITAL_OUTPUT
+    backend.reset_board_state()  # the board came back: every pin is an input again
+    assert await board.pins[3].get_mode() is GPIOPinMode.DIGITAL_INPUT
+    await board.close()

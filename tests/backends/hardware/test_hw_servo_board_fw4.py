@@ -253,3 +253,21 @@ async def test_a_repeated_handshake_keeps_the_limits_and_refreshes_the_identity(
     assert backend.asset_tag == "srNEW"
     assert backend.pulse_limits[0] == (600, 2400)
     await board.close()
+
+
+async def test_make_safe_now_leaves_the_servos_as_they_are() -> None:
+    sim = SRServoBoardFw4Simulator("x")
+    board, stream = await connect(SR, sim)
+    await board.servos[0].set_position(0.5)
+    stream.clear()
+    assert board.backend.make_safe_now(0.5) is False
+    assert stream.sent == b""
+    await board.close()
+
+
+async def test_the_handshake_tolerates_leftovers_ahead_of_its_line() -> None:
+    sim = SRServoBoardFw4Simulator("x")
+    sim.receive(b"\x01v")  # half a line from another kind's probe
+    board, _ = await connect(SR, sim)
+    assert board.firmware_version == "4.3"
+    await board.close()

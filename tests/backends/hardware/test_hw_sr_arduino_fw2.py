@@ -230,3 +230,14 @@ def test_any_reply_is_a_value_or_a_communication_error(reply: bytes) -> None:
         await board.close()
 
     anyio.run(read)
+
+
+async def test_make_safe_now_sends_nothing_and_a_reset_forgets_the_pins() -> None:
+    board, backend, stream = await connect(fw2())
+    await board.pins[3].set_mode(GPIOPinMode.DIGITAL_OUTPUT)
+    stream.clear()
+    assert backend.make_safe_now(0.5) is False
+    assert stream.sent == b""
+    backend.reset_board_state()  # the board came back: every pin is an input again
+    assert await board.pins[3].get_mode() is GPIOPinMode.DIGITAL_INPUT
+    await board.close()

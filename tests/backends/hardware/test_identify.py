@@ -24,6 +24,7 @@ from j5aio.boards.sb import SBArduinoBoard
 from j5aio.boards.sr.v4 import MotorBoard, Ruggeduino
 from j5aio.errors import CommunicationError, UnsupportedFirmwareError
 from j5aio.simulator import (
+    SBArduino2024Simulator,
     SBArduinoFirmware,
     SBArduinoSimulator,
     SerialBoardSimulator,
@@ -169,9 +170,12 @@ async def test_discovery_asks_a_shared_port_once_and_finds_each_board_once() -> 
     )
     kinds = {board.serial_number: type(board) for board in boards}
     assert kinds == {"SBA": SBArduinoBoard, "RDA": Ruggeduino, "MBA": MotorBoard}
-    # The motor board's port is opened by its own kind only; the SB Arduino's once.
+    # The motor board's port is opened by its own kind only; the SB Arduino's by one
+    # identification: the sb2024 kind's probe, then the 2019 kind's, which takes it.
     assert opened.count(("/dev/ttyUSB0", 1_000_000)) == 1
-    assert [entry for entry in opened if entry[0] == "/dev/ttyACM0"] == [("/dev/ttyACM0", 115200)]
+    assert [entry for entry in opened if entry[0] == "/dev/ttyACM0"] == [
+        ("/dev/ttyACM0", 115200)
+    ] * 2
 
 
 async def test_each_arduino_kinds_discovery_identifies_shared_ports_once() -> None:
@@ -200,7 +204,7 @@ async def test_each_arduino_kinds_discovery_identifies_shared_ports_once() -> No
     ruggeduinos = await SRV4RuggeduinoHardwareBackend.discover(options=options)
     assert [board.serial_number for board in ruggeduinos] == ["RDA"]
     assert opened == opened_before
-    assert opened.count(("/dev/ttyACM0", 115200)) == 1
+    assert opened.count(("/dev/ttyACM0", 115200)) == 2  # the sb2024 probe, then the 2019 kind
     for board in [*arduinos, *ruggeduinos]:
         await board.close()
 
@@ -220,3 +224,59 @@ async def test_without_shared_port_identification_each_kind_tries_its_matches() 
     boards = await SRV4RuggeduinoHardwareBackend.discover(options=options)
     assert [board.serial_number for board in boards] == ["RDB"]
     await boards[0].close()
+
+
+TODAYS_BOARDS = [
+    ("sr-power-fw4", "PowerBoardFw4", "4.4.2"),
+    ("sr-motor-fw4", "MotorBoardFw4", "4.4.1"),
+    ("sb-motor-fw4", "MotorBoardFw4", "4.5.0"),
+    ("sr-servo-fw4", "ServoBoardFw4", "4.3"),
+    ("sb-servo-fw4", "SBServoBoard", "4.4"),
+    ("sr-arduino-fw2", "SRArduinoBoard", "2"),
+    ("sb-arduino-2024", "SBArduino2024Board", "2.0"),
+]
+
+
+@pytest.mark.parametrize(("name", "board_class", "version"), TODAYS_BOARDS)
+async def test_each_of_todays_boards_is_identified_with_the_version_it_reported(
+    serve: list[PtyServer], name: str, board_class: str, version: str
+) -> None:
+    from j5aio.simulator import SERIAL_SIMULATORS
+
+    simulator = SERIAL_SIMULATORS[name]("T1")
+    path = served(serve, simulator)
+    started = time.monotonic()
+    board = await attach(path, time_scale=0.3)
+    assert type(board).__name__ == board_class
+    assert board.firmware_version == version
+    assert time.monotonic() - started < 15  # liveness only
+
+
+@pytest.mark.parametrize("name", ["sr-arduino-fw2", "sb-arduino-2024", "sb-arduino"])
+async def test_an_attached_arduino_has_ultrasound_sensors_and_no_echo_is_none(
+    serve: list[PtyServer], name: str
+) -> None:
+    from j5aio.simulator import SERIAL_SIMULATORS
+
+    simulator = SERIAL_SIMULATORS[name]("U1")
+    assert isinstance(
+        simulator, SBArduinoSimulator | SRRuggeduinoSimulator | SBArduino2024Simulator
+    )
+    simulator.set_ultrasound_distance(4, 5, 0.5)
+    board = await attach(served(serve, simulator), time_scale=0.3)
+    sensor = board.ultrasound_sensors[4, 5]  # type: ignore[attr-defined]
+    assert await sensor.distance() == pytest.approx(0.5, abs=0.002)
+    assert await board.ultrasound_sensors[6, 7].distance() is None  # type: ignore[attr-defined]
+
+
+async def test_the_sb2024_arduino_is_identified_quickly_among_the_arduinos(
+    serve: list[PtyServer],
+) -> None:
+    # Asked first, it does not wait out the probes of the other Arduino firmwares.
+    backends = [backend.__name__ for backend in serial_backends()]
+    arduinos = [name for name in backends if "Arduino" in name or "Ruggeduino" in name]
+    assert arduinos[0] == "SBArduino2024HardwareBackend"
+    started = time.monotonic()
+    board = await attach(served(serve, SBArduino2024Simulator("Q1")), time_scale=1.0)
+    assert board.firmware_version == "2.0"
+    assert time.monotonic() - started < 10  # liveness only (it took 43 s when asked last)

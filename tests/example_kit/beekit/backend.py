@@ -53,7 +53,13 @@ class BeeBackend(SerialHardwareBackend[BeeBoard], MotorInterface, LEDInterface, 
         """Ask the board who it is, check that we speak its firmware, and note its version."""
         self._powers = [0.0] * BeeBoard.MOTOR_COUNT
         self._led = False
-        name, _, version = (await self._ask(b"?")).partition(":")
+        try:
+            identity = await self._ask(b"?")
+        except UnexpectedReplyError:
+            # Bytes left by another kind's probe (attach asks j5aio's own kinds first)
+            # made the board refuse the line: ask once more, on a clean line.
+            identity = await self._ask(b"?")
+        name, _, version = identity.partition(":")
         if name != "BEE":
             raise UnexpectedReplyError(f"{self.port} is not a Bee Board: it says {name!r}")
         if version.split(".")[0] not in SUPPORTED_VERSIONS:

@@ -228,6 +228,25 @@ class KCHHardwareBackend(RGBLEDInterface, FlashingLEDInterface, Backend):
         """Whether the pins have been released."""
         return not self._devices
 
+    def make_safe_now(self, timeout: float) -> bool:
+        """Darken the start LED at once, synchronously (the safety net; see :class:`.Backend`).
+
+        As :meth:`.KCHBoard.make_safe`: the user LEDs keep their colours. Stopping a
+        flash joins gpiozero's blink thread, which ends at once when told.
+
+        :returns: ``False`` once the pins have been released (nothing to darken).
+        """
+        if self.closed:
+            return False
+        self._start.off()
+        self._flashing = False
+        return True
+
+    def close_now(self) -> None:
+        """Stop flashing and release the pins, synchronously; idempotent."""
+        self._flashing = False
+        self._close_devices()
+
     async def close(self) -> None:
         """Stop flashing and release the pins."""
         self._flashing = False

@@ -53,24 +53,30 @@ class SRV4MotorBoardFw4HardwareBackend(
         #: What this backend last sent to each motor (``None``: nothing yet).
         self.last_sent: list[MotorState | None] = [None] * codec.MOTOR_COUNT
 
+    def forget_cached_state(self) -> None:
+        """Forget what was last sent to the motors (after the board has reset, say)."""
+        self.last_sent = [None] * codec.MOTOR_COUNT
+
+    def reset_board_state(self) -> None:
+        """Forget what was last sent: a board that came back has reset (both coast)."""
+        self.forget_cached_state()
+
     def make_safe_now(self, timeout: float) -> bool:
         """Brake both motors at once, synchronously (the safety net; see :class:`.Backend`).
 
-        A newline goes first, so that a command cut in half by the program's end becomes a
-        line of its own (NACKed) instead of swallowing the first brake command; the link
-        drains the replies.
+        A line ending goes first, so that a command cut in half by the program's end
+        ends there (the board NACKs it) instead of swallowing the first brake. The
+        replies are not waited for; the link drains them before its next exchange.
         """
         if self._link.is_closed:
             return False
         brake = MotorSpecialState.BRAKE
-        commands = b"".join(codec.encode_set(motor, brake) for motor in range(codec.MOTOR_COUNT))
+        commands = b"".join(
+            codec.encode_set(motor, brake) for motor in range(codec.MOTOR_COUNT)
+        )
         self._link.send_now(b"\n" + commands, timeout=timeout)
         self.last_sent = [brake] * codec.MOTOR_COUNT
         return True
-
-    def forget_cached_state(self) -> None:
-        """Forget what was last sent to the motors (after the board has reset, say)."""
-        self.last_sent = [None] * codec.MOTOR_COUNT
 
     async def _handshake(self, *, time_scale: float) -> None:
         try:
@@ -103,8 +109,10 @@ class SRV4MotorBoardFw4HardwareBackend(
 
     async def set_motor_state(self, identifier: int, power: MotorState) -> None:
         """Set a motor to a power in [-1, 1] (duty ``|p|``), BRAKE or COAST."""
-        await self._act(codec.encode_set(identifier, power))
-        self.last_sent[identifier] = power
+        def remember() -> None:
+            self.last_sent[identifier] = power
+
+        await self._act(codec.encode_set(identifier, power), then=remember)
 
     async def get_motor_current(self, identifier: int) -> float:
         """Read the current a motor draws, in amperes (the board filters it)."""

@@ -17,7 +17,7 @@ import anyio
 
 from j5aio.backends.hardware.sr.v4 import power_fw4_codec as codec
 from j5aio.backends.hardware.sr.v4.text_backend import SRTextBackend
-from j5aio.backends.hardware.sr.v4.text_protocol import Identity
+from j5aio.backends.hardware.sr.v4.text_protocol import Identity, NackError
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.boards.sr.v4.power_board_fw4 import BoardResetInterface, PowerBoardFw4
 from j5aio.components.battery_sensor import BatterySensorInterface
@@ -68,7 +68,12 @@ class SRV4PowerBoardFw4HardwareBackend(
         return None if self.identity is None else self.identity.asset_tag
 
     async def _handshake(self, *, time_scale: float) -> None:
-        reply = await self._query(codec.IDENTIFY)
+        try:
+            reply = await self._query(codec.IDENTIFY)
+        except NackError:
+            # Leftovers of another program's (or kind's) probe, ahead of our line on a
+            # port that does not reset when opened: the NACK ended them; ask again.
+            reply = await self._query(codec.IDENTIFY)
         identity = codec.parse_identity_reply(self.board.name, reply)
         if not codec.is_supported_version(identity.version):
             raise UnsupportedFirmwareError(self.board.name, identity.version, _SUPPORTED)
@@ -83,10 +88,12 @@ class SRV4PowerBoardFw4HardwareBackend(
         return codec.parse_status(self.board.name, await self._query(codec.STATUS))
 
     def make_safe_now(self, timeout: float) -> bool:
-        """Reset the board at once, synchronously: every output off but the brain's.
+        """Reset the board at once, synchronously (the safety net; see :class:`.Backend`).
 
-        The safety net's path (see :class:`.Backend`): the same ``*RESET`` as
-        :meth:`reset_board`, after a newline that ends any command cut in half.
+        ``*RESET`` is the board's safe state, as :meth:`.PowerBoardFw4.make_safe`: every
+        output off but the brain's (L2), LEDs dark, the buzzer silent. A line ending goes
+        first, so that a command cut in half by the program's end cannot swallow it; the
+        replies are drained by the link before its next exchange.
         """
         if self._link.is_closed:
             return False
@@ -129,7 +136,8 @@ class SRV4PowerBoardFw4HardwareBackend(
         :raises NotSupportedByHardwareError: outside 8-10000 Hz, or under 1 ms.
         """
         self._check_single_component(identifier, "piezo")
-        await self._act(codec.encode_note(duration, pitch))
+        # Not sent again after a reconnection: a note that already played must not repeat.
+        await self._act(codec.encode_note(duration, pitch), idempotent=False)
 
     # -- start button -------------------------------------------------------------------
 

@@ -66,7 +66,12 @@ class _ServoBoardFw4Backend(
     # -- handshake and state -------------------------------------------------------------
 
     async def _handshake(self, *, time_scale: float) -> None:
-        identity = codec.parse_identity(self.board.name, await self._query(codec.IDENTIFY))
+        reply = await self._query(codec.IDENTIFY)
+        if reply.startswith(b"NACK:"):
+            # Leftovers of another program's (or kind's) probe, ahead of our line on a
+            # port that does not reset when opened: the NACK ended them; ask again.
+            reply = await self._query(codec.IDENTIFY)
+        identity = codec.parse_identity(self.board.name, reply)
         firmware = codec.firmware_for(self.board.name, identity.version, self.SUPPORTED_VERSIONS)
         self._firmware = firmware
         self._firmware_version = identity.version

@@ -7,6 +7,8 @@ into a :class:`~j5aio.errors.CommunicationError` that names the board and the co
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
 from j5aio.backends.hardware.sr.v4.text_protocol import check_ack, check_not_nack
 from j5aio.backends.hardware.transports.readers import read_line
@@ -25,10 +27,27 @@ class SRTextBackend(SerialHardwareBackend):
         reply = await self._exchange(command, _REPLY)
         return check_not_nack(self.board.name, command, reply)
 
-    async def _act(self, command: bytes) -> None:
-        """Send an action ``command`` and check that the board acknowledges it."""
-        reply = await self._exchange(command, _REPLY)
-        check_ack(self.board.name, command, reply)
+    async def _act(
+        self,
+        command: bytes,
+        *,
+        then: Callable[[], None] | None = None,
+        idempotent: bool = True,
+    ) -> None:
+        """Send an action ``command`` and check that the board acknowledges it.
+
+        :param then: runs once the board has acknowledged ``command`` (even for a
+            cancelled caller): where a backend updates what it remembers of the board.
+        :param idempotent: ``False`` for a command that must not be sent again after
+            the board vanished and came back (see :mod:`j5aio.backends.hardware.reconnect`).
+        """
+
+        def acknowledged(reply: bytes) -> None:
+            check_ack(self.board.name, command, reply)
+            if then is not None:
+                then()
+
+        await self._exchange(command, _REPLY, then=acknowledged, idempotent=idempotent)
 
     @staticmethod
     def _check_single(identifier: int, what: str, board: str) -> None:
