@@ -320,6 +320,11 @@ def _excepthook(
         else:
             message = "Stopped (Ctrl-C); every board was made safe."
         print(message, file=sys.stderr, flush=True)
+        # The program is ending: a further Ctrl-C would only tear the interpreter's own
+        # exit hooks (with a traceback), so it is ignored from now on.
+        if threading.current_thread() is threading.main_thread():
+            with contextlib.suppress(ValueError, OSError):
+                signal.signal(signal.SIGINT, _ignore_interrupt)
         return
     _previous_excepthook(kind, value, traceback)
 
