@@ -295,23 +295,24 @@ def test_the_command_line_serves_an_sb_arduino_that_pyserial_can_drive() -> None
 
 def test_uart_timing_delays_each_reply_by_its_time_on_the_wire() -> None:
     class SlowLine(FakeSimulator):
-        baudrate = 1200  # 10 bits a byte: 120 bytes a second, so timings are clear
+        baudrate = 300  # 10 bits a byte: 30 bytes a second, so timings are clear
 
     simulator = SlowLine(boot=b"")
-    request = b"x" * 9  # 9 bytes in, 12 bytes ("ok:" + 9) out: 21 bytes, 0.175 s
+    request = b"x" * 9  # 9 bytes in, 12 bytes ("ok:" + 9) out: 21 bytes, 0.7 s
     with serve_on_pty(simulator, uart_timing=True) as server, open_port(server.path) as port:
         wait_for(lambda: server.opened_count == 1)
         started = time.monotonic()
         port.write(request)
         assert port.read(12) == b"ok:" + request
-        assert time.monotonic() - started >= 21 * 10 / 1200 - 0.005
+        assert time.monotonic() - started >= 21 * 10 / 300 - 0.005
     instant = FakeSimulator(boot=b"")
     with serve_on_pty(instant) as server, open_port(server.path) as port:
         wait_for(lambda: server.opened_count == 1)
         started = time.monotonic()
         port.write(request)
         assert port.read(12) == b"ok:" + request
-        assert time.monotonic() - started < 0.1
+        # well below the 0.7 s the same bytes take at UART timing, however loaded the machine
+        assert time.monotonic() - started < 0.35
 
 
 def _start_simulator(link: Path) -> subprocess.Popen[str]:

@@ -10,6 +10,7 @@ import functools
 import importlib.util
 import io
 import json
+import statistics
 import time
 import urllib.error
 import urllib.request
@@ -41,8 +42,11 @@ TOOL = _load_tool()
 REASON = TOOL.missing_browser()
 pytestmark = pytest.mark.skipif(REASON is not None, reason=f"no browser to test in: {REASON}")
 
-#: How soon the page must show a change the program made.
+#: How soon the page must show a change the program made (issue 13), as the median of
+#: several changes: one stall of a loaded machine running a browser must not fail the test.
 SHOW_WITHIN = 0.2
+#: How long a change may take at all before the page is taken not to show it.
+SHOW_AT_ALL = 2.0
 
 
 @pytest.fixture(scope="module")
@@ -126,16 +130,20 @@ async def test_a_program_seen_and_poked_in_the_browser(browser: Any) -> None:
                 "connected"
             )
 
-        # Values the program changes show within 200 ms.
+        # Values the program changes show within 200 ms (the median of five changes).
         motor = robot.motor_boards[0].motors[1]
         selector = f'[data-component="{robot.motor_boards[0].serial_number}:motor:1"]'
-        for power in (0.25, -0.75, 0.5):
+        delays = []
+        for power in (0.25, -0.75, 0.1, -0.3, 0.5):
             started = time.monotonic()
             await motor.set_power(power)
             await in_thread(
-                wait_for, lambda p=power: attribute(browser, selector, "data-value") == str(p), 2
+                wait_for,
+                lambda p=power: attribute(browser, selector, "data-value") == str(p),
+                SHOW_AT_ALL,
             )
-            assert time.monotonic() - started < SHOW_WITHIN
+            delays.append(time.monotonic() - started)
+        assert statistics.median(delays) < SHOW_WITHIN, delays
         await robot.power_board.run_led.set_state(True)
         led = f'[data-component="{robot.power_board.serial_number}:led:0"]'
         await in_thread(wait_for, lambda: attribute(browser, led, "data-value") == "true")
