@@ -264,7 +264,7 @@ class ViewServer:
                 "simulated": bool(controls),
                 "components": [
                     {"id": component_id(board.serial_number, c), "kind": c.kind,
-                     "identifier": c.identifier}
+                     "identifier": c.identifier, "name": record.names.get(c)}
                     for c in record.components
                 ],
                 "controls": controls,

@@ -78,8 +78,10 @@ def attribute(driver: Any, selector: str, name: str) -> str | None:
 
 
 @contextlib.asynccontextmanager
-async def robot_with_view() -> AsyncIterator[tuple[KitRobot, str]]:
-    kit = use_kit(KitConfig(motor_boards=1, ruggeduinos=1))
+async def robot_with_view(
+    config: KitConfig | str | None = None,
+) -> AsyncIterator[tuple[KitRobot, str]]:
+    kit = use_kit(config or KitConfig(motor_boards=1, ruggeduinos=1))
     assert kit
     out = io.StringIO()
     async with contextlib.AsyncExitStack() as stack:
@@ -212,6 +214,74 @@ async def test_a_program_seen_and_poked_in_the_browser(browser: Any) -> None:
 
         await motor.set_power(0.1)
         await in_thread(wait_for, lambda: "->" in wire_text())
+
+
+async def test_the_kch_leds_in_their_colours_and_the_start_led_flashing(browser: Any) -> None:
+    from j5aio.boards.sr.kch import Colour
+
+    async with robot_with_view("sr2023") as (robot, url):
+        kch = robot.kch
+        assert kch is not None
+        await in_thread(browser.get, url)
+        await in_thread(wait_for, lambda: board_state_is(browser, kch.serial_number, "connected"))
+        serial = kch.serial_number
+
+        def tile(kind: str, identifier: int) -> str:
+            return f'[data-component="{serial}:{kind}:{identifier}"]'
+
+        for identifier, colour, name in (
+            (0, Colour.GREEN, "green"),
+            (2, Colour.MAGENTA, "magenta"),
+        ):
+            await kch.leds[identifier].set_colour(colour)
+            await in_thread(
+                wait_for,
+                lambda i=identifier, n=name: (
+                    attribute(browser, tile("rgbled", i), "data-value") == n
+                ),
+            )
+        await kch.leds[2].set_colour((1, 0, 0))
+        await in_thread(
+            wait_for, lambda: attribute(browser, tile("rgbled", 2), "data-value") == "red"
+        )
+
+        # The dot is lit in the LED's colour; LED B, never set, is dark.
+        def dot_colour(identifier: int) -> str:
+            return str(
+                browser.execute_script(
+                    "return getComputedStyle(document.querySelector(arguments[0] + ' .dot'))"
+                    ".backgroundColor",
+                    tile("rgbled", identifier),
+                )
+            )
+
+        assert await in_thread(dot_colour, 0) == "rgb(0, 255, 0)"
+        assert await in_thread(attribute, browser, tile("rgbled", 1), "data-value") in ("", "off")
+
+        # The start LED flashes (as while waiting for the start), then is switched off.
+        start = tile("flashingled", 0)
+        await kch.start_led.flash()
+        await in_thread(wait_for, lambda: attribute(browser, start, "data-value") == "FLASH")
+        assert (
+            await in_thread(
+                lambda: browser.execute_script(
+                    "return document.querySelector(arguments[0]).textContent", start
+                )
+            )
+            == "Start LEDflashing"
+        )
+        assert await in_thread(
+            lambda: bool(browser.find_elements("css selector", f"{start} .dot.flash"))
+        )
+        await kch.start_led.set_state(False)
+        await in_thread(wait_for, lambda: attribute(browser, start, "data-value") == "OFF")
+        assert not await in_thread(
+            lambda: browser.find_elements("css selector", f"{start} .dot.flash")
+        )
+        # The fw 4 power board's run LED is a flashing LED too, named by the board.
+        run = f'[data-component="{robot.power_board.serial_number}:flashingled:0"]'
+        await robot.power_board.run_led.set_state(True)
+        await in_thread(wait_for, lambda: attribute(browser, run, "data-value") == "ON")
 
 
 async def test_wrong_token_and_foreign_origin_refused(browser: Any) -> None:

@@ -15,7 +15,7 @@ const KIND_ORDER = ["batterysensor", "button", "poweroutput", "motor", "servo", 
 const PRIMARY = { motor: "motor_state", led: "led_state", poweroutput: "power_output_enabled",
   batterysensor: "battery_sensor_voltage", servo: "servo_position", button: "button_state",
   ultrasoundsensor: "ultrasound_distance", piezo: "note", pulseservo: "servo_pulse_width",
-  flashingled: "led_flashing", flag: "flag_state", supplysensor: "supply_voltage" };
+  flashingled: "led_mode", flag: "flag_state", supplysensor: "supply_voltage" };
 const COLOURS = ["#206bc4", "#d63939", "#2fb344", "#f59f00", "#ae3ec9", "#0ca678", "#4263eb",
   "#e8590c", "#74b816", "#1098ad", "#c2255c", "#495057"];
 
@@ -105,7 +105,7 @@ function makeBoard(board) {
   const pre = el("pre", { "data-wire-log": board.serial });
   const log = el("details", {}, el("summary", { text: "Wire log" }), pre);
   section.append(groups, controls, log);
-  return { section, state, firmware, groups, groupOf: new Map(), controls, controlOf: new Map(), log: pre };
+  return { type: board.type, section, state, firmware, groups, groupOf: new Map(), controls, controlOf: new Map(), log: pre };
 }
 
 function ensureTile(shown, c) {
@@ -123,6 +123,7 @@ function ensureTile(shown, c) {
   const tile = el("div", { class: `comp kind-${c.kind} unknown`, "data-component": c.id, "data-value": "" });
   tile.kind = c.kind;
   tile.identifier = c.identifier;
+  tile.name = c.name || (shown.type === "KCHBoard" && c.kind === "rgbled" ? `LED ${"ABC"[c.identifier] ?? c.identifier}` : null);
   tiles.set(c.id, tile);
   group.append(tile);
   draw(tile, { fields: {}, last: null });
@@ -149,6 +150,7 @@ function setValue(cid, field, value, now) {
 }
 
 function label(tile) {
+  if (tile.name) return tile.name[0].toUpperCase() + tile.name.slice(1);
   const titles = { batterysensor: "Battery", button: "Start", piezo: "Piezo", ultrasoundsensor: "Sensor" };
   const name = titles[tile.kind] || (KIND_TITLES[tile.kind] || tile.kind).replace(/s$/, "");
   return `${name} ${tile.identifier}`;
@@ -157,7 +159,8 @@ function label(tile) {
 function draw(tile, entry) {
   const f = entry.fields;
   const primary = PRIMARY[tile.kind] && PRIMARY[tile.kind] in f ? PRIMARY[tile.kind] : entry.last;
-  tile.dataset.value = primary === null ? "" : valueText(f[primary]);
+  const text = VALUE_TEXT[tile.kind];
+  tile.dataset.value = text ? text(f) : primary === null ? "" : valueText(f[primary]);
   const body = [el("span", { class: "label", text: label(tile) })];
   const renderer = RENDERERS[tile.kind] || renderFields;
   body.push(...renderer(f, tile));
@@ -174,8 +177,8 @@ function gauge(v) {
   return el("div", { class: "gauge" }, el("div", { class: "mid" }), fill);
 }
 
-function dot(lit, colour) {
-  const d = el("span", { class: lit ? "dot lit" : "dot" });
+function dot(lit, colour, flashing = false) {
+  const d = el("span", { class: (lit ? "dot lit" : "dot") + (flashing ? " flash" : "") });
   if (lit && colour) { d.style.background = colour; d.style.boxShadow = `0 0 6px ${colour}`; }
   return d;
 }
@@ -185,6 +188,28 @@ function renderFields(f) {
   if (!keys.length) return [el("span", { class: "text", text: "—" })];
   return keys.map((k) => el("div", { class: "text", "data-field": k, text: `${k.replace(/_/g, " ")}: ${fmt(f[k])}` }));
 }
+
+// An RGB LED's channels as 0-255 (a channel not yet set or read is dark).
+function rgbOf(f) {
+  return ["red", "green", "blue"].map((name) => Math.round(255 * (f[`rgb_led_channel_duty_cycle.${name}`] || 0)));
+}
+const COLOUR_NAMES = { "0,0,0": "off", "255,0,0": "red", "255,255,0": "yellow", "0,255,0": "green",
+  "0,255,255": "cyan", "0,0,255": "blue", "255,0,255": "magenta", "255,255,255": "white" };
+// A flashing LED's mode: ON, OFF or FLASH (from whether it is lit, before any mode was set).
+function ledMode(f) {
+  if (f.led_mode !== undefined) return f.led_mode;
+  return f.led_state === undefined ? undefined : f.led_state ? "ON" : "OFF";
+}
+// data-value of the kinds whose value is made of several fields.
+const VALUE_TEXT = {
+  rgbled(f) {
+    const rgb = rgbOf(f);
+    return COLOUR_NAMES[rgb.join(",")] || `rgb(${rgb.join(", ")})`;
+  },
+  flashingled(f) {
+    return ledMode(f) ?? "";
+  },
+};
 
 const RENDERERS = {
   motor(f) {
@@ -201,12 +226,15 @@ const RENDERERS = {
     return [dot(v === true), el("span", { class: "text", text: v === undefined ? "—" : v ? "on" : "off" })];
   },
   rgbled(f) {
-    const c = (name) => Math.round(255 * (f[`rgb_led_channel_duty_cycle.${name}`] || 0));
-    const colour = `rgb(${c("red")}, ${c("green")}, ${c("blue")})`;
-    return [dot(true, colour), el("span", { class: "text", text: colour })];
+    const [r, g, b] = rgbOf(f);
+    const lit = r + g + b > 0;
+    return [dot(lit, `rgb(${r}, ${g}, ${b})`), el("span", { class: "text", text: VALUE_TEXT.rgbled(f) })];
   },
-  flashingled(f) {
-    return [dot(f.led_flashing === true, "#f59f00"), el("span", { class: "text", text: f.led_flashing ? "flashing" : "steady" })];
+  flashingled(f, tile) {
+    const mode = ledMode(f);
+    const colour = /error/.test(tile.name || "") ? "#d63939" : /run/.test(tile.name || "") ? "#2fb344" : "#f59f00";
+    const text = { FLASH: "flashing", ON: "on", OFF: "off" }[mode] || "—";
+    return [dot(mode === "ON" || mode === "FLASH", colour, mode === "FLASH"), el("span", { class: "text", text })];
   },
   poweroutput(f) {
     const on = f.power_output_enabled;
