@@ -308,3 +308,30 @@ async def test_the_kch_and_the_fw4_boards_of_the_sr2023_kit() -> None:
             assert kit.simulators("kch")
     finally:
         CALL_OBSERVERS.remove(state)
+
+
+async def test_the_arena_is_sent_once_and_the_pose_as_it_moves() -> None:
+    async with (
+        kit_and_view(KitConfig(1, 1, 0, 0, 0)) as (robot, kit, view),
+        aiohttp.ClientSession() as session,
+        session.ws_connect(ws_url(view)) as ws,
+    ):
+        first = await messages_until(ws, lambda m: "arena" in m)
+        assert first["arena"]["key"] == kit.name
+        assert len(first["arena"]["markers"]) == len(kit.world.arena.markers)
+        start = first["pose"]
+        assert (start["x"], start["y"]) == (kit.world.pose.x, kit.world.pose.y)
+        assert start["camera"] is not None
+
+        # The motors drive the robot: the page is sent the pose as it moves, and the arena
+        # is not sent again.
+        left, right = robot.motor_boards[0].motors
+        await left.set_power(0.8)
+        await right.set_power(0.8)
+        moved = await messages_until(
+            ws, lambda m: "arena" in m or ("pose" in m and m["pose"]["y"] > start["y"] + 50)
+        )
+        assert "arena" not in moved
+        assert moved["pose"]["x"] == pytest.approx(start["x"], abs=1)
+        await left.set_power(0)
+        await right.set_power(0)

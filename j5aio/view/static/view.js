@@ -67,6 +67,8 @@ function receive(message) {
   if (message.boards) showBoards(message.boards);
   for (const [cid, field, value] of message.values || []) setValue(cid, field, value, now);
   for (const [port, line] of message.log || []) addLogLine(port, line);
+  if (message.arena) showArena(message.arena);
+  if (message.pose) showPose(message.pose);
 }
 
 // ---------------------------------------------------------------- boards
@@ -316,6 +318,73 @@ function drawPlot(name, low, high) {
   }
 }
 setInterval(() => { drawPlot("power", -1, 1); drawPlot("analogue", 0, 5); }, 100);
+
+// ---------------------------------------------------------------- the simulated arena
+// Drawn from above in the arena's own units (mm); the world's y points north, the SVG's down.
+const SVG_NS = "http://www.w3.org/2000/svg";
+let arena = null;  // {length, robot, fov, body, nose}
+
+function svg(tag, attrs = {}, text = null) {
+  const node = document.createElementNS(SVG_NS, tag);
+  for (const [k, v] of Object.entries(attrs)) node.setAttribute(k, v);
+  if (text !== null) node.textContent = text;
+  return node;
+}
+
+function showArena(a) {
+  const figure = document.getElementById("arena-figure");
+  const root = document.getElementById("arena");
+  const Y = (y) => a.length - y;
+  const margin = 250;
+  root.setAttribute("viewBox", `${-margin} ${-margin} ${a.width + 2 * margin} ${a.length + 2 * margin}`);
+  root.dataset.width = String(a.width);
+  root.dataset.length = String(a.length);
+  const clip = svg("clipPath", { id: "arena-clip" }, null);
+  clip.append(svg("rect", { x: 0, y: 0, width: a.width, height: a.length }));
+  const parts = [svg("defs"), svg("rect", { class: "floor", x: 0, y: 0, width: a.width, height: a.length })];
+  parts[0].append(clip);
+  for (const m of a.markers) {
+    // The marker lies along its wall: across the way it faces.
+    const dx = -Math.sin(m.facing) * m.size / 2, dy = Math.cos(m.facing) * m.size / 2;
+    const g = svg("g", { "data-marker": String(m.id) });
+    g.append(svg("line", { class: "marker", x1: m.x - dx, y1: Y(m.y - dy), x2: m.x + dx, y2: Y(m.y + dy) }));
+    g.append(svg("text", { x: m.x + Math.cos(m.facing) * 170, y: Y(m.y + Math.sin(m.facing) * 170) }, String(m.id)));
+    parts.push(g);
+  }
+  for (const t of a.tokens) {
+    const g = svg("g", { "data-token": String(t.id), transform: `translate(${t.x} ${Y(t.y)})` });
+    g.append(svg("rect", { class: "token", x: -t.side / 2, y: -t.side / 2, width: t.side, height: t.side,
+      transform: `rotate(${-t.heading * 180 / Math.PI})` }));
+    g.append(svg("text", { class: "token-label", y: -t.side / 2 - 90 }, String(t.id)));
+    parts.push(g);
+  }
+  const fov = svg("polygon", { class: "fov", "clip-path": "url(#arena-clip)" });
+  const robot = svg("g", { "data-robot": "", "data-pose": "" });
+  const body = svg("circle", { class: "body", cx: 0, cy: 0, r: a.robot.radius });
+  const nose = svg("line", { class: "nose", x1: 0, y1: 0, x2: a.robot.radius, y2: 0 });
+  robot.append(body, nose);
+  parts.push(fov, robot);
+  root.replaceChildren(...parts);
+  arena = { length: a.length, width: a.width, robot, fov };
+  figure.hidden = false;
+}
+
+function showPose(p) {
+  if (!arena) return;
+  const Y = (y) => arena.length - y;
+  const degrees = p.heading * 180 / Math.PI;
+  arena.robot.setAttribute("transform", `translate(${p.x} ${Y(p.y)}) rotate(${-degrees})`);
+  arena.robot.dataset.pose = `${Math.round(p.x)},${Math.round(p.y)},${degrees.toFixed(1)}`;
+  const c = p.camera;
+  if (c) {
+    const reach = 2 * Math.max(arena.width, arena.length);  // clipped at the walls
+    const edge = (angle) => `${c.x + reach * Math.cos(angle)},${Y(c.y + reach * Math.sin(angle))}`;
+    arena.fov.setAttribute("points", `${c.x},${Y(c.y)} ${edge(c.left)} ${edge(c.right)}`);
+  }
+  arena.fov.style.display = c ? "" : "none";
+  document.getElementById("pose-text").textContent =
+    `robot at x ${(p.x / 1000).toFixed(2)} m, y ${(p.y / 1000).toFixed(2)} m, heading ${degrees.toFixed(0)}°`;
+}
 
 // ---------------------------------------------------------------- wire log
 function addLogLine(port, line) {
