@@ -4,15 +4,19 @@
 // show their fields as text, so new boards appear without new code here.
 
 const WINDOW_S = 30;
-const BOARD_ORDER = ["PowerBoard", "MotorBoard", "ServoBoard", "ServoBoardFw4", "SBServoBoard",
-  "SBArduinoBoard", "Ruggeduino", "KCHBoard"];
-const KIND_TITLES = { motor: "Motors", poweroutput: "Power outputs", led: "LEDs", rgbled: "RGB LEDs",
+const BOARD_ORDER = ["PowerBoard", "PowerBoardFw4", "MotorBoard", "MotorBoardFw4", "ServoBoard",
+  "ServoBoardFw4", "SBServoBoard", "SBArduinoBoard", "SBArduino2024Board", "Ruggeduino",
+  "SRArduinoBoard", "KCHBoard", "CameraBoard"];
+const KIND_TITLES = { motor: "Motors", monitoredmotor: "Motors",
+  protectedpoweroutput: "Power outputs", markercamera: "Camera", poweroutput: "Power outputs", led: "LEDs", rgbled: "RGB LEDs",
   servo: "Servos", pulseservo: "Servos", gpiopin: "GPIO pins", batterysensor: "Battery",
   piezo: "Piezo", button: "Start button", ultrasoundsensor: "Ultrasound", supplysensor: "Supply",
   flashingled: "Flashing LEDs", flag: "Flags" };
-const KIND_ORDER = ["batterysensor", "button", "poweroutput", "motor", "servo", "pulseservo",
+const KIND_ORDER = ["batterysensor", "button", "poweroutput", "protectedpoweroutput", "motor",
+  "monitoredmotor", "servo", "pulseservo",
   "led", "rgbled", "flashingled", "piezo", "gpiopin", "ultrasoundsensor"];
-const PRIMARY = { motor: "motor_state", led: "led_state", poweroutput: "power_output_enabled",
+const PRIMARY = { motor: "motor_state", monitoredmotor: "motor_state",
+  protectedpoweroutput: "power_output_enabled", led: "led_state", poweroutput: "power_output_enabled",
   batterysensor: "battery_sensor_voltage", servo: "servo_position", button: "button_state",
   ultrasoundsensor: "ultrasound_distance", piezo: "note", pulseservo: "servo_pulse_width",
   flashingled: "led_mode", flag: "flag_state", supplysensor: "supply_voltage" };
@@ -270,6 +274,10 @@ const RENDERERS = {
     return [el("span", { class: "text", text: `${mode ? String(mode).replace(/_/g, " ").toLowerCase() : "—"}${parts.length ? " · " + parts.join(" ") : ""}` })];
   },
 };
+
+// The fw 4 boards' motors and outputs also report currents: drawn as the older ones are.
+RENDERERS.monitoredmotor = RENDERERS.motor;
+RENDERERS.protectedpoweroutput = RENDERERS.poweroutput;
 
 // ---------------------------------------------------------------- plots
 function record(cid, tile, field, value, now) {
