@@ -9,6 +9,9 @@ once on a fresh simulated kit:
 - **signal** blinks the power board's run LED, and beeps and raises a flag servo when a
   wall is seen.
 
+On a kit with a KCH (``sr2023``), its user LED A shows what drive does (green forwards,
+yellow turning) and LED B turns red while a wall is close.
+
 A tiny simulated world moves the wall nearer as the motors drive and further away as the
 robot turns, and loads the battery as the motors work. Every half second a ``boards``
 line shows the state of the simulated boards themselves (read from the simulators, not
@@ -28,10 +31,12 @@ from anyio.abc import ObjectReceiveStream, ObjectSendStream
 
 from j5aio.board_kinds import simulator_entries
 from j5aio.boards.sb.arduino_2024 import SBArduino2024Board
+from j5aio.boards.sr.kch import Colour
 from j5aio.components.derived.ultrasound import UltrasoundSensor
 from j5aio.kit import KitRobot
 from j5aio.simulator.arduino_base import ArduinoBoardSimulator
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+from j5aio.simulator.kch import KCHSimulator
 from j5aio.simulator.kit import SimulatedKit, kit_from_environment, use_kit
 from j5aio.simulator.sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
 from j5aio.simulator.sr_motor_fw4 import MotorChannel, MotorDrive, SRMotorBoardFw4Simulator
@@ -131,16 +136,21 @@ class _Shared:
 
 async def _drive(robot: KitRobot, shared: _Shared, log: _Log) -> None:
     left, right = robot.motor_boards[0].motors
+    status_led = robot.kch.leds[0] if robot.kch is not None else None
     while True:
         log("drive", "forwards: both motors at +0.6")
         await left.set_power(0.6)
         await right.set_power(0.6)
+        if status_led is not None:
+            await status_led.set_colour(Colour.GREEN)
         with anyio.move_on_after(3.0):
             await shared.wall_ahead.wait()
         shared.wall_ahead = anyio.Event()
         log("drive", "turning on the spot: left +0.5, right -0.5")
         await left.set_power(0.5)
         await right.set_power(-0.5)
+        if status_led is not None:
+            await status_led.set_colour(Colour.YELLOW)
         await anyio.sleep(0.6)
 
 
@@ -186,6 +196,7 @@ async def _sense(
 async def _signal(robot: KitRobot, alerts: ObjectReceiveStream[float], log: _Log) -> None:
     run_led = robot.power_board.run_led
     flag = robot.servo_boards[0].servos[0]
+    wall_led = robot.kch.leds[1] if robot.kch is not None else None
     lit = False
     flag_down_at: float | None = None
     while True:
@@ -196,6 +207,8 @@ async def _signal(robot: KitRobot, alerts: ObjectReceiveStream[float], log: _Log
             log("signal", "beep (880 Hz, 0.15 s) and raise the flag servo")
             await robot.power_board.piezo.buzz(0.15, 880)
             await flag.set_position(1.0)
+            if wall_led is not None:
+                await wall_led.set_colour(Colour.RED)
             flag_down_at = log.elapsed + 0.75
             continue
         lit = not lit
@@ -203,6 +216,8 @@ async def _signal(robot: KitRobot, alerts: ObjectReceiveStream[float], log: _Log
         if flag_down_at is not None and log.elapsed >= flag_down_at:
             await flag.set_position(-1.0)
             flag_down_at = None
+            if wall_led is not None:
+                await wall_led.set_colour(Colour.OFF)
 
 
 def _describe_motor(output: MotorOutput | MotorChannel) -> str:
@@ -243,9 +258,21 @@ def describe_boards(kit: SimulatedKit, world: _World | None = None) -> str:
             parts.append("flag servo off" if pulse is None else f"flag servo {pulse} µs")
         else:
             parts.append(f"flag servo {servos.positions[0] / 100:+.1f}")
+    for kch in _of_type(kit, (KCHSimulator,)):
+        leds = ", ".join(
+            f"{letter} {_COLOUR_NAMES[lit]}" for letter, lit in zip("ABC", kch.colours, strict=True)
+        )
+        parts.append(f"KCH LEDs {leds}")
     if world is not None:
         parts.append(f"wall {world.distance:.2f} m")
     return " | ".join(parts)
+
+
+_COLOUR_NAMES: Final = {
+    (False, False, False): "off", (True, False, False): "red", (True, True, False): "yellow",
+    (False, True, False): "green", (False, True, True): "cyan", (False, False, True): "blue",
+    (True, False, True): "magenta", (True, True, True): "white",
+}
 
 
 async def _show_boards(kit: SimulatedKit, world: _World, log: _Log) -> None:
@@ -340,6 +367,7 @@ def _boards(robot: KitRobot) -> list[object]:
         *robot.servo_boards,
         *robot.arduinos,
         *robot.ruggeduinos,
+        *([robot.kch] if robot.kch is not None else []),
     ]
 
 

@@ -26,6 +26,7 @@ from j5aio.backends.environment import Environment
 from j5aio.boards.board_group import BoardGroup
 from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduinoBoard
+from j5aio.boards.sr.kch import KCHBoard
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
 from j5aio.components.marker_camera import MarkerCamera
 from j5aio.environments import get_default_environment, hint_no_hardware
@@ -49,7 +50,10 @@ class KitRobot(BaseRobot):
       empty, reached by position or serial number;
     - ``robot.cameras``: the cameras found (webcams; the simulated kit's camera), and
       ``robot.camera``: the first one's :class:`~j5aio.components.marker_camera.MarkerCamera`
-      (``None`` without a camera), so that ``await robot.camera.see()`` finds markers.
+      (``None`` without a camera), so that ``await robot.camera.see()`` finds markers;
+    - ``robot.kch``: the KCH, the Student Robotics HAT on the Raspberry Pi of the 2023+
+      kit, with its user RGB LEDs and start LED (``None`` without one: on any other
+      computer, and on a simulated kit that has none, such as ``sr2019``).
 
     Through :mod:`j5aio.sync` (``from j5aio.sync import KitRobot``), ``robot = KitRobot()``
     finds the boards at once, with no ``async with``, and they are made safe when the
@@ -71,6 +75,7 @@ class KitRobot(BaseRobot):
     ruggeduinos: BoardGroup[Ruggeduino]
     cameras: BoardGroup[CameraBoard]
     camera: MarkerCamera | None
+    kch: KCHBoard | None
 
     def __init__(
         self, *, environment: Environment | None = None, view: bool | None = None
@@ -114,6 +119,7 @@ class KitRobot(BaseRobot):
         else:
             self.cameras = BoardGroup(CameraBoard, FileCameraBackend)
         self.camera = self.cameras[0].camera if self.cameras else None
+        self.kch = await self._find_kch(environment)
         groups = (
             self.power_boards,
             self.motor_boards,
@@ -124,6 +130,14 @@ class KitRobot(BaseRobot):
         if self._chosen_by_default and not any(groups):
             hint_no_hardware()
         self.power_board = self.power_boards.singular()
+
+    @staticmethod
+    async def _find_kch(environment: Environment) -> KCHBoard | None:
+        """The KCH, if the environment can find one and there is one (a Pi has one HAT)."""
+        if KCHBoard not in environment.supported_boards:
+            return None
+        found = await environment.get_board_group(KCHBoard)
+        return found[0] if found else None
 
     # --- the live view (j5aio.view): started in setup, stopped on the way out ---
 

@@ -135,3 +135,21 @@ async def test_the_demo_runs_on_todays_kits_sees_the_wall_and_ends_braked(kit: s
     assert "flag servo" in text and "SIMMB0 [" in text
     last = text.strip().splitlines()[-3]
     assert "SIMMB0 [brake, brake]" in last
+
+
+async def test_on_the_sr2023_kit_the_demo_finds_the_kch_and_lights_its_leds() -> None:
+    out = io.StringIO()
+    assert await demo(4.0, out=out, kit="sr2023") is True
+    text = out.getvalue()
+    assert "found 5 boards" in text  # power, motor, servo, Arduino and the KCH
+    # The boards lines read the simulated KCH's pins: drive lit LED A green, then yellow
+    # while turning; signal lit LED B red while the wall was close.
+    assert "KCH LEDs A green, B off, C off" in text
+    assert "KCH LEDs A yellow" in text
+    assert "B red" in text
+
+
+def test_describe_boards_shows_the_kch_leds() -> None:
+    kit = SimulatedKit("sr2023")
+    assert describe_boards(kit).endswith("KCH LEDs A off, B off, C off")
+    assert "KCH" not in describe_boards(SimulatedKit("sr2019"))

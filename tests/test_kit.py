@@ -10,6 +10,7 @@ from j5aio import environments
 from j5aio.backends.environment import Environment
 from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.boards.board import Board
+from j5aio.boards.sr.kch import Colour, KCHBoard
 from j5aio.boards.sr.v4 import PowerBoard
 from j5aio.environments import ENVIRONMENT_VARIABLE
 from j5aio.errors import CommunicationError
@@ -21,6 +22,7 @@ from j5aio.simulator.environment import (
     SimulatedUSBDevice,
     SRV4PowerBoardSimulatedBackend,
 )
+from j5aio.simulator.kch import KCHSimulator
 from j5aio.simulator.kit import KitConfig, current_kit, use_kit
 from j5aio.simulator.sr_motor_fw3 import MotorMode
 from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
@@ -185,3 +187,31 @@ async def test_both_generations_are_gathered_so_two_power_boards_are_an_error() 
         assert [type(b) for b in robot.power_boards] == [PowerBoardGen2, PowerBoard]
     finally:
         robot.release_lock()
+
+
+async def test_the_kch_of_the_sr2023_kit_is_robot_kch() -> None:
+    kit = use_kit("sr2023")
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+        assert isinstance(robot.kch, KCHBoard)
+        assert robot.kch.serial_number == "SIMKCH0"
+        await robot.kch.leds[2].set_colour(Colour.MAGENTA)
+        (simulator,) = kit.simulators("kch")
+        assert isinstance(simulator, KCHSimulator)
+        assert simulator.colours[2] == (True, False, True)
+
+
+@pytest.mark.parametrize("kit", ["sr2019", "sb2024"])
+async def test_a_kit_without_a_kch_has_none(kit: str) -> None:
+    use_kit(kit)
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+        assert robot.kch is None
+
+
+async def test_an_environment_that_cannot_find_a_kch_has_none() -> None:
+    use_kit("sr2023")
+    environment = Environment("NoKCH")
+    for backend in SIMULATED_BACKENDS:
+        if backend.board is not KCHBoard:
+            environment.register_backend(backend)
+    async with KitRobot(environment=environment) as robot:
+        assert robot.kch is None

@@ -2,10 +2,12 @@
 
     python tools/view_screenshot.py              # writes docs/images/live-view-sr2019.png
     python tools/view_screenshot.py --kit sr2023 # writes docs/images/live-view-sr2023.png
+    python tools/view_screenshot.py --arena      # writes docs/images/live-view-arena.png
 
 It runs ``python -m j5aio demo --view`` (the default kit, or ``--kit``), opens the printed
 address in headless chromium driven by selenium and chromedriver, waits until the robot
-has been driving for a few seconds, and saves the page. The browser tests load this file
+has been driving for a few seconds, and saves the page (with ``--arena``, only the drawing
+of the simulated arena, larger). The browser tests load this file
 for :func:`launch_chromium` and :func:`start_demo`.
 
 Needs ``pip install 'j5aio[view-test]'`` and ``apt-get install chromium chromium-driver``.
@@ -121,18 +123,32 @@ def stop(process: subprocess.Popen[str]) -> str:
     return rest or ""
 
 
-def take_screenshot(path: Path, *, settle: float = 5.0, kit: str | None = None) -> None:
-    """Screenshot the view of the demo after it has run ``settle`` seconds, into ``path``."""
+def take_screenshot(
+    path: Path, *, settle: float = 5.0, kit: str | None = None, arena: bool = False
+) -> None:
+    """Screenshot the view of the demo after it has run ``settle`` seconds, into ``path``.
+
+    :param arena: save only the drawing of the simulated arena (shown 640 px wide).
+    """
     process, url = start_demo(settle + 30, kit=kit)
     driver, profile = launch_chromium()
     try:
         driver.get(url)
+        if arena:
+            driver.execute_script(
+                "const style = document.createElement('style');"
+                "style.textContent = '#arena-figure { flex: 0 0 640px !important; }';"
+                "document.head.append(style);"
+            )
         time.sleep(settle)
         path.parent.mkdir(parents=True, exist_ok=True)
         height = driver.execute_script("return document.documentElement.scrollHeight")
         driver.set_window_size(1280, min(int(height) + 40, 3000))
         time.sleep(0.5)
-        driver.save_screenshot(str(path))
+        if arena:
+            driver.find_element("css selector", "#arena-figure").screenshot(str(path))
+        else:
+            driver.save_screenshot(str(path))
     finally:
         driver.quit()
         shutil.rmtree(profile, ignore_errors=True)
@@ -144,14 +160,18 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=None, help="where to save the PNG")
     parser.add_argument("--kit", default=None, help="the simulated kit (default: the default)")
+    parser.add_argument(
+        "--arena", action="store_true", help="only the drawing of the simulated arena"
+    )
     args = parser.parse_args()
     if args.out is None:
-        args.out = SCREENSHOT.with_name(f"live-view-{args.kit}.png") if args.kit else SCREENSHOT
+        name = "arena" if args.arena else args.kit
+        args.out = SCREENSHOT.with_name(f"live-view-{name}.png") if name else SCREENSHOT
     reason = missing_browser()
     if reason is not None:
         print(f"cannot take the screenshot: {reason}", file=sys.stderr)
         return 2
-    take_screenshot(args.out, kit=args.kit)
+    take_screenshot(args.out, kit=args.kit, arena=args.arena)
     print(args.out)
     return 0
 

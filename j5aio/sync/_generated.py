@@ -990,7 +990,10 @@ class KitRobot(BaseRobot):
       empty, reached by position or serial number;
     - ``robot.cameras``: the cameras found (webcams; the simulated kit's camera), and
       ``robot.camera``: the first one's :class:`~j5aio.components.marker_camera.MarkerCamera`
-      (``None`` without a camera), so that ``await robot.camera.see()`` finds markers.
+      (``None`` without a camera), so that ``await robot.camera.see()`` finds markers;
+    - ``robot.kch``: the KCH, the Student Robotics HAT on the Raspberry Pi of the 2023+
+      kit, with its user RGB LEDs and start LED (``None`` without one: on any other
+      computer, and on a simulated kit that has none, such as ``sr2019``).
 
     Through :mod:`j5aio.sync` (``from j5aio.sync import KitRobot``), ``robot = KitRobot()``
     finds the boards at once, with no ``async with``, and they are made safe when the
@@ -1077,6 +1080,11 @@ class KitRobot(BaseRobot):
     def camera(self) -> MarkerCamera | None:
         """The ``camera`` of the wrapped object."""
         return cast("MarkerCamera | None", _wrap(self._core.camera))
+
+    @property
+    def kch(self) -> KCHBoard | None:
+        """The ``kch`` of the wrapped object."""
+        return cast("KCHBoard | None", _wrap(self._core.kch))
 
 
 class ArduinoUno(Board):

@@ -42,10 +42,19 @@ class ControlError(ValueError):
 
 def simulator_of(board: Board) -> Any | None:
     """The simulator behind ``board`` on the current simulated kit, or ``None`` (hardware)."""
-    if not type(board.backend).__module__.startswith("j5aio.simulator"):
+    from j5aio.simulator.environment import SIMULATED_BACKENDS
+
+    backend = board.backend
+    # A kind without a simulated backend of its own is found by a subclass of its hardware
+    # backend made for it (named ...Simulated), which lives in the hardware backend's module.
+    if not (
+        type(backend).__module__.startswith("j5aio.simulator")
+        or isinstance(backend, SIMULATED_BACKENDS)
+    ):
         return None
-    for simulator in current_kit():
-        if simulator.serial_number == board.serial_number:
+    kit = current_kit()
+    for simulator in (*kit, *kit.other_simulators()):
+        if getattr(simulator, "serial_number", None) == board.serial_number:
             return simulator
     return None
 
@@ -57,8 +66,11 @@ def controls_of(board: Board, components: list[ComponentInfo]) -> list[dict[str,
         return []
     found: list[dict[str, Any]] = []
     if hasattr(simulator, "press_start"):
-        found.append({"name": "start-button", "type": "button",
-                      "value": bool(simulator.start_button_pressed)})
+        # fw 3 tells whether the button is down; fw 4 whether a press is latched, unread.
+        pressed = getattr(simulator, "start_button_pressed", None)
+        if pressed is None:
+            pressed = any(getattr(simulator, "start_latches", ()))
+        found.append({"name": "start-button", "type": "button", "value": bool(pressed)})
     if hasattr(simulator, "battery_voltage"):
         found.append({"name": "battery-voltage", "type": "number", "min": 0,
                       "max": _MAX_BATTERY_VOLTS, "step": 0.1,

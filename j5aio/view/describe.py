@@ -5,7 +5,10 @@ properties (a component, or a group or mapping of them), and an interface call s
 ``set_motor_state(1, 0.5)`` becomes the value ``0.5`` of the field ``motor_state`` of the
 component ``motor`` number 1 of that board, by the naming rule every interface follows:
 a verb (``get_``, ``set_``, ``read_``, ``write_``), then the field; the component's
-identifier first among the arguments, the written value last.
+identifier first among the arguments, the written value last. One kind has a rule of its
+own: a flashing LED's mode (off, on or flashing) is one value, so switching it on or off
+(``set_led_state``) is shown as its mode ``ON`` / ``OFF``, and a read of whether it is lit
+(which a flashing LED answers "lit") does not stop it showing as flashing.
 """
 
 from __future__ import annotations
@@ -13,7 +16,8 @@ from __future__ import annotations
 import enum
 import functools
 import math
-from collections.abc import Iterable, Mapping
+import re
+from collections.abc import Iterable, Iterator, Mapping
 from datetime import timedelta
 from typing import Any, NamedTuple
 
@@ -26,12 +30,14 @@ __all__ = [
     "Update",
     "board_components",
     "component_id",
+    "component_names",
     "describe_call",
     "jsonable",
     "kind_of",
 ]
 
 _WRITERS = ("set_", "write_")
+_FLASHING = "flashingled"
 _READERS = ("get_", "read_")
 
 
@@ -66,9 +72,8 @@ def component_id(serial: str, info: ComponentInfo) -> str:
     return f"{serial}:{info.kind}:{info.identifier}"
 
 
-def board_components(board: Board) -> list[ComponentInfo]:
-    """Every component a board shows among its public properties, in a stable order."""
-    found: dict[tuple[str, str], ComponentInfo] = {}
+def _properties(board: Board) -> Iterator[tuple[str, object]]:
+    """The board's public properties and their values, by name (those that can be read)."""
     for name in sorted(dir(type(board))):
         if name.startswith("_") or not isinstance(getattr(type(board), name, None), property):
             continue
@@ -76,12 +81,34 @@ def board_components(board: Board) -> list[ComponentInfo]:
             value = getattr(board, name)
         except Exception:  # a property that needs the board to answer: not a component
             continue
+        yield name, value
+
+
+def board_components(board: Board) -> list[ComponentInfo]:
+    """Every component a board shows among its public properties, in a stable order."""
+    found: dict[tuple[str, str], ComponentInfo] = {}
+    for _, value in _properties(board):
         for component in _components_in(value):
             if isinstance(component, DerivedComponent):
                 continue
             info = ComponentInfo(kind_of(type(component)), str(component.identifier))
             found.setdefault((info.kind, info.identifier), info)
     return sorted(found.values(), key=lambda c: (c.kind, _number_first(c.identifier)))
+
+
+def component_names(board: Board) -> dict[ComponentInfo, str]:
+    """The property names of a board's components that have one of their own.
+
+    A component that is a board property by itself (``run_led``, ``start_led``,
+    ``start_button``) is named by it, in words (``"start LED"``); those in groups are not.
+    """
+    names: dict[ComponentInfo, str] = {}
+    for name, value in _properties(board):
+        if isinstance(value, Component) and not isinstance(value, DerivedComponent):
+            info = ComponentInfo(kind_of(type(value)), str(value.identifier))
+            words = re.sub(r"\bled\b", "LED", name.replace("_", " "))
+            names.setdefault(info, words)
+    return names
 
 
 def _number_first(identifier: str) -> tuple[int, str]:
@@ -175,6 +202,8 @@ def describe_call(
         return Update(kind, identifier, field, {"pitch": jsonable(pitch), "seconds": seconds})
     if plan.how == "write" and extra:
         extra, value = extra[:-1], extra[-1]
+        if kind == _FLASHING and field == "led_state" and not extra:
+            return Update(kind, identifier, "led_mode", "ON" if value else "OFF")
     if extra:
         field += "." + ".".join(_label(e) for e in extra)
     return Update(kind, identifier, field, jsonable(value))

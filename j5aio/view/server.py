@@ -28,7 +28,9 @@ from typing import Any, Final, TypeVar
 from aiohttp import WSMsgType, web
 
 from j5aio.boards.board import Board
+from j5aio.simulator.kit import SimulatedKit
 
+from .arena import describe_arena, describe_pose, kit_of
 from .controls import ControlError, apply_control, controls_of
 from .describe import component_id
 from .state import ViewState
@@ -86,6 +88,8 @@ class ViewServer:
         self._ready = threading.Event()
         self._failure: BaseException | None = None
         self.watchers = 0
+        self._kit: SimulatedKit | None = None  # the simulated kit of the boards, if any
+        self._arena: dict[str, Any] | None = None  # how the page draws its arena
 
     @property
     def url(self) -> str:
@@ -196,13 +200,22 @@ class ViewServer:
         """Send one page what changed, every tick. A slow page waits in send: never a queue."""
         value_mark = log_mark = 0
         tick = 0
+        arena_key: str | None = None  # the arena this page has
+        pose: dict[str, Any] | None = None  # the pose this page shows
         try:
             while not ws.closed:
                 message: dict[str, Any] = {"t": time.time()}
-                if tick % BOARDS_EVERY == 0:
-                    boards = await self._boards_if_running()
-                    if boards is not None:
-                        message["boards"] = boards
+                with_boards = tick % BOARDS_EVERY == 0
+                snapshot: dict[str, Any] = {}
+                if with_boards or self._kit is not None:  # else nothing to read in the program
+                    snapshot = await self._snapshot_if_running(with_boards)
+                if "boards" in snapshot:
+                    message["boards"] = snapshot["boards"]
+                arena = snapshot.get("arena")
+                if arena is not None and arena["key"] != arena_key:
+                    message["arena"], arena_key = arena, arena["key"]
+                if snapshot.get("pose") not in (None, pose):
+                    message["pose"] = pose = snapshot["pose"]
                 changes = self._state.changes(value_mark, log_mark)
                 value_mark, log_mark = changes.value_mark, changes.log_mark
                 if changes.values:
@@ -233,11 +246,28 @@ class ViewServer:
         future = asyncio.run_coroutine_threadsafe(call(), loop)
         return await asyncio.wait_for(asyncio.wrap_future(future), CONTROL_TIMEOUT)
 
-    async def _boards_if_running(self) -> list[dict[str, Any]] | None:
+    async def _snapshot_if_running(self, with_boards: bool) -> dict[str, Any]:
         try:
-            return await self._in_program(self._boards)
+            return await self._in_program(lambda: self._snapshot(with_boards))
         except (RuntimeError, TimeoutError):  # the program's loop has ended or is stuck
-            return None
+            return {}
+
+    def _snapshot(self, with_boards: bool) -> dict[str, Any]:
+        """The boards (if asked), and the simulated arena and pose, read in the program."""
+        snapshot: dict[str, Any] = {}
+        if with_boards:
+            snapshot["boards"] = self._boards()
+            kit = kit_of(record.board for record in self._state.boards())
+            if kit is not self._kit:
+                self._kit, self._arena = kit, None if kit is None else describe_arena(kit)
+        kit = self._kit
+        if kit is not None:
+            from j5aio.simulator.camera import update_world
+
+            update_world(kit)  # to now, at the motors' powers: the page sees it move
+            snapshot["arena"] = self._arena
+            snapshot["pose"] = describe_pose(kit)
+        return snapshot
 
     def _boards(self) -> list[dict[str, Any]]:
         shown = []
@@ -264,7 +294,7 @@ class ViewServer:
                 "simulated": bool(controls),
                 "components": [
                     {"id": component_id(board.serial_number, c), "kind": c.kind,
-                     "identifier": c.identifier}
+                     "identifier": c.identifier, "name": record.names.get(c)}
                     for c in record.components
                 ],
                 "controls": controls,

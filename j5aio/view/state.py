@@ -27,7 +27,13 @@ from j5aio.backends.hardware.transports.trace import TRACE, WIRE_LOGGER_PREFIX
 from j5aio.boards.board import Board
 from j5aio.errors import CommunicationError
 
-from .describe import ComponentInfo, board_components, component_id, describe_call
+from .describe import (
+    ComponentInfo,
+    board_components,
+    component_id,
+    component_names,
+    describe_call,
+)
 
 __all__ = ["WIRE_LOG_LINES", "BoardRecord", "Changes", "ViewState"]
 
@@ -46,6 +52,8 @@ class BoardRecord:
     components: list[ComponentInfo]
     closed: bool = False
     known: set[ComponentInfo] = field(default_factory=set)
+    #: The names of the components that are board properties of their own ("start LED").
+    names: dict[ComponentInfo, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self.known.update(self.components)
@@ -152,7 +160,7 @@ class ViewState:
     def _add(self, board: Board) -> BoardRecord:
         record = self._records.get(board.serial_number)
         if record is None or record.board is not board:
-            record = BoardRecord(board, board_components(board))
+            record = BoardRecord(board, board_components(board), names=component_names(board))
             self._records[board.serial_number] = record
         record.closed = False
         self._by_backend[board.backend] = record
@@ -184,11 +192,14 @@ class ViewState:
         self._digest()
         with self._lock:
             if self._last_seq > value_mark:
-                values = [
-                    (cid, name, value)
+                # In the order they were stored: a page applies them in turn, so the newer
+                # of two fields of one component (a LED's mode, then its state) wins.
+                fresh = sorted(
+                    (seq, cid, name, value)
                     for (cid, name), (seq, value) in self._values.items()
                     if seq > value_mark
-                ]
+                )
+                values = [(cid, name, value) for _, cid, name, value in fresh]
             else:
                 values = []
             lines = [(port, text) for seq, port, text in self._log if seq > log_mark]

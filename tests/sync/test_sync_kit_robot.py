@@ -27,7 +27,7 @@ def test_sync_kit_robot_is_generated_from_the_core_one() -> None:
 
     assert issubclass(KitRobot, BaseRobot)
     assert core_class_of(KitRobot) is CoreKitRobot
-    for name in ("power_board", "motor_boards", "servo_boards", "arduinos", "ruggeduinos"):
+    for name in ("power_board", "motor_boards", "servo_boards", "arduinos", "ruggeduinos", "kch"):
         assert isinstance(getattr(KitRobot, name), property), name
 
 
@@ -49,6 +49,21 @@ def test_kit_robot_drives_the_simulated_kit(tmp_path: Path) -> None:
     lines = result.stdout.split("\n")
     assert lines[0].endswith(" 0.25")
     assert lines[1:4] == ["True", "True", "ANALOGUE_INPUT"]
+
+
+def test_the_sync_kit_robot_lights_the_kch_of_the_sr2023_kit(tmp_path: Path) -> None:
+    result = run_program(
+        "from j5aio.sync import KitRobot, KCHBoard\n"
+        "from j5aio.boards.sr.kch import Colour\n"
+        "from j5aio.simulator.kit import current_kit\n"
+        "robot = KitRobot()\n"
+        "assert isinstance(robot.kch, KCHBoard)\n"
+        "robot.kch.leds[0].colour = Colour.BLUE\n"
+        "print(current_kit().simulators('kch')[0].colours[0])\n",
+        tmp_path, J5AIO_ENV="sim", J5AIO_KIT="sr2023",
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split("\n")[0] == "(False, False, True)"
 
 
 def test_a_student_subclass_adds_its_own_names(tmp_path: Path) -> None:

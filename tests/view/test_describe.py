@@ -20,6 +20,7 @@ from j5aio.view.describe import (
     Update,
     board_components,
     component_id,
+    component_names,
     describe_call,
     jsonable,
 )
@@ -108,3 +109,38 @@ def test_values_as_json() -> None:
     assert jsonable(timedelta(milliseconds=1500)) == 1.5
     assert jsonable((1, MotorSpecialState.COAST)) == [1, "COAST"]
     assert jsonable(object()).startswith("<object")
+
+
+def test_a_flashing_leds_state_is_shown_as_its_mode() -> None:
+    kch = object.__new__(KCHBoard)
+    assert describe_call(kch, "set_led_state", (0, True), None) == (
+        Update("flashingled", "0", "led_mode", "ON")
+    )
+    assert describe_call(kch, "set_led_state", (0, False), None) == (
+        Update("flashingled", "0", "led_mode", "OFF")
+    )
+    # A read of whether it is lit (a flashing LED is) is not its mode.
+    assert describe_call(kch, "get_led_state", (0,), True) == (
+        Update("flashingled", "0", "led_state", True)
+    )
+    assert describe_call(kch, "get_led_mode", (0,), LEDMode.FLASH) == (
+        Update("flashingled", "0", "led_mode", "FLASH")
+    )
+
+
+async def test_the_kch_of_the_sr2023_kit_and_its_named_components() -> None:
+    use_kit("sr2023")
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+        assert robot.kch is not None
+        assert board_components(robot.kch) == [
+            ComponentInfo("flashingled", "0"),
+            ComponentInfo("rgbled", "0"),
+            ComponentInfo("rgbled", "1"),
+            ComponentInfo("rgbled", "2"),
+        ]
+        # Components that are board properties of their own are named by them, in words.
+        assert component_names(robot.kch) == {ComponentInfo("flashingled", "0"): "start LED"}
+        names = component_names(robot.power_board)
+        assert names[ComponentInfo("flashingled", "0")] == "run LED"
+        assert names[ComponentInfo("flashingled", "1")] == "error LED"
+        assert names[ComponentInfo("button", "0")] == "start button"

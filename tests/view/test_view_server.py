@@ -29,7 +29,7 @@ from j5aio.view import (
     view_requested,
 )
 from j5aio.view.controls import ControlError, apply_control, controls_of
-from j5aio.view.describe import board_components
+from j5aio.view.describe import ComponentInfo, board_components
 from j5aio.view.state import ViewState
 
 
@@ -266,3 +266,72 @@ async def test_start_view_options(
     assert not view_requested()
     monkeypatch.setenv("J5AIO_VIEW", "1")
     assert view_requested()
+
+
+async def test_the_kch_and_the_fw4_boards_of_the_sr2023_kit() -> None:
+    from j5aio.boards.sr.kch import Colour
+
+    kit = use_kit("sr2023")
+    state = ViewState()
+    CALL_OBSERVERS.append(state)
+    try:
+        async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+            kch = robot.kch
+            assert kch is not None
+            await kch.leds[1].set_colour(Colour.CYAN)
+            await kch.start_led.flash()
+            values = state.changes(0, 0).values
+            for channel, duty in (("red", 0.0), ("green", 1.0), ("blue", 1.0)):
+                assert ("SIMKCH0:rgbled:1", f"rgb_led_channel_duty_cycle.{channel}", duty) in (
+                    values
+                )
+            assert ("SIMKCH0:flashingled:0", "led_mode", "FLASH") in values
+            # Switched on after flashing: the newer value comes later, so the page ends
+            # with it.
+            await kch.start_led.set_state(True)
+            await kch.start_led.flash()
+            await kch.start_led.set_state(False)
+            modes = [v for c, f, v in state.changes(0, 0).values if f == "led_mode"]
+            assert modes == ["OFF"]  # one value per field: the newest
+            record = next(r for r in state.boards() if r.board is kch)
+            assert record.names[ComponentInfo("flashingled", "0")] == "start LED"
+
+            # The sr2023 boards are simulated: their controls are offered, through the fw 4
+            # simulators' API; the KCH is simulated but has nothing to poke.
+            power = robot.power_board
+            names = [c["name"] for c in controls_of(power, board_components(power))]
+            assert names == ["start-button", "battery-voltage", "plug"]
+            apply_control(power, "start-button", True)
+            assert controls_of(power, board_components(power))[0]["value"] is True
+            assert await power.start_button.get_is_pressed()
+            assert controls_of(kch, board_components(kch)) == []
+            assert kit.simulators("kch")
+    finally:
+        CALL_OBSERVERS.remove(state)
+
+
+async def test_the_arena_is_sent_once_and_the_pose_as_it_moves() -> None:
+    async with (
+        kit_and_view(KitConfig(1, 1, 0, 0, 0)) as (robot, kit, view),
+        aiohttp.ClientSession() as session,
+        session.ws_connect(ws_url(view)) as ws,
+    ):
+        first = await messages_until(ws, lambda m: "arena" in m)
+        assert first["arena"]["key"] == kit.name
+        assert len(first["arena"]["markers"]) == len(kit.world.arena.markers)
+        start = first["pose"]
+        assert (start["x"], start["y"]) == (kit.world.pose.x, kit.world.pose.y)
+        assert start["camera"] is not None
+
+        # The motors drive the robot: the page is sent the pose as it moves, and the arena
+        # is not sent again.
+        left, right = robot.motor_boards[0].motors
+        await left.set_power(0.8)
+        await right.set_power(0.8)
+        moved = await messages_until(
+            ws, lambda m: "arena" in m or ("pose" in m and m["pose"]["y"] > start["y"] + 50)
+        )
+        assert "arena" not in moved
+        assert moved["pose"]["x"] == pytest.approx(start["x"], abs=1)
+        await left.set_power(0)
+        await right.set_power(0)

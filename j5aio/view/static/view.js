@@ -4,18 +4,22 @@
 // show their fields as text, so new boards appear without new code here.
 
 const WINDOW_S = 30;
-const BOARD_ORDER = ["PowerBoard", "MotorBoard", "ServoBoard", "ServoBoardFw4", "SBServoBoard",
-  "SBArduinoBoard", "Ruggeduino", "KCHBoard"];
-const KIND_TITLES = { motor: "Motors", poweroutput: "Power outputs", led: "LEDs", rgbled: "RGB LEDs",
+const BOARD_ORDER = ["PowerBoard", "PowerBoardFw4", "MotorBoard", "MotorBoardFw4", "ServoBoard",
+  "ServoBoardFw4", "SBServoBoard", "SBArduinoBoard", "SBArduino2024Board", "Ruggeduino",
+  "SRArduinoBoard", "KCHBoard", "CameraBoard"];
+const KIND_TITLES = { motor: "Motors", monitoredmotor: "Motors",
+  protectedpoweroutput: "Power outputs", markercamera: "Camera", poweroutput: "Power outputs", led: "LEDs", rgbled: "RGB LEDs",
   servo: "Servos", pulseservo: "Servos", gpiopin: "GPIO pins", batterysensor: "Battery",
   piezo: "Piezo", button: "Start button", ultrasoundsensor: "Ultrasound", supplysensor: "Supply",
   flashingled: "Flashing LEDs", flag: "Flags" };
-const KIND_ORDER = ["batterysensor", "button", "poweroutput", "motor", "servo", "pulseservo",
+const KIND_ORDER = ["batterysensor", "button", "poweroutput", "protectedpoweroutput", "motor",
+  "monitoredmotor", "servo", "pulseservo",
   "led", "rgbled", "flashingled", "piezo", "gpiopin", "ultrasoundsensor"];
-const PRIMARY = { motor: "motor_state", led: "led_state", poweroutput: "power_output_enabled",
+const PRIMARY = { motor: "motor_state", monitoredmotor: "motor_state",
+  protectedpoweroutput: "power_output_enabled", led: "led_state", poweroutput: "power_output_enabled",
   batterysensor: "battery_sensor_voltage", servo: "servo_position", button: "button_state",
   ultrasoundsensor: "ultrasound_distance", piezo: "note", pulseservo: "servo_pulse_width",
-  flashingled: "led_flashing", flag: "flag_state", supplysensor: "supply_voltage" };
+  flashingled: "led_mode", flag: "flag_state", supplysensor: "supply_voltage" };
 const COLOURS = ["#206bc4", "#d63939", "#2fb344", "#f59f00", "#ae3ec9", "#0ca678", "#4263eb",
   "#e8590c", "#74b816", "#1098ad", "#c2255c", "#495057"];
 
@@ -67,6 +71,8 @@ function receive(message) {
   if (message.boards) showBoards(message.boards);
   for (const [cid, field, value] of message.values || []) setValue(cid, field, value, now);
   for (const [port, line] of message.log || []) addLogLine(port, line);
+  if (message.arena) showArena(message.arena);
+  if (message.pose) showPose(message.pose);
 }
 
 // ---------------------------------------------------------------- boards
@@ -105,7 +111,7 @@ function makeBoard(board) {
   const pre = el("pre", { "data-wire-log": board.serial });
   const log = el("details", {}, el("summary", { text: "Wire log" }), pre);
   section.append(groups, controls, log);
-  return { section, state, firmware, groups, groupOf: new Map(), controls, controlOf: new Map(), log: pre };
+  return { type: board.type, section, state, firmware, groups, groupOf: new Map(), controls, controlOf: new Map(), log: pre };
 }
 
 function ensureTile(shown, c) {
@@ -123,6 +129,7 @@ function ensureTile(shown, c) {
   const tile = el("div", { class: `comp kind-${c.kind} unknown`, "data-component": c.id, "data-value": "" });
   tile.kind = c.kind;
   tile.identifier = c.identifier;
+  tile.name = c.name || (shown.type === "KCHBoard" && c.kind === "rgbled" ? `LED ${"ABC"[c.identifier] ?? c.identifier}` : null);
   tiles.set(c.id, tile);
   group.append(tile);
   draw(tile, { fields: {}, last: null });
@@ -149,6 +156,7 @@ function setValue(cid, field, value, now) {
 }
 
 function label(tile) {
+  if (tile.name) return tile.name[0].toUpperCase() + tile.name.slice(1);
   const titles = { batterysensor: "Battery", button: "Start", piezo: "Piezo", ultrasoundsensor: "Sensor" };
   const name = titles[tile.kind] || (KIND_TITLES[tile.kind] || tile.kind).replace(/s$/, "");
   return `${name} ${tile.identifier}`;
@@ -157,7 +165,8 @@ function label(tile) {
 function draw(tile, entry) {
   const f = entry.fields;
   const primary = PRIMARY[tile.kind] && PRIMARY[tile.kind] in f ? PRIMARY[tile.kind] : entry.last;
-  tile.dataset.value = primary === null ? "" : valueText(f[primary]);
+  const text = VALUE_TEXT[tile.kind];
+  tile.dataset.value = text ? text(f) : primary === null ? "" : valueText(f[primary]);
   const body = [el("span", { class: "label", text: label(tile) })];
   const renderer = RENDERERS[tile.kind] || renderFields;
   body.push(...renderer(f, tile));
@@ -174,8 +183,8 @@ function gauge(v) {
   return el("div", { class: "gauge" }, el("div", { class: "mid" }), fill);
 }
 
-function dot(lit, colour) {
-  const d = el("span", { class: lit ? "dot lit" : "dot" });
+function dot(lit, colour, flashing = false) {
+  const d = el("span", { class: (lit ? "dot lit" : "dot") + (flashing ? " flash" : "") });
   if (lit && colour) { d.style.background = colour; d.style.boxShadow = `0 0 6px ${colour}`; }
   return d;
 }
@@ -185,6 +194,28 @@ function renderFields(f) {
   if (!keys.length) return [el("span", { class: "text", text: "—" })];
   return keys.map((k) => el("div", { class: "text", "data-field": k, text: `${k.replace(/_/g, " ")}: ${fmt(f[k])}` }));
 }
+
+// An RGB LED's channels as 0-255 (a channel not yet set or read is dark).
+function rgbOf(f) {
+  return ["red", "green", "blue"].map((name) => Math.round(255 * (f[`rgb_led_channel_duty_cycle.${name}`] || 0)));
+}
+const COLOUR_NAMES = { "0,0,0": "off", "255,0,0": "red", "255,255,0": "yellow", "0,255,0": "green",
+  "0,255,255": "cyan", "0,0,255": "blue", "255,0,255": "magenta", "255,255,255": "white" };
+// A flashing LED's mode: ON, OFF or FLASH (from whether it is lit, before any mode was set).
+function ledMode(f) {
+  if (f.led_mode !== undefined) return f.led_mode;
+  return f.led_state === undefined ? undefined : f.led_state ? "ON" : "OFF";
+}
+// data-value of the kinds whose value is made of several fields.
+const VALUE_TEXT = {
+  rgbled(f) {
+    const rgb = rgbOf(f);
+    return COLOUR_NAMES[rgb.join(",")] || `rgb(${rgb.join(", ")})`;
+  },
+  flashingled(f) {
+    return ledMode(f) ?? "";
+  },
+};
 
 const RENDERERS = {
   motor(f) {
@@ -201,12 +232,15 @@ const RENDERERS = {
     return [dot(v === true), el("span", { class: "text", text: v === undefined ? "—" : v ? "on" : "off" })];
   },
   rgbled(f) {
-    const c = (name) => Math.round(255 * (f[`rgb_led_channel_duty_cycle.${name}`] || 0));
-    const colour = `rgb(${c("red")}, ${c("green")}, ${c("blue")})`;
-    return [dot(true, colour), el("span", { class: "text", text: colour })];
+    const [r, g, b] = rgbOf(f);
+    const lit = r + g + b > 0;
+    return [dot(lit, `rgb(${r}, ${g}, ${b})`), el("span", { class: "text", text: VALUE_TEXT.rgbled(f) })];
   },
-  flashingled(f) {
-    return [dot(f.led_flashing === true, "#f59f00"), el("span", { class: "text", text: f.led_flashing ? "flashing" : "steady" })];
+  flashingled(f, tile) {
+    const mode = ledMode(f);
+    const colour = /error/.test(tile.name || "") ? "#d63939" : /run/.test(tile.name || "") ? "#2fb344" : "#f59f00";
+    const text = { FLASH: "flashing", ON: "on", OFF: "off" }[mode] || "—";
+    return [dot(mode === "ON" || mode === "FLASH", colour, mode === "FLASH"), el("span", { class: "text", text })];
   },
   poweroutput(f) {
     const on = f.power_output_enabled;
@@ -240,6 +274,10 @@ const RENDERERS = {
     return [el("span", { class: "text", text: `${mode ? String(mode).replace(/_/g, " ").toLowerCase() : "—"}${parts.length ? " · " + parts.join(" ") : ""}` })];
   },
 };
+
+// The fw 4 boards' motors and outputs also report currents: drawn as the older ones are.
+RENDERERS.monitoredmotor = RENDERERS.motor;
+RENDERERS.protectedpoweroutput = RENDERERS.poweroutput;
 
 // ---------------------------------------------------------------- plots
 function record(cid, tile, field, value, now) {
@@ -288,6 +326,73 @@ function drawPlot(name, low, high) {
   }
 }
 setInterval(() => { drawPlot("power", -1, 1); drawPlot("analogue", 0, 5); }, 100);
+
+// ---------------------------------------------------------------- the simulated arena
+// Drawn from above in the arena's own units (mm); the world's y points north, the SVG's down.
+const SVG_NS = "http://www.w3.org/2000/svg";
+let arena = null;  // {length, robot, fov, body, nose}
+
+function svg(tag, attrs = {}, text = null) {
+  const node = document.createElementNS(SVG_NS, tag);
+  for (const [k, v] of Object.entries(attrs)) node.setAttribute(k, v);
+  if (text !== null) node.textContent = text;
+  return node;
+}
+
+function showArena(a) {
+  const figure = document.getElementById("arena-figure");
+  const root = document.getElementById("arena");
+  const Y = (y) => a.length - y;
+  const margin = 250;
+  root.setAttribute("viewBox", `${-margin} ${-margin} ${a.width + 2 * margin} ${a.length + 2 * margin}`);
+  root.dataset.width = String(a.width);
+  root.dataset.length = String(a.length);
+  const clip = svg("clipPath", { id: "arena-clip" }, null);
+  clip.append(svg("rect", { x: 0, y: 0, width: a.width, height: a.length }));
+  const parts = [svg("defs"), svg("rect", { class: "floor", x: 0, y: 0, width: a.width, height: a.length })];
+  parts[0].append(clip);
+  for (const m of a.markers) {
+    // The marker lies along its wall: across the way it faces.
+    const dx = -Math.sin(m.facing) * m.size / 2, dy = Math.cos(m.facing) * m.size / 2;
+    const g = svg("g", { "data-marker": String(m.id) });
+    g.append(svg("line", { class: "marker", x1: m.x - dx, y1: Y(m.y - dy), x2: m.x + dx, y2: Y(m.y + dy) }));
+    g.append(svg("text", { x: m.x + Math.cos(m.facing) * 170, y: Y(m.y + Math.sin(m.facing) * 170) }, String(m.id)));
+    parts.push(g);
+  }
+  for (const t of a.tokens) {
+    const g = svg("g", { "data-token": String(t.id), transform: `translate(${t.x} ${Y(t.y)})` });
+    g.append(svg("rect", { class: "token", x: -t.side / 2, y: -t.side / 2, width: t.side, height: t.side,
+      transform: `rotate(${-t.heading * 180 / Math.PI})` }));
+    g.append(svg("text", { class: "token-label", y: -t.side / 2 - 90 }, String(t.id)));
+    parts.push(g);
+  }
+  const fov = svg("polygon", { class: "fov", "clip-path": "url(#arena-clip)" });
+  const robot = svg("g", { "data-robot": "", "data-pose": "" });
+  const body = svg("circle", { class: "body", cx: 0, cy: 0, r: a.robot.radius });
+  const nose = svg("line", { class: "nose", x1: 0, y1: 0, x2: a.robot.radius, y2: 0 });
+  robot.append(body, nose);
+  parts.push(fov, robot);
+  root.replaceChildren(...parts);
+  arena = { length: a.length, width: a.width, robot, fov };
+  figure.hidden = false;
+}
+
+function showPose(p) {
+  if (!arena) return;
+  const Y = (y) => arena.length - y;
+  const degrees = p.heading * 180 / Math.PI;
+  arena.robot.setAttribute("transform", `translate(${p.x} ${Y(p.y)}) rotate(${-degrees})`);
+  arena.robot.dataset.pose = `${Math.round(p.x)},${Math.round(p.y)},${degrees.toFixed(1)}`;
+  const c = p.camera;
+  if (c) {
+    const reach = 2 * Math.max(arena.width, arena.length);  // clipped at the walls
+    const edge = (angle) => `${c.x + reach * Math.cos(angle)},${Y(c.y + reach * Math.sin(angle))}`;
+    arena.fov.setAttribute("points", `${c.x},${Y(c.y)} ${edge(c.left)} ${edge(c.right)}`);
+  }
+  arena.fov.style.display = c ? "" : "none";
+  document.getElementById("pose-text").textContent =
+    `robot at x ${(p.x / 1000).toFixed(2)} m, y ${(p.y / 1000).toFixed(2)} m, heading ${degrees.toFixed(0)}°`;
+}
 
 // ---------------------------------------------------------------- wire log
 function addLogLine(port, line) {
