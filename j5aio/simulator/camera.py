@@ -322,7 +322,7 @@ def update_world(kit: SimulatedKit, now: float | None = None) -> None:
     powers = []
     for board_index, motor_index in (drive.left, drive.right):
         try:
-            powers.append(kit.motor_boards[board_index].motors[motor_index].power)
+            powers.append(kit.drive_motor_boards[board_index].motors[motor_index].power)
         except IndexError:
             powers.append(0.0)
     kit.world.update(time.monotonic() if now is None else now, powers[0], powers[1])

@@ -34,6 +34,7 @@ from .arena import SimulatedWorld
 from .base import SerialBoardSimulator, UsbBoardSimulator
 from .sb_arduino_2019 import SBArduinoSimulator
 from .sr_motor_fw3 import SRMotorBoardFw3Simulator
+from .sr_motor_fw4 import SRMotorBoardFw4Simulator
 from .sr_power_fw3 import SRPowerBoardFw3Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from .sr_servo_fw2 import SRServoBoardFw2Simulator
@@ -256,6 +257,20 @@ class SimulatedKit:
     def motor_boards(self) -> tuple[SRMotorBoardFw3Simulator, ...]:
         """The simulated motor boards."""
         return tuple(sim for sim in self._all() if isinstance(sim, SRMotorBoardFw3Simulator))
+
+    @property
+    def drive_motor_boards(self) -> tuple[SRMotorBoardFw3Simulator | SRMotorBoardFw4Simulator, ...]:
+        """Every simulated motor board, firmware 3 or 4, in the order a robot sees them.
+
+        Each has ``motors[i].power``, the signed duty the board drives: the simulated world
+        moves the robot by these (:func:`j5aio.simulator.camera.update_world`).
+        """
+        boards = (
+            sim
+            for sim in self._all()
+            if isinstance(sim, SRMotorBoardFw3Simulator | SRMotorBoardFw4Simulator)
+        )
+        return tuple(sorted(boards, key=lambda sim: sim.serial_number))
 
     @property
     def servo_boards(self) -> tuple[SRServoBoardFw2Simulator, ...]:

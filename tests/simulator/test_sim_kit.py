@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+import time
 from collections.abc import Iterator
 
 import pytest
@@ -117,3 +119,27 @@ def test_use_kit_replaces_the_current_kit() -> None:
 def test_use_kit_refuses_other_things() -> None:
     with pytest.raises(TypeError, match=r"use_kit takes a KitConfig, .* SimulatedKit, not dict"):
         use_kit({"motor_boards": 1})  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("kit_name", ["sr2019", "sr2023", "sb2024"])
+async def test_the_world_moves_by_the_motor_boards_of_every_generation(kit_name: str) -> None:
+    from j5aio.kit import KitRobot
+    from j5aio.simulator.arena import Pose
+    from j5aio.simulator.camera import update_world
+    from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+
+    kit = use_kit(kit_name)
+    assert len(kit.drive_motor_boards) == 1 if kit_name != "sr2019" else 2
+    kit.world.place_robot(Pose(2875.0, 1000.0, 0.0))
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+        motors = robot.motor_boards[0].motors
+        await motors[0].set_power(0.5)
+        await motors[1].set_power(0.5)
+        assert [m.power for m in kit.drive_motor_boards[0].motors] == [0.5, 0.5]
+        now = time.monotonic()
+        update_world(kit, now=now)
+        update_world(kit, now=now + 1.0)  # one second at half power, straight ahead
+        await motors[0].set_power(0)
+        await motors[1].set_power(0)
+    moved = math.dist((kit.world.pose.x, kit.world.pose.y), (2875.0, 1000.0))
+    assert moved > 0.4 * kit.world.drive.max_speed
