@@ -166,7 +166,10 @@ class SerialLink(AsyncResource):
         if chunk_size < 1:
             raise ValueError(f"chunk_size must be at least 1, not {chunk_size}")
         self._chunk_size = chunk_size
-        self._lock = anyio.Lock()
+        # Uncontended, the lock is taken without yielding to the event loop: every
+        # exchange waits for its reply anyway, and a yield before the request goes out
+        # would only delay it (by a whole turn of the loop on a busy machine).
+        self._lock = anyio.Lock(fast_acquire=True)
         self._buffer = bytearray()
         self._dirty = False
         self._closed = False
