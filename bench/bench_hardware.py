@@ -145,7 +145,8 @@ class RoundTrips:
 
     def figure(self, side: str, which: int) -> float:
         """The median over the repeats of p50 (``which`` 0) or p95 (1), in microseconds."""
-        return statistics.median(item[which] for item in getattr(self, side))
+        items: list[tuple[float, float]] = self.raw if side == "raw" else self.ours
+        return statistics.median(item[which] for item in items)
 
 
 def bench_round_trip(path: str, requests: int, repeats: int) -> RoundTrips:
@@ -156,7 +157,7 @@ def bench_round_trip(path: str, requests: int, repeats: int) -> RoundTrips:
                 times = raw_pyserial_round_trips(path, requests)
             else:
                 times = anyio.run(j5aio_round_trips, path, requests)
-            getattr(trips, side).append(percentiles_us(times))
+            (trips.raw if side == "raw" else trips.ours).append(percentiles_us(times))
             time.sleep(0.05)  # let the pty server see the port close before it reopens
     return trips
 
