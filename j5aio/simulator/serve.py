@@ -38,6 +38,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import logging
+import math
 import os
 import select
 import threading
@@ -49,7 +50,7 @@ from typing import Self
 
 from j5aio.backends.hardware.transports.memory import SerialSimulatorLike
 
-__all__ = ["OPEN_SETTLE_TIME", "PtyServer", "serve_on_pty"]
+__all__ = ["OPEN_SETTLE_TIME", "PtyServer", "reply_due", "serve_on_pty"]
 
 LOGGER = logging.getLogger(__name__)
 
@@ -58,6 +59,12 @@ OPEN_SETTLE_TIME = 0.05
 
 #: How often, in seconds, the server looks whether a program has opened the port.
 _IDLE_POLL_INTERVAL = 0.01
+
+#: The longest wait of the server thread with nothing due, in seconds.
+_IDLE_WAIT = 0.1
+
+#: Descriptors below this number can be waited on with ``select`` (its ``FD_SETSIZE``).
+_SELECT_LIMIT = 1024
 
 _NOTHING_TO_READ = frozenset({errno.EAGAIN, errno.EWOULDBLOCK, errno.EIO})
 
@@ -268,11 +275,27 @@ class PtyServer:
             return
         if not self._port_open:
             self._port_opened()
-        poller.modify(self._master, select.POLLIN | (select.POLLOUT if self._due() else 0))
-        for fd, events in poller.poll(self._poll_timeout_ms()):
-            if fd == self._master and events & select.POLLIN:
-                self._read_master()
+        if self._wait_for_input(poller):
+            self._read_master()
         self._write_due()
+
+    def _wait_for_input(self, poller: select.poll) -> bool:
+        """Wait until input comes, output is due or close() is called; True if input came.
+
+        ``select`` waits to the microsecond, so a reply goes out when it is due rather than
+        at the next whole millisecond (``poll`` and ``epoll`` round their timeouts up to
+        milliseconds). Descriptors beyond ``select``'s limit fall back to ``poll``.
+        """
+        writing = self._due()
+        timeout = self._wait_time()
+        if max(self._master, self._wake_read) < _SELECT_LIMIT:
+            readable, _, _ = select.select(
+                [self._master, self._wake_read], [self._master] if writing else [], [], timeout
+            )
+            return self._master in readable
+        poller.modify(self._master, select.POLLIN | (select.POLLOUT if writing else 0))
+        events = dict(poller.poll(math.ceil(timeout * 1000)))
+        return bool(events.get(self._master, 0) & select.POLLIN)
 
     def _master_hung_up(self) -> bool:
         probe = select.poll()
@@ -303,23 +326,24 @@ class PtyServer:
             raise  # pragma: no cover - an unexpected failure, logged by _run
         if not data or not self._simulator.connected:
             return
+        arrived = time.monotonic() + len(data) * self._seconds_per_byte
         response = self._simulator.receive(data)
         if response:
-            wire_time = (len(data) + len(response)) * self._seconds_per_byte
-            # Never overtake earlier output (the boot banner, say), as on a real wire.
-            due = max(
-                time.monotonic() + wire_time, self._pending[-1][0] if self._pending else 0.0,
+            due = reply_due(
+                arrived,
+                len(response) * self._seconds_per_byte,
+                self._pending[-1][0] if self._pending else 0.0,
             )
             self._pending.append((due, response))
 
     def _due(self) -> bool:
         return bool(self._pending) and self._pending[0][0] <= time.monotonic()
 
-    def _poll_timeout_ms(self) -> int:
+    def _wait_time(self) -> float:
+        """Seconds until the next output is due, at most :data:`_IDLE_WAIT`."""
         if not self._pending:
-            return 100
-        wait = self._pending[0][0] - time.monotonic()
-        return max(0, min(100, int(wait * 1000) + 1))
+            return _IDLE_WAIT
+        return max(0.0, min(_IDLE_WAIT, self._pending[0][0] - time.monotonic()))
 
     def _write_due(self) -> None:
         while self._due():
@@ -336,6 +360,18 @@ class PtyServer:
             if written < len(chunk):
                 self._pending.appendleft((due, chunk[written:]))
                 return
+
+
+def reply_due(arrived: float, sending_time: float, line_free_at: float) -> float:
+    """Return when the last byte of a reply reaches the program, as on a real UART.
+
+    The board answers once the request has reached it (``arrived``: the time it was
+    written plus its own time on the wire); the reply then takes ``sending_time`` on the
+    wire, starting no sooner than the board's transmit line is free of earlier output
+    (``line_free_at``; the boot banner, an earlier reply), which it never overtakes. A
+    board without UART timing has zero times, so it answers at once.
+    """
+    return max(arrived, line_free_at) + sending_time
 
 
 def serve_on_pty(

@@ -16,7 +16,8 @@ import serial
 
 pytest.importorskip("termios", reason="pseudo-terminals exist on POSIX systems only")
 
-from j5aio.simulator.serve import OPEN_SETTLE_TIME, PtyServer, serve_on_pty
+from j5aio.simulator import serve
+from j5aio.simulator.serve import OPEN_SETTLE_TIME, PtyServer, reply_due, serve_on_pty
 
 
 class FakeSimulator:
@@ -365,3 +366,28 @@ async def test_a_killed_and_restarted_simulator_at_the_same_link_serves_the_same
         if process.poll() is None:
             _stop(process)
     assert not link.exists()
+
+
+@pytest.mark.parametrize("uart_timing", [False, True])
+def test_the_poll_fallback_for_descriptors_beyond_select_serves_alike(
+    monkeypatch: pytest.MonkeyPatch, uart_timing: bool
+) -> None:
+    monkeypatch.setattr(serve, "_SELECT_LIMIT", 0)  # as if every descriptor were >= 1024
+    simulator = FakeSimulator(boot=b"")
+    with serve_on_pty(simulator, uart_timing=uart_timing) as server, open_port(
+        server.path
+    ) as port:
+        wait_for(lambda: server.opened_count == 1)
+        for request in (b"a", b"bc"):
+            port.write(request)
+            assert port.read(3 + len(request)) == b"ok:" + request
+
+
+def test_a_reply_is_due_once_the_request_has_arrived_and_the_line_is_free() -> None:
+    # An instant board (no UART timing: zero wire times) answers as the request comes.
+    assert reply_due(5.0, 0.0, 0.0) == 5.0
+    # The request arrived at 5.0; the reply takes 2 on the wire.
+    assert reply_due(5.0, 2.0, 0.0) == 7.0
+    assert reply_due(5.0, 2.0, 4.5) == 7.0  # earlier output done before: no matter
+    # Earlier output (a banner, a reply) still on the line until 6.0: the reply follows it.
+    assert reply_due(5.0, 2.0, 6.0) == 8.0

@@ -476,6 +476,7 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         timeout: float | None = None,
         *,
         idempotent: bool = True,
+        when_dirty: Callable[[], tuple[bytes, ReplyReader[T]]] | None = None,
     ) -> T: ...
 
     @overload
@@ -487,6 +488,7 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         *,
         then: Callable[[T], U],
         idempotent: bool = True,
+        when_dirty: Callable[[], tuple[bytes, ReplyReader[T]]] | None = None,
     ) -> U: ...
 
     async def _exchange(
@@ -497,18 +499,25 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         *,
         then: Callable[[T], object] | None = None,
         idempotent: bool = True,
+        when_dirty: Callable[[], tuple[bytes, ReplyReader[T]]] | None = None,
     ) -> object:
         """Send ``request`` and return the reply (or ``then(reply)``); see the link.
 
         ``then`` runs once the reply has arrived, even for a cancelled caller: update
         caches there. ``idempotent`` says whether the request may be sent again after
-        the board vanished and came back (see :mod:`.reconnect`).
+        the board vanished and came back (see :mod:`.reconnect`). ``when_dirty`` gives
+        the tagged request and its correlating reader, used instead only while a late
+        reply may be on its way (see :meth:`.SerialLink.exchange`).
         """
 
         async def call() -> object:
             if then is None:
-                return await self._link.exchange(request, reader, timeout=timeout)
-            return await self._link.exchange(request, reader, timeout=timeout, then=then)
+                return await self._link.exchange(
+                    request, reader, timeout=timeout, when_dirty=when_dirty
+                )
+            return await self._link.exchange(
+                request, reader, timeout=timeout, then=then, when_dirty=when_dirty
+            )
 
         try:
             return await self._guarded(call, idempotent=idempotent)

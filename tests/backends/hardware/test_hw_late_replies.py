@@ -35,16 +35,21 @@ async def test_sb_arduino_skips_a_reply_that_arrives_after_its_request_timed_out
 ) -> None:
     sim = SBArduinoSimulator("A1")
     faulty = FaultyStream(SimulatorStream(sim, time_scale=0))
-    board = await QuickSBArduino.from_stream(faulty, port="sim", serial_number="A1")
+    recording = RecordingStream(faulty)
+    board = await QuickSBArduino.from_stream(recording, port="sim", serial_number="A1")
     await board.setup()
     sim.set_input_level(2, True)
     sim.set_input_level(3, False)
     faulty.delay_next_reply(TIMEOUT + late_by)
+    recording.clear()
     with pytest.raises(CommunicationTimeoutError):
         await board.pins[2].digital_read()
-    # The HIGH of pin 2 arrives 20-35 ms after the timeout, during the next request.
+    # The HIGH of pin 2 arrives 20-35 ms after the timeout, during the next request,
+    # which carries a request id because a reply was outstanding.
     assert await board.pins[3].digital_read() is False
+    # Its own reply came after the late one: the line is clean, requests go plain again.
     assert await board.pins[2].digital_read() is True
+    assert recording.sent.split(b"\n") == [b"R 2", b"@1 R 3", b"R 2", b""]
     await board.close()
 
 

@@ -5,10 +5,15 @@ non-empty one, which must be ``# Booted``, then the version line
 (``# SBDuino GPIO v2019.8.0``), all within 33 s times the time scale. The pins' initial
 modes are then applied by the board's ``setup()``.
 
-Correlation guarantee: every request carries a request id (``@<n> ``, cycling through
-1 to 32767), and a reply is taken only if its echo or final line carries that id. A reply
-that arrives after its request timed out is skipped by later requests however late it
-comes, so it is never taken as their answer (unless 32767 requests have gone meanwhile).
+Correlation guarantee: while no request is outstanding the board's next reply is the
+answer to the next request, so requests go as the firmware's own examples have them
+(``R 2``), with no id to lengthen them on the wire. Once a request has timed out (or an
+exchange did not finish), its reply may still come, so the next request carries a
+request id (``@<n> ``, cycling through 1 to 32767) and a reply is taken only if its echo
+or final line carries that id. A reply that arrives after its request timed out is
+skipped however late it comes, so it is never taken as another request's answer (unless
+32767 tagged requests have gone meanwhile); the board answers in order, so once the
+tagged request's reply has come, the line is clean and requests go plain again.
 """
 
 from __future__ import annotations
@@ -23,6 +28,7 @@ from j5aio.backends.hardware.arduino import ArduinoHardwareBackend
 from j5aio.backends.hardware.arduino_pins import DIGITAL_PINS, DigitalPinState
 from j5aio.backends.hardware.sb import arduino_2019_codec as codec
 from j5aio.backends.hardware.serial_backend import scaled
+from j5aio.backends.hardware.transports.readers import ReplyReader
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.boards.sb.arduino import SBArduinoBoard
 from j5aio.components.derived.ultrasound import UltrasoundInterface
@@ -101,15 +107,24 @@ class SBArduinoHardwareBackend(
         :param then: called with the reply once the board has accepted the command
             (``+ OK``), even if the caller has been cancelled meanwhile.
         """
-        tagged = codec.with_request_id(request, self._next_request_id())
+
+        def tagged() -> tuple[bytes, ReplyReader[list[bytes]]]:
+            with_id = codec.with_request_id(request, self._next_request_id())
+            return with_id, codec.reply_to(with_id)
 
         def parse(lines: list[bytes]) -> codec.Reply:
-            reply = codec.parse_reply(lines)
+            try:
+                reply = codec.parse_reply(lines)
+            except UnexpectedReplyError:
+                self._link.mark_dirty()  # out of step? the next request carries an id
+                raise
             if then is not None:
                 then(reply)
             return reply
 
-        return await self._exchange(tagged, codec.reply_to(tagged), timeout, then=parse)
+        return await self._exchange(
+            request, codec.REPLY, timeout, then=parse, when_dirty=tagged
+        )
 
     async def _apply_pin(
         self, identifier: int, wanted: DigitalPinState, *, mode_changed: bool

@@ -29,6 +29,7 @@ __all__ = [
     "BOOT_LINE",
     "MAX_REQUEST_ID",
     "MINIMUM_VERSION",
+    "REPLY",
     "SERVO_COUNT",
     "SUPPORTED_VERSIONS",
     "ArduinoError",
@@ -195,7 +196,9 @@ def is_final_line(line: bytes) -> bool:
     return bool(stripped) and not stripped.startswith((b"#", b">"))
 
 
-_LINES: Final[LinesUntilReader] = read_lines_until(is_final_line)
+#: The reader of a whole reply (any ``#`` echo, ``>`` data lines, the final line), for a
+#: request sent while no other reply can be on its way; see :func:`reply_to` otherwise.
+REPLY: Final[LinesUntilReader] = read_lines_until(is_final_line)
 
 
 def reply_to(request: bytes) -> MatchingReader[list[bytes]]:
@@ -220,7 +223,7 @@ def reply_to(request: bytes) -> MatchingReader[list[bytes]]:
         )
 
     answers_request.__name__ = f"answers {line.decode('ascii', 'replace')!r}"
-    return matching(_LINES, answers_request)
+    return matching(REPLY, answers_request)
 
 
 def parse_reply(lines: list[bytes]) -> Reply:

@@ -64,9 +64,11 @@ class Inbox:
         """Return 1 to ``max_bytes`` buffered bytes, waiting for some to arrive."""
         if max_bytes < 1:
             raise ValueError(f"max_bytes must be at least 1, not {max_bytes}")
-        await anyio.lowlevel.checkpoint()
-        while not self._buffer:
+        if self._buffer:
+            await anyio.lowlevel.checkpoint()
+        while not self._buffer:  # waiting yields to the event loop: no checkpoint first
             if self._error is not None:
+                await anyio.lowlevel.checkpoint()
                 raise fresh_copy(self._error)
             if self._wakeup is None or self._wakeup.is_set():
                 self._wakeup = anyio.Event()

@@ -58,7 +58,11 @@ strongest rule its firmware allows:
 1. *Correlated replies.* A reader whose :attr:`~.readers.ReplyReader.correlates` is
    true (see :func:`~.readers.matching`) recognises replies to other requests and skips
    them, however late they come. A dirty link then needs no draining at all (the SB
-   Arduino 2019 firmware: request ids and command echoes).
+   Arduino 2019 firmware: request ids and command echoes). Tagging costs bytes on the
+   wire, and only a dirty link can have a reply outstanding, so a backend may send the
+   plain request on a clean link and the tagged one only on a dirty link (``when_dirty``
+   of :meth:`~SerialLink.exchange`): the board answers in order, so once the tagged
+   request's own reply has come, every late reply came before it and was skipped.
 2. *A resynchronisation probe.* Where nothing in a reply names its request, a backend
    can name a harmless probe whose answer is known (:meth:`~SerialLink.set_resync`).
    The first exchange or send on a dirty link sends the probe and discards every byte up
@@ -162,7 +166,10 @@ class SerialLink(AsyncResource):
         if chunk_size < 1:
             raise ValueError(f"chunk_size must be at least 1, not {chunk_size}")
         self._chunk_size = chunk_size
-        self._lock = anyio.Lock()
+        # Uncontended, the lock is taken without yielding to the event loop: every
+        # exchange waits for its reply anyway, and a yield before the request goes out
+        # would only delay it (by a whole turn of the loop on a busy machine).
+        self._lock = anyio.Lock(fast_acquire=True)
         self._buffer = bytearray()
         self._dirty = False
         self._closed = False
@@ -271,7 +278,12 @@ class SerialLink(AsyncResource):
 
     @overload
     async def exchange(
-        self, request: bytes, reader: ReplyReader[T], *, timeout: float | None = None
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        *,
+        timeout: float | None = None,
+        when_dirty: Callable[[], tuple[bytes, ReplyReader[T]]] | None = None,
     ) -> T: ...
 
     @overload
@@ -282,6 +294,7 @@ class SerialLink(AsyncResource):
         *,
         timeout: float | None = None,
         then: Callable[[T], U],
+        when_dirty: Callable[[], tuple[bytes, ReplyReader[T]]] | None = None,
     ) -> U: ...
 
     async def exchange(
@@ -291,6 +304,7 @@ class SerialLink(AsyncResource):
         *,
         timeout: float | None = None,
         then: Callable[[T], object] | None = None,
+        when_dirty: Callable[[], tuple[bytes, ReplyReader[T]]] | None = None,
     ) -> object:
         """Send ``request`` and return the reply that ``reader`` parses.
 
@@ -306,6 +320,14 @@ class SerialLink(AsyncResource):
         :param then: called with the reply as soon as it has arrived, even if the caller
             has been cancelled meanwhile; its result is returned instead of the reply,
             and its exceptions reach the caller. Parse the reply and update caches here.
+        :param when_dirty: for a firmware that can tag a request so that its reply names
+            it (a request id): called, with the lock held, only if the link is dirty, it
+            returns the tagged request and a correlating reader (see
+            :func:`~.readers.matching`) to use instead of ``request`` and ``reader``. A
+            clean link has no reply outstanding, so the board's next reply answers the
+            plain request, which is shorter on the wire; on a dirty link the tagged
+            request's reply is found past any late ones, which are skipped, and the link
+            is clean again (see the module's notes).
         :raises CommunicationTimeoutError: no complete reply in time; the link becomes dirty.
         :raises UnexpectedReplyError: ``reader`` could not parse what arrived.
         :raises BoardDisconnectionError: the port has gone or the link is closed.
@@ -316,6 +338,9 @@ class SerialLink(AsyncResource):
         request = bytes(request)
         progress = _Progress()
         async with self._lock:
+            if when_dirty is not None and self._dirty:
+                request, reader = when_dirty()
+                request = bytes(request)
             with anyio.CancelScope(shield=True):
                 try:
                     reply = await self._exchange_locked(request, reader, seconds, progress)

@@ -24,6 +24,7 @@ from j5aio.backends.hardware.transports import (
     read_line,
     read_lines_until,
 )
+from j5aio.backends.hardware.transports.readers import ReplyReader, matching
 from j5aio.errors import (
     BoardDisconnectionError,
     CommunicationError,
@@ -794,3 +795,47 @@ def test_send_now_failures_are_communication_errors() -> None:
         SerialLink(NoSyncStream()).send_now(b"x")
     with pytest.raises(CommunicationError, match="sending b'x' failed: the device is gone"):
         SerialLink(OSErrorStream()).send_now(b"x")
+
+
+# -- tagging only while a reply may be outstanding ------------------------------------------
+
+
+async def test_a_request_is_tagged_only_while_a_late_reply_may_come(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    tagged: list[bytes] = []
+
+    def tag(request: bytes) -> Callable[[], tuple[bytes, ReplyReader[bytes]]]:
+        def make() -> tuple[bytes, ReplyReader[bytes]]:
+            tagged.append(request)
+            return b"#7 " + request, matching(read_line(), lambda line: line.startswith(b"#7 "))
+
+        return make
+
+    async def answer(expected: bytes, reply: bytes) -> None:
+        assert await board.receive() == expected
+        await board.send(reply)
+
+    async with anyio.create_task_group() as tg:
+        # A clean link: the plain request goes, and the tagged one is never made.
+        tg.start_soon(answer, b"a\n", b"A\n")
+        assert await link.exchange(b"a\n", read_line(), timeout=1, when_dirty=tag(b"a\n")) == b"A"
+        assert tagged == []
+        # The board does not answer in time: the link is dirty...
+        with pytest.raises(CommunicationTimeoutError):
+            await link.exchange(b"b\n", read_line(), timeout=0.01, when_dirty=tag(b"b\n"))
+        assert await board.receive() == b"b\n"
+        assert link.is_dirty
+        # ...so the next request is tagged, and the late reply to "b" is skipped.
+        await board.send(b"B\n")
+        tg.start_soon(answer, b"#7 c\n", b"#7 C\n")
+        reply = await link.exchange(b"c\n", read_line(), timeout=1, when_dirty=tag(b"c\n"))
+        assert reply == b"#7 C"
+        assert tagged == [b"c\n"]
+        assert not link.is_dirty and link.buffered == b""
+        # Its reply came after everything owed: plain requests again.
+        tg.start_soon(answer, b"d\n", b"D\n")
+        assert await link.exchange(b"d\n", read_line(), timeout=1, when_dirty=tag(b"d\n")) == b"D"
+        assert tagged == [b"c\n"]
