@@ -180,6 +180,6 @@ def test_ctrl_c_twice_prints_one_line() -> None:
     proc.send_signal(signal.SIGINT)
     assert proc.stdout.readline() == "safe [1, 1]\n"
     proc.send_signal(signal.SIGINT)
-    out, err = proc.communicate(timeout=10)
+    _, err = proc.communicate(timeout=10)
     assert "Traceback" not in err
     assert "Exception ignored" not in err
