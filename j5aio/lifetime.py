@@ -232,8 +232,14 @@ def _make_safe(boards: list[Board], reason: str, close: bool, deadline: float) -
             LOGGER.error("No time left to make %s safe (%s).", board, reason)
             _failures += 1
             continue
+        make_safe_now = getattr(board.backend, "make_safe_now", None)
+        if make_safe_now is None:
+            # Not a j5aio Backend (a test's stand-in, or a board whose construction failed
+            # on its backend): it drives nothing that could be left running.
+            LOGGER.debug("%s has no safe state to send (its backend is not a Backend).", board)
+            continue
         try:
-            sent = board.backend.make_safe_now(min(left, PER_BOARD_TIMEOUT))
+            sent = make_safe_now(min(left, PER_BOARD_TIMEOUT))
         except Exception as exc:
             LOGGER.error("Could not make %s safe when %s: %s", board, reason, exc)
             _failures += 1

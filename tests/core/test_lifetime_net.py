@@ -316,3 +316,18 @@ def test_the_default_backend_has_nothing_to_send() -> None:
     backend = LampBackend()
     assert backend.make_safe_now(0.1) is False
     backend.close_now()  # nothing to release
+
+
+def test_a_board_whose_backend_is_no_backend_is_passed_over(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    # e.g. a test's stand-in, or a board whose constructor refused its backend after the
+    # board was tracked: it drives nothing, so the net neither fails nor counts a failure.
+    LampBoard("STANDIN", object())  # type: ignore[arg-type]
+    _, good = lamp("GOOD")
+    with caplog.at_level(logging.WARNING, logger="j5aio.lifetime"):
+        rescued = lifetime.make_all_safe_now("exit")
+    assert [board.serial_number for board in rescued] == ["GOOD"]
+    assert good.states[0] is False
+    assert "STANDIN" not in caplog.text
+    assert lifetime._failures == 0
