@@ -12,8 +12,9 @@ Every figure is a median, and the things compared are measured side by side in o
 (b) four boards queried at once (one task each, four ptys) vs one board alone, the
     same number of requests per board (goal: <= 1.15x the time of one);
 (c) a request sequence (write a pin, read a pin, read an analogue pin) through j5 0.12
-    vs j5aio (ratio reported). j5 0.12 is installed on demand into a temporary directory
-    (see ``bench/requirements.txt``); its backend is constructed with the pty's path.
+    vs j5aio (ratio reported). j5 0.12 runs in a child process of its own virtual
+    environment, made from the package registry on first use (``bench/_peers.py``); its
+    backend is constructed with the pty's path.
 
 Run: ``python bench/bench_hardware.py [--requests N] [--repeats R] [--round-trip-only]``
 """
@@ -23,12 +24,10 @@ from __future__ import annotations
 import argparse
 import contextlib
 import functools
-import importlib
 import os
 import statistics
 import subprocess
 import sys
-import tempfile
 import threading
 import time
 from collections.abc import Iterator
@@ -37,13 +36,12 @@ from typing import Any
 
 import anyio
 import serial
+from _peers import J5_PEER, peer_python  # type: ignore[import-not-found]
 
 from j5aio.backends.hardware.sb import SBArduinoHardwareBackend
 from j5aio.components.gpio_pin import GPIOPinMode
 
 BENCH_DIR = Path(__file__).resolve().parent
-J5_TARGET = Path(tempfile.gettempdir()) / "j5aio-bench-j5-0.12"
-LOCAL_WHEEL = Path("/tmp/j5src/j5-0.12.0-py3-none-any.whl")
 SERVER_TIME_SCALE = "0.05"  # the simulated Arduino boots in 75 ms instead of 1.5 s
 
 
@@ -272,51 +270,38 @@ def bench_concurrency(
 # -- (c) j5 0.12 ----------------------------------------------------------------------------
 
 
-def import_j5() -> Any:
-    """Import j5 0.12, installing it into a temporary directory first if it is missing."""
-    sys.path.insert(0, str(J5_TARGET))
-    name = "j5.backends.hardware.sb.arduino"
-    try:
-        module = importlib.import_module(name)
-    except ImportError:
-        source = str(LOCAL_WHEEL) if LOCAL_WHEEL.exists() else "j5==0.12.0"
-        print(f"installing j5 0.12 into {J5_TARGET} from {source} ...", file=sys.stderr)
-        subprocess.run(
-            [
-                sys.executable,
-                "-m",
-                "pip",
-                "install",
-                "--quiet",
-                "--no-deps",
-                "--target",
-                str(J5_TARGET),
-                source,
-            ],
-            check=True,
-        )
-        importlib.invalidate_caches()
-        module = importlib.import_module(name)
-    J5Backend = module.SBArduinoHardwareBackend  # noqa: N806
-    return J5Backend
+#: j5's side of (c), run by j5 0.12's own interpreter (bench/_peers.py): argv is the pty's
+#: path and the number of rounds; it prints one time per round, in seconds.
+J5_SEQUENCE = """
+import sys, time
+from j5.backends.hardware.sb.arduino import SBArduinoHardwareBackend
+from j5.components import GPIOPinMode
+path, rounds = sys.argv[1], int(sys.argv[2])
+backend = SBArduinoHardwareBackend(path)  # the least invasive way: it takes a path
+backend.set_gpio_pin_mode(3, GPIOPinMode.DIGITAL_OUTPUT)
+try:
+    for index in range(rounds):
+        start = time.perf_counter()
+        backend.write_gpio_pin_digital_state(3, index % 2 == 0)
+        backend.read_gpio_pin_digital_state(2)
+        backend.read_gpio_pin_analogue_value(14)
+        print(time.perf_counter() - start)
+finally:
+    backend._serial.close()
+"""
 
 
-def sequence_j5(j5_backend_class: Any, path: str, rounds: int) -> list[float]:
-    backend = j5_backend_class(path)  # the least invasive way: its constructor takes a path
-    j5_mode = importlib.import_module("j5.components").GPIOPinMode
-
-    backend.set_gpio_pin_mode(3, j5_mode.DIGITAL_OUTPUT)
-    times = []
-    try:
-        for index in range(rounds):
-            start = time.perf_counter()
-            backend.write_gpio_pin_digital_state(3, index % 2 == 0)
-            backend.read_gpio_pin_digital_state(2)
-            backend.read_gpio_pin_analogue_value(14)
-            times.append(time.perf_counter() - start)
-        return times
-    finally:
-        backend._serial.close()
+def sequence_j5(j5_python: Path, path: str, rounds: int) -> list[float]:
+    """Run the sequence through j5 0.12 in its own interpreter; the time of each round."""
+    result = subprocess.run(
+        [str(j5_python), "-c", J5_SEQUENCE, path, str(rounds)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    if result.returncode != 0:
+        raise RuntimeError(f"j5 0.12's sequence failed:\n{result.stderr.strip()}")
+    return [float(line) for line in result.stdout.split()]
 
 
 async def sequence_j5aio(path: str, rounds: int) -> list[float]:
@@ -338,11 +323,11 @@ async def sequence_j5aio(path: str, rounds: int) -> list[float]:
 
 
 def bench_j5(path: str, rounds: int, repeats: int) -> tuple[float, float]:
-    j5_backend_class = import_j5()
+    j5_python = peer_python(*J5_PEER)
     theirs: list[float] = []
     ours: list[float] = []
     for _ in range(repeats):
-        theirs += sequence_j5(j5_backend_class, path, rounds)
+        theirs += sequence_j5(j5_python, path, rounds)
         time.sleep(0.05)
         ours += anyio.run(sequence_j5aio, path, rounds)
         time.sleep(0.05)

@@ -52,7 +52,11 @@ def _only_these_boards(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
     monkeypatch.setattr(lifetime, "_settled", set())
     monkeypatch.setattr(lifetime, "_failures", 0)
     monkeypatch.setattr(lifetime, "_terminating", False)
+    # The real excepthook ignores further Ctrl-C once the program is ending: give the
+    # rest of the test run its Ctrl-C back.
+    handler = signal.getsignal(signal.SIGINT)
     yield
+    signal.signal(signal.SIGINT, handler)
 
 
 def lamp(serial: str = "L", **kwargs: float | bool) -> tuple[LampBoard, NetLampBackend]:
@@ -207,6 +211,8 @@ def test_ctrl_c_ending_the_program_prints_one_line(
     monkeypatch.delattr(sys, "ps1", raising=False)
     lifetime._excepthook(KeyboardInterrupt, KeyboardInterrupt(), None)
     assert capsys.readouterr().err == "Stopped (Ctrl-C); every board was made safe.\n"
+    # the program is ending: a further Ctrl-C must not tear its exit hooks
+    assert signal.getsignal(signal.SIGINT) is lifetime._ignore_interrupt
     lifetime._excepthook(RuntimeError, RuntimeError("bug"), None)
     assert previous == [RuntimeError]
     assert reasons[:2] == [
