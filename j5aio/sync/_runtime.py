@@ -24,12 +24,16 @@ Three things matter more than anything else here:
   worker in the same turn. The caller is let go just before the loop sleeps again, so
   that it does not then wait for the GIL as well.
 
-While the caller waits it blocks on a lock (waking once a second, :data:`LONG_WAIT_SLICE`):
-an idle program costs next to no CPU. Signals still interrupt the wait at once, because
-the portal thread (and every thread it starts: anyio's workers, USB links) blocks SIGINT,
-SIGTERM and SIGHUP, so the kernel delivers them to the waiting main thread; one that
-reaches a thread the program started itself is seen at the end of the slice. On Windows,
-where a lock wait cannot be interrupted, the caller waits in slices of :data:`WAIT_SLICE`.
+While the caller waits it blocks on a lock with no time limit: an idle program (a
+beginner's ``wait_until_pressed``) costs no CPU at all, in the caller's thread or in the
+loop's. Signals still interrupt the wait at once, because the portal thread (and every
+thread it starts: anyio's workers, USB links) blocks SIGINT, SIGTERM and SIGHUP, so the
+kernel delivers them to the waiting main thread. A signal can still land on a thread the
+program started itself; then Python's signal wake-up file (:func:`signal.set_wakeup_fd`,
+when nobody else uses it) tells a small watcher thread, which has the loop release every
+waiting caller's lock so that the main thread returns to Python and runs the handler
+(:func:`_watch_signals`). On Windows, where a lock wait cannot be interrupted, the caller
+waits in slices of :data:`WAIT_SLICE`.
 """
 
 from __future__ import annotations
@@ -39,6 +43,7 @@ import contextlib
 import logging
 import selectors
 import signal
+import socket
 import sys
 import threading
 import time
@@ -57,7 +62,6 @@ if TYPE_CHECKING:
 
 __all__ = [
     "CANCEL_GRACE",
-    "LONG_WAIT_SLICE",
     "SHUTDOWN_TIMEOUT",
     "WAIT_SLICE",
     "call",
@@ -72,9 +76,6 @@ T = TypeVar("T")
 
 #: On Windows, how long one wait for a result lasts before checking for Ctrl-C again.
 WAIT_SLICE: Final = 0.05
-#: Elsewhere, the same for a signal that reached another thread than the waiting one (a
-#: thread the program started itself): it is seen within this many seconds.
-LONG_WAIT_SLICE: Final = 1.0
 #: How long an interrupted caller waits for its coroutine's cancellation to land.
 CANCEL_GRACE: Final = 2.0
 #: How long making boards safe in order, and closing them, may each take at exit.
@@ -394,6 +395,17 @@ class _LoopThread:
         if self._queue:
             self._wake()
 
+    def _let_callers_check_signals(self) -> None:
+        """Release the lock of every caller still waiting (loop thread), not marking done.
+
+        Each caller then finds its call not done and waits again, after its thread has
+        run any signal handler that was pending (see :func:`_watch_signals`).
+        """
+        if self._current is not None:
+            _release(self._current.done)
+        for request in self._queue:
+            _release(request.done)
+
     def _wake_threadsafe(self) -> None:  # pragma: no cover - Windows
         self.loop.call_soon_threadsafe(self._wake)
 
@@ -443,6 +455,11 @@ class _LoopThread:
         request.coro.close()
         raise _stopped() from None
 
+    def wake_callers(self) -> None:
+        """Have every waiting caller check for signals (from any thread but the loop's)."""
+        with contextlib.suppress(RuntimeError):
+            self.loop.call_soon_threadsafe(self._let_callers_check_signals)
+
     def cancel(self, request: _Call) -> None:
         """Cancel ``request`` (from any thread but the loop's); it finishes soon after."""
         with contextlib.suppress(RuntimeError):
@@ -473,6 +490,44 @@ def _release(done: threading.Lock) -> None:
 
 _lock = threading.Lock()
 _portal: _LoopThread | None = None
+#: The socket our signal watcher listens to, once made (see :func:`_start_signal_watch`).
+_signal_writer: socket.socket | None = None
+
+
+def _start_signal_watch() -> None:
+    """Make a signal that lands on any thread wake the waiting callers (main thread only).
+
+    The C-level handler of a Python signal handler runs in whichever thread the kernel
+    chose, and writes to the signal wake-up file; the handler itself runs only in the
+    main thread, which may be blocked in :func:`_wait`. A daemon thread reads that file
+    and has the loop release the callers, which costs nothing until a signal comes. If the
+    program (or a running asyncio loop) uses the wake-up file already, it is left alone;
+    each new portal takes the file back if it is free again.
+    """
+    global _signal_writer
+    if not _INTERRUPTIBLE_WAIT or threading.current_thread() is not threading.main_thread():
+        return
+    if _signal_writer is None:
+        reader, _signal_writer = socket.socketpair()
+        _signal_writer.setblocking(False)
+        threading.Thread(
+            target=_watch_signals, args=(reader,), name="j5aio sync signal watch", daemon=True
+        ).start()
+    ours = _signal_writer.fileno()
+    previous = signal.set_wakeup_fd(ours, warn_on_full_buffer=False)
+    if previous not in (-1, ours):  # someone else's: theirs stays
+        signal.set_wakeup_fd(previous)
+
+
+def _watch_signals(reader: socket.socket) -> None:
+    """Wake the waiting callers each time a signal comes (the watcher thread)."""
+    # Signals are for the main thread; this one only hears of them.
+    signal.pthread_sigmask(signal.SIG_BLOCK, _SIGNALS_FOR_THE_MAIN_THREAD)
+    with reader:
+        while reader.recv(64):
+            portal = _portal
+            if portal is not None:
+                portal.wake_callers()
 
 
 def _get_portal() -> _LoopThread:
@@ -483,6 +538,7 @@ def _get_portal() -> _LoopThread:
         if _portal is None:
             lifetime.install()
             lifetime.add_exit_step(shutdown)
+            _start_signal_watch()
             _portal = _LoopThread()
         return _portal
 
@@ -526,7 +582,8 @@ def _wait(portal: _LoopThread, request: _Call) -> Any:
     done = request.done
     try:
         if _INTERRUPTIBLE_WAIT:
-            while not done.acquire(timeout=LONG_WAIT_SLICE) or request.state != _DONE:
+            # A release before the call is done wakes us to run a signal's handler.
+            while not done.acquire() or request.state != _DONE:
                 pass
         else:  # pragma: no cover - Windows
             while not done.acquire(timeout=WAIT_SLICE) or request.state != _DONE:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import signal
+import socket
 import threading
 import time
 
@@ -89,10 +90,8 @@ def test_interrupt_cancels_the_coroutine_before_the_call_returns() -> None:
             raise
 
     interrupt_main_after(0.1)
-    started = time.monotonic()
     with pytest.raises(KeyboardInterrupt):
         call(motor_command)
-    assert time.monotonic() - started < 2
     assert events == ["started", "cancelled", "cleaned up"]
     time.sleep(0.2)
     assert events == ["started", "cancelled", "cleaned up"]
@@ -168,9 +167,57 @@ def test_shutdown_then_call_starts_a_new_portal() -> None:
     assert get_loop() is not first
 
 
-def test_wait_keeps_waiting_across_slices(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(_runtime, "LONG_WAIT_SLICE", 0.02)
-    assert call(anyio.sleep, 0.1) is None
+def test_a_caller_woken_before_its_call_is_done_waits_on() -> None:
+    async def wakes_its_caller_early() -> int:
+        portal = _runtime._portal
+        assert portal is not None
+        for _ in range(3):
+            portal._let_callers_check_signals()  # as when a signal came
+            await anyio.sleep(0.01)
+        return 7
+
+    assert call(wakes_its_caller_early) == 7
+    assert call(add, 1, 1) == 2  # and the thread's lock is in order afterwards
+
+
+def test_a_signal_that_lands_on_another_thread_still_cancels_the_call() -> None:
+    shutdown()  # a new portal takes the signal wake-up file back if a test's loop freed it
+    events: list[str] = []
+
+    async def motor_command() -> None:
+        events.append("started")
+        try:
+            await anyio.sleep(30)
+            events.append("completed")
+        except anyio.get_cancelled_exc_class():
+            events.append("cancelled")
+            raise
+
+    def ctrl_c_on_this_thread() -> None:
+        # Not the main thread: only the signal watcher can wake the main thread's wait.
+        signal.pthread_kill(threading.get_ident(), signal.SIGINT)
+
+    call(add, 0, 0)
+    assert _runtime._signal_writer is not None
+    timer = threading.Timer(0.1, ctrl_c_on_this_thread)
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        call(motor_command)
+    timer.join()
+    assert events == ["started", "cancelled"]
+
+
+def test_a_signal_wake_up_file_of_the_program_is_left_alone() -> None:
+    call(add, 0, 0)
+    theirs, peer = socket.socketpair()
+    theirs.setblocking(False)
+    try:
+        previous = signal.set_wakeup_fd(theirs.fileno())
+        _runtime._start_signal_watch()
+        assert signal.set_wakeup_fd(previous) == theirs.fileno()
+    finally:
+        theirs.close()
+        peer.close()
 
 
 class InterruptedJustAfterAcquiring:
@@ -201,11 +248,9 @@ def test_an_interrupt_just_after_the_call_finished_does_not_wait(
             time.sleep(0.001)
         late = InterruptedJustAfterAcquiring(request.done)
         request.done = late  # type: ignore[assignment]
-        started = time.monotonic()
         with pytest.raises(KeyboardInterrupt):
             _runtime._wait(portal, request)
-        assert time.monotonic() - started < 0.5  # not CANCEL_GRACE: the lock was ours
-        assert late.calls == 1
+        assert late.calls == 1  # no second wait (of CANCEL_GRACE): the lock was ours
         assert "did not stop" not in caplog.text
     finally:
         portal.stop(2)
@@ -242,10 +287,9 @@ def test_shutdown_cancels_a_call_in_progress_in_another_thread() -> None:
     thread = threading.Thread(target=caller)
     thread.start()
     time.sleep(0.1)
-    started = time.monotonic()
     shutdown()
-    thread.join(3)
-    assert time.monotonic() - started < 3
+    thread.join(10)  # liveness only: the 5 s sleep would end it too, but with no error
+    assert not thread.is_alive()
     assert len(errors) == 1 and "portal is stopping" in str(errors[0])
 
 
