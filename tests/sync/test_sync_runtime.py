@@ -6,6 +6,7 @@ import signal
 import socket
 import threading
 import time
+from collections.abc import Awaitable, Callable
 
 import anyio
 import anyio.lowlevel
@@ -74,20 +75,33 @@ def interrupt_main_after(delay: float) -> threading.Timer:
     return timer
 
 
-def test_interrupt_cancels_the_coroutine_before_the_call_returns() -> None:
-    events: list[str] = []
+def recorded_command(
+    events: list[str], seconds: float, cleanup: float | None = None
+) -> Callable[[], Awaitable[None]]:
+    """Return a command that takes ``seconds`` and records what became of it in ``events``.
+
+    Cancelled, it cleans up for ``cleanup`` seconds (shielded) when that is given.
+    """
 
     async def motor_command() -> None:
         events.append("started")
         try:
-            await anyio.sleep(5)
+            await anyio.sleep(seconds)
             events.append("completed")
         except anyio.get_cancelled_exc_class():
             events.append("cancelled")
-            with anyio.CancelScope(shield=True):
-                await anyio.sleep(0.1)  # cleaning up takes a moment
-            events.append("cleaned up")
+            if cleanup is not None:
+                with anyio.CancelScope(shield=True):
+                    await anyio.sleep(cleanup)  # cleaning up takes a moment
+                events.append("cleaned up")
             raise
+
+    return motor_command
+
+
+def test_interrupt_cancels_the_coroutine_before_the_call_returns() -> None:
+    events: list[str] = []
+    motor_command = recorded_command(events, 5, cleanup=0.1)
 
     interrupt_main_after(0.1)
     with pytest.raises(KeyboardInterrupt):
@@ -180,18 +194,39 @@ def test_a_caller_woken_before_its_call_is_done_waits_on() -> None:
     assert call(add, 1, 1) == 2  # and the thread's lock is in order afterwards
 
 
+class RecordingLock:
+    """A caller's lock that records the time limit of every wait on it."""
+
+    def __init__(self) -> None:
+        self.lock = _runtime._new_done_lock()
+        self.timeouts: list[float] = []
+
+    def acquire(self, blocking: bool = True, timeout: float = -1) -> bool:
+        self.timeouts.append(timeout)
+        return self.lock.acquire(blocking, timeout)
+
+    def locked(self) -> bool:
+        return self.lock.locked()
+
+    def release(self) -> None:
+        self.lock.release()
+
+
+def test_a_waiting_caller_sleeps_until_woken_with_no_periodic_wake_up() -> None:
+    portal = _runtime._LoopThread()
+    try:
+        lock = RecordingLock()
+        request = portal.submit(anyio.sleep(0.3), lock)  # type: ignore[arg-type]
+        assert _runtime._wait(portal, request) is None
+        assert lock.timeouts == [-1]  # one wait, with no time limit
+    finally:
+        portal.stop(2)
+
+
 def test_a_signal_that_lands_on_another_thread_still_cancels_the_call() -> None:
     shutdown()  # a new portal takes the signal wake-up file back if a test's loop freed it
     events: list[str] = []
-
-    async def motor_command() -> None:
-        events.append("started")
-        try:
-            await anyio.sleep(30)
-            events.append("completed")
-        except anyio.get_cancelled_exc_class():
-            events.append("cancelled")
-            raise
+    motor_command = recorded_command(events, 30)
 
     def ctrl_c_on_this_thread() -> None:
         # Not the main thread: only the signal watcher can wake the main thread's wait.
