@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import inspect
 import signal
 import socket
 import threading
@@ -338,3 +339,20 @@ def test_a_failure_to_make_boards_safe_at_shutdown_is_logged(
     get_loop()
     shutdown()
     assert "Could not make the boards safe: OSError('the registry is broken')" in caplog.text
+
+
+def test_a_call_queued_as_the_portal_stops_is_taken_back_or_left_withdrawn() -> None:
+    portal = _runtime._LoopThread()
+    portal.stop(2)
+    coro = add(1, 1)
+    queued = _runtime._Call(coro, _runtime._new_done_lock())
+    portal._queue.append(queued)  # as if appended just after the stop was seen
+    with pytest.raises(RuntimeError, match="portal has stopped"):
+        portal._take_back(queued)
+    assert not portal._queue
+    assert inspect.getcoroutinestate(coro) == inspect.CORO_CLOSED  # closed, never run
+    withdrawn = _runtime._Call(add(2, 2), _runtime._new_done_lock())
+    withdrawn.withdraw("the board call was cancelled: the j5aio sync portal is stopping")
+    portal._take_back(withdrawn)  # the loop got there first: the caller reads its error
+    assert withdrawn.done.acquire(timeout=1)
+    assert isinstance(withdrawn.error, RuntimeError)
