@@ -32,9 +32,8 @@ NEAR_PLANE = 10.0
 _BLACK_CELLS = 8
 _TOTAL_CELLS = 10
 
-# A marker is drawn up to this many times finer than the picture, within this many pixels.
-_MAX_SUPERSAMPLING = 4
-_SUPERSAMPLED_PIXELS = 1_000_000
+# A marker whose longest edge is under so many pixels is drawn so many times finer.
+_SUPERSAMPLING = ((4, 80.0), (2, 200.0))
 
 
 @dataclass(frozen=True)
@@ -207,7 +206,7 @@ def _draw_marker(frame: Any, marker: MarkerItem, calibration: CameraCalibration)
         math.dist(tuple(projected[i]), tuple(projected[(i + 1) % 4])) for i in range(4)
     )
     size = (x1 - x0, y1 - y0)
-    factor = _supersampling(size)
+    factor = _supersampling(edge)
     cell = max(1, min(64, math.ceil(factor * edge / _TOTAL_CELLS)))
     texture = _marker_texture(marker.marker_id, cell)
     side = texture.shape[0]
@@ -242,11 +241,14 @@ def _draw_marker(frame: Any, marker: MarkerItem, calibration: CameraCalibration)
     frame[y0:y1, x0:x1] = np.clip(blended + 0.5, 0, 255).astype(np.uint8)
 
 
-def _supersampling(size: tuple[int, int]) -> int:
-    """How many times finer a marker covering ``size`` pixels is drawn (fewer when large)."""
-    area = size[0] * size[1]
-    for factor in (_MAX_SUPERSAMPLING, 2):
-        if area * factor * factor <= _SUPERSAMPLED_PIXELS:
+def _supersampling(edge: float) -> int:
+    """How many times finer a marker whose longest edge is ``edge`` pixels is drawn.
+
+    Small markers need it most (a tenth of a pixel is much of what their perspective
+    tells) and cost least; a large one is drawn once a pixel.
+    """
+    for factor, below in _SUPERSAMPLING:
+        if edge < below:
             return factor
     return 1
 
