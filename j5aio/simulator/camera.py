@@ -12,6 +12,7 @@ loop) and before each picture, from the powers of the kit's motors: see the driv
 from __future__ import annotations
 
 import asyncio
+import copy
 import functools
 import math
 import time
@@ -258,13 +259,15 @@ class SimulatedCameraBackend(FrameCameraBackend):
         return render_view(self._kit.world, self._camera)
 
     async def frame_source(self) -> Callable[[], Image]:
-        """Move the world to now, note the view, and return the call that renders it."""
+        """Move the world to now, note it, and return the call that renders its view.
+
+        Only a shallow copy of the world (a few microseconds) is made here, on the event
+        loop; the scene is laid out and drawn by the returned call, on the worker thread.
+        The copy holds the robot's pose of this moment: the arena, its markers and tokens
+        are immutable, so the worker never reads what the loop changes.
+        """
         update_world(self._kit)
-        calibration, resolution = self._camera.model()
-        items = scene(self._kit.world)
-        return functools.partial(
-            render, calibration, resolution, items, lighting=self._camera.lighting
-        )
+        return functools.partial(render_view, copy.copy(self._kit.world), self._camera)
 
     async def close(self) -> None:
         """Stop moving the world on, and stop the worker thread."""

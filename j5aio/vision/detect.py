@@ -2,15 +2,18 @@
 
 Detection is by the AprilTag 3 C library (through pyapriltags); the pose of each marker
 comes from OpenCV's ``solvePnP`` with the IPPE method for planar squares, on the corners
-the AprilTag library refined; the result is turned into sr-robot3's axes and names by
+the AprilTag library refined, choosing between the two poses a flat square fits by the rule
+of :func:`choose_pose`; the result is turned into sr-robot3's axes and names by
 :mod:`j5aio.vision.geometry`.
 """
 
 from __future__ import annotations
 
+import math
 import os
 import threading
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from j5aio.vision._optional import require
@@ -22,13 +25,79 @@ if TYPE_CHECKING:
     from j5aio.vision.calibration import CameraCalibration
     from j5aio.vision.image import Image
 
-__all__ = ["MarkerDetector", "detect_marker_ids", "detect_markers"]
+__all__ = [
+    "MarkerDetector",
+    "PoseCandidate",
+    "choose_pose",
+    "detect_marker_ids",
+    "detect_markers",
+]
 
 #: The marker family every SR and SourceBots game uses.
 FAMILY = "tag36h11"
 
-#: The RMS reprojection error (pixels) below which IPPE's pose is taken as it is.
-GOOD_REPROJECTION = 0.5
+#: Two poses are told apart by their fit only when the worse one's RMS reprojection error
+#: is more than this many times the better one's (plus :data:`ERROR_FLOOR`).
+AMBIGUITY_RATIO = 1.2
+
+#: A pose whose corners reproject worse than this (RMS, pixels) is not a fit of them.
+POOR_FIT = 1.0
+
+#: Reprojection errors (pixels) within this of each other are equal, however small both are.
+ERROR_FLOOR = 0.002
+
+
+@dataclass(frozen=True)
+class PoseCandidate:
+    """One of the two poses of a planar marker that fit its corners.
+
+    :param error: the RMS reprojection error of the marker's corners, pixels.
+    :param normal_down: the downward (OpenCV y) part of the unit normal of the marker's
+        face, in the camera's frame: 0 for a face that is vertical to a level camera.
+    :param rvec: the rotation (a Rodrigues vector), as OpenCV gives it.
+    :param tvec: the translation, mm, as OpenCV gives it.
+    """
+
+    error: float
+    normal_down: float
+    rvec: Any
+    tvec: Any
+
+
+def choose_pose(candidates: Sequence[PoseCandidate]) -> PoseCandidate:
+    """Choose the pose of a marker among the poses that fit its four corners.
+
+    A flat square seen in perspective fits two poses (IPPE gives both): the true one and
+    its mirror image about the line of sight, whose face is tilted the other way by about
+    the same angle. Perspective tells them apart: the far edge of the square is shorter
+    than the near one, so after both are polished (Levenberg-Marquardt on the corners),
+    the true pose reprojects the corners better. The rule:
+
+    1. the pose with the smaller reprojection error is chosen when the other's error is
+       more than :data:`AMBIGUITY_RATIO` times larger (plus :data:`ERROR_FLOOR` pixels);
+    2. otherwise the fit cannot tell them apart, and the pose whose face is nearer
+       vertical is chosen (markers on walls and on the sides of tokens are vertical, and
+       a robot's camera looks level); on a tie, the better fit.
+
+    Limits: the difference between the two fits shrinks with the marker's size in the
+    picture and with how obliquely it is seen. On clean 1280x720 pictures of 150 mm
+    markers it stays well above the ratio up to 6 m (about 35 px); with a real camera's
+    noise, a marker under about 30 px wide can still be given its mirror orientation when
+    rule 2 applies to a marker that is not vertical (for instance on top of a token). When
+    the marker is seen face-on, the two poses are the same and either is right. Distance
+    and bearing do not depend on the choice.
+
+    :param candidates: one or two poses.
+    :returns: the chosen pose.
+    :raises ValueError: there is no pose to choose from.
+    """
+    if not candidates:
+        raise ValueError("choose_pose needs at least one pose, got none")
+    ordered = sorted(candidates, key=lambda c: c.error)
+    best = ordered[0]
+    if len(ordered) == 1 or ordered[1].error > AMBIGUITY_RATIO * best.error + ERROR_FLOOR:
+        return best
+    return min(ordered[:2], key=lambda c: abs(c.normal_down))
 
 
 def _as_sizes(marker_sizes: Mapping[int, float] | MarkerSizes) -> MarkerSizes:
@@ -118,33 +187,45 @@ class MarkerDetector:
     def _solve_pose(
         self, object_points: Any, image_points: Any, camera_matrix: Any, distortion: Any
     ) -> tuple[Any, Any]:
-        """The marker's pose, from the IPPE method for planar squares.
+        """The marker's pose: the better of IPPE's two, each polished. See :func:`choose_pose`.
 
-        IPPE alone sometimes lands well away from the true pose on a large, oblique marker
-        (tens of pixels of reprojection error). When its better solution reprojects worse
-        than :data:`GOOD_REPROJECTION` pixels, both solutions are polished by
-        Levenberg-Marquardt and the one that then reprojects best is kept.
+        OpenCV's IPPE is fragile on corners that are exactly symmetric about a row or column
+        through the principal point (as a rendered marker at the camera's height can be):
+        both its poses then miss the corners by tens of pixels. When the better polished
+        pose still misses them by more than :data:`POOR_FIT`, SQPnP's (a global minimum of
+        the reprojection error) is polished and considered too.
         """
-        np, cv2 = self._np, self._cv2
-        _, rvecs, tvecs, errors = cv2.solvePnPGeneric(
+        cv2 = self._cv2
+        _, rvecs, tvecs, _ = cv2.solvePnPGeneric(
             object_points, image_points, camera_matrix, distortion, flags=cv2.SOLVEPNP_IPPE
         )
-        best = int(np.argmin(errors))
-        if float(errors[best][0]) <= GOOD_REPROJECTION:
-            return rvecs[best], tvecs[best]
-        polished: tuple[float, Any, Any] | None = None
-        for rvec, tvec in zip(rvecs, tvecs, strict=True):
-            rvec, tvec = cv2.solvePnPRefineLM(
-                object_points, image_points, camera_matrix, distortion, rvec, tvec
-            )
-            projected, _ = cv2.projectPoints(
-                object_points, rvec, tvec, camera_matrix, distortion
-            )
-            error = float(np.sum((projected.reshape(-1, 2) - image_points) ** 2))
-            if polished is None or error < polished[0]:
-                polished = (error, rvec, tvec)
-        assert polished is not None
-        return polished[1], polished[2]
+        fit = (object_points, image_points, camera_matrix, distortion)
+        candidates = [self._polish(*fit, r, t) for r, t in zip(rvecs, tvecs, strict=True)]
+        if min(c.error for c in candidates) > POOR_FIT:
+            _, rvecs, tvecs, _ = cv2.solvePnPGeneric(*fit, flags=cv2.SOLVEPNP_SQPNP)
+            candidates += [self._polish(*fit, r, t) for r, t in zip(rvecs, tvecs, strict=True)]
+        chosen = choose_pose(candidates)
+        return chosen.rvec, chosen.tvec
+
+    def _polish(
+        self,
+        object_points: Any,
+        image_points: Any,
+        camera_matrix: Any,
+        distortion: Any,
+        rvec: Any,
+        tvec: Any,
+    ) -> PoseCandidate:
+        """Refine a pose by Levenberg-Marquardt on the corners, and measure its fit."""
+        np, cv2 = self._np, self._cv2
+        rvec, tvec = cv2.solvePnPRefineLM(
+            object_points, image_points, camera_matrix, distortion, rvec, tvec
+        )
+        projected, _ = cv2.projectPoints(object_points, rvec, tvec, camera_matrix, distortion)
+        residual = projected.reshape(-1, 2) - image_points
+        error = math.sqrt(float(np.mean(np.sum(residual**2, axis=1))))
+        rotation, _ = cv2.Rodrigues(rvec)
+        return PoseCandidate(error, float(rotation[1][2]), rvec, tvec)
 
     def _marker(
         self,

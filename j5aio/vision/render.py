@@ -32,6 +32,9 @@ NEAR_PLANE = 10.0
 _BLACK_CELLS = 8
 _TOTAL_CELLS = 10
 
+# A marker whose longest edge is under so many pixels is drawn so many times finer.
+_SUPERSAMPLING = ((4, 80.0), (2, 200.0))
+
 
 @dataclass(frozen=True)
 class QuadItem:
@@ -202,7 +205,9 @@ def _draw_marker(frame: Any, marker: MarkerItem, calibration: CameraCalibration)
     edge = max(
         math.dist(tuple(projected[i]), tuple(projected[(i + 1) % 4])) for i in range(4)
     )
-    cell = max(1, min(64, math.ceil(edge / _TOTAL_CELLS)))
+    size = (x1 - x0, y1 - y0)
+    factor = _supersampling(edge)
+    cell = max(1, min(64, math.ceil(factor * edge / _TOTAL_CELLS)))
     texture = _marker_texture(marker.marker_id, cell)
     side = texture.shape[0]
     # Texel centres sit at integer coordinates, so the texture's edges are at -0.5.
@@ -211,11 +216,21 @@ def _draw_marker(frame: Any, marker: MarkerItem, calibration: CameraCalibration)
         dtype=np.float32,
     )
     target = projected - np.array([x0, y0], dtype=np.float32)
-    homography = cv2.getPerspectiveTransform(source, target)
-    size = (x1 - x0, y1 - y0)
+    # Drawn ``factor`` times finer, then each pixel is the mean of its ``factor`` x
+    # ``factor`` block, as a camera's pixel sums the light falling on its area. (Sampling
+    # the texture once per pixel would move the marker's edges by up to a tenth of a
+    # pixel, which is all a small marker's perspective has to tell its pose by.)
+    fine_target = (target + 0.5) * factor - 0.5
+    homography = cv2.getPerspectiveTransform(source, fine_target)
     warped = cv2.warpPerspective(
-        texture, homography, size, flags=cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE
+        texture,
+        homography,
+        (size[0] * factor, size[1] * factor),
+        flags=cv2.INTER_LINEAR,
+        borderMode=cv2.BORDER_REPLICATE,
     )
+    if factor > 1:
+        warped = cv2.resize(warped, size, interpolation=cv2.INTER_AREA)
     mask = np.zeros((size[1], size[0]), dtype=np.uint8)
     shift = 4
     points = np.round(target * (1 << shift)).astype(np.int32)
@@ -224,6 +239,18 @@ def _draw_marker(frame: Any, marker: MarkerItem, calibration: CameraCalibration)
     region = frame[y0:y1, x0:x1].astype(np.float32)
     blended = region * (1.0 - alpha) + warped.astype(np.float32)[:, :, None] * alpha
     frame[y0:y1, x0:x1] = np.clip(blended + 0.5, 0, 255).astype(np.uint8)
+
+
+def _supersampling(edge: float) -> int:
+    """How many times finer a marker whose longest edge is ``edge`` pixels is drawn.
+
+    Small markers need it most (a tenth of a pixel is much of what their perspective
+    tells) and cost least; a large one is drawn once a pixel.
+    """
+    for factor, below in _SUPERSAMPLING:
+        if edge < below:
+            return factor
+    return 1
 
 
 def _normal(rotation: Matrix3) -> Vector3:

@@ -21,6 +21,7 @@ from j5aio.vision import (  # noqa: E402
     detect_marker_ids,
     detect_markers,
 )
+from j5aio.vision.detect import AMBIGUITY_RATIO, PoseCandidate, choose_pose  # noqa: E402
 from j5aio.vision.geometry import position_from_translation, rotation_from_orientation  # noqa: E402
 from j5aio.vision.render import Lighting, MarkerItem, QuadItem, render  # noqa: E402
 
@@ -40,43 +41,132 @@ def marker_at(
     return MarkerItem(marker_id, size, centre, rotation)
 
 
-POSES = [
-    (distance, bearing, yaw, pitch, roll)
-    for distance in (500, 750, 1000, 1500, 2000, 3000, 4000, 4500, 5000)
-    for bearing, yaw, pitch, roll in (
-        (0, 0, 0, 0),
-        (12, 30, 0, 0),
-        (-10, -35, 15, 0),
-        (5, 0, -20, 20),
-        (-15, 20, 10, -90),
-        (8, -25, 0, 180),
-    )
-]
+#: bearing, yaw, pitch, roll and elevation (degrees) of the marker at every distance:
+#: face-on, turned either way (the planar-pose ambiguity is at its worst for a turned
+#: marker far away), tilted, rolled, upside down, above and below the camera.
+ORIENTATIONS = (
+    (0, 0, 0, 0, 0),
+    (12, 30, 0, 0, 0),
+    (-10, -35, 15, 0, 0),
+    (5, 0, -20, 20, 0),
+    (-15, 20, 10, -90, 0),
+    (8, -25, 0, 180, 0),
+    (3, 45, 0, 0, 3),
+    (-5, 0, 30, 0, -3),
+    (-8, -45, 0, 0, 0),
+    (10, 40, 0, 90, -2),
+)
+DISTANCES = (500, 750, 1000, 1500, 2000, 2500, 3000, 3500, 4000, 4500, 5000)
+POSES = [(distance, *orientation) for distance in DISTANCES for orientation in ORIENTATIONS]
 
 
-@pytest.mark.parametrize(("distance", "bearing", "yaw", "pitch", "roll"), POSES)
-def test_accuracy_on_rendered_150mm_markers_from_half_a_metre_to_five(
-    distance: float, bearing: float, yaw: float, pitch: float, roll: float
-) -> None:
-    item = marker_at(42, distance, bearing, yaw, pitch, roll)
+def accuracy_errors(
+    distance: float, bearing: float, yaw: float, pitch: float, roll: float, elevation: float
+) -> tuple[list[int], float, float, float, float]:
+    """Ids found, and errors: distance (fraction), bearing, elevation, orientation (deg)."""
+    height = -distance * math.tan(math.radians(elevation))  # OpenCV's y is down
+    item = marker_at(42, distance, bearing, yaw, pitch, roll, height=height)
     image = render(DEFAULT_CALIBRATION, RESOLUTION, [item])
     markers = detect_markers(image, DEFAULT_CALIBRATION, SIZES)
-    assert [m.id for m in markers] == [42]
+    ids = [m.id for m in markers]
+    if ids != [42]:
+        return ids, math.inf, math.inf, math.inf, math.inf
     marker = markers[0]
     truth, cartesian = position_from_translation(item.centre)
     assert marker.size == 150.0
-    assert abs(marker.position.distance - truth.distance) / truth.distance < 0.03
-    assert math.degrees(abs(marker.position.horizontal_angle - truth.horizontal_angle)) < 1.5
-    assert math.degrees(abs(marker.position.vertical_angle - truth.vertical_angle)) < 1.5
     assert marker.cartesian == pytest.approx(cartesian, rel=0.03, abs=20)
-    if distance > 4500:
-        # A 42-pixel square no longer tells its two mirror-image poses apart reliably
-        # (the planar pose ambiguity): orientation is checked up to 4.5 m only.
-        return
     expected = (math.radians(yaw), math.radians(pitch), math.radians(roll))
-    for got, want in zip(marker.orientation, expected, strict=True):
-        error = math.degrees(abs(math.remainder(got - want, math.tau)))
-        assert error < 5.0, (marker.orientation, expected)
+    orientation = max(
+        math.degrees(abs(math.remainder(got - want, math.tau)))
+        for got, want in zip(marker.orientation, expected, strict=True)
+    )
+    return (
+        ids,
+        abs(marker.position.distance - truth.distance) / truth.distance,
+        math.degrees(abs(marker.position.horizontal_angle - truth.horizontal_angle)),
+        math.degrees(abs(marker.position.vertical_angle - truth.vertical_angle)),
+        orientation,
+    )
+
+
+@pytest.mark.parametrize("distance", DISTANCES)
+def test_accuracy_on_rendered_150mm_markers_from_half_a_metre_to_five(distance: float) -> None:
+    # Every pose of the grid at this distance must meet every bound (the issue's check):
+    # distance within 3 %, bearing within 1.5 deg, orientation within 5 deg, no false id.
+    failures = []
+    for orientation in ORIENTATIONS:
+        ids, d, bearing, elevation, angle = accuracy_errors(distance, *orientation)
+        if ids != [42] or d >= 0.03 or bearing >= 1.5 or elevation >= 1.5 or angle >= 5.0:
+            failures.append((orientation, ids, d, bearing, elevation, angle))
+    assert failures == []
+
+
+def candidate(error: float, normal_down: float, name: str) -> PoseCandidate:
+    return PoseCandidate(error, normal_down, name, None)
+
+
+def test_the_pose_that_fits_clearly_better_is_chosen_whatever_its_tilt() -> None:
+    fits = candidate(0.05, 0.4, "fits")
+    mirror = candidate(0.05 * AMBIGUITY_RATIO + 0.01, 0.0, "mirror")
+    assert choose_pose([mirror, fits]) is fits
+    assert choose_pose([fits]) is fits
+
+
+def test_when_the_fit_cannot_tell_the_nearer_vertical_face_is_chosen() -> None:
+    tilted = candidate(0.050, -0.3, "tilted")
+    upright = candidate(0.055, 0.02, "upright")
+    assert choose_pose([tilted, upright]) is upright
+    # both tiny: equal fits, whatever their ratio
+    assert choose_pose([candidate(1e-5, 0.3, "a"), candidate(1e-3, -0.1, "b")]).rvec == "b"
+    # a tie on both counts keeps the better fit
+    first, second = candidate(0.05, 0.1, "first"), candidate(0.051, -0.1, "second")
+    assert choose_pose([second, first]) is first
+
+
+def test_choosing_from_no_pose_is_an_error() -> None:
+    with pytest.raises(ValueError, match="at least one pose"):
+        choose_pose([])
+
+
+def test_corners_symmetric_about_the_principal_row_still_give_the_pose() -> None:
+    # OpenCV 4.14's IPPE misses these corners by ~60 px (both its poses); SQPnP is asked.
+    camera = np.array([[1387.5, 0, 639.5], [0, 1387.5, 359.5], [0, 0, 1]], dtype=np.float64)
+    half = 75.0
+    corners3d = np.array(
+        [[-half, half, 0], [half, half, 0], [half, -half, 0], [-half, -half, 0]], dtype=np.float64
+    )
+    pixels = np.array(
+        [[863.71411133, 329.26593018], [805.71411133, 329.69189453],
+         [805.71411133, 389.30810547], [863.71411133, 389.73406982]],
+        dtype=np.float64,
+    )
+    detector = MarkerDetector()
+    rvec, tvec = detector._solve_pose(corners3d, pixels, camera, np.zeros(0))
+    projected, _ = cv2.projectPoints(corners3d, rvec, tvec, camera, np.zeros(0))
+    assert np.abs(projected.reshape(-1, 2) - pixels).max() < 0.2
+    position, _ = position_from_translation(tvec.ravel().tolist())
+    assert position.distance == pytest.approx(3500, rel=0.01)
+
+
+def test_rendered_edges_sit_where_the_camera_would_see_them() -> None:
+    # A camera pixel sums the light on its area, so along a row through the marker's black
+    # border, the dark width left of a pixel boundary is exactly how far the square's left
+    # edge is from it. (One texture sample a pixel put it up to 0.06 px out: as much as the
+    # perspective that tells a far marker's pose from its mirror image.)
+    calibration = DEFAULT_CALIBRATION
+    errors = []
+    for distance in (3000.0, 3700.0, 4100.0, 4600.0, 5000.0):
+        for offset in (0.0, 13.7, 27.1, 41.3):
+            item = MarkerItem(0, 150.0, (offset, 0.0, distance), rotation_from_orientation(
+                Orientation(0.0, 0.0, 0.0)))
+            image = render(calibration, RESOLUTION, [item], background=(255, 255, 255))
+            width = calibration.fx * 150.0 / distance
+            centre = calibration.fx * offset / distance + calibration.cx
+            row = round(calibration.cy - width / 2 + width / 16)  # in the top black cell
+            boundary = math.floor(centre)  # columns before it end at boundary - 0.5
+            dark = ((255.0 - image[row, :boundary, 0].astype(np.float64)) / 255.0).sum()
+            errors.append(abs((boundary - 0.5 - (centre - width / 2)) - dark))
+    assert max(errors) < 0.02
 
 
 def test_pixel_centre_is_the_projected_centre() -> None:

@@ -172,3 +172,20 @@ async def test_cameras_of_one_kit_share_one_clock_that_stops_with_the_last() -> 
     await second[0].close()
     assert id(kit) not in _WorldClock._clocks
     _WorldClock.leave(kit)  # a kit without a clock: nothing to do
+
+
+async def test_a_picture_shows_the_pose_of_the_moment_it_was_asked_for() -> None:
+    # The view is noted on the event loop and drawn on the worker thread: moving the robot
+    # in between does not change the picture.
+    kit = use_kit()
+    kit.world.place_robot(Pose(2875.0, 1000.0, math.pi / 2))
+    backend = SimulatedCameraBackend(kit)
+    try:
+        source = await backend.frame_source()
+        assert kit.camera is not None
+        expected = render_view(kit.world, kit.camera)
+        kit.world.place_robot(Pose(1000.0, 1500.0, 0.3))
+        assert np.array_equal(source(), expected)
+        assert not np.array_equal(render_view(kit.world, kit.camera), expected)
+    finally:
+        await backend.close()
