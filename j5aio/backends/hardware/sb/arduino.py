@@ -5,7 +5,7 @@ non-empty one, which must be ``# Booted``, then the version line
 (``# SBDuino GPIO v2019.8.0``), all within 33 s times the time scale. The pins' initial
 modes are then applied by the board's ``setup()``.
 
-Correlation guarantee: every request carries a request id (``@<n> ``, cycling through
+Correlation guarantee: every request carries a request id (``@<n>`` and a space, cycling through
 1 to 32767), and a reply is taken only if its echo or final line carries that id. A reply
 that arrives after its request timed out is skipped by later requests however late it
 comes, so it is never taken as their answer (unless 32767 requests have gone meanwhile).
