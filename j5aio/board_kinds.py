@@ -6,13 +6,14 @@ name), its console backend, and the named simulated kits it belongs to. Everythi
 needs a list of boards reads it from here:
 
 - the hardware environment and ``python -m j5aio list`` (hardware backends);
-- :func:`j5aio.backends.hardware.attach` (serial backends' identification);
+- :func:`j5aio.backends.hardware.attach <j5aio.backends.hardware.identify.attach>` (serial backends'
+  identification);
 - the simulated environment, ``J5AIO_ENV=sim`` and ``run --sim`` (simulators);
 - ``python -m j5aio simulate NAME`` (serial simulators, by name);
 - the named kits (``--kit NAME``, ``J5AIO_KIT``, :func:`~j5aio.simulator.kit.use_kit`);
 - the console environment (console backends).
 
-j5aio's own boards are registered in :mod:`j5aio._builtin_kinds`. Other packages register
+j5aio's own boards are registered in ``j5aio._builtin_kinds``. Other packages register
 theirs through the ``j5aio.boards`` entry point group (:data:`ENTRY_POINT_GROUP`). An
 entry point names an object that is one of:
 
@@ -149,7 +150,7 @@ class BoardKind:
         hardware backend, finding the boards of the current simulated kit made from
         this kind's simulators.
     :param identify_order: where this kind's serial backend comes in
-        :func:`~j5aio.backends.hardware.attach` and in telling apart boards that share
+        :func:`~j5aio.backends.hardware.identify.attach` and in telling apart boards that share
         USB IDs: lower first. Put a kind whose identification is quick and harmless to
         other boards first.
     :param package: the distribution that registered it (filled in for plugins).
@@ -192,8 +193,8 @@ class KitDefinition:
 
     :param name: the kit's name, e.g. ``"sr2019"``.
     :param description: what it is, for people.
-    :param boards: simulator names (:attr:`SimulatorEntry.name`) and how many of each,
-        in the order the kit makes them.
+    :param boards: simulator names (each :class:`~j5aio.board_kinds.SimulatorEntry`'s ``name``) and
+        how many of each, in the order the kit makes them.
     :param package: the distribution that registered it (filled in for plugins).
     """
 

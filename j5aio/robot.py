@@ -33,9 +33,9 @@ class BaseRobot:
     """The base class of robots.
 
     Use it as an async context manager. On the way in it takes the single-robot lock and
-    runs :meth:`setup`, where a subclass finds its boards; on the way out (normally, by
-    an exception, by cancellation, or on SIGINT / SIGTERM / SIGHUP) every board is made
-    safe; a signal then ends the program with status ``128 + signal``::
+    runs :meth:`~j5aio.robot.BaseRobot.setup`, where a subclass finds its boards; on the way
+    out (normally, by an exception, by cancellation, or on SIGINT / SIGTERM / SIGHUP) every
+    board is made safe; a signal then ends the program with status ``128 + signal``::
 
         class MyRobot(BaseRobot):
             async def setup(self) -> None:
@@ -49,11 +49,12 @@ class BaseRobot:
     raises :class:`~j5aio.errors.UnableToObtainLock`.
 
     On match day, ``await robot.wait_start()`` waits for the start button and reads the
-    match's metadata (:attr:`zone`, :attr:`arena`, :attr:`mode`); in a match with a
-    duration the match timer then ends the program when the match is over, every board
-    safe, however the program is written (see :mod:`j5aio.competition`). Use
-    :meth:`time` and :meth:`sleep` for timing, so that a simulation can run at another
-    speed.
+    match's metadata (:attr:`~j5aio.robot.BaseRobot.zone`, :attr:`~j5aio.robot.BaseRobot.arena`,
+    :attr:`~j5aio.robot.BaseRobot.mode`); in a match with a duration the match timer then ends the
+    program when the match is over, every board safe, however the program is written (see
+    :mod:`j5aio.competition`). Use
+    :meth:`~j5aio.robot.BaseRobot.time` and :meth:`~j5aio.robot.BaseRobot.sleep` for timing, so that
+    a simulation can run at another speed.
     """
 
     #: The localhost TCP port used as the machine-wide lock. ``J5AIO_LOCK_PORT`` overrides it.

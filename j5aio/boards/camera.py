@@ -1,4 +1,4 @@
-"""A camera, as a board with one component: its :class:`MarkerCamera`."""
+"""A camera, as a board with one component: its :class:`.MarkerCamera`."""
 
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ class CameraBoard(Board):
 
     @staticmethod
     def supported_components() -> set[type[Component]]:
-        """The component classes of a camera: :class:`MarkerCamera`."""
+        """The component classes of a camera: :class:`.MarkerCamera`."""
         return {MarkerCamera}
 
     async def make_safe(self) -> None:

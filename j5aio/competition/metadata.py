@@ -71,7 +71,9 @@ class Mode(StrEnum):
     Each compares equal to (and prints as) its name: ``robot.mode == "COMP"``.
     """
 
+    #: In a match: the start signal comes from the arena and the match is timed.
     COMP = "COMP"
+    #: Being developed: no arena, no match timer.
     DEV = "DEV"
 
 
@@ -85,7 +87,8 @@ class Metadata:
 
     :param arena: the arena's name (1 to 32 characters, e.g. ``"A"``).
     :param zone: the starting zone, 0 to :data:`MAX_ZONE`.
-    :param mode: :attr:`Mode.COMP` in a match, :attr:`Mode.DEV` otherwise.
+    :param mode: :attr:`~j5aio.competition.metadata.Mode.COMP` in a match,
+        :attr:`~j5aio.competition.metadata.Mode.DEV` otherwise.
     :param duration: the match's length in seconds (more than 0, at most an hour), or
         ``None`` for no time limit.
     :param marker_offset: added to marker numbers in this arena (0 or more).
@@ -251,7 +254,7 @@ def find_usb_sticks(
 ) -> list[Path]:
     """Every mounted removable drive: mount points one or two levels below a root.
 
-    :param roots: where to look; :func:`media_roots` if omitted.
+    :param roots: where to look; ``media_roots()`` if omitted.
     :param is_mount: says whether a directory is a mount point; ``os.path.ismount`` if
         omitted.
     :returns: the drives' paths, sorted.

@@ -1,7 +1,8 @@
 """Components: the smallest logical parts of a board, and the interfaces that drive them.
 
-Each component (an :class:`LED`, a :class:`Motor`, a :class:`GPIOPin` ...) checks what
-the user asks for and then awaits its interface, which a backend implements.
+Each component (an :class:`~j5aio.components.led.LED`, a :class:`~j5aio.components.motor.Motor`, a
+:class:`~j5aio.components.gpio_pin.GPIOPin` ...) checks what the user asks for and then awaits its
+interface, which a backend implements.
 """
 
 from j5aio.components.battery_sensor import BatterySensor, BatterySensorInterface

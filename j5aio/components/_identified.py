@@ -24,7 +24,8 @@ class IdentifiedComponent(Component, Generic[InterfaceT]):
 
     :param identifier: the number of the component on its board.
     :param backend: the backend that implements this component's interface.
-    :raises TypeError: ``backend`` does not implement :meth:`interface_class`.
+    :raises TypeError: ``backend`` does not implement
+        :meth:`~j5aio.components.component.Component.interface_class`.
     """
 
     __slots__ = ("_backend", "_identifier")

@@ -23,8 +23,8 @@ class LEDMode(Enum):
 class FlashingLEDInterface(LEDInterface):
     """The coroutines a backend implements to drive LEDs that can flash by themselves.
 
-    ``get_led_state`` / ``set_led_state`` of :class:`LEDInterface` still work: a flashing
-    LED reads as lit, and setting a state stops the flashing.
+    ``get_led_state`` / ``set_led_state`` of :class:`~j5aio.components.led.LEDInterface` still work:
+    a flashing LED reads as lit, and setting a state stops the flashing.
     """
 
     @abstractmethod

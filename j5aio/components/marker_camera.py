@@ -120,7 +120,7 @@ class MarkerCamera(IdentifiedComponent[MarkerCameraInterface]):
         angles (``marker.has_pose`` is ``False``).
 
         :raises UnknownMarkerError: a marker was seen whose id has no size in the table.
-        :raises VisionNotInstalledError: the vision libraries are not installed.
+        :raises ~j5aio.vision.VisionNotInstalledError: the vision libraries are not installed.
         :raises CommunicationError: the camera gave no picture.
         """
         return await self._backend.see_markers(self._identifier, self._marker_sizes)

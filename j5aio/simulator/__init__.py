@@ -4,23 +4,32 @@ Each simulator is written from the protocol description alone (``protocols.md``)
 it checks the host code rather than mirroring it. They are synchronous state machines with
 no clock; transports wrap them.
 
-Serial boards (:class:`SerialBoardSimulator`):
+Serial boards (:class:`~j5aio.simulator.base.SerialBoardSimulator`):
 
-- :class:`SRMotorBoardFw3Simulator`: SR Motor Board v4, firmware 3, binary, 1 Mbaud.
-- :class:`SRMotorBoardFw4Simulator`: SR Motor Board v4, firmware 4.4 / 4.5, text, 115 200 baud.
-- :class:`SRPowerBoardFw4Simulator`: SR Power Board v4, firmware 4.4, CDC serial, text.
-- :class:`SRRuggeduinoSimulator`: SR Ruggeduino single-character firmware 1 or 2.
-- :class:`SBArduinoSimulator`: SourceBots Arduino, 2019 line protocol (2019.6.0 / 2019.8.0).
-- :class:`SRServoBoardFw4Simulator` / :class:`SBServoBoardFw4Simulator`: SR Servo Board v4,
-  serial firmware 4.3 (12 servos) and the SourceBots fork 4.4 (8 servos).
-- :class:`SBArduino2024Simulator`: SourceBots Arduino, sb2024 colon protocol (``2.0``).
+- :class:`~j5aio.simulator.sr_motor_fw3.SRMotorBoardFw3Simulator`: SR Motor Board v4, firmware 3,
+  binary, 1 Mbaud.
+- :class:`~j5aio.simulator.sr_motor_fw4.SRMotorBoardFw4Simulator`: SR Motor Board v4, firmware 4.4 /
+  4.5, text, 115 200 baud.
+- :class:`~j5aio.simulator.sr_power_fw4.SRPowerBoardFw4Simulator`: SR Power Board v4, firmware 4.4,
+  CDC serial, text.
+- :class:`~j5aio.simulator.sr_ruggeduino_fw1.SRRuggeduinoSimulator`: SR Ruggeduino single-character
+  firmware 1 or 2.
+- :class:`~j5aio.simulator.sb_arduino_2019.SBArduinoSimulator`: SourceBots Arduino, 2019 line
+  protocol (2019.6.0 / 2019.8.0).
+- :class:`~j5aio.simulator.sr_servo_fw4.SRServoBoardFw4Simulator` /
+  :class:`~j5aio.simulator.sr_servo_fw4.SBServoBoardFw4Simulator`: SR Servo Board v4, serial
+  firmware 4.3 (12 servos) and the SourceBots fork 4.4 (8 servos).
+- :class:`~j5aio.simulator.sb_arduino_2024.SBArduino2024Simulator`: SourceBots Arduino, sb2024 colon
+  protocol (``2.0``).
 
-USB control-transfer boards (:class:`UsbBoardSimulator`, shaped like a pyusb device):
+USB control-transfer boards (:class:`~j5aio.simulator.base.UsbBoardSimulator`, shaped like a pyusb
+device):
 
-- :class:`SRPowerBoardFw3Simulator`: SR Power Board v4, firmware 3.
-- :class:`SRServoBoardFw2Simulator`: SR Servo Board v4, firmware 2.
+- :class:`~j5aio.simulator.sr_power_fw3.SRPowerBoardFw3Simulator`: SR Power Board v4, firmware 3.
+- :class:`~j5aio.simulator.sr_servo_fw2.SRServoBoardFw2Simulator`: SR Servo Board v4, firmware 2.
 
-:data:`SERIAL_SIMULATORS` maps a command-line name to a factory taking a serial number.
+:data:`~j5aio.simulator.SERIAL_SIMULATORS` maps a command-line name to a factory taking a serial
+number.
 """
 
 from __future__ import annotations

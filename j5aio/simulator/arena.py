@@ -8,10 +8,11 @@ y north, z up, in mm; a heading is measured from east towards north, in radians.
 by one motor of the simulated kit (by default motor 0 and motor 1 of motor board 0). A
 wheel's ground speed is its motor's signed duty as the simulated board drives it (-1 to 1:
 ``MotorOutput.power``, which is what the firmware makes of the power sent, e.g. 62 % for
-0.5 on an SR v4 motor board) times :attr:`DifferentialDrive.max_speed`. The robot moves
-forwards at the mean of the two speeds and turns anticlockwise at their difference divided
-by the track width; the pose is integrated exactly along each arc, with each power held
-from one update to the next.
+0.5 on an SR v4 motor board) times the ``max_speed`` of
+:class:`~j5aio.simulator.arena.DifferentialDrive`. The robot moves forwards at the mean of
+the two speeds and turns anticlockwise at their difference divided by the track width; the
+pose is integrated exactly along each arc, with each power held from one update to the
+next.
 The robot stops at the walls (it cannot leave the arena); tokens do not stop it.
 """
 

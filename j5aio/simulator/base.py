@@ -295,10 +295,10 @@ class UsbBoardSimulator(ABC):
     def _control_in(
         self, request_type: int, request: int, value: int, index: int, length: int
     ) -> bytes:
-        """Answer a device-to-host request; raise :class:`UsbStall` to stall."""
+        """Answer a device-to-host request; raise :class:`.UsbStall` to stall."""
 
     @abstractmethod
     def _control_out(
         self, request_type: int, request: int, value: int, index: int, data: bytes
     ) -> None:
-        """Handle a host-to-device request; raise :class:`UsbStall` to stall."""
+        """Handle a host-to-device request; raise :class:`.UsbStall` to stall."""

@@ -180,8 +180,9 @@ def kit_discovery_options(
 
     Each serial board of ``serial_type`` (every serial board by default) is listed as a
     :class:`~j5aio.backends.hardware.transports.discovery.PortInfo`, and opening it gives a
-    :class:`SimulatorStream` to its simulator, with the kit's time scale. Each USB board is
-    found as a :class:`SimulatedUSBDevice` by its vendor and product IDs. Any hardware discovery,
+    :class:`~j5aio.backends.hardware.transports.memory.SimulatorStream` to its simulator, with the
+    kit's time scale. Each USB board is found as a :class:`SimulatedUSBDevice` by its vendor and
+    product IDs. Any hardware discovery,
     :func:`~j5aio.backends.hardware.listing.find_boards` included, then finds the kit.
 
     :param kit: the kit whose boards to find.
@@ -322,7 +323,7 @@ _NAMED_SIMULATED_BACKENDS: dict[type[Backend], type[Backend]] = {
 def simulated_backend(kind: BoardKind) -> type[Backend] | None:
     """Return the backend that finds ``kind``'s boards in the current simulated kit.
 
-    That is the kind's own :attr:`~j5aio.board_kinds.BoardKind.simulated` backend if it
+    That is the kind's own ``simulated`` backend (:class:`~j5aio.board_kinds.BoardKind`) if it
     has one, else a subclass of its hardware backend whose ``discover`` looks at the
     boards of :func:`~j5aio.simulator.kit.current_kit` made from the kind's simulators
     (the hardware backend's ``discover`` must take ``options``, as the serial and USB

@@ -66,7 +66,7 @@ class KCHSimulator:
         closed, a new one.
 
         :param serial_number: the KCH's asset code (for a new board);
-            :attr:`serial_number` by default.
+            this simulator's ``serial_number`` by default.
         :param backend_class: the backend to drive it with (for a new board), a subclass
             of :class:`~j5aio.backends.hardware.sr.kch.KCHHardwareBackend` such as a
             simulated environment's; that class itself by default.
@@ -106,15 +106,15 @@ class KCHSimulator:
 class KCHSimulatedBackend(KCHHardwareBackend):
     """The KCH backend of the simulated environment: it finds the current kit's KCH.
 
-    The board is driven by the real :class:`KCHHardwareBackend` code over the simulated
-    KCH's mock pins.
+    The board is driven by the real :class:`~j5aio.backends.hardware.sr.kch.KCHHardwareBackend` code
+    over the simulated KCH's mock pins.
     """
 
     @classmethod
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
         """Return the KCH of the current simulated kit (none if the kit has none).
 
-        :param options: ignored, as by :meth:`KCHHardwareBackend.discover`.
+        :param options: ignored, as by :meth:`.KCHHardwareBackend.discover`.
         """
         from j5aio.simulator.kit import current_kit
 

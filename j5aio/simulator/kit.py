@@ -59,9 +59,9 @@ MAX_BOARDS_OF_A_KIND: Final = 99
 KIT_VARIABLE: Final = "J5AIO_KIT"
 
 BoardSimulator = object
-"""A simulator of one board: usually a :class:`SerialBoardSimulator` or a
-:class:`UsbBoardSimulator`, but a board reached otherwise (a Raspberry Pi HAT's GPIO, say)
-has a simulator of its own shape."""
+"""A simulator of one board: usually a :class:`~j5aio.simulator.base.SerialBoardSimulator`
+or a :class:`~j5aio.simulator.base.UsbBoardSimulator`, but a board reached otherwise (a
+Raspberry Pi HAT's GPIO, say) has a simulator of its own shape."""
 
 _kit_numbers = itertools.count(1)
 
@@ -136,7 +136,7 @@ class SimulatedKit:
 
     Serial numbers are distinct and sort in board order, so that ``kit.motor_boards[i]``
     is the board a robot sees as ``robot.motor_boards[i]``: each simulator's
-    :attr:`~j5aio.board_kinds.SimulatorEntry.serial_prefix` and the board's index,
+    the ``serial_prefix`` of its :class:`~j5aio.board_kinds.SimulatorEntry` and the board's index,
     ``SIMPB0`` for the first power board, ``SIMMB0`` and ``SIMMB1`` for motor boards,
     ``SIMSB0`` for a servo board, ``SIMSBA0`` for a SourceBots Arduino and ``SIMRD0`` for a
     Ruggeduino (``SIMMB00`` to ``SIMMB11`` in a kit of twelve motor boards).

@@ -8,7 +8,7 @@ machine:
   resets into the STM32 ROM bootloader (silent from then on), anything else is ignored.
 - waiting for a speed byte ``b`` (any byte, back to idle afterwards): 0 is ignored,
   1 coasts, 2 brakes, otherwise ``s = b - 128`` drives the motor, forwards when s >= 0,
-  with a PWM compare of ``|s| * 20`` against a period of 2000, so full duty from |s| >= 100.
+  with a PWM compare of ``|s| * 20`` against a period of 2000, so full duty from ``|s| >= 100``.
 
 The board does not reset when its port is opened and prints nothing at boot; the motors
 start (and come back from a reset) coasting, with the driver disabled.
@@ -57,15 +57,15 @@ class MotorMode(enum.Enum):
 
 @dataclass(frozen=True)
 class MotorOutput:
-    """The state of one motor output: its mode and, when driving, the speed step |s|."""
+    """The state of one motor output: its mode and, when driving, the speed step ``|s|``."""
 
     mode: MotorMode
     steps: int = 0
-    """|s| from the speed byte (0-127); the PWM compare value is ``steps * 20``."""
+    """``|s|`` from the speed byte (0-127); the PWM compare value is ``steps * 20``."""
 
     @property
     def duty(self) -> float:
-        """The PWM duty cycle 0.0-1.0 (0 unless driving; saturates at |s| >= 100)."""
+        """The PWM duty cycle 0.0-1.0 (0 unless driving; saturates at ``|s| >= 100``)."""
         if self.mode in (MotorMode.COAST, MotorMode.BRAKE):
             return 0.0
         return min(self.steps, _FULL_DUTY_STEPS) / _FULL_DUTY_STEPS

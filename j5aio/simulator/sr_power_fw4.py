@@ -3,8 +3,9 @@ r"""Simulator of the SR Power Board v4 running firmware 4.4 (USB CDC serial, tex
 Protocol (protocols.md §1B). The board is a CDC serial port (baud rate ignored). Each
 ``\n``-terminated ASCII line is one command; a ``\r`` cuts the line there; 63 bytes
 without ``\n`` discard the buffer. Every line gets exactly one reply line: ``ACK``, data,
-or ``NACK:<reason>``. The replies produced from one USB packet (one :meth:`receive`)
-share a 64-byte buffer, so a host that sends several commands at once may get them cut.
+or ``NACK:<reason>``. The replies produced from one USB packet (one
+:meth:`~j5aio.simulator.base.SerialBoardSimulator.receive`) share a 64-byte buffer, so a host that
+sends several commands at once may get them cut.
 
 Outputs 0-6 are H0, H1, L0, L1, L2 (the brain, always on unless ``*SYS:BRAIN:SET:0``),
 L3 and the 5 V rail. The start buttons are latched: a press (the moment a button goes
@@ -15,7 +16,8 @@ cable switches every output but the brain off, stops the buzzer and lights both 
 
 The simulator keeps no clock: :meth:`SRPowerBoardFw4Simulator.advance` passes time, for
 the buzzer's remaining time and the flashing LEDs (which toggle once a second).
-Over-current trips happen when the outside says so (:meth:`trip_output`).
+Over-current trips happen when the outside says so
+(:meth:`~j5aio.simulator.sr_power_fw4.SRPowerBoardFw4Simulator.trip_output`).
 """
 
 from __future__ import annotations

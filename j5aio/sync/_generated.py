@@ -369,9 +369,10 @@ class Environment(_SyncWrapper):
 class UltrasoundSensors(_SyncWrapper):
     """Makes an ultrasound sensor for a pair of pins when it is asked for by subscript.
 
-    ``sensors[trigger, echo]`` gives a new :class:`UltrasoundSensor` whose trigger is pin
-    ``trigger`` and whose echo is pin ``echo``, so sensors are reached with square
-    brackets like every other kind of component.
+    ``sensors[trigger, echo]`` gives a new
+    :class:`~j5aio.components.derived.ultrasound.UltrasoundSensor` whose trigger is pin ``trigger``
+    and whose echo is pin ``echo``, so sensors are reached with square brackets like every other
+    kind of component.
 
     :param board: the board whose pins the sensors use.
     """
@@ -420,9 +421,9 @@ class BaseRobot(_SyncWrapper):
     """The base class of robots.
 
     Use it as an async context manager. On the way in it takes the single-robot lock and
-    runs :meth:`setup`, where a subclass finds its boards; on the way out (normally, by
-    an exception, by cancellation, or on SIGINT / SIGTERM / SIGHUP) every board is made
-    safe; a signal then ends the program with status ``128 + signal``::
+    runs :meth:`~j5aio.robot.BaseRobot.setup`, where a subclass finds its boards; on the way
+    out (normally, by an exception, by cancellation, or on SIGINT / SIGTERM / SIGHUP) every
+    board is made safe; a signal then ends the program with status ``128 + signal``::
 
         class MyRobot(BaseRobot):
             async def setup(self) -> None:
@@ -436,11 +437,12 @@ class BaseRobot(_SyncWrapper):
     raises :class:`~j5aio.errors.UnableToObtainLock`.
 
     On match day, ``await robot.wait_start()`` waits for the start button and reads the
-    match's metadata (:attr:`zone`, :attr:`arena`, :attr:`mode`); in a match with a
-    duration the match timer then ends the program when the match is over, every board
-    safe, however the program is written (see :mod:`j5aio.competition`). Use
-    :meth:`time` and :meth:`sleep` for timing, so that a simulation can run at another
-    speed.
+    match's metadata (:attr:`~j5aio.robot.BaseRobot.zone`, :attr:`~j5aio.robot.BaseRobot.arena`,
+    :attr:`~j5aio.robot.BaseRobot.mode`); in a match with a duration the match timer then ends the
+    program when the match is over, every board safe, however the program is written (see
+    :mod:`j5aio.competition`). Use
+    :meth:`~j5aio.robot.BaseRobot.time` and :meth:`~j5aio.robot.BaseRobot.sleep` for timing, so that
+    a simulation can run at another speed.
     """
 
     __slots__ = ()
@@ -1168,7 +1170,7 @@ class CameraBoard(Board):
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
-        """The component classes of a camera: :class:`MarkerCamera`."""
+        """The component classes of a camera: :class:`.MarkerCamera`."""
         return _boards_camera.CameraBoard.supported_components()
 
     def make_safe(self) -> None:
@@ -1518,7 +1520,8 @@ class MotorBoardFw4(MotorBoard):
 
     :param serial_number: the board's asset tag.
     :param backend: the backend that drives the board.
-    :param safe_state: what :meth:`make_safe` sets both motors to (brake by default).
+    :param safe_state: what :meth:`~j5aio.boards.board.Board.make_safe` sets both motors to (brake
+        by default).
     """
 
     __slots__ = ()
@@ -1671,8 +1674,8 @@ class Ruggeduino(ArduinoUno):
 class ServoBoardFw4(ServoBoard):
     """The Student Robotics v4 Servo Board running the serial firmware 4.3: twelve servos.
 
-    Everything a :class:`ServoBoard` does works the same, so programs written for the
-    older firmware keep working. On top of that:
+    Everything a :class:`~j5aio.boards.sr.v4.servo_board.ServoBoard` does works the same, so
+    programs written for the older firmware keep working. On top of that:
 
     * each servo is a :class:`~j5aio.components.pulse_servo.PulseServo`: its positions
       -1 to 1 map onto pulse limits (1000 to 2000 µs unless changed), and it reads back
@@ -1683,8 +1686,9 @@ class ServoBoardFw4(ServoBoard):
 
     The SourceBots fork of the firmware, with eight servos, is
     :class:`~j5aio.boards.sb.servo_board.SBServoBoard`, a subclass with another
-    :attr:`SERVO_COUNT`. It is a class of its own (not a per-board channel count) so that
-    a board group, the sync facade and autocompletion all know how many servos there are.
+    :attr:`~j5aio.boards.sr.v4.servo_board.ServoBoard.SERVO_COUNT`. It is a class of its own
+    (not a per-board channel count) so that a board group, the sync facade and
+    autocompletion all know how many servos there are.
 
     :param serial_number: the board's serial number.
     :param backend: the backend that drives the board.
@@ -1739,7 +1743,8 @@ class IdentifiedComponent(Component, Generic[InterfaceT]):
 
     :param identifier: the number of the component on its board.
     :param backend: the backend that implements this component's interface.
-    :raises TypeError: ``backend`` does not implement :meth:`interface_class`.
+    :raises TypeError: ``backend`` does not implement
+        :meth:`~j5aio.components.component.Component.interface_class`.
     """
 
     __slots__ = ()
@@ -2204,7 +2209,7 @@ class MarkerCamera(IdentifiedComponent[_components_marker_camera.MarkerCameraInt
         angles (``marker.has_pose`` is ``False``).
 
         :raises UnknownMarkerError: a marker was seen whose id has no size in the table.
-        :raises VisionNotInstalledError: the vision libraries are not installed.
+        :raises ~j5aio.vision.VisionNotInstalledError: the vision libraries are not installed.
         :raises CommunicationError: the camera gave no picture.
         """
         return _call(self._core.see)
@@ -2643,8 +2648,9 @@ class SRArduinoBoard(AllDigitalUno, Ruggeduino):
     It speaks the Ruggeduino's single-character protocol. Every pin from 2 to 19 is a
     digital input, input with pull-up or output; A0 to A5 (14 to 19) also read voltages.
     An ultrasound sensor works on any two pins: ``board.ultrasound_sensors[trigger,
-    echo]``, whose ``distance()`` is ``None`` when no echo comes back. :attr:`command`
-    sends raw text, as sr-robot3's ``command()`` does.
+    echo]``, whose ``distance()`` is ``None`` when no echo comes back.
+    :attr:`~j5aio.boards.sr.v4.ruggeduino.Ruggeduino.command` sends raw text, as
+    sr-robot3's ``command()`` does.
 
     :param serial_number: the board's serial number.
     :param backend: the backend that drives the board.

@@ -553,7 +553,7 @@ def call(fn: Callable[P, Awaitable[T]], /, *args: P.args, **kwargs: P.kwargs) ->
 
     If the calling thread is interrupted while waiting, the coroutine is cancelled and the
     interruption is re-raised once the cancellation has landed (or after
-    :data:`CANCEL_GRACE` seconds).
+    ``CANCEL_GRACE`` seconds).
 
     :raises RuntimeError: called from inside the portal's own loop (use ``await`` there),
         or the program is exiting and the portal has stopped.

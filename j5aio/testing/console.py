@@ -1,7 +1,7 @@
 """A scripted user for console backends: answers their prompts and keeps what they print.
 
 A console backend asks its user for readings through a
-:class:`~j5aio.backends.console.Console`. In a test, :class:`ConsoleScript` plays that
+:class:`~j5aio.backends.console.console.Console`. In a test, :class:`ConsoleScript` plays that
 user: queue the answers, hand :meth:`ConsoleScript.console_class` to the backend, and read
 back what it printed::
 
@@ -78,7 +78,7 @@ class ConsoleScript:
         self.printed.append(line)
 
     def console_class(self) -> type[Console]:
-        """A :class:`Console` class whose consoles print to and ask this script."""
+        """A :class:`.Console` class whose consoles print to and ask this script."""
         script = self
 
         class ScriptedConsole(Console):

@@ -191,7 +191,7 @@ def j5aio_pty_simulator() -> Iterator[PtySimulatorFactory]:
 
 
 class FaultyStreamFactory:
-    """Wraps streams in :class:`FaultyStream` for one test; see ``j5aio_faulty_stream``."""
+    """Wraps streams in :class:`.FaultyStream` for one test; see ``j5aio_faulty_stream``."""
 
     def __init__(self) -> None:
         #: Every stream made, in order.
@@ -203,7 +203,7 @@ class FaultyStreamFactory:
         *,
         schedule: Mapping[int, Fault | Iterable[Fault]] | None = None,
     ) -> FaultyStream:
-        """Wrap ``inner`` in a :class:`FaultyStream` with the given fault ``schedule``."""
+        """Wrap ``inner`` in a :class:`.FaultyStream` with the given fault ``schedule``."""
         from j5aio.testing.transports import FaultyStream
 
         stream = FaultyStream(inner, schedule=schedule)

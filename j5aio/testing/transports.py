@@ -1,7 +1,7 @@
 r"""Fake transports for testing backends: record, script and break byte streams.
 
 In the spirit of httpx's ``MockTransport``, these are
-:class:`~j5aio.backends.hardware.transports.ByteStream` objects that a test hands to a
+:class:`~j5aio.backends.hardware.transports.stream.ByteStream` objects that a test hands to a
 backend in place of a serial port, usually through
 :meth:`SerialHardwareBackend.from_stream
 <j5aio.backends.hardware.serial_backend.SerialHardwareBackend.from_stream>`, which runs
@@ -501,7 +501,7 @@ class ScriptedStream(ByteStream):
             self._inbox.feed(reply)
 
     async def receive(self, max_bytes: int = 4096) -> bytes:
-        """Return scripted replies; see :meth:`ByteStream.receive`."""
+        """Return scripted replies; see :meth:`.ByteStream.receive`."""
         return await self._inbox.take(max_bytes)
 
     def close_now(self) -> None:

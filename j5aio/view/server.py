@@ -60,7 +60,7 @@ def _page(token: str, nonce: str) -> str:
 
 
 class ViewServer:
-    """The web server of the live view, fed by a :class:`ViewState`.
+    """The web server of the live view, fed by a :class:`~j5aio.view.state.ViewState`.
 
     :param state: the values to show.
     :param program_loop: the program's event loop, where simulator controls run; ``None``:

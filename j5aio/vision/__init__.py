@@ -1,9 +1,10 @@
 """Vision: finding AprilTag 36h11 markers with a camera (the optional extra ``j5aio[vision]``).
 
-:func:`detect_markers` does the finding for every camera backend; a
+:func:`~j5aio.vision.detect.detect_markers` does the finding for every camera backend; a
 :class:`~j5aio.components.marker_camera.MarkerCamera` component gives robots ``see()``.
 This package imports without the optional libraries (numpy, OpenCV, pyapriltags); the
-first thing that needs them raises :class:`VisionNotInstalledError` saying what to install.
+first thing that needs them raises :class:`~j5aio.vision.VisionNotInstalledError` saying what to
+install.
 """
 
 from j5aio.vision._optional import INSTALL_HINT, VisionNotInstalledError

@@ -29,8 +29,8 @@ class VisionNotInstalledError(ImportError):
 def require(module: str) -> ModuleType:
     """Import and return one of the vision libraries (``numpy``, ``cv2``, ``pyapriltags``).
 
-    :raises VisionNotInstalledError: the library is not installed; the message says what
-        to install.
+    :raises ~j5aio.vision.VisionNotInstalledError: the library is not installed; the
+        message says what to install.
     """
     try:
         return importlib.import_module(module)

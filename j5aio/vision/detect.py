@@ -119,7 +119,7 @@ class MarkerDetector:
     :param threads: threads the AprilTag library uses for one picture.
     :param max_hamming: accept ids this many bits away from a valid code (0 or 1; 0 never
         reports a wrong id).
-    :raises VisionNotInstalledError: the vision libraries are not installed.
+    :raises ~j5aio.vision.VisionNotInstalledError: the vision libraries are not installed.
     """
 
     def __init__(
@@ -298,7 +298,7 @@ def detect_markers(
     :raises TypeError: ``image`` is not a uint8 numpy array.
     :raises ValueError: ``image`` has a shape that is not a picture.
     :raises UnknownMarkerError: a marker was found whose id has no size in the table.
-    :raises VisionNotInstalledError: the vision libraries are not installed.
+    :raises ~j5aio.vision.VisionNotInstalledError: the vision libraries are not installed.
     """
     return _thread_detector().detect(image, calibration, marker_sizes)
 

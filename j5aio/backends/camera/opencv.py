@@ -59,7 +59,7 @@ class OpenCVCameraBackend(FrameCameraBackend):
     :param calibration: the camera's calibration; by default the built-in one of a known
         camera at the resolution it gives, or ``None``.
     :param resolution: the ``(width, height)`` to ask the camera for.
-    :raises VisionNotInstalledError: the vision libraries are not installed.
+    :raises ~j5aio.vision.VisionNotInstalledError: the vision libraries are not installed.
     :raises CommunicationError: the camera could not be opened.
     """
 

@@ -18,7 +18,8 @@ class ConsoleBackend(Backend):
     """A backend that prints what a board would do and asks the user for its readings.
 
     Discovery always finds one board, with serial number ``"SERIAL"``. The questions and
-    messages go through a :class:`Console`; pass another class to the constructor, or set
+    messages go through a :class:`~j5aio.backends.console.console.Console`; pass another class to
+    the constructor, or set
     :attr:`console_class`, to drive a board from a test or from piped input.
 
     :param serial: the board's serial number.

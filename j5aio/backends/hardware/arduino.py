@@ -1,12 +1,12 @@
 """The base of the Arduino Uno serial backends: pins and the LED, over the shared pin rules.
 
 Subclasses say how a pin's state is sent to the board and how pins are read; this class
-applies :mod:`.arduino_pins` so that every Arduino board refuses the same things with the
-same errors.
+applies :mod:`~j5aio.backends.hardware.arduino_pins` so that every Arduino board refuses the same
+things with the same errors.
 
 What the backend remembers of a pin changes only once the board has been told: a new
 mode or level is sent first, and stored by the subclass when the board has answered
-(see :meth:`ArduinoHardwareBackend._apply_pin`), so a cancelled or failed change leaves
+(see ``ArduinoHardwareBackend._apply_pin``), so a cancelled or failed change leaves
 the remembered state as it was.
 """
 

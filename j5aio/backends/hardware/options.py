@@ -11,7 +11,8 @@ from j5aio.backends.hardware.transports.stream import ByteStream
 __all__ = ["DiscoveryOptions", "StreamOpener"]
 
 StreamOpener = Callable[[str, int], Awaitable[ByteStream]]
-"""Opens a port (path or URL) at a baud rate; :func:`open_serial_stream` by default."""
+"""Opens a port (path or URL) at a baud rate;
+:func:`~j5aio.backends.hardware.transports.serial_stream.open_serial_stream` by default."""
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,7 @@ Every hardware backend (serial and USB) is a :class:`Reconnecting` backend:
   hands back the same object, never a duplicate.
 * While lost, each call first looks for the same board again (by USB serial number, or
   at the same port path for a board attached by port), at most once every
-  :attr:`ReconnectPolicy.interval` seconds; a call made when it is not back fails at
+  ``ReconnectPolicy.interval`` seconds; a call made when it is not back fails at
   once with :class:`~j5aio.errors.BoardDisconnectionError`. There is no background task:
   the next call after the board is back finds it (so it answers again within
   ``interval`` of being back, plus its own boot time).
@@ -18,8 +18,8 @@ Every hardware backend (serial and USB) is a :class:`Reconnecting` backend:
   state (or from what the handshake reads back or sets).
 * **Retry policy.** A call that failed because the board vanished is retried once,
   transparently, if it is *idempotent* (a read, or setting a state: doing it twice is
-  the same as once) and the policy allows (:attr:`ReconnectPolicy.retry_idempotent`);
-  the retry waits up to :attr:`ReconnectPolicy.retry_wait` seconds for the board to come
+  the same as once) and the policy allows (``ReconnectPolicy.retry_idempotent``);
+  the retry waits up to ``ReconnectPolicy.retry_wait`` seconds for the board to come
   back. A call that is not idempotent (a piezo note) is never retried. Backends say which
   is which per command (``idempotent=False`` on the link calls); users choose the
   policy per backend class (``RECONNECT_POLICY``) or per board
@@ -51,7 +51,7 @@ class ReconnectPolicy:
     """How a hardware backend copes with its board vanishing and coming back.
 
     :param enabled: look for the board again at all; if false a lost board stays lost
-        until it is discovered again after :meth:`~Reconnecting.close`.
+        until it is discovered again after :meth:`~j5aio.backends.backend.Backend.close`.
     :param interval: the least time between two attempts to find a lost board, in
         seconds, so that a busy loop does not reopen the port thousands of times.
     :param retry_idempotent: retry an idempotent call once after its board vanished.

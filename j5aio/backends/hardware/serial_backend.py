@@ -66,7 +66,7 @@ MINIMUM_WAIT = 0.005
 
 
 def scaled(seconds: float, time_scale: float) -> float:
-    """Return ``seconds x time_scale``, but never less than :data:`MINIMUM_WAIT`."""
+    """Return ``seconds x time_scale``, but never less than ``MINIMUM_WAIT``."""
     return max(seconds * time_scale, MINIMUM_WAIT)
 
 
@@ -199,7 +199,8 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
 
         :param port: a device path (a pseudo-terminal works) or a pyserial URL.
         :param time_scale: multiplies the waits for the board to boot.
-        :param opener: opens the port; :func:`open_serial_stream` by default.
+        :param opener: opens the port;
+            :func:`~j5aio.backends.hardware.transports.serial_stream.open_serial_stream` by default.
         :raises PortInUseError: another kind of backend holds the port.
         :raises CommunicationError: the port could not be opened, or the board did not
             answer as it should.
@@ -252,7 +253,7 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
     ) -> BoardT | None:
         """Open ``port`` at this board's baud rate and return the board if it is one.
 
-        This is how :func:`j5aio.backends.hardware.attach` and discovery of ports that
+        This is how :func:`~j5aio.backends.hardware.identify.attach` and discovery of ports that
         several kinds share tell boards apart: the handshake runs with its waits scaled
         by ``time_scale`` and :data:`IDENTIFY_TIME_SCALE`. A board whose answers show it
         is another kind (a wrong reply, no reply) gives ``None``, and the port is closed
@@ -438,7 +439,7 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
 
     @abstractmethod
     async def _handshake(self, *, time_scale: float) -> None:
-        """Check the board and its firmware version; set :attr:`_firmware_version`."""
+        """Check the board and its firmware version; set ``_firmware_version``."""
 
     # -- talking to the board -----------------------------------------------------------
 

@@ -175,7 +175,7 @@ class USBHardwareBackend(Reconnecting, Backend):
 
     @abstractmethod
     async def _handshake(self) -> None:
-        """Check the firmware version (set :attr:`_firmware_version`) and initialise."""
+        """Check the firmware version (set ``_firmware_version``) and initialise."""
 
     async def _reopen(self) -> None:
         """Find the device again by vendor, product and serial number; handshake anew."""

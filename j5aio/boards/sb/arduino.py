@@ -64,9 +64,10 @@ class SBArduinoBoard(ArduinoUno):
 class UltrasoundSensors:
     """Makes an ultrasound sensor for a pair of pins when it is asked for by subscript.
 
-    ``sensors[trigger, echo]`` gives a new :class:`UltrasoundSensor` whose trigger is pin
-    ``trigger`` and whose echo is pin ``echo``, so sensors are reached with square
-    brackets like every other kind of component.
+    ``sensors[trigger, echo]`` gives a new
+    :class:`~j5aio.components.derived.ultrasound.UltrasoundSensor` whose trigger is pin ``trigger``
+    and whose echo is pin ``echo``, so sensors are reached with square brackets like every other
+    kind of component.
 
     :param board: the board whose pins the sensors use.
     """

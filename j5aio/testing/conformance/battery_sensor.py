@@ -16,7 +16,7 @@ __all__ = ["BatterySensorInterfaceConformance", "BatterySensorSubject"]
 
 @dataclass(kw_only=True)
 class BatterySensorSubject(Subject):
-    """A backend implementing :class:`BatterySensorInterface`.
+    """A backend implementing :class:`~j5aio.components.battery_sensor.BatterySensorInterface`.
 
     :param set_reading: makes sensor ``identifier`` measure ``volts`` and ``amps``, so
         that the next readings see them. For a console backend: queue the answers.
@@ -27,7 +27,7 @@ class BatterySensorSubject(Subject):
 
 
 class BatterySensorInterfaceConformance(InterfaceConformance[BatterySensorSubject]):
-    """What every implementation of :class:`BatterySensorInterface` must do.
+    """What every implementation of :class:`.BatterySensorInterface` must do.
 
     * voltage and current are finite floats;
     * they follow the battery (within :attr:`voltage_tolerance` and

@@ -20,13 +20,14 @@ _Hook = Callable[[int], Awaitable[None]]
 
 @dataclass(kw_only=True)
 class ButtonSubject(Subject):
-    """A backend implementing :class:`ButtonInterface`, for :class:`ButtonInterfaceConformance`.
+    """A backend implementing :class:`.ButtonInterface`, for :class:`ButtonInterfaceConformance`.
 
     :param set_pressed: holds button ``identifier`` down (``True``) or lets it go, so that
-        the next :meth:`~ButtonInterface.get_button_state` sees it. For a console
-        backend: queue the answer to the next prompt.
+        the next :meth:`~j5aio.components.button.ButtonInterface.get_button_state` sees
+        it. For a console backend: queue the answer to the next prompt.
     :param press: presses button ``identifier`` once, so that a waiting
-        :meth:`~ButtonInterface.wait_until_button_pressed` returns. It is called while
+        :meth:`~j5aio.components.button.ButtonInterface.wait_until_button_pressed` returns.
+        It is called while
         the wait is in progress. With ``release`` given, it only has to *latch* the press
         (hold the button down and return at once); otherwise it presses and releases,
         holding the button long enough for a polling backend to see it.
@@ -71,7 +72,7 @@ class ButtonSubject(Subject):
 
 
 class ButtonInterfaceConformance(InterfaceConformance[ButtonSubject]):
-    """What every implementation of :class:`ButtonInterface` must do.
+    """What every implementation of :class:`~j5aio.components.button.ButtonInterface` must do.
 
     * the state read is a ``bool`` and follows the button;
     * ``wait_until_button_pressed`` returns after a press, not before, and is cancellable

@@ -14,7 +14,7 @@ __all__ = ["FlagInterfaceConformance", "FlagSubject"]
 
 @dataclass(kw_only=True)
 class FlagSubject(Subject):
-    """A backend implementing :class:`FlagInterface`.
+    """A backend implementing :class:`~j5aio.components.flag.FlagInterface`.
 
     :param set_flag: raises (``True``) or lowers flag ``identifier`` on the board.
     """
@@ -24,7 +24,7 @@ class FlagSubject(Subject):
 
 
 class FlagInterfaceConformance(InterfaceConformance[FlagSubject]):
-    """What every implementation of :class:`FlagInterface` must do.
+    """What every implementation of :class:`~j5aio.components.flag.FlagInterface` must do.
 
     * each flag reads as a bool that follows the board, independently of the others;
     * an identifier the board does not have is refused, sending nothing.

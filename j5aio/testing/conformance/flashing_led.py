@@ -14,7 +14,7 @@ __all__ = ["FlashingLEDInterfaceConformance", "FlashingLEDSubject"]
 
 @dataclass(kw_only=True)
 class FlashingLEDSubject(LEDSubject):
-    """A backend implementing :class:`FlashingLEDInterface`.
+    """A backend implementing :class:`~j5aio.components.flashing_led.FlashingLEDInterface`.
 
     :param observe_mode: returns the mode LED ``identifier`` is really in (read from a
         simulator, say).
@@ -25,7 +25,7 @@ class FlashingLEDSubject(LEDSubject):
 
 
 class FlashingLEDInterfaceConformance(LEDInterfaceConformance):
-    """What every implementation of :class:`FlashingLEDInterface` must do.
+    """What every implementation of :class:`.FlashingLEDInterface` must do.
 
     Everything :class:`~.led.LEDInterfaceConformance` checks, and:
 

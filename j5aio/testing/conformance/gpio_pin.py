@@ -25,7 +25,7 @@ DIGITAL_INPUTS = frozenset({
 
 @dataclass(kw_only=True)
 class GPIOPinSubject(Subject):
-    """A backend implementing :class:`GPIOPinInterface`, for :class:`GPIOPinInterfaceConformance`.
+    """A backend implementing :class:`.GPIOPinInterface`, for :class:`GPIOPinInterfaceConformance`.
 
     :param modes: the hardware modes each pin supports, by identifier; a pin not listed
         supports only ``DIGITAL_OUTPUT``.
@@ -75,7 +75,7 @@ def _some(pins: list[tuple[int, GPIOPinMode]], what: str) -> list[tuple[int, GPI
 
 
 class GPIOPinInterfaceConformance(InterfaceConformance[GPIOPinSubject]):
-    """What every implementation of :class:`GPIOPinInterface` must do.
+    """What every implementation of :class:`~j5aio.components.gpio_pin.GPIOPinInterface` must do.
 
     * every mode a pin supports can be set and is read back;
     * the level last written to an output is remembered (and driven), pin by pin;

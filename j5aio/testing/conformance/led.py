@@ -14,7 +14,7 @@ __all__ = ["LEDInterfaceConformance", "LEDSubject"]
 
 @dataclass(kw_only=True)
 class LEDSubject(Subject):
-    """A backend implementing :class:`LEDInterface`, for :class:`LEDInterfaceConformance`.
+    """A backend implementing :class:`.LEDInterface`, for :class:`LEDInterfaceConformance`.
 
     :param observe: returns whether LED ``identifier`` is really lit (read from a
         simulator, say), so the suite can check the board, not just the backend's word.
@@ -25,7 +25,7 @@ class LEDSubject(Subject):
 
 
 class LEDInterfaceConformance(InterfaceConformance[LEDSubject]):
-    """What every implementation of :class:`LEDInterface` must do.
+    """What every implementation of :class:`~j5aio.components.led.LEDInterface` must do.
 
     * the state last set is the state read back, for every LED;
     * setting one LED leaves the others as they were;

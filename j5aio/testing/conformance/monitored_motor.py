@@ -17,7 +17,7 @@ __all__ = ["MonitoredMotorInterfaceConformance", "MonitoredMotorSubject"]
 
 @dataclass(kw_only=True)
 class MonitoredMotorSubject(MotorSubject):
-    """A backend implementing :class:`MonitoredMotorInterface`.
+    """A backend implementing :class:`~j5aio.components.monitored_motor.MonitoredMotorInterface`.
 
     :param set_current: makes motor ``identifier`` draw ``amps`` (a simulator's load, or
         the answer to a console prompt).
@@ -30,7 +30,7 @@ class MonitoredMotorSubject(MotorSubject):
 
 
 class MonitoredMotorInterfaceConformance(MotorInterfaceConformance):
-    """What every implementation of :class:`MonitoredMotorInterface` must do.
+    """What every implementation of :class:`.MonitoredMotorInterface` must do.
 
     Everything :class:`~.motor.MotorInterfaceConformance` checks, and:
 

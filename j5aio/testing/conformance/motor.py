@@ -19,11 +19,11 @@ __all__ = ["MotorInterfaceConformance", "MotorSubject"]
 
 @dataclass(kw_only=True)
 class MotorSubject(Subject):
-    """A backend implementing :class:`MotorInterface`, for :class:`MotorInterfaceConformance`.
+    """A backend implementing :class:`.MotorInterface`, for :class:`MotorInterfaceConformance`.
 
     :param observe: returns the state motor ``identifier`` is really in (read from a
-        simulator, say): a power in [-1, 1] or a :class:`MotorSpecialState`. Without it
-        the suite only sees what the backend *reports*, which a backend that caches the
+        simulator, say): a power in [-1, 1] or a :class:`~j5aio.components.motor.MotorSpecialState`.
+        Without it the suite only sees what the backend *reports*, which a backend that caches the
         power it was given gets right even when it sends the board the wrong number: a
         scaling or rounding bug is caught only with this hook.
     :param special_states: the special states the board has. A board without BRAKE or
@@ -52,7 +52,7 @@ def same_state(expected: MotorState, got: object, tolerance: float) -> bool:
 
 
 class MotorInterfaceConformance(InterfaceConformance[MotorSubject]):
-    """What every implementation of :class:`MotorInterface` must do.
+    """What every implementation of :class:`~j5aio.components.motor.MotorInterface` must do.
 
     * the power last set is read back, and shown by the board (with the ``observe``
       hook), to within half a power step: inexact powers such as 0.333 and -0.667 tell a

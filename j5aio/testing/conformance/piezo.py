@@ -22,7 +22,7 @@ Heard = tuple[timedelta, float]
 
 @dataclass(kw_only=True)
 class PiezoSubject(Subject):
-    """A backend implementing :class:`PiezoInterface`, for :class:`PiezoInterfaceConformance`.
+    """A backend implementing :class:`.PiezoInterface`, for :class:`PiezoInterfaceConformance`.
 
     :param observe: returns every note piezo ``identifier`` has been asked to play so far,
         oldest first, as (duration, pitch in hertz), read from a simulator (say).
@@ -33,7 +33,7 @@ class PiezoSubject(Subject):
 
 
 class PiezoInterfaceConformance(InterfaceConformance[PiezoSubject]):
-    """What every implementation of :class:`PiezoInterface` must do.
+    """What every implementation of :class:`~j5aio.components.piezo.PiezoInterface` must do.
 
     * ``buzz`` returns once the note is accepted, well before it has finished playing;
     * the board plays the duration and pitch asked for (within its resolution);

@@ -16,7 +16,7 @@ __all__ = ["PowerOutputInterfaceConformance", "PowerOutputSubject"]
 
 @dataclass(kw_only=True)
 class PowerOutputSubject(Subject):
-    """A backend implementing :class:`PowerOutputInterface`.
+    """A backend implementing :class:`~j5aio.components.power_output.PowerOutputInterface`.
 
     :param observe: returns whether output ``identifier`` is really switched on (read
         from a simulator, say).
@@ -30,7 +30,7 @@ class PowerOutputSubject(Subject):
 
 
 class PowerOutputInterfaceConformance(InterfaceConformance[PowerOutputSubject]):
-    """What every implementation of :class:`PowerOutputInterface` must do.
+    """What every implementation of :class:`.PowerOutputInterface` must do.
 
     * the enabled state last set is read back, for every output, and switching one
       output leaves the others as they were;

@@ -15,7 +15,7 @@ __all__ = ["PulseServoInterfaceConformance", "PulseServoSubject"]
 
 @dataclass(kw_only=True)
 class PulseServoSubject(ServoSubject):
-    """A backend implementing :class:`PulseServoInterface`.
+    """A backend implementing :class:`~j5aio.components.pulse_servo.PulseServoInterface`.
 
     :param observe_pulse: returns the pulse servo ``identifier`` really gets, in µs
         (``None`` when unpowered), read from a simulator, say.
@@ -26,7 +26,7 @@ class PulseServoSubject(ServoSubject):
 
 
 class PulseServoInterfaceConformance(ServoInterfaceConformance):
-    """What every implementation of :class:`PulseServoInterface` must do.
+    """What every implementation of :class:`.PulseServoInterface` must do.
 
     Everything :class:`~.servo.ServoInterfaceConformance` checks, and:
 

@@ -16,7 +16,7 @@ __all__ = ["RGBLEDInterfaceConformance", "RGBLEDSubject"]
 
 @dataclass(kw_only=True)
 class RGBLEDSubject(Subject):
-    """A backend implementing :class:`RGBLEDInterface`, for :class:`RGBLEDInterfaceConformance`.
+    """A backend implementing :class:`.RGBLEDInterface`, for :class:`RGBLEDInterfaceConformance`.
 
     :param observe: returns the duty cycle ``channel`` of RGB LED ``identifier`` really
         shows (read from a simulator, say).
@@ -27,7 +27,7 @@ class RGBLEDSubject(Subject):
 
 
 class RGBLEDInterfaceConformance(InterfaceConformance[RGBLEDSubject]):
-    """What every implementation of :class:`RGBLEDInterface` must do.
+    """What every implementation of :class:`~j5aio.components.rgb_led.RGBLEDInterface` must do.
 
     * the duty cycle last set on a channel is read back (within
       :attr:`duty_cycle_tolerance`; boards with on/off LEDs set a tolerance of 0.5 and

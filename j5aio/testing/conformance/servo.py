@@ -17,7 +17,7 @@ __all__ = ["ServoInterfaceConformance", "ServoSubject"]
 
 @dataclass(kw_only=True)
 class ServoSubject(Subject):
-    """A backend implementing :class:`ServoInterface`, for :class:`ServoInterfaceConformance`.
+    """A backend implementing :class:`.ServoInterface`, for :class:`ServoInterfaceConformance`.
 
     :param observe: returns the position servo ``identifier`` is really driven to (read
         from a simulator, say), ``None`` when unpowered.
@@ -37,7 +37,7 @@ def same_position(expected: ServoPosition, got: object, tolerance: float) -> boo
 
 
 class ServoInterfaceConformance(InterfaceConformance[ServoSubject]):
-    """What every implementation of :class:`ServoInterface` must do.
+    """What every implementation of :class:`~j5aio.components.servo.ServoInterface` must do.
 
     * the position last set is read back (within :attr:`position_tolerance`), for every
       servo;

@@ -16,7 +16,7 @@ __all__ = ["StringCommandInterfaceConformance", "StringCommandSubject"]
 
 @dataclass(kw_only=True)
 class StringCommandSubject(Subject):
-    """A backend implementing :class:`StringCommandComponentInterface`.
+    """A backend implementing :class:`.StringCommandComponentInterface`.
 
     A string command has no identifier, so ``identifiers`` is not used.
 
@@ -31,7 +31,7 @@ class StringCommandSubject(Subject):
 
 
 class StringCommandInterfaceConformance(InterfaceConformance[StringCommandSubject]):
-    """What every implementation of :class:`StringCommandComponentInterface` must do.
+    """What every implementation of :class:`.StringCommandComponentInterface` must do.
 
     * each command gets a ``str`` reply: its own reply;
     * commands sent together from several tasks each get their own reply (requests are

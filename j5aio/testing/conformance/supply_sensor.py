@@ -16,7 +16,7 @@ __all__ = ["SupplySensorInterfaceConformance", "SupplySensorSubject"]
 
 @dataclass(kw_only=True)
 class SupplySensorSubject(Subject):
-    """A backend implementing :class:`SupplySensorInterface`.
+    """A backend implementing :class:`~j5aio.components.supply_sensor.SupplySensorInterface`.
 
     :param set_reading: makes supply ``identifier`` measure ``volts`` and ``amps``.
     """
@@ -26,7 +26,7 @@ class SupplySensorSubject(Subject):
 
 
 class SupplySensorInterfaceConformance(InterfaceConformance[SupplySensorSubject]):
-    """What every implementation of :class:`SupplySensorInterface` must do.
+    """What every implementation of :class:`.SupplySensorInterface` must do.
 
     * voltage and current are finite floats that follow the rail (within
       :attr:`tolerance`);

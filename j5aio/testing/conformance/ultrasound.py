@@ -20,7 +20,7 @@ SPEED_OF_SOUND = 343.0
 
 @dataclass(kw_only=True)
 class UltrasoundSubject(Subject):
-    """A backend implementing :class:`UltrasoundInterface`.
+    """A backend implementing :class:`~j5aio.components.derived.ultrasound.UltrasoundInterface`.
 
     ``identifiers`` lists the pins the board has, for the bad-identifier test.
 
@@ -36,7 +36,7 @@ class UltrasoundSubject(Subject):
 
 
 class UltrasoundInterfaceConformance(InterfaceConformance[UltrasoundSubject]):
-    """What every implementation of :class:`UltrasoundInterface` must do.
+    """What every implementation of :class:`.UltrasoundInterface` must do.
 
     * the distance read is the object's (within :attr:`distance_tolerance`), and the
       pulse read is the time sound takes there and back;

@@ -9,7 +9,7 @@ Correlation guarantee: while no request is outstanding the board's next reply is
 answer to the next request, so requests go as the firmware's own examples have them
 (``R 2``), with no id to lengthen them on the wire. Once a request has timed out (or an
 exchange did not finish), its reply may still come, so the next request carries a
-request id (``@<n> ``, cycling through 1 to 32767) and a reply is taken only if its echo
+request id (``@<n>`` and a space, cycling through 1 to 32767) and a reply is taken only if its echo
 or final line carries that id. A reply that arrives after its request timed out is
 skipped however late it comes, so it is never taken as another request's answer (unless
 32767 tagged requests have gone meanwhile); the board answers in order, so once the

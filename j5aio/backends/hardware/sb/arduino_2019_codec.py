@@ -97,7 +97,7 @@ class Reply:
 def encode_command(letter: str, *args: object, request_id: int | None = None) -> bytes:
     r"""Return the request line: the letter and the arguments, space separated, then ``\n``.
 
-    :param request_id: prefix the request with ``@<request_id> `` (1 to 32767), so that
+    :param request_id: prefix the request with ``@<request_id>`` and a space (1 to 32767), so that
         its echo and reply lines carry it.
     :raises ValueError: ``letter`` is not exactly one character, or a bad request id.
     """
@@ -188,7 +188,7 @@ def encode_servo(servo: int, position: float | None) -> bytes:
 def is_final_line(line: bytes) -> bool:
     """Whether ``line`` ends a reply: anything but a ``#`` or ``>`` line or a blank one.
 
-    A reply ends with ``+ OK`` or ``- Error…`` (after any ``@<n> `` request id); any
+    A reply ends with ``+ OK`` or ``- Error…`` (after any ``@<n>`` request id); any
     other unexpected line ends it too, so that :func:`parse_reply` reports it at once
     rather than after a timeout.
     """
@@ -206,7 +206,7 @@ def reply_to(request: bytes) -> MatchingReader[list[bytes]]:
 
     ``request`` must carry a request id (see :func:`with_request_id`). A reply is taken
     as this request's when its echo line is ``# <request>`` or its final line starts
-    with the request's ``@<n> ``; whole replies to other requests are skipped.
+    with the request's ``@<n>`` prefix; whole replies to other requests are skipped.
 
     :raises ValueError: ``request`` has no request id.
     """
@@ -229,7 +229,7 @@ def reply_to(request: bytes) -> MatchingReader[list[bytes]]:
 def parse_reply(lines: list[bytes]) -> Reply:
     """Return the data of a reply's lines, the final ``+``/``-`` line included.
 
-    ``#`` lines (the echo) are skipped, and ``@<n> `` request ids removed.
+    ``#`` lines (the echo) are skipped, and ``@<n>`` request ids removed.
 
     :raises ArduinoError: the board reported an error.
     :raises UnexpectedReplyError: a line that fits no kind of reply line.

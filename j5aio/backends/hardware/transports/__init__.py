@@ -1,14 +1,22 @@
 """Transports: how bytes reach a board.
 
-* :class:`ByteStream` — the seam every transport implements (:mod:`.stream`).
-* :func:`open_serial_stream` — serial ports and pyserial URLs (:mod:`.serial_stream`).
-* :func:`memory_stream_pair`, :class:`SimulatorStream` — in memory (:mod:`.memory`).
-* :class:`SerialLink` — serialised, cancellation-safe requests over a stream
-  (:mod:`.serial_link`), with reply readers from :mod:`.readers`.
-* :class:`USBLink` — ordered USB control transfers on a worker thread (:mod:`.usb_link`).
-* :func:`list_serial_ports`, :func:`match_ports`, :func:`find_usb_devices` — discovery
+* :class:`~j5aio.backends.hardware.transports.stream.ByteStream` — the seam every transport
+  implements (:mod:`.stream`).
+* :func:`~j5aio.backends.hardware.transports.serial_stream.open_serial_stream` — serial ports and
+  pyserial URLs (:mod:`.serial_stream`).
+* :func:`~j5aio.backends.hardware.transports.memory.memory_stream_pair`,
+  :class:`~j5aio.backends.hardware.transports.memory.SimulatorStream` — in memory (:mod:`.memory`).
+* :class:`~j5aio.backends.hardware.transports.serial_link.SerialLink` — serialised,
+  cancellation-safe requests over a stream (:mod:`.serial_link`), with reply readers from
+  :mod:`.readers`.
+* :class:`~j5aio.backends.hardware.transports.usb_link.USBLink` — ordered USB control transfers on a
+  worker thread (:mod:`.usb_link`).
+* :func:`~j5aio.backends.hardware.transports.discovery.list_serial_ports`,
+  :func:`~j5aio.backends.hardware.transports.discovery.match_ports`,
+  :func:`~j5aio.backends.hardware.transports.discovery.find_usb_devices` — discovery
   (:mod:`.discovery`).
-* :data:`TRACE` — the log level of wire traffic (:mod:`.trace`).
+* :data:`~j5aio.backends.hardware.transports.trace.TRACE` — the log level of wire traffic
+  (:mod:`.trace`).
 """
 
 from __future__ import annotations

@@ -56,7 +56,7 @@ class MemoryStream(ByteStream):
         peer._inbox.feed(data)
 
     def send_now(self, data: bytes, timeout: float) -> None:
-        """Deliver ``data`` to the other end at once; see :meth:`ByteStream.send_now`."""
+        """Deliver ``data`` to the other end at once; see :meth:`.ByteStream.send_now`."""
         if self._closed:
             raise BoardDisconnectionError(f"{self._name}: the stream is closed")
         peer = self._peer
@@ -65,7 +65,7 @@ class MemoryStream(ByteStream):
         peer._inbox.feed(bytes(data))
 
     async def receive(self, max_bytes: int = 4096) -> bytes:
-        """Return bytes sent by the other end; see :meth:`ByteStream.receive`."""
+        """Return bytes sent by the other end; see :meth:`.ByteStream.receive`."""
         return await self._inbox.take(max_bytes)
 
     def close_now(self) -> None:
@@ -194,13 +194,13 @@ class SimulatorStream(ByteStream):
         self._queue_output(response, after=self._wire_time(data))
 
     def send_now(self, data: bytes, timeout: float) -> None:
-        """Hand ``data`` to the simulator at once; see :meth:`ByteStream.send_now`."""
+        """Hand ``data`` to the simulator at once; see :meth:`.ByteStream.send_now`."""
         self._check_usable()
         response = self._simulator.receive(bytes(data))
         self._queue_output(response, after=self._wire_time(data))
 
     async def receive(self, max_bytes: int = 4096) -> bytes:
-        """Return the simulator's output once it is due; see :meth:`ByteStream.receive`."""
+        """Return the simulator's output once it is due; see :meth:`.ByteStream.receive`."""
         if max_bytes < 1:
             raise ValueError(f"max_bytes must be at least 1, not {max_bytes}")
         await anyio.lowlevel.checkpoint()

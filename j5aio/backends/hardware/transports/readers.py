@@ -134,7 +134,7 @@ class ExactReader(ReplyReader[bytes]):
             raise ValueError(f"the byte count must be at least 1, not {self.count}")
 
     def parse(self, buffer: bytes | bytearray) -> tuple[bytes, int] | None:
-        """Return the first :attr:`count` bytes of ``buffer``, once there are enough."""
+        """Return the first ``count`` bytes of ``buffer``, once there are enough."""
         if len(buffer) < self.count:
             return None
         return bytes(buffer[: self.count]), self.count

@@ -6,9 +6,11 @@ are driven by the event loop through pyserial-asyncio-fast's transport; URL hand
 without one (``loop://``, ``rfc2217://``) are polled every ``poll_interval`` while a
 receive waits.
 
-Closing never needs an executor: :meth:`SerialStream.close_now` stops the event loop
-watching the port and closes it synchronously, so it also works inside ``atexit`` (the
-library's own ``close()`` closes through an executor, which fails at interpreter exit).
+Closing never needs an executor:
+:meth:`SerialStream.close_now <j5aio.backends.hardware.transports.stream.ByteStream.close_now>`
+stops the event loop watching the port and closes it synchronously, so it also works inside
+``atexit`` (the library's own ``close()`` closes through an executor, which fails at interpreter
+exit).
 
 pyserial-asyncio-fast needs the asyncio event loop (it is how j5aio runs); on Windows it
 polls the port every half millisecond.

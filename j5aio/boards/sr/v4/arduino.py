@@ -23,8 +23,9 @@ class SRArduinoBoard(AllDigitalUno, Ruggeduino):
     It speaks the Ruggeduino's single-character protocol. Every pin from 2 to 19 is a
     digital input, input with pull-up or output; A0 to A5 (14 to 19) also read voltages.
     An ultrasound sensor works on any two pins: ``board.ultrasound_sensors[trigger,
-    echo]``, whose ``distance()`` is ``None`` when no echo comes back. :attr:`command`
-    sends raw text, as sr-robot3's ``command()`` does.
+    echo]``, whose ``distance()`` is ``None`` when no echo comes back.
+    :attr:`~j5aio.boards.sr.v4.ruggeduino.Ruggeduino.command` sends raw text, as
+    sr-robot3's ``command()`` does.
 
     :param serial_number: the board's serial number.
     :param backend: the backend that drives the board.

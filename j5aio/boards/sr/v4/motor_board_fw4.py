@@ -26,7 +26,8 @@ class MotorBoardFw4(MotorBoard):
 
     :param serial_number: the board's asset tag.
     :param backend: the backend that drives the board.
-    :param safe_state: what :meth:`make_safe` sets both motors to (brake by default).
+    :param safe_state: what :meth:`~j5aio.boards.board.Board.make_safe` sets both motors to (brake
+        by default).
     """
 
     name: ClassVar[str] = "Student Robotics v4 Motor Board (firmware 4)"

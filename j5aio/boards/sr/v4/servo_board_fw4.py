@@ -20,8 +20,8 @@ __all__ = ["ServoBoardFw4"]
 class ServoBoardFw4(ServoBoard):
     """The Student Robotics v4 Servo Board running the serial firmware 4.3: twelve servos.
 
-    Everything a :class:`ServoBoard` does works the same, so programs written for the
-    older firmware keep working. On top of that:
+    Everything a :class:`~j5aio.boards.sr.v4.servo_board.ServoBoard` does works the same, so
+    programs written for the older firmware keep working. On top of that:
 
     * each servo is a :class:`~j5aio.components.pulse_servo.PulseServo`: its positions
       -1 to 1 map onto pulse limits (1000 to 2000 µs unless changed), and it reads back
@@ -32,8 +32,9 @@ class ServoBoardFw4(ServoBoard):
 
     The SourceBots fork of the firmware, with eight servos, is
     :class:`~j5aio.boards.sb.servo_board.SBServoBoard`, a subclass with another
-    :attr:`SERVO_COUNT`. It is a class of its own (not a per-board channel count) so that
-    a board group, the sync facade and autocompletion all know how many servos there are.
+    :attr:`~j5aio.boards.sr.v4.servo_board.ServoBoard.SERVO_COUNT`. It is a class of its own
+    (not a per-board channel count) so that a board group, the sync facade and
+    autocompletion all know how many servos there are.
 
     :param serial_number: the board's serial number.
     :param backend: the backend that drives the board.

@@ -94,7 +94,8 @@ def encode_speed(state: MotorState, *, scale: int = LINEAR_SCALE) -> int:
     being ``|p|``; with :data:`J5_SCALE` 1.0 → 253 and -1.0 → 3, as j5 sent.
 
     :raises ValueError: a power outside [-1, 1].
-    :raises TypeError: ``state`` is neither a number nor a :class:`MotorSpecialState`.
+    :raises TypeError: ``state`` is neither a number nor a
+        :class:`~j5aio.components.motor.MotorSpecialState`.
     """
     if state is MotorSpecialState.BRAKE:
         return SPEED_BRAKE

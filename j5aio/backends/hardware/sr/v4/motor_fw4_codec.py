@@ -139,7 +139,8 @@ def encode_set(motor: int, state: MotorState) -> bytes:
     ``MOT:<n>:DISABLE``.
 
     :raises ValueError: no such motor, or a power outside [-1, 1].
-    :raises TypeError: ``state`` is neither a number nor a :class:`MotorSpecialState`.
+    :raises TypeError: ``state`` is neither a number nor a
+        :class:`~j5aio.components.motor.MotorSpecialState`.
     """
     _check_motor(motor)
     if state is MotorSpecialState.COAST:

@@ -11,10 +11,12 @@ was doing.
 
 Positions map onto each servo's pulse limits (1000 to 2000 µs unless changed). Every
 read asks the board, so nothing about the board is cached. The state kept here is what
-the handshake found (firmware, version, asset tag: running :meth:`_handshake` again
-refreshes it) and :attr:`~_ServoBoardFw4Backend.pulse_limits`, the user's own setting,
-which a repeated handshake keeps. So after a reconnection, running the handshake again
-is all there is to do.
+the handshake found (firmware, version, asset tag: running
+:meth:`~j5aio.backends.hardware.serial_backend.SerialHardwareBackend._handshake` again
+refreshes it) and
+:attr:`~j5aio.backends.hardware.sr.v4.servo_board_fw4._ServoBoardFw4Backend.pulse_limits`,
+the user's own setting, which a repeated handshake keeps. So after a reconnection, running
+the handshake again is all there is to do.
 """
 
 from __future__ import annotations
