@@ -48,6 +48,7 @@ __all__ = [
     "SimulatedCameraBackend",
     "VisibleMarker",
     "scene",
+    "update_world",
     "visible_markers",
 ]
 

@@ -27,6 +27,9 @@ if TYPE_CHECKING:
 
 __all__ = [
     "MarkerDetector",
+    "AMBIGUITY_RATIO",
+    "ERROR_FLOOR",
+    "POOR_FIT",
     "PoseCandidate",
     "choose_pose",
     "detect_marker_ids",
