@@ -13,9 +13,10 @@ wrap it and add timing.
 from __future__ import annotations
 
 import array
+import contextlib
 import errno
 from abc import ABC, abstractmethod
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import ClassVar
 
 from .usb_support import (
@@ -81,6 +82,25 @@ class SerialBoardSimulator(ABC):
         self.product = product
         self._connected = True
         self._connection = 0
+        self._listeners: list[Callable[[], None]] = []
+
+    def listen(self, listener: Callable[[], None]) -> Callable[[], None]:
+        """Call ``listener`` each time the board may have changed state.
+
+        That is after it processed bytes from the host and after it rebooted, in the
+        thread that fed it. Returns the function that stops the calls.
+        """
+        self._listeners.append(listener)
+
+        def stop() -> None:
+            with contextlib.suppress(ValueError):
+                self._listeners.remove(listener)
+
+        return stop
+
+    def _tell_listeners(self) -> None:
+        for listener in tuple(self._listeners):
+            listener()
 
     @property
     def connected(self) -> bool:
@@ -109,11 +129,17 @@ class SerialBoardSimulator(ABC):
     def receive(self, data: bytes) -> bytes:
         """Feed bytes the host wrote; return every byte the board emits in response."""
         self._require_connected()
-        return self._process(bytes(data))
+        emitted = self._process(bytes(data))
+        if self._listeners:
+            self._tell_listeners()
+        return emitted
 
     def reset(self) -> bytes:
         """Reboot the board (reset button or power cycle); return what it prints at boot."""
-        return self._boot()
+        booted = self._boot()
+        if self._listeners:
+            self._tell_listeners()
+        return booted
 
     def unplug(self) -> None:
         """Pull the USB cable out."""

@@ -279,10 +279,13 @@ class SimulatedCameraBackend(FrameCameraBackend):
 
 
 class _WorldClock:
-    """Moves a kit's world on every :data:`TICK` while any of its cameras is open.
+    """Moves a kit's world on while any of its cameras is open.
 
-    One timer a kit, on the event loop of the camera that started it, however many camera
-    backends have been made for the kit.
+    One clock a kit, on the event loop of the camera that started it, however many camera
+    backends have been made for the kit. While the robot drives it ticks every
+    :data:`TICK` (so that the walls stop it where they are); while every drive motor is
+    still it sleeps, and a motor board's next command wakes it: an idle robot costs
+    nothing, and the world is moved on at the very moment the powers change.
     """
 
     _clocks: ClassVar[dict[int, _WorldClock]] = {}
@@ -292,13 +295,14 @@ class _WorldClock:
         self.loop = loop
         self.users = 0
         self.timer: asyncio.TimerHandle | None = None
+        self._stop_listening = [board.listen(self._changed) for board in kit.drive_motor_boards]
 
     @classmethod
     def join(cls, kit: SimulatedKit, loop: asyncio.AbstractEventLoop) -> None:
         clock = cls._clocks.get(id(kit))
         if clock is None or clock.kit is not kit or clock.loop is not loop or loop.is_closed():
-            if clock is not None and clock.timer is not None:
-                clock.timer.cancel()
+            if clock is not None:
+                clock.stop()
             clock = cls._clocks[id(kit)] = cls(kit, loop)
             clock.tick()
         clock.users += 1
@@ -310,18 +314,51 @@ class _WorldClock:
             return
         clock.users -= 1
         if clock.users <= 0:
-            if clock.timer is not None:
-                clock.timer.cancel()
+            clock.stop()
             del cls._clocks[id(kit)]
 
+    def stop(self) -> None:
+        """Stop ticking and listening to the motor boards."""
+        if self.timer is not None:
+            self.timer.cancel()
+            self.timer = None
+        for stop in self._stop_listening:
+            stop()
+        self._stop_listening = []
+
     def tick(self) -> None:
-        update_world(self.kit)
-        if not self.loop.is_closed():
-            self.timer = self.loop.call_later(TICK, self.tick)
+        """Move the world on now; tick again soon while the robot drives."""
+        self.timer = None
+        if not update_world(self.kit) or self.loop.is_closed():
+            return
+        self.timer = self.loop.call_later(TICK, self.tick)
+
+    def _changed(self) -> None:
+        # A motor board took a command (in whatever thread fed it): move the world on to
+        # now with the powers held until now, and tick if the robot now drives.
+        if self.loop.is_closed():
+            return
+        try:
+            running = asyncio.get_running_loop()
+        except RuntimeError:
+            running = None
+        if running is self.loop:
+            self._wake()
+        else:
+            self.loop.call_soon_threadsafe(self._wake)
+
+    def _wake(self) -> None:
+        if self.timer is not None:
+            update_world(self.kit)  # ticking already: only take the new powers now
+            return
+        self.tick()
 
 
-def update_world(kit: SimulatedKit, now: float | None = None) -> None:
-    """Move ``kit``'s robot on to ``now`` (the monotonic clock by default) from its motors."""
+def update_world(kit: SimulatedKit, now: float | None = None) -> bool:
+    """Move ``kit``'s robot on to ``now`` (the monotonic clock by default) from its motors.
+
+    :returns: whether the robot drives on from ``now`` (a drive motor's power is not 0).
+    """
     drive = kit.world.drive
     powers = []
     for board_index, motor_index in (drive.left, drive.right):
@@ -330,3 +367,4 @@ def update_world(kit: SimulatedKit, now: float | None = None) -> None:
         except IndexError:
             powers.append(0.0)
     kit.world.update(time.monotonic() if now is None else now, powers[0], powers[1])
+    return powers[0] != 0 or powers[1] != 0

@@ -26,10 +26,10 @@ if TYPE_CHECKING:
     from j5aio.vision.image import Image
 
 __all__ = [
-    "MarkerDetector",
     "AMBIGUITY_RATIO",
     "ERROR_FLOOR",
     "POOR_FIT",
+    "MarkerDetector",
     "PoseCandidate",
     "choose_pose",
     "detect_marker_ids",

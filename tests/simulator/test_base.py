@@ -180,3 +180,18 @@ def test_unplugged_usb_device_raises_enodev() -> None:
     device.plug()
     assert device.connected
     assert device.product == "Loop"
+
+
+def test_listeners_hear_of_each_input_and_reboot_until_stopped() -> None:
+    from j5aio.simulator.sr_motor_fw3 import SRMotorBoardFw3Simulator
+
+    board = SRMotorBoardFw3Simulator("LISTEN")
+    heard: list[int] = []
+    stop = board.listen(lambda: heard.append(len(heard)))
+    board.receive(b"\x02\xc0")  # motor 0 forwards
+    board.reset()
+    assert heard == [0, 1]
+    stop()
+    stop()  # twice is harmless
+    board.receive(b"\x02\x80")
+    assert heard == [0, 1]

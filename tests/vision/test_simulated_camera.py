@@ -168,10 +168,33 @@ async def test_cameras_of_one_kit_share_one_clock_that_stops_with_the_last() -> 
     kit.world.place_robot(Pose(2875.0, 1000.0, math.pi / 2))
     await first[0].close()
     await first[0].close()  # twice is harmless
-    assert clock.users == 1 and clock.timer is not None
+    assert clock.users == 1 and clock.timer is None  # the robot is still: no ticks
     await second[0].close()
     assert id(kit) not in _WorldClock._clocks
+    assert all(not board._listeners for board in kit.drive_motor_boards)  # nor listens
     _WorldClock.leave(kit)  # a kit without a clock: nothing to do
+
+
+async def test_the_clock_sleeps_while_the_robot_is_still_and_a_motor_command_wakes_it() -> None:
+    from j5aio.simulator.camera import _WorldClock
+
+    kit = use_kit(KitConfig(motor_boards=1))
+    kit.world.place_robot(Pose(2875.0, 1000.0, math.pi / 2))
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+        clock = _WorldClock._clocks[id(kit)]
+        assert clock.timer is None
+        motors = robot.motor_boards[0].motors
+        await motors[0].set_power(0.5)
+        assert clock.timer is not None  # the command woke it: it ticks while driving
+        await motors[1].set_power(0.5)
+        await anyio.sleep(0.2)
+        assert kit.world.pose.y > 1000.0
+        await motors[0].set_power(0)
+        await motors[1].set_power(0)
+        stopped = kit.world.pose
+        await anyio.sleep(0.05)  # the next tick finds the robot still and sleeps
+        assert clock.timer is None
+        assert kit.world.pose == stopped
 
 
 async def test_a_picture_shows_the_pose_of_the_moment_it_was_asked_for() -> None:
