@@ -15,6 +15,11 @@ Cancellation: a transfer is a job on the thread's queue with its own future.
   ``Task.cancel``): backends update what they remember of the board there, so their
   caches change when, and only when, the board has been told.
 
+Polling: :meth:`USBLink.poll_until` runs one read every so often *on the worker thread*,
+between the other transfers, and wakes the event loop only when the read has found what
+it looks for (or failed). An idle poll therefore costs one wake-up of one thread and the
+transfer itself: no task, no future and no hop back to the loop per read.
+
 Errors: a pyusb error becomes :class:`~j5aio.errors.USBCommunicationError` naming the
 board, with the pyusb exception kept as ``usb_error``. errno 19 (``ENODEV``: unplugged)
 becomes :class:`USBDisconnectionError`, which is also a
@@ -32,6 +37,7 @@ import errno
 import logging
 import queue
 import threading
+import time
 from collections.abc import Callable, Mapping
 from typing import Any, Generic, Protocol, TypeVar
 
@@ -159,6 +165,39 @@ class _Job(Generic[T]):
             self.loop.call_soon_threadsafe(_then_resolve, self.future, outcome, self.then)
 
 
+class _PollJob(Generic[T]):
+    """A read repeated on the worker thread until ``found`` says its result is the one."""
+
+    def __init__(
+        self,
+        work: Callable[[], T],
+        found: Callable[[T], bool],
+        interval: float,
+        loop: asyncio.AbstractEventLoop,
+        future: asyncio.Future[Any],
+        then: Callable[[T], object] | None,
+    ) -> None:
+        self.work = work
+        self.found = found
+        self.interval = interval
+        self.loop = loop
+        self.future = future
+        self.then = then
+        #: When the next read is due (``time.monotonic``); the first read runs at once.
+        self.due = 0.0
+        #: Set by the caller when it stops waiting; read by the thread (a plain flag: the
+        #: thread at worst makes one more read, whose result nobody takes).
+        self.withdrawn = False
+
+    def finish(self, outcome: tuple[bool, Any]) -> None:
+        """Hand the read that was found (or the failure) to the loop, ``then`` first."""
+        if self.then is None or not outcome[0]:
+            _post(self.loop, self.future, outcome)
+            return
+        with contextlib.suppress(RuntimeError):  # the loop has closed: nobody to tell
+            self.loop.call_soon_threadsafe(_then_resolve, self.future, outcome, self.then)
+
+
 class _NowJob:
     """A transfer whose caller waits synchronously (see :meth:`USBLink.control_write_now`)."""
 
@@ -180,6 +219,10 @@ class _NowJob:
 def _resolve(future: asyncio.Future[Any], outcome: Any) -> None:
     if not future.done():
         future.set_result(outcome)
+
+
+class _LinkClosed:
+    """The link closed while a poll was running."""
 
 
 class _CallbackFailed:
@@ -227,7 +270,11 @@ class USBLink(AsyncResource):
         # Guards _closed, _stopped and _stop_waiters, so that no job is queued behind
         # the stop sentinel even if close_now runs on another thread.
         self._state_lock = threading.Lock()
-        self._jobs: queue.SimpleQueue[_Job[Any] | _NowJob | None] = queue.SimpleQueue()
+        self._jobs: queue.SimpleQueue[_Job[Any] | _NowJob | _PollJob[Any] | None] = (
+            queue.SimpleQueue()
+        )
+        # The polls the worker thread runs (only the thread touches this list).
+        self._polls: list[_PollJob[Any]] = []
         self._wire = wire_logger(f"usb:{board_name}")
         self._thread = threading.Thread(
             target=self._run, name=f"j5aio USB {board_name}", daemon=True
@@ -323,6 +370,45 @@ class USBLink(AsyncResource):
 
         await self.call(transfer, description=description, errors=errors, then=accepted)
 
+    async def poll_control_read(
+        self,
+        w_index: int,
+        length: int,
+        found: Callable[[bytes], bool],
+        *,
+        interval: float,
+        w_value: int = 0,
+        then: Callable[[bytes], object] | None = None,
+    ) -> bytes:
+        """Read like :meth:`control_read` now and every ``interval`` s until ``found``.
+
+        The reads run on the worker thread (see :meth:`poll_until`): only the reply that
+        ``found`` accepts wakes the event loop, and is returned (and given to ``then``,
+        even if the caller has been cancelled meanwhile).
+
+        :raises UnexpectedReplyError: a reply was not ``length`` bytes long.
+        """
+        description = f"polling {length} bytes from wIndex {w_index} (wValue {w_value})"
+
+        def transfer() -> bytes:
+            data = bytes(
+                self._device.ctrl_transfer(
+                    READ_REQUEST_TYPE, CONTROL_REQUEST, w_value, w_index, length,
+                    self._timeout_ms,
+                )
+            )
+            if len(data) != length:
+                raise UnexpectedReplyError(
+                    f"{self._board_name}: {description} returned {len(data)} bytes"
+                )
+            return data
+
+        reply = await self.poll_until(
+            transfer, found, interval=interval, description=description, then=then
+        )
+        log_wire(self._wire, f"<- wIndex={w_index} wValue={w_value}", reply)
+        return reply
+
     async def read_serial_number(self) -> str | None:
         """Read the device's serial number string (a transfer, so on the worker thread)."""
         return await self.call(
@@ -365,6 +451,59 @@ class USBLink(AsyncResource):
             return result
         if isinstance(value, _CallbackFailed):
             raise value.error
+        raise self._translate(value, description, errors or {}) from value
+
+    async def poll_until(
+        self,
+        work: Callable[[], T],
+        found: Callable[[T], bool],
+        *,
+        interval: float,
+        description: str,
+        errors: Mapping[int, str] | None = None,
+        then: Callable[[T], object] | None = None,
+    ) -> T:
+        """Run ``work`` on the worker thread now and every ``interval`` s until ``found``.
+
+        The reads take their turn among the other transfers, in order, and the event loop
+        is woken only once: with the first result that ``found`` accepts, or the first
+        failure. Cancelling the caller stops the reads (one that is running completes;
+        its result is dropped unless ``then`` takes it).
+
+        :param work: one read (a transfer), run on the worker thread.
+        :param found: called on the worker thread with each result; ``True`` ends the poll.
+        :param interval: seconds from the start of one read to the start of the next.
+        :param description: what ``work`` does, for error messages.
+        :param errors: messages for specific errnos.
+        :param then: called on the event loop with the accepted result, even if the caller
+            has been cancelled meanwhile (so that a latched event is never lost).
+        :raises ValueError: ``interval`` is not a positive number.
+        :raises USBCommunicationError: a read failed (or a subclass, as :meth:`call`).
+        """
+        if not interval > 0:
+            raise ValueError(f"interval must be a positive number of seconds, not {interval!r}")
+        loop = asyncio.get_running_loop()
+        future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
+        job = _PollJob(work, found, interval, loop, future, then)
+        with self._state_lock:
+            if self._closed:
+                raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
+            self._jobs.put(job)
+        try:
+            succeeded, value = await future
+        finally:
+            job.withdrawn = True
+        if succeeded:
+            result: T = value
+            return result
+        if isinstance(value, _CallbackFailed):
+            raise value.error
+        if isinstance(value, UnexpectedReplyError):
+            raise value
+        if isinstance(value, _LinkClosed):
+            raise USBDisconnectionError(
+                f"{self._board_name}: the USB link was closed while {description}"
+            )
         raise self._translate(value, description, errors or {}) from value
 
     def control_write_now(
@@ -447,22 +586,60 @@ class USBLink(AsyncResource):
 
     def _run(self) -> None:
         while True:
-            job = self._jobs.get()
+            try:
+                job = self._jobs.get(timeout=self._next_poll_wait())
+            except queue.Empty:  # a poll is due
+                self._run_due_polls()
+                continue
             if job is None:
                 break
-            if not job.start():
-                continue
-            try:
-                outcome: tuple[bool, Any] = (True, job.work())
-            except BaseException as exc:  # the thread must survive, and its caller hear of it
-                outcome = (False, exc)
-            job.finish(outcome)
+            if isinstance(job, _PollJob):
+                self._polls.append(job)  # due at once: its first read runs next
+            elif job.start():
+                try:
+                    outcome: tuple[bool, Any] = (True, job.work())
+                except BaseException as exc:  # the thread must survive, and its caller hear
+                    outcome = (False, exc)
+                job.finish(outcome)
+            if self._polls:
+                self._run_due_polls()
+        for poll in self._polls:
+            if not poll.withdrawn:
+                poll.finish((False, _LinkClosed()))
+        self._polls.clear()
         self._release_device()
         with self._state_lock:
             self._stopped = True
             waiters, self._stop_waiters = self._stop_waiters, []
         for loop, future in waiters:
             _post(loop, future, None)
+
+    def _next_poll_wait(self) -> float | None:
+        """Seconds until the next poll is due (``None``: no poll, wait for a job)."""
+        if not self._polls:
+            return None
+        due = min(poll.due for poll in self._polls)
+        return max(due - time.monotonic(), 0.0)
+
+    def _run_due_polls(self) -> None:
+        now = time.monotonic()
+        for poll in list(self._polls):
+            if poll.withdrawn:
+                self._polls.remove(poll)
+                continue
+            if poll.due > now:
+                continue
+            following = poll.due + poll.interval  # a steady rate, unless the thread fell behind
+            poll.due = following if following > now else now + poll.interval
+            try:
+                value = poll.work()
+                if not poll.found(value):
+                    continue
+                outcome: tuple[bool, Any] = (True, value)
+            except BaseException as exc:  # the thread must survive, and the caller hear
+                outcome = (False, exc)
+            self._polls.remove(poll)
+            poll.finish(outcome)
 
     def _release_device(self) -> None:
         if isinstance(self._device, usb.core.Device):
