@@ -54,7 +54,7 @@ class SRV4PowerBoardHardwareBackend(
     #: runs on the link's worker thread and wakes the event loop only once it sees the
     #: button down (see :meth:`.USBLink.poll_until`), so an idle read costs a few tens
     #: of microseconds.
-    BUTTON_POLL_INTERVAL: ClassVar[float] = 0.01
+    BUTTON_POLL_INTERVAL: ClassVar[float] = 0.015
 
     def __init__(self, link: USBLink, *, key: str) -> None:
         super().__init__(link, key=key)
@@ -139,7 +139,7 @@ class SRV4PowerBoardHardwareBackend(
         return codec.parse_u32(await self._read_command(codec.BUTTON)) != 0
 
     async def wait_until_button_pressed(self, identifier: int) -> None:
-        """Return once the start button is seen down (read every 10 ms while anyone waits).
+        """Return once the start button is seen down (read every 15 ms while anyone waits).
 
         However many tasks wait, the board is read by one poll stream (see
         :class:`~j5aio.components.press_watch.PressWatch`).
