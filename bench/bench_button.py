@@ -182,12 +182,11 @@ def child_async(presses: int, idle: float, seed: int, mode: str) -> None:
 
 def child_sync(presses: int, idle: float, seed: int) -> None:
     """Measure j5aio's sync facade wait."""
-    from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
-    from j5aio.sync import KitRobot
+    from j5aio.sync import KitRobot, simulated_environment
 
     sim = _kit().power_boards[0]
     presser = Presser(sim.press_start, sim.release_start, seed)
-    robot = KitRobot(environment=SIMULATED_ENVIRONMENT)
+    robot = KitRobot(environment=simulated_environment())
     button = robot.power_board.start_button
     reactions = []
     for _ in range(presses):
@@ -218,12 +217,13 @@ def child_j5(presses: int, idle: float, seed: int) -> None:
     sys.modules["j5aio_simulator"] = package
     fw3 = importlib.import_module("j5aio_simulator.sr_power_fw3")
 
-    from j5.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
-    from j5.boards.sr.v4 import PowerBoard
+    # j5 is in its own venv only: imported by name, so that type checkers here skip it.
+    j5_backends = importlib.import_module("j5.backends.hardware.sr.v4.power_board")
+    j5_boards = importlib.import_module("j5.boards.sr.v4")
 
     sim = fw3.SRPowerBoardFw3Simulator("SIMPB0")
-    backend = SRV4PowerBoardHardwareBackend(sim)
-    board = PowerBoard("SIMPB0", backend)
+    backend = j5_backends.SRV4PowerBoardHardwareBackend(sim)
+    board = j5_boards.PowerBoard("SIMPB0", backend)
     presser = Presser(sim.press_start, sim.release_start, seed)
     reactions = []
     for _ in range(presses):
@@ -251,7 +251,7 @@ def run_side(side: str, args: argparse.Namespace, seed: int) -> dict[str, float]
     """Run one side in a child process; return its figures (``None`` if it failed)."""
     if side == "j5":
         sys.path.insert(0, str(HERE))
-        from _peers import J5_PEER, peer_python
+        from _peers import J5_PEER, peer_python  # type: ignore[import-not-found]
 
         # j5 0.12 imports typing_extensions without declaring it: a venv of its own with it.
         python = str(peer_python(J5_PEER[0] + "-button", [*J5_PEER[1], "typing_extensions"]))

@@ -11,6 +11,7 @@ import anyio
 
 from j5aio.boards.board import Board
 from j5aio.components._checks import check_timeout
+from j5aio.components._first import first_of
 from j5aio.components.battery_sensor import BatterySensor
 from j5aio.components.button import Button
 from j5aio.components.led import LED
@@ -53,10 +54,12 @@ class PowerBoard(Board):
 
     name: ClassVar[str] = "Student Robotics v4 Power Board"
 
-    #: How often :meth:`wait_for_start_flash` looks at the start button, in seconds.
+    #: :meth:`wait_for_start_flash` switches the run LED every ``START_POLL_INTERVAL *
+    #: START_FLASH_POLLS`` seconds (0.3 s). The button itself is waited for as
+    #: :meth:`.Button.wait_until_pressed` does: the backend says as soon as it is pressed.
     START_POLL_INTERVAL: ClassVar[float] = 0.05
 
-    #: :meth:`wait_for_start_flash` toggles the run LED once every this many polls.
+    #: See :attr:`START_POLL_INTERVAL`.
     START_FLASH_POLLS: ClassVar[int] = 6
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
@@ -115,7 +118,8 @@ class PowerBoard(Board):
     async def wait_for_start_flash(self, timeout: float | None = None) -> None:
         """Flash the run LED until the start button is pressed, then leave the LED on.
 
-        The start button is looked at every 50 ms and the LED changes every sixth look.
+        The LED changes every 0.3 s; the wait ends as soon as the backend sees the press
+        (it shares its reads of the button with any other task waiting for it).
         Cancelling the wait (or running out of time) leaves the LED as it was at the time.
 
         :param timeout: give up after this many seconds; ``None`` waits for ever.
@@ -124,14 +128,7 @@ class PowerBoard(Board):
         :raises ValueError: ``timeout`` is negative or not a number (NaN).
         """
         with anyio.move_on_after(check_timeout(timeout)) as scope:
-            polls = 0
-            led_on = False
-            while not await self._start_button.get_is_pressed():
-                if polls % self.START_FLASH_POLLS == 0:
-                    led_on = not led_on
-                    await self._run_led.set_state(led_on)
-                await anyio.sleep(self.START_POLL_INTERVAL)
-                polls += 1
+            await first_of([self._start_button.wait_until_pressed], beside=[self._flash_run_led])
         if scope.cancelled_caught:
             raise TimeoutError(
                 f"the start button was not pressed within {timeout} s; pass a longer "
@@ -139,3 +136,9 @@ class PowerBoard(Board):
             )
         await self._run_led.set_state(True)
 
+    async def _flash_run_led(self) -> None:
+        led_on = False
+        while True:
+            led_on = not led_on
+            await self._run_led.set_state(led_on)
+            await anyio.sleep(self.START_POLL_INTERVAL * self.START_FLASH_POLLS)
