@@ -130,7 +130,15 @@ async def test_wait_for_start_flash_toggles_every_0_3_s_until_pressed(
     assert backend.leds[0] is True
 
 
-async def test_wait_for_start_flash_already_pressed_lights_the_led() -> None:
+async def test_wait_for_start_flash_already_pressed_only_lights_the_led() -> None:
+    board, backend = make_board()
+    backend.pressed_on_poll = 1
+    await board.wait_for_start_flash()
+    assert backend.named("set_led_state") == [(0, True, 1)]
+    assert backend.named("wait_until_button_pressed") == []
+
+
+async def test_wait_for_start_flash_pressed_as_it_begins_lights_the_led() -> None:
     board, backend = make_board()
     backend.press = anyio.Event()
     backend.press.set()

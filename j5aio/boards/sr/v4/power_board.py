@@ -118,8 +118,9 @@ class PowerBoard(Board):
     async def wait_for_start_flash(self, timeout: float | None = None) -> None:
         """Flash the run LED until the start button is pressed, then leave the LED on.
 
-        The LED changes every 0.3 s; the wait ends as soon as the backend sees the press
-        (it shares its reads of the button with any other task waiting for it).
+        The button is looked at once; then the LED changes every 0.3 s and the wait ends
+        as soon as the backend sees the press (it shares its reads of the button with any
+        other task waiting for it).
         Cancelling the wait (or running out of time) leaves the LED as it was at the time.
 
         :param timeout: give up after this many seconds; ``None`` waits for ever.
@@ -128,7 +129,11 @@ class PowerBoard(Board):
         :raises ValueError: ``timeout`` is negative or not a number (NaN).
         """
         with anyio.move_on_after(check_timeout(timeout)) as scope:
-            await first_of([self._start_button.wait_until_pressed], beside=[self._flash_run_led])
+            # One look first, as j5 does (on the console: one question, "pressed?").
+            if not await self._start_button.get_is_pressed():
+                await first_of(
+                    [self._start_button.wait_until_pressed], beside=[self._flash_run_led],
+                )
         if scope.cancelled_caught:
             raise TimeoutError(
                 f"the start button was not pressed within {timeout} s; pass a longer "

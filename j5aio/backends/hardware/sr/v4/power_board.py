@@ -16,13 +16,13 @@ from typing import ClassVar
 from j5aio.backends.hardware.sr.v4 import power_fw3_codec as codec
 from j5aio.backends.hardware.transports.usb_link import USBLink
 from j5aio.backends.hardware.usb_backend import USBHardwareBackend
+from j5aio.backends.press_watch import PressWatch
 from j5aio.boards.sr.v4.power_board import PowerBoard
 from j5aio.components.battery_sensor import BatterySensorInterface
 from j5aio.components.button import ButtonInterface
 from j5aio.components.led import LEDInterface
 from j5aio.components.piezo import PiezoInterface
 from j5aio.components.power_output import PowerOutputInterface
-from j5aio.components.press_watch import PressWatch
 from j5aio.errors import BoardDisconnectionError, UnsupportedFirmwareError
 
 __all__ = ["SRV4PowerBoardHardwareBackend"]
@@ -142,7 +142,7 @@ class SRV4PowerBoardHardwareBackend(
         """Return once the start button is seen down (read every 15 ms while anyone waits).
 
         However many tasks wait, the board is read by one poll stream (see
-        :class:`~j5aio.components.press_watch.PressWatch`).
+        :class:`~j5aio.backends.press_watch.PressWatch`).
         """
         self._check_single(identifier, "button")
         await self._presses.wait()

@@ -20,13 +20,13 @@ from j5aio.backends.hardware.sr.v4 import power_fw4_codec as codec
 from j5aio.backends.hardware.sr.v4.text_backend import SRTextBackend
 from j5aio.backends.hardware.sr.v4.text_protocol import Identity, NackError
 from j5aio.backends.hardware.transports.serial_link import SerialLink
+from j5aio.backends.press_watch import PressWatch
 from j5aio.boards.sr.v4.power_board_fw4 import BoardResetInterface, PowerBoardFw4
 from j5aio.components.battery_sensor import BatterySensorInterface
 from j5aio.components.button import ButtonInterface
 from j5aio.components.fan import FanInterface
 from j5aio.components.flashing_led import FlashingLEDInterface, LEDMode
 from j5aio.components.piezo import PiezoInterface
-from j5aio.components.press_watch import PressWatch
 from j5aio.components.protected_power_output import ProtectedPowerOutputInterface
 from j5aio.components.temperature_sensor import TemperatureSensorInterface
 from j5aio.components.voltage_sensor import VoltageSensorInterface
@@ -153,7 +153,7 @@ class SRV4PowerBoardFw4HardwareBackend(
         """Return once a start button is pressed; a press before the wait does not count.
 
         However many tasks wait, one poll stream reads the board (see
-        :class:`~j5aio.components.press_watch.PressWatch`): when the first waiter comes,
+        :class:`~j5aio.backends.press_watch.PressWatch`): when the first waiter comes,
         the latch is read once and forgotten, then read every 15 ms. The board latches
         presses, so none is lost between reads.
         """

@@ -8,7 +8,7 @@ import anyio
 import anyio.lowlevel
 import pytest
 
-from j5aio.components.press_watch import PressWatch
+from j5aio.backends.press_watch import PressWatch
 from j5aio.errors import CommunicationError
 
 
