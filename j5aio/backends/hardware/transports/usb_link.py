@@ -273,8 +273,10 @@ class USBLink(AsyncResource):
         self._jobs: queue.SimpleQueue[_Job[Any] | _NowJob | _PollJob[Any] | None] = (
             queue.SimpleQueue()
         )
-        # The polls the worker thread runs (only the thread touches this list).
+        # The polls the worker thread runs, and when the next is due (only the thread
+        # touches these).
         self._polls: list[_PollJob[Any]] = []
+        self._poll_due = 0.0
         self._wire = wire_logger(f"usb:{board_name}")
         self._thread = threading.Thread(
             target=self._run, name=f"j5aio USB {board_name}", daemon=True
@@ -585,16 +587,24 @@ class USBLink(AsyncResource):
     # -- internals -----------------------------------------------------------------------
 
     def _run(self) -> None:
+        jobs = self._jobs
         while True:
-            try:
-                job = self._jobs.get(timeout=self._next_poll_wait())
-            except queue.Empty:  # a poll is due
-                self._run_due_polls()
-                continue
+            if not self._polls:
+                job = jobs.get()
+            else:
+                # An idle poll's whole cost is this wait's wake-up and the read: keep the
+                # path short (no exception when a job is already there, no scan).
+                wait = self._poll_due - time.monotonic()
+                try:
+                    job = jobs.get(timeout=wait) if wait > 0 else jobs.get_nowait()
+                except queue.Empty:  # a poll is due
+                    self._run_due_polls()
+                    continue
             if job is None:
                 break
             if isinstance(job, _PollJob):
                 self._polls.append(job)  # due at once: its first read runs next
+                self._poll_due = 0.0
             elif job.start():
                 try:
                     outcome: tuple[bool, Any] = (True, job.work())
@@ -614,18 +624,12 @@ class USBLink(AsyncResource):
         for loop, future in waiters:
             _post(loop, future, None)
 
-    def _next_poll_wait(self) -> float | None:
-        """Seconds until the next poll is due (``None``: no poll, wait for a job)."""
-        if not self._polls:
-            return None
-        due = min(poll.due for poll in self._polls)
-        return max(due - time.monotonic(), 0.0)
-
     def _run_due_polls(self) -> None:
         now = time.monotonic()
-        for poll in list(self._polls):
+        polls = self._polls
+        for poll in polls[:] if len(polls) > 1 else polls:
             if poll.withdrawn:
-                self._polls.remove(poll)
+                polls.remove(poll)
                 continue
             if poll.due > now:
                 continue
@@ -638,8 +642,10 @@ class USBLink(AsyncResource):
                 outcome: tuple[bool, Any] = (True, value)
             except BaseException as exc:  # the thread must survive, and the caller hear
                 outcome = (False, exc)
-            self._polls.remove(poll)
+            polls.remove(poll)
             poll.finish(outcome)
+            break  # the list changed: the next pass looks at the others
+        self._poll_due = min((poll.due for poll in polls), default=0.0)
 
     def _release_device(self) -> None:
         if isinstance(self._device, usb.core.Device):
