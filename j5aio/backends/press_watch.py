@@ -114,8 +114,8 @@ class PressWatch:
     def _report(self) -> None:
         self._presses += 1
         if self._scope is not None:
-            # A press reported late, by the stream of a leader that was cancelled:
-            # the stream running now has nothing left to look for.
+            # The stream running now has nothing left to look for (the report may be its
+            # own, or come late from the stream of a leader that was cancelled).
             self._scope.cancel()
         self._wake()
 

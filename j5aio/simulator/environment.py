@@ -264,9 +264,14 @@ class SRV4PowerBoardSimulatedBackend(SRV4PowerBoardHardwareBackend):
         """
         device = self._link.device
         simulator = device.simulator if isinstance(device, SimulatedUSBDevice) else None
-        if not isinstance(simulator, SRPowerBoardFw3Simulator):
+        if isinstance(simulator, SRPowerBoardFw3Simulator):
+            await self._listen_to_button(simulator, report)
+        else:
             await super()._poll_button(report, fresh=fresh)
-            return
+
+    async def _listen_to_button(
+        self, simulator: SRPowerBoardFw3Simulator, report: Callable[[], None]
+    ) -> None:
         loop = asyncio.get_running_loop()
         pressed = anyio.Event()
 

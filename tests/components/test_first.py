@@ -58,3 +58,14 @@ async def test_several_failures_stay_a_group() -> None:
 async def test_no_wait_is_refused() -> None:
     with pytest.raises(ValueError, match="at least one wait"):
         await first_of([])
+
+
+async def test_a_failure_inside_a_nested_group_is_raised_as_itself() -> None:
+    async def nested() -> str:
+        async with anyio.create_task_group() as group:
+            group.start_soon(anyio.lowlevel.checkpoint)
+            raise CommunicationError("Power Board: no answer")
+        return "unreachable"  # pragma: no cover
+
+    with pytest.raises(CommunicationError, match="no answer"):
+        await first_of([nested])
