@@ -96,6 +96,17 @@ class Presser:
             self._release()
             self.released.set()
 
+    def resumed_now(self) -> float:
+        """Note that the waiting code runs again: return the reaction; release the button.
+
+        Returns once the button has been released, ready for the next trial.
+        """
+        reaction = time.perf_counter() - self.pressed_at
+        self.resumed.set()
+        self.released.wait()
+        self.released.clear()
+        return reaction
+
     def stop(self) -> None:
         """End the thread."""
         self._stop = True
@@ -167,10 +178,7 @@ def child_async(presses: int, idle: float, seed: int, mode: str) -> None:
             for _ in range(presses):
                 presser.waiting.set()
                 await wait()
-                reactions.append(time.perf_counter() - presser.pressed_at)
-                presser.resumed.set()
-                presser.released.wait()
-                presser.released.clear()
+                reactions.append(presser.resumed_now())
             presser.stop()
             start_cpu, start = _cpu(), time.perf_counter()
             with contextlib.suppress(TimeoutError):
@@ -192,10 +200,7 @@ def child_sync(presses: int, idle: float, seed: int) -> None:
     for _ in range(presses):
         presser.waiting.set()
         button.wait_until_pressed()
-        reactions.append(time.perf_counter() - presser.pressed_at)
-        presser.resumed.set()
-        presser.released.wait()
-        presser.released.clear()
+        reactions.append(presser.resumed_now())
     presser.stop()
     start_cpu, start = _cpu(), time.perf_counter()
     with contextlib.suppress(TimeoutError):
@@ -229,10 +234,7 @@ def child_j5(presses: int, idle: float, seed: int) -> None:
     for _ in range(presses):
         presser.waiting.set()
         board.start_button.wait_until_pressed()
-        reactions.append(time.perf_counter() - presser.pressed_at)
-        presser.resumed.set()
-        presser.released.wait()
-        presser.released.clear()
+        reactions.append(presser.resumed_now())
     presser.stop()
     # j5's wait has no timeout: wait in a thread that nobody presses for, for ``idle`` s.
     start_cpu, start = _cpu(), time.perf_counter()

@@ -53,6 +53,23 @@ async def settle(condition: Callable[[], bool]) -> None:
             await anyio.lowlevel.checkpoint()
 
 
+class Waiters:
+    """A leader that the test cancels, and waiters that count their returns."""
+
+    def __init__(self, watch: PressWatch) -> None:
+        self.watch = watch
+        self.leader = anyio.CancelScope()
+        self.done = 0
+
+    async def lead(self) -> None:
+        with self.leader:
+            await self.watch.wait()
+
+    async def wait(self) -> None:
+        await self.watch.wait()
+        self.done += 1
+
+
 async def test_many_waiters_one_stream_and_it_stops_when_nobody_waits() -> None:
     board = FakeBoard()
     watch = PressWatch(board.stream)
@@ -80,21 +97,13 @@ async def test_many_waiters_one_stream_and_it_stops_when_nobody_waits() -> None:
 async def test_a_cancelled_leader_hands_the_stream_on() -> None:
     board = FakeBoard()
     watch = PressWatch(board.stream)
-    leader = anyio.CancelScope()
-    done = 0
-
-    async def lead() -> None:
-        with leader:
-            await watch.wait()
-
-    async def wait() -> None:
-        nonlocal done
-        await watch.wait()
-        done += 1
+    waiters = Waiters(watch)
 
     async with anyio.create_task_group() as group:
-        group.start_soon(lead)
+        group.start_soon(waiters.lead)
         await settle(lambda: watch.polling)
+        leader = waiters.leader
+        wait = waiters.wait
         group.start_soon(wait)
         group.start_soon(wait)
         await settle(lambda: watch.waiters == 3)
@@ -103,27 +112,19 @@ async def test_a_cancelled_leader_hands_the_stream_on() -> None:
         assert board.running == 1  # one stream at a time, still
         assert board.fresh == [True, False]  # the waiters kept waiting: nothing to forget
         board.press()
-    assert done == 2
+    assert waiters.done == 2
 
 
 async def test_a_press_reported_late_by_a_cancelled_stream_is_not_lost() -> None:
     board = FakeBoard()
     watch = PressWatch(board.stream)
-    leader = anyio.CancelScope()
-    done = 0
-
-    async def lead() -> None:
-        with leader:
-            await watch.wait()
-
-    async def wait() -> None:
-        nonlocal done
-        await watch.wait()
-        done += 1
+    waiters = Waiters(watch)
 
     async with anyio.create_task_group() as group:
-        group.start_soon(lead)
+        group.start_soon(waiters.lead)
         await settle(lambda: watch.polling)
+        leader = waiters.leader
+        wait = waiters.wait
         group.start_soon(wait)
         await settle(lambda: watch.waiters == 2)
         leader.cancel()
@@ -132,7 +133,7 @@ async def test_a_press_reported_late_by_a_cancelled_stream_is_not_lost() -> None
         # arrives now, while the second stream runs. The waiter returns, and the second
         # stream stops.
         board.reports[0]()
-    assert done == 1
+    assert waiters.done == 1
     assert board.running == 0
 
 

@@ -74,6 +74,7 @@ WRITE_REQUEST_TYPE = 0x00
 CONTROL_REQUEST = 64
 
 T = TypeVar("T")
+_JobT = TypeVar("_JobT", bound="_Job[Any]")
 
 
 class USBDisconnectionError(USBCommunicationError, BoardDisconnectionError):
@@ -165,8 +166,11 @@ class _Job(Generic[T]):
             self.loop.call_soon_threadsafe(_then_resolve, self.future, outcome, self.then)
 
 
-class _PollJob(Generic[T]):
-    """A read repeated on the worker thread until ``found`` says its result is the one."""
+class _PollJob(_Job[T]):
+    """A read repeated on the worker thread until ``found`` says its result is the one.
+
+    ``finish`` hands the read that was found (or the failure) to the loop, ``then`` first.
+    """
 
     def __init__(
         self,
@@ -177,25 +181,14 @@ class _PollJob(Generic[T]):
         future: asyncio.Future[Any],
         then: Callable[[T], object] | None,
     ) -> None:
-        self.work = work
+        super().__init__(work, loop, future, then)
         self.found = found
         self.interval = interval
-        self.loop = loop
-        self.future = future
-        self.then = then
         #: When the next read is due (``time.monotonic``); the first read runs at once.
         self.due = 0.0
         #: Set by the caller when it stops waiting; read by the thread (a plain flag: the
         #: thread at worst makes one more read, whose result nobody takes).
         self.withdrawn = False
-
-    def finish(self, outcome: tuple[bool, Any]) -> None:
-        """Hand the read that was found (or the failure) to the loop, ``then`` first."""
-        if self.then is None or not outcome[0]:
-            _post(self.loop, self.future, outcome)
-            return
-        with contextlib.suppress(RuntimeError):  # the loop has closed: nobody to tell
-            self.loop.call_soon_threadsafe(_then_resolve, self.future, outcome, self.then)
 
 
 class _NowJob:
@@ -438,22 +431,14 @@ class USBLink(AsyncResource):
         """
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
-        job = _Job(work, loop, future, then)
-        with self._state_lock:
-            if self._closed:
-                raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
-            self._jobs.put(job)
+        job = self._submit(_Job(work, loop, future, then))
         try:
             succeeded, value = await future
         except BaseException:
             job.withdraw()
             raise
-        if succeeded:
-            result: T = value
-            return result
-        if isinstance(value, _CallbackFailed):
-            raise value.error
-        raise self._translate(value, description, errors or {}) from value
+        result: T = self._result(succeeded, value, description, errors)
+        return result
 
     async def poll_until(
         self,
@@ -486,26 +471,36 @@ class USBLink(AsyncResource):
             raise ValueError(f"interval must be a positive number of seconds, not {interval!r}")
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
-        job = _PollJob(work, found, interval, loop, future, then)
-        with self._state_lock:
-            if self._closed:
-                raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
-            self._jobs.put(job)
+        job = self._submit(_PollJob(work, found, interval, loop, future, then))
         try:
             succeeded, value = await future
         finally:
             job.withdrawn = True
-        if succeeded:
-            result: T = value
-            return result
-        if isinstance(value, _CallbackFailed):
-            raise value.error
         if isinstance(value, UnexpectedReplyError):
             raise value
         if isinstance(value, _LinkClosed):
             raise USBDisconnectionError(
                 f"{self._board_name}: the USB link was closed while {description}"
             )
+        result: T = self._result(succeeded, value, description, errors)
+        return result
+
+    def _submit(self, job: _JobT) -> _JobT:
+        """Queue ``job`` for the worker thread, unless the link is closed."""
+        with self._state_lock:
+            if self._closed:
+                raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
+            self._jobs.put(job)
+        return job
+
+    def _result(
+        self, succeeded: bool, value: Any, description: str, errors: Mapping[int, str] | None
+    ) -> Any:
+        """The value of a job that succeeded; else raise its error, translated."""
+        if succeeded:
+            return value
+        if isinstance(value, _CallbackFailed):
+            raise value.error
         raise self._translate(value, description, errors or {}) from value
 
     def control_write_now(
