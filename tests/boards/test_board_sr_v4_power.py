@@ -104,6 +104,26 @@ class RecordedSleeps:
         await self._real_sleep(0)
 
 
+async def test_wait_for_start_flash_looks_every_50ms_like_j5_on_a_backend_that_asks(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    board, backend = make_board()
+    monkeypatch.setattr(type(backend), "WAITS_FOR_PRESSES", False)  # as the console
+    backend.pressed_on_poll = 20
+    sleeps = RecordedSleeps(monkeypatch)
+
+    await board.wait_for_start_flash()
+
+    assert backend.button_polls == 20
+    assert sleeps.durations == [0.05] * 19
+    # (led, state, looks seen when it changed): before looks 1, 7, 13 and 19 the LED
+    # toggles, starting with on; once pressed it is left on.
+    assert backend.named("set_led_state") == [
+        (0, True, 1), (0, False, 7), (0, True, 13), (0, False, 19), (0, True, 20),
+    ]
+    assert backend.named("wait_until_button_pressed") == []
+
+
 async def test_wait_for_start_flash_toggles_every_0_3_s_until_pressed(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:

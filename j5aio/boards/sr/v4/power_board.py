@@ -13,7 +13,7 @@ from j5aio.boards.board import Board
 from j5aio.components._checks import check_timeout
 from j5aio.components._first import first_of
 from j5aio.components.battery_sensor import BatterySensor
-from j5aio.components.button import Button
+from j5aio.components.button import Button, ButtonInterface
 from j5aio.components.led import LED
 from j5aio.components.piezo import Piezo
 from j5aio.components.power_output import (
@@ -129,8 +129,11 @@ class PowerBoard(Board):
         :raises ValueError: ``timeout`` is negative or not a number (NaN).
         """
         with anyio.move_on_after(check_timeout(timeout)) as scope:
-            # One look first, as j5 does (on the console: one question, "pressed?").
-            if not await self._start_button.get_is_pressed():
+            backend = self.backend
+            if not isinstance(backend, ButtonInterface) or not backend.WAITS_FOR_PRESSES:
+                await self._look_until_pressed()
+            # One look first, as j5 does; then the backend says when it is pressed.
+            elif not await self._start_button.get_is_pressed():
                 await first_of(
                     [self._start_button.wait_until_pressed], beside=[self._flash_run_led],
                 )
@@ -140,6 +143,17 @@ class PowerBoard(Board):
                 "timeout, or timeout=None to wait for as long as it takes",
             )
         await self._run_led.set_state(True)
+
+    async def _look_until_pressed(self) -> None:
+        """Look at the button every 50 ms, switching the LED every sixth look, as j5 does."""
+        looks = 0
+        led_on = False
+        while not await self._start_button.get_is_pressed():
+            if looks % self.START_FLASH_POLLS == 0:
+                led_on = not led_on
+                await self._run_led.set_state(led_on)
+            await anyio.sleep(self.START_POLL_INTERVAL)
+            looks += 1
 
     async def _flash_run_led(self) -> None:
         led_on = False
