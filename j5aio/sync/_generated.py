@@ -1325,7 +1325,8 @@ class PowerBoard(Board):
 
         The button is looked at once; then the LED changes every 0.3 s and the wait ends
         as soon as the backend sees the press (it shares its reads of the button with any
-        other task waiting for it).
+        other task waiting for it). On the console, the button is asked about every
+        50 ms until it is pressed, as j5 does.
         Cancelling the wait (or running out of time) leaves the LED as it was at the time.
 
         :param timeout: give up after this many seconds; ``None`` waits for ever.

@@ -56,7 +56,9 @@ class PowerBoard(Board):
 
     #: :meth:`wait_for_start_flash` switches the run LED every ``START_POLL_INTERVAL *
     #: START_FLASH_POLLS`` seconds (0.3 s). The button itself is waited for as
-    #: :meth:`.Button.wait_until_pressed` does: the backend says as soon as it is pressed.
+    #: :meth:`.Button.wait_until_pressed` does (the backend says as soon as it is
+    #: pressed), or, on a backend whose every look is a question (the console), looked
+    #: at every ``START_POLL_INTERVAL`` seconds, as j5 does.
     START_POLL_INTERVAL: ClassVar[float] = 0.05
 
     #: See :attr:`START_POLL_INTERVAL`.
@@ -120,7 +122,8 @@ class PowerBoard(Board):
 
         The button is looked at once; then the LED changes every 0.3 s and the wait ends
         as soon as the backend sees the press (it shares its reads of the button with any
-        other task waiting for it).
+        other task waiting for it). On the console, the button is asked about every
+        50 ms until it is pressed, as j5 does.
         Cancelling the wait (or running out of time) leaves the LED as it was at the time.
 
         :param timeout: give up after this many seconds; ``None`` waits for ever.
