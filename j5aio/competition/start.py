@@ -23,7 +23,7 @@ import logging
 import os
 import tempfile
 import threading
-from collections.abc import Iterable
+from collections.abc import Awaitable, Callable, Iterable
 from datetime import timedelta
 from pathlib import Path
 from typing import Final, TypeVar
@@ -32,6 +32,7 @@ import anyio
 
 from j5aio.boards.board import Board
 from j5aio.components._checks import check_timeout
+from j5aio.components._first import first_of
 from j5aio.components.button import Button
 from j5aio.components.flashing_led import FlashingLED
 from j5aio.components.led import LED
@@ -50,7 +51,8 @@ LOGGER = logging.getLogger(__name__)
 
 #: The environment variable naming the start file.
 START_FILE_VARIABLE: Final = "J5AIO_START_FILE"
-#: How often the buttons and the start file are looked at while waiting, in seconds.
+#: How often the start file and the trigger are looked at while waiting, in seconds (the
+#: buttons are waited for by their boards, which say as soon as one is pressed).
 POLL_INTERVAL: Final = 0.05
 #: The run LED changes every this many looks (0.3 s).
 _FLASH_POLLS: Final = 6
@@ -128,26 +130,13 @@ async def wait_for_start(boards: Iterable[Board], timeout: float | None = None) 
     LOGGER.info(
         "Waiting for the start: press the start button, or create %s", path
     )
-    polls = 0
-    led_on = False
     with anyio.fail_after(limit):
-        while True:
-            if _triggered.is_set():
-                _triggered.clear()
-                how = "trigger"
-                break
-            if _take_start_file(path):
-                how = "start file"
-                break
-            if await _any_pressed(buttons):
-                how = "button"
-                break
-            if polls % _FLASH_POLLS == 0:
-                led_on = not led_on
-                for led in run_leds:
-                    await led.set_state(led_on)
-            polls += 1
-            await anyio.sleep(POLL_INTERVAL)
+        how = _started_from_outside(path)  # before any wait, as in every look below
+        if how is None:
+            how = await first_of(
+                [*(_pressed(button) for button in buttons), lambda: _from_outside(path)],
+                beside=[lambda: _flash(run_leds)] if run_leds else [],
+            )
     for led in leds:
         await led.set_state(True)  # the run LED: lit while the robot runs
     for flasher in flashing:
@@ -157,8 +146,37 @@ async def wait_for_start(boards: Iterable[Board], timeout: float | None = None) 
     return how
 
 
-async def _any_pressed(buttons: list[Button]) -> bool:
-    for button in buttons:
-        if await button.get_is_pressed():
-            return True
-    return False
+def _pressed(button: Button) -> Callable[[], Awaitable[str]]:
+    async def wait() -> str:
+        await button.wait_until_pressed()
+        return "button"
+
+    return wait
+
+
+def _started_from_outside(path: Path) -> str | None:
+    if _triggered.is_set():
+        _triggered.clear()
+        return "trigger"
+    if _take_start_file(path):
+        return "start file"
+    return None
+
+
+async def _from_outside(path: Path) -> str:
+    """Look for the trigger and the start file every :data:`POLL_INTERVAL`."""
+    while True:
+        await anyio.sleep(POLL_INTERVAL)
+        how = _started_from_outside(path)
+        if how is not None:
+            return how
+
+
+async def _flash(leds: list[LED]) -> None:
+    """Switch the run LEDs on and off, every ``_FLASH_POLLS`` looks, until cancelled."""
+    led_on = False
+    while True:
+        led_on = not led_on
+        for led in leds:
+            await led.set_state(led_on)
+        await anyio.sleep(POLL_INTERVAL * _FLASH_POLLS)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from abc import abstractmethod
+from typing import ClassVar
 
 import anyio
 
@@ -15,6 +16,12 @@ __all__ = ["Button", "ButtonInterface"]
 
 class ButtonInterface(Interface):
     """The coroutines a backend implements to read buttons."""
+
+    #: Whether a board waiting for its start button (``wait_for_start_flash``) should
+    #: await :meth:`wait_until_button_pressed`, which ends soon after a press at little
+    #: cost (``True``, the default), or keep looking with :meth:`get_button_state`, as
+    #: j5 does (``False``: the console, whose every look is a question to the user).
+    WAITS_FOR_PRESSES: ClassVar[bool] = True
 
     @abstractmethod
     async def get_button_state(self, identifier: int) -> bool:

@@ -26,10 +26,14 @@ Unplugged simulators (``simulator.unplug()``) are not found, as on a real bus.
 
 from __future__ import annotations
 
+import asyncio
+import contextlib
 import time
 import weakref
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any, cast
+
+import anyio
 
 from j5aio.backends.backend import Backend, BackendMeta
 from j5aio.backends.environment import Environment
@@ -252,6 +256,37 @@ class SRV4PowerBoardSimulatedBackend(SRV4PowerBoardHardwareBackend):
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
         """Find the power boards of the current simulated kit (or where ``options`` say)."""
         return await super().discover(options=options or kit_discovery_options(current_kit()))
+
+    async def _poll_button(self, report: Callable[[], None], *, fresh: bool) -> None:
+        """Read the button once, then listen to the simulator instead of polling it.
+
+        The simulator tells when its button goes down (a board on a real bus must be
+        asked), so a wait costs no CPU and ends as soon as the button is pressed.
+        """
+        device = self._link.device
+        simulator = device.simulator if isinstance(device, SimulatedUSBDevice) else None
+        if isinstance(simulator, SRPowerBoardFw3Simulator):
+            await self._listen_to_button(simulator, report)
+        else:
+            await super()._poll_button(report, fresh=fresh)
+
+    async def _listen_to_button(
+        self, simulator: SRPowerBoardFw3Simulator, report: Callable[[], None]
+    ) -> None:
+        loop = asyncio.get_running_loop()
+        pressed = anyio.Event()
+
+        def on_press() -> None:  # in the thread that pressed the button
+            with contextlib.suppress(RuntimeError):  # the loop has closed: nobody waits
+                loop.call_soon_threadsafe(pressed.set)
+
+        stop = simulator.watch_start_button(on_press)
+        try:
+            if not await self.get_button_state(0):  # held already: a read over the link
+                await pressed.wait()
+            report()
+        finally:
+            stop()
 
 
 class SRV4ServoBoardSimulatedBackend(SRV4ServoBoardHardwareBackend):

@@ -1333,7 +1333,10 @@ class PowerBoard(Board):
     def wait_for_start_flash(self, timeout: float | None = None) -> None:
         """Flash the run LED until the start button is pressed, then leave the LED on.
 
-        The start button is looked at every 50 ms and the LED changes every sixth look.
+        The button is looked at once; then the LED changes every 0.3 s and the wait ends
+        as soon as the backend sees the press (it shares its reads of the button with any
+        other task waiting for it). On the console, the button is asked about every
+        50 ms until it is pressed, as j5 does.
         Cancelling the wait (or running out of time) leaves the LED as it was at the time.
 
         :param timeout: give up after this many seconds; ``None`` waits for ever.

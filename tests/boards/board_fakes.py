@@ -11,6 +11,8 @@ from collections.abc import Sequence
 from datetime import timedelta
 from typing import ClassVar
 
+import anyio
+
 from j5aio.backends.backend import Backend
 from j5aio.boards.arduino import ArduinoUno
 from j5aio.boards.board import Board
@@ -50,6 +52,8 @@ class Recorder:
         self.button_polls = 0
         #: get_button_state answers True from this poll on (counting from 1).
         self.pressed_on_poll: int | None = None
+        #: wait_until_button_pressed waits for this event, if there is one.
+        self.press: anyio.Event | None = None
         self.closed = False
 
     @classmethod
@@ -84,6 +88,8 @@ class Recorder:
 
     async def wait_until_button_pressed(self, identifier: int) -> None:
         self._record("wait_until_button_pressed", identifier)
+        if self.press is not None:
+            await self.press.wait()
 
     async def get_power_output_enabled(self, identifier: int) -> bool:
         return self.outputs.get(identifier, False)

@@ -9,6 +9,7 @@ import pytest
 from j5aio.boards.board_group import BoardGroup
 from j5aio.boards.sr.v4 import PowerBoard, PowerOutputGroup, PowerOutputPosition
 from j5aio.components import LED, BatterySensor, Button, Piezo, PowerOutput
+from j5aio.errors import CommunicationError
 
 from .board_fakes import FakePowerBoardBackend
 
@@ -103,10 +104,11 @@ class RecordedSleeps:
         await self._real_sleep(0)
 
 
-async def test_wait_for_start_flash_polls_every_50ms_and_toggles_every_6th_poll(
+async def test_wait_for_start_flash_looks_every_50ms_like_j5_on_a_backend_that_asks(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     board, backend = make_board()
+    monkeypatch.setattr(type(backend), "WAITS_FOR_PRESSES", False)  # as the console
     backend.pressed_on_poll = 20
     sleeps = RecordedSleeps(monkeypatch)
 
@@ -114,11 +116,37 @@ async def test_wait_for_start_flash_polls_every_50ms_and_toggles_every_6th_poll(
 
     assert backend.button_polls == 20
     assert sleeps.durations == [0.05] * 19
-    # (led, state, polls seen when it changed): before polls 1, 7, 13 and 19 the LED
+    # (led, state, looks seen when it changed): before looks 1, 7, 13 and 19 the LED
     # toggles, starting with on; once pressed it is left on.
     assert backend.named("set_led_state") == [
         (0, True, 1), (0, False, 7), (0, True, 13), (0, False, 19), (0, True, 20),
     ]
+    assert backend.named("wait_until_button_pressed") == []
+
+
+async def test_wait_for_start_flash_toggles_every_0_3_s_until_pressed(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    board, backend = make_board()
+    backend.press = anyio.Event()
+    sleeps = RecordedSleeps(monkeypatch)
+    original = backend.set_led_state
+
+    async def set_led_state(identifier: int, state: bool) -> None:
+        await original(identifier, state)
+        assert backend.press is not None
+        if len(backend.named("set_led_state")) == 4:
+            backend.press.set()  # pressed after the fourth change
+
+    monkeypatch.setattr(backend, "set_led_state", set_led_state)
+    await board.wait_for_start_flash()
+
+    assert backend.named("wait_until_button_pressed") == [(0,)]  # the backend waits
+    changes = [state for _, state, _ in backend.named("set_led_state")]
+    assert changes[:4] == [True, False, True, False]  # toggling, starting with on...
+    assert changes[-1] is True  # ...and left on once pressed
+    assert sleeps.durations == [pytest.approx(0.3)] * len(sleeps.durations)
+    assert sleeps.durations
     assert backend.leds[0] is True
 
 
@@ -127,10 +155,32 @@ async def test_wait_for_start_flash_already_pressed_only_lights_the_led() -> Non
     backend.pressed_on_poll = 1
     await board.wait_for_start_flash()
     assert backend.named("set_led_state") == [(0, True, 1)]
+    assert backend.named("wait_until_button_pressed") == []
+
+
+async def test_wait_for_start_flash_pressed_as_it_begins_lights_the_led() -> None:
+    board, backend = make_board()
+    backend.press = anyio.Event()
+    backend.press.set()
+    await board.wait_for_start_flash()
+    assert backend.named("set_led_state")[-1][:2] == (0, True)
+    assert backend.leds[0] is True
+
+
+async def test_wait_for_start_flash_raises_what_the_backend_raises() -> None:
+    board, backend = make_board()
+
+    async def broken(identifier: int) -> None:
+        raise CommunicationError("Power Board FAKE1: no answer")
+
+    backend.wait_until_button_pressed = broken  # type: ignore[method-assign]
+    with pytest.raises(CommunicationError, match="no answer"):
+        await board.wait_for_start_flash()
 
 
 async def test_wait_for_start_flash_lets_other_tasks_run() -> None:
     board, backend = make_board()
+    backend.press = anyio.Event()  # never pressed
     ticks = 0
 
     async def ticker() -> None:
@@ -145,27 +195,29 @@ async def test_wait_for_start_flash_lets_other_tasks_run() -> None:
             await board.wait_for_start_flash()
         tasks.cancel_scope.cancel()
     assert ticks >= 10
-    assert backend.button_polls >= 2
+    assert backend.named("set_led_state")  # the LED flashed meanwhile
 
 
 async def test_wait_for_start_flash_times_out() -> None:
     board, backend = make_board()
+    backend.press = anyio.Event()  # never pressed
     start = anyio.current_time()
     with pytest.raises(TimeoutError, match=r"start button was not pressed within 0\.2 s"):
         await board.wait_for_start_flash(timeout=0.2)
     elapsed = anyio.current_time() - start
     assert 0.19 <= elapsed < 2
-    assert 3 <= backend.button_polls <= 40
+    assert backend.named("wait_until_button_pressed") == [(0,)]
 
 
 async def test_wait_for_start_flash_is_cancellable() -> None:
     board, backend = make_board()
+    backend.press = anyio.Event()  # never pressed
     with anyio.move_on_after(0.12) as scope:
         await board.wait_for_start_flash()
     assert scope.cancelled_caught
-    polls = backend.button_polls
-    await anyio.sleep(0.15)
-    assert backend.button_polls == polls  # nothing keeps polling after the cancel
+    calls = len(backend.calls)
+    await anyio.sleep(0.4)
+    assert len(backend.calls) == calls  # nothing keeps flashing the LED after the cancel
 
 
 @pytest.mark.parametrize("timeout", [-1, -0.01, math.nan])

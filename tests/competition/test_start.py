@@ -155,3 +155,31 @@ async def test_bad_timeouts_are_refused() -> None:
         await wait_for_start([], timeout="1")  # type: ignore[arg-type]
     with pytest.raises(ValueError):
         await wait_for_start([], timeout=-1)
+
+
+async def test_a_failing_start_button_reaches_the_waiter_as_itself(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from j5aio.errors import CommunicationError
+
+    _, board = await power_board()
+
+    async def broken(button: Button, timeout: float | None = None) -> None:
+        raise CommunicationError("Power Board SIMPB0: no answer")
+
+    monkeypatch.setattr(Button, "wait_until_pressed", broken)
+    with pytest.raises(CommunicationError, match="no answer"):
+        await wait_for_start([board], timeout=5)
+
+
+async def test_a_press_from_another_thread_starts() -> None:
+    kit, board = await power_board()
+    simulator = kit.power_boards[0]
+
+    async def press_from_a_thread() -> None:
+        await anyio.sleep(0.1)
+        await anyio.to_thread.run_sync(simulator.press_start)
+
+    async with anyio.create_task_group() as tasks:
+        tasks.start_soon(press_from_a_thread)
+        assert await wait_for_start([board], timeout=30) == "button"

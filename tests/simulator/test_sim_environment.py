@@ -23,6 +23,7 @@ from j5aio.simulator.environment import (
     SIMULATED_BACKENDS,
     SIMULATED_ENVIRONMENT,
     SimulatedUSBDevice,
+    SRV4PowerBoardSimulatedBackend,
     kit_discovery_options,
     port_name,
 )
@@ -189,3 +190,49 @@ def test_usb_stand_in_shows_the_simulator_and_its_place_in_the_kit() -> None:
     assert (device.bus, device.address) == (kit.name, "SIMPB0")
     assert "SIMPB0" in repr(device)
     assert port_name(kit, kit.motor_boards[1]) == f"sim://{kit.name}/SIMMB1"
+
+
+async def test_the_start_button_is_heard_from_the_simulator_not_polled() -> None:
+    kit = use_kit(KitConfig(motor_boards=0, servo_boards=0, sb_arduinos=0))
+    simulator = kit.power_boards[0]
+    reads = 0
+    original = simulator._read
+
+    def counting(command: int, length: int) -> bytes:
+        nonlocal reads
+        reads += command == 8  # the button
+        return original(command, length)
+
+    simulator._read = counting  # type: ignore[method-assign]
+    board = (await SIMULATED_ENVIRONMENT.get_board_group(PowerBoard)).singular()
+
+    async def press_from_a_thread() -> None:
+        with anyio.fail_after(30):
+            while reads == 0:  # noqa: ASYNC110 - the wait's first read, on the USB thread
+                await anyio.sleep(0.001)
+        await anyio.sleep(0.03)  # time in which a poll would have read the button again
+        await anyio.to_thread.run_sync(simulator.press_start)
+
+    async with anyio.create_task_group() as group:
+        group.start_soon(press_from_a_thread)
+        await board.start_button.wait_until_pressed()
+    assert reads == 1  # one read (was it held already?), then the simulator told us
+    # Held already: the read says so.
+    await board.start_button.wait_until_pressed()
+    assert reads == 2
+    simulator.release_start()
+    # Nobody waits any more: nobody listens.
+    assert simulator._press_listeners == []
+
+
+async def test_a_simulated_board_that_is_not_the_simulator_is_polled() -> None:
+    use_kit(KitConfig(motor_boards=0, servo_boards=0, sb_arduinos=0))
+    board = (await SIMULATED_ENVIRONMENT.get_board_group(PowerBoard)).singular()
+    backend = board.backend
+    assert isinstance(backend, SRV4PowerBoardSimulatedBackend)
+    device = backend.link.device
+    assert isinstance(device, SimulatedUSBDevice)
+    simulator = device.simulator
+    backend._link._device = simulator  # the bare simulator: no SimulatedUSBDevice to listen to
+    simulator.press_start()  # type: ignore[attr-defined]
+    await board.start_button.wait_until_pressed()

@@ -2,6 +2,7 @@ import struct
 from datetime import timedelta
 from typing import Any
 
+import anyio
 import pytest
 import usb.core
 
@@ -17,6 +18,7 @@ from j5aio.errors import (
     USBCommunicationError,
 )
 from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
+from j5aio.simulator.usb_support import UsbStall
 
 Backend = SRV4PowerBoardHardwareBackend
 
@@ -130,24 +132,150 @@ async def test_readings() -> None:
     await board.close()
 
 
+async def wait_until(condition: Any) -> None:
+    """Let other tasks and threads run until ``condition()`` (a liveness bound only)."""
+    with anyio.fail_after(30):
+        while not condition():  # noqa: ASYNC110 - a thread changes it
+            await anyio.sleep(0.001)
+
+
+class CountingSimulator(SRPowerBoardFw3Simulator):
+    """Counts the button reads (on the link's thread) and presses when ``ready()`` says."""
+
+    def __init__(self, serial_number: str) -> None:
+        super().__init__(serial_number)
+        self.button_reads = 0
+        self.pressed_at: int | None = None
+        self.ready: Any = lambda: False
+        self.fail_reads = False
+
+    def _read(self, command: int, length: int) -> bytes:
+        if command == 8:
+            self.button_reads += 1
+            if self.fail_reads:
+                raise UsbStall()
+            if self.pressed_at is None and self.ready():
+                self.pressed_at = self.button_reads
+                self.press_start()
+        return super()._read(command, length)
+
+
 async def test_wait_until_button_pressed_polls(monkeypatch: pytest.MonkeyPatch) -> None:
-    sim = SRPowerBoardFw3Simulator("PB1")
+    sim = CountingSimulator("PB1")
     _, backend = await connect(sim)
     monkeypatch.setattr(Backend, "BUTTON_POLL_INTERVAL", 0.001)
-    reads = 0
-    original = backend.get_button_state
-
-    async def counting(identifier: int) -> bool:
-        nonlocal reads
-        reads += 1
-        if reads == 3:
-            sim.press_start()
-        return await original(identifier)
-
-    monkeypatch.setattr(backend, "get_button_state", counting)
+    sim.ready = lambda: sim.button_reads == 3
     await backend.wait_until_button_pressed(0)
-    assert reads == 3
+    assert sim.button_reads == 3
+    with pytest.raises(ValueError, match="only button 0"):
+        await backend.wait_until_button_pressed(1)
     await backend.close()
+
+
+@pytest.mark.parametrize("waiters", [1, 4])
+async def test_waiters_share_one_poll_stream(
+    monkeypatch: pytest.MonkeyPatch, waiters: int
+) -> None:
+    sim = CountingSimulator("PB1")
+    board, backend = await connect(sim)
+    monkeypatch.setattr(Backend, "BUTTON_POLL_INTERVAL", 0.001)
+    watch = backend._presses
+    # Pressed only once every waiter waits, after at least three reads.
+    sim.ready = lambda: watch.waiters == waiters and sim.button_reads >= 3
+    done = 0
+
+    async def wait() -> None:
+        nonlocal done
+        await board.start_button.wait_until_pressed()
+        done += 1
+
+    async with anyio.create_task_group() as group:
+        for _ in range(waiters):
+            group.start_soon(wait)
+    assert done == waiters
+    # One stream: it stopped at the read that saw the press. A stream per waiter would
+    # each have needed a read of its own to see it.
+    assert sim.button_reads == sim.pressed_at
+    assert not watch.polling
+    assert watch.waiters == 0
+    await anyio.sleep(0.02)  # nobody waits: nothing reads the board any more
+    assert sim.button_reads == sim.pressed_at
+    await backend.close()
+
+
+async def test_a_cancelled_waiter_leaves_the_others_polling(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    sim = CountingSimulator("PB1")
+    board, backend = await connect(sim)
+    monkeypatch.setattr(Backend, "BUTTON_POLL_INTERVAL", 0.001)
+    watch = backend._presses
+    sim.ready = lambda: watch.waiters == 2 and sim.button_reads >= 3
+    done = 0
+
+    async def wait() -> None:
+        nonlocal done
+        await board.start_button.wait_until_pressed()
+        done += 1
+
+    leader = anyio.CancelScope()
+
+    async def lead_then_give_up() -> None:
+        with leader:
+            await board.start_button.wait_until_pressed()
+
+    async with anyio.create_task_group() as group:
+        group.start_soon(lead_then_give_up)
+        await wait_until(lambda: watch.polling)  # the first waiter leads the stream
+        group.start_soon(wait)
+        group.start_soon(wait)
+        await wait_until(lambda: watch.waiters == 3)
+        leader.cancel()
+    assert done == 2
+    assert sim.pressed_at is not None
+    assert not watch.polling
+    await backend.close()
+
+
+async def test_a_failing_board_fails_every_waiter(monkeypatch: pytest.MonkeyPatch) -> None:
+    sim = CountingSimulator("PB1")
+    board, backend = await connect(sim)
+    monkeypatch.setattr(Backend, "BUTTON_POLL_INTERVAL", 0.001)
+    watch = backend._presses
+    failed: list[BaseException] = []
+
+    async def wait() -> None:
+        with pytest.raises(USBCommunicationError, match=r"Power Board.*wIndex 8") as info:
+            await board.start_button.wait_until_pressed()
+        failed.append(info.value)
+
+    async with anyio.create_task_group() as group:
+        for _ in range(3):
+            group.start_soon(wait)
+        await wait_until(lambda: watch.waiters == 3)
+        sim.fail_reads = True
+    assert len(failed) == 3
+    assert not watch.polling
+    # The board answers again: a new wait polls anew.
+    sim.fail_reads = False
+    sim.ready = lambda: True
+    await board.start_button.wait_until_pressed()
+    await backend.close()
+
+
+async def test_closing_the_link_ends_the_wait(monkeypatch: pytest.MonkeyPatch) -> None:
+    sim = CountingSimulator("PB1")
+    board, backend = await connect(sim)
+    monkeypatch.setattr(Backend, "BUTTON_POLL_INTERVAL", 0.001)
+
+    async def close_when_polling() -> None:
+        await wait_until(lambda: sim.button_reads > 0)
+        backend.link.close_now()
+
+    async with anyio.create_task_group() as group:
+        group.start_soon(close_when_polling)
+        with pytest.raises(BoardDisconnectionError, match="closed"):
+            await board.start_button.wait_until_pressed()
 
 
 async def test_piezo_queue_and_the_too_fast_error() -> None:

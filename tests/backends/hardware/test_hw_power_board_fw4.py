@@ -1,4 +1,5 @@
 from datetime import timedelta
+from typing import Any
 
 import anyio
 import pytest
@@ -297,4 +298,47 @@ async def test_the_simulator_with_leftovers_is_still_identified() -> None:
     sim.receive(b"v")  # half a line from someone else
     board, _, _ = await connect(sim)
     assert board.firmware_version == "4.4.2"
+    await board.close()
+
+
+class CountingFw4Simulator(SRPowerBoardFw4Simulator):
+    """Counts the button reads; presses (latched) when ``ready()`` says."""
+
+    def __init__(self, serial_number: str) -> None:
+        super().__init__(serial_number)
+        self.button_reads = 0
+        self.pressed_at: int | None = None
+        self.ready: Any = lambda: False
+
+    def _button(self, args: list[str]) -> str:
+        self.button_reads += 1
+        if self.pressed_at is None and self.ready():
+            self.pressed_at = self.button_reads
+            self.click_start()
+        return super()._button(args)
+
+
+async def test_waiters_share_one_stream_of_latch_reads(monkeypatch: pytest.MonkeyPatch) -> None:
+    sim = CountingFw4Simulator("srABC")
+    board, backend, _ = await connect(sim)
+    monkeypatch.setattr(Backend, "BUTTON_POLL_INTERVAL", 0.001)
+    watch = backend._presses
+    sim.ready = lambda: watch.waiters == 4 and sim.button_reads >= 3
+    done = 0
+
+    async def wait() -> None:
+        nonlocal done
+        await board.start_button.wait_until_pressed()
+        done += 1
+
+    async with anyio.create_task_group() as group:
+        for _ in range(4):
+            group.start_soon(wait)
+    assert done == 4
+    # One stream (the first read forgets an old press): it stopped at the read that took
+    # the press from the latch, which no other read could have seen.
+    assert sim.button_reads == sim.pressed_at
+    assert not watch.polling
+    with pytest.raises(ValueError, match="only start button 0"):
+        await backend.wait_until_button_pressed(1)
     await board.close()

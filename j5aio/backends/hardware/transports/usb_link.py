@@ -15,6 +15,11 @@ Cancellation: a transfer is a job on the thread's queue with its own future.
   ``Task.cancel``): backends update what they remember of the board there, so their
   caches change when, and only when, the board has been told.
 
+Polling: :meth:`USBLink.poll_until` runs one read every so often *on the worker thread*,
+between the other transfers, and wakes the event loop only when the read has found what
+it looks for (or failed). An idle poll therefore costs one wake-up of one thread and the
+transfer itself: no task, no future and no hop back to the loop per read.
+
 Errors: a pyusb error becomes :class:`~j5aio.errors.USBCommunicationError` naming the
 board, with the pyusb exception kept as ``usb_error``. errno 19 (``ENODEV``: unplugged)
 becomes :class:`USBDisconnectionError`, which is also a
@@ -32,6 +37,7 @@ import errno
 import logging
 import queue
 import threading
+import time
 from collections.abc import Callable, Mapping
 from typing import Any, Generic, Protocol, TypeVar
 
@@ -68,6 +74,7 @@ WRITE_REQUEST_TYPE = 0x00
 CONTROL_REQUEST = 64
 
 T = TypeVar("T")
+_JobT = TypeVar("_JobT", bound="_Job[Any]")
 
 
 class USBDisconnectionError(USBCommunicationError, BoardDisconnectionError):
@@ -159,6 +166,31 @@ class _Job(Generic[T]):
             self.loop.call_soon_threadsafe(_then_resolve, self.future, outcome, self.then)
 
 
+class _PollJob(_Job[T]):
+    """A read repeated on the worker thread until ``found`` says its result is the one.
+
+    ``finish`` hands the read that was found (or the failure) to the loop, ``then`` first.
+    """
+
+    def __init__(
+        self,
+        work: Callable[[], T],
+        found: Callable[[T], bool],
+        interval: float,
+        loop: asyncio.AbstractEventLoop,
+        future: asyncio.Future[Any],
+        then: Callable[[T], object] | None,
+    ) -> None:
+        super().__init__(work, loop, future, then)
+        self.found = found
+        self.interval = interval
+        #: When the next read is due (``time.monotonic``); the first read runs at once.
+        self.due = 0.0
+        #: Set by the caller when it stops waiting; read by the thread (a plain flag: the
+        #: thread at worst makes one more read, whose result nobody takes).
+        self.withdrawn = False
+
+
 class _NowJob:
     """A transfer whose caller waits synchronously (see :meth:`USBLink.control_write_now`)."""
 
@@ -180,6 +212,10 @@ class _NowJob:
 def _resolve(future: asyncio.Future[Any], outcome: Any) -> None:
     if not future.done():
         future.set_result(outcome)
+
+
+class _LinkClosed:
+    """The link closed while a poll was running."""
 
 
 class _CallbackFailed:
@@ -227,7 +263,13 @@ class USBLink(AsyncResource):
         # Guards _closed, _stopped and _stop_waiters, so that no job is queued behind
         # the stop sentinel even if close_now runs on another thread.
         self._state_lock = threading.Lock()
-        self._jobs: queue.SimpleQueue[_Job[Any] | _NowJob | None] = queue.SimpleQueue()
+        self._jobs: queue.SimpleQueue[_Job[Any] | _NowJob | _PollJob[Any] | None] = (
+            queue.SimpleQueue()
+        )
+        # The polls the worker thread runs, and when the next is due (only the thread
+        # touches these).
+        self._polls: list[_PollJob[Any]] = []
+        self._poll_due = 0.0
         self._wire = wire_logger(f"usb:{board_name}")
         self._thread = threading.Thread(
             target=self._run, name=f"j5aio USB {board_name}", daemon=True
@@ -323,6 +365,45 @@ class USBLink(AsyncResource):
 
         await self.call(transfer, description=description, errors=errors, then=accepted)
 
+    async def poll_control_read(
+        self,
+        w_index: int,
+        length: int,
+        found: Callable[[bytes], bool],
+        *,
+        interval: float,
+        w_value: int = 0,
+        then: Callable[[bytes], object] | None = None,
+    ) -> bytes:
+        """Read like :meth:`control_read` now and every ``interval`` s until ``found``.
+
+        The reads run on the worker thread (see :meth:`poll_until`): only the reply that
+        ``found`` accepts wakes the event loop, and is returned (and given to ``then``,
+        even if the caller has been cancelled meanwhile).
+
+        :raises UnexpectedReplyError: a reply was not ``length`` bytes long.
+        """
+        description = f"polling {length} bytes from wIndex {w_index} (wValue {w_value})"
+
+        def transfer() -> bytes:
+            data = bytes(
+                self._device.ctrl_transfer(
+                    READ_REQUEST_TYPE, CONTROL_REQUEST, w_value, w_index, length,
+                    self._timeout_ms,
+                )
+            )
+            if len(data) != length:
+                raise UnexpectedReplyError(
+                    f"{self._board_name}: {description} returned {len(data)} bytes"
+                )
+            return data
+
+        reply = await self.poll_until(
+            transfer, found, interval=interval, description=description, then=then
+        )
+        log_wire(self._wire, f"<- wIndex={w_index} wValue={w_value}", reply)
+        return reply
+
     async def read_serial_number(self) -> str | None:
         """Read the device's serial number string (a transfer, so on the worker thread)."""
         return await self.call(
@@ -350,19 +431,74 @@ class USBLink(AsyncResource):
         """
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
-        job = _Job(work, loop, future, then)
-        with self._state_lock:
-            if self._closed:
-                raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
-            self._jobs.put(job)
+        job = self._submit(_Job(work, loop, future, then))
         try:
             succeeded, value = await future
         except BaseException:
             job.withdraw()
             raise
+        result: T = self._result(succeeded, value, description, errors)
+        return result
+
+    async def poll_until(
+        self,
+        work: Callable[[], T],
+        found: Callable[[T], bool],
+        *,
+        interval: float,
+        description: str,
+        errors: Mapping[int, str] | None = None,
+        then: Callable[[T], object] | None = None,
+    ) -> T:
+        """Run ``work`` on the worker thread now and every ``interval`` s until ``found``.
+
+        The reads take their turn among the other transfers, in order, and the event loop
+        is woken only once: with the first result that ``found`` accepts, or the first
+        failure. Cancelling the caller stops the reads (one that is running completes;
+        its result is dropped unless ``then`` takes it).
+
+        :param work: one read (a transfer), run on the worker thread.
+        :param found: called on the worker thread with each result; ``True`` ends the poll.
+        :param interval: seconds from the start of one read to the start of the next.
+        :param description: what ``work`` does, for error messages.
+        :param errors: messages for specific errnos.
+        :param then: called on the event loop with the accepted result, even if the caller
+            has been cancelled meanwhile (so that a latched event is never lost).
+        :raises ValueError: ``interval`` is not a positive number.
+        :raises USBCommunicationError: a read failed (or a subclass, as :meth:`call`).
+        """
+        if not interval > 0:
+            raise ValueError(f"interval must be a positive number of seconds, not {interval!r}")
+        loop = asyncio.get_running_loop()
+        future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
+        job = self._submit(_PollJob(work, found, interval, loop, future, then))
+        try:
+            succeeded, value = await future
+        finally:
+            job.withdrawn = True
+        if isinstance(value, UnexpectedReplyError):
+            raise value
+        if isinstance(value, _LinkClosed):
+            raise USBDisconnectionError(
+                f"{self._board_name}: the USB link was closed while {description}"
+            )
+        result: T = self._result(succeeded, value, description, errors)
+        return result
+
+    def _submit(self, job: _JobT) -> _JobT:
+        """Queue ``job`` for the worker thread, unless the link is closed."""
+        with self._state_lock:
+            if self._closed:
+                raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
+            self._jobs.put(job)
+        return job
+
+    def _result(
+        self, succeeded: bool, value: Any, description: str, errors: Mapping[int, str] | None
+    ) -> Any:
+        """The value of a job that succeeded; else raise its error, translated."""
         if succeeded:
-            result: T = value
-            return result
+            return value
         if isinstance(value, _CallbackFailed):
             raise value.error
         raise self._translate(value, description, errors or {}) from value
@@ -446,23 +582,65 @@ class USBLink(AsyncResource):
     # -- internals -----------------------------------------------------------------------
 
     def _run(self) -> None:
+        jobs = self._jobs
         while True:
-            job = self._jobs.get()
+            if not self._polls:
+                job = jobs.get()
+            else:
+                # An idle poll's whole cost is this wait's wake-up and the read: keep the
+                # path short (no exception when a job is already there, no scan).
+                wait = self._poll_due - time.monotonic()
+                try:
+                    job = jobs.get(timeout=wait) if wait > 0 else jobs.get_nowait()
+                except queue.Empty:  # a poll is due
+                    self._run_due_polls()
+                    continue
             if job is None:
                 break
-            if not job.start():
-                continue
-            try:
-                outcome: tuple[bool, Any] = (True, job.work())
-            except BaseException as exc:  # the thread must survive, and its caller hear of it
-                outcome = (False, exc)
-            job.finish(outcome)
+            if isinstance(job, _PollJob):
+                self._polls.append(job)  # due at once: its first read runs next
+                self._poll_due = 0.0
+            elif job.start():
+                try:
+                    outcome: tuple[bool, Any] = (True, job.work())
+                except BaseException as exc:  # the thread must survive, and its caller hear
+                    outcome = (False, exc)
+                job.finish(outcome)
+            if self._polls:
+                self._run_due_polls()
+        for poll in self._polls:
+            if not poll.withdrawn:
+                poll.finish((False, _LinkClosed()))
+        self._polls.clear()
         self._release_device()
         with self._state_lock:
             self._stopped = True
             waiters, self._stop_waiters = self._stop_waiters, []
         for loop, future in waiters:
             _post(loop, future, None)
+
+    def _run_due_polls(self) -> None:
+        now = time.monotonic()
+        polls = self._polls
+        for poll in polls[:] if len(polls) > 1 else polls:
+            if poll.withdrawn:
+                polls.remove(poll)
+                continue
+            if poll.due > now:
+                continue
+            following = poll.due + poll.interval  # a steady rate, unless the thread fell behind
+            poll.due = following if following > now else now + poll.interval
+            try:
+                value = poll.work()
+                if not poll.found(value):
+                    continue
+                outcome: tuple[bool, Any] = (True, value)
+            except BaseException as exc:  # the thread must survive, and the caller hear
+                outcome = (False, exc)
+            polls.remove(poll)
+            poll.finish(outcome)
+            break  # the list changed: the next pass looks at the others
+        self._poll_due = min((poll.due for poll in polls), default=0.0)
 
     def _release_device(self) -> None:
         if isinstance(self._device, usb.core.Device):

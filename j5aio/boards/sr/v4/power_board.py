@@ -11,8 +11,9 @@ import anyio
 
 from j5aio.boards.board import Board
 from j5aio.components._checks import check_timeout
+from j5aio.components._first import first_of
 from j5aio.components.battery_sensor import BatterySensor
-from j5aio.components.button import Button
+from j5aio.components.button import Button, ButtonInterface
 from j5aio.components.led import LED
 from j5aio.components.piezo import Piezo
 from j5aio.components.power_output import (
@@ -53,10 +54,14 @@ class PowerBoard(Board):
 
     name: ClassVar[str] = "Student Robotics v4 Power Board"
 
-    #: How often :meth:`wait_for_start_flash` looks at the start button, in seconds.
+    #: :meth:`wait_for_start_flash` switches the run LED every ``START_POLL_INTERVAL *
+    #: START_FLASH_POLLS`` seconds (0.3 s). The button itself is waited for as
+    #: :meth:`.Button.wait_until_pressed` does (the backend says as soon as it is
+    #: pressed), or, on a backend whose every look is a question (the console), looked
+    #: at every ``START_POLL_INTERVAL`` seconds, as j5 does.
     START_POLL_INTERVAL: ClassVar[float] = 0.05
 
-    #: :meth:`wait_for_start_flash` toggles the run LED once every this many polls.
+    #: See :attr:`START_POLL_INTERVAL`.
     START_FLASH_POLLS: ClassVar[int] = 6
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
@@ -115,7 +120,10 @@ class PowerBoard(Board):
     async def wait_for_start_flash(self, timeout: float | None = None) -> None:
         """Flash the run LED until the start button is pressed, then leave the LED on.
 
-        The start button is looked at every 50 ms and the LED changes every sixth look.
+        The button is looked at once; then the LED changes every 0.3 s and the wait ends
+        as soon as the backend sees the press (it shares its reads of the button with any
+        other task waiting for it). On the console, the button is asked about every
+        50 ms until it is pressed, as j5 does.
         Cancelling the wait (or running out of time) leaves the LED as it was at the time.
 
         :param timeout: give up after this many seconds; ``None`` waits for ever.
@@ -124,14 +132,14 @@ class PowerBoard(Board):
         :raises ValueError: ``timeout`` is negative or not a number (NaN).
         """
         with anyio.move_on_after(check_timeout(timeout)) as scope:
-            polls = 0
-            led_on = False
-            while not await self._start_button.get_is_pressed():
-                if polls % self.START_FLASH_POLLS == 0:
-                    led_on = not led_on
-                    await self._run_led.set_state(led_on)
-                await anyio.sleep(self.START_POLL_INTERVAL)
-                polls += 1
+            backend = self.backend
+            if not isinstance(backend, ButtonInterface) or not backend.WAITS_FOR_PRESSES:
+                await self._look_until_pressed()
+            # One look first, as j5 does; then the backend says when it is pressed.
+            elif not await self._start_button.get_is_pressed():
+                await first_of(
+                    [self._start_button.wait_until_pressed], beside=[self._flash_run_led],
+                )
         if scope.cancelled_caught:
             raise TimeoutError(
                 f"the start button was not pressed within {timeout} s; pass a longer "
@@ -139,3 +147,20 @@ class PowerBoard(Board):
             )
         await self._run_led.set_state(True)
 
+    async def _look_until_pressed(self) -> None:
+        """Look at the button every 50 ms, switching the LED every sixth look, as j5 does."""
+        looks = 0
+        led_on = False
+        while not await self._start_button.get_is_pressed():
+            if looks % self.START_FLASH_POLLS == 0:
+                led_on = not led_on
+                await self._run_led.set_state(led_on)
+            await anyio.sleep(self.START_POLL_INTERVAL)
+            looks += 1
+
+    async def _flash_run_led(self) -> None:
+        led_on = False
+        while True:
+            led_on = not led_on
+            await self._run_led.set_state(led_on)
+            await anyio.sleep(self.START_POLL_INTERVAL * self.START_FLASH_POLLS)

@@ -15,8 +15,6 @@ from enum import Enum
 from types import MappingProxyType
 from typing import TYPE_CHECKING, ClassVar, cast
 
-import anyio
-
 from j5aio.boards.sr.v4.power_board import PowerBoard, PowerOutputPosition
 from j5aio.components._checks import check_timeout
 from j5aio.components.battery_sensor import BatterySensor
@@ -206,10 +204,8 @@ class PowerBoardFw4(PowerBoard):
         :raises TypeError: ``timeout`` is not a number or ``None``.
         :raises ValueError: ``timeout`` is negative or not a number (NaN).
         """
-        limit = check_timeout(timeout)
-        await self._start_button.get_is_pressed()
+        check_timeout(timeout)  # bad input: nothing is sent
         await self.run_led.set_mode(LEDMode.FLASH)
-        with anyio.fail_after(limit):
-            while not await self._start_button.get_is_pressed():  # noqa: ASYNC110 - polling a board
-                await anyio.sleep(self.START_POLL_INTERVAL)
+        # The wait forgets a press latched before it (as the backend's first read).
+        await self._start_button.wait_until_pressed(timeout)
         await self.run_led.set_mode(LEDMode.ON)

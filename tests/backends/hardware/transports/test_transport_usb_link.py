@@ -345,3 +345,114 @@ def test_control_write_now_runs_on_the_worker_thread_in_order(device: StandInDev
         link.close_now()
     with pytest.raises(USBDisconnectionError, match="closed"):
         link.control_write_now(3, 0, timeout=1)
+
+
+# -- polling on the worker thread ---------------------------------------------------------
+
+
+def _reads_of(device: StandInDevice, index: int) -> int:
+    return sum(1 for call in device.calls if call[3] == index)
+
+
+async def test_poll_control_read_reads_until_found(device: StandInDevice, link: USBLink) -> None:
+    seen: list[bytes] = []
+
+    def found(reply: bytes) -> bool:
+        seen.append(reply)
+        return len(seen) == 3
+
+    reply = await link.poll_control_read(8, 4, found, interval=0.001)
+    assert reply == struct.pack("<I", 8)
+    assert len(seen) == 3
+    assert device.threads == {link.thread.ident}  # every read on the worker thread
+    assert device.calls[0] == (0x80, 64, 0, 8, 4, 250)
+    await anyio.sleep(0.01)
+    assert _reads_of(device, 8) == 3  # found: the reads stopped
+
+
+async def test_polls_take_turns_with_other_transfers(device: StandInDevice, link: USBLink) -> None:
+    async with anyio.create_task_group() as group:
+        polled = anyio.Event()
+
+        async def poll() -> None:
+            await link.poll_control_read(8, 4, lambda _reply: _reads_of(device, 9) >= 3,
+                                         interval=0.001)
+            polled.set()
+
+        group.start_soon(poll)
+        for _ in range(3):
+            assert await link.control_read(9, 4) == struct.pack("<I", 9)
+        with anyio.fail_after(30):
+            await polled.wait()
+
+
+async def test_a_cancelled_poll_stops_reading(device: StandInDevice, link: USBLink) -> None:
+    with anyio.move_on_after(0.02):
+        await link.poll_control_read(8, 4, lambda _reply: False, interval=0.001)
+    await link.control_read(9, 4)  # the thread has moved on past any read in flight
+    await anyio.sleep(0.01)
+    await link.control_read(9, 4)
+    reads = _reads_of(device, 8)
+    assert reads >= 1
+    await anyio.sleep(0.02)
+    assert _reads_of(device, 8) == reads
+
+
+async def test_then_takes_a_found_reply_even_for_a_cancelled_caller(
+    device: StandInDevice, link: USBLink
+) -> None:
+    taken: list[bytes] = []
+    device.gate = threading.Event()
+    with anyio.CancelScope() as scope:
+        async with anyio.create_task_group() as group:
+            group.start_soon(
+                lambda: link.poll_control_read(8, 4, lambda _reply: True, interval=0.001,
+                                               then=taken.append)
+            )
+            await anyio.to_thread.run_sync(device.started.wait, 5)
+            scope.cancel()
+    device.gate.set()
+    # The found read finished before this one, and its callback was posted to the loop
+    # before this read's answer: it has run.
+    await link.control_read(9, 4)
+    assert taken == [struct.pack("<I", 8)]
+
+
+async def test_a_failed_poll_read_raises_as_a_transfer_does(
+    device: StandInDevice, link: USBLink
+) -> None:
+    device.errors[8] = usb.core.USBError("No such device", -4, errno.ENODEV)
+    with pytest.raises(USBDisconnectionError, match="polling 4 bytes from wIndex 8"):
+        await link.poll_control_read(8, 4, lambda _reply: False, interval=0.001)
+
+
+async def test_a_short_poll_reply_is_an_unexpected_reply(link: USBLink) -> None:
+    with pytest.raises(UnexpectedReplyError, match="returned 4 bytes"):
+        await link.poll_control_read(8, 5, lambda _reply: False, interval=0.001)
+
+
+async def test_the_poll_interval_is_checked(link: USBLink) -> None:
+    for bad in (0, -1.0, float("nan")):
+        with pytest.raises(ValueError, match="positive number of seconds"):
+            await link.poll_until(lambda: 1, bool, interval=bad, description="x")
+
+
+async def test_closing_the_link_ends_a_poll(device: StandInDevice, link: USBLink) -> None:
+    async def close_soon() -> None:
+        await anyio.to_thread.run_sync(device.started.wait, 5)
+        link.close_now()
+
+    async with anyio.create_task_group() as group:
+        group.start_soon(close_soon)
+        with pytest.raises(USBDisconnectionError, match="closed while polling"):
+            await link.poll_control_read(8, 4, lambda _reply: False, interval=0.001)
+    with pytest.raises(USBDisconnectionError, match="link is closed"):
+        await link.poll_control_read(8, 4, lambda _reply: False, interval=0.001)
+
+
+async def test_a_failing_then_reaches_the_poller(link: USBLink) -> None:
+    def then(_reply: bytes) -> None:
+        raise RuntimeError("the cache could not be updated")
+
+    with pytest.raises(RuntimeError, match="cache"):
+        await link.poll_control_read(8, 4, lambda _reply: True, interval=0.001, then=then)

@@ -35,6 +35,9 @@ class SRV4PowerBoardConsoleBackend(
     :param console_class: the console to talk through.
     """
 
+    # j5's transcript: a flashing wait asks "Start button state" until the answer is true.
+    WAITS_FOR_PRESSES: ClassVar[bool] = False
+
     board = PowerBoard
 
     #: The longest note the board can play, in milliseconds.

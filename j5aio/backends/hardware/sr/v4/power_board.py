@@ -9,21 +9,21 @@ enumerates the board).
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from datetime import timedelta
 from typing import ClassVar
-
-import anyio
 
 from j5aio.backends.hardware.sr.v4 import power_fw3_codec as codec
 from j5aio.backends.hardware.transports.usb_link import USBLink
 from j5aio.backends.hardware.usb_backend import USBHardwareBackend
+from j5aio.backends.press_watch import PressWatch
 from j5aio.boards.sr.v4.power_board import PowerBoard
 from j5aio.components.battery_sensor import BatterySensorInterface
 from j5aio.components.button import ButtonInterface
 from j5aio.components.led import LEDInterface
 from j5aio.components.piezo import PiezoInterface
 from j5aio.components.power_output import PowerOutputInterface
-from j5aio.errors import UnsupportedFirmwareError
+from j5aio.errors import BoardDisconnectionError, UnsupportedFirmwareError
 
 __all__ = ["SRV4PowerBoardHardwareBackend"]
 
@@ -50,13 +50,17 @@ class SRV4PowerBoardHardwareBackend(
     # Firmware 4 (same IDs) is a CDC serial device, found through its serial port.
     SINGLE_INTERFACE: ClassVar[bool] = True
 
-    #: How often :meth:`wait_until_button_pressed` reads the button, in seconds.
-    BUTTON_POLL_INTERVAL: ClassVar[float] = 0.05
+    #: How often the button is read while a task waits for a press, in seconds. A read
+    #: runs on the link's worker thread and wakes the event loop only once it sees the
+    #: button down (see :meth:`.USBLink.poll_until`), so an idle read costs a few tens
+    #: of microseconds.
+    BUTTON_POLL_INTERVAL: ClassVar[float] = 0.015
 
     def __init__(self, link: USBLink, *, key: str) -> None:
         super().__init__(link, key=key)
         self._outputs = [False] * codec.OUTPUT_COUNT
         self._leds = [True, False]
+        self._presses = PressWatch(self._poll_button)
 
     def reset_board_state(self) -> None:
         """Forget what was remembered: the board is at its power-up state again."""
@@ -135,9 +139,30 @@ class SRV4PowerBoardHardwareBackend(
         return codec.parse_u32(await self._read_command(codec.BUTTON)) != 0
 
     async def wait_until_button_pressed(self, identifier: int) -> None:
-        """Return once the start button is seen pressed (it is read every 50 ms)."""
-        while not await self.get_button_state(identifier):  # noqa: ASYNC110 - polling a board
-            await anyio.sleep(self.BUTTON_POLL_INTERVAL)
+        """Return once the start button is seen down (read every 15 ms while anyone waits).
+
+        However many tasks wait, the board is read by one poll stream (see
+        :class:`~j5aio.backends.press_watch.PressWatch`).
+        """
+        self._check_single(identifier, "button")
+        await self._presses.wait()
+
+    async def _poll_button(self, report: Callable[[], None], *, fresh: bool) -> None:
+        # The button is a level, not a latch: ``fresh`` has nothing to forget.
+        def held(reply: bytes) -> bool:
+            return codec.parse_u32(reply) != 0
+
+        try:
+            await self._guarded(
+                lambda: self._link.poll_control_read(
+                    codec.BUTTON.index, codec.BUTTON.length, held,
+                    interval=self.BUTTON_POLL_INTERVAL, then=lambda _reply: report(),
+                ),
+                idempotent=True,
+            )
+        except BoardDisconnectionError:
+            self._forget()
+            raise
 
     # -- battery ------------------------------------------------------------------------
 

@@ -10,6 +10,7 @@ cached state but the identity.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from datetime import timedelta
 from typing import ClassVar
 
@@ -19,6 +20,7 @@ from j5aio.backends.hardware.sr.v4 import power_fw4_codec as codec
 from j5aio.backends.hardware.sr.v4.text_backend import SRTextBackend
 from j5aio.backends.hardware.sr.v4.text_protocol import Identity, NackError
 from j5aio.backends.hardware.transports.serial_link import SerialLink
+from j5aio.backends.press_watch import PressWatch
 from j5aio.boards.sr.v4.power_board_fw4 import BoardResetInterface, PowerBoardFw4
 from j5aio.components.battery_sensor import BatterySensorInterface
 from j5aio.components.button import ButtonInterface
@@ -54,13 +56,14 @@ class SRV4PowerBoardFw4HardwareBackend(
     DEFAULT_TIMEOUT: ClassVar[float] = 0.5
     USB_IDS: ClassVar[frozenset[tuple[int, int]]] = frozenset({(codec.VID, codec.PID)})
 
-    #: How often :meth:`wait_until_button_pressed` reads the button, in seconds.
-    BUTTON_POLL_INTERVAL: ClassVar[float] = 0.05
+    #: How often the button's latch is read while a task waits for a press, in seconds.
+    BUTTON_POLL_INTERVAL: ClassVar[float] = 0.015
 
     def __init__(self, link: SerialLink, *, port: str) -> None:
         super().__init__(link, port=port)
         #: The identity the board gave in the handshake (the backend's only cached state).
         self.identity: Identity | None = None
+        self._presses = PressWatch(self._poll_button)
 
     @property
     def asset_tag(self) -> str | None:
@@ -149,10 +152,26 @@ class SRV4PowerBoardFw4HardwareBackend(
     async def wait_until_button_pressed(self, identifier: int) -> None:
         """Return once a start button is pressed; a press before the wait does not count.
 
-        The latch is read once and forgotten, then read every 50 ms.
+        However many tasks wait, one poll stream reads the board (see
+        :class:`~j5aio.backends.press_watch.PressWatch`): when the first waiter comes,
+        the latch is read once and forgotten, then read every 15 ms. The board latches
+        presses, so none is lost between reads.
         """
-        await self.get_button_state(identifier)
-        while not await self.get_button_state(identifier):  # noqa: ASYNC110 - polling a board
+        self._check_single_component(identifier, "start button")
+        await self._presses.wait()
+
+    async def _poll_button(self, report: Callable[[], None], *, fresh: bool) -> None:
+        def latched(reply: bytes) -> bool:
+            # Runs as the reply arrives, even for a cancelled leader: a latched press,
+            # which the read has just cleared on the board, is never dropped.
+            pressed = codec.parse_button(self.board.name, reply).pressed
+            if pressed:
+                report()
+            return pressed
+
+        if fresh:
+            await self._query(codec.BUTTON)  # a press from before anyone waited
+        while not await self._query_then(codec.BUTTON, latched):  # noqa: ASYNC110 - a board
             await anyio.sleep(self.BUTTON_POLL_INTERVAL)
 
     # -- battery ------------------------------------------------------------------------

@@ -8,12 +8,15 @@ into a :class:`~j5aio.errors.CommunicationError` that names the board and the co
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import TypeVar
 
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
 from j5aio.backends.hardware.sr.v4.text_protocol import check_ack, check_not_nack
 from j5aio.backends.hardware.transports.readers import read_line
 
 __all__ = ["SRTextBackend"]
+
+T = TypeVar("T")
 
 #: The longest reply line of these firmwares (their reply buffers are 64 bytes).
 _REPLY = read_line(max_length=128)
@@ -26,6 +29,18 @@ class SRTextBackend(SerialHardwareBackend):
         """Send ``command`` and return its reply line (a NACK raises :class:`NackError`)."""
         reply = await self._exchange(command, _REPLY)
         return check_not_nack(self.board.name, command, reply)
+
+    async def _query_then(self, command: bytes, then: Callable[[bytes], T]) -> T:
+        """Send ``command`` and return ``then(reply line)``, as :meth:`_query` checks it.
+
+        ``then`` runs as soon as the reply has arrived, even for a cancelled caller: where
+        a reply that must not be lost (a latched button press) is taken.
+        """
+
+        def checked(reply: bytes) -> T:
+            return then(check_not_nack(self.board.name, command, reply))
+
+        return await self._exchange(command, _REPLY, then=checked)
 
     async def _act(
         self,

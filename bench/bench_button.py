@@ -1,0 +1,337 @@
+"""Start-button reaction and CPU while waiting: j5aio (async and sync) beside j5 0.12.
+
+Issue 12's row: press -> code resumes, on a simulated SR v4 power board (firmware 3,
+j5aio's simulator), over random presses, and the process's CPU while it waits.
+
+Each *side* runs in a child process of its own, so that CPU figures are the side's alone:
+
+* ``async``: ``await robot.power_board.start_button.wait_until_pressed()`` on a
+  :class:`~j5aio.kit.KitRobot` of the simulated kit (the hardware backend over the
+  simulated USB device);
+* ``sync``: the same through the sync facade, ``robot.power_board.start_button
+  .wait_until_pressed()``;
+* ``wait_start``: :func:`j5aio.competition.start.wait_for_start` (what
+  ``robot.wait_start()`` runs: the button, the start file, the trigger, the run LED
+  flashing), async;
+* ``polling``: as ``async``, but the simulated backend polls the simulator over the link
+  as the hardware backend polls a real board (every ``BUTTON_POLL_INTERVAL``, on the USB
+  link's worker thread), instead of listening to the simulator's press events: the
+  figures a real fw 3 power board gets, bar the USB transfer's own time;
+* ``j5``: j5 0.12 (from the package registry, in its own venv made by
+  ``bench/_peers.py``) driving the *same* simulator: j5's own SR v4 power board hardware
+  backend is given the simulator as its pyusb device (the simulator's modules are loaded
+  from this tree without j5aio's package, which j5's venv does not have). j5 reads the
+  button every 50 ms.
+
+A trial: the waiting code announces that it waits; a presser thread in the same process
+sleeps a random 30-130 ms, notes the time and presses the simulated button (the
+simulator's own ``press_start``); the reaction is the time from that press until the
+awaiting code runs again. The button is released before the next trial. After the
+presses, the side waits ``--idle`` seconds with nobody pressing and reports its process's
+CPU time (``time.process_time``: user + system, every thread) over that wall time.
+
+Sides are run in turn, round after round (interleaved), and every figure printed is the
+median over rounds (p50 and p95 are taken within each round). Run::
+
+    python bench/bench_button.py [--presses 50] [--rounds 3] [--idle 3] [--no-peer]
+
+Goals (issue 12): p50 <= 10 ms and p95 <= 20 ms, at the same time as CPU <= 1 % while
+waiting, for async and sync (and, for the hardware path, ``polling``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import os
+import random
+import socket
+import statistics
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+GOAL_P50_MS = 10.0
+GOAL_P95_MS = 20.0
+GOAL_CPU_PERCENT = 1.0
+SIDES = ("async", "sync", "wait_start", "polling", "j5")
+
+
+# -- the presser (every side) -----------------------------------------------------------
+
+
+class Presser:
+    """Presses the simulated start button at a random time after the waiter says it waits."""
+
+    def __init__(self, press: Callable[[], None], release: Callable[[], None], seed: int) -> None:
+        self._press = press
+        self._release = release
+        self._random = random.Random(seed)
+        self.waiting = threading.Event()
+        self.resumed = threading.Event()
+        self.released = threading.Event()
+        self.pressed_at = 0.0
+        self._stop = False
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        while True:
+            self.waiting.wait()
+            self.waiting.clear()
+            if self._stop:
+                return
+            time.sleep(self._random.uniform(0.03, 0.13))
+            self.pressed_at = time.perf_counter()
+            self._press()
+            self.resumed.wait()
+            self.resumed.clear()
+            self._release()
+            self.released.set()
+
+    def resumed_now(self) -> float:
+        """Note that the waiting code runs again: return the reaction; release the button.
+
+        Returns once the button has been released, ready for the next trial.
+        """
+        reaction = time.perf_counter() - self.pressed_at
+        self.resumed.set()
+        self.released.wait()
+        self.released.clear()
+        return reaction
+
+    def stop(self) -> None:
+        """End the thread."""
+        self._stop = True
+        self.waiting.set()
+        self._thread.join(5)
+
+
+def _percentile(values: list[float], fraction: float) -> float:
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, round(fraction * (len(ordered) - 1)))]
+
+
+def _cpu() -> float:
+    return time.process_time()  # user + system of every thread, finer than os.times
+
+
+def _report(reactions: list[float], cpu_seconds: float, wall: float) -> None:
+    ms = [r * 1000 for r in reactions]
+    print(json.dumps({
+        "p50": _percentile(ms, 0.5),
+        "p95": _percentile(ms, 0.95),
+        "cpu": 100 * cpu_seconds / wall,
+    }))
+
+
+# -- j5aio sides ------------------------------------------------------------------------
+
+
+def _kit() -> Any:
+    from j5aio.simulator.kit import KitConfig, use_kit
+
+    kit = use_kit(KitConfig(power_boards=1, motor_boards=0, servo_boards=0, sb_arduinos=0))
+    # No camera: its simulated world moves on 100 times a second, which is not the button's
+    # cost (about 2 % CPU on its own on the machine of issue 12).
+    kit.camera = None
+    return kit
+
+
+def child_async(presses: int, idle: float, seed: int, mode: str) -> None:
+    """Measure j5aio's async wait (``mode``: ``async``, ``wait_start`` or ``polling``)."""
+    import anyio
+
+    from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
+    from j5aio.simulator.environment import SRV4PowerBoardSimulatedBackend
+
+    if mode == "polling":  # the hardware path: read the button over the link, no events
+        SRV4PowerBoardSimulatedBackend._poll_button = (  # type: ignore[method-assign]
+            SRV4PowerBoardHardwareBackend._poll_button
+        )
+
+    from j5aio.competition.start import wait_for_start
+    from j5aio.kit import KitRobot
+    from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+
+    sim = _kit().power_boards[0]
+    presser = Presser(sim.press_start, sim.release_start, seed)
+
+    async def main() -> None:
+        async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+            button = robot.power_board.start_button
+
+            async def wait(timeout: float | None = None) -> None:
+                if mode == "wait_start":
+                    await wait_for_start([robot.power_board], timeout)
+                else:
+                    await button.wait_until_pressed(timeout)
+
+            reactions = []
+            for _ in range(presses):
+                presser.waiting.set()
+                await wait()
+                reactions.append(presser.resumed_now())
+            presser.stop()
+            start_cpu, start = _cpu(), time.perf_counter()
+            with contextlib.suppress(TimeoutError):
+                await wait(idle)
+            _report(reactions, _cpu() - start_cpu, time.perf_counter() - start)
+
+    anyio.run(main)
+
+
+def child_sync(presses: int, idle: float, seed: int) -> None:
+    """Measure j5aio's sync facade wait."""
+    from j5aio.sync import KitRobot, simulated_environment
+
+    sim = _kit().power_boards[0]
+    presser = Presser(sim.press_start, sim.release_start, seed)
+    robot = KitRobot(environment=simulated_environment())
+    button = robot.power_board.start_button
+    reactions = []
+    for _ in range(presses):
+        presser.waiting.set()
+        button.wait_until_pressed()
+        reactions.append(presser.resumed_now())
+    presser.stop()
+    start_cpu, start = _cpu(), time.perf_counter()
+    with contextlib.suppress(TimeoutError):
+        button.wait_until_pressed(idle)
+    _report(reactions, _cpu() - start_cpu, time.perf_counter() - start)
+
+
+# -- j5's side (run by j5's own interpreter: no j5aio package, no anyio) -----------------
+
+
+def child_j5(presses: int, idle: float, seed: int) -> None:
+    """Measure j5 0.12 waiting for the simulator's button with its own backend."""
+    import importlib
+    import types
+
+    # The simulator's modules only (relative imports, pyusb): not j5aio's package.
+    package = types.ModuleType("j5aio_simulator")
+    package.__path__ = [str(ROOT / "j5aio" / "simulator")]
+    sys.modules["j5aio_simulator"] = package
+    fw3 = importlib.import_module("j5aio_simulator.sr_power_fw3")
+
+    # j5 is in its own venv only: imported by name, so that type checkers here skip it.
+    j5_backends = importlib.import_module("j5.backends.hardware.sr.v4.power_board")
+    j5_boards = importlib.import_module("j5.boards.sr.v4")
+
+    sim = fw3.SRPowerBoardFw3Simulator("SIMPB0")
+    backend = j5_backends.SRV4PowerBoardHardwareBackend(sim)
+    board = j5_boards.PowerBoard("SIMPB0", backend)
+    presser = Presser(sim.press_start, sim.release_start, seed)
+    reactions = []
+    for _ in range(presses):
+        presser.waiting.set()
+        board.start_button.wait_until_pressed()
+        reactions.append(presser.resumed_now())
+    presser.stop()
+    # j5's wait has no timeout: wait in a thread that nobody presses for, for ``idle`` s.
+    start_cpu, start = _cpu(), time.perf_counter()
+    waiter = threading.Thread(target=board.start_button.wait_until_pressed, daemon=True)
+    waiter.start()
+    waiter.join(idle)
+    _report(reactions, _cpu() - start_cpu, time.perf_counter() - start)
+    sim.press_start()
+    waiter.join(1)
+
+
+# -- the parent -------------------------------------------------------------------------
+
+
+def run_side(side: str, args: argparse.Namespace, seed: int) -> dict[str, float] | None:
+    """Run one side in a child process; return its figures (``None`` if it failed)."""
+    if side == "j5":
+        sys.path.insert(0, str(HERE))
+        from _peers import J5_PEER, peer_python  # type: ignore[import-not-found]
+
+        # j5 0.12 imports typing_extensions without declaring it: a venv of its own with it.
+        python = str(peer_python(J5_PEER[0] + "-button", [*J5_PEER[1], "typing_extensions"]))
+        env = dict(os.environ)
+        env.pop("PYTHONPATH", None)
+    else:
+        python = sys.executable
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+            filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])
+        ))
+    # A port of its own for the robot lock: other robot programs may run on this machine.
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        env["J5AIO_LOCK_PORT"] = str(probe.getsockname()[1])
+    command = [python, str(Path(__file__).resolve()), "--child", side,
+               "--presses", str(args.presses), "--idle", str(args.idle), "--seed", str(seed)]
+    result = subprocess.run(command, capture_output=True, text=True, env=env, timeout=600)
+    lines = result.stdout.strip().splitlines()
+    if result.returncode != 0 or not lines:
+        print(f"  {side}: failed ({result.returncode}): {result.stderr.strip()[-600:]}")
+        return None
+    figures: dict[str, float] = json.loads(lines[-1])
+    return figures
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Run the bench (or, with ``--child``, one side of it)."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--presses", type=int, default=50)
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--idle", type=float, default=3.0)
+    parser.add_argument("--seed", type=int, default=12)
+    parser.add_argument("--no-peer", action="store_true", help="skip j5 0.12")
+    parser.add_argument("--child", choices=SIDES, help=argparse.SUPPRESS)
+    args = parser.parse_args(argv)
+    if args.child == "j5":
+        child_j5(args.presses, args.idle, args.seed)
+        return
+    if args.child == "sync":
+        child_sync(args.presses, args.idle, args.seed)
+        return
+    if args.child:
+        child_async(args.presses, args.idle, args.seed, args.child)
+        return
+
+    sides = [side for side in SIDES if not (args.no_peer and side == "j5")]
+    results: dict[str, list[dict[str, float]]] = {side: [] for side in sides}
+    print(f"start button: {args.presses} random presses per round, {args.idle} s idle, "
+          f"{args.rounds} rounds, sides interleaved: {', '.join(sides)}")
+    for index in range(args.rounds):
+        for side in sides:
+            figures = run_side(side, args, args.seed + index)
+            if figures is not None:
+                results[side].append(figures)
+                print(f"  round {index + 1} {side:>10}: p50 {figures['p50']:5.1f} ms  "
+                      f"p95 {figures['p95']:5.1f} ms  CPU {figures['cpu']:5.2f} %")
+    print(f"\nmedians over rounds (goal: p50 <= {GOAL_P50_MS:g} ms, p95 <= {GOAL_P95_MS:g} ms "
+          f"and CPU <= {GOAL_CPU_PERCENT:g} % while waiting, at the same time)")
+    medians: dict[str, dict[str, float]] = {}
+    for side, rounds in results.items():
+        if not rounds:
+            print(f"  {side:>10}: no figures")
+            continue
+        medians[side] = {key: statistics.median(r[key] for r in rounds) for key in rounds[0]}
+        m = medians[side]
+        met = (m["p50"] <= GOAL_P50_MS and m["p95"] <= GOAL_P95_MS
+               and m["cpu"] <= GOAL_CPU_PERCENT)
+        verdict = "" if side == "j5" else ("  MET" if met else "  NOT MET")
+        print(f"  {side:>10}: p50 {m['p50']:5.1f} ms  p95 {m['p95']:5.1f} ms  "
+              f"CPU {m['cpu']:5.2f} %{verdict}")
+    if "j5" in medians:
+        j5 = medians["j5"]
+        for side in ("async", "sync", "wait_start", "polling"):
+            if side in medians:
+                m = medians[side]
+                print(f"  {side} / j5: p50 {m['p50'] / j5['p50']:.2f}x  "
+                      f"p95 {m['p95'] / j5['p95']:.2f}x  CPU {m['cpu'] / j5['cpu']:.2f}x")
+
+
+if __name__ == "__main__":
+    main()
