@@ -20,7 +20,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from _peers import J5_PEER, peer_python
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _peers import J5_PEER, peer_python  # type: ignore[import-not-found]
 
 __all__ = ["REPO", "Case", "j5_python", "j5aio_env", "print_table", "run_interleaved"]
 
@@ -43,7 +45,7 @@ def j5aio_env(**extra: str) -> dict[str, str]:
 def j5_python() -> Path | None:
     """The interpreter of j5 0.12's own venv, or None (with a note) if it cannot be made."""
     try:
-        return peer_python(*J5_PEER)
+        return Path(peer_python(*J5_PEER))
     except RuntimeError as error:
         print(f"bench: j5 is left out: {error}", file=sys.stderr)
         return None

@@ -21,8 +21,18 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
-from _children import Case, j5_python, j5aio_env, print_table, run_interleaved, run_reporting
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _children import (  # type: ignore[import-not-found]
+    Case,
+    j5_python,
+    j5aio_env,
+    print_table,
+    run_interleaved,
+    run_reporting,
+)
 
 GOAL_MIB = 20.0
 MARKER = "MAXRSS"

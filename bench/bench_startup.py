@@ -24,8 +24,17 @@ import argparse
 import subprocess
 import sys
 import time
+from pathlib import Path
 
-from _children import Case, j5_python, j5aio_env, print_table, run_interleaved
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _children import (  # type: ignore[import-not-found]
+    Case,
+    j5_python,
+    j5aio_env,
+    print_table,
+    run_interleaved,
+)
 
 GOAL_MS = 80.0
 MARKER = "READY"
