@@ -37,13 +37,13 @@ board holds each open port.
 
 from __future__ import annotations
 
-import importlib.metadata
 import warnings
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Final
 
+from j5aio import _entry_points
 from j5aio.backends.backend import Backend
 from j5aio.boards.board import Board
 
@@ -242,8 +242,8 @@ class _Registry:
             self._loading = False
 
     def _load_plugins(self) -> None:
-        for entry_point in importlib.metadata.entry_points(group=ENTRY_POINT_GROUP):
-            package = entry_point.dist.name if entry_point.dist is not None else "?"
+        for entry_point in _entry_points.find(ENTRY_POINT_GROUP):
+            package = entry_point.package
             try:
                 loaded = entry_point.load()
                 items = _flatten(loaded() if callable(loaded) and not _is_entry(loaded) else loaded)

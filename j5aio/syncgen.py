@@ -234,10 +234,10 @@ def _public_module(obj: Any) -> str:
 def existing_wrappers(skip: Iterable[type] = ()) -> dict[type, tuple[str, str]]:
     """Return core class -> (public module, name) of every wrapper registered so far.
 
-    Importing :mod:`j5aio.sync` registers j5aio's own; a kit's generated module registers
+    Importing :mod:`j5aio.sync._generated` registers j5aio's own; a kit's generated module registers
     its own when imported. ``skip`` leaves out the classes about to be generated afresh.
     """
-    import j5aio.sync  # noqa: F401 - registers j5aio's own wrappers
+    import j5aio.sync._generated  # noqa: F401 - registers j5aio's own wrappers
     from j5aio.sync.wrapping import registered
 
     skipped = set(skip)
@@ -1119,14 +1119,15 @@ def render_module(
         header = _CORE_HEADER
     else:
         header = _KIT_HEADER.format(modules=" ".join(discovery.scope.modules))
-    # Only the modules of the wrapped classes are imported with this module (registering
-    # a wrapper needs its core class); the others, used by the wrappers' methods and
-    # types alone, are imported when first used.
+    # In j5aio's own facade only the modules of the wrapped classes are imported with the
+    # module (registering a wrapper needs its core class); the others, used by the
+    # wrappers' methods and types alone, are imported when first used. A kit's module
+    # imports them all, through public names only.
     eager = {renderer.module_ref(renderer.home(cls)) for cls in discovery.classes}
     lazy = {
         alias: module
         for module, alias in sorted(renderer.module_aliases.items())
-        if alias not in eager
+        if alias not in eager and discovery.scope.is_core
     }
     if lazy or environment_decls:
         renderer.used_typing.add("TYPE_CHECKING")
@@ -1142,7 +1143,7 @@ def render_module(
         out.append(f"from {module} import {', '.join(ordered)}")
     out.append("")
     for module, alias in sorted(renderer.module_aliases.items()):
-        if alias in eager:
+        if alias not in lazy:
             out.append(f"import {module} as {alias}")
     if lazy:
         out.append("from j5aio._lazy import lazy_modules as _lazy_modules")

@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import importlib.metadata
 from collections.abc import Iterator
 from typing import Any
 
 import pytest
 
-from j5aio import board_kinds
+from j5aio import _entry_points, board_kinds
 from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
 from j5aio.board_kinds import (
     BoardKind,
@@ -123,15 +122,11 @@ def test_entries_check_what_they_are_given(make: Any, message: str) -> None:
 # --- plugins through the entry point group ---------------------------------------------
 
 
-class FakeDistribution:
-    name = "j5aio-fake-plugin"
-
-
 class FakeEntryPoint:
     def __init__(self, name: str, obj: object) -> None:
         self.name = name
         self.value = f"fake_plugin:{name}"
-        self.dist = FakeDistribution()
+        self.package = "j5aio-fake-plugin"
         self._obj = obj
 
     def load(self) -> object:
@@ -144,11 +139,11 @@ class FakeEntryPoint:
 def fresh_registry(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[FakeEntryPoint]]:
     plugins: list[FakeEntryPoint] = []
 
-    def entry_points(*, group: str) -> list[FakeEntryPoint]:
+    def find(group: str) -> list[FakeEntryPoint]:
         assert group == "j5aio.boards"
         return plugins
 
-    monkeypatch.setattr(importlib.metadata, "entry_points", entry_points)
+    monkeypatch.setattr(_entry_points, "find", find)
     monkeypatch.setattr(board_kinds, "_registry", board_kinds._Registry())
     yield plugins
 
