@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 import random
+import socket
 import statistics
 import subprocess
 import sys
@@ -38,8 +39,18 @@ def j5aio_env(**extra: str) -> dict[str, str]:
     env.pop("J5AIO_ENV", None)
     # Measure as an installed package runs: from byte code cached by the warm-up run.
     env.pop("PYTHONDONTWRITEBYTECODE", None)
+    # A robot holds a lock (a TCP port): give each child its own, so that robot programs
+    # running elsewhere on the machine (tests, say) neither block nor are blocked by it.
+    env["J5AIO_LOCK_PORT"] = str(_free_port())
     env.update(extra)
     return env
+
+
+def _free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port: int = probe.getsockname()[1]
+        return port
 
 
 def j5_python() -> Path | None:

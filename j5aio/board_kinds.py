@@ -37,11 +37,12 @@ board holds each open port.
 
 from __future__ import annotations
 
+import importlib
 import warnings
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Final
+from typing import Final, cast, overload
 
 from j5aio import _entry_points
 from j5aio.backends.backend import Backend
@@ -131,6 +132,47 @@ class SimulatorEntry:
         return isinstance(self.factory("SIM0"), SerialBoardSimulator)
 
 
+_BACKEND_ROLES: Final = ("hardware", "console", "simulated")
+
+
+def _check_reference(kind: str, role: str, reference: str) -> None:
+    module, _, name = reference.partition(":")
+    if not module or not name.isidentifier():
+        raise ValueError(
+            f"board kind {kind!r}: its {role} backend {reference!r} must be a Backend "
+            "subclass or its import path, 'package.module:ClassName'"
+        )
+
+
+class _BackendField:
+    """A backend of a :class:`BoardKind`: a class, or its import path, imported when read."""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self._role = name
+        self._slot = f"_{name}"
+
+    @overload
+    def __get__(self, kind: None, owner: type) -> None: ...
+
+    @overload
+    def __get__(self, kind: BoardKind, owner: type) -> type[Backend] | None: ...
+
+    def __get__(self, kind: BoardKind | None, owner: type) -> type[Backend] | None:
+        if kind is None:
+            return None  # the dataclass's default
+        value: type[Backend] | str | None = vars(kind)[self._slot]
+        if isinstance(value, str):
+            module, _, name = value.partition(":")
+            backend = getattr(importlib.import_module(module), name)
+            kind._check_backend(self._role, backend)
+            object.__setattr__(kind, self._slot, backend)
+            return cast("type[Backend]", backend)
+        return value
+
+    def __set__(self, kind: BoardKind, value: type[Backend] | str | None) -> None:
+        vars(kind)[self._slot] = value
+
+
 @dataclass(frozen=True)
 class BoardKind:
     """One generation of one board, and everything that drives or stands in for it.
@@ -144,6 +186,12 @@ class BoardKind:
         :class:`~j5aio.backends.hardware.usb_backend.USBHardwareBackend` subclass), or
         ``None`` for a board with no hardware.
     :param console: its console backend, or ``None``.
+
+    Each of ``hardware``, ``console`` and ``simulated`` may be given as the backend's
+    import path, ``"package.module:ClassName"``, instead of the class: the module is then
+    imported the first time the attribute is read (a program on the simulated kit never
+    imports the console backends, say). It is checked then as a class would be checked
+    here, raising :class:`TypeError` or :class:`ImportError`.
     :param simulators: its simulators.
     :param simulated: the backend the simulated environment uses; by default the
         hardware backend, finding the boards of the current simulated kit made from
@@ -158,10 +206,10 @@ class BoardKind:
     name: str
     board: type[Board]
     description: str
-    hardware: type[Backend] | None = None
-    console: type[Backend] | None = None
+    hardware: _BackendField = _BackendField()
+    console: _BackendField = _BackendField()
     simulators: tuple[SimulatorEntry, ...] = ()
-    simulated: type[Backend] | None = None
+    simulated: _BackendField = _BackendField()
     identify_order: int = 100
     package: str = "j5aio"
 
@@ -169,21 +217,27 @@ class BoardKind:
         _check_name("board kind", self.name)
         if not (isinstance(self.board, type) and issubclass(self.board, Board)):
             raise TypeError(f"board kind {self.name!r}: board must be a Board subclass")
-        for role in ("hardware", "console", "simulated"):
-            backend = getattr(self, role)
-            if backend is None:
-                continue
-            if not (isinstance(backend, type) and issubclass(backend, Backend)):
-                raise TypeError(f"board kind {self.name!r}: {role} must be a Backend subclass")
-            if not issubclass(backend.board, self.board):
-                raise TypeError(
-                    f"board kind {self.name!r}: its {role} backend {backend.__name__} drives "
-                    f"{backend.board.__name__}, not {self.board.__name__}"
-                )
+        for role in _BACKEND_ROLES:
+            backend = vars(self)[f"_{role}"]
+            if isinstance(backend, str):
+                _check_reference(self.name, role, backend)
+            else:
+                self._check_backend(role, backend)
         object.__setattr__(self, "simulators", tuple(self.simulators))
         for entry in self.simulators:
             if not isinstance(entry, SimulatorEntry):
                 raise TypeError(f"board kind {self.name!r}: simulators must be SimulatorEntry")
+
+    def _check_backend(self, role: str, backend: object) -> None:
+        if backend is None:
+            return
+        if not (isinstance(backend, type) and issubclass(backend, Backend)):
+            raise TypeError(f"board kind {self.name!r}: {role} must be a Backend subclass")
+        if not issubclass(backend.board, self.board):
+            raise TypeError(
+                f"board kind {self.name!r}: its {role} backend {backend.__name__} drives "
+                f"{backend.board.__name__}, not {self.board.__name__}"
+            )
 
 
 @dataclass(frozen=True)

@@ -76,6 +76,15 @@ def test_a_first_program_loads_no_vision_view_or_simulator() -> None:
     assert [m for m in modules if m.split(".")[0] in unwanted or m in unwanted] == []
 
 
+def test_the_simulated_environment_loads_no_console_or_webcam_backend() -> None:
+    modules = imported_by("import j5aio.simulator.environment")
+    # (the example kit's plugin, installed here, brings the console base class itself)
+    ours = ("j5aio.backends.console.sr", "j5aio.backends.console.sb", "j5aio.backends.console.cam")
+    assert [m for m in modules if m.startswith(ours)] == []
+    assert "j5aio.backends.camera.opencv" not in modules
+    assert "importlib.metadata" not in modules
+
+
 def lazy_packages() -> list[str]:
     """Every package of j5aio whose ``__init__`` exports names lazily."""
     found = []

@@ -119,6 +119,58 @@ def test_entries_check_what_they_are_given(make: Any, message: str) -> None:
         make()
 
 
+MOTOR_FW3 = "j5aio.backends.hardware.sr.v4.motor_board:SRV4MotorBoardHardwareBackend"
+
+
+def test_a_backend_given_by_import_path_is_imported_when_first_read() -> None:
+    kind = BoardKind("k", MotorBoard, "x", hardware=MOTOR_FW3, console=None)
+    assert vars(kind)["_hardware"] == MOTOR_FW3  # not imported yet
+    assert kind.hardware is SRV4MotorBoardHardwareBackend
+    assert vars(kind)["_hardware"] is SRV4MotorBoardHardwareBackend  # once only
+    assert kind.console is None
+    assert kind == BoardKind("k", MotorBoard, "x", hardware=SRV4MotorBoardHardwareBackend)
+    assert BoardKind.hardware is None  # the class's default
+
+
+def test_the_builtin_kinds_name_their_backends_by_path_and_they_resolve() -> None:
+    from j5aio import _builtin_kinds
+
+    kinds = [k for k in _builtin_kinds.entries() if isinstance(k, BoardKind)]
+    assert any(isinstance(vars(k)["_console"], str) for k in kinds)
+    for kind in kinds:
+        for role in ("hardware", "console", "simulated"):
+            backend = getattr(kind, role)
+            assert backend is None or issubclass(backend.board, kind.board)
+    assert kinds[0].console is not None
+
+
+@pytest.mark.parametrize(
+    ("reference", "error", "message"),
+    [
+        ("no.such.module:Backend", ImportError, "no"),
+        ("j5aio.backends.hardware.sr.v4.motor_board:NoSuchBackend", AttributeError, "NoSuch"),
+        ("j5aio.boards.sr.v4.motor_board:MotorBoard", TypeError, "hardware must be a Backend"),
+        (
+            "j5aio.backends.hardware.sr.v4.power_board:SRV4PowerBoardHardwareBackend",
+            TypeError,
+            "drives PowerBoard, not MotorBoard",
+        ),
+    ],
+)
+def test_a_bad_import_path_fails_when_read(
+    reference: str, error: type[Exception], message: str,
+) -> None:
+    kind = BoardKind("k", MotorBoard, "x", hardware=reference)
+    with pytest.raises(error, match=message):
+        kind.hardware  # noqa: B018
+
+
+@pytest.mark.parametrize("reference", ["", "no_colon", "module:", "module:not a name", ":Name"])
+def test_an_import_path_must_name_a_module_and_a_class(reference: str) -> None:
+    with pytest.raises(ValueError, match=r"'package\.module:ClassName'"):
+        BoardKind("k", MotorBoard, "x", console=reference)
+
+
 # --- plugins through the entry point group ---------------------------------------------
 
 
