@@ -25,9 +25,35 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _peers import J5_PEER, peer_python  # type: ignore[import-not-found]
 
-__all__ = ["REPO", "Case", "j5_python", "j5aio_env", "print_table", "run_interleaved"]
+__all__ = [
+    "J5_ROBOT",
+    "REPO",
+    "Case",
+    "j5_python",
+    "j5aio_env",
+    "print_table",
+    "run_interleaved",
+    "run_reporting",
+]
 
 REPO = Path(__file__).resolve().parent.parent
+
+#: The robot of j5's quick start on j5 0.12's console backends (a power board and the
+#: motor boards), made as ``robot``: the peer's side of the start-up and memory benches.
+J5_ROBOT = """\
+from j5 import BaseRobot, BoardGroup
+from j5.backends.console.sr.v4 import SRV4MotorBoardConsoleBackend, SRV4PowerBoardConsoleBackend
+from j5.boards.sr.v4 import MotorBoard, PowerBoard
+
+class MyRobot(BaseRobot):
+    def __init__(self) -> None:
+        self.power_board = BoardGroup.get_board_group(
+            PowerBoard, SRV4PowerBoardConsoleBackend,
+        ).singular()
+        self.motor_boards = BoardGroup.get_board_group(MotorBoard, SRV4MotorBoardConsoleBackend)
+
+robot = MyRobot()
+"""
 
 
 def j5aio_env(**extra: str) -> dict[str, str]:

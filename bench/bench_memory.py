@@ -26,6 +26,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _children import (  # type: ignore[import-not-found]
+    J5_ROBOT,
     Case,
     j5_python,
     j5aio_env,
@@ -69,20 +70,9 @@ async def main() -> None:
 anyio.run(main)
 """ + REPORT
 
-J5_PROGRAM = """\
-from j5 import BaseRobot, BoardGroup
-from j5.backends.console.sr.v4 import SRV4MotorBoardConsoleBackend, SRV4PowerBoardConsoleBackend
-from j5.boards.sr.v4 import MotorBoard, PowerBoard
+J5_PROGRAM = J5_ROBOT + """\
 from j5.boards.sr.v4.power_board import PowerOutputPosition
 
-class MyRobot(BaseRobot):
-    def __init__(self) -> None:
-        self.power_board = BoardGroup.get_board_group(
-            PowerBoard, SRV4PowerBoardConsoleBackend,
-        ).singular()
-        self.motor_boards = BoardGroup.get_board_group(MotorBoard, SRV4MotorBoardConsoleBackend)
-
-robot = MyRobot()
 robot.power_board.outputs[PowerOutputPosition.H0].is_enabled = True
 robot.power_board._run_led.state = True  # j5 0.12 keeps its LEDs private
 motor = robot.motor_boards.singular().motors[0]

@@ -29,6 +29,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _children import (  # type: ignore[import-not-found]
+    J5_ROBOT,
     Case,
     j5_python,
     j5aio_env,
@@ -57,21 +58,7 @@ robot = KitRobot()
 print({MARKER!r}, len(robot.motor_boards), flush=True)
 """
 
-J5_PROGRAM = f"""\
-from j5 import BaseRobot, BoardGroup
-from j5.backends.console.sr.v4 import SRV4MotorBoardConsoleBackend, SRV4PowerBoardConsoleBackend
-from j5.boards.sr.v4 import MotorBoard, PowerBoard
-
-class MyRobot(BaseRobot):
-    def __init__(self) -> None:
-        self.power_board = BoardGroup.get_board_group(
-            PowerBoard, SRV4PowerBoardConsoleBackend,
-        ).singular()
-        self.motor_boards = BoardGroup.get_board_group(MotorBoard, SRV4MotorBoardConsoleBackend)
-
-robot = MyRobot()
-print({MARKER!r}, len(robot.motor_boards), flush=True)
-"""
+J5_PROGRAM = J5_ROBOT + f"print({MARKER!r}, len(robot.motor_boards), flush=True)\n"
 
 
 def time_to_ready(case: Case) -> float:
