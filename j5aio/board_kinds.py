@@ -177,6 +177,12 @@ class _BackendField:
 class BoardKind:
     """One generation of one board, and everything that drives or stands in for it.
 
+    Each of ``hardware``, ``console`` and ``simulated`` may be given as the backend's
+    import path, ``"package.module:ClassName"``, instead of the class: the module is then
+    imported the first time the attribute is read (a program on the simulated kit never
+    imports the console backends, say). It is checked then as a class would be checked
+    here, raising :class:`TypeError` or :class:`ImportError`.
+
     :param name: a unique name, e.g. ``"sr-v4-motor-fw3"``.
     :param board: the board class programs ask for (a subclass of the family's class for
         a new generation of a board family, or the family's class itself).
@@ -186,12 +192,6 @@ class BoardKind:
         :class:`~j5aio.backends.hardware.usb_backend.USBHardwareBackend` subclass), or
         ``None`` for a board with no hardware.
     :param console: its console backend, or ``None``.
-
-    Each of ``hardware``, ``console`` and ``simulated`` may be given as the backend's
-    import path, ``"package.module:ClassName"``, instead of the class: the module is then
-    imported the first time the attribute is read (a program on the simulated kit never
-    imports the console backends, say). It is checked then as a class would be checked
-    here, raising :class:`TypeError` or :class:`ImportError`.
     :param simulators: its simulators.
     :param simulated: the backend the simulated environment uses; by default the
         hardware backend, finding the boards of the current simulated kit made from
