@@ -51,6 +51,7 @@ from j5aio.boards.board import Board
 __all__ = [
     "DEFAULT_KIT",
     "ENTRY_POINT_GROUP",
+    "BackendField",
     "BoardKind",
     "BoardPluginWarning",
     "KitDefinition",
@@ -144,8 +145,13 @@ def _check_reference(kind: str, role: str, reference: str) -> None:
         )
 
 
-class _BackendField:
-    """A backend of a :class:`BoardKind`: a class, or its import path, imported when read."""
+class BackendField:
+    """A backend attribute of :class:`BoardKind` (``hardware``, ``console``, ``simulated``).
+
+    It is given a :class:`~j5aio.backends.backend.Backend` subclass, ``None``, or the
+    class's import path (``"package.module:ClassName"``); read, it gives the class (or
+    ``None``), importing and checking it the first time.
+    """
 
     def __set_name__(self, owner: type, name: str) -> None:
         self._role = name
@@ -206,10 +212,10 @@ class BoardKind:
     name: str
     board: type[Board]
     description: str
-    hardware: _BackendField = _BackendField()
-    console: _BackendField = _BackendField()
+    hardware: BackendField = BackendField()
+    console: BackendField = BackendField()
     simulators: tuple[SimulatorEntry, ...] = ()
-    simulated: _BackendField = _BackendField()
+    simulated: BackendField = BackendField()
     identify_order: int = 100
     package: str = "j5aio"
 

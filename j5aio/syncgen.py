@@ -234,7 +234,7 @@ def _public_module(obj: Any) -> str:
 def existing_wrappers(skip: Iterable[type] = ()) -> dict[type, tuple[str, str]]:
     """Return core class -> (public module, name) of every wrapper registered so far.
 
-    Importing :mod:`j5aio.sync._generated` registers j5aio's own; a kit's generated module registers
+    Importing ``j5aio.sync._generated`` registers j5aio's own; a kit's generated module registers
     its own when imported. ``skip`` leaves out the classes about to be generated afresh.
     """
     import j5aio.sync._generated  # noqa: F401 - registers j5aio's own wrappers
