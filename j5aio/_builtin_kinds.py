@@ -8,36 +8,6 @@ from __future__ import annotations
 
 from functools import partial
 
-from j5aio.backends.camera.opencv import OpenCVCameraBackend
-from j5aio.backends.console.camera import CameraConsoleBackend
-from j5aio.backends.console.sb.arduino import SBArduinoConsoleBackend
-from j5aio.backends.console.sb.arduino_2024 import SBArduino2024ConsoleBackend
-from j5aio.backends.console.sr.kch import KCHConsoleBackend
-from j5aio.backends.console.sr.v4 import (
-    SBServoBoardConsoleBackend,
-    SRArduinoConsoleBackend,
-    SRV4MotorBoardConsoleBackend,
-    SRV4MotorBoardFw4ConsoleBackend,
-    SRV4PowerBoardConsoleBackend,
-    SRV4PowerBoardFw4ConsoleBackend,
-    SRV4RuggeduinoConsoleBackend,
-    SRV4ServoBoardConsoleBackend,
-    SRV4ServoBoardFw4ConsoleBackend,
-)
-from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
-from j5aio.backends.hardware.sb.arduino_2024 import SBArduino2024HardwareBackend
-from j5aio.backends.hardware.sr.kch import KCHHardwareBackend
-from j5aio.backends.hardware.sr.v4.arduino import SRArduinoHardwareBackend
-from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
-from j5aio.backends.hardware.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4HardwareBackend
-from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
-from j5aio.backends.hardware.sr.v4.power_board_fw4 import SRV4PowerBoardFw4HardwareBackend
-from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
-from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
-from j5aio.backends.hardware.sr.v4.servo_board_fw4 import (
-    SBServoBoardHardwareBackend,
-    SRV4ServoBoardFw4HardwareBackend,
-)
 from j5aio.board_kinds import DEFAULT_KIT, BoardKind, KitDefinition, SimulatorEntry
 from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduino2024Board, SBArduinoBoard, SBServoBoard
@@ -52,7 +22,6 @@ from j5aio.boards.sr.v4 import (
     ServoBoardFw4,
     SRArduinoBoard,
 )
-from j5aio.simulator.camera import SimulatedCameraBackend
 from j5aio.simulator.kch import KCHSimulatedBackend, KCHSimulator
 from j5aio.simulator.sb_arduino_2019 import SBArduinoSimulator
 from j5aio.simulator.sb_arduino_2024 import SBArduino2024Simulator
@@ -82,8 +51,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="sr-v4-power-fw3",
             board=PowerBoard,
             description="SR v4 power board, firmware 3 (USB)",
-            hardware=SRV4PowerBoardHardwareBackend,
-            console=SRV4PowerBoardConsoleBackend,
+            hardware="j5aio.backends.hardware.sr.v4.power_board:SRV4PowerBoardHardwareBackend",
+            console="j5aio.backends.console.sr.v4:SRV4PowerBoardConsoleBackend",
             simulators=(
                 SimulatorEntry(
                     "sr-power", SRPowerBoardFw3Simulator,
@@ -95,8 +64,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="sr-v4-motor-fw3",
             board=MotorBoard,
             description="SR v4 motor board, firmware 3 (serial, 1 Mbaud)",
-            hardware=SRV4MotorBoardHardwareBackend,
-            console=SRV4MotorBoardConsoleBackend,
+            hardware="j5aio.backends.hardware.sr.v4.motor_board:SRV4MotorBoardHardwareBackend",
+            console="j5aio.backends.console.sr.v4:SRV4MotorBoardConsoleBackend",
             simulators=(
                 SimulatorEntry(
                     "sr-motor", SRMotorBoardFw3Simulator,
@@ -111,8 +80,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="sr-v4-servo-fw2",
             board=ServoBoard,
             description="SR v4 servo board, firmware 2 (USB)",
-            hardware=SRV4ServoBoardHardwareBackend,
-            console=SRV4ServoBoardConsoleBackend,
+            hardware="j5aio.backends.hardware.sr.v4.servo_board:SRV4ServoBoardHardwareBackend",
+            console="j5aio.backends.console.sr.v4:SRV4ServoBoardConsoleBackend",
             simulators=(
                 SimulatorEntry(
                     "sr-servo", SRServoBoardFw2Simulator,
@@ -124,8 +93,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="sb-arduino-2019",
             board=SBArduinoBoard,
             description="SourceBots Arduino, 2019 firmware (serial, 115200 baud)",
-            hardware=SBArduinoHardwareBackend,
-            console=SBArduinoConsoleBackend,
+            hardware="j5aio.backends.hardware.sb.arduino:SBArduinoHardwareBackend",
+            console="j5aio.backends.console.sb.arduino:SBArduinoConsoleBackend",
             simulators=(
                 SimulatorEntry(
                     "sb-arduino", SBArduinoSimulator,
@@ -138,8 +107,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="sr-ruggeduino-fw1",
             board=Ruggeduino,
             description="SR Ruggeduino, firmware 1 (serial, 115200 baud)",
-            hardware=SRV4RuggeduinoHardwareBackend,
-            console=SRV4RuggeduinoConsoleBackend,
+            hardware="j5aio.backends.hardware.sr.v4.ruggeduino:SRV4RuggeduinoHardwareBackend",
+            console="j5aio.backends.console.sr.v4:SRV4RuggeduinoConsoleBackend",
             simulators=(
                 SimulatorEntry(
                     "sr-ruggeduino", SRRuggeduinoSimulator,
@@ -152,8 +121,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="sr-v4-power-fw4",
             board=PowerBoardFw4,
             description="SR v4 power board, firmware 4.4 (CDC serial)",
-            hardware=SRV4PowerBoardFw4HardwareBackend,
-            console=SRV4PowerBoardFw4ConsoleBackend,
+            hardware="j5aio.backends.hardware.sr.v4.power_board_fw4:SRV4PowerBoardFw4HardwareBackend",
+            console="j5aio.backends.console.sr.v4:SRV4PowerBoardFw4ConsoleBackend",
             simulators=(
                 SimulatorEntry(
                     "sr-power-fw4", SRPowerBoardFw4Simulator,
@@ -166,8 +135,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="sr-v4-motor-fw4",
             board=MotorBoardFw4,
             description="SR v4 motor board, firmware 4.4 / 4.5 (serial, 115200 baud)",
-            hardware=SRV4MotorBoardFw4HardwareBackend,
-            console=SRV4MotorBoardFw4ConsoleBackend,
+            hardware="j5aio.backends.hardware.sr.v4.motor_board_fw4:SRV4MotorBoardFw4HardwareBackend",
+            console="j5aio.backends.console.sr.v4:SRV4MotorBoardFw4ConsoleBackend",
             simulators=(
                 SimulatorEntry(
                     "sr-motor-fw4", SRMotorBoardFw4Simulator,
@@ -186,8 +155,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="sr-v4-servo-fw4",
             board=ServoBoardFw4,
             description="SR v4 servo board, firmware 4.3 (CDC serial, 12 servos)",
-            hardware=SRV4ServoBoardFw4HardwareBackend,
-            console=SRV4ServoBoardFw4ConsoleBackend,
+            hardware="j5aio.backends.hardware.sr.v4.servo_board_fw4:SRV4ServoBoardFw4HardwareBackend",
+            console="j5aio.backends.console.sr.v4:SRV4ServoBoardFw4ConsoleBackend",
             simulators=(
                 SimulatorEntry(
                     "sr-servo-fw4", SRServoBoardFw4Simulator,
@@ -200,8 +169,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="sb-servo-fw4",
             board=SBServoBoard,
             description="SR v4 servo board, SourceBots firmware 4.4 (CDC serial, 8 servos)",
-            hardware=SBServoBoardHardwareBackend,
-            console=SBServoBoardConsoleBackend,
+            hardware="j5aio.backends.hardware.sr.v4.servo_board_fw4:SBServoBoardHardwareBackend",
+            console="j5aio.backends.console.sr.v4:SBServoBoardConsoleBackend",
             simulators=(
                 SimulatorEntry(
                     "sb-servo-fw4", SBServoBoardFw4Simulator,
@@ -214,8 +183,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="sr-arduino-fw2",
             board=SRArduinoBoard,
             description="SR Arduino, firmware 2 (serial, 115200 baud)",
-            hardware=SRArduinoHardwareBackend,
-            console=SRArduinoConsoleBackend,
+            hardware="j5aio.backends.hardware.sr.v4.arduino:SRArduinoHardwareBackend",
+            console="j5aio.backends.console.sr.v4:SRArduinoConsoleBackend",
             simulators=(
                 SimulatorEntry(
                     "sr-arduino-fw2", partial(SRRuggeduinoSimulator, firmware_version=2),
@@ -228,8 +197,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="sb-arduino-2024",
             board=SBArduino2024Board,
             description="SourceBots Arduino, sb2024 firmware 2.0 (serial, 115200 baud)",
-            hardware=SBArduino2024HardwareBackend,
-            console=SBArduino2024ConsoleBackend,
+            hardware="j5aio.backends.hardware.sb.arduino_2024:SBArduino2024HardwareBackend",
+            console="j5aio.backends.console.sb.arduino_2024:SBArduino2024ConsoleBackend",
             simulators=(
                 SimulatorEntry(
                     "sb-arduino-2024", SBArduino2024Simulator,
@@ -246,8 +215,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="sr-kch",
             board=KCHBoard,
             description="SR KCH, the Raspberry Pi HAT (GPIO: user and start LEDs)",
-            hardware=KCHHardwareBackend,
-            console=KCHConsoleBackend,
+            hardware="j5aio.backends.hardware.sr.kch:KCHHardwareBackend",
+            console="j5aio.backends.console.sr.kch:KCHConsoleBackend",
             simulators=(
                 SimulatorEntry(
                     "kch", lambda serial: KCHSimulator(serial_number=serial),
@@ -260,10 +229,10 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="camera",
             board=CameraBoard,
             description="a webcam finding AprilTag markers (the optional extra j5aio[vision])",
-            hardware=OpenCVCameraBackend,
-            console=CameraConsoleBackend,
+            hardware="j5aio.backends.camera.opencv:OpenCVCameraBackend",
+            console="j5aio.backends.console.camera:CameraConsoleBackend",
             # Every simulated kit has the robot's camera in its arena (kit.camera).
-            simulated=SimulatedCameraBackend,
+            simulated="j5aio.simulator.camera:SimulatedCameraBackend",
         ),
         KitDefinition(
             DEFAULT_KIT,

@@ -38,19 +38,21 @@ board holds each open port.
 
 from __future__ import annotations
 
-import importlib.metadata
+import importlib
 import warnings
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Final
+from typing import Final, cast, overload
 
+from j5aio import _entry_points
 from j5aio.backends.backend import Backend
 from j5aio.boards.board import Board
 
 __all__ = [
     "DEFAULT_KIT",
     "ENTRY_POINT_GROUP",
+    "BackendField",
     "BoardKind",
     "BoardPluginWarning",
     "KitDefinition",
@@ -132,9 +134,61 @@ class SimulatorEntry:
         return isinstance(self.factory("SIM0"), SerialBoardSimulator)
 
 
+_BACKEND_ROLES: Final = ("hardware", "console", "simulated")
+
+
+def _check_reference(kind: str, role: str, reference: str) -> None:
+    module, _, name = reference.partition(":")
+    if not module or not name.isidentifier():
+        raise ValueError(
+            f"board kind {kind!r}: its {role} backend {reference!r} must be a Backend "
+            "subclass or its import path, 'package.module:ClassName'"
+        )
+
+
+class BackendField:
+    """A backend attribute of :class:`BoardKind` (``hardware``, ``console``, ``simulated``).
+
+    It is given a :class:`~j5aio.backends.backend.Backend` subclass, ``None``, or the
+    class's import path (``"package.module:ClassName"``); read, it gives the class (or
+    ``None``), importing and checking it the first time.
+    """
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self._role = name
+        self._slot = f"_{name}"
+
+    @overload
+    def __get__(self, kind: None, owner: type) -> None: ...
+
+    @overload
+    def __get__(self, kind: BoardKind, owner: type) -> type[Backend] | None: ...
+
+    def __get__(self, kind: BoardKind | None, owner: type) -> type[Backend] | None:
+        if kind is None:
+            return None  # the dataclass's default
+        value: type[Backend] | str | None = vars(kind)[self._slot]
+        if isinstance(value, str):
+            module, _, name = value.partition(":")
+            backend = getattr(importlib.import_module(module), name)
+            kind._check_backend(self._role, backend)
+            object.__setattr__(kind, self._slot, backend)
+            return cast("type[Backend]", backend)
+        return value
+
+    def __set__(self, kind: BoardKind, value: type[Backend] | str | None) -> None:
+        vars(kind)[self._slot] = value
+
+
 @dataclass(frozen=True)
 class BoardKind:
     """One generation of one board, and everything that drives or stands in for it.
+
+    Each of ``hardware``, ``console`` and ``simulated`` may be given as the backend's
+    import path, ``"package.module:ClassName"``, instead of the class: the module is then
+    imported the first time the attribute is read (a program on the simulated kit never
+    imports the console backends, say). It is checked then as a class would be checked
+    here, raising :class:`TypeError` or :class:`ImportError`.
 
     :param name: a unique name, e.g. ``"sr-v4-motor-fw3"``.
     :param board: the board class programs ask for (a subclass of the family's class for
@@ -159,10 +213,10 @@ class BoardKind:
     name: str
     board: type[Board]
     description: str
-    hardware: type[Backend] | None = None
-    console: type[Backend] | None = None
+    hardware: BackendField = BackendField()
+    console: BackendField = BackendField()
     simulators: tuple[SimulatorEntry, ...] = ()
-    simulated: type[Backend] | None = None
+    simulated: BackendField = BackendField()
     identify_order: int = 100
     package: str = "j5aio"
 
@@ -170,21 +224,27 @@ class BoardKind:
         _check_name("board kind", self.name)
         if not (isinstance(self.board, type) and issubclass(self.board, Board)):
             raise TypeError(f"board kind {self.name!r}: board must be a Board subclass")
-        for role in ("hardware", "console", "simulated"):
-            backend = getattr(self, role)
-            if backend is None:
-                continue
-            if not (isinstance(backend, type) and issubclass(backend, Backend)):
-                raise TypeError(f"board kind {self.name!r}: {role} must be a Backend subclass")
-            if not issubclass(backend.board, self.board):
-                raise TypeError(
-                    f"board kind {self.name!r}: its {role} backend {backend.__name__} drives "
-                    f"{backend.board.__name__}, not {self.board.__name__}"
-                )
+        for role in _BACKEND_ROLES:
+            backend = vars(self)[f"_{role}"]
+            if isinstance(backend, str):
+                _check_reference(self.name, role, backend)
+            else:
+                self._check_backend(role, backend)
         object.__setattr__(self, "simulators", tuple(self.simulators))
         for entry in self.simulators:
             if not isinstance(entry, SimulatorEntry):
                 raise TypeError(f"board kind {self.name!r}: simulators must be SimulatorEntry")
+
+    def _check_backend(self, role: str, backend: object) -> None:
+        if backend is None:
+            return
+        if not (isinstance(backend, type) and issubclass(backend, Backend)):
+            raise TypeError(f"board kind {self.name!r}: {role} must be a Backend subclass")
+        if not issubclass(backend.board, self.board):
+            raise TypeError(
+                f"board kind {self.name!r}: its {role} backend {backend.__name__} drives "
+                f"{backend.board.__name__}, not {self.board.__name__}"
+            )
 
 
 @dataclass(frozen=True)
@@ -243,8 +303,8 @@ class _Registry:
             self._loading = False
 
     def _load_plugins(self) -> None:
-        for entry_point in importlib.metadata.entry_points(group=ENTRY_POINT_GROUP):
-            package = entry_point.dist.name if entry_point.dist is not None else "?"
+        for entry_point in _entry_points.find(ENTRY_POINT_GROUP):
+            package = entry_point.package
             try:
                 loaded = entry_point.load()
                 items = _flatten(loaded() if callable(loaded) and not _is_entry(loaded) else loaded)

@@ -21,7 +21,6 @@ from __future__ import annotations
 from types import TracebackType
 from typing import TYPE_CHECKING
 
-from j5aio.backends.camera.files import FileCameraBackend
 from j5aio.backends.environment import Environment
 from j5aio.boards.board_group import BoardGroup
 from j5aio.boards.camera import CameraBoard
@@ -117,6 +116,9 @@ class KitRobot(BaseRobot):
         if CameraBoard in environment.supported_boards:
             self.cameras = await environment.get_board_group(CameraBoard)
         else:
+            # (imported here: the camera backends bring the vision modules with them)
+            from j5aio.backends.camera.files import FileCameraBackend
+
             self.cameras = BoardGroup(CameraBoard, FileCameraBackend)
         self.camera = self.cameras[0].camera if self.cameras else None
         self.kch = await self._find_kch(environment)

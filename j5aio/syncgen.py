@@ -234,10 +234,10 @@ def _public_module(obj: Any) -> str:
 def existing_wrappers(skip: Iterable[type] = ()) -> dict[type, tuple[str, str]]:
     """Return core class -> (public module, name) of every wrapper registered so far.
 
-    Importing :mod:`j5aio.sync` registers j5aio's own; a kit's generated module registers
+    Importing ``j5aio.sync._generated`` registers j5aio's own; a kit's generated module registers
     its own when imported. ``skip`` leaves out the classes about to be generated afresh.
     """
-    import j5aio.sync  # noqa: F401 - registers j5aio's own wrappers
+    import j5aio.sync._generated  # noqa: F401 - registers j5aio's own wrappers
     from j5aio.sync.wrapping import registered
 
     skipped = set(skip)
@@ -1089,11 +1089,18 @@ def render_module(
         f"_register({renderer.core_ref(cls)}, {renderer.wrapped[cls]})"
         for cls in discovery.classes
     ]
+    # Environment constants are made on first use (their core twins import every
+    # backend): a module ``__getattr__`` that type checkers do not see, and declarations
+    # that they do.
+    environment_decls: list[str] = []
     environment_lines: list[str] = []
     for name, (module, attribute) in discovery.environments.items():
         ref = f"{renderer.module_ref(module)}.{attribute}"
-        environment_lines.append(f'{name}: Final[Environment] = cast("Environment", _wrap({ref}))')
-        environment_lines.append(f'"""The sync face of ``{module}.{attribute}``."""')
+        environment_decls.append(f"    {name}: Environment")
+        environment_decls.append(f'    """The sync face of ``{module}.{attribute}``."""')
+        keyword = "elif" if environment_lines else "if"
+        environment_lines.append(f'        {keyword} name == "{name}":')
+        environment_lines.append(f"            core = {ref}")
     functions: list[str] = []
     function_names: list[str] = []
     for func in discovery.functions:
@@ -1102,7 +1109,7 @@ def render_module(
             functions.append("\n".join(function_lines))
             function_names.append(func.__name__)
     if discovery.environments:
-        renderer.used_typing.update({"Final", "cast"})
+        renderer.used_typing.update({"Any", "cast"})
 
     exported = sorted(
         [*renderer.wrapped.values(), *discovery.environments, *function_names],
@@ -1112,6 +1119,18 @@ def render_module(
         header = _CORE_HEADER
     else:
         header = _KIT_HEADER.format(modules=" ".join(discovery.scope.modules))
+    # In j5aio's own facade only the modules of the wrapped classes are imported with the
+    # module (registering a wrapper needs its core class); the others, used by the
+    # wrappers' methods and types alone, are imported when first used. A kit's module
+    # imports them all, through public names only.
+    eager = {renderer.module_ref(renderer.home(cls)) for cls in discovery.classes}
+    lazy = {
+        alias: module
+        for module, alias in sorted(renderer.module_aliases.items())
+        if alias not in eager and discovery.scope.is_core
+    }
+    if lazy or environment_decls:
+        renderer.used_typing.add("TYPE_CHECKING")
     future = "from __future__ import annotations"
     out = [header.rstrip("\n"), "", future, ""]
     by_module: dict[str, set[str]] = {}
@@ -1120,15 +1139,29 @@ def render_module(
     for name, module in renderer.name_imports.items():
         by_module.setdefault(module, set()).add(name)
     for module, names in sorted(by_module.items()):
-        out.append(f"from {module} import {', '.join(sorted(names))}")
+        ordered = sorted(names, key=lambda n: (0 if n.isupper() else 1 if n[0].isupper() else 2, n))
+        out.append(f"from {module} import {', '.join(ordered)}")
     out.append("")
     for module, alias in sorted(renderer.module_aliases.items()):
-        out.append(f"import {module} as {alias}")
+        if alias not in lazy:
+            out.append(f"import {module} as {alias}")
+    if lazy:
+        out.append("from j5aio._lazy import lazy_modules as _lazy_modules")
     used = "\n".join([*bodies, *functions, *environment_lines])
     for name in ("SyncWrapper", "adopt", "adopt_into", "call", "register", "unwrap", "wrap"):
         if name == "register" or re.search(rf"\b_{name}\b", used):
             out.append(f"from j5aio.sync.wrapping import {name} as _{name}")
     out.append("")
+    if lazy or environment_decls:
+        out.append("if TYPE_CHECKING:")
+        out += [f"    import {module} as {alias}" for alias, module in lazy.items()]
+        out += environment_decls
+        if lazy:
+            out.append("else:")
+            out.append("    _lazy_modules(globals(), {")
+            out += [f'        "{alias}": "{module}",' for alias, module in lazy.items()]
+            out.append("    })")
+        out.append("")
     out.append("__all__ = [")
     out += [f'    "{name}",' for name in exported]
     out.append("]")
@@ -1146,8 +1179,20 @@ def render_module(
     out.append("")
     out += registrations
     if environment_lines:
-        out.append("")
-        out += environment_lines
+        out += [
+            "",
+            "",
+            "if not TYPE_CHECKING:",
+            "",
+            "    def __getattr__(name: str) -> Any:",
+            '        """Make the sync face of an environment when it is first used."""',
+            *environment_lines,
+            "        else:",
+            '            raise AttributeError(f"module {__name__!r} has no attribute {name!r}")',
+            '        value = cast("Environment", _wrap(core))',
+            "        globals()[name] = value",
+            "        return value",
+        ]
     source = re.sub(r"\n{4,}", "\n\n\n", "\n".join(out) + "\n")
     # A kit's linter settings are unknown (line length, import sections): its generated
     # module is exempt from ruff as a whole; mypy --strict checks it all the same.

@@ -1,7 +1,22 @@
 """Backends (how each board is driven) and environments (which backend for which board)."""
 
-from j5aio.backends.backend import Backend, BackendMeta
-from j5aio.backends.environment import Environment
-from j5aio.errors import CommunicationError
+from typing import TYPE_CHECKING
+
+from j5aio._lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from j5aio.backends.backend import Backend, BackendMeta
+    from j5aio.backends.environment import Environment
+    from j5aio.errors import CommunicationError
 
 __all__ = ["Backend", "BackendMeta", "CommunicationError", "Environment"]
+
+if not TYPE_CHECKING:  # the names are imported above for type checkers
+    __getattr__, __dir__ = lazy_exports(
+        __name__,
+        {
+            "j5aio.backends.backend": ["Backend", "BackendMeta"],
+            "j5aio.backends.environment": ["Environment"],
+            "j5aio.errors": ["CommunicationError"],
+        },
+    )

@@ -11,10 +11,15 @@ A robot uses them through :meth:`~j5aio.robot.BaseRobot.wait_start` and its
 ``arena`` / ``zone`` / ``mode`` / ``is_competition`` / ``usb_stick`` properties.
 """
 
-from j5aio.competition.clock import MatchClock
-from j5aio.competition.metadata import Metadata, MetadataError, Mode, load_metadata
-from j5aio.competition.start import start_file, trigger_start
-from j5aio.competition.timer import MatchTimer, add_game_over_hook
+from typing import TYPE_CHECKING
+
+from j5aio._lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from j5aio.competition.clock import MatchClock
+    from j5aio.competition.metadata import Metadata, MetadataError, Mode, load_metadata
+    from j5aio.competition.start import start_file, trigger_start
+    from j5aio.competition.timer import MatchTimer, add_game_over_hook
 
 __all__ = [
     "MatchClock",
@@ -27,3 +32,14 @@ __all__ = [
     "start_file",
     "trigger_start",
 ]
+
+if not TYPE_CHECKING:  # the names are imported above for type checkers
+    __getattr__, __dir__ = lazy_exports(
+        __name__,
+        {
+            "j5aio.competition.clock": ["MatchClock"],
+            "j5aio.competition.metadata": ["Metadata", "MetadataError", "Mode", "load_metadata"],
+            "j5aio.competition.start": ["start_file", "trigger_start"],
+            "j5aio.competition.timer": ["MatchTimer", "add_game_over_hook"],
+        },
+    )

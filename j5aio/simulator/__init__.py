@@ -35,20 +35,27 @@ number.
 from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
-from typing import Final, Protocol
+from typing import TYPE_CHECKING, Final, Protocol
 
-from .arduino_base import ARDUINO_UNO_R3, ArduinoBoardSimulator, UsbIdentity
-from .arduino_pins import ArduinoUnoPins, PinMode
-from .base import SerialBoardSimulator, SimulatorUnpluggedError, UsbBoardSimulator
-from .sb_arduino_2019 import SBArduinoFirmware, SBArduinoSimulator
-from .sb_arduino_2024 import SBArduino2024Simulator
-from .sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
-from .sr_motor_fw4 import MotorChannel, MotorDrive, SRMotorBoardFw4Simulator
-from .sr_power_fw3 import PiezoNote, SRPowerBoardFw3Simulator
-from .sr_power_fw4 import BuzzerNote, SRPowerBoardFw4Simulator
-from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
-from .sr_servo_fw2 import SRServoBoardFw2Simulator
-from .sr_servo_fw4 import SBServoBoardFw4Simulator, SRServoBoardFw4Simulator
+from j5aio._lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from j5aio.simulator.arduino_base import ARDUINO_UNO_R3, ArduinoBoardSimulator, UsbIdentity
+    from j5aio.simulator.arduino_pins import ArduinoUnoPins, PinMode
+    from j5aio.simulator.base import (
+        SerialBoardSimulator,
+        SimulatorUnpluggedError,
+        UsbBoardSimulator,
+    )
+    from j5aio.simulator.sb_arduino_2019 import SBArduinoFirmware, SBArduinoSimulator
+    from j5aio.simulator.sb_arduino_2024 import SBArduino2024Simulator
+    from j5aio.simulator.sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
+    from j5aio.simulator.sr_motor_fw4 import MotorChannel, MotorDrive, SRMotorBoardFw4Simulator
+    from j5aio.simulator.sr_power_fw3 import PiezoNote, SRPowerBoardFw3Simulator
+    from j5aio.simulator.sr_power_fw4 import BuzzerNote, SRPowerBoardFw4Simulator
+    from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
+    from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator
+    from j5aio.simulator.sr_servo_fw4 import SBServoBoardFw4Simulator, SRServoBoardFw4Simulator
 
 __all__ = [
     "ARDUINO_UNO_R3",
@@ -118,3 +125,41 @@ class _SerialSimulators(Mapping[str, SerialSimulatorFactory]):
 #: from the registry of board kinds (:func:`j5aio.board_kinds.simulator_entries`), so
 #: plugins' simulators are here too.
 SERIAL_SIMULATORS: Final[Mapping[str, SerialSimulatorFactory]] = _SerialSimulators()
+
+if not TYPE_CHECKING:  # the names are imported above for type checkers
+    __getattr__, __dir__ = lazy_exports(
+        __name__,
+        {
+            "j5aio.simulator.arduino_base": [
+                "ARDUINO_UNO_R3",
+                "ArduinoBoardSimulator",
+                "UsbIdentity",
+            ],
+            "j5aio.simulator.arduino_pins": ["ArduinoUnoPins", "PinMode"],
+            "j5aio.simulator.base": [
+                "SerialBoardSimulator",
+                "SimulatorUnpluggedError",
+                "UsbBoardSimulator",
+            ],
+            "j5aio.simulator.sb_arduino_2019": ["SBArduinoFirmware", "SBArduinoSimulator"],
+            "j5aio.simulator.sb_arduino_2024": ["SBArduino2024Simulator"],
+            "j5aio.simulator.sr_motor_fw3": [
+                "MotorMode",
+                "MotorOutput",
+                "SRMotorBoardFw3Simulator",
+            ],
+            "j5aio.simulator.sr_motor_fw4": [
+                "MotorChannel",
+                "MotorDrive",
+                "SRMotorBoardFw4Simulator",
+            ],
+            "j5aio.simulator.sr_power_fw3": ["PiezoNote", "SRPowerBoardFw3Simulator"],
+            "j5aio.simulator.sr_power_fw4": ["BuzzerNote", "SRPowerBoardFw4Simulator"],
+            "j5aio.simulator.sr_ruggeduino_fw1": ["SRRuggeduinoSimulator"],
+            "j5aio.simulator.sr_servo_fw2": ["SRServoBoardFw2Simulator"],
+            "j5aio.simulator.sr_servo_fw4": [
+                "SBServoBoardFw4Simulator",
+                "SRServoBoardFw4Simulator",
+            ],
+        },
+    )

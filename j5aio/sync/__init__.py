@@ -25,12 +25,56 @@ board is made safe and its port closed. The wrappers are generated from the core
 ``python -m j5aio sync-gen yourkit.boards -o yourkit/sync.py``, and board classes may be
 given as the core's or as these wrappers (``BoardGroup.get_board_group(MotorBoard, ...)``
 with either ``MotorBoard``).
+
+``import j5aio.sync`` itself is light: the wrappers (and with them the core, the event
+loop's modules and the board classes) are loaded the first time a name is used.
 """
 
-from j5aio import __version__
-from j5aio.sync import _generated
-from j5aio.sync._generated import *  # noqa: F403
-from j5aio.sync._runtime import shutdown
+from __future__ import annotations
 
-__all__ = ["__version__", "shutdown"]
-__all__ += _generated.__all__
+from typing import TYPE_CHECKING, Any
+
+from j5aio import __version__
+
+if TYPE_CHECKING:
+    from j5aio.sync import _generated
+    from j5aio.sync._generated import *  # noqa: F403
+    from j5aio.sync._runtime import shutdown
+
+    __all__ = ["__version__", "shutdown"]
+    __all__ += _generated.__all__
+
+
+if not TYPE_CHECKING:  # the names are imported above for type checkers
+
+    def __getattr__(name: str) -> Any:
+        """Load the wrappers on first use, then give the name asked for (PEP 562)."""
+        import importlib
+
+        value: Any
+        if name == "shutdown":
+            from j5aio.sync._runtime import shutdown as value
+        elif name == "__all__":
+            generated = importlib.import_module("j5aio.sync._generated")
+            value = ["__version__", "shutdown", *generated.__all__]
+        elif name.startswith("__"):
+            raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+        else:
+            generated = importlib.import_module("j5aio.sync._generated")
+            if name in generated.__all__:
+                value = getattr(generated, name)
+            else:
+                try:
+                    value = importlib.import_module(f"{__name__}.{name}")
+                except ModuleNotFoundError as error:
+                    if error.name != f"{__name__}.{name}":
+                        raise
+                    raise AttributeError(
+                        f"module {__name__!r} has no attribute {name!r}"
+                    ) from None
+        globals()[name] = value
+        return value
+
+    def __dir__() -> list[str]:
+        """The names of the module, with the wrappers' (which loads them)."""
+        return sorted({*globals(), *__getattr__("__all__")})

@@ -12,12 +12,9 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator, Mapping, Sequence, Set
 from datetime import timedelta
 from pathlib import Path
-from typing import Any, ClassVar, Final, Generic, Self, TypeVar, cast, overload
+from typing import TYPE_CHECKING, Any, ClassVar, Generic, Self, TypeVar, cast, overload
 
-import j5aio.backends.backend as _backends_backend
-import j5aio.backends.console.env as _backends_console_env
 import j5aio.backends.environment as _backends_environment
-import j5aio.backends.hardware.env as _backends_hardware_env
 import j5aio.boards.arduino.all_digital as _boards_arduino_all_digital
 import j5aio.boards.arduino.uno as _boards_arduino_uno
 import j5aio.boards.board as _boards_board
@@ -35,8 +32,6 @@ import j5aio.boards.sr.v4.power_board_fw4 as _boards_sr_v4_power_board_fw4
 import j5aio.boards.sr.v4.ruggeduino as _boards_sr_v4_ruggeduino
 import j5aio.boards.sr.v4.servo_board as _boards_sr_v4_servo_board
 import j5aio.boards.sr.v4.servo_board_fw4 as _boards_sr_v4_servo_board_fw4
-import j5aio.competition.metadata as _competition_metadata
-import j5aio.competition.timer as _competition_timer
 import j5aio.components._identified as _components_identified
 import j5aio.components.battery_sensor as _components_battery_sensor
 import j5aio.components.button as _components_button
@@ -60,13 +55,9 @@ import j5aio.components.string_command as _components_string_command
 import j5aio.components.supply_sensor as _components_supply_sensor
 import j5aio.components.temperature_sensor as _components_temperature_sensor
 import j5aio.components.voltage_sensor as _components_voltage_sensor
-import j5aio.environments as _environments
 import j5aio.kit as _kit
-import j5aio.numbered as _numbered
 import j5aio.robot as _robot
-import j5aio.vision.calibration as _vision_calibration
-import j5aio.vision.markers as _vision_markers
-import j5aio.vision.sizes as _vision_sizes
+from j5aio._lazy import lazy_modules as _lazy_modules
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt as _adopt
 from j5aio.sync.wrapping import adopt_into as _adopt_into
@@ -74,6 +65,35 @@ from j5aio.sync.wrapping import call as _call
 from j5aio.sync.wrapping import register as _register
 from j5aio.sync.wrapping import unwrap as _unwrap
 from j5aio.sync.wrapping import wrap as _wrap
+
+if TYPE_CHECKING:
+    import j5aio.backends.backend as _backends_backend
+    import j5aio.backends.console.env as _backends_console_env
+    import j5aio.backends.hardware.env as _backends_hardware_env
+    import j5aio.competition.metadata as _competition_metadata
+    import j5aio.competition.timer as _competition_timer
+    import j5aio.environments as _environments
+    import j5aio.numbered as _numbered
+    import j5aio.vision.calibration as _vision_calibration
+    import j5aio.vision.markers as _vision_markers
+    import j5aio.vision.sizes as _vision_sizes
+    CONSOLE_ENVIRONMENT: Environment
+    """The sync face of ``j5aio.backends.console.env.CONSOLE_ENVIRONMENT``."""
+    HARDWARE_ENVIRONMENT: Environment
+    """The sync face of ``j5aio.backends.hardware.env.HARDWARE_ENVIRONMENT``."""
+else:
+    _lazy_modules(globals(), {
+        "_backends_backend": "j5aio.backends.backend",
+        "_backends_console_env": "j5aio.backends.console.env",
+        "_backends_hardware_env": "j5aio.backends.hardware.env",
+        "_competition_metadata": "j5aio.competition.metadata",
+        "_competition_timer": "j5aio.competition.timer",
+        "_environments": "j5aio.environments",
+        "_numbered": "j5aio.numbered",
+        "_vision_calibration": "j5aio.vision.calibration",
+        "_vision_markers": "j5aio.vision.markers",
+        "_vision_sizes": "j5aio.vision.sizes",
+    })
 
 __all__ = [
     "CONSOLE_ENVIRONMENT",
@@ -2909,7 +2929,17 @@ _register(_components_monitored_motor.MonitoredMotor, MonitoredMotor)
 _register(_components_protected_power_output.ProtectedPowerOutput, ProtectedPowerOutput)
 _register(_components_pulse_servo.PulseServo, PulseServo)
 
-CONSOLE_ENVIRONMENT: Final[Environment] = cast("Environment", _wrap(_backends_console_env.CONSOLE_ENVIRONMENT))
-"""The sync face of ``j5aio.backends.console.env.CONSOLE_ENVIRONMENT``."""
-HARDWARE_ENVIRONMENT: Final[Environment] = cast("Environment", _wrap(_backends_hardware_env.HARDWARE_ENVIRONMENT))
-"""The sync face of ``j5aio.backends.hardware.env.HARDWARE_ENVIRONMENT``."""
+
+if not TYPE_CHECKING:
+
+    def __getattr__(name: str) -> Any:
+        """Make the sync face of an environment when it is first used."""
+        if name == "CONSOLE_ENVIRONMENT":
+            core = _backends_console_env.CONSOLE_ENVIRONMENT
+        elif name == "HARDWARE_ENVIRONMENT":
+            core = _backends_hardware_env.HARDWARE_ENVIRONMENT
+        else:
+            raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+        value = cast("Environment", _wrap(core))
+        globals()[name] = value
+        return value

@@ -25,10 +25,9 @@ from typing import TYPE_CHECKING, Final, TextIO
 
 from j5aio.backends.backend import CALL_OBSERVERS
 
-from .state import ViewState
-
 if TYPE_CHECKING:
     from .server import ViewServer
+    from .state import ViewState
 
 __all__ = [
     "DEFAULT_HOST",
@@ -140,6 +139,7 @@ def start_view(
             f"the live view needs the 'view' extra: {INSTALL_HINT} (it brings aiohttp)"
         )
     from .server import ViewServer
+    from .state import ViewState
 
     host = host if host is not None else os.environ.get(VIEW_HOST_VARIABLE, DEFAULT_HOST)
     if port is None:

@@ -7,12 +7,17 @@ first thing that needs them raises :class:`~j5aio.vision.VisionNotInstalledError
 install.
 """
 
-from j5aio.vision._optional import INSTALL_HINT, VisionNotInstalledError
-from j5aio.vision.calibration import KNOWN_CALIBRATIONS, CameraCalibration, known_calibration
-from j5aio.vision.detect import MarkerDetector, detect_marker_ids, detect_markers
-from j5aio.vision.image import Image
-from j5aio.vision.markers import Cartesian, Marker, Orientation, PixelCoordinates, Position
-from j5aio.vision.sizes import MarkerSizes, UnknownMarkerError
+from typing import TYPE_CHECKING
+
+from j5aio._lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from j5aio.vision._optional import INSTALL_HINT, VisionNotInstalledError
+    from j5aio.vision.calibration import KNOWN_CALIBRATIONS, CameraCalibration, known_calibration
+    from j5aio.vision.detect import MarkerDetector, detect_marker_ids, detect_markers
+    from j5aio.vision.image import Image
+    from j5aio.vision.markers import Cartesian, Marker, Orientation, PixelCoordinates, Position
+    from j5aio.vision.sizes import MarkerSizes, UnknownMarkerError
 
 __all__ = [
     "INSTALL_HINT",
@@ -32,3 +37,26 @@ __all__ = [
     "detect_markers",
     "known_calibration",
 ]
+
+if not TYPE_CHECKING:  # the names are imported above for type checkers
+    __getattr__, __dir__ = lazy_exports(
+        __name__,
+        {
+            "j5aio.vision._optional": ["INSTALL_HINT", "VisionNotInstalledError"],
+            "j5aio.vision.calibration": [
+                "CameraCalibration",
+                "KNOWN_CALIBRATIONS",
+                "known_calibration",
+            ],
+            "j5aio.vision.detect": ["MarkerDetector", "detect_marker_ids", "detect_markers"],
+            "j5aio.vision.image": ["Image"],
+            "j5aio.vision.markers": [
+                "Cartesian",
+                "Marker",
+                "Orientation",
+                "PixelCoordinates",
+                "Position",
+            ],
+            "j5aio.vision.sizes": ["MarkerSizes", "UnknownMarkerError"],
+        },
+    )

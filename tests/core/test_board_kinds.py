@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import importlib.metadata
 from collections.abc import Iterator
 from typing import Any
 
 import pytest
 
-from j5aio import board_kinds
+from j5aio import _entry_points, board_kinds
 from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
 from j5aio.board_kinds import (
     BoardKind,
@@ -120,18 +119,66 @@ def test_entries_check_what_they_are_given(make: Any, message: str) -> None:
         make()
 
 
+MOTOR_FW3 = "j5aio.backends.hardware.sr.v4.motor_board:SRV4MotorBoardHardwareBackend"
+
+
+def test_a_backend_given_by_import_path_is_imported_when_first_read() -> None:
+    kind = BoardKind("k", MotorBoard, "x", hardware=MOTOR_FW3, console=None)
+    assert vars(kind)["_hardware"] == MOTOR_FW3  # not imported yet
+    assert kind.hardware is SRV4MotorBoardHardwareBackend
+    assert vars(kind)["_hardware"] is SRV4MotorBoardHardwareBackend  # once only
+    assert kind.console is None
+    assert kind == BoardKind("k", MotorBoard, "x", hardware=SRV4MotorBoardHardwareBackend)
+    assert BoardKind.hardware is None  # the class's default
+
+
+def test_the_builtin_kinds_name_their_backends_by_path_and_they_resolve() -> None:
+    from j5aio import _builtin_kinds
+
+    kinds = [k for k in _builtin_kinds.entries() if isinstance(k, BoardKind)]
+    assert any(isinstance(vars(k)["_console"], str) for k in kinds)
+    for kind in kinds:
+        for role in ("hardware", "console", "simulated"):
+            backend = getattr(kind, role)
+            assert backend is None or issubclass(backend.board, kind.board)
+    assert kinds[0].console is not None
+
+
+@pytest.mark.parametrize(
+    ("reference", "error", "message"),
+    [
+        ("no.such.module:Backend", ImportError, "no"),
+        ("j5aio.backends.hardware.sr.v4.motor_board:NoSuchBackend", AttributeError, "NoSuch"),
+        ("j5aio.boards.sr.v4.motor_board:MotorBoard", TypeError, "hardware must be a Backend"),
+        (
+            "j5aio.backends.hardware.sr.v4.power_board:SRV4PowerBoardHardwareBackend",
+            TypeError,
+            "drives PowerBoard, not MotorBoard",
+        ),
+    ],
+)
+def test_a_bad_import_path_fails_when_read(
+    reference: str, error: type[Exception], message: str,
+) -> None:
+    kind = BoardKind("k", MotorBoard, "x", hardware=reference)
+    with pytest.raises(error, match=message):
+        kind.hardware  # noqa: B018
+
+
+@pytest.mark.parametrize("reference", ["", "no_colon", "module:", "module:not a name", ":Name"])
+def test_an_import_path_must_name_a_module_and_a_class(reference: str) -> None:
+    with pytest.raises(ValueError, match=r"'package\.module:ClassName'"):
+        BoardKind("k", MotorBoard, "x", console=reference)
+
+
 # --- plugins through the entry point group ---------------------------------------------
-
-
-class FakeDistribution:
-    name = "j5aio-fake-plugin"
 
 
 class FakeEntryPoint:
     def __init__(self, name: str, obj: object) -> None:
         self.name = name
         self.value = f"fake_plugin:{name}"
-        self.dist = FakeDistribution()
+        self.package = "j5aio-fake-plugin"
         self._obj = obj
 
     def load(self) -> object:
@@ -144,11 +191,11 @@ class FakeEntryPoint:
 def fresh_registry(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[FakeEntryPoint]]:
     plugins: list[FakeEntryPoint] = []
 
-    def entry_points(*, group: str) -> list[FakeEntryPoint]:
+    def find(group: str) -> list[FakeEntryPoint]:
         assert group == "j5aio.boards"
         return plugins
 
-    monkeypatch.setattr(importlib.metadata, "entry_points", entry_points)
+    monkeypatch.setattr(_entry_points, "find", find)
     monkeypatch.setattr(board_kinds, "_registry", board_kinds._Registry())
     yield plugins
 

@@ -1,0 +1,107 @@
+"""Peak memory of a whole sync program on the simulated kit, against j5 0.12's console program.
+
+Each case is a new child process that makes its robot, switches a power output and an
+LED on, drives a motor at half power and stops it, then prints its peak resident set
+size (``resource.getrusage(RUSAGE_SELF).ru_maxrss``) as its last act. Cases:
+
+* j5aio, sync: ``KitRobot()`` from ``j5aio.sync`` on the simulated kit (``J5AIO_ENV=sim``);
+* j5aio, async: the same program with ``async with KitRobot()``, for reference;
+* j5 0.12 (its own venv, made by ``_peers.py``): the same steps on j5's console power and
+  motor boards (the program of j5's quick start).
+
+Rounds are interleaved and shuffled; the table shows medians in MiB and the ratio to j5.
+Run (Linux and macOS; ``ru_maxrss`` is in KiB on Linux, bytes on macOS)::
+
+    python bench/bench_memory.py [--rounds 7]
+
+Goal (issue 12): at most 20 MiB peak for the sync program on the simulated kit.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _children import (  # type: ignore[import-not-found]
+    J5_ROBOT,
+    Case,
+    j5_python,
+    j5aio_env,
+    print_table,
+    run_interleaved,
+    run_reporting,
+)
+
+GOAL_MIB = 20.0
+MARKER = "MAXRSS"
+
+REPORT = f"""
+import resource, sys
+rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+print({MARKER!r}, rss * (1 if sys.platform == "darwin" else 1024), flush=True)
+"""
+
+SYNC_PROGRAM = """\
+from j5aio.sync import KitRobot
+
+robot = KitRobot()
+robot.power_board.outputs[0].is_enabled = True
+robot.power_board.run_led.state = True
+motor = robot.motor_boards[0].motors[0]
+motor.power = 0.5
+motor.power = 0
+""" + REPORT
+
+ASYNC_PROGRAM = """\
+import anyio
+from j5aio.kit import KitRobot
+
+async def main() -> None:
+    async with KitRobot() as robot:
+        await robot.power_board.outputs[0].set_is_enabled(True)
+        await robot.power_board.run_led.set_state(True)
+        motor = robot.motor_boards[0].motors[0]
+        await motor.set_power(0.5)
+        await motor.set_power(0)
+
+anyio.run(main)
+""" + REPORT
+
+J5_PROGRAM = J5_ROBOT + """\
+from j5.boards.sr.v4.power_board import PowerOutputPosition
+
+robot.power_board.outputs[PowerOutputPosition.H0].is_enabled = True
+robot.power_board._run_led.state = True  # j5 0.12 keeps its LEDs private
+motor = robot.motor_boards.singular().motors[0]
+motor.power = 0.5
+motor.power = 0
+""" + REPORT
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rounds", type=int, default=7, help="runs of each case (default 7)")
+    options = parser.parse_args()
+
+    sim = j5aio_env(J5AIO_ENV="sim")
+    sync = Case("j5aio sync, simulated kit", [sys.executable, "-c", SYNC_PROGRAM], sim)
+    cases = [sync, Case("j5aio async, simulated kit", [sys.executable, "-c", ASYNC_PROGRAM], sim)]
+    peer = j5_python()
+    j5 = None
+    if peer is not None:
+        j5 = Case("j5 console program", [str(peer), "-c", J5_PROGRAM], j5aio_env())
+        cases.append(j5)
+    run_interleaved(cases, options.rounds, lambda c: float(run_reporting(c, MARKER)))
+    print(f"peak RSS at the end of the program, {options.rounds} interleaved rounds")
+    print_table("peak memory", cases, "MiB", reference=j5, scale=1 / 2**20)
+    mib = sync.median / 2**20
+    print(f"\ngoal (sync program <= {GOAL_MIB:.0f} MiB): {mib:.1f} MiB  "
+          f"{'met' if mib <= GOAL_MIB else 'NOT met'}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,115 @@
+"""Whole process to a ready robot: from starting the interpreter to the robot having its boards.
+
+Each case is a new child process; the time runs from just before the parent starts it to
+the moment the parent reads the child's ``READY`` line (printed once the robot has found
+its boards), so it holds the interpreter's start-up, the imports, finding the boards and
+the hand-offs to the event loop. Cases:
+
+* j5aio, async: ``async with KitRobot() as robot`` under ``anyio.run``, on the simulated
+  kit (``J5AIO_ENV=sim``, as ``python -m j5aio run --sim`` sets it);
+* j5aio, sync: ``robot = KitRobot()`` from ``j5aio.sync``, on the simulated kit;
+* j5 0.12 (its own venv, made by ``_peers.py``): the console robot of j5's quick start (a
+  power board and the motor boards, on console backends).
+
+Rounds are interleaved and shuffled; the table shows medians and the ratio to j5. Run::
+
+    python bench/bench_startup.py [--rounds 15] [--kit NAME]
+
+Goal (issue 12): at most 80 ms to a ready robot on the simulated kit, async and sync.
+"""
+
+from __future__ import annotations
+
+import argparse
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _children import (  # type: ignore[import-not-found]
+    J5_ROBOT,
+    Case,
+    j5_python,
+    j5aio_env,
+    print_table,
+    run_interleaved,
+)
+
+GOAL_MS = 80.0
+MARKER = "READY"
+
+ASYNC_PROGRAM = f"""\
+import anyio
+from j5aio.kit import KitRobot
+
+async def main() -> None:
+    async with KitRobot() as robot:
+        print({MARKER!r}, len(robot.motor_boards), flush=True)
+
+anyio.run(main)
+"""
+
+SYNC_PROGRAM = f"""\
+from j5aio.sync import KitRobot
+
+robot = KitRobot()
+print({MARKER!r}, len(robot.motor_boards), flush=True)
+"""
+
+J5_PROGRAM = J5_ROBOT + f"print({MARKER!r}, len(robot.motor_boards), flush=True)\n"
+
+
+def time_to_ready(case: Case) -> float:
+    """Seconds from starting ``case``'s process to reading its ready line; it is then ended."""
+    start = time.perf_counter()
+    child = subprocess.Popen(
+        case.argv, env=case.env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE, text=True,
+    )
+    assert child.stdout is not None
+    try:
+        for line in child.stdout:
+            if line.startswith(MARKER):
+                elapsed = time.perf_counter() - start
+                break
+        else:
+            raise RuntimeError(f"{case.name}: no ready line:\n{child.communicate()[1][-2000:]}")
+        child.stdout.close()  # the rest of its output is not wanted
+        child.wait(timeout=60)
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
+    return elapsed
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rounds", type=int, default=15, help="runs of each case (default 15)")
+    parser.add_argument("--kit", default="", help="the simulated kit (J5AIO_KIT; default kit)")
+    options = parser.parse_args()
+
+    sim = {"J5AIO_ENV": "sim", **({"J5AIO_KIT": options.kit} if options.kit else {})}
+    cases = [
+        Case("j5aio async, simulated kit", [sys.executable, "-c", ASYNC_PROGRAM], j5aio_env(**sim)),
+        Case("j5aio sync, simulated kit", [sys.executable, "-c", SYNC_PROGRAM], j5aio_env(**sim)),
+    ]
+    peer = j5_python()
+    j5 = None
+    if peer is not None:
+        j5 = Case("j5 console robot", [str(peer), "-c", J5_PROGRAM], j5aio_env())
+        cases.append(j5)
+    run_interleaved(cases, options.rounds, time_to_ready)
+    print(f"process start -> robot ready, {options.rounds} interleaved rounds")
+    print_table("time to a ready robot", cases, "ms", reference=j5, scale=1000)
+    print(f"\ngoal (<= {GOAL_MS:.0f} ms on the simulated kit):")
+    for case in cases[:2]:
+        ms = case.median * 1000
+        print(f"  {case.name:<27} {ms:7.1f} ms  {'met' if ms <= GOAL_MS else 'NOT met'}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

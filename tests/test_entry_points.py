@@ -1,0 +1,150 @@
+"""Finding a group's entry points without importlib.metadata, as importlib.metadata does."""
+
+from __future__ import annotations
+
+import importlib.metadata
+import os
+import sys
+import zipfile
+from collections.abc import Callable, Iterator
+from pathlib import Path
+
+import pytest
+
+from j5aio._entry_points import PluginEntryPoint, find
+
+
+def by_importlib_metadata(group: str) -> list[tuple[str, str, str]]:
+    return [
+        (e.name, e.value, e.dist.name if e.dist is not None else "?")
+        for e in importlib.metadata.entry_points(group=group)
+    ]
+
+
+def as_tuples(found: list[PluginEntryPoint]) -> list[tuple[str, str, str]]:
+    return [(e.name, e.value, e.package) for e in found]
+
+
+@pytest.mark.parametrize("group", ["j5aio.boards", "console_scripts", "pytest11"])
+def test_the_installed_entry_points_are_those_importlib_metadata_finds(group: str) -> None:
+    expected = by_importlib_metadata(group)
+    assert as_tuples(find(group)) == expected
+    if group == "j5aio.boards":
+        assert ("beekit", "beekit.kinds:entries", "beekit") in expected  # the example kit
+
+
+def distribution(folder: Path, stem: str, entry_points: str, name: str | None = None) -> None:
+    info = folder / f"{stem}.dist-info"
+    info.mkdir(parents=True)
+    (info / "entry_points.txt").write_text(entry_points, encoding="utf-8")
+    if name is not None:
+        (info / "METADATA").write_text(
+            f"Metadata-Version: 2.1\nName: {name}\nVersion: 1.0\n\nName: not this one\n",
+            encoding="utf-8",
+        )
+
+
+@pytest.fixture
+def path(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
+    first, second = tmp_path / "first", tmp_path / "second"
+    module = tmp_path / "code"
+    module.mkdir()
+    (module / "plugin_for_test.py").write_text(
+        "class Holder:\n    class Inner:\n        value = 42\n\ndef entries():\n    return 7\n",
+        encoding="utf-8",
+    )
+    distribution(
+        first, "Bee_Kit-1.0",
+        "# a comment\n; another\n[console_scripts]\nbee = bee:main\n\n"
+        "[test.group]\n  one = plugin_for_test:entries\n"
+        "two=plugin_for_test:Holder.Inner [extra]\n",
+        name="bee-kit",
+    )
+    # The same distribution again later on the path: hidden, as importlib.metadata does.
+    distribution(second, "bee_kit-0.9", "[test.group]\nold = plugin_for_test:entries\n")
+    distribution(second, "nameless-2.0", "[test.group]\nthree = plugin_for_test\n", "nameless")
+    (second / "unrelated.txt").write_text("", encoding="utf-8")
+    monkeypatch.setattr(
+        sys, "path", [str(module), str(first), str(tmp_path / "missing"), str(second)],
+    )
+    monkeypatch.delitem(sys.modules, "plugin_for_test", raising=False)
+    yield tmp_path
+
+
+@pytest.mark.usefixtures("path")
+def test_a_group_is_read_from_the_path_in_order_first_distribution_winning() -> None:
+    found = find("test.group")
+    assert as_tuples(found) == [
+        ("one", "plugin_for_test:entries", "bee-kit"),
+        ("two", "plugin_for_test:Holder.Inner [extra]", "bee-kit"),
+        ("three", "plugin_for_test", "nameless"),
+    ]
+    assert as_tuples(found) == by_importlib_metadata("test.group")
+    assert found[0].load()() == 7  # type: ignore[operator]
+    assert found[1].load().value == 42  # type: ignore[attr-defined]
+    assert found[2].load() is sys.modules["plugin_for_test"]
+    assert find("no.such.group") == []
+
+
+def test_a_line_that_is_no_entry_point_is_passed_over(path: Path) -> None:
+    entry_points = path / "second" / "nameless-2.0.dist-info" / "entry_points.txt"
+    entry_points.write_text("[test.group]\nnot an entry\nthree = plugin_for_test\n")
+    assert [e.name for e in find("test.group")] == ["one", "two", "three"]
+
+
+def test_an_entry_point_naming_nothing_fails_to_load() -> None:
+    with pytest.raises(ModuleNotFoundError):
+        PluginEntryPoint("x", "no_module_called_this:thing", "pkg").load()
+    with pytest.raises(AttributeError):
+        PluginEntryPoint("x", "json:no_such_function", "pkg").load()
+
+
+def test_a_zip_on_the_path_is_left_to_importlib_metadata(
+    path: Path, monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    archive = path / "plugins.zip"
+    with zipfile.ZipFile(archive, "w") as zipped:
+        zipped.writestr("zipped-1.0.dist-info/entry_points.txt", "[test.group]\nz = zmod:z\n")
+        zipped.writestr("zipped-1.0.dist-info/METADATA", "Name: zipped\nVersion: 1.0\n")
+    monkeypatch.setattr(sys, "path", [*sys.path, str(archive)])
+    assert ("z", "zmod:z", "zipped") in as_tuples(find("test.group"))
+
+
+@pytest.mark.usefixtures("path")
+def test_an_import_hook_listing_distributions_is_left_to_importlib_metadata(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    asked = []
+
+    class Finder:
+        @staticmethod
+        def find_spec(*args: object) -> None:
+            return None
+
+        @staticmethod
+        def find_distributions(*args: object, **kwargs: object) -> list[object]:
+            asked.append(True)
+            return []
+
+    monkeypatch.setattr(sys, "meta_path", [*sys.meta_path, Finder])
+    assert [e.name for e in find("test.group")] == ["one", "two", "three"]
+    assert asked
+
+
+def test_unreadable_files_are_passed_over(path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    (path / "second" / "nameless-2.0.dist-info" / "entry_points.txt").write_bytes(b"\xff\xfe[")
+    monkeypatch.setattr(os, "listdir", _listdir_failing_for(path / "first"))
+    # The first folder unseen, the older copy of bee-kit is no longer hidden.
+    assert as_tuples(find("test.group")) == [("old", "plugin_for_test:entries", "bee_kit")]
+
+
+def _listdir_failing_for(folder: Path) -> Callable[[str], list[str]]:
+    real = os.listdir
+
+    def listdir(target: str) -> list[str]:
+        if Path(target) == folder:
+            raise PermissionError(target)
+        names: list[str] = real(target)
+        return names
+
+    return listdir
