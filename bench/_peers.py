@@ -25,7 +25,7 @@ __all__ = ["J5_PEER", "peer_python", "peers_root"]
 
 #: The peer every issue-12 bench measures against: j5 0.12 from the package registry.
 #: Its hardware backends import typing_extensions, which it does not declare.
-J5_PEER: tuple[str, list[str]] = ("j5-0.12-full", ["j5==0.12.0", "typing-extensions"])
+J5_PEER: tuple[str, list[str]] = ("j5-0.12", ["j5==0.12.0", "typing-extensions"])
 
 
 def peers_root() -> Path:

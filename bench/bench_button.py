@@ -255,8 +255,7 @@ def run_side(side: str, args: argparse.Namespace, seed: int) -> dict[str, float]
         sys.path.insert(0, str(HERE))
         from _peers import J5_PEER, peer_python  # type: ignore[import-not-found]
 
-        # j5 0.12 imports typing_extensions without declaring it: a venv of its own with it.
-        python = str(peer_python(J5_PEER[0] + "-button", [*J5_PEER[1], "typing_extensions"]))
+        python = str(peer_python(*J5_PEER))
         env = dict(os.environ)
         env.pop("PYTHONPATH", None)
     else:
