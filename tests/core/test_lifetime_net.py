@@ -202,13 +202,9 @@ def test_finishing_runs_the_exit_steps_then_the_net_once(monkeypatch: pytest.Mon
 
 
 def test_ctrl_c_ending_the_program_prints_one_line(
-    monkeypatch: pytest.MonkeyPatch,
-    capsys: pytest.CaptureFixture[str],
-    request: pytest.FixtureRequest,
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    # The hook ignores any further Ctrl-C (the program is ending); the suite must not.
-    handler = signal.getsignal(signal.SIGINT)
-    request.addfinalizer(lambda: signal.signal(signal.SIGINT, handler))
+    # (the autouse fixture gives the suite its Ctrl-C back afterwards)
     reasons: list[str] = []
     previous: list[type[BaseException]] = []
     monkeypatch.setattr(lifetime, "_finish", reasons.append)
