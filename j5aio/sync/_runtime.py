@@ -608,12 +608,23 @@ def _wait(portal: _LoopThread, request: _Call) -> Any:
 
 
 def _wait_for_cancellation(request: _Call) -> None:
-    deadline = time.monotonic() + CANCEL_GRACE
+    if not _wait_done(request, CANCEL_GRACE):
+        LOGGER.error("A cancelled board call did not stop within %.1f s.", CANCEL_GRACE)
+
+
+def _wait_done(request: _Call, timeout: float) -> bool:
+    """Wait up to ``timeout`` seconds for ``request`` to finish; return whether it did.
+
+    The loop also releases a caller's lock to let it run a signal handler (see
+    :meth:`_LoopThread._let_callers_check_signals`), so a release alone does not mean
+    done: only :attr:`_Call.state` does.
+    """
+    deadline = time.monotonic() + timeout
     while request.state != _DONE:
         remaining = deadline - time.monotonic()
         if remaining <= 0 or not request.done.acquire(timeout=remaining):
-            LOGGER.error("A cancelled board call did not stop within %.1f s.", CANCEL_GRACE)
-            return
+            return request.state == _DONE
+    return True
 
 
 async def _make_safe_and_close() -> None:
@@ -647,7 +658,7 @@ def shutdown() -> None:
         portal.cancel(current)
     try:
         request = portal.submit(_make_safe_and_close())
-        if not request.done.acquire(timeout=3 * SHUTDOWN_TIMEOUT):
+        if not _wait_done(request, 3 * SHUTDOWN_TIMEOUT):
             LOGGER.error("Boards were not made safe within %.1f s.", 3 * SHUTDOWN_TIMEOUT)
         elif request.error is not None:
             LOGGER.error("Could not make the boards safe: %r", request.error)

@@ -341,6 +341,33 @@ def test_a_failure_to_make_boards_safe_at_shutdown_is_logged(
     assert "Could not make the boards safe: OSError('the registry is broken')" in caplog.text
 
 
+def test_shutdown_waits_for_the_boards_even_when_a_signal_wakes_it(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # A signal makes the loop release every waiting caller's lock so that it can run the
+    # handler; shutdown once took that release for "boards safe" and stopped the loop in
+    # the middle of closing them (a SIGTERM during a blocking call, seen in CI).
+    finished: list[str] = []
+
+    async def slow_safe_state(timeout: float) -> None:
+        await anyio.sleep(0.3)
+        finished.append("safe")
+
+    monkeypatch.setattr(_runtime, "make_all_safe_uncancellably", slow_safe_state)
+    portal = _runtime._get_portal()
+
+    def signal_arrives() -> None:
+        time.sleep(0.1)
+        portal.wake_callers()
+
+    waker = threading.Thread(target=signal_arrives)
+    waker.start()
+    shutdown()
+    waker.join()
+    assert finished == ["safe"]
+    assert not portal.thread.is_alive()
+
+
 def test_a_call_queued_as_the_portal_stops_is_taken_back_or_left_withdrawn() -> None:
     portal = _runtime._LoopThread()
     portal.stop(2)
