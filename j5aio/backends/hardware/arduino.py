@@ -13,7 +13,7 @@ the remembered state as it was.
 from __future__ import annotations
 
 from abc import abstractmethod
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 from j5aio.backends.backend import BoardT
 from j5aio.backends.hardware.arduino_pins import LED_PIN, ArduinoPins, DigitalPinState
@@ -23,7 +23,10 @@ from j5aio.components.gpio_pin import GPIOPinInterface, GPIOPinMode
 from j5aio.components.led import LEDInterface
 from j5aio.errors import NotSupportedByHardwareError
 
-__all__ = ["ARDUINO_USB_IDS", "ArduinoHardwareBackend"]
+if TYPE_CHECKING:
+    from j5aio.boards.board import Board
+
+__all__ = ["ARDUINO_USB_IDS", "ArduinoHardwareBackend", "UnoLEDAndLimits"]
 
 #: Arduino Uno R3 (arduino.cc and arduino.org), CH340 clone, CP210x and Ruggeduino.
 ARDUINO_USB_IDS: frozenset[tuple[int, int]] = frozenset(
@@ -37,7 +40,38 @@ ARDUINO_USB_IDS: frozenset[tuple[int, int]] = frozenset(
 )
 
 
-class ArduinoHardwareBackend(GPIOPinInterface, LEDInterface, SerialHardwareBackend[BoardT]):
+class UnoLEDAndLimits(GPIOPinInterface, LEDInterface):
+    """What every Uno backend does alike: LED 0 is pin 13, and there is no DAC or PWM.
+
+    Mixed into both Arduino bases (this module's and
+    :class:`~j5aio.backends.hardware.arduino_gpio.ArduinoGPIOBackend`), before the
+    backend class that gives ``board``.
+    """
+
+    board: ClassVar[type[Board]]
+
+    async def write_gpio_pin_dac_value(self, identifier: int, scaled_value: float) -> None:
+        """Refuse: the Uno has no DAC."""
+        raise NotSupportedByHardwareError(f"{self.board.name} has no DAC (analogue output)")
+
+    async def write_gpio_pin_pwm_value(self, identifier: int, duty_cycle: float) -> None:
+        """Refuse: the firmware has no PWM command."""
+        raise NotSupportedByHardwareError(
+            f"{self.board.name}'s firmware has no PWM output command",
+        )
+
+    async def get_led_state(self, identifier: int) -> bool:
+        """Return the level last written to the LED (pin 13, which must be an output)."""
+        ArduinoPins.check_led(identifier, self.board.name)
+        return await self.get_gpio_pin_digital_state(LED_PIN)
+
+    async def set_led_state(self, identifier: int, state: bool) -> None:
+        """Light or clear the LED (pin 13, which must be an output)."""
+        ArduinoPins.check_led(identifier, self.board.name)
+        await self.write_gpio_pin_digital_state(LED_PIN, state)
+
+
+class ArduinoHardwareBackend(UnoLEDAndLimits, SerialHardwareBackend[BoardT]):
     """Pins 2-13 (digital), 14-19 (analogue) and LED 0 (pin 13) of an Arduino Uno."""
 
     USB_IDS: ClassVar[frozenset[tuple[int, int]]] = ARDUINO_USB_IDS
@@ -120,23 +154,3 @@ class ArduinoHardwareBackend(GPIOPinInterface, LEDInterface, SerialHardwareBacke
         """Read the voltage on an analogue pin, in volts."""
         self._pins.check_analogue(identifier, self.ANALOGUE_CHANNELS)
         return await self._read_analogue(identifier)
-
-    async def write_gpio_pin_dac_value(self, identifier: int, scaled_value: float) -> None:
-        """Refuse: the Uno has no DAC."""
-        raise NotSupportedByHardwareError(f"{self.board.name} has no DAC (analogue output)")
-
-    async def write_gpio_pin_pwm_value(self, identifier: int, duty_cycle: float) -> None:
-        """Refuse: the firmware has no PWM command."""
-        raise NotSupportedByHardwareError(
-            f"{self.board.name}'s firmware has no PWM output command",
-        )
-
-    async def get_led_state(self, identifier: int) -> bool:
-        """Return the level last written to the LED (pin 13, which must be an output)."""
-        ArduinoPins.check_led(identifier, self.board.name)
-        return await self.get_gpio_pin_digital_state(LED_PIN)
-
-    async def set_led_state(self, identifier: int, state: bool) -> None:
-        """Light or clear the LED (pin 13, which must be an output)."""
-        ArduinoPins.check_led(identifier, self.board.name)
-        await self.write_gpio_pin_digital_state(LED_PIN, state)

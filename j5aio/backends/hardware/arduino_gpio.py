@@ -20,18 +20,15 @@ from datetime import timedelta
 from typing import ClassVar, Protocol, TypeVar
 
 from j5aio.backends.backend import BoardT
-from j5aio.backends.hardware.arduino import ARDUINO_USB_IDS
+from j5aio.backends.hardware.arduino import ARDUINO_USB_IDS, UnoLEDAndLimits
 from j5aio.backends.hardware.arduino_pin_table import PinTable, wire_mode
-from j5aio.backends.hardware.arduino_pins import LED_PIN, ArduinoPins
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
 from j5aio.backends.hardware.transports.readers import read_line
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.components.derived.ultrasound import UltrasoundInterface
-from j5aio.components.gpio_pin import GPIOPinInterface, GPIOPinMode
-from j5aio.components.led import LEDInterface
+from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import (
     CommunicationTimeoutError,
-    NotSupportedByHardwareError,
     UnexpectedReplyError,
 )
 
@@ -90,9 +87,7 @@ class PinCodec(Protocol):
         """Parse the reply of an ultrasound measurement, in mm (0 or less: no echo)."""
 
 
-class ArduinoGPIOBackend(
-    GPIOPinInterface, LEDInterface, UltrasoundInterface, SerialHardwareBackend[BoardT],
-):
+class ArduinoGPIOBackend(UnoLEDAndLimits, UltrasoundInterface, SerialHardwareBackend[BoardT]):
     """Pins 2-19, LED 0 (pin 13) and ultrasound on an Arduino Uno whose pins are all digital."""
 
     USB_IDS: ClassVar[frozenset[tuple[int, int]]] = ARDUINO_USB_IDS
@@ -250,28 +245,6 @@ class ArduinoGPIOBackend(
         """Read the voltage on an analogue pin (A0-A5 in ANALOGUE_INPUT mode), in volts."""
         self._pins.check_analogue(identifier)
         return await self._query_analogue(identifier)
-
-    async def write_gpio_pin_dac_value(self, identifier: int, scaled_value: float) -> None:
-        """Refuse: the Uno has no DAC."""
-        raise NotSupportedByHardwareError(f"{self.board.name} has no DAC (analogue output)")
-
-    async def write_gpio_pin_pwm_value(self, identifier: int, duty_cycle: float) -> None:
-        """Refuse: the firmware has no PWM command."""
-        raise NotSupportedByHardwareError(
-            f"{self.board.name}'s firmware has no PWM output command",
-        )
-
-    # -- the LED ------------------------------------------------------------------------
-
-    async def get_led_state(self, identifier: int) -> bool:
-        """Return the level last written to the LED (pin 13, which must be an output)."""
-        ArduinoPins.check_led(identifier, self.board.name)
-        return await self.get_gpio_pin_digital_state(LED_PIN)
-
-    async def set_led_state(self, identifier: int, state: bool) -> None:
-        """Light or clear the LED (pin 13, which must be an output)."""
-        ArduinoPins.check_led(identifier, self.board.name)
-        await self.write_gpio_pin_digital_state(LED_PIN, state)
 
     # -- ultrasound ---------------------------------------------------------------------
 
