@@ -235,6 +235,22 @@ class BoardKind:
             if not isinstance(entry, SimulatorEntry):
                 raise TypeError(f"board kind {self.name!r}: simulators must be SimulatorEntry")
 
+    def backend_reference(self, role: str) -> str | None:
+        """The import path of the ``role`` backend, ``"package.module:ClassName"``, or ``None``.
+
+        It imports nothing: an environment uses it to know which kinds have a backend
+        before it needs any of them.
+
+        :param role: ``"hardware"``, ``"console"`` or ``"simulated"``.
+        :raises ValueError: ``role`` is none of those.
+        """
+        if role not in _BACKEND_ROLES:
+            raise ValueError(f"a backend role is one of {', '.join(_BACKEND_ROLES)}, not {role!r}")
+        value: type[Backend] | str | None = vars(self)[f"_{role}"]
+        if value is None or isinstance(value, str):
+            return value
+        return f"{value.__module__}:{value.__qualname__}"
+
     def _check_backend(self, role: str, backend: object) -> None:
         if backend is None:
             return

@@ -132,6 +132,18 @@ def test_a_backend_given_by_import_path_is_imported_when_first_read() -> None:
     assert BoardKind.hardware is None  # the class's default
 
 
+def test_a_backends_import_path_is_known_without_importing_it() -> None:
+    kind = BoardKind("k", MotorBoard, "x", hardware=MOTOR_FW3, console=None)
+    assert kind.backend_reference("hardware") == MOTOR_FW3
+    assert vars(kind)["_hardware"] == MOTOR_FW3  # still not imported
+    assert kind.backend_reference("console") is None
+    assert kind.backend_reference("simulated") is None
+    given = BoardKind("k", MotorBoard, "x", hardware=SRV4MotorBoardHardwareBackend)
+    assert given.backend_reference("hardware") == MOTOR_FW3  # a class: its path
+    with pytest.raises(ValueError, match="a backend role is one of hardware, console, simulated"):
+        kind.backend_reference("board")
+
+
 def test_the_builtin_kinds_name_their_backends_by_path_and_they_resolve() -> None:
     from j5aio import _builtin_kinds
 
