@@ -114,7 +114,7 @@ async def test_an_unsupported_board_is_refused_lazily_too() -> None:
     class Other(Board):
         pass
 
-    with pytest.raises(NotImplementedError, match="E does not support Other.*LampBoardGen2"):
+    with pytest.raises(NotImplementedError, match=r"E does not support Other.*LampBoardGen2"):
         await env.get_board_group(Other)
     with pytest.raises(NotImplementedError, match="does not support Other"):
         env.get_backend(Other)
