@@ -13,6 +13,7 @@ from j5aio.board_kinds import (
     BoardKind,
     BoardPluginWarning,
     KitDefinition,
+    SimulatorClass,
     SimulatorEntry,
     find_simulator,
     get_kit,
@@ -49,7 +50,9 @@ def test_j5aios_own_kinds_and_kits_are_registered() -> None:
     assert get_kit(" SB2019 ").name == "sb2019"
     kind, entry = find_simulator("sr-power")
     assert kind.board is PowerBoard
-    assert entry.factory is SRPowerBoardFw3Simulator
+    assert entry.factory == SimulatorClass("j5aio.simulator.sr_power_fw3:SRPowerBoardFw3Simulator")
+    assert isinstance(entry.factory, SimulatorClass)
+    assert entry.factory.resolve() is SRPowerBoardFw3Simulator
     assert not entry.is_serial
     assert find_simulator("sr-motor")[1].is_serial
 
@@ -130,6 +133,39 @@ def test_a_backend_given_by_import_path_is_imported_when_first_read() -> None:
     assert kind.console is None
     assert kind == BoardKind("k", MotorBoard, "x", hardware=SRV4MotorBoardHardwareBackend)
     assert BoardKind.hardware is None  # the class's default
+
+
+def test_a_simulator_class_named_by_path_is_imported_on_first_use(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    import sys
+
+    path = "j5aio.simulator.sr_motor_fw3:SRMotorBoardFw3Simulator"
+    monkeypatch.delitem(sys.modules, "j5aio.simulator.sr_motor_fw3")
+    factory = SimulatorClass(path)
+    entry = SimulatorEntry("m", factory, "a motor board", "SIMM")
+    assert "j5aio.simulator.sr_motor_fw3" not in sys.modules
+    assert entry.is_serial  # from the class: nothing is made
+    made = factory("SIMM0")
+    assert type(made).__name__ == "SRMotorBoardFw3Simulator"
+    assert made.serial_number == "SIMM0"  # type: ignore[attr-defined]
+    assert factory.resolve() is type(made)
+    assert repr(factory) == f"SimulatorClass({path!r})"
+    assert factory == SimulatorClass(path) and hash(factory) == hash(SimulatorClass(path))
+    assert factory != path
+
+
+@pytest.mark.parametrize("path", ["", "no_colon", "module:", ":Name", "m:not-a-name", 3])
+def test_a_simulator_class_path_must_name_a_module_and_a_class(path: Any) -> None:
+    with pytest.raises(ValueError, match=r"'package\.module:ClassName'"):
+        SimulatorClass(path)
+
+
+def test_a_simulator_class_path_naming_no_class_fails_when_used() -> None:
+    with pytest.raises(TypeError, match="is not a class"):
+        SimulatorClass("j5aio.simulator.kit:current_kit")("S")
+    with pytest.raises(ImportError):
+        SimulatorClass("no.such.module:Simulator").resolve()
 
 
 def test_a_backends_import_path_is_known_without_importing_it() -> None:

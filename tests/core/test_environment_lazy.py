@@ -111,7 +111,7 @@ async def test_an_unsupported_board_is_refused_lazily_too() -> None:
     env = Environment("E")
     env.register_lazily(LampBoardGen2, Loader(LampGen2Backend), idle=lambda: True)
 
-    class Other(Board):
+    class Other(LampBoard):
         pass
 
     with pytest.raises(NotImplementedError, match=r"E does not support Other.*LampBoardGen2"):
