@@ -470,7 +470,11 @@ def _with_package(item: BoardKind | KitDefinition, package: str) -> BoardKind | 
         return item
     from dataclasses import replace
 
-    return replace(item, package=package)
+    if isinstance(item, KitDefinition):
+        return replace(item, package=package)
+    # (the backends as given: reading them would import those named by path)
+    given = {role: vars(item)[f"_{role}"] for role in _BACKEND_ROLES}
+    return replace(item, package=package, **given)
 
 
 _registry = _Registry()

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Iterator
 from typing import Any
 
@@ -259,6 +260,23 @@ def test_plugins_are_loaded_and_marked_with_their_package(
     assert kinds["sr-v4-motor-fw3"].package == "j5aio"
     assert get_kit("test-kit").package == "j5aio-fake-plugin"
     assert get_kit("sr2019").boards["test-motor-gen9"] == 2
+
+
+def test_loading_a_plugin_imports_none_of_the_backends_it_names_by_path(
+    fresh_registry: list[FakeEntryPoint],
+) -> None:
+    lazy = BoardKind(
+        "test-lazy", MotorBoard, "x",
+        hardware="no_such_plugin.backend:Backend", console="no_such_plugin.console:Console",
+    )
+    fresh_registry.append(FakeEntryPoint("lazy", [lazy]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a plugin left out would warn
+        kind = {kind.name: kind for kind in board_kinds.board_kinds()}["test-lazy"]
+    assert kind.package == "j5aio-fake-plugin"
+    assert kind.backend_reference("hardware") == "no_such_plugin.backend:Backend"
+    with pytest.raises(ImportError, match="no_such_plugin"):
+        _ = kind.hardware
 
 
 @pytest.mark.parametrize(
