@@ -22,6 +22,11 @@ So a program run on the simulated kit sends the same bytes as on a robot::
         print(kit.motor_boards[0].motors[0])    # what the simulated board now does
 
 Unplugged simulators (``simulator.unplug()``) are not found, as on a real bus.
+
+Each kind's backend is imported the first time a board of its class is asked for while
+the current kit has simulators of that kind; a kind the kit has none of gives no boards
+without being imported or asked (a group made then keeps finding none, even once
+:func:`~j5aio.simulator.kit.use_kit` has changed the kit: ask the environment again).
 """
 
 from __future__ import annotations
@@ -181,9 +186,15 @@ def _loader(kind: BoardKind) -> Callable[[], type[Backend]]:
 
 
 def _idle(kind: BoardKind) -> Callable[[], bool] | None:
-    """For a kind found among the kit's serial and USB boards: whether the kit has none."""
-    if kind.backend_reference("simulated") is not None:
-        return None  # its own backend: it may find its boards anywhere
+    """For a kind with simulators: whether the current kit has none of them.
+
+    Its backend finds its boards among the kit's simulators (a kind's own ``simulated``
+    backend too: see :data:`~j5aio.board_kinds.SimulatorFactory`), so it is neither
+    imported nor asked while the kit has none. A kind without simulators (the camera,
+    which every kit has) is always asked.
+    """
+    if not kind.simulators:
+        return None
 
     def idle() -> bool:
         from .kit import current_kit
