@@ -155,7 +155,7 @@ def kit_discovery_options(
         backend looks at its own kind only).
     :param timeout_scale: the factor for the backends' timeouts (waiting for a board to
         boot, say); by default the kit's time scale, but at least
-        :data:`MINIMUM_TIMEOUT_SCALE`.
+        :data:`~j5aio.simulator.discovery.MINIMUM_TIMEOUT_SCALE`.
     :param kind: list only the boards (serial and USB) simulating this board kind.
     """
     if timeout_scale is None:
