@@ -198,6 +198,18 @@ class Environment:
             if issubclass(backend.board, board):
                 yield backend
 
+    def might_find(self, board: type[Board]) -> bool:
+        """Whether :meth:`get_board_group` would ask any backend for ``board`` now.
+
+        False when the environment has no backend for ``board`` (or a subclass), or when
+        every such backend registered with ``idle`` says it would find nothing now; it
+        loads no backend to tell.
+        """
+        return any(
+            issubclass(slot.board, board) and (slot.idle is None or not slot.idle())
+            for slot in self._slots
+        )
+
     def _unsupported(self, board: type[Board]) -> str:
         known = ", ".join(sorted({slot.board.__name__ for slot in self._slots})) or "none"
         return f"{self.name} does not support {board.__name__}; it supports: {known}"

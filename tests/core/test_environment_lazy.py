@@ -107,6 +107,22 @@ async def test_when_every_backend_is_idle_the_group_is_empty_and_nobody_is_asked
     assert asked == []
 
 
+def test_might_find_says_whether_a_board_group_would_ask_a_backend() -> None:
+    env = Environment("E")
+    idle = {"gen2": True}
+    lamps = Loader(LampGen2Backend)
+    env.register_lazily(LampBoardGen2, lamps, idle=lambda: idle["gen2"])
+    assert not env.might_find(LampBoardGen2)
+    assert not env.might_find(LampBoard)  # its only backend, for the subclass, is idle
+    idle["gen2"] = False
+    assert env.might_find(LampBoardGen2) and env.might_find(LampBoard)
+    assert lamps.calls == 0  # nothing loaded to tell
+    env.register_backend(LampBackend)
+    idle["gen2"] = True
+    assert env.might_find(LampBoard) and not env.might_find(LampBoardGen2)
+    assert not Environment("Empty").might_find(LampBoard)
+
+
 async def test_an_unsupported_board_is_refused_lazily_too() -> None:
     env = Environment("E")
     env.register_lazily(LampBoardGen2, Loader(LampGen2Backend), idle=lambda: True)
