@@ -35,10 +35,6 @@ class _Slot:
         self.load = load
         self.idle = idle
 
-    @property
-    def loaded(self) -> bool:
-        return self._backend is not None
-
     def backend(self) -> type[Backend]:
         if self._backend is None:
             assert self.load is not None
