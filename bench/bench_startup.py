@@ -8,6 +8,8 @@ the hand-offs to the event loop. Cases:
 * j5aio, async: ``async with KitRobot() as robot`` under ``anyio.run``, on the simulated
   kit (``J5AIO_ENV=sim``, as ``python -m j5aio run --sim`` sets it);
 * j5aio, sync: ``robot = KitRobot()`` from ``j5aio.sync``, on the simulated kit;
+* the floor: the same interpreter starting ``anyio.run`` on an empty coroutine (asyncio,
+  anyio and this venv's site packages; no j5aio), what any asyncio program pays;
 * j5 0.12 (its own venv, made by ``_peers.py``): the console robot of j5's quick start (a
   power board and the motor boards, on console backends).
 
@@ -60,6 +62,17 @@ print({MARKER!r}, len(robot.motor_boards), flush=True)
 
 J5_PROGRAM = J5_ROBOT + f"print({MARKER!r}, len(robot.motor_boards), flush=True)\n"
 
+# The floor under the async program: the interpreter (with this venv's site packages),
+# asyncio and anyio starting and ending an event loop, and nothing of j5aio.
+FLOOR_PROGRAM = f"""\
+import anyio
+
+async def main() -> None:
+    print({MARKER!r}, 0, flush=True)
+
+anyio.run(main)
+"""
+
 
 def time_to_ready(case: Case) -> float:
     """Seconds from starting ``case``'s process to reading its ready line; it is then ended."""
@@ -96,6 +109,8 @@ def main() -> int:
         Case("j5aio async, simulated kit", [sys.executable, "-c", ASYNC_PROGRAM], j5aio_env(**sim)),
         Case("j5aio sync, simulated kit", [sys.executable, "-c", SYNC_PROGRAM], j5aio_env(**sim)),
     ]
+    floor = Case("floor: anyio.run, no j5aio", [sys.executable, "-c", FLOOR_PROGRAM], j5aio_env())
+    cases.append(floor)
     peer = j5_python()
     j5 = None
     if peer is not None:
@@ -107,7 +122,11 @@ def main() -> int:
     print(f"\ngoal (<= {GOAL_MS:.0f} ms on the simulated kit):")
     for case in cases[:2]:
         ms = case.median * 1000
-        print(f"  {case.name:<27} {ms:7.1f} ms  {'met' if ms <= GOAL_MS else 'NOT met'}")
+        above = (case.median - floor.median) * 1000
+        print(
+            f"  {case.name:<27} {ms:7.1f} ms  {'met' if ms <= GOAL_MS else 'NOT met'}"
+            f"  (j5aio's own share, above the floor: {above:.1f} ms)"
+        )
     return 0
 
 

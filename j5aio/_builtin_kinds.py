@@ -6,9 +6,15 @@ entry in :func:`entries` (and a new kit with one :class:`~j5aio.board_kinds.KitD
 
 from __future__ import annotations
 
-from functools import partial
+from typing import TYPE_CHECKING
 
-from j5aio.board_kinds import DEFAULT_KIT, BoardKind, KitDefinition, SimulatorEntry
+from j5aio.board_kinds import (
+    DEFAULT_KIT,
+    BoardKind,
+    KitDefinition,
+    SimulatorClass,
+    SimulatorEntry,
+)
 from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduino2024Board, SBArduinoBoard, SBServoBoard
 from j5aio.boards.sr.kch import KCHBoard
@@ -22,18 +28,36 @@ from j5aio.boards.sr.v4 import (
     ServoBoardFw4,
     SRArduinoBoard,
 )
-from j5aio.simulator.kch import KCHSimulatedBackend, KCHSimulator
-from j5aio.simulator.sb_arduino_2019 import SBArduinoSimulator
-from j5aio.simulator.sb_arduino_2024 import SBArduino2024Simulator
-from j5aio.simulator.sr_motor_fw3 import SRMotorBoardFw3Simulator
-from j5aio.simulator.sr_motor_fw4 import SRMotorBoardFw4Simulator
-from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
-from j5aio.simulator.sr_power_fw4 import SRPowerBoardFw4Simulator
-from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
-from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator
-from j5aio.simulator.sr_servo_fw4 import SBServoBoardFw4Simulator, SRServoBoardFw4Simulator
+
+if TYPE_CHECKING:
+    from j5aio.simulator.kch import KCHSimulator
+    from j5aio.simulator.sr_motor_fw4 import SRMotorBoardFw4Simulator
+    from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 
 __all__ = ["entries"]
+
+
+def _sim(path: str) -> SimulatorClass:
+    """A simulator class of :mod:`j5aio.simulator`, by its path there (imported on first use)."""
+    return SimulatorClass(f"j5aio.simulator.{path}")
+
+
+def _sb_motor_fw4(serial_number: str) -> SRMotorBoardFw4Simulator:
+    from j5aio.simulator.sr_motor_fw4 import SRMotorBoardFw4Simulator
+
+    return SRMotorBoardFw4Simulator(serial_number, version="4.5.0")
+
+
+def _sr_arduino_fw2(serial_number: str) -> SRRuggeduinoSimulator:
+    from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
+
+    return SRRuggeduinoSimulator(serial_number, firmware_version=2)
+
+
+def _kch(serial_number: str) -> KCHSimulator:
+    from j5aio.simulator.kch import KCHSimulator
+
+    return KCHSimulator(serial_number=serial_number)
 
 
 def entries() -> list[BoardKind | KitDefinition]:
@@ -55,7 +79,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             console="j5aio.backends.console.sr.v4:SRV4PowerBoardConsoleBackend",
             simulators=(
                 SimulatorEntry(
-                    "sr-power", SRPowerBoardFw3Simulator,
+                    "sr-power", _sim("sr_power_fw3:SRPowerBoardFw3Simulator"),
                     "SR v4 power board, firmware 3 (USB control transfers)", "SIMPB",
                 ),
             ),
@@ -68,7 +92,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             console="j5aio.backends.console.sr.v4:SRV4MotorBoardConsoleBackend",
             simulators=(
                 SimulatorEntry(
-                    "sr-motor", SRMotorBoardFw3Simulator,
+                    "sr-motor", _sim("sr_motor_fw3:SRMotorBoardFw3Simulator"),
                     "SR v4 motor board, firmware 3 (1 Mbaud)", "SIMMB",
                 ),
             ),
@@ -84,7 +108,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             console="j5aio.backends.console.sr.v4:SRV4ServoBoardConsoleBackend",
             simulators=(
                 SimulatorEntry(
-                    "sr-servo", SRServoBoardFw2Simulator,
+                    "sr-servo", _sim("sr_servo_fw2:SRServoBoardFw2Simulator"),
                     "SR v4 servo board, firmware 2 (USB control transfers)", "SIMSB",
                 ),
             ),
@@ -97,7 +121,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             console="j5aio.backends.console.sb.arduino:SBArduinoConsoleBackend",
             simulators=(
                 SimulatorEntry(
-                    "sb-arduino", SBArduinoSimulator,
+                    "sb-arduino", _sim("sb_arduino_2019:SBArduinoSimulator"),
                     "SourceBots Arduino, 2019 firmware (115200 baud)", "SIMSBA",
                 ),
             ),
@@ -111,7 +135,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             console="j5aio.backends.console.sr.v4:SRV4RuggeduinoConsoleBackend",
             simulators=(
                 SimulatorEntry(
-                    "sr-ruggeduino", SRRuggeduinoSimulator,
+                    "sr-ruggeduino", _sim("sr_ruggeduino_fw1:SRRuggeduinoSimulator"),
                     "SR Ruggeduino, firmware 1 (115200 baud)", "SIMRD",
                 ),
             ),
@@ -125,7 +149,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             console="j5aio.backends.console.sr.v4:SRV4PowerBoardFw4ConsoleBackend",
             simulators=(
                 SimulatorEntry(
-                    "sr-power-fw4", SRPowerBoardFw4Simulator,
+                    "sr-power-fw4", _sim("sr_power_fw4:SRPowerBoardFw4Simulator"),
                     "SR v4 power board, firmware 4.4 (CDC serial)", "SIMPB",
                 ),
             ),
@@ -139,11 +163,11 @@ def entries() -> list[BoardKind | KitDefinition]:
             console="j5aio.backends.console.sr.v4:SRV4MotorBoardFw4ConsoleBackend",
             simulators=(
                 SimulatorEntry(
-                    "sr-motor-fw4", SRMotorBoardFw4Simulator,
+                    "sr-motor-fw4", _sim("sr_motor_fw4:SRMotorBoardFw4Simulator"),
                     "SR v4 motor board, firmware 4.4 (115200 baud)", "SIMMB",
                 ),
                 SimulatorEntry(
-                    "sb-motor-fw4", partial(SRMotorBoardFw4Simulator, version="4.5.0"),
+                    "sb-motor-fw4", _sb_motor_fw4,
                     "SR v4 motor board, SourceBots firmware 4.5 (115200 baud)", "SIMMB",
                 ),
             ),
@@ -159,7 +183,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             console="j5aio.backends.console.sr.v4:SRV4ServoBoardFw4ConsoleBackend",
             simulators=(
                 SimulatorEntry(
-                    "sr-servo-fw4", SRServoBoardFw4Simulator,
+                    "sr-servo-fw4", _sim("sr_servo_fw4:SRServoBoardFw4Simulator"),
                     "SR v4 servo board, firmware 4.3 (CDC serial, 12 servos)", "SIMSB",
                 ),
             ),
@@ -173,7 +197,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             console="j5aio.backends.console.sr.v4:SBServoBoardConsoleBackend",
             simulators=(
                 SimulatorEntry(
-                    "sb-servo-fw4", SBServoBoardFw4Simulator,
+                    "sb-servo-fw4", _sim("sr_servo_fw4:SBServoBoardFw4Simulator"),
                     "SR v4 servo board, SourceBots firmware 4.4 (8 servos)", "SIMSB",
                 ),
             ),
@@ -187,7 +211,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             console="j5aio.backends.console.sr.v4:SRArduinoConsoleBackend",
             simulators=(
                 SimulatorEntry(
-                    "sr-arduino-fw2", partial(SRRuggeduinoSimulator, firmware_version=2),
+                    "sr-arduino-fw2", _sr_arduino_fw2,
                     "SR Arduino, firmware 2 (115200 baud)", "SIMSRA",
                 ),
             ),
@@ -201,7 +225,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             console="j5aio.backends.console.sb.arduino_2024:SBArduino2024ConsoleBackend",
             simulators=(
                 SimulatorEntry(
-                    "sb-arduino-2024", SBArduino2024Simulator,
+                    "sb-arduino-2024", _sim("sb_arduino_2024:SBArduino2024Simulator"),
                     "SourceBots Arduino, sb2024 firmware 2.0 (115200 baud)", "SIMSBA",
                 ),
             ),
@@ -219,11 +243,11 @@ def entries() -> list[BoardKind | KitDefinition]:
             console="j5aio.backends.console.sr.kch:KCHConsoleBackend",
             simulators=(
                 SimulatorEntry(
-                    "kch", lambda serial: KCHSimulator(serial_number=serial),
+                    "kch", _kch,
                     "SR KCH (mock GPIO pins)", "SIMKCH",
                 ),
             ),
-            simulated=KCHSimulatedBackend,
+            simulated="j5aio.simulator.kch:KCHSimulatedBackend",
         ),
         BoardKind(
             name="camera",

@@ -56,6 +56,7 @@ __all__ = [
     "BoardKind",
     "BoardPluginWarning",
     "KitDefinition",
+    "SimulatorClass",
     "SimulatorEntry",
     "SimulatorFactory",
     "board_kinds",
@@ -91,12 +92,65 @@ def _check_name(what: str, name: object) -> str:
     return name
 
 
+class SimulatorClass:
+    """A simulator factory naming its class by import path: imported on first use.
+
+    ``SimulatorClass("package.module:ClassName")`` makes ``ClassName(serial_number)``
+    when called, importing the module the first time, so that registering a
+    :class:`SimulatorEntry` imports no simulator.
+
+    :param path: the class's import path, ``"package.module:ClassName"``.
+    :raises ValueError: ``path`` is not of that form.
+    """
+
+    __slots__ = ("_class", "path")
+
+    def __init__(self, path: str) -> None:
+        module, _, name = path.partition(":") if isinstance(path, str) else ("", "", "")
+        if not module or not name.isidentifier():
+            raise ValueError(
+                f"a simulator class's import path is 'package.module:ClassName', not {path!r}"
+            )
+        #: The class's import path.
+        self.path = path
+        self._class: type | None = None
+
+    def resolve(self) -> type:
+        """Import and return the class.
+
+        :raises ImportError: its module cannot be imported.
+        :raises TypeError: the path names something other than a class.
+        """
+        if self._class is None:
+            module, _, name = self.path.partition(":")
+            found = getattr(importlib.import_module(module), name)
+            if not isinstance(found, type):
+                raise TypeError(f"{self.path} is not a class")
+            self._class = found
+        return self._class
+
+    def __call__(self, serial_number: str) -> object:
+        """Make the simulator with the serial number it reports."""
+        return self.resolve()(serial_number)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, SimulatorClass) and other.path == self.path
+
+    def __hash__(self) -> int:
+        return hash(self.path)
+
+    def __repr__(self) -> str:
+        return f"SimulatorClass({self.path!r})"
+
+
 @dataclass(frozen=True)
 class SimulatorEntry:
     """A simulator of a board kind, as the command line and the simulated kits know it.
 
     :param name: the command-line name, e.g. ``"sr-motor"`` (``simulate NAME``, kits).
-    :param factory: makes the simulator, given its serial number.
+    :param factory: makes the simulator, given its serial number: a simulator class, a
+        function, or a :class:`SimulatorClass` (a class named by its import path,
+        imported on first use).
     :param description: what it is, for people (``"SR v4 motor board, firmware 3"``).
     :param serial_prefix: the start of the serial numbers of this simulator's boards in
         a simulated kit (``"SIMMB"`` gives ``SIMMB0``, ``SIMMB1``...).
@@ -129,8 +183,11 @@ class SimulatorEntry:
         """Whether the simulator speaks over a serial port (and so can be served on a pty)."""
         from j5aio.simulator.base import SerialBoardSimulator
 
-        if isinstance(self.factory, type):
-            return issubclass(self.factory, SerialBoardSimulator)
+        factory = self.factory
+        if isinstance(factory, SimulatorClass):
+            factory = factory.resolve()
+        if isinstance(factory, type):
+            return issubclass(factory, SerialBoardSimulator)
         return isinstance(self.factory("SIM0"), SerialBoardSimulator)
 
 
@@ -234,6 +291,22 @@ class BoardKind:
         for entry in self.simulators:
             if not isinstance(entry, SimulatorEntry):
                 raise TypeError(f"board kind {self.name!r}: simulators must be SimulatorEntry")
+
+    def backend_reference(self, role: str) -> str | None:
+        """The import path of the ``role`` backend, ``"package.module:ClassName"``, or ``None``.
+
+        It imports nothing: an environment uses it to know which kinds have a backend
+        before it needs any of them.
+
+        :param role: ``"hardware"``, ``"console"`` or ``"simulated"``.
+        :raises ValueError: ``role`` is none of those.
+        """
+        if role not in _BACKEND_ROLES:
+            raise ValueError(f"a backend role is one of {', '.join(_BACKEND_ROLES)}, not {role!r}")
+        value: type[Backend] | str | None = vars(self)[f"_{role}"]
+        if value is None or isinstance(value, str):
+            return value
+        return f"{value.__module__}:{value.__qualname__}"
 
     def _check_backend(self, role: str, backend: object) -> None:
         if backend is None:
@@ -397,7 +470,11 @@ def _with_package(item: BoardKind | KitDefinition, package: str) -> BoardKind | 
         return item
     from dataclasses import replace
 
-    return replace(item, package=package)
+    if isinstance(item, KitDefinition):
+        return replace(item, package=package)
+    # (the backends as given: reading them would import those named by path)
+    given = {role: vars(item)[f"_{role}"] for role in _BACKEND_ROLES}
+    return replace(item, package=package, **given)
 
 
 _registry = _Registry()

@@ -119,8 +119,7 @@ class _HardwareByDefault(Environment):
 
     def __init__(self, hardware: Environment) -> None:
         super().__init__(hardware.name, gather=hardware.gather)
-        self.board_backend_mapping = hardware.board_backend_mapping
-        self.backends = hardware.backends
+        self._slots = hardware._slots  # the same backends, loaded once for both
         self.found_any = False
 
     async def get_board_group(self, board: type[BoardT]) -> BoardGroup[BoardT]:

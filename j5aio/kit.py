@@ -136,7 +136,7 @@ class KitRobot(BaseRobot):
     @staticmethod
     async def _find_kch(environment: Environment) -> KCHBoard | None:
         """The KCH, if the environment can find one and there is one (a Pi has one HAT)."""
-        if KCHBoard not in environment.supported_boards:
+        if not environment.might_find(KCHBoard):  # (its backend is then not even loaded)
             return None
         found = await environment.get_board_group(KCHBoard)
         return found[0] if found else None

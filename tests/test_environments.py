@@ -61,7 +61,8 @@ def test_a_name_must_be_a_string() -> None:
 def test_hardware_is_the_default(monkeypatch: pytest.MonkeyPatch) -> None:
     default = get_default_environment()
     assert default.name == HARDWARE_ENVIRONMENT.name
-    assert default.board_backend_mapping is HARDWARE_ENVIRONMENT.board_backend_mapping
+    assert default.board_backend_mapping == HARDWARE_ENVIRONMENT.board_backend_mapping
+    assert default.backends == HARDWARE_ENVIRONMENT.backends
     assert not environment_was_chosen()
     monkeypatch.setenv(ENVIRONMENT_VARIABLE, "  ")
     assert get_default_environment() is default

@@ -85,6 +85,28 @@ def test_the_simulated_environment_loads_no_console_or_webcam_backend() -> None:
     assert "importlib.metadata" not in modules
 
 
+def test_the_simulated_kit_loads_the_backends_of_its_own_boards_only() -> None:
+    program = textwrap.dedent("""
+        import os
+        os.environ["J5AIO_LOCK_PORT"] = "0"
+        import anyio
+        from j5aio.kit import KitRobot
+        from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+        from j5aio.simulator.kit import use_kit
+
+        async def main():
+            use_kit("sb2019")
+            async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+                assert len(robot.motor_boards) == 1 and robot.arduinos
+
+        anyio.run(main)
+    """)
+    modules = imported_by(program)
+    assert "j5aio.backends.hardware.sr.v4.motor_board" in modules
+    fw4 = [m for m in modules if m.endswith(("_fw4", "fw4_codec", "arduino_2024"))]
+    assert [m for m in fw4 if m.startswith("j5aio.backends")] == []
+
+
 def lazy_packages() -> list[str]:
     """Every package of j5aio whose ``__init__`` exports names lazily."""
     found = []

@@ -19,7 +19,6 @@ and what is allowed. In COMP mode every field must be given: nothing is filled i
 
 from __future__ import annotations
 
-import json
 import logging
 import math
 import os
@@ -228,6 +227,8 @@ def read_metadata_file(path: Path) -> Metadata:
         raise MetadataError(f"{path}: cannot be read: {exc.strerror or exc}") from None
     if len(raw) > _MAX_FILE_BYTES:
         raise MetadataError(f"{path}: is larger than {_MAX_FILE_BYTES} bytes")
+    import json  # (here: most runs have no metadata file to read)
+
     try:
         data = json.loads(raw.decode("utf-8"))
     except UnicodeDecodeError:

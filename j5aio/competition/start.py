@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import logging
 import os
-import tempfile
 import threading
 from collections.abc import Awaitable, Callable, Iterable
 from datetime import timedelta
@@ -66,6 +65,8 @@ def start_file() -> Path:
     named = os.environ.get(START_FILE_VARIABLE)
     if named:
         return Path(named)
+    import tempfile  # (here: it imports shutil, random and more, which a start rarely needs)
+
     return Path(tempfile.gettempdir()) / "j5aio-start"
 
 

@@ -96,6 +96,13 @@ class SerialSimulatorFactory(Protocol):
         ...
 
 
+def _unwrap(factory: object) -> object:
+    """A factory as given, or the class a :class:`~j5aio.board_kinds.SimulatorClass` names."""
+    from j5aio.board_kinds import SimulatorClass
+
+    return factory.resolve() if isinstance(factory, SimulatorClass) else factory
+
+
 class _SerialSimulators(Mapping[str, SerialSimulatorFactory]):
     """The serial simulators of the board kind registry, by name; read-only."""
 
@@ -103,7 +110,7 @@ class _SerialSimulators(Mapping[str, SerialSimulatorFactory]):
         from j5aio.board_kinds import simulator_entries
 
         return {
-            name: entry.factory  # type: ignore[misc]
+            name: _unwrap(entry.factory)  # type: ignore[misc]
             for name, (kind, entry) in simulator_entries().items()
             if entry.is_serial
         }

@@ -9,7 +9,7 @@ the portal (:func:`j5aio.sync.wrapping.call`); no wrapper contains logic of its 
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Mapping, Sequence, Set
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence, Set
 from datetime import timedelta
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Generic, Self, TypeVar, cast, overload
@@ -171,6 +171,11 @@ class Environment(_SyncWrapper):
     generation a subclass of the family's board class. :meth:`get_board_group` gathers
     the boards of every backend registered for the class asked for or a subclass of it.
 
+    A backend may be registered by the board class it drives and a function that imports
+    it (:meth:`register_lazily`): it is imported the first time a board of its class is
+    asked for, so a program imports the backends of the boards it uses only (the
+    hardware and simulated environments register every board kind's backend this way).
+
     :param name: a name to show to people, e.g. ``"HardwareEnvironment"``.
     :param gather: find a family's boards through every backend registered for it (as
         on hardware); if false, through the first one only (the console environment,
@@ -199,8 +204,20 @@ class Environment(_SyncWrapper):
         return cast("Environment", _wrap(_backends_environment.Environment.from_backends(name, backends, gather=gather)))
 
     @property
+    def board_backend_mapping(
+        self,
+    ) -> dict[type[_boards_board.Board], type[_backends_backend.Backend]]:
+        """The first backend registered for each board class (a new dict: loads them all)."""
+        return self._core.board_backend_mapping
+
+    @property
+    def backends(self) -> list[type[_backends_backend.Backend]]:
+        """Every backend registered, in order (a new list: loads them all)."""
+        return self._core.backends
+
+    @property
     def supported_boards(self) -> set[type[_boards_board.Board]]:
-        """The kinds of board this environment has a backend for."""
+        """The kinds of board this environment has a backend for (loading none of them)."""
         return self._core.supported_boards
 
     def register_backend(
@@ -217,6 +234,33 @@ class Environment(_SyncWrapper):
             backend for its board and ``alongside`` is false.
         """
         self._core.register_backend(backend, alongside=alongside)
+
+    def register_lazily(
+        self,
+        board: type[_boards_board.Board | Board],
+        load: Callable[[], type[_backends_backend.Backend]],
+        *,
+        idle: Callable[[], bool] | None = None,
+    ) -> None:
+        """Use the backend ``load()`` returns for ``board``, importing it on first use.
+
+        It is registered alongside any other backend for ``board`` (as
+        :meth:`register_backend` does with ``alongside=True``), and loaded the first time
+        a board it may drive is asked for, or :attr:`backends` or
+        :attr:`board_backend_mapping` is read.
+
+        :param board: the board class the backend drives (its ``board``). Should it
+            drive a subclass of ``board``, it is known by that subclass once loaded.
+        :param load: imports and returns the backend; what it returns is checked to be
+            a :class:`~j5aio.backends.backend.Backend` driving ``board`` or a subclass
+            (:class:`TypeError` otherwise).
+        :param idle: says, when :meth:`get_board_group` runs, that the backend would
+            find no board now (the simulated kit has none of its boards, say): it is then
+            not asked, nor loaded if it is not yet (unless no backend for the board is
+            active: the group then holds the first backend, with no boards).
+        :raises TypeError: ``board`` is not a Board subclass, or ``load`` is not callable.
+        """
+        self._core.register_lazily(_unwrap(board), load, idle=idle)
 
     def get_backend(
         self,
@@ -237,6 +281,15 @@ class Environment(_SyncWrapper):
         :raises NotImplementedError: the environment has no backend for such a board.
         """
         return self._core.backends_for(_unwrap(board))
+
+    def might_find(self, board: type[_boards_board.Board | Board]) -> bool:
+        """Whether :meth:`get_board_group` would ask any backend for ``board`` now.
+
+        False when the environment has no backend for ``board`` (or a subclass), or when
+        every such backend registered with ``idle`` says it would find nothing now; it
+        loads no backend to tell.
+        """
+        return self._core.might_find(_unwrap(board))
 
     @overload
     def get_board_group(self, board: type[SyncBoardT]) -> BoardGroup[SyncBoardT]:
@@ -349,14 +402,15 @@ class Environment(_SyncWrapper):
         """Find every ``board`` through each backend this environment has for it.
 
         Boards of every generation (backends for ``board`` or a subclass) are gathered
-        into one group.
+        into one group. A backend registered lazily whose ``idle`` says it would find
+        nothing now is left out (and not imported).
 
         :raises NotImplementedError: the environment has no backend for that board.
         """
         return cast("BoardGroup[Board]", _wrap(_call(self._core.get_board_group, _unwrap(board))))
 
     def merge(self, other: Environment) -> None:
-        """Add every backend of ``other`` to this environment.
+        """Add every backend of ``other`` to this environment (unloaded ones stay so).
 
         :raises RuntimeError: both environments have a backend for the same board; nothing
             is merged.
@@ -372,18 +426,6 @@ class Environment(_SyncWrapper):
     def gather(self) -> bool:
         """The ``gather`` of the wrapped object."""
         return self._core.gather
-
-    @property
-    def board_backend_mapping(
-        self,
-    ) -> dict[type[_boards_board.Board], type[_backends_backend.Backend]]:
-        """The ``board_backend_mapping`` of the wrapped object."""
-        return self._core.board_backend_mapping
-
-    @property
-    def backends(self) -> list[type[_backends_backend.Backend]]:
-        """The ``backends`` of the wrapped object."""
-        return self._core.backends
 
 
 class UltrasoundSensors(_SyncWrapper):

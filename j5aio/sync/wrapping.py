@@ -16,7 +16,6 @@ its output, kept stable for generated modules of other packages.
 
 from __future__ import annotations
 
-import difflib
 import weakref
 from collections.abc import Iterator, Mapping, Sequence, Set
 from typing import TYPE_CHECKING, Any, TypeVar
@@ -87,6 +86,8 @@ def _no_such_attribute(wrapper: SyncWrapper, name: str) -> str:
     """Say that ``wrapper`` has no attribute ``name`` to set, and which one was meant."""
     message = f"{type(wrapper).__name__!r} object has no attribute {name!r} to set"
     public = [n for n in dir(type(wrapper)) if not n.startswith("_")]
+    import difflib  # (here: only a mistyped name needs it)
+
     close = difflib.get_close_matches(name, public, n=1)
     return f"{message}. Did you mean: {close[0]!r}?" if close else message
 

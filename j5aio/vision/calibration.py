@@ -14,7 +14,6 @@ from __future__ import annotations
 import json
 import math
 import sys
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Final
@@ -107,13 +106,15 @@ class CameraCalibration:
         :raises ValueError: the file is not a calibration this can read.
         :raises OSError: the file cannot be read.
         """
+        from xml.etree.ElementTree import ParseError  # (here: few programs read one)
+
         path = Path(path)
         text = path.read_text(encoding="utf-8")
         try:
             if text.lstrip().startswith("{"):
                 return cls._from_json(text)
             return cls._from_opencv_xml(text)
-        except (KeyError, IndexError, ValueError, TypeError, ET.ParseError) as exc:
+        except (KeyError, IndexError, ValueError, TypeError, ParseError) as exc:
             raise ValueError(f"{path} is not a camera calibration this can read: {exc}") from exc
 
     @classmethod
@@ -131,6 +132,8 @@ class CameraCalibration:
 
     @classmethod
     def _from_opencv_xml(cls, text: str) -> CameraCalibration:
+        import xml.etree.ElementTree as ET
+
         root = ET.fromstring(text)
 
         def numbers(tag: str) -> list[float]:

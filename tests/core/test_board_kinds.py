@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Iterator
 from typing import Any
 
@@ -13,6 +14,7 @@ from j5aio.board_kinds import (
     BoardKind,
     BoardPluginWarning,
     KitDefinition,
+    SimulatorClass,
     SimulatorEntry,
     find_simulator,
     get_kit,
@@ -49,7 +51,9 @@ def test_j5aios_own_kinds_and_kits_are_registered() -> None:
     assert get_kit(" SB2019 ").name == "sb2019"
     kind, entry = find_simulator("sr-power")
     assert kind.board is PowerBoard
-    assert entry.factory is SRPowerBoardFw3Simulator
+    assert entry.factory == SimulatorClass("j5aio.simulator.sr_power_fw3:SRPowerBoardFw3Simulator")
+    assert isinstance(entry.factory, SimulatorClass)
+    assert entry.factory.resolve() is SRPowerBoardFw3Simulator
     assert not entry.is_serial
     assert find_simulator("sr-motor")[1].is_serial
 
@@ -132,6 +136,51 @@ def test_a_backend_given_by_import_path_is_imported_when_first_read() -> None:
     assert BoardKind.hardware is None  # the class's default
 
 
+def test_a_simulator_class_named_by_path_is_imported_on_first_use(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    import sys
+
+    path = "j5aio.simulator.sr_motor_fw3:SRMotorBoardFw3Simulator"
+    monkeypatch.delitem(sys.modules, "j5aio.simulator.sr_motor_fw3")
+    factory = SimulatorClass(path)
+    entry = SimulatorEntry("m", factory, "a motor board", "SIMM")
+    assert "j5aio.simulator.sr_motor_fw3" not in sys.modules
+    assert entry.is_serial  # from the class: nothing is made
+    made = factory("SIMM0")
+    assert type(made).__name__ == "SRMotorBoardFw3Simulator"
+    assert made.serial_number == "SIMM0"  # type: ignore[attr-defined]
+    assert factory.resolve() is type(made)
+    assert repr(factory) == f"SimulatorClass({path!r})"
+    assert factory == SimulatorClass(path) and hash(factory) == hash(SimulatorClass(path))
+    assert factory != path
+
+
+@pytest.mark.parametrize("path", ["", "no_colon", "module:", ":Name", "m:not-a-name", 3])
+def test_a_simulator_class_path_must_name_a_module_and_a_class(path: Any) -> None:
+    with pytest.raises(ValueError, match=r"'package\.module:ClassName'"):
+        SimulatorClass(path)
+
+
+def test_a_simulator_class_path_naming_no_class_fails_when_used() -> None:
+    with pytest.raises(TypeError, match="is not a class"):
+        SimulatorClass("j5aio.simulator.kit:current_kit")("S")
+    with pytest.raises(ImportError):
+        SimulatorClass("no.such.module:Simulator").resolve()
+
+
+def test_a_backends_import_path_is_known_without_importing_it() -> None:
+    kind = BoardKind("k", MotorBoard, "x", hardware=MOTOR_FW3, console=None)
+    assert kind.backend_reference("hardware") == MOTOR_FW3
+    assert vars(kind)["_hardware"] == MOTOR_FW3  # still not imported
+    assert kind.backend_reference("console") is None
+    assert kind.backend_reference("simulated") is None
+    given = BoardKind("k", MotorBoard, "x", hardware=SRV4MotorBoardHardwareBackend)
+    assert given.backend_reference("hardware") == MOTOR_FW3  # a class: its path
+    with pytest.raises(ValueError, match="a backend role is one of hardware, console, simulated"):
+        kind.backend_reference("board")
+
+
 def test_the_builtin_kinds_name_their_backends_by_path_and_they_resolve() -> None:
     from j5aio import _builtin_kinds
 
@@ -211,6 +260,23 @@ def test_plugins_are_loaded_and_marked_with_their_package(
     assert kinds["sr-v4-motor-fw3"].package == "j5aio"
     assert get_kit("test-kit").package == "j5aio-fake-plugin"
     assert get_kit("sr2019").boards["test-motor-gen9"] == 2
+
+
+def test_loading_a_plugin_imports_none_of_the_backends_it_names_by_path(
+    fresh_registry: list[FakeEntryPoint],
+) -> None:
+    lazy = BoardKind(
+        "test-lazy", MotorBoard, "x",
+        hardware="no_such_plugin.backend:Backend", console="no_such_plugin.console:Console",
+    )
+    fresh_registry.append(FakeEntryPoint("lazy", [lazy]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a plugin left out would warn
+        kind = {kind.name: kind for kind in board_kinds.board_kinds()}["test-lazy"]
+    assert kind.package == "j5aio-fake-plugin"
+    assert kind.backend_reference("hardware") == "no_such_plugin.backend:Backend"
+    with pytest.raises(ImportError, match="no_such_plugin"):
+        _ = kind.hardware
 
 
 @pytest.mark.parametrize(

@@ -15,13 +15,12 @@ from typing import TYPE_CHECKING, ClassVar
 from j5aio.backends.backend import Backend
 from j5aio.boards.camera import CameraBoard
 from j5aio.components.marker_camera import MarkerCameraInterface
-from j5aio.vision.annotate import annotate, write_image
-from j5aio.vision.detect import MarkerDetector
 from j5aio.vision.worker import CameraWorker
 
 if TYPE_CHECKING:
     from j5aio.boards.board import Board
     from j5aio.vision.calibration import CameraCalibration
+    from j5aio.vision.detect import MarkerDetector
     from j5aio.vision.image import Image
     from j5aio.vision.markers import Marker
     from j5aio.vision.sizes import MarkerSizes
@@ -73,6 +72,8 @@ class FrameCameraBackend(Backend, MarkerCameraInterface):
     def _detector_here(self) -> MarkerDetector:
         # Made on the worker thread, the only thread that uses it.
         if self._detector is None:
+            from j5aio.vision.detect import MarkerDetector  # (here: the first look needs it)
+
             self._detector = MarkerDetector(quad_decimate=self._quad_decimate)
         return self._detector
 
@@ -91,6 +92,8 @@ class FrameCameraBackend(Backend, MarkerCameraInterface):
         return self._detector_here().detect_ids(source())
 
     def _save(self, source: Callable[[], Image], path: Path, sizes: MarkerSizes) -> None:
+        from j5aio.vision.annotate import annotate, write_image
+
         frame = source()
         markers = self._detector_here().detect(frame, self._calibration, sizes)
         write_image(path, annotate(frame, markers))

@@ -43,7 +43,6 @@ from j5aio.backends.hardware.transports.discovery import (
 )
 from j5aio.backends.hardware.transports.readers import ReplyReader
 from j5aio.backends.hardware.transports.serial_link import SerialLink
-from j5aio.backends.hardware.transports.serial_stream import open_serial_stream
 from j5aio.backends.hardware.transports.stream import ByteStream
 from j5aio.boards.board import Board
 from j5aio.errors import (
@@ -366,6 +365,9 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
     @classmethod
     async def _open_stream(cls, port: str, opener: StreamOpener | None) -> ByteStream:
         if opener is None:
+            # (imported here: pyserial's asyncio stream is needed for a real port only)
+            from j5aio.backends.hardware.transports.serial_stream import open_serial_stream
+
             return await open_serial_stream(port, cls.BAUDRATE)
         return await opener(port, cls.BAUDRATE)
 

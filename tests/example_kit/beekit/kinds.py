@@ -3,12 +3,9 @@
 
 from __future__ import annotations
 
-from j5aio.board_kinds import BoardKind, KitDefinition, SimulatorEntry
+from j5aio.board_kinds import BoardKind, KitDefinition, SimulatorClass, SimulatorEntry
 
-from .backend import BeeBackend
 from .boards import BeeBoard
-from .console import BeeConsoleBackend
-from .simulator import BeeSimulator
 
 __all__ = ["entries"]
 
@@ -20,9 +17,15 @@ def entries() -> list[BoardKind | KitDefinition]:
             name="bee-fw2",
             board=BeeBoard,
             description="Bee Board, firmware 2 (two motors, an LED and a button; serial)",
-            hardware=BeeBackend,
-            console=BeeConsoleBackend,
-            simulators=(SimulatorEntry("bee", BeeSimulator, "Bee Board", "SIMBEE"),),
+            # Backends and simulators named by import path are imported only when a
+            # program uses a Bee Board, not by every j5aio program that loads the plugins.
+            hardware="beekit.backend:BeeBackend",
+            console="beekit.console:BeeConsoleBackend",
+            simulators=(
+                SimulatorEntry(
+                    "bee", SimulatorClass("beekit.simulator:BeeSimulator"), "Bee Board", "SIMBEE"
+                ),
+            ),
             # Identify serial ports as a Bee Board only after j5aio's own boards.
             identify_order=200,
         ),

@@ -21,27 +21,42 @@
 
 from __future__ import annotations
 
-from .discovery import (
-    FTDI_VENDOR_ID,
-    PortInfo,
-    find_port,
-    find_usb_devices,
-    list_serial_ports,
-    match_ports,
-)
-from .memory import MemoryStream, SerialSimulatorLike, SimulatorStream, memory_stream_pair
-from .readers import (
-    ReplyReader,
-    line_starts_with,
-    read_exactly,
-    read_line,
-    read_lines_until,
-)
-from .serial_link import SerialLink
-from .serial_stream import SerialStream, open_serial_stream
-from .stream import ByteStream
-from .trace import TRACE, wire_logger
-from .usb_link import USBDeviceLike, USBDisconnectionError, USBLink, USBTransferTimeoutError
+from typing import TYPE_CHECKING
+
+from j5aio._lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from j5aio.backends.hardware.transports.discovery import (
+        FTDI_VENDOR_ID,
+        PortInfo,
+        find_port,
+        find_usb_devices,
+        list_serial_ports,
+        match_ports,
+    )
+    from j5aio.backends.hardware.transports.memory import (
+        MemoryStream,
+        SerialSimulatorLike,
+        SimulatorStream,
+        memory_stream_pair,
+    )
+    from j5aio.backends.hardware.transports.readers import (
+        ReplyReader,
+        line_starts_with,
+        read_exactly,
+        read_line,
+        read_lines_until,
+    )
+    from j5aio.backends.hardware.transports.serial_link import SerialLink
+    from j5aio.backends.hardware.transports.serial_stream import SerialStream, open_serial_stream
+    from j5aio.backends.hardware.transports.stream import ByteStream
+    from j5aio.backends.hardware.transports.trace import TRACE, wire_logger
+    from j5aio.backends.hardware.transports.usb_link import (
+        USBDeviceLike,
+        USBDisconnectionError,
+        USBLink,
+        USBTransferTimeoutError,
+    )
 
 __all__ = [
     "FTDI_VENDOR_ID",
@@ -70,3 +85,31 @@ __all__ = [
     "read_lines_until",
     "wire_logger",
 ]
+
+# Each name is imported from its module when first used: a program on the simulated kit,
+# say, never imports pyserial's stream (serial_stream) this way.
+if not TYPE_CHECKING:
+    __getattr__, __dir__ = lazy_exports(
+        __name__,
+        {
+            "j5aio.backends.hardware.transports.discovery": [
+                "FTDI_VENDOR_ID", "PortInfo", "find_port", "find_usb_devices",
+                "list_serial_ports", "match_ports",
+            ],
+            "j5aio.backends.hardware.transports.memory": [
+                "MemoryStream", "SerialSimulatorLike", "SimulatorStream", "memory_stream_pair",
+            ],
+            "j5aio.backends.hardware.transports.readers": [
+                "ReplyReader", "line_starts_with", "read_exactly", "read_line", "read_lines_until",
+            ],
+            "j5aio.backends.hardware.transports.serial_link": ["SerialLink"],
+            "j5aio.backends.hardware.transports.serial_stream": [
+                "SerialStream", "open_serial_stream",
+            ],
+            "j5aio.backends.hardware.transports.stream": ["ByteStream"],
+            "j5aio.backends.hardware.transports.trace": ["TRACE", "wire_logger"],
+            "j5aio.backends.hardware.transports.usb_link": [
+                "USBDeviceLike", "USBDisconnectionError", "USBLink", "USBTransferTimeoutError",
+            ],
+        },
+    )

@@ -1,0 +1,209 @@
+"""Discovery of the simulated kit's boards, as the hardware backends' discovery sees them.
+
+:func:`kit_discovery_options` gives the
+:class:`~j5aio.backends.hardware.options.DiscoveryOptions` under which a hardware
+backend finds the boards of a :class:`~j5aio.simulator.kit.SimulatedKit`: a serial board
+as a port named ``sim://<kit name>/<serial number>``, a USB board as a
+:class:`SimulatedUSBDevice`. The simulated environment
+(:mod:`j5aio.simulator.environment`) is made of backends using them.
+"""
+
+from __future__ import annotations
+
+import time
+import weakref
+from typing import TYPE_CHECKING, Any
+
+from j5aio.backends.hardware.options import DiscoveryOptions
+from j5aio.backends.hardware.transports.discovery import PortInfo
+from j5aio.backends.hardware.transports.memory import SimulatorStream
+
+from .base import SerialBoardSimulator, UsbBoardSimulator
+from .kit import SimulatedKit
+from .sr_power_fw3 import SRPowerBoardFw3Simulator
+from .usb_support import no_device_error
+
+if TYPE_CHECKING:
+    from j5aio.backends.hardware.transports.stream import ByteStream
+    from j5aio.board_kinds import BoardKind
+
+__all__ = [
+    "MINIMUM_TIMEOUT_SCALE",
+    "SimulatedUSBDevice",
+    "kit_discovery_options",
+    "port_name",
+]
+
+
+def port_name(kit: SimulatedKit, simulator: SerialBoardSimulator) -> str:
+    """Return the name a serial simulator's port has in ``kit``."""
+    return f"sim://{kit.name}/{simulator.serial_number}"
+
+
+
+# Piezo time on each simulated power board: when its notes last moved on.
+_piezo_clocks: weakref.WeakKeyDictionary[SRPowerBoardFw3Simulator, float] = (
+    weakref.WeakKeyDictionary()
+)
+
+
+class SimulatedUSBDevice:
+    """A USB board simulator as discovery finds it, standing in for a pyusb device.
+
+    Every attribute is the simulator's, with two additions: ``bus`` and ``address`` name
+    its place in the kit (so that finding it again gives back the same board), and each
+    transfer first lets the real time since the last one pass on a power board's piezo,
+    so that queued notes finish playing.
+
+    :param simulator: the simulated board.
+    :param kit: the kit it belongs to.
+    """
+
+    def __init__(self, simulator: UsbBoardSimulator, kit: SimulatedKit) -> None:
+        self._simulator = simulator
+        #: The kit's name, in place of a USB bus number.
+        self.bus = kit.name
+        #: The board's serial number, in place of a USB address.
+        self.address = simulator.serial_number
+        self._connection = simulator.connection
+
+    @property
+    def simulator(self) -> UsbBoardSimulator:
+        """The simulated board."""
+        return self._simulator
+
+    @property
+    def idVendor(self) -> int:  # noqa: N802 - pyusb's name
+        """The USB vendor ID."""
+        return self._simulator.idVendor
+
+    @property
+    def idProduct(self) -> int:  # noqa: N802 - pyusb's name
+        """The USB product ID."""
+        return self._simulator.idProduct
+
+    @property
+    def serial_number(self) -> str | None:
+        """The USB serial number string."""
+        return self._simulator.serial_number
+
+    def ctrl_transfer(
+        self,
+        bmRequestType: int,  # noqa: N803 - pyusb's names
+        bRequest: int,  # noqa: N803
+        wValue: int = 0,  # noqa: N803
+        wIndex: int = 0,  # noqa: N803
+        data_or_wLength: Any = None,  # noqa: N803
+        timeout: int | None = None,
+    ) -> Any:
+        """Do a control transfer on the simulator, after letting time pass on it.
+
+        A device found before the board was unplugged is dead for good (errno 19), as a
+        pyusb device is after its cable came out, even once the board is back.
+        """
+        if self._simulator.connection != self._connection:
+            raise no_device_error()
+        self._let_time_pass()
+        return self._simulator.ctrl_transfer(
+            bmRequestType, bRequest, wValue, wIndex, data_or_wLength, timeout
+        )
+
+    def _let_time_pass(self) -> None:
+        simulator = self._simulator
+        if not isinstance(simulator, SRPowerBoardFw3Simulator):
+            return
+        now = time.monotonic()
+        last = _piezo_clocks.get(simulator, now)
+        elapsed_ms = int((now - last) * 1000)
+        if elapsed_ms > 0 or simulator not in _piezo_clocks:
+            simulator.advance_piezo(elapsed_ms)
+            _piezo_clocks[simulator] = last + elapsed_ms / 1000
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._simulator, name)
+
+    def __repr__(self) -> str:
+        return f"<SimulatedUSBDevice {type(self._simulator).__name__} {self.address}>"
+
+
+#: The least factor applied to the backends' timeouts on the simulated kit. A simulated
+#: board answers at once, so a timeout costs nothing unless something is wrong; but a
+#: timeout scaled to almost nothing (with a kit ``time_scale`` of 0) would fail whenever
+#: the computer is busy.
+MINIMUM_TIMEOUT_SCALE = 0.1
+
+
+def kit_discovery_options(
+    kit: SimulatedKit,
+    serial_type: type[SerialBoardSimulator] = SerialBoardSimulator,
+    *,
+    timeout_scale: float | None = None,
+    kind: BoardKind | None = None,
+) -> DiscoveryOptions:
+    """Return discovery options that find the plugged-in boards of ``kit``.
+
+    Each serial board of ``serial_type`` (every serial board by default) is listed as a
+    :class:`~j5aio.backends.hardware.transports.discovery.PortInfo`, and opening it gives a
+    :class:`~j5aio.backends.hardware.transports.memory.SimulatorStream` to its simulator, with the
+    kit's time scale. Each USB board is found as a :class:`SimulatedUSBDevice` by its vendor and
+    product IDs. Any hardware discovery,
+    :func:`~j5aio.backends.hardware.listing.find_boards` included, then finds the kit.
+
+    :param kit: the kit whose boards to find.
+    :param serial_type: list only the serial boards of this simulator class (the
+        SourceBots Arduino and the Ruggeduino share their USB IDs, so each simulated
+        backend looks at its own kind only).
+    :param timeout_scale: the factor for the backends' timeouts (waiting for a board to
+        boot, say); by default the kit's time scale, but at least
+        :data:`~j5aio.simulator.discovery.MINIMUM_TIMEOUT_SCALE`.
+    :param kind: list only the boards (serial and USB) simulating this board kind.
+    """
+    if timeout_scale is None:
+        timeout_scale = max(kit.time_scale, MINIMUM_TIMEOUT_SCALE)
+    simulators = {
+        port_name(kit, simulator): simulator
+        for simulator in kit.serial_simulators()
+        if isinstance(simulator, serial_type) and _of_kind(kit, simulator, kind)
+    }
+
+    def list_ports() -> list[PortInfo]:
+        return [
+            PortInfo(
+                device=name,
+                vid=simulator.usb_vid,
+                pid=simulator.usb_pid,
+                serial_number=simulator.serial_number,
+                manufacturer=simulator.manufacturer,
+                product=simulator.product,
+                description=f"simulated {type(simulator).__name__}",
+            )
+            for name, simulator in simulators.items()
+            if simulator.connected
+        ]
+
+    async def open_port(port: str, baudrate: int) -> ByteStream:
+        return SimulatorStream(simulators[port], name=port, time_scale=kit.time_scale)
+
+    def find(*, find_all: bool, idVendor: int, idProduct: int) -> list[SimulatedUSBDevice]:  # noqa: N803
+        return [
+            SimulatedUSBDevice(simulator, kit)
+            for simulator in kit.usb_simulators()
+            if simulator.connected
+            and _of_kind(kit, simulator, kind)
+            and (simulator.idVendor, simulator.idProduct) == (idVendor, idProduct)
+        ]
+
+    return DiscoveryOptions(
+        port_source=list_ports,
+        opener=open_port,
+        usb_finder=find,
+        time_scale=timeout_scale,
+        # Each simulated backend lists its own kind's boards only.
+        identify_shared_ports=serial_type is SerialBoardSimulator and kind is None,
+    )
+
+
+def _of_kind(
+    kit: SimulatedKit, simulator: SerialBoardSimulator | UsbBoardSimulator, kind: BoardKind | None
+) -> bool:
+    return kind is None or kit.kind_of(simulator) is kind
