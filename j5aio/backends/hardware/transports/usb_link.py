@@ -621,8 +621,9 @@ class USBLink(AsyncResource):
                 if not polls:
                     doorbell.acquire()
                     continue
-                # An idle poll's whole cost is this wait's wake-up and the read: keep the
-                # path short (no exception, no allocation, no scan).
+                if len(polls) == 1:  # the usual case: one button waited for
+                    self._poll_alone(polls[0])
+                    continue
                 wait = self._poll_due - monotonic()
                 if wait > 0 and doorbell.acquire(True, wait):
                     continue  # a job came (or a ring left over from one already run)
@@ -652,6 +653,41 @@ class USBLink(AsyncResource):
             waiters, self._stop_waiters = self._stop_waiters, []
         for loop, future in waiters:
             _post(loop, future, None)
+
+    def _poll_alone(self, poll: _PollJob[Any]) -> None:
+        """Run the only poll until a job comes or the poll ends: the idle path.
+
+        An idle poll's whole cost is the wait's wake-up, the read and ``found``: the
+        loop keeps what it needs in local variables, raises no exception when a read is
+        due (the doorbell's timed wait returns ``False``) and allocates nothing itself.
+        """
+        jobs, doorbell, monotonic = self._jobs, self._doorbell, time.monotonic
+        work, found, interval = poll.work, poll.found, poll.interval
+        due = poll.due
+        try:
+            while not jobs:
+                wait = due - monotonic()
+                if wait > 0 and doorbell.acquire(True, wait):
+                    continue  # a job came (or a ring left over from one already run)
+                if poll.withdrawn:
+                    self._polls.clear()
+                    return
+                now = monotonic()
+                due += interval  # a steady rate, unless the thread fell behind
+                if due <= now:
+                    due = now + interval
+                try:
+                    value = work()
+                    if not found(value):
+                        continue
+                    outcome: tuple[bool, Any] = (True, value)
+                except BaseException as exc:  # the thread must survive, and the caller hear
+                    outcome = (False, exc)
+                self._polls.clear()
+                poll.finish(outcome)
+                return
+        finally:
+            poll.due = self._poll_due = due
 
     def _run_due_polls(self) -> None:
         """Run the polls that are due; note when the next one is."""

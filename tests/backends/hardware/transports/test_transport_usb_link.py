@@ -520,3 +520,71 @@ async def test_transfers_asked_for_during_a_poll_run_without_waiting_for_its_nex
     assert _reads_of(device, 9) == 200
     assert _reads_of(device, 8) == 1
     assert sum(1 for call in device.calls if call[3] == 3) == 50
+
+
+async def test_two_polls_at_once_take_turns_and_end_on_their_own(
+    device: StandInDevice, link: USBLink
+) -> None:
+    # Two polls of one link (say two buttons): each is read at its own interval, each
+    # ends at its own found reply, and one given up leaves the other reading.
+    ended: list[int] = []
+
+    async def poll(index: int, reads: int) -> None:
+        await link.poll_control_read(
+            index, 4, lambda _reply: _reads_of(device, index) >= reads, interval=0.001
+        )
+        ended.append(index)
+
+    with anyio.fail_after(30):
+        async with anyio.create_task_group() as group:
+            group.start_soon(poll, 8, 5)
+            group.start_soon(poll, 7, 30)
+            with anyio.CancelScope() as given_up:
+                given_up.cancel()  # a third poll, given up before it was ever read
+                await link.poll_control_read(6, 4, lambda _reply: False, interval=0.001)
+            async with anyio.create_task_group() as short:
+                short.start_soon(poll, 5, 10**9)  # never found: cancelled below
+                while _reads_of(device, 5) < 3:  # transfers take turns with the polls
+                    assert await link.control_read(9, 4) == struct.pack("<I", 9)
+                short.cancel_scope.cancel()
+    assert sorted(ended) == [7, 8]
+    assert _reads_of(device, 8) == 5
+    assert _reads_of(device, 7) == 30
+    reads_of_5 = _reads_of(device, 5)
+    await link.control_read(9, 4)  # the thread has moved past any read in flight
+    await anyio.sleep(0.01)
+    assert _reads_of(device, 5) <= reads_of_5 + 1
+    await link.control_read(9, 4)
+    settled = _reads_of(device, 5)
+    await anyio.sleep(0.01)
+    assert _reads_of(device, 5) == settled  # given up: read no more
+
+
+async def test_a_poll_given_up_while_the_thread_waits_is_dropped_at_its_next_read(
+    device: StandInDevice, link: USBLink
+) -> None:
+    # Nothing else is asked of the link: the thread itself notices, when the read falls
+    # due, that nobody waits for it any more, and goes back to waiting for jobs.
+    with anyio.move_on_after(0.01):
+        await link.poll_control_read(8, 4, lambda _reply: False, interval=0.002)
+    with anyio.fail_after(30):
+        while link._polls:  # noqa: ASYNC110 - the worker thread's state, no event
+            await anyio.sleep(0.001)
+    reads = _reads_of(device, 8)
+    await anyio.sleep(0.02)
+    assert _reads_of(device, 8) == reads
+    assert await link.control_read(9, 4) == struct.pack("<I", 9)  # the thread still serves
+
+
+async def test_a_read_failing_after_idle_reads_reaches_the_caller(
+    device: StandInDevice, link: USBLink
+) -> None:
+    def found(_reply: bytes) -> bool:
+        if _reads_of(device, 8) == 3:  # the board goes away after three idle reads
+            device.errors[8] = usb.core.USBError("No such device", -4, errno.ENODEV)
+        return False
+
+    with anyio.fail_after(30), pytest.raises(USBDisconnectionError, match="polling 4 bytes"):
+        await link.poll_control_read(8, 4, found, interval=0.001)
+    assert _reads_of(device, 8) == 4
+    assert not link._polls
