@@ -62,6 +62,7 @@ from .trace import log_wire, wire_logger
 
 __all__ = [
     "CONTROL_REQUEST",
+    "MAX_POLL_INTERVAL",
     "READ_REQUEST_TYPE",
     "WRITE_REQUEST_TYPE",
     "USBDeviceLike",
