@@ -59,8 +59,11 @@ class SRV4PowerBoardHardwareBackend(
     #: How often the button is read while a task waits for a press, in seconds. A read
     #: runs on the link's worker thread and wakes the event loop only once it sees the
     #: button down (see :meth:`.USBLink.poll_until`), so an idle read costs one wake-up
-    #: of that thread and the transfer. Chosen with ``bench/bench_button.py``: a press
-    #: waits half an interval on average (p50 <= 10 ms, p95 <= 20 ms) for under 1 % CPU.
+    #: of that thread and the transfer. Chosen with ``bench/bench_button.py
+    #: --intervals``: a press waits half an interval on average (measured p50 7.6 ms,
+    #: p95 14.4 ms; goals 10 and 20 ms) for about 1 % CPU on a loaded machine. A longer
+    #: interval saves little CPU there: each read after a longer sleep finds the caches
+    #: colder and costs more (15-17 ms all measured 1.07 %).
     BUTTON_POLL_INTERVAL: ClassVar[float] = 0.015
 
     def __init__(self, link: USBLink, *, key: str) -> None:
