@@ -16,7 +16,14 @@ Each *side* runs in a child process of its own, so that CPU figures are the side
 * ``polling``: as ``async``, but the simulated backend polls the simulator over the link
   as the hardware backend polls a real board (every ``BUTTON_POLL_INTERVAL``, on the USB
   link's worker thread), instead of listening to the simulator's press events: the
-  figures a real fw 3 power board gets, bar the USB transfer's own time;
+  figures a real fw 3 power board gets, bar the USB transfer's own time (here the
+  simulator's, standing in for pyusb's). ``--intervals 10,15,20`` runs one such side
+  per interval (``polling@10ms``...), to choose the interval; without it, the backend's
+  own ``BUTTON_POLL_INTERVAL``. Each also reports the CPU time of one idle poll (the
+  idle CPU over the reads made), and, as the machine's floor, the CPU time of a thread
+  that does nothing but sleep for the same interval, over the same time, in the same
+  process: no poll can cost less than that wake-up, and the difference is what the
+  link, the backend and the transfer add to it;
 * ``j5``: j5 0.12 (from the package registry, in its own venv made by
   ``bench/_peers.py``) driving the *same* simulator: j5's own SR v4 power board hardware
   backend is given the simulator as its pyusb device (the simulator's modules are loaded
@@ -34,9 +41,11 @@ Sides are run in turn, round after round (interleaved), and every figure printed
 median over rounds (p50 and p95 are taken within each round). Run::
 
     python bench/bench_button.py [--presses 50] [--rounds 3] [--idle 3] [--no-peer]
+                                 [--intervals MS,MS,...] [--sides async,polling,...]
 
 Goals (issue 12): p50 <= 10 ms and p95 <= 20 ms, at the same time as CPU <= 1 % while
-waiting, for async and sync (and, for the hardware path, ``polling``).
+waiting, for async and sync (and, for the hardware path, ``polling``); an idle poll
+<= 60 us of CPU.
 """
 
 from __future__ import annotations
@@ -52,7 +61,7 @@ import subprocess
 import sys
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -61,7 +70,10 @@ ROOT = HERE.parent
 GOAL_P50_MS = 10.0
 GOAL_P95_MS = 20.0
 GOAL_CPU_PERCENT = 1.0
+GOAL_POLL_US = 60.0
 SIDES = ("async", "sync", "wait_start", "polling", "j5")
+#: How often j5 0.12's power board backend reads the button, in seconds.
+J5_POLL_INTERVAL = 0.05
 
 
 # -- the presser (every side) -----------------------------------------------------------
@@ -123,13 +135,35 @@ def _cpu() -> float:
     return time.process_time()  # user + system of every thread, finer than os.times
 
 
-def _report(reactions: list[float], cpu_seconds: float, wall: float) -> None:
+def _report(
+    reactions: list[float], cpu_seconds: float, wall: float, **extra: float
+) -> None:
     ms = [r * 1000 for r in reactions]
     print(json.dumps({
         "p50": _percentile(ms, 0.5),
         "p95": _percentile(ms, 0.95),
         "cpu": 100 * cpu_seconds / wall,
+        **extra,
     }))
+
+
+def wake_floor_us(interval: float, seconds: float) -> float:
+    """CPU time (us) of one wake-up of a thread that only sleeps ``interval`` at a time.
+
+    The floor of any poll on this machine: a poll's thread wakes as often, and then does
+    its read as well.
+    """
+    def sleeper() -> None:
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            time.sleep(interval)
+
+    start_cpu, start = _cpu(), time.perf_counter()
+    thread = threading.Thread(target=sleeper)
+    thread.start()
+    thread.join()
+    wakes = (time.perf_counter() - start) / interval
+    return 1e6 * (_cpu() - start_cpu) / wakes
 
 
 # -- j5aio sides ------------------------------------------------------------------------
@@ -145,8 +179,13 @@ def _kit() -> Any:
     return kit
 
 
-def child_async(presses: int, idle: float, seed: int, mode: str) -> None:
-    """Measure j5aio's async wait (``mode``: ``async``, ``wait_start`` or ``polling``)."""
+def child_async(
+    presses: int, idle: float, seed: int, mode: str, interval: float | None = None
+) -> None:
+    """Measure j5aio's async wait (``mode``: ``async``, ``wait_start`` or ``polling``).
+
+    :param interval: for ``polling``, the poll interval in seconds (else the backend's).
+    """
     import anyio
 
     from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
@@ -156,6 +195,9 @@ def child_async(presses: int, idle: float, seed: int, mode: str) -> None:
         SRV4PowerBoardSimulatedBackend._poll_button = (  # type: ignore[method-assign]
             SRV4PowerBoardHardwareBackend._poll_button
         )
+        if interval is not None:
+            SRV4PowerBoardHardwareBackend.BUTTON_POLL_INTERVAL = interval
+    poll_interval = SRV4PowerBoardHardwareBackend.BUTTON_POLL_INTERVAL
 
     from j5aio.competition.start import wait_for_start
     from j5aio.kit import KitRobot
@@ -183,9 +225,48 @@ def child_async(presses: int, idle: float, seed: int, mode: str) -> None:
             start_cpu, start = _cpu(), time.perf_counter()
             with contextlib.suppress(TimeoutError):
                 await wait(idle)
-            _report(reactions, _cpu() - start_cpu, time.perf_counter() - start)
+            cpu_seconds, wall = _cpu() - start_cpu, time.perf_counter() - start
+            if mode != "polling":
+                _report(reactions, cpu_seconds, wall)
+                return
+            # Both measured with the robot still up (its threads as they were).
+            floor = wake_floor_us(poll_interval, idle)
+            with _timed_transfers() as transfer_us, contextlib.suppress(TimeoutError):
+                await wait(idle)
+            _report(reactions, cpu_seconds, wall, interval=poll_interval * 1000,
+                    poll_us=1e6 * cpu_seconds / (wall / poll_interval), floor_us=floor,
+                    transfer_us=transfer_us[0])
 
     anyio.run(main)
+
+
+@contextlib.contextmanager
+def _timed_transfers() -> Iterator[list[float]]:
+    """Time the simulated device's transfers (its thread's CPU); yield [us per transfer].
+
+    The share of an idle poll that is the stand-in for pyusb's transfer, measured in a
+    wait of its own (the timing costs a little CPU itself).
+    """
+    from j5aio.simulator.environment import SimulatedUSBDevice
+
+    real = SimulatedUSBDevice.ctrl_transfer
+    spent = [0, 0]
+
+    def timed(self: SimulatedUSBDevice, *args: Any, **kwargs: Any) -> Any:
+        start = time.thread_time_ns()
+        try:
+            return real(self, *args, **kwargs)
+        finally:
+            spent[0] += time.thread_time_ns() - start
+            spent[1] += 1
+
+    result = [0.0]
+    SimulatedUSBDevice.ctrl_transfer = timed  # type: ignore[method-assign]
+    try:
+        yield result
+    finally:
+        SimulatedUSBDevice.ctrl_transfer = real  # type: ignore[method-assign]
+        result[0] = spent[0] / max(spent[1], 1) / 1000
 
 
 def child_sync(presses: int, idle: float, seed: int) -> None:
@@ -250,7 +331,14 @@ def child_j5(presses: int, idle: float, seed: int) -> None:
 
 
 def run_side(side: str, args: argparse.Namespace, seed: int) -> dict[str, float] | None:
-    """Run one side in a child process; return its figures (``None`` if it failed)."""
+    """Run one side in a child process; return its figures (``None`` if it failed).
+
+    ``side`` is one of :data:`SIDES`, or ``polling@<ms>ms`` for a poll interval of its own.
+    """
+    interval: list[str] = []
+    if side.startswith("polling@"):
+        side, ms = side.split("@")
+        interval = ["--interval", str(float(ms.removesuffix("ms")) / 1000)]
     if side == "j5":
         sys.path.insert(0, str(HERE))
         from _peers import J5_PEER, peer_python  # type: ignore[import-not-found]
@@ -268,7 +356,8 @@ def run_side(side: str, args: argparse.Namespace, seed: int) -> dict[str, float]
         probe.bind(("127.0.0.1", 0))
         env["J5AIO_LOCK_PORT"] = str(probe.getsockname()[1])
     command = [python, str(Path(__file__).resolve()), "--child", side,
-               "--presses", str(args.presses), "--idle", str(args.idle), "--seed", str(seed)]
+               "--presses", str(args.presses), "--idle", str(args.idle), "--seed", str(seed),
+               *interval]
     result = subprocess.run(command, capture_output=True, text=True, env=env, timeout=600)
     lines = result.stdout.strip().splitlines()
     if result.returncode != 0 or not lines:
@@ -286,7 +375,17 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--idle", type=float, default=3.0)
     parser.add_argument("--seed", type=int, default=12)
     parser.add_argument("--no-peer", action="store_true", help="skip j5 0.12")
+    parser.add_argument(
+        "--intervals", type=_interval_list, default=[],
+        help="poll intervals (ms, comma-separated) for a hardware-path side each, "
+        "instead of the backend's own",
+    )
+    parser.add_argument(
+        "--sides", type=_side_list, default=list(SIDES),
+        help=f"the sides to run, comma-separated (default: {','.join(SIDES)})",
+    )
     parser.add_argument("--child", choices=SIDES, help=argparse.SUPPRESS)
+    parser.add_argument("--interval", type=float, help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.child == "j5":
         child_j5(args.presses, args.idle, args.seed)
@@ -295,10 +394,13 @@ def main(argv: list[str] | None = None) -> None:
         child_sync(args.presses, args.idle, args.seed)
         return
     if args.child:
-        child_async(args.presses, args.idle, args.seed, args.child)
+        child_async(args.presses, args.idle, args.seed, args.child, args.interval)
         return
 
-    sides = [side for side in SIDES if not (args.no_peer and side == "j5")]
+    sides = [side for side in args.sides if not (args.no_peer and side == "j5")]
+    if args.intervals and "polling" in sides:
+        at = sides.index("polling")
+        sides[at:at + 1] = [f"polling@{ms:g}ms" for ms in args.intervals]
     results: dict[str, list[dict[str, float]]] = {side: [] for side in sides}
     print(f"start button: {args.presses} random presses per round, {args.idle} s idle, "
           f"{args.rounds} rounds, sides interleaved: {', '.join(sides)}")
@@ -307,29 +409,79 @@ def main(argv: list[str] | None = None) -> None:
             figures = run_side(side, args, args.seed + index)
             if figures is not None:
                 results[side].append(figures)
-                print(f"  round {index + 1} {side:>10}: p50 {figures['p50']:5.1f} ms  "
-                      f"p95 {figures['p95']:5.1f} ms  CPU {figures['cpu']:5.2f} %")
+                print(f"  round {index + 1} {side:>15}: p50 {figures['p50']:5.1f} ms  "
+                      f"p95 {figures['p95']:5.1f} ms  CPU {figures['cpu']:5.2f} %"
+                      + _poll_figures(figures))
     print(f"\nmedians over rounds (goal: p50 <= {GOAL_P50_MS:g} ms, p95 <= {GOAL_P95_MS:g} ms "
           f"and CPU <= {GOAL_CPU_PERCENT:g} % while waiting, at the same time)")
     medians: dict[str, dict[str, float]] = {}
     for side, rounds in results.items():
         if not rounds:
-            print(f"  {side:>10}: no figures")
+            print(f"  {side:>15}: no figures")
             continue
         medians[side] = {key: statistics.median(r[key] for r in rounds) for key in rounds[0]}
         m = medians[side]
         met = (m["p50"] <= GOAL_P50_MS and m["p95"] <= GOAL_P95_MS
                and m["cpu"] <= GOAL_CPU_PERCENT)
         verdict = "" if side == "j5" else ("  MET" if met else "  NOT MET")
-        print(f"  {side:>10}: p50 {m['p50']:5.1f} ms  p95 {m['p95']:5.1f} ms  "
+        print(f"  {side:>15}: p50 {m['p50']:5.1f} ms  p95 {m['p95']:5.1f} ms  "
               f"CPU {m['cpu']:5.2f} %{verdict}")
+    _print_polls(medians)
     if "j5" in medians:
         j5 = medians["j5"]
-        for side in ("async", "sync", "wait_start", "polling"):
-            if side in medians:
+        for side in medians:
+            if side != "j5":
                 m = medians[side]
                 print(f"  {side} / j5: p50 {m['p50'] / j5['p50']:.2f}x  "
                       f"p95 {m['p95'] / j5['p95']:.2f}x  CPU {m['cpu'] / j5['cpu']:.2f}x")
+
+
+def _interval_list(text: str) -> list[float]:
+    try:
+        intervals = [float(part) for part in text.split(",") if part.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a list of milliseconds: {text!r}") from None
+    if not intervals or not all(0 < ms <= 1000 for ms in intervals):
+        raise argparse.ArgumentTypeError(f"intervals must be 0-1000 ms, not {text!r}")
+    return intervals
+
+
+def _side_list(text: str) -> list[str]:
+    sides = [part.strip() for part in text.split(",") if part.strip()]
+    unknown = [side for side in sides if side not in SIDES]
+    if unknown or not sides:
+        raise argparse.ArgumentTypeError(
+            f"sides are some of {', '.join(SIDES)}, not {text!r}"
+        )
+    return [side for side in SIDES if side in sides]  # in the usual order
+
+
+def _poll_figures(figures: dict[str, float]) -> str:
+    if "poll_us" not in figures:
+        return ""
+    return (f"  ({figures['interval']:g} ms: {figures['poll_us']:4.0f} us/poll, "
+            f"floor {figures['floor_us']:4.0f} us, transfer {figures['transfer_us']:3.0f} us)")
+
+
+def _print_polls(medians: dict[str, dict[str, float]]) -> None:
+    """Print what one idle poll costs on the hardware path (medians over rounds)."""
+    polling = {side: m for side, m in medians.items() if "poll_us" in m}
+    if not polling:
+        return
+    print(f"\none idle poll on the hardware path, CPU time (goal <= {GOAL_POLL_US:g} us) = the "
+          "floor (a thread that only sleeps as often,\nin the same process: what the machine "
+          "charges for the wake-up alone) + the transfer (the simulator standing in\nfor "
+          "pyusb, timed on its thread in a wait of its own) + the rest (link and backend)")
+    for side, m in polling.items():
+        rest = m["poll_us"] - m["floor_us"] - m["transfer_us"]
+        verdict = "MET" if m["poll_us"] <= GOAL_POLL_US else "NOT MET"
+        print(f"  {side:>15}: every {m['interval']:g} ms: {m['poll_us']:4.0f} us  {verdict}"
+              f"  = floor {m['floor_us']:3.0f} + transfer {m['transfer_us']:3.0f}"
+              f" + rest {rest:3.0f} us")
+    if "j5" in medians:
+        j5_us = medians["j5"]["cpu"] / 100 * J5_POLL_INTERVAL * 1e6
+        print(f"  {'j5':>15}: every {J5_POLL_INTERVAL * 1000:g} ms: {j5_us:4.0f} us "
+              "(its idle CPU over its reads)")
 
 
 if __name__ == "__main__":

@@ -18,7 +18,12 @@ Cancellation: a transfer is a job on the thread's queue with its own future.
 Polling: :meth:`USBLink.poll_until` runs one read every so often *on the worker thread*,
 between the other transfers, and wakes the event loop only when the read has found what
 it looks for (or failed). An idle poll therefore costs one wake-up of one thread and the
-transfer itself: no task, no future and no hop back to the loop per read.
+transfer itself: no task, no future and no hop back to the loop per read. The thread
+waits for its next job or its next read on a *doorbell* (a lock that a new job releases):
+a wait that ends because a read is due returns ``False`` rather than raising, and a read
+that finds nothing allocates no more than its transfer does (measured in
+``bench/bench_button.py``: on a loaded, virtualised machine the code run after a 15 ms
+sleep finds its caches cold, so every object an idle poll touches costs microseconds).
 
 Errors: a pyusb error becomes :class:`~j5aio.errors.USBCommunicationError` naming the
 board, with the pyusb exception kept as ``usb_error``. errno 19 (``ENODEV``: unplugged)
@@ -31,11 +36,12 @@ Callers may name what an errno means for one transfer (``errors={32: "..."}``).
 from __future__ import annotations
 
 import asyncio
+import collections
 import contextlib
 import enum
 import errno
 import logging
-import queue
+import math
 import threading
 import time
 from collections.abc import Callable, Mapping
@@ -56,6 +62,7 @@ from .trace import log_wire, wire_logger
 
 __all__ = [
     "CONTROL_REQUEST",
+    "MAX_POLL_INTERVAL",
     "READ_REQUEST_TYPE",
     "WRITE_REQUEST_TYPE",
     "USBDeviceLike",
@@ -72,6 +79,10 @@ READ_REQUEST_TYPE = 0x80
 WRITE_REQUEST_TYPE = 0x00
 #: bRequest that SR USB boards answer.
 CONTROL_REQUEST = 64
+
+#: The longest poll interval, in seconds (a day: far beyond any use, and well within what
+#: a thread's timed wait accepts).
+MAX_POLL_INTERVAL = 86_400.0
 
 T = TypeVar("T")
 _JobT = TypeVar("_JobT", bound="_Job[Any]")
@@ -260,12 +271,17 @@ class USBLink(AsyncResource):
         self._closed = False
         self._stopped = False
         self._stop_waiters: list[tuple[asyncio.AbstractEventLoop, asyncio.Future[Any]]] = []
-        # Guards _closed, _stopped and _stop_waiters, so that no job is queued behind
-        # the stop sentinel even if close_now runs on another thread.
+        # Guards _closed, _stopped, _stop_waiters and the queueing of jobs (so that no
+        # job is queued behind the stop sentinel even if close_now runs on another
+        # thread, and so that one job at a time rings the doorbell).
         self._state_lock = threading.Lock()
-        self._jobs: queue.SimpleQueue[_Job[Any] | _NowJob | _PollJob[Any] | None] = (
-            queue.SimpleQueue()
+        # The jobs asked for, in order (``None``: stop), and the doorbell the thread waits
+        # on: held while the thread may sleep, released by whoever queues a job.
+        self._jobs: collections.deque[_Job[Any] | _NowJob | _PollJob[Any] | None] = (
+            collections.deque()
         )
+        self._doorbell = threading.Lock()
+        self._doorbell.acquire()
         # The polls the worker thread runs, and when the next is due (only the thread
         # touches these).
         self._polls: list[_PollJob[Any]] = []
@@ -384,14 +400,13 @@ class USBLink(AsyncResource):
         :raises UnexpectedReplyError: a reply was not ``length`` bytes long.
         """
         description = f"polling {length} bytes from wIndex {w_index} (wValue {w_value})"
+        # Bound once: a read that finds nothing runs only this function's few lines and
+        # the transfer.
+        read = self._device.ctrl_transfer
+        setup = (READ_REQUEST_TYPE, CONTROL_REQUEST, w_value, w_index, length, self._timeout_ms)
 
         def transfer() -> bytes:
-            data = bytes(
-                self._device.ctrl_transfer(
-                    READ_REQUEST_TYPE, CONTROL_REQUEST, w_value, w_index, length,
-                    self._timeout_ms,
-                )
-            )
+            data = bytes(read(*setup))
             if len(data) != length:
                 raise UnexpectedReplyError(
                     f"{self._board_name}: {description} returned {len(data)} bytes"
@@ -459,16 +474,21 @@ class USBLink(AsyncResource):
 
         :param work: one read (a transfer), run on the worker thread.
         :param found: called on the worker thread with each result; ``True`` ends the poll.
-        :param interval: seconds from the start of one read to the start of the next.
+        :param interval: seconds from the start of one read to the start of the next
+            (at most :data:`MAX_POLL_INTERVAL`).
         :param description: what ``work`` does, for error messages.
         :param errors: messages for specific errnos.
         :param then: called on the event loop with the accepted result, even if the caller
             has been cancelled meanwhile (so that a latched event is never lost).
-        :raises ValueError: ``interval`` is not a positive number.
+        :raises ValueError: ``interval`` is not a positive number of seconds up to
+            :data:`MAX_POLL_INTERVAL`.
         :raises USBCommunicationError: a read failed (or a subclass, as :meth:`call`).
         """
-        if not interval > 0:
-            raise ValueError(f"interval must be a positive number of seconds, not {interval!r}")
+        if not 0 < interval <= MAX_POLL_INTERVAL:
+            raise ValueError(
+                "interval must be a positive number of seconds up to "
+                f"{MAX_POLL_INTERVAL:g}, not {interval!r}"
+            )
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
         job = self._submit(_PollJob(work, found, interval, loop, future, then))
@@ -490,8 +510,19 @@ class USBLink(AsyncResource):
         with self._state_lock:
             if self._closed:
                 raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
-            self._jobs.put(job)
+            self._queue(job)
         return job
+
+    def _queue(self, job: _Job[Any] | _NowJob | None) -> None:
+        """Queue ``job`` (``None``: stop) and ring the doorbell; hold ``_state_lock``.
+
+        Only holders of ``_state_lock`` release the doorbell, one at a time, and only
+        when it is held: it is never released twice, and a thread about to wait on it
+        finds it released if a job came since it looked at the queue.
+        """
+        self._jobs.append(job)
+        if self._doorbell.locked():
+            self._doorbell.release()
 
     def _result(
         self, succeeded: bool, value: Any, description: str, errors: Mapping[int, str] | None
@@ -533,7 +564,7 @@ class USBLink(AsyncResource):
             with self._state_lock:
                 if self._closed:
                     raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
-                self._jobs.put(job)
+                self._queue(job)
             if not job.done.wait(timeout):
                 raise USBTransferTimeoutError(
                     f"{self._board_name}: {description} did not finish within {timeout} s"
@@ -573,7 +604,7 @@ class USBLink(AsyncResource):
             if self._closed:
                 return
             self._closed = True
-            self._jobs.put(None)
+            self._queue(None)
 
     def __repr__(self) -> str:
         state = "closed" if self._closed else "open"
@@ -583,18 +614,23 @@ class USBLink(AsyncResource):
 
     def _run(self) -> None:
         jobs = self._jobs
+        doorbell = self._doorbell
+        polls = self._polls
+        monotonic = time.monotonic
         while True:
-            if not self._polls:
-                job = jobs.get()
-            else:
-                # An idle poll's whole cost is this wait's wake-up and the read: keep the
-                # path short (no exception when a job is already there, no scan).
-                wait = self._poll_due - time.monotonic()
-                try:
-                    job = jobs.get(timeout=wait) if wait > 0 else jobs.get_nowait()
-                except queue.Empty:  # a poll is due
-                    self._run_due_polls()
+            if not jobs:
+                if not polls:
+                    doorbell.acquire()
                     continue
+                if len(polls) == 1:  # the usual case: one button waited for
+                    self._poll_alone(polls[0])
+                    continue
+                wait = self._poll_due - monotonic()
+                if wait > 0 and doorbell.acquire(True, wait):
+                    continue  # a job came (or a ring left over from one already run)
+                self._run_due_polls()
+                continue
+            job = jobs.popleft()
             if job is None:
                 break
             if isinstance(job, _PollJob):
@@ -619,28 +655,73 @@ class USBLink(AsyncResource):
         for loop, future in waiters:
             _post(loop, future, None)
 
+    def _poll_alone(self, poll: _PollJob[Any]) -> None:
+        """Run the only poll until a job comes or the poll ends: the idle path.
+
+        An idle poll's whole cost is the wait's wake-up, the read and ``found``: the
+        loop keeps what it needs in local variables, raises no exception when a read is
+        due (the doorbell's timed wait returns ``False``) and allocates nothing itself.
+        """
+        jobs, doorbell, monotonic = self._jobs, self._doorbell, time.monotonic
+        work, found, interval = poll.work, poll.found, poll.interval
+        due = poll.due
+        try:
+            while not jobs:
+                wait = due - monotonic()
+                if wait > 0 and doorbell.acquire(True, wait):
+                    continue  # a job came (or a ring left over from one already run)
+                if poll.withdrawn:
+                    self._polls.clear()
+                    return
+                now = monotonic()
+                due += interval  # a steady rate, unless the thread fell behind
+                if due <= now:
+                    due = now + interval
+                try:
+                    value = work()
+                    if not found(value):
+                        continue
+                    outcome: tuple[bool, Any] = (True, value)
+                except BaseException as exc:  # the thread must survive, and the caller hear
+                    outcome = (False, exc)
+                self._polls.clear()
+                poll.finish(outcome)
+                return
+        finally:
+            poll.due = self._poll_due = due
+
     def _run_due_polls(self) -> None:
+        """Run the polls that are due; note when the next one is."""
         now = time.monotonic()
         polls = self._polls
-        for poll in polls[:] if len(polls) > 1 else polls:
+        next_due = math.inf
+        # One poll (the usual case) is looked at in place; several, in a copy, since a
+        # poll that ends leaves the list.
+        for poll in polls if len(polls) == 1 else polls[:]:
             if poll.withdrawn:
                 polls.remove(poll)
                 continue
-            if poll.due > now:
+            due = poll.due
+            if due <= now:
+                due += poll.interval  # a steady rate, unless the thread fell behind
+                if due <= now:
+                    due = now + poll.interval
+                poll.due = due
+                try:
+                    value = poll.work()
+                    if not poll.found(value):
+                        if due < next_due:
+                            next_due = due
+                        continue
+                    outcome: tuple[bool, Any] = (True, value)
+                except BaseException as exc:  # the thread must survive, and the caller hear
+                    outcome = (False, exc)
+                polls.remove(poll)
+                poll.finish(outcome)
                 continue
-            following = poll.due + poll.interval  # a steady rate, unless the thread fell behind
-            poll.due = following if following > now else now + poll.interval
-            try:
-                value = poll.work()
-                if not poll.found(value):
-                    continue
-                outcome: tuple[bool, Any] = (True, value)
-            except BaseException as exc:  # the thread must survive, and the caller hear
-                outcome = (False, exc)
-            polls.remove(poll)
-            poll.finish(outcome)
-            break  # the list changed: the next pass looks at the others
-        self._poll_due = min((poll.due for poll in polls), default=0.0)
+            if due < next_due:
+                next_due = due
+        self._poll_due = next_due
 
     def _release_device(self) -> None:
         if isinstance(self._device, usb.core.Device):

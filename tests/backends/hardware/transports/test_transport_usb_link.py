@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import array
+import asyncio
 import errno
 import random
 import struct
@@ -20,6 +21,7 @@ from j5aio.backends.hardware.transports import (
     USBLink,
     USBTransferTimeoutError,
 )
+from j5aio.backends.hardware.transports.usb_link import MAX_POLL_INTERVAL
 from j5aio.errors import (
     BoardDisconnectionError,
     CommunicationError,
@@ -432,7 +434,7 @@ async def test_a_short_poll_reply_is_an_unexpected_reply(link: USBLink) -> None:
 
 
 async def test_the_poll_interval_is_checked(link: USBLink) -> None:
-    for bad in (0, -1.0, float("nan")):
+    for bad in (0, -1.0, float("nan"), float("inf"), MAX_POLL_INTERVAL * 2):
         with pytest.raises(ValueError, match="positive number of seconds"):
             await link.poll_until(lambda: 1, bool, interval=bad, description="x")
 
@@ -456,3 +458,133 @@ async def test_a_failing_then_reaches_the_poller(link: USBLink) -> None:
 
     with pytest.raises(RuntimeError, match="cache"):
         await link.poll_control_read(8, 4, lambda _reply: True, interval=0.001, then=then)
+
+
+@pytest.mark.parametrize("with_then", [False, True])
+async def test_idle_polls_do_not_wake_the_event_loop(
+    device: StandInDevice, link: USBLink, monkeypatch: pytest.MonkeyPatch, with_then: bool
+) -> None:
+    # Every hand-off from the worker thread to the loop goes through call_soon_threadsafe:
+    # count them while the reads find nothing, then find something.
+    loop = asyncio.get_running_loop()
+    real = loop.call_soon_threadsafe
+    hops: list[int] = []
+
+    def counted(callback: Any, *args: Any, **kwargs: Any) -> Any:
+        hops.append(threading.get_ident())
+        return real(callback, *args, **kwargs)
+
+    monkeypatch.setattr(loop, "call_soon_threadsafe", counted)
+    taken: list[bytes] = []
+    replies: list[bytes] = []
+
+    def found(reply: bytes) -> bool:
+        replies.append(reply)
+        assert hops == []  # nothing has reached the loop while the reads found nothing
+        return len(replies) == 40
+
+    reply = await link.poll_control_read(
+        8, 4, found, interval=0.001, then=taken.append if with_then else None
+    )
+    assert reply == struct.pack("<I", 8)
+    assert len(replies) == 40
+    assert hops == [link.thread.ident]  # one wake-up of the loop, for the found reply
+    assert taken == ([reply] if with_then else [])
+
+
+async def test_transfers_asked_for_during_a_poll_run_without_waiting_for_its_next_read(
+    device: StandInDevice, link: USBLink
+) -> None:
+    # The poll reads once, then not for an hour: each transfer, whether asked for by a
+    # task or by another thread, must wake the worker thread itself (a lost wake-up would
+    # leave it waiting for the poll's next read, and the test to its liveness bound).
+    async with anyio.create_task_group() as group:
+        group.start_soon(
+            lambda: link.poll_control_read(8, 4, lambda _reply: False, interval=3600)
+        )
+
+        async def reads(count: int) -> None:
+            for _ in range(count):
+                assert await link.control_read(9, 4) == struct.pack("<I", 9)
+
+        def writes(count: int) -> None:
+            for _ in range(count):
+                link.control_write_now(3, 0, timeout=30)
+
+        with anyio.fail_after(60):
+            async with anyio.create_task_group() as askers:
+                for _ in range(4):
+                    askers.start_soon(reads, 50)
+                askers.start_soon(anyio.to_thread.run_sync, writes, 50)
+        group.cancel_scope.cancel()
+    assert _reads_of(device, 9) == 200
+    assert _reads_of(device, 8) == 1
+    assert sum(1 for call in device.calls if call[3] == 3) == 50
+
+
+async def test_two_polls_at_once_take_turns_and_end_on_their_own(
+    device: StandInDevice, link: USBLink
+) -> None:
+    # Two polls of one link (say two buttons): each is read at its own interval, each
+    # ends at its own found reply, and one given up leaves the other reading.
+    ended: list[int] = []
+
+    async def poll(index: int, reads: int) -> None:
+        await link.poll_control_read(
+            index, 4, lambda _reply: _reads_of(device, index) >= reads, interval=0.001
+        )
+        ended.append(index)
+
+    with anyio.fail_after(30):
+        async with anyio.create_task_group() as group:
+            group.start_soon(poll, 8, 5)
+            group.start_soon(poll, 7, 30)
+            with anyio.CancelScope() as given_up:
+                given_up.cancel()  # a third poll, given up before it was ever read
+                await link.poll_control_read(6, 4, lambda _reply: False, interval=0.001)
+            async with anyio.create_task_group() as short:
+                short.start_soon(poll, 5, 10**9)  # never found: cancelled below
+                while _reads_of(device, 5) < 3:  # transfers take turns with the polls
+                    assert await link.control_read(9, 4) == struct.pack("<I", 9)
+                short.cancel_scope.cancel()
+    assert sorted(ended) == [7, 8]
+    assert _reads_of(device, 8) == 5
+    assert _reads_of(device, 7) == 30
+    reads_of_5 = _reads_of(device, 5)
+    await link.control_read(9, 4)  # the thread has moved past any read in flight
+    await anyio.sleep(0.01)
+    assert _reads_of(device, 5) <= reads_of_5 + 1
+    await link.control_read(9, 4)
+    settled = _reads_of(device, 5)
+    await anyio.sleep(0.01)
+    assert _reads_of(device, 5) == settled  # given up: read no more
+
+
+async def test_a_poll_given_up_while_the_thread_waits_is_dropped_at_its_next_read(
+    device: StandInDevice, link: USBLink
+) -> None:
+    # Nothing else is asked of the link: the thread itself notices, when the read falls
+    # due, that nobody waits for it any more, and goes back to waiting for jobs.
+    with anyio.move_on_after(0.01):
+        await link.poll_control_read(8, 4, lambda _reply: False, interval=0.002)
+    with anyio.fail_after(30):
+        while link._polls:  # noqa: ASYNC110 - the worker thread's state, no event
+            await anyio.sleep(0.001)
+    reads = _reads_of(device, 8)
+    await anyio.sleep(0.02)
+    assert _reads_of(device, 8) == reads
+    assert await link.control_read(9, 4) == struct.pack("<I", 9)  # the thread still serves
+
+
+async def test_a_read_failing_after_idle_reads_reaches_the_caller(
+    device: StandInDevice, link: USBLink
+) -> None:
+    def found(_reply: bytes) -> bool:
+        if _reads_of(device, 8) == 3:  # the board goes away after three idle reads
+            device.errors[8] = usb.core.USBError("No such device", -4, errno.ENODEV)
+        return False
+
+    with anyio.fail_after(30), pytest.raises(USBDisconnectionError, match="polling 4 bytes"):
+        await link.poll_control_read(8, 4, found, interval=0.001)
+    assert _reads_of(device, 8) == 4
+    assert not link._polls

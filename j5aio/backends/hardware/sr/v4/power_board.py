@@ -27,6 +27,12 @@ from j5aio.errors import BoardDisconnectionError, UnsupportedFirmwareError
 
 __all__ = ["SRV4PowerBoardHardwareBackend"]
 
+#: Whether a reply to :data:`~.power_fw3_codec.BUTTON` says the button is down: any
+#: value but zero (``parse_u32(reply) != 0``, which the poll has checked is 4 bytes long).
+#: A C comparison with no Python frame, since it runs on every poll (see
+#: :meth:`.USBLink.poll_until`).
+_button_held: Callable[[bytes], bool] = bytes(codec.BUTTON.length).__ne__
+
 _PIEZO_ERRORS = {
     32: "the piezo queue is full: buzz commands were sent too quickly (the board holds "
     f"{codec.PIEZO_QUEUE_LENGTH} notes). Wait for notes to finish, or buzz with blocking=True",
@@ -52,8 +58,12 @@ class SRV4PowerBoardHardwareBackend(
 
     #: How often the button is read while a task waits for a press, in seconds. A read
     #: runs on the link's worker thread and wakes the event loop only once it sees the
-    #: button down (see :meth:`.USBLink.poll_until`), so an idle read costs a few tens
-    #: of microseconds.
+    #: button down (see :meth:`.USBLink.poll_until`), so an idle read costs one wake-up
+    #: of that thread and the transfer. Chosen with ``bench/bench_button.py
+    #: --intervals``: a press waits half an interval on average (measured p50 7.6 ms,
+    #: p95 14.4 ms; goals 10 and 20 ms) for about 1 % CPU on a loaded machine. A longer
+    #: interval saves little CPU there: each read after a longer sleep finds the caches
+    #: colder and costs more (15-17 ms all measured 1.07 %).
     BUTTON_POLL_INTERVAL: ClassVar[float] = 0.015
 
     def __init__(self, link: USBLink, *, key: str) -> None:
@@ -149,13 +159,10 @@ class SRV4PowerBoardHardwareBackend(
 
     async def _poll_button(self, report: Callable[[], None], *, fresh: bool) -> None:
         # The button is a level, not a latch: ``fresh`` has nothing to forget.
-        def held(reply: bytes) -> bool:
-            return codec.parse_u32(reply) != 0
-
         try:
             await self._guarded(
                 lambda: self._link.poll_control_read(
-                    codec.BUTTON.index, codec.BUTTON.length, held,
+                    codec.BUTTON.index, codec.BUTTON.length, _button_held,
                     interval=self.BUTTON_POLL_INTERVAL, then=lambda _reply: report(),
                 ),
                 idempotent=True,
