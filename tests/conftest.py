@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import os
 import socket
-from collections.abc import Iterator
+from collections.abc import AsyncIterator, Iterator
 
 import pytest
 
 from j5aio.boards.board import Board
+from j5aio.simulator import kit as kit_module
 
 
 def _free_tcp_port() -> int:
@@ -30,3 +31,13 @@ def _forget_boards() -> Iterator[None]:
     Board.BOARDS.clear()
     yield
     Board.BOARDS.clear()
+
+
+@pytest.fixture
+async def fresh_kit() -> AsyncIterator[None]:
+    """Restore the current simulated kit, and close every board the test opened."""
+    saved = kit_module._current
+    yield
+    for board in list(Board.BOARDS):
+        await board.close()
+    kit_module._current = saved

@@ -3,25 +3,15 @@
 from __future__ import annotations
 
 import io
-from collections.abc import AsyncIterator
 
 import pytest
 
-from j5aio.boards.board import Board
 from j5aio.demo import all_motors_braked, demo, describe_boards, run_demo
 from j5aio.robot import BaseRobot, UnableToObtainLock
-from j5aio.simulator import kit as kit_module
 from j5aio.simulator.kit import KitConfig, SimulatedKit
 from j5aio.simulator.sr_motor_fw3 import MotorMode
 
-
-@pytest.fixture(autouse=True)
-async def _fresh() -> AsyncIterator[None]:
-    saved = kit_module._current
-    yield
-    for board in list(Board.BOARDS):
-        await board.close()
-    kit_module._current = saved
+pytestmark = pytest.mark.usefixtures("fresh_kit")
 
 
 async def test_the_demo_drives_senses_signals_and_ends_braked() -> None:

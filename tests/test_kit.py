@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator, Sequence
+from collections.abc import Sequence
 
 import pytest
 
@@ -15,7 +15,6 @@ from j5aio.boards.sr.v4 import PowerBoard
 from j5aio.environments import ENVIRONMENT_VARIABLE
 from j5aio.errors import CommunicationError
 from j5aio.kit import KitRobot
-from j5aio.simulator import kit as kit_module
 from j5aio.simulator.environment import (
     SIMULATED_BACKENDS,
     SIMULATED_ENVIRONMENT,
@@ -29,14 +28,9 @@ from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
 
 
 @pytest.fixture(autouse=True)
-async def _fresh(monkeypatch: pytest.MonkeyPatch) -> AsyncIterator[None]:
-    saved = kit_module._current
+def _fresh(monkeypatch: pytest.MonkeyPatch, fresh_kit: None) -> None:
     monkeypatch.delenv(ENVIRONMENT_VARIABLE, raising=False)
     monkeypatch.setattr(environments, "_hint_shown", False)
-    yield
-    for board in list(Board.BOARDS):
-        await board.close()
-    kit_module._current = saved
 
 
 def nothing_plugged_in_environment() -> Environment:

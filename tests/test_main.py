@@ -9,7 +9,7 @@ import subprocess
 import sys
 import textwrap
 import time
-from collections.abc import AsyncIterator, Iterator
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -18,10 +18,8 @@ import serial
 from j5aio.__main__ import SIMULATOR_NAMES, build_parser, main
 from j5aio.backends.hardware import listing
 from j5aio.backends.hardware.listing import FoundBoard
-from j5aio.boards.board import Board
 from j5aio.environments import ENVIRONMENT_VARIABLE
 from j5aio.errors import CommunicationError
-from j5aio.simulator import kit as kit_module
 from j5aio.simulator.environment import kit_discovery_options
 from j5aio.simulator.kit import KitConfig, SimulatedKit
 
@@ -29,15 +27,10 @@ REAL_FIND_BOARDS = listing.find_boards
 
 
 @pytest.fixture(autouse=True)
-async def _fresh(monkeypatch: pytest.MonkeyPatch) -> AsyncIterator[None]:
-    saved = kit_module._current
+def _fresh(monkeypatch: pytest.MonkeyPatch, fresh_kit: None) -> None:
     monkeypatch.delenv(ENVIRONMENT_VARIABLE, raising=False)
     monkeypatch.setattr(sys, "argv", list(sys.argv))
     monkeypatch.setattr(sys, "path", list(sys.path))
-    yield
-    for board in list(Board.BOARDS):
-        await board.close()
-    kit_module._current = saved
 
 
 def python_m_j5aio(

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator
+from collections.abc import Iterator
 from datetime import timedelta
 from pathlib import Path
 
 import anyio
 import pytest
 
-from j5aio.boards.board import Board
 from j5aio.boards.sr.v4 import PowerBoard
 from j5aio.competition import start
 from j5aio.competition.start import (
@@ -21,22 +20,17 @@ from j5aio.competition.start import (
 )
 from j5aio.components.button import Button
 from j5aio.components.piezo import Duration, Note, Piezo, Pitch
-from j5aio.simulator import kit as kit_module
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kch import KCHSimulator
 from j5aio.simulator.kit import KitConfig, SimulatedKit, use_kit
 
 
 @pytest.fixture(autouse=True)
-async def _fresh(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> AsyncIterator[None]:
-    saved = kit_module._current
+def _fresh(monkeypatch: pytest.MonkeyPatch, tmp_path: Path, fresh_kit: None) -> Iterator[None]:
     monkeypatch.setenv(START_FILE_VARIABLE, str(tmp_path / "start"))
     clear_trigger()
     yield
     clear_trigger()
-    for board in list(Board.BOARDS):
-        await board.close()
-    kit_module._current = saved
 
 
 async def power_board() -> tuple[SimulatedKit, PowerBoard]:

@@ -6,17 +6,14 @@ from __future__ import annotations
 import importlib.util
 import subprocess
 import sys
-from collections.abc import AsyncIterator
 from pathlib import Path
 from types import ModuleType
 
 import anyio
 import pytest
 
-from j5aio.boards.board import Board
 from j5aio.environments import ENVIRONMENT_VARIABLE
 from j5aio.kit import KitRobot
-from j5aio.simulator import kit as kit_module
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kit import KitConfig, SimulatedKit, use_kit
 from j5aio.simulator.sr_motor_fw3 import MotorMode
@@ -34,13 +31,9 @@ def load(name: str) -> ModuleType:
 
 
 @pytest.fixture
-async def kit(monkeypatch: pytest.MonkeyPatch) -> AsyncIterator[SimulatedKit]:
-    saved = kit_module._current
+def kit(monkeypatch: pytest.MonkeyPatch, fresh_kit: None) -> SimulatedKit:
     monkeypatch.setenv(ENVIRONMENT_VARIABLE, "sim")
-    yield use_kit(KitConfig())
-    for board in list(Board.BOARDS):
-        await board.close()
-    kit_module._current = saved
+    return use_kit(KitConfig())
 
 
 def braked(kit: SimulatedKit) -> bool:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import time
-from collections.abc import AsyncIterator
 
 import anyio
 import pytest
@@ -11,13 +10,11 @@ import pytest
 from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.env import HARDWARE_ENVIRONMENT
 from j5aio.backends.hardware.listing import find_boards
-from j5aio.boards.board import Board
 from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduinoBoard
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.components.motor import MotorSpecialState
-from j5aio.simulator import kit as kit_module
 from j5aio.simulator.environment import (
     MINIMUM_TIMEOUT_SCALE,
     SIMULATED_BACKENDS,
@@ -29,17 +26,6 @@ from j5aio.simulator.environment import (
 )
 from j5aio.simulator.kit import KitConfig, SimulatedKit, use_kit
 from j5aio.simulator.sr_motor_fw3 import MotorMode
-
-
-@pytest.fixture
-async def fresh_kit() -> AsyncIterator[None]:
-    """Restore the current kit, and close every board a test found."""
-    saved = kit_module._current
-    yield
-    for board in list(Board.BOARDS):
-        await board.close()
-    kit_module._current = saved
-
 
 pytestmark = pytest.mark.usefixtures("fresh_kit")
 

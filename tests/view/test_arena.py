@@ -3,13 +3,10 @@
 from __future__ import annotations
 
 import math
-from collections.abc import AsyncIterator
 
 import pytest
 
-from j5aio.boards.board import Board
 from j5aio.kit import KitRobot
-from j5aio.simulator import kit as kit_module
 from j5aio.simulator.arena import Arena, ArenaMarker, Pose, SimulatedWorld, Token
 from j5aio.simulator.camera import SimulatedCamera
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
@@ -17,14 +14,7 @@ from j5aio.simulator.kit import KitConfig, SimulatedKit, use_kit
 from j5aio.view.arena import describe_arena, describe_pose, field_of_view, kit_of
 from j5aio.vision.calibration import CameraCalibration
 
-
-@pytest.fixture(autouse=True)
-async def _fresh() -> AsyncIterator[None]:
-    saved = kit_module._current
-    yield
-    for board in list(Board.BOARDS):
-        await board.close()
-    kit_module._current = saved
+pytestmark = pytest.mark.usefixtures("fresh_kit")
 
 
 def small_kit() -> SimulatedKit:
