@@ -1,0 +1,103 @@
+"""What the robot's management service has told this program, for the competition layer.
+
+On a competition robot a service (astoria, over MQTT: see :mod:`j5aio.service`) knows the
+match's metadata and where the team's USB stick is mounted. The service client writes
+what it hears here; the competition layer (:mod:`j5aio.competition.metadata`, the run
+log, :class:`~j5aio.robot.BaseRobot`) reads it. Neither imports the other, so the
+competition layer works the same with the service, without it, and without the optional
+MQTT extra installed.
+
+Every function is safe to call from any thread. Listeners are called on the thread that
+made the change, after it is made; a listener that raises is logged and skipped.
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+from collections.abc import Callable
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from j5aio.competition.metadata import Metadata
+
+__all__ = [
+    "add_listener",
+    "clear",
+    "metadata",
+    "remove_listener",
+    "set_metadata",
+    "set_usercode_path",
+    "usercode_path",
+]
+
+LOGGER = logging.getLogger(__name__)
+
+_lock = threading.Lock()
+_metadata: Metadata | None = None
+_usercode_path: Path | None = None
+_listeners: list[Callable[[], None]] = []
+
+
+def metadata() -> Metadata | None:
+    """The match metadata the service last sent, or ``None`` if it has sent none."""
+    return _metadata
+
+
+def usercode_path() -> Path | None:
+    """Where the service says the team's code (its USB stick) is mounted, or ``None``."""
+    return _usercode_path
+
+
+def set_metadata(value: Metadata | None) -> None:
+    """Record the service's metadata (``None``: forget it), then tell the listeners."""
+    global _metadata
+    with _lock:
+        changed = value != _metadata
+        _metadata = value
+    if changed:
+        _notify()
+
+
+def set_usercode_path(value: Path | None) -> None:
+    """Record where the team's USB stick is (``None``: forget it), then tell the listeners."""
+    global _usercode_path
+    with _lock:
+        changed = value != _usercode_path
+        _usercode_path = value
+    if changed:
+        _notify()
+
+
+def add_listener(listener: Callable[[], None]) -> None:
+    """Call ``listener()`` after each change to the metadata or the stick's path."""
+    with _lock:
+        if listener not in _listeners:
+            _listeners.append(listener)
+
+
+def remove_listener(listener: Callable[[], None]) -> None:
+    """Stop calling ``listener`` (nothing happens if it was not added)."""
+    with _lock:
+        if listener in _listeners:
+            _listeners.remove(listener)
+
+
+def clear() -> None:
+    """Forget everything the service said and every listener (for tests, and at exit)."""
+    global _metadata, _usercode_path
+    with _lock:
+        _metadata = None
+        _usercode_path = None
+        _listeners.clear()
+
+
+def _notify() -> None:
+    with _lock:
+        listeners = list(_listeners)
+    for listener in listeners:
+        try:
+            listener()
+        except Exception:
+            LOGGER.exception("A listener of the robot service's state failed")
