@@ -57,6 +57,11 @@ class Clock(Protocol):
 class ClockedSimulator(Protocol):
     """A simulator whose firmware keeps time, and so follows a clock."""
 
+    @property
+    def clock(self) -> Clock:
+        """The clock the firmware's timers follow."""
+        ...  # pragma: no cover - a protocol
+
     def use_clock(self, clock: Clock) -> None:
         """Follow ``clock`` from now on, keeping the time the board has run so far."""
         ...  # pragma: no cover - a protocol

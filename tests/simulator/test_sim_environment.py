@@ -15,16 +15,15 @@ from j5aio.boards.sb import SBArduinoBoard
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.components.motor import MotorSpecialState
+from j5aio.simulator.clock import ManualClock
 from j5aio.simulator.environment import (
     MINIMUM_TIMEOUT_SCALE,
     SIMULATED_BACKENDS,
     SIMULATED_ENVIRONMENT,
     SimulatedUSBDevice,
-    SRV4PowerBoardSimulatedBackend,
     kit_discovery_options,
     port_name,
 )
-from j5aio.simulator.clock import ManualClock
 from j5aio.simulator.kit import KitConfig, SimulatedKit, use_kit
 from j5aio.simulator.sr_motor_fw3 import MotorMode
 
