@@ -1894,7 +1894,8 @@ class SBServoBoard(ServoBoardFw4):
     """The servo board of the SourceBots 2024+ kit: SourceBots' firmware 4.4, eight servos.
 
     The same board and protocol as :class:`~j5aio.boards.sr.v4.servo_board_fw4.ServoBoardFw4`,
-    with eight servos (0 to 7) whose pulses may be as short as 300 µs.
+    with eight servos (0 to 7) whose pulses may be as short as 300 µs. Positions -1 to 1
+    give pulses of 350 to 1980 µs until a program sets other limits, as in sbot.
 
     :param serial_number: the board's serial number.
     :param backend: the backend that drives the board.
@@ -2844,8 +2845,9 @@ class ProtectedPowerOutput(PowerOutput):
 class PulseServo(Servo):
     """A servo driven by pulses whose widths are set by its position.
 
-    Position -1 gives the lower pulse limit and 1 the upper one (1000 and 2000 µs unless
-    changed with :meth:`set_pulse_limits`); positions in between are spread evenly.
+    Position -1 gives the lower pulse limit and 1 the upper one (the board's defaults,
+    such as 1000 and 2000 µs, unless changed with :meth:`set_pulse_limits`); positions in
+    between are spread evenly.
 
     :param identifier: the number of the servo on its board.
     :param backend: the backend that drives the servo.
