@@ -31,7 +31,6 @@ from __future__ import annotations
 
 import struct
 from collections import deque
-from collections.abc import Callable
 from typing import ClassVar, Final, NamedTuple
 
 from .clock import BoardTime, Clock
@@ -111,7 +110,6 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         self._output_ma = [0] * self.OUTPUT_COUNT
         self._internal_button = False
         self._external_button = False
-        self._press_listeners: list[Callable[[], None]] = []
         self._outputs = [False] * self.OUTPUT_COUNT
         self._trips = [False] * self.OUTPUT_COUNT
         self._run_led = True
@@ -225,30 +223,10 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         self._set_button(external=external, held=False)
 
     def _set_button(self, *, external: bool, held: bool) -> None:
-        was_held = self.start_button_pressed
         if external:
             self._external_button = held
         else:
             self._internal_button = held
-        if self.start_button_pressed and not was_held:
-            for listener in list(self._press_listeners):
-                listener()
-
-    def watch_start_button(self, listener: Callable[[], None]) -> Callable[[], None]:
-        """Call ``listener()`` whenever a start button goes down; return what stops it.
-
-        Not part of the board (the real one must be asked): a host that knows it talks
-        to a simulator may listen instead of reading the button again and again. The
-        listener runs in the thread that pressed the button, so it must only hand the
-        news on (``loop.call_soon_threadsafe``, say).
-        """
-        self._press_listeners.append(listener)
-
-        def stop() -> None:
-            if listener in self._press_listeners:
-                self._press_listeners.remove(listener)
-
-        return stop
 
     @property
     def start_button_pressed(self) -> bool:
