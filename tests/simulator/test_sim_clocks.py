@@ -113,3 +113,31 @@ async def test_queued_notes_play_out_on_the_fw3_power_board() -> None:
     clock.advance(0.2)
     assert kit.power_boards[0].note_queue == []
     assert "piezo quiet" in describe_boards(kit)
+
+
+async def test_the_robot_drives_in_the_kit_time() -> None:
+    from j5aio.boards.sr.v4 import MotorBoard
+    from j5aio.simulator.arena import Pose
+    from j5aio.simulator.camera import update_world
+
+    class Real:
+        now = 0.0
+
+        def __call__(self) -> float:
+            return self.now
+
+    real = Real()
+    kit = use_kit(KitConfig(power_boards=0, motor_boards=1, servo_boards=0, sb_arduinos=0))
+    kit.use_clock(ScaledClock(2.0, source=real))  # a time scale of 2: half speed
+    kit.world.place_robot(Pose(2875.0, 1000.0, 0.0))
+    board = (await SIMULATED_ENVIRONMENT.get_board_group(MotorBoard)).singular()
+    await board.motors[0].set_power(0.5)
+    await board.motors[1].set_power(0.5)
+    update_world(kit)
+    real.now += 2.0  # two real seconds: one second of the kit's time
+    update_world(kit)
+    await board.motors[0].set_power(0)
+    await board.motors[1].set_power(0)
+    # One kit second at half the full speed (heading 0 is along x), not two.
+    moved = kit.world.pose.x - 2875.0
+    assert moved == pytest.approx(0.5 * kit.world.drive.max_speed, rel=0.01)
