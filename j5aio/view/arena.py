@@ -83,6 +83,7 @@ def describe_pose(kit: SimulatedKit) -> dict[str, Any]:
         x, y, _ = world.camera_position()
         left, right = field_of_view(kit.camera)
         shown["camera"] = {
-            "x": x, "y": y, "left": pose.heading + left, "right": pose.heading + right,
+            "x": x, "y": y,
+            "left": world.camera_heading() + left, "right": world.camera_heading() + right,
         }
     return shown
