@@ -41,6 +41,7 @@ from j5aio.simulator.camera import SimulatedCamera, render_view, visible_markers
 from j5aio.vision.arena_map import ArenaMap
 from j5aio.vision.detect import MarkerDetector
 from j5aio.vision.locate import locate
+from j5aio.vision.markers import Marker
 from j5aio.vision.render import Lighting
 from j5aio.vision.track import PositionTracker
 
@@ -105,10 +106,7 @@ def wrong_marker(
         (lambda t: (t * arena.width, arena.length), -math.pi / 2),
         (lambda t: (0.0, t * arena.length), 0.0),
     )
-    if rng.random() < 0.5:
-        marker_id = rng.choice(strays)
-    else:
-        marker_id = rng.choice(wall_ids)
+    marker_id = rng.choice(strays) if rng.random() < 0.5 else rng.choice(wall_ids)
     for _ in range(40):
         place, facing = rng.choice(walls)
         x, y = place(rng.uniform(0.05, 0.95))
@@ -263,14 +261,14 @@ def still_poses(
     return tally
 
 
-def _is_real(marker: object, world: SimulatedWorld, arena_map: ArenaMap) -> bool:
+def _is_real(marker: Marker, world: SimulatedWorld, arena_map: ArenaMap) -> bool:
     """Whether a detected marker is the real wall marker of its id (not a fake copy)."""
-    wall = arena_map.wall_marker(marker.id)  # type: ignore[attr-defined]
+    wall = arena_map.wall_marker(marker.id)
     if wall is None:
         return False
     cx, cy, _ = world.camera_position()
     horizontal = math.hypot(wall.x - cx, wall.y - cy)
-    return abs(marker.position.distance - horizontal) < 0.15 * horizontal + 100  # type: ignore[attr-defined]
+    return abs(marker.position.distance - horizontal) < 0.15 * horizontal + 100
 
 
 def drive(arena: Arena, arena_map: ArenaMap, seconds: float, seed: int,
@@ -288,7 +286,9 @@ def drive(arena: Arena, arena_map: ArenaMap, seconds: float, seed: int,
     believed_speed = world.drive.max_speed * 0.95
     believed_track = world.drive.track_width * 1.03
     margin = 900.0
-    waypoint = (rng.uniform(margin, arena.width - margin), rng.uniform(margin, arena.length - margin))
+    waypoint = (
+        rng.uniform(margin, arena.width - margin), rng.uniform(margin, arena.length - margin)
+    )
     step = 0.05
     frame_every = 4  # steps: a picture every 0.2 s
     blind_until = 0.0

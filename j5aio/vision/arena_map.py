@@ -330,7 +330,8 @@ def _token_group(group: object) -> dict[int, float]:
     ids = group.get("ids", [])
     if not isinstance(ids, list):
         raise ArenaMapError(f"[tokens] ids must be a list; got {describe(ids)}")
-    return dict.fromkeys(ids, group.get("size", 80.0))
+    size = group.get("size", 80.0)
+    return {marker_id: size for marker_id in ids}
 
 
 def _wall_marker(entry: object) -> WallMarker:

@@ -282,9 +282,12 @@ def _single_pose(sighting: _Sighting, mount: CameraMount) -> tuple[float, float,
 def _residuals(
     pose: Sequence[float], sightings: Sequence[_Sighting], mount: CameraMount
 ) -> tuple[list[float], Matrix]:
-    """Weighted residuals (measured - predicted) / sigma, and the Jacobian of the
-    predictions / sigma in the pose (x, y, heading)."""
-    x, y, heading = pose
+    """Weighted residuals and the Jacobian of the weighted predictions in the pose.
+
+    A residual is (measured - predicted) / sigma; the Jacobian is that of
+    predicted / sigma in (x, y, heading).
+    """
+    heading = pose[2]
     cx, cy, camera_heading = _camera(pose, mount)
     c, s = math.cos(heading), math.sin(heading)
     # d(camera x, camera y) / d(heading)
@@ -317,7 +320,7 @@ def _residuals(
 
 def _solve3(a: Matrix, b: Sequence[float]) -> list[float] | None:
     """Solve a 3x3 system by Gaussian elimination with pivoting; ``None`` if singular."""
-    m = [list(a[i]) + [b[i]] for i in range(3)]
+    m = [[*a[i], b[i]] for i in range(3)]
     for col in range(3):
         pivot = max(range(col, 3), key=lambda r: abs(m[r][col]))
         if abs(m[pivot][col]) < 1e-12:

@@ -29,9 +29,9 @@ from __future__ import annotations
 
 import math
 import time
+import weakref
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
-from typing import NoReturn
 
 import anyio
 
@@ -40,7 +40,7 @@ from j5aio.components.marker_camera import MarkerCamera
 from j5aio.vision.arena_map import ArenaMap
 from j5aio.vision.locate import CameraMount, Location, MarkerLike, locate
 
-__all__ = ["Estimate", "PositionTracker"]
+__all__ = ["Estimate", "PositionTracker", "latest_estimate"]
 
 Matrix = list[list[float]]
 
@@ -140,6 +140,22 @@ def _compose(pose: Sequence[float], move: Sequence[float]) -> list[float]:
     ]
 
 
+# The tracker that made an estimate last, and that estimate (for the live view).
+_latest: tuple[weakref.ref[PositionTracker], Estimate] | None = None
+
+
+def latest_estimate() -> Estimate | None:
+    """The estimate that a tracker of this program made last, while that tracker exists.
+
+    The live view shows it beside the simulated robot's true pose. It is the last
+    estimate asked for or made by a picture: it does not move on by itself.
+    """
+    latest = _latest
+    if latest is None or latest[0]() is None:
+        return None
+    return latest[1]
+
+
 @dataclass
 class _State:
     time: float
@@ -172,7 +188,7 @@ class PositionTracker:
         *,
         wander: float = 300.0,
         slip: float = 0.1,
-        clock: Callable[[], float] = time.monotonic,
+        clock: Callable[[], float] | None = None,
     ) -> None:
         if camera is not None and not isinstance(camera, MarkerCamera):
             raise TypeError(f"camera must be a MarkerCamera (robot.camera) or None; got {camera!r}")
@@ -189,7 +205,7 @@ class PositionTracker:
         self._camera = camera
         self._map = arena_map
         self._mount = CameraMount() if mount is None else mount
-        self._clock = clock
+        self._clock = time.monotonic if clock is None else clock
         self._state: _State | None = None
         self._last_fix: Location | None = None
         self._fix_time = 0.0
@@ -220,7 +236,7 @@ class PositionTracker:
         if state is None or fix is None:
             return None
         cov = state.covariance
-        return Estimate(
+        estimate = Estimate(
             state.mean[0],
             state.mean[1],
             state.mean[2],
@@ -230,6 +246,9 @@ class PositionTracker:
             state.time,
             fix,
         )
+        global _latest
+        _latest = (weakref.ref(self), estimate)
+        return estimate
 
     # ------------------------------------------------------------------ motion
 
@@ -252,10 +271,10 @@ class PositionTracker:
             self._apply_move(self._state, forward, left, turned)
 
     def set_motion(self, speed: float = 0.0, turn_rate: float = 0.0) -> None:
-        """Say how the robot drives from now on: forwards at ``speed`` mm/s, turning
-        anticlockwise at ``turn_rate`` rad/s (both 0: it stands still).
+        """Say how the robot drives from now on (both 0: it stands still).
 
-        Until the next call the estimate moves so, with :attr:`slip` of uncertainty.
+        It drives forwards at ``speed`` mm/s, turning anticlockwise at ``turn_rate``
+        rad/s. Until the next call the estimate moves so, with :attr:`slip` of uncertainty.
 
         :raises TypeError: a value is not a number.
         :raises ValueError: a value is not finite.
@@ -271,10 +290,7 @@ class PositionTracker:
         heading = state.mean[2]
         # An arc: the chord is taken along the mean heading of the move.
         chord_heading = heading + turned / 2
-        if abs(turned) > 1e-9:
-            factor = math.sin(turned / 2) / (turned / 2)
-        else:
-            factor = 1.0
+        factor = math.sin(turned / 2) / (turned / 2) if abs(turned) > 1e-9 else 1.0
         along, across = forward * factor, left * factor
         c, s = math.cos(chord_heading), math.sin(chord_heading)
         state.mean = [
@@ -335,10 +351,10 @@ class PositionTracker:
         return self.estimate()
 
     def observe(self, markers: Iterable[MarkerLike], at: float | None = None) -> Estimate | None:
-        """Fold in the fix that one picture's markers give, taken at clock time ``at``
-        (now by default), and return the estimate then.
+        """Fold in the fix of one picture's markers, taken at ``at``; return the estimate.
 
-        For a program that looks through the camera itself (``markers = await
+        ``at`` is the tracker's clock time the picture was taken (now by default). For a
+        program that looks through the camera itself (``markers = await
         robot.camera.see()``, or a competition API's camera).
         """
         taken = self._clock() if at is None else at
@@ -373,8 +389,8 @@ class PositionTracker:
             _diagonal(position_error**2 / 2, position_error**2 / 2, heading_error**2),
         )
 
-    async def run(self, interval: float = 0.0) -> NoReturn:
-        """Look through the camera again and again, forever (run it in a task group).
+    async def run(self, interval: float = 0.0) -> None:
+        """Look through the camera again and again, until cancelled (run it in a task group).
 
         :param interval: seconds to wait between pictures (0: as fast as the camera goes).
         """
