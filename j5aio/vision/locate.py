@@ -53,8 +53,10 @@ __all__ = [
     "CameraMount",
     "Location",
     "MarkerLike",
+    "PoseLike",
     "RejectedMarker",
     "locate",
+    "marker_position",
 ]
 
 #: A marker under this many pixels wide is not trusted alone to place the robot.
@@ -111,6 +113,22 @@ class MarkerLike(Protocol):
     @property
     def pixel_corners(self) -> Sequence[PixelCoordinates]:
         """Its four corners on the picture (for its size in pixels)."""
+
+
+class PoseLike(Protocol):
+    """A robot's pose: a :class:`Location`, a tracker's estimate, or anything with these."""
+
+    @property
+    def x(self) -> float:
+        """mm, in the arena's frame."""
+
+    @property
+    def y(self) -> float:
+        """mm, in the arena's frame."""
+
+    @property
+    def heading(self) -> float:
+        """Radians anticlockwise from the arena's x axis."""
 
 
 @dataclass(frozen=True)
@@ -554,3 +572,29 @@ def locate(
         tuple(rejected),
         tuple((row[0], row[1], row[2]) for row in covariance),
     )
+
+
+def marker_position(
+    marker: MarkerLike, robot: PoseLike, mount: CameraMount | None = None
+) -> tuple[float, float]:
+    """Where in the arena a marker seen from the robot is: the (x, y) of its centre, mm.
+
+    For a token: ``marker_position(marker, where, MOUNT)`` with the robot's pose
+    ``where`` (from :func:`locate` or a tracker) says where the token's face is.
+
+    :param marker: a marker with a pose, as the camera reported it.
+    :param robot: the robot's pose when the picture was taken.
+    :param mount: where the camera is on the robot (by default at its centre, forwards).
+    :raises ValueError: the marker has no pose (the camera has no calibration).
+    """
+    mount = CameraMount() if mount is None else mount
+    distance, horizontal, vertical = marker.position
+    if not math.isfinite(distance):
+        raise ValueError(f"marker {marker.id} has no pose: the camera has no calibration")
+    forward = distance / math.sqrt(1 + math.tan(horizontal) ** 2 + math.tan(vertical) ** 2)
+    up = forward * math.tan(vertical)
+    level_forward = forward * math.cos(mount.tilt) - up * math.sin(mount.tilt)
+    left = -forward * math.tan(horizontal)
+    cx, cy, camera_heading = _camera((robot.x, robot.y, robot.heading), mount)
+    c, s = math.cos(camera_heading), math.sin(camera_heading)
+    return (cx + c * level_forward - s * left, cy + s * level_forward + c * left)

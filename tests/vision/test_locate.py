@@ -8,7 +8,7 @@ import pytest
 
 from j5aio.simulator.arena import Pose, SimulatedWorld
 from j5aio.vision.arena_map import ArenaMap, WallMarker
-from j5aio.vision.locate import CameraMount, Location, RejectedMarker, locate
+from j5aio.vision.locate import CameraMount, Location, RejectedMarker, locate, marker_position
 from j5aio.vision.markers import Marker, Position
 
 from .markers_from_truth import true_markers
@@ -178,3 +178,22 @@ def test_a_location_reads_well() -> None:
     where = Location(1000.0, 2000.0, math.pi / 2, 12.3, math.radians(0.5), (3, 4))
     assert str(where) == "(1000, 2000) mm ± 12, heading 90.0° ± 0.5°, from markers 3, 4"
     assert "from marker 3" in str(Location(0.0, 0.0, 0.0, 1.0, 0.0, (3,)))
+
+
+def test_a_marker_seen_from_a_known_pose_is_placed_in_the_arena() -> None:
+    pose = Pose(2875.0, 1000.0, math.pi / 2)
+    world = SimulatedWorld(camera_left=30.0, camera_angle=0.1)
+    world.place_robot(pose)
+    markers = true_markers(world)
+    where = locate(markers, ARENA, world.camera_mount())
+    assert where is not None
+    token = next(m for m in markers if m.id == 102)
+    camera_x, camera_y, _ = world.camera_position()
+    face = min(  # the face of token 102 nearest the camera is the one in view
+        (f for t in world.arena.tokens if t.marker_id == 102 for f in t.markers()),
+        key=lambda f: math.hypot(f.x - camera_x, f.y - camera_y),
+    )
+    x, y = marker_position(token, where, world.camera_mount())
+    assert math.hypot(x - face.x, y - face.y) < 2.0
+    with pytest.raises(ValueError, match="no pose"):
+        marker_position(token._replace(position=Position(math.nan, 0.0, 0.0)), where)
