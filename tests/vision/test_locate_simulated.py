@@ -16,12 +16,12 @@ pytest.importorskip("numpy")
 pytest.importorskip("cv2")
 pytest.importorskip("pyapriltags")
 
-from j5aio.kit import KitRobot  # noqa: E402
-from j5aio.simulator.arena import Pose  # noqa: E402
-from j5aio.simulator.environment import SIMULATED_ENVIRONMENT  # noqa: E402
-from j5aio.simulator.kit import use_kit  # noqa: E402
-from j5aio.vision.locate import locate  # noqa: E402
-from j5aio.vision.track import PositionTracker  # noqa: E402
+from j5aio.kit import KitRobot
+from j5aio.simulator.arena import Pose
+from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
+from j5aio.simulator.kit import use_kit
+from j5aio.vision.locate import locate
+from j5aio.vision.track import PositionTracker
 
 pytestmark = pytest.mark.usefixtures("fresh_kit")
 
