@@ -197,3 +197,21 @@ def test_a_marker_seen_from_a_known_pose_is_placed_in_the_arena() -> None:
     assert math.hypot(x - face.x, y - face.y) < 2.0
     with pytest.raises(ValueError, match="no pose"):
         marker_position(token._replace(position=Position(math.nan, 0.0, 0.0)), where)
+
+
+def test_markers_without_pixel_corners_are_still_used() -> None:
+    # A competition API's markers may carry no corners: the noise model then has floors.
+    pose = Pose(1000.0, 1500.0, 0.3)
+    world = SimulatedWorld()
+    world.place_robot(pose)
+    markers = [m._replace(pixel_corners=()) for m in walls(true_markers(world))]
+    check(locate(markers, ARENA, world.camera_mount()), pose)
+
+
+def test_singular_systems_are_reported_not_divided_by() -> None:
+    from j5aio.vision.locate import _fit, _inverse3, _solve3
+
+    zeros = [[0.0] * 3 for _ in range(3)]
+    assert _solve3(zeros, [1.0, 1.0, 1.0]) is None
+    assert _inverse3(zeros) is None
+    assert _fit((0.0, 0.0, 0.0), [], CameraMount()) is None

@@ -206,3 +206,12 @@ def test_an_estimate_reads_well() -> None:
     assert str(tracker.estimate()) == (
         "(1000, 2000) mm ± 30, heading 0.0° ± 2.0°, 0.0 s since markers were seen"
     )
+
+
+def test_a_singular_matrix_has_no_inverse() -> None:
+    from j5aio.vision.track import _inverse
+
+    assert _inverse([[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 0.0, 1.0]]) is None
+    assert _inverse([[2.0, 0.0, 0.0], [0.0, 4.0, 0.0], [0.0, 0.0, 0.5]]) == [
+        [0.5, 0.0, 0.0], [0.0, 0.25, 0.0], [0.0, 0.0, 2.0]
+    ]
