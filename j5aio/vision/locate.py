@@ -31,7 +31,7 @@ as :mod:`j5aio.vision.track` keeps, picks the hypothesis nearest to it). The res
 the markers used and those left out, with the reason.
 
 The camera is taken to be level across (no roll); a camera tilted up or down is allowed
-for by :attr:`CameraMount.tilt`.
+for by the ``tilt`` of its :class:`CameraMount`.
 
 No optional library is needed here: the function takes any list of markers with the
 fields of :class:`~j5aio.vision.markers.Marker`, from any camera.

@@ -17,9 +17,10 @@ grows with the distance; when the program says nothing, the robot is taken to st
 still, give or take a wander of :attr:`PositionTracker.wander` mm a second (a random
 walk), so a stale estimate says how unsure it has become.
 
-A fix far outside what the estimate allows (a misread marker that :func:`locate` could not
-catch alone) is set aside; when three fixes in a row are set aside, the robot must have
-been moved: the estimate starts again from the newest fix.
+A fix far outside what the estimate allows (a misread marker that
+:func:`~j5aio.vision.locate.locate` could not catch alone) is set aside; when three fixes in
+a row are set aside, the robot must have been moved: the estimate starts again from the
+newest fix.
 
 Through the sync facade (``from j5aio.sync import PositionTracker``) the same calls block
 instead of being awaited. No optional library is needed here.
