@@ -39,6 +39,7 @@ fields of :class:`~j5aio.vision.markers.Marker`, from any camera.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
@@ -82,6 +83,11 @@ _AGREEMENT_SIGMAS = 4.0
 # Margins added to those tests, for what the noise model misses.
 _SEPARATION_MARGIN = 60.0  # mm
 _HEADING_MARGIN = math.radians(8.0)
+
+# A marker's facing this many standard deviations off the fit of two or more markers is
+# ignored (a small marker's orientation can be wrong by tens of degrees, when the detector
+# takes the mirror image of its pose); its distance and bearing are still used.
+_FACING_OUTLIER_SIGMAS = 5.0
 
 # How far outside the arena (mm) a robot's centre may seem to be and still be believed.
 _OUTSIDE_MARGIN = 250.0
@@ -218,6 +224,7 @@ class _Sighting:
     sigma_bearing: float
     sigma_facing: float
     pixels: float
+    use_facing: bool = True  # False: its facing was far off the fit, and is ignored
 
     def camera_heading(self) -> float:
         """The camera's heading that this marker's facing alone gives."""
@@ -331,8 +338,13 @@ def _residuals(
              ((dy * dcx - dx * dcy) / r2 - 1) / seen.sigma_bearing]
         )
         # facing
-        rows.append(_wrap(seen.facing - (seen.wall.facing - camera_heading)) / seen.sigma_facing)
-        jacobian.append([0.0, 0.0, -1.0 / seen.sigma_facing])
+        if seen.use_facing:
+            predicted = seen.wall.facing - camera_heading
+            rows.append(_wrap(seen.facing - predicted) / seen.sigma_facing)
+            jacobian.append([0.0, 0.0, -1.0 / seen.sigma_facing])
+        else:
+            rows.append(0.0)
+            jacobian.append([0.0, 0.0, 0.0])
     return rows, jacobian
 
 
@@ -425,7 +437,9 @@ def _agree(a: _Sighting, b: _Sighting) -> bool:
         return True
     pair_heading = math.atan2(map_dy, map_dx) - math.atan2(seen_dy, seen_dx)
     heading_tolerance = _HEADING_MARGIN + math.atan2(tolerance, map_separation)
-    return all(
+    # One facing that agrees is enough: a small marker's facing can be far off (see
+    # _FACING_OUTLIER_SIGMAS) while its distance and bearing are good.
+    return any(
         abs(_wrap(pair_heading - s.camera_heading()))
         <= heading_tolerance + _AGREEMENT_SIGMAS * s.sigma_facing
         for s in (a, b)
@@ -524,6 +538,12 @@ def locate(
     if not sightings:
         return None
     groups = _largest_agreeing(sightings)
+    if len(groups) > 1:
+        # Several sets tie: the markers in all of them agree with each other; when there
+        # are two or more of those, they are the answer (the disputed ones are left out).
+        core = sorted(set(groups[0]).intersection(*groups[1:]))
+        if len(core) >= 2:
+            groups = [core]
     prior_pose = None if prior is None else _pose_of(prior)
     if len(groups) > 1 or (len(groups[0]) == 1 and len(sightings) > 1):
         # No majority: only a prior, or the arena's walls, can choose.
@@ -555,7 +575,22 @@ def locate(
     fit = _fit(start, used, mount)
     if fit is None:  # pragma: no cover - only for degenerate input
         return None
-    dof = 3 * len(used) - 3
+    while len(used) >= 2:
+        far_off = {
+            i for i, s in enumerate(used)
+            if s.use_facing and abs(fit.rows[3 * i + 2]) > _FACING_OUTLIER_SIGMAS
+        }
+        if not far_off:
+            break
+        used = [
+            dataclasses.replace(s, use_facing=False) if i in far_off else s
+            for i, s in enumerate(used)
+        ]
+        refit = _fit(fit.pose, used, mount)
+        if refit is None:  # pragma: no cover - the bearings of two markers fix the heading
+            break
+        fit = refit
+    dof = 2 * len(used) + sum(s.use_facing for s in used) - 3
     scale = max(1.0, fit.chi2 / dof) if dof > 0 else 1.0
     covariance = [[v * scale for v in row] for row in fit.covariance]
     x, y, heading = fit.pose

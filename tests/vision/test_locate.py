@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from dataclasses import dataclass
 
 import pytest
 
 from j5aio.simulator.arena import Pose, SimulatedWorld
 from j5aio.vision.arena_map import ArenaMap, WallMarker
 from j5aio.vision.locate import CameraMount, Location, RejectedMarker, locate, marker_position
-from j5aio.vision.markers import Marker, Position
+from j5aio.vision.markers import Marker, Orientation, PixelCoordinates, Position
 
 from .markers_from_truth import true_markers
 
@@ -199,12 +201,25 @@ def test_a_marker_seen_from_a_known_pose_is_placed_in_the_arena() -> None:
         marker_position(token._replace(position=Position(math.nan, 0.0, 0.0)), where)
 
 
-def test_markers_without_pixel_corners_are_still_used() -> None:
-    # A competition API's markers may carry no corners: the noise model then has floors.
+@dataclass
+class ForeignMarker:
+    """A marker of another API's camera, with the fields locate reads, and no corners."""
+
+    id: int
+    size: float
+    position: Position
+    orientation: Orientation
+    pixel_corners: Sequence[PixelCoordinates] = ()
+
+
+def test_markers_of_another_api_without_pixel_corners_are_used() -> None:
+    # Without corners the noise model has only its floors.
     pose = Pose(1000.0, 1500.0, 0.3)
     world = SimulatedWorld()
     world.place_robot(pose)
-    markers = [m._replace(pixel_corners=()) for m in walls(true_markers(world))]
+    markers = [
+        ForeignMarker(m.id, m.size, m.position, m.orientation) for m in walls(true_markers(world))
+    ]
     check(locate(markers, ARENA, world.camera_mount()), pose)
 
 
@@ -215,3 +230,33 @@ def test_singular_systems_are_reported_not_divided_by() -> None:
     assert _solve3(zeros, [1.0, 1.0, 1.0]) is None
     assert _inverse3(zeros) is None
     assert _fit((0.0, 0.0, 0.0), [], CameraMount()) is None
+
+
+def turned(marker: Marker, degrees: float) -> Marker:
+    """The marker with its facing (yaw) reported ``degrees`` off, as a mirrored pose is."""
+    yaw, pitch, roll = marker.orientation
+    return marker._replace(orientation=Orientation(yaw + math.radians(degrees), pitch, roll))
+
+
+def test_a_marker_whose_facing_alone_is_wrong_still_gives_its_distance_and_bearing() -> None:
+    pose = Pose(1000.0, 1500.0, 0.3)
+    world = SimulatedWorld()
+    world.place_robot(pose)
+    markers = walls(true_markers(world))
+    markers[1] = turned(markers[1], 40.0)
+    where = check(locate(markers, ARENA, world.camera_mount()), pose)
+    assert markers[1].id in where.used
+
+
+def test_markers_that_dispute_each_other_alone_are_left_out() -> None:
+    pose = Pose(1000.0, 1500.0, 0.3)
+    world = SimulatedWorld()
+    world.place_robot(pose)
+    markers = walls(true_markers(world))
+    assert len(markers) >= 4
+    # Each of the two agrees with the rest (whose facings are right), not with the other.
+    markers[0], markers[1] = turned(markers[0], 50.0), turned(markers[1], -60.0)
+    where = check(locate(markers, ARENA, world.camera_mount()), pose)
+    assert {r.id for r in where.rejected if r.reason == "disagrees with the others"} == {
+        markers[0].id, markers[1].id
+    }
