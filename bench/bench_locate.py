@@ -1,6 +1,7 @@
 """Locating the robot from its camera's markers: accuracy, robustness, cost, and tracking.
 
 Run:  PYTHONPATH=. python bench/bench_locate.py [--poses 500] [--seed 1] [--arena FILE]
+      [--resolution 1280x720] [--rough] [--drive-seconds 60]
 
 Every figure comes from real pictures: the simulated camera renders the arena from the
 robot's pose, the real detector finds the markers, and :func:`j5aio.vision.locate.locate`
@@ -356,6 +357,9 @@ def main() -> None:
     parser.add_argument("--arena", type=Path, help="a TOML or JSON arena description")
     parser.add_argument("--drive-seconds", type=float, default=60.0)
     parser.add_argument(
+        "--resolution", default="1280x720", help="the camera's pictures, WIDTHxHEIGHT (16:9)"
+    )
+    parser.add_argument(
         "--rough", action="store_true",
         help="pictures as a real camera's: blurred (0.8 px), noisy (4 levels), darker",
     )
@@ -366,8 +370,9 @@ def main() -> None:
     else:
         arena = Arena.standard()
         arena_map = arena.arena_map()
-    if options.rough:
-        CAMERA[0] = SimulatedCamera(lighting=Lighting(brightness=0.8, blur=0.8, noise=4.0))
+    width, height = (int(v) for v in options.resolution.lower().split("x"))
+    lighting = Lighting(brightness=0.8, blur=0.8, noise=4.0) if options.rough else None
+    CAMERA[0] = SimulatedCamera(resolution=(width, height), lighting=lighting)
     detector = MarkerDetector()
     timings: dict[str, list[float]] = {"detect": [], "locate": []}
     began = time.perf_counter()
