@@ -38,9 +38,7 @@ No optional library is needed here.
 
 from __future__ import annotations
 
-import json
 import math
-import tomllib
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -269,6 +267,9 @@ class ArenaMap:
         :raises ArenaMapError: the file is not TOML or JSON, or describes no usable arena.
         :raises OSError: the file cannot be read.
         """
+        import json  # here: a program that never reads a file never imports them
+        import tomllib
+
         path = Path(path)
         suffix = path.suffix.lower()
         text = path.read_text(encoding="utf-8")
