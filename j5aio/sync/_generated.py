@@ -622,8 +622,9 @@ class PositionTracker(_SyncWrapper):
     :param wander: how fast the robot may move unseen while the program says nothing of
         its motion, mm/s (the estimate's uncertainty grows by so much a second, as a
         random walk); 0 trusts that the robot stands still.
-    :param slip: the fraction of each distance driven and angle turned by which the real
-        motion may differ from what the program says (wheels slip, speeds are guessed).
+    :param slip: the fraction by which the real motion may differ from what the program
+        says (wheels slip, speeds are guessed): the uncertainty grows by this fraction of
+        the distance driven and of the angle turned since the last fix.
     :param clock: the clock, in seconds (``time.monotonic`` by default).
     :raises TypeError: ``arena_map`` is not an ArenaMap, or ``camera`` not a MarkerCamera.
     :raises ValueError: ``wander`` or ``slip`` is negative.

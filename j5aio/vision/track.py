@@ -174,8 +174,9 @@ class PositionTracker:
     :param wander: how fast the robot may move unseen while the program says nothing of
         its motion, mm/s (the estimate's uncertainty grows by so much a second, as a
         random walk); 0 trusts that the robot stands still.
-    :param slip: the fraction of each distance driven and angle turned by which the real
-        motion may differ from what the program says (wheels slip, speeds are guessed).
+    :param slip: the fraction by which the real motion may differ from what the program
+        says (wheels slip, speeds are guessed): the uncertainty grows by this fraction of
+        the distance driven and of the angle turned since the last fix.
     :param clock: the clock, in seconds (``time.monotonic`` by default).
     :raises TypeError: ``arena_map`` is not an ArenaMap, or ``camera`` not a MarkerCamera.
     :raises ValueError: ``wander`` or ``slip`` is negative.
@@ -213,6 +214,9 @@ class PositionTracker:
         self._speed = 0.0
         self._turn_rate = 0.0
         self._set_aside: list[Location] = []
+        # The distance driven and angle turned (as the program said) since the last fix.
+        self._travelled = 0.0
+        self._turned = 0.0
 
     # ------------------------------------------------------------------ what it knows
 
@@ -304,13 +308,15 @@ class PositionTracker:
             [0.0, 1.0, c * along - s * across],
             [0.0, 0.0, 1.0],
         ]
-        distance = math.hypot(forward, left)
+        # A wrong speed is wrong all along: the error of the motion said since the last fix
+        # grows with its whole length, however many pieces it was said in.
         slip = self.slip
-        noise = _diagonal(
-            (slip * distance) ** 2 + 1.0,
-            (slip * distance) ** 2 + 1.0,
-            (slip * turned) ** 2 + (slip * distance / 1000.0) ** 2,
-        )
+        before_distance, before_turn = self._travelled, self._turned
+        self._travelled += math.hypot(forward, left)
+        self._turned += abs(turned)
+        grown_distance = slip**2 * (self._travelled**2 - before_distance**2)
+        grown_turn = slip**2 * (self._turned**2 - before_turn**2)
+        noise = _diagonal(grown_distance, grown_distance, grown_turn + grown_distance / 1e6)
         state.covariance = _add(_mul(_mul(jacobian, state.covariance), _t(jacobian)), noise)
 
     def _predict(self, now: float) -> None:
@@ -373,6 +379,7 @@ class PositionTracker:
         """
         self._speed = self._turn_rate = 0.0
         self._set_aside = []
+        self._travelled = self._turned = 0.0
         if pose is None:
             self._state, self._last_fix = None, None
             return
@@ -431,6 +438,7 @@ class PositionTracker:
         state.mean = _compose(fused.mean, move)
         state.covariance = _add(fused.covariance, growth)
         self._last_fix, self._fix_time = fix, taken
+        self._travelled = self._turned = 0.0
 
     def _start_from(self, fix: Location, taken: float) -> None:
         now = max(taken, self._state.time if self._state is not None else taken)
@@ -438,6 +446,7 @@ class PositionTracker:
             now, [fix.x, fix.y, fix.heading], [list(row) for row in fix.covariance]
         )
         self._last_fix, self._fix_time = fix, taken
+        self._travelled = self._turned = 0.0
         self._set_aside = []
 
     @staticmethod

@@ -215,3 +215,20 @@ def test_a_singular_matrix_has_no_inverse() -> None:
     assert _inverse([[2.0, 0.0, 0.0], [0.0, 4.0, 0.0], [0.0, 0.0, 0.5]]) == [
         [0.5, 0.0, 0.0], [0.0, 0.25, 0.0], [0.0, 0.0, 2.0]
     ]
+
+
+def test_the_uncertainty_of_a_move_does_not_depend_on_how_it_was_said() -> None:
+    def after(pieces: int) -> float:
+        tracker = PositionTracker(None, ARENA, slip=0.1, clock=Clock())
+        tracker.reset((1000.0, 1000.0, 0.0), position_error=0.0, heading_error=0.0)
+        for _ in range(pieces):
+            tracker.moved(1000.0 / pieces)
+        estimate = close_to(tracker.estimate(), 2000.0, 1000.0, 0.0)
+        return estimate.position_error
+
+    # a tenth of the 1000 mm driven, in x and in y
+    assert after(1) == pytest.approx(math.sqrt(2) * 100.0)
+    # In pieces, the heading's growing uncertainty also spreads the later pieces a little;
+    # the growth does not add up piece by piece (10 pieces of 100 mm would give a third).
+    assert after(10) == pytest.approx(after(1), rel=0.05)
+    assert after(100) == pytest.approx(after(10), rel=0.05)
