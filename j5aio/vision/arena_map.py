@@ -123,7 +123,7 @@ class ArenaMap:
     markers: tuple[WallMarker, ...]
     width: float = 0.0
     length: float = 0.0
-    token_sizes: Mapping[int, float] = field(default_factory=dict)
+    token_sizes: Mapping[int, float] = field(default_factory=dict, hash=False)
 
     def __post_init__(self) -> None:
         markers = tuple(self.markers)

@@ -47,6 +47,7 @@ def test_the_standard_map_is_the_simulated_arenas_and_its_sizes_agree_with_the_c
     assert (first.x, first.y, first.z, first.size) == (718.75, 0.0, 250.0, 150.0)
     assert first.facing == pytest.approx(math.pi / 2)
     assert arena_map.wall_marker(100) is None
+    assert hash(arena_map) == hash(ArenaMap.standard())
 
 
 def test_a_toml_file_lists_the_markers(tmp_path: Path) -> None:
