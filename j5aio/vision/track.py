@@ -342,6 +342,9 @@ class PositionTracker:
 
         :returns: the estimate now (``None`` until a fix has been had).
         :raises RuntimeError: the tracker has no camera.
+        :raises ~j5aio.vision.sizes.UnknownMarkerError: the camera saw a marker that its
+            table of sizes lacks: give it the map's,
+            ``camera.set_marker_sizes(arena_map.marker_sizes())``.
         """
         if self._camera is None:
             raise RuntimeError(
