@@ -107,6 +107,7 @@ CORE_SCOPE = Scope(
         ("j5aio.backends.environment", "Environment"),
         ("j5aio.robot", "BaseRobot"),
         ("j5aio.kit", "KitRobot"),
+        ("j5aio.vision.track", "PositionTracker"),
     ),
     environment_packages=("j5aio.backends",),
     function_modules=("j5aio.environments",),

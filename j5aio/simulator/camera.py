@@ -87,7 +87,7 @@ class SimulatedCamera:
 
 
 def _basis(world: SimulatedWorld) -> tuple[Vector3, Vector3, Vector3, Vector3]:
-    h = world.pose.heading
+    h = world.camera_heading()
     forward = (math.cos(h), math.sin(h), 0.0)
     left = (-math.sin(h), math.cos(h), 0.0)
     return world.camera_position(), forward, left, (0.0, 0.0, 1.0)

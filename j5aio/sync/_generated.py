@@ -57,6 +57,7 @@ import j5aio.components.temperature_sensor as _components_temperature_sensor
 import j5aio.components.voltage_sensor as _components_voltage_sensor
 import j5aio.kit as _kit
 import j5aio.robot as _robot
+import j5aio.vision.track as _vision_track
 from j5aio._lazy import lazy_modules as _lazy_modules
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt as _adopt
@@ -74,7 +75,9 @@ if TYPE_CHECKING:
     import j5aio.competition.timer as _competition_timer
     import j5aio.environments as _environments
     import j5aio.numbered as _numbered
+    import j5aio.vision.arena_map as _vision_arena_map
     import j5aio.vision.calibration as _vision_calibration
+    import j5aio.vision.locate as _vision_locate
     import j5aio.vision.markers as _vision_markers
     import j5aio.vision.sizes as _vision_sizes
     CONSOLE_ENVIRONMENT: Environment
@@ -90,7 +93,9 @@ else:
         "_competition_timer": "j5aio.competition.timer",
         "_environments": "j5aio.environments",
         "_numbered": "j5aio.numbered",
+        "_vision_arena_map": "j5aio.vision.arena_map",
         "_vision_calibration": "j5aio.vision.calibration",
+        "_vision_locate": "j5aio.vision.locate",
         "_vision_markers": "j5aio.vision.markers",
         "_vision_sizes": "j5aio.vision.sizes",
     })
@@ -125,6 +130,7 @@ __all__ = [
     "MotorBoard",
     "MotorBoardFw4",
     "Piezo",
+    "PositionTracker",
     "PowerBoard",
     "PowerBoardFw4",
     "PowerBoardOutputGroup",
@@ -604,6 +610,127 @@ class BaseRobot(_SyncWrapper):
     def boards() -> set[Board]:
         """Every board that is set up in this program."""
         return cast("set[Board]", _wrap(_robot.BaseRobot.boards()))
+
+
+class PositionTracker(_SyncWrapper):
+    """Keeps an estimate of the robot's pose from its camera's markers and its own motion.
+
+    :param camera: the robot's marker camera (``robot.camera``), looked through by
+        :meth:`update`; ``None`` for a tracker fed only by :meth:`observe`.
+    :param arena_map: the arena's wall markers.
+    :param mount: where the camera is on the robot (by default at its centre, forwards).
+    :param wander: how fast the robot may move unseen while the program says nothing of
+        its motion, mm/s (the estimate's uncertainty grows by so much a second, as a
+        random walk); 0 trusts that the robot stands still.
+    :param slip: the fraction by which the real motion may differ from what the program
+        says (wheels slip, speeds are guessed): the uncertainty grows by this fraction of
+        the distance driven and of the angle turned since the last fix.
+    :param clock: the clock, in seconds (``time.monotonic`` by default).
+    :raises TypeError: ``arena_map`` is not an ArenaMap, or ``camera`` not a MarkerCamera.
+    :raises ValueError: ``wander`` or ``slip`` is negative.
+    """
+
+    __slots__ = ()
+
+    _core: _vision_track.PositionTracker
+
+    def __init__(
+        self,
+        camera: MarkerCamera | None,
+        arena_map: _vision_arena_map.ArenaMap,
+        mount: _vision_locate.CameraMount | None = None,
+        *,
+        wander: float = 300.0,
+        slip: float = 0.1,
+        clock: Callable[[], float] | None = None,
+    ) -> None:
+        _adopt_into(self, _vision_track.PositionTracker(_unwrap(camera), arena_map, mount, wander=wander, slip=slip, clock=clock))
+
+    @property
+    def arena_map(self) -> _vision_arena_map.ArenaMap:
+        """The arena the robot is located in."""
+        return self._core.arena_map
+
+    @property
+    def mount(self) -> _vision_locate.CameraMount:
+        """Where the camera is on the robot."""
+        return self._core.mount
+
+    def estimate(self) -> _vision_track.Estimate | None:
+        """Where the robot is now, carried on from the last fix; ``None`` before any fix."""
+        return self._core.estimate()
+
+    def moved(self, forward: float, turned: float = 0.0, *, left: float = 0.0) -> None:
+        """Say that the robot has just moved: ``forward`` mm, turning ``turned`` radians.
+
+        The move is taken along an arc (a differential drive's), in the robot's frame as
+        it was; ``left`` is a sideways move, mm (for a robot that can). Its uncertainty is
+        :attr:`slip` of it.
+
+        :raises TypeError: a value is not a number.
+        :raises ValueError: a value is not finite.
+        """
+        self._core.moved(forward, turned, left=left)
+
+    def set_motion(self, speed: float = 0.0, turn_rate: float = 0.0) -> None:
+        """Say how the robot drives from now on (both 0: it stands still).
+
+        It drives forwards at ``speed`` mm/s, turning anticlockwise at ``turn_rate``
+        rad/s. Until the next call the estimate moves so, with :attr:`slip` of uncertainty.
+
+        :raises TypeError: a value is not a number.
+        :raises ValueError: a value is not finite.
+        """
+        self._core.set_motion(speed, turn_rate)
+
+    def update(self) -> _vision_track.Estimate | None:
+        """Take a picture, fold in the fix its markers give, and return the estimate.
+
+        The fix is folded in where the robot was when the picture was asked for; any
+        motion said while the picture was taken is kept.
+
+        :returns: the estimate now (``None`` until a fix has been had).
+        :raises RuntimeError: the tracker has no camera.
+        :raises ~j5aio.vision.sizes.UnknownMarkerError: the camera saw a marker that its
+            table of sizes lacks: give it the map's,
+            ``camera.set_marker_sizes(arena_map.marker_sizes())``.
+        """
+        return _call(self._core.update)
+
+    def observe(
+        self,
+        markers: Iterable[_vision_locate.MarkerLike],
+        at: float | None = None,
+    ) -> _vision_track.Estimate | None:
+        """Fold in the fix of one picture's markers, taken at ``at``; return the estimate.
+
+        ``at`` is the tracker's clock time the picture was taken (now by default). For a
+        program that looks through the camera itself (``markers = await
+        robot.camera.see()``, or a competition API's camera).
+        """
+        return self._core.observe(markers, at)
+
+    def reset(
+        self,
+        pose: Sequence[float] | None = None,
+        *,
+        position_error: float = 50.0,
+        heading_error: float = 0.05,
+    ) -> None:
+        """Forget the estimate; or, given ``(x, y, heading)``, start from that pose.
+
+        :param pose: where the robot is known to be (its starting zone), or ``None``.
+        :param position_error: how well ``pose`` is known, mm.
+        :param heading_error: how well its heading is known, radians.
+        """
+        self._core.reset(pose, position_error=position_error, heading_error=heading_error)
+
+    def run(self, interval: float = 0.0) -> None:
+        """Look through the camera again and again, until cancelled (run it in a task group).
+
+        :param interval: seconds to wait between pictures (0: as fast as the camera goes).
+        """
+        _call(self._core.run, interval)
 
 
 class Board(_SyncWrapper):
@@ -2931,6 +3058,7 @@ _register(_backends_environment.Environment, Environment)
 _register(_boards_sb_arduino.UltrasoundSensors, UltrasoundSensors)
 _register(_boards_sr_kch.Colour, Colour)
 _register(_robot.BaseRobot, BaseRobot)
+_register(_vision_track.PositionTracker, PositionTracker)
 _register(_boards_board.Board, Board)
 _register(_boards_board_group.BoardGroup, BoardGroup)
 _register(_components_component.Component, Component)
