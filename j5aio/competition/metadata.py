@@ -32,6 +32,7 @@ __all__ = [
     "DEFAULT_MEDIA_ROOTS",
     "DEV_DEFAULTS",
     "MAX_DURATION",
+    "MAX_MARKER_OFFSET",
     "MAX_ZONE",
     "MEDIA_ROOTS_VARIABLE",
     "METADATA_FILENAME",
@@ -42,6 +43,7 @@ __all__ = [
     "find_metadata_file",
     "find_usb_sticks",
     "load_metadata",
+    "parse_astoria_metadata",
     "parse_metadata",
 ]
 
@@ -60,6 +62,8 @@ DEFAULT_MEDIA_ROOTS: Final = (Path("/media"), Path("/run/media"))
 MAX_ZONE: Final = 99
 #: The longest match allowed, in seconds (an hour).
 MAX_DURATION: Final = 3600.0
+#: The highest marker offset allowed.
+MAX_MARKER_OFFSET: Final = 10_000
 _MAX_ARENA_LENGTH: Final = 32
 _MAX_FILE_BYTES: Final = 64 * 1024
 
@@ -92,6 +96,8 @@ class Metadata:
         ``None`` for no time limit.
     :param marker_offset: added to marker numbers in this arena (0 or more).
     :param source: the file this came from; ``None`` for the defaults.
+    :param wifi_enabled: whether the robot's WiFi hotspot is allowed (astoria's
+        ``wifi_enabled``), or ``None`` where the format does not say.
     :raises MetadataError: a field is out of range or of the wrong type.
     """
 
@@ -101,16 +107,23 @@ class Metadata:
     duration: float | None = None
     marker_offset: int = 0
     source: Path | None = None
+    wifi_enabled: bool | None = None
+    origin: str | None = None
 
     def __post_init__(self) -> None:
-        where = str(self.source) if self.source is not None else "metadata"
+        where = str(self.source or self.origin or "metadata")
         _check_arena(self.arena, where)
         _check_int(self.zone, "zone", where, 0, MAX_ZONE)
         if not isinstance(self.mode, Mode):
             raise MetadataError(f"{where}: mode must be a Mode, not {self.mode!r}")
         if self.duration is not None:
             _check_duration(self.duration, where)
-        _check_int(self.marker_offset, "marker_offset", where, 0, 10_000)
+        _check_int(self.marker_offset, "marker_offset", where, 0, MAX_MARKER_OFFSET)
+        if self.wifi_enabled is not None and not isinstance(self.wifi_enabled, bool):
+            raise MetadataError(
+                f"{where}: field 'wifi_enabled' must be true, false or null, "
+                f"not {self.wifi_enabled!r}"
+            )
 
     @property
     def is_competition(self) -> bool:
@@ -202,7 +215,7 @@ def parse_metadata(data: object, source: Path | None = None) -> Metadata:
     _check_int(zone, "zone", where, 0, MAX_ZONE)
     if duration is not None:
         _check_duration(duration, where)
-    _check_int(offset, "marker_offset", where, 0, 10_000)
+    _check_int(offset, "marker_offset", where, 0, MAX_MARKER_OFFSET)
     assert isinstance(arena, str) and isinstance(zone, int) and isinstance(offset, int)
     assert duration is None or isinstance(duration, int | float)
     return Metadata(
@@ -212,6 +225,138 @@ def parse_metadata(data: object, source: Path | None = None) -> Metadata:
         duration=None if duration is None else float(duration),
         marker_offset=offset,
         source=source,
+    )
+
+
+#: astoria's fields read from the metadata stick's ``astoria.json`` (and in its
+#: ``astmetad`` status message): the ones j5aio uses, and ``wifi_enabled``.
+_ASTORIA_MATCH_FIELDS: Final = frozenset(
+    {"arena", "zone", "mode", "marker_offset", "game_timeout", "wifi_enabled"}
+)
+#: The other fields of astoria's ``astmetad`` message: facts about the robot's software
+#: and its WiFi settings, text or null. j5aio checks their type and ignores them (the
+#: WiFi password among them is never kept).
+_ASTORIA_TEXT_FIELDS: Final = frozenset(
+    {
+        "astoria_version",
+        "kernel_version",
+        "arch",
+        "python_version",
+        "libc_ver",
+        "os_name",
+        "os_pretty_name",
+        "os_version",
+        "usercode_entrypoint",
+        "wifi_ssid",
+        "wifi_psk",
+        "wifi_region",
+    }
+)
+
+
+def parse_astoria_metadata(data: object, source: str | Path | None = None) -> Metadata:
+    """Check metadata in astoria's format and make a :class:`Metadata`.
+
+    astoria (the robot service of Student Robotics' kit) reads ``astoria.json`` at the
+    top of the competition's USB stick, for example::
+
+        {"arena": "A", "zone": 1, "mode": "COMP", "marker_offset": 0, "game_timeout": 150}
+
+    and sends the same fields, with facts about the robot's software, as the ``metadata``
+    object of its ``astmetad`` status message. The fields and what is allowed:
+
+    - ``arena``: text of 1 to 32 characters (default ``"A"``);
+    - ``zone``: a whole number from 0 to :data:`MAX_ZONE` (default 0);
+    - ``mode``: ``"COMP"`` or ``"DEV"``, in capitals as astoria spells them (default
+      ``"DEV"``);
+    - ``marker_offset``: a whole number from 0 to :data:`MAX_MARKER_OFFSET` (default 0);
+    - ``game_timeout``: the match's length, a whole number of seconds up to
+      :data:`MAX_DURATION`; ``null`` (the default) or ``0`` for no time limit, as the
+      kit's own library reads it; it becomes :attr:`Metadata.duration`;
+    - ``wifi_enabled``: ``true`` or ``false`` (default ``true``);
+    - the message's other fields (``astoria_version``, ``kernel_version``, ``arch``,
+      ``python_version``, ``libc_ver``, ``os_name``, ``os_pretty_name``, ``os_version``,
+      ``usercode_entrypoint``, ``wifi_ssid``, ``wifi_psk``, ``wifi_region``): text or
+      ``null``; they are checked and dropped.
+
+    A field missing takes astoria's default, as astoria itself does. Numbers and
+    true/false are taken only as JSON numbers and booleans: ``"2"`` is not a zone and
+    ``1`` is not ``true``. A key astoria does not have is an error in COMP mode (a
+    misspelt ``game_timeout`` must not give a match without a timer) and is logged in DEV
+    mode.
+
+    :param data: the decoded JSON object (``json.loads`` of the file, or the message's
+        ``metadata``).
+    :param source: where it came from (a file, or a description such as
+        ``"astmetad message"``), for the error messages.
+    :raises MetadataError: naming the source, the field and what is allowed.
+    """
+    where = str(source) if source is not None else "astoria metadata"
+    if not isinstance(data, dict):
+        raise MetadataError(
+            f"{where}: must hold a JSON object like "
+            '{"arena": "A", "zone": 0, "mode": "COMP", "game_timeout": 150}, '
+            f"not a {type(data).__name__}"
+        )
+    fields: Mapping[str, object] = data
+    mode_text = fields.get("mode", Mode.DEV.value)
+    if mode_text not in (Mode.COMP.value, Mode.DEV.value):
+        raise MetadataError(
+            f"{where}: field 'mode' must be \"COMP\" or \"DEV\", not {mode_text!r}"
+        )
+    mode = Mode(mode_text)
+    unknown = sorted(
+        str(key)
+        for key in fields
+        if key not in _ASTORIA_MATCH_FIELDS and key not in _ASTORIA_TEXT_FIELDS
+    )
+    if unknown and mode is Mode.COMP:
+        raise MetadataError(
+            f"{where}: in COMP mode every field must be one astoria has; unknown: "
+            + ", ".join(repr(name) for name in unknown)
+            + "; allowed: "
+            + ", ".join(sorted(_ASTORIA_MATCH_FIELDS | _ASTORIA_TEXT_FIELDS))
+        )
+    if unknown:
+        LOGGER.info("%s: ignoring fields astoria does not have: %s", where, ", ".join(unknown))
+    for name in sorted(_ASTORIA_TEXT_FIELDS & fields.keys()):
+        if fields[name] is not None and not isinstance(fields[name], str):
+            raise MetadataError(
+                f"{where}: field {name!r} must be text or null, not {fields[name]!r}"
+            )
+    arena = fields.get("arena", DEV_DEFAULTS.arena)
+    zone = fields.get("zone", DEV_DEFAULTS.zone)
+    offset = fields.get("marker_offset", DEV_DEFAULTS.marker_offset)
+    timeout = fields.get("game_timeout")
+    wifi_enabled = fields.get("wifi_enabled", True)
+    _check_arena(arena, where)
+    _check_int(zone, "zone", where, 0, MAX_ZONE)
+    _check_int(offset, "marker_offset", where, 0, MAX_MARKER_OFFSET)
+    if timeout is not None:
+        try:
+            _check_int(timeout, "game_timeout", where, 0, int(MAX_DURATION))
+        except MetadataError:
+            raise MetadataError(
+                f"{where}: field 'game_timeout' must be a whole number of seconds from 0 "
+                f"to {MAX_DURATION:g}, or null (or 0) for no time limit, not {timeout!r}"
+            ) from None
+    if not isinstance(wifi_enabled, bool):
+        raise MetadataError(
+            f"{where}: field 'wifi_enabled' must be true or false, not {wifi_enabled!r}"
+        )
+    if mode is Mode.COMP and not timeout:
+        LOGGER.warning("%s: a match with no game_timeout: the match timer will not run", where)
+    assert isinstance(arena, str) and isinstance(zone, int) and isinstance(offset, int)
+    assert timeout is None or isinstance(timeout, int)
+    return Metadata(
+        arena=arena,
+        zone=zone,
+        mode=mode,
+        duration=float(timeout) if timeout else None,
+        marker_offset=offset,
+        source=source if isinstance(source, Path) else None,
+        wifi_enabled=wifi_enabled,
+        origin=source if isinstance(source, str) else None,
     )
 
 
@@ -323,7 +468,7 @@ def load_metadata(sticks: Sequence[Path] | None = None) -> Metadata:
 def describe(metadata: Metadata) -> str:
     """One line saying what ``metadata`` holds, for logs and headers."""
     duration = "no time limit" if metadata.duration is None else f"{metadata.duration:g} s"
-    where = str(metadata.source) if metadata.source is not None else "defaults"
+    where = str(metadata.source or metadata.origin or "defaults")
     return (
         f"mode {metadata.mode.value}, arena {metadata.arena}, zone {metadata.zone}, "
         f"{duration}, marker offset {metadata.marker_offset} (from {where})"

@@ -10,8 +10,10 @@
   local to the machine, so nothing on the network can start a robot. It is removed when
   the wait begins (a stale one from an earlier run does not count) and again when it
   is seen;
-- :func:`trigger_start` is called in this process (``python -m j5aio run`` does so after
-  ``--start-after`` seconds, or when Enter is pressed in its console).
+- :func:`trigger_start` is called in this process, from any thread: ``python -m j5aio
+  run`` does so after ``--start-after`` seconds, or when Enter is pressed in its
+  console; the robot service's client does so on a remote start. The waiting robot is
+  woken at once (the start file is looked for every :data:`POLL_INTERVAL`).
 
 While it waits, the run LED of every board that has one flashes, the start LED of a KCH
 flashes, and every piezo gives one short beep at the beginning.
@@ -19,6 +21,8 @@ flashes, and every piezo gives one short beep at the beginning.
 
 from __future__ import annotations
 
+import asyncio
+import contextlib
 import logging
 import os
 import threading
@@ -50,14 +54,20 @@ LOGGER = logging.getLogger(__name__)
 
 #: The environment variable naming the start file.
 START_FILE_VARIABLE: Final = "J5AIO_START_FILE"
-#: How often the start file and the trigger are looked at while waiting, in seconds (the
-#: buttons are waited for by their boards, which say as soon as one is pressed).
+#: How often the start file is looked for while waiting, in seconds (the buttons are
+#: waited for by their boards, which say as soon as one is pressed, and a
+#: :func:`trigger_start` wakes the wait at once).
 POLL_INTERVAL: Final = 0.05
 #: The run LED changes every this many looks (0.3 s).
 _FLASH_POLLS: Final = 6
 _BEEP: Final = timedelta(milliseconds=100)
 
-_triggered = threading.Event()
+#: The pending :func:`trigger_start`: what it said started the robot, until a wait takes
+#: it. Guarded by ``_trigger_lock``, as is ``_waiters``.
+_trigger: str | None = None
+_trigger_lock = threading.Lock()
+#: The event loops of the waits under way, each with the event that wakes it.
+_waiters: set[tuple[asyncio.AbstractEventLoop, asyncio.Event]] = set()
 
 
 def start_file() -> Path:
@@ -70,14 +80,38 @@ def start_file() -> Path:
     return Path(tempfile.gettempdir()) / "j5aio-start"
 
 
-def trigger_start() -> None:
-    """Start the robot waiting in :func:`wait_for_start` (from any thread), or the next one."""
-    _triggered.set()
+def trigger_start(how: str = "trigger") -> None:
+    """Start the robot waiting in :func:`wait_for_start` at once, or the next one to wait.
+
+    Safe to call from any thread, and from the robot's own event loop.
+
+    :param how: what started the robot, as :func:`wait_for_start` returns and logs it
+        (e.g. ``"remote start"``).
+    :raises TypeError: ``how`` is not text.
+    """
+    global _trigger
+    if not isinstance(how, str):
+        raise TypeError(f"how must be text saying what started the robot, not {how!r}")
+    with _trigger_lock:
+        _trigger = how
+        waiters = list(_waiters)
+    for loop, event in waiters:
+        with contextlib.suppress(RuntimeError):  # that loop has closed: its wait is over
+            loop.call_soon_threadsafe(event.set)
 
 
 def clear_trigger() -> None:
     """Forget a :func:`trigger_start` that no wait has taken yet."""
-    _triggered.clear()
+    global _trigger
+    with _trigger_lock:
+        _trigger = None
+
+
+def _take_trigger() -> str | None:
+    global _trigger
+    with _trigger_lock:
+        how, _trigger = _trigger, None
+    return how
 
 
 _T = TypeVar("_T")
@@ -105,7 +139,8 @@ async def wait_for_start(boards: Iterable[Board], timeout: float | None = None) 
     :param boards: the robot's boards: their start buttons, run LEDs, KCH start LEDs and
         piezos are used.
     :param timeout: give up after this many seconds; ``None`` waits for ever.
-    :returns: what started the robot: ``"button"``, ``"start file"`` or ``"trigger"``.
+    :returns: what started the robot: ``"button"``, ``"start file"``, or what
+        :func:`trigger_start` was given (``"trigger"`` unless it said otherwise).
     :raises TimeoutError: nothing started the robot within ``timeout`` seconds.
     :raises TypeError: ``timeout`` is not a number or ``None``.
     :raises ValueError: ``timeout`` is negative or NaN.
@@ -135,7 +170,11 @@ async def wait_for_start(boards: Iterable[Board], timeout: float | None = None) 
         how = _started_from_outside(path)  # before any wait, as in every look below
         if how is None:
             how = await first_of(
-                [*(_pressed(button) for button in buttons), lambda: _from_outside(path)],
+                [
+                    *(_pressed(button) for button in buttons),
+                    lambda: _start_file_appears(path),
+                    _triggered,
+                ],
                 beside=[lambda: _flash(run_leds)] if run_leds else [],
             )
     for led in leds:
@@ -156,21 +195,37 @@ def _pressed(button: Button) -> Callable[[], Awaitable[str]]:
 
 
 def _started_from_outside(path: Path) -> str | None:
-    if _triggered.is_set():
-        _triggered.clear()
-        return "trigger"
+    how = _take_trigger()
+    if how is not None:
+        return how
     if _take_start_file(path):
         return "start file"
     return None
 
 
-async def _from_outside(path: Path) -> str:
-    """Look for the trigger and the start file every :data:`POLL_INTERVAL`."""
+async def _start_file_appears(path: Path) -> str:
+    """Look for the start file every :data:`POLL_INTERVAL`."""
     while True:
         await anyio.sleep(POLL_INTERVAL)
-        how = _started_from_outside(path)
-        if how is not None:
-            return how
+        if _take_start_file(path):
+            return "start file"
+
+
+async def _triggered() -> str:
+    """Wait for :func:`trigger_start`, woken by it from any thread."""
+    waiter = (asyncio.get_running_loop(), asyncio.Event())
+    with _trigger_lock:
+        _waiters.add(waiter)
+    try:
+        while True:
+            how = _take_trigger()  # after registering: a trigger before it is seen here
+            if how is not None:
+                return how
+            await waiter[1].wait()
+            waiter[1].clear()
+    finally:
+        with _trigger_lock:
+            _waiters.discard(waiter)
 
 
 async def _flash(leds: list[LED]) -> None:

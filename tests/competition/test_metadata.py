@@ -22,6 +22,7 @@ from j5aio.competition.metadata import (
     find_usb_sticks,
     load_metadata,
     media_roots,
+    parse_astoria_metadata,
     parse_metadata,
     read_metadata_file,
 )
@@ -218,3 +219,100 @@ def test_fuzzed_bytes_give_metadata_or_a_clear_error(raw: bytes) -> None:
             read_metadata_file(path)
         except MetadataError as error:
             assert str(error).startswith(f"{path}: ")
+
+
+ASTORIA = {
+    "arena": "B",
+    "zone": 2,
+    "mode": "COMP",
+    "marker_offset": 100,
+    "game_timeout": 150,
+    "wifi_enabled": False,
+}
+#: An astmetad status message's metadata object: the disk's fields and the software's.
+ASTMETAD_MESSAGE = {
+    **ASTORIA,
+    "astoria_version": "0.11.3",
+    "kernel_version": "6.1.0",
+    "arch": "aarch64",
+    "python_version": "3.11.2",
+    "libc_ver": "glibc2.36",
+    "os_name": "Student Robotics OS",
+    "os_pretty_name": None,
+    "os_version": "2026.1",
+    "usercode_entrypoint": "robot.py",
+    "wifi_ssid": "robot-ABC",
+    "wifi_psk": "secret-password",
+    "wifi_region": "GB",
+}
+
+
+def test_astoria_file_fields_become_metadata() -> None:
+    metadata = parse_astoria_metadata(ASTORIA, Path("/media/meta/astoria.json"))
+    assert metadata == Metadata(
+        "B", 2, Mode.COMP, 150.0, 100, Path("/media/meta/astoria.json"), wifi_enabled=False
+    )
+    assert "150 s" in describe(metadata) and "astoria.json" in describe(metadata)
+
+
+def test_astoria_message_metadata_is_read_and_the_password_is_not_kept() -> None:
+    metadata = parse_astoria_metadata(ASTMETAD_MESSAGE, "astmetad message")
+    assert (metadata.zone, metadata.mode, metadata.duration) == (2, Mode.COMP, 150.0)
+    assert metadata.source is None and metadata.origin == "astmetad message"
+    assert "from astmetad message" in describe(metadata)
+    assert "secret-password" not in repr(metadata)
+
+
+def test_astoria_defaults_are_astorias() -> None:
+    metadata = parse_astoria_metadata({}, None)
+    assert metadata == Metadata(wifi_enabled=True)
+    assert parse_astoria_metadata({"mode": "COMP", "game_timeout": None}).duration is None
+    assert parse_astoria_metadata({"mode": "COMP", "game_timeout": 0}).duration is None
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "allowed"),
+    [
+        ("zone", "2", "whole number from 0 to 99"),
+        ("zone", 100, "whole number from 0 to 99"),
+        ("zone", False, "whole number"),
+        ("arena", None, "string of 1 to 32"),
+        ("mode", "comp", '"COMP" or "DEV"'),
+        ("mode", None, '"COMP" or "DEV"'),
+        ("marker_offset", 1.0, "from 0 to 10000"),
+        ("game_timeout", 150.5, "whole number of seconds from 0 to 3600, or null"),
+        ("game_timeout", "150", "whole number of seconds"),
+        ("game_timeout", -1, "whole number of seconds"),
+        ("game_timeout", True, "whole number of seconds"),
+        ("wifi_enabled", 1, "true or false"),
+        ("wifi_psk", 12345678, "text or null"),
+    ],
+)
+def test_astoria_bad_fields_name_source_field_and_what_is_allowed(
+    field: str, value: object, allowed: str
+) -> None:
+    with pytest.raises(MetadataError) as caught:
+        parse_astoria_metadata({**ASTORIA, field: value}, Path("/m/astoria.json"))
+    message = str(caught.value)
+    assert message.startswith("/m/astoria.json: field ")
+    assert repr(field) in message and allowed in message
+
+
+def test_astoria_unknown_keys_are_refused_in_comp_and_logged_in_dev(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    with pytest.raises(MetadataError, match=r"astmetad: in COMP mode.*unknown: 'game_timout'"):
+        parse_astoria_metadata({"mode": "COMP", "game_timout": 150}, "astmetad")
+    caplog.set_level("INFO")
+    assert parse_astoria_metadata({"game_timout": 150}).mode is Mode.DEV
+    assert "game_timout" in caplog.text
+
+
+def test_astoria_not_an_object() -> None:
+    with pytest.raises(MetadataError, match=r"^astoria metadata: must hold a JSON object"):
+        parse_astoria_metadata("COMP", None)
+
+
+def test_metadata_wifi_enabled_is_checked() -> None:
+    with pytest.raises(MetadataError, match="'wifi_enabled' must be true, false or null"):
+        Metadata(wifi_enabled="yes")  # type: ignore[arg-type]

@@ -192,5 +192,5 @@ def test_console_start_thread(monkeypatch: pytest.MonkeyPatch) -> None:
     start.clear_trigger()
     monkeypatch.setattr(sys, "stdin", io.StringIO("\n"))
     cli._start_on_enter()
-    assert start._triggered.is_set()
+    assert start._take_trigger() == "trigger"
     start.clear_trigger()

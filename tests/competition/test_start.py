@@ -177,3 +177,61 @@ async def test_a_press_from_another_thread_starts() -> None:
     async with anyio.create_task_group() as tasks:
         tasks.start_soon(press_from_a_thread)
         assert await wait_for_start([board], timeout=30) == "button"
+
+
+async def test_a_trigger_wakes_the_wait_without_polling(monkeypatch: pytest.MonkeyPatch) -> None:
+    # With the start file looked for once an hour, only a wake-up can start this wait.
+    monkeypatch.setattr(start, "POLL_INTERVAL", 3600.0)
+
+    async def later() -> None:
+        await anyio.sleep(0.05)
+        await anyio.to_thread.run_sync(trigger_start, "remote start")
+
+    async with anyio.create_task_group() as tasks:
+        tasks.start_soon(later)
+        assert await wait_for_start([], timeout=30) == "remote start"
+
+
+async def test_a_trigger_from_the_loop_itself_wakes_the_wait(
+    monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
+) -> None:
+    monkeypatch.setattr(start, "POLL_INTERVAL", 3600.0)
+    caplog.set_level("INFO")
+
+    async def later() -> None:
+        await anyio.sleep(0.05)
+        trigger_start("remote start")
+
+    async with anyio.create_task_group() as tasks:
+        tasks.start_soon(later)
+        assert await wait_for_start([], timeout=30) == "remote start"
+    assert "Started (by the remote start)" in caplog.text
+    assert not start._waiters  # the wait unregistered itself
+
+
+async def test_a_trigger_before_the_wait_is_kept_for_it() -> None:
+    trigger_start("remote start")
+    assert await wait_for_start([], timeout=5) == "remote start"
+    trigger_start()
+    clear_trigger()
+    with pytest.raises(TimeoutError):
+        await wait_for_start([], timeout=0.1)
+
+
+def test_trigger_start_refuses_a_non_text_how() -> None:
+    with pytest.raises(TypeError, match="how must be text"):
+        trigger_start(3)  # type: ignore[arg-type]
+
+
+def test_a_trigger_to_a_closed_loop_is_harmless() -> None:
+    import asyncio
+
+    loop = asyncio.new_event_loop()
+    loop.close()
+    waiter = (loop, asyncio.Event())
+    start._waiters.add(waiter)
+    try:
+        trigger_start()  # that loop's wait is over; nothing to wake
+    finally:
+        start._waiters.discard(waiter)
+    assert start._take_trigger() == "trigger"
