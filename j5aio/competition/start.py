@@ -7,7 +7,10 @@
 - the *start file* appears: a competition runner on the same machine starts the robot
   with ``touch /tmp/j5aio-start`` (the path is :func:`start_file`: ``J5AIO_START_FILE``
   if set, else ``j5aio-start`` in the system's temporary directory). The file is
-  local to the machine, so nothing on the network can start a robot. It is removed when
+  local to the machine, so nothing on the network can start a robot; on the machine,
+  only a regular file owned by the robot's user (or root) counts, so another user
+  cannot start the robot by creating it, nor leave one behind that the robot cannot
+  remove. A file that does not count is reported and ignored. The file is removed when
   the wait begins (a stale one from an earlier run does not count) and again when it
   is seen;
 - :func:`trigger_start` is called in this process, from any thread: ``python -m j5aio
@@ -25,6 +28,7 @@ import asyncio
 import contextlib
 import logging
 import os
+import stat
 import threading
 from collections.abc import Awaitable, Callable, Iterable
 from datetime import timedelta
@@ -122,15 +126,58 @@ def _components(boards: Iterable[Board], name: str, kind: type[_T]) -> list[_T]:
     return [component for component in found if isinstance(component, kind)]
 
 
+def _trusted_owners() -> set[int] | None:
+    """The users whose start file counts: the robot's and root; ``None``: no owners here."""
+    getuid = getattr(os, "getuid", None)
+    return None if getuid is None else {getuid(), 0}
+
+
+#: The start files already reported as refused (path, device, inode), so that a poll does
+#: not log the same one every time.
+_reported: set[tuple[str, int, int]] = set()
+
+
 def _take_start_file(path: Path) -> bool:
+    """Whether the start file is there and counts; it is removed if so.
+
+    It counts only if it is a regular file (not a directory, nor a link) owned by the
+    robot's user or root, and the robot removed it: a file the robot cannot remove
+    would otherwise start every later wait at once.
+    """
     try:
-        path.unlink()
+        info = path.lstat()
     except FileNotFoundError:
         return False
-    except OSError as exc:  # e.g. a directory: the runner's mistake, say so once a poll
-        LOGGER.error("Cannot remove the start file %s: %s", path, exc)
-        return path.exists()
+    except OSError as exc:
+        _report_once(path, None, f"cannot be looked at: {exc.strerror or exc}")
+        return False
+    owners = _trusted_owners()
+    if not stat.S_ISREG(info.st_mode):
+        _report_once(path, info, "is not a regular file (a directory or a link?)")
+        return False
+    if owners is not None and info.st_uid not in owners:
+        _report_once(
+            path,
+            info,
+            f"belongs to another user (uid {info.st_uid}): only the robot's user or root "
+            "may start it",
+        )
+        return False
+    try:
+        path.unlink()
+    except FileNotFoundError:  # another wait took it first
+        return False
+    except OSError as exc:
+        _report_once(path, info, f"cannot be removed: {exc.strerror or exc}")
+        return False
     return True
+
+
+def _report_once(path: Path, info: os.stat_result | None, problem: str) -> None:
+    key = (str(path), info.st_dev if info else 0, info.st_ino if info else 0)
+    if key not in _reported:
+        _reported.add(key)
+        LOGGER.error("Ignoring the start file %s: it %s. Remove it.", path, problem)
 
 
 async def wait_for_start(boards: Iterable[Board], timeout: float | None = None) -> str:

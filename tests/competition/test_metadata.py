@@ -429,7 +429,7 @@ def test_a_stick_with_both_files_must_agree(tmp_path: Path) -> None:
     write(stick / "metadata.json", {"zone": 3, "is_competition": True})
     assert load_metadata([stick]).zone == 3  # the same match, said twice
     write(stick / "metadata.json", {"zone": 1, "is_competition": True})
-    with pytest.raises(MetadataError, match="astoria.json: disagrees with"):
+    with pytest.raises(MetadataError, match=r"astoria\.json: disagrees with"):
         load_metadata([stick])
 
 
@@ -519,7 +519,7 @@ def test_a_link_to_a_regular_file_is_followed(tmp_path: Path) -> None:
 
 
 def test_a_device_is_refused() -> None:
-    with pytest.raises(MetadataError, match="/dev/null: must be a regular file.*not a device"):
+    with pytest.raises(MetadataError, match=r"/dev/null: must be a regular file.*not a device"):
         read_metadata_file(Path("/dev/null"))
 
 
