@@ -126,7 +126,7 @@ def test_a_bad_metadata_file_stops_before_the_program(
     program = tmp_path / "robot.py"
     program.write_text("raise SystemExit('must not run')")
     assert main(["run", "--sim", "--no-log", str(program)]) == 2
-    assert "in COMP mode every field must be given" in capsys.readouterr().err
+    assert "in COMP mode the file must say how long the match is" in capsys.readouterr().err
 
 
 def test_dev_run_with_log_dir_and_options(
