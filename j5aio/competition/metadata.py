@@ -299,7 +299,7 @@ def parse_astoria_metadata(data: object, source: str | Path | None = None) -> Me
     - ``marker_offset``: a whole number from 0 to :data:`MAX_MARKER_OFFSET` (default 0);
     - ``game_timeout``: the match's length, a whole number of seconds up to
       :data:`MAX_DURATION`; ``null`` (the default) or ``0`` for no time limit, as the
-      kit's own library reads it; it becomes :attr:`Metadata.duration`;
+      kit's own library reads it; it becomes the :class:`Metadata`'s ``duration``;
     - ``wifi_enabled``: ``true`` or ``false`` (default ``true``);
     - the message's other fields (``astoria_version``, ``kernel_version``, ``arch``,
       ``python_version``, ``libc_ver``, ``os_name``, ``os_pretty_name``, ``os_version``,
