@@ -214,7 +214,7 @@ async def wait_for_start(boards: Iterable[Board], timeout: float | None = None) 
         "Waiting for the start: press the start button, or create %s", path
     )
     with anyio.fail_after(limit):
-        how = _started_from_outside(path)  # before any wait, as in every look below
+        how = _take_trigger()  # a trigger given before the wait: no board is waited on
         if how is None:
             how = await first_of(
                 [
@@ -239,15 +239,6 @@ def _pressed(button: Button) -> Callable[[], Awaitable[str]]:
         return "button"
 
     return wait
-
-
-def _started_from_outside(path: Path) -> str | None:
-    how = _take_trigger()
-    if how is not None:
-        return how
-    if _take_start_file(path):
-        return "start file"
-    return None
 
 
 async def _start_file_appears(path: Path) -> str:

@@ -530,3 +530,11 @@ def test_an_unreadable_file_is_an_error(tmp_path: Path) -> None:
         pytest.skip("running as root: every file is readable")
     with pytest.raises(MetadataError, match="cannot be read"):
         load_metadata([tmp_path / "stick"])
+
+
+def test_a_file_that_fails_while_read_is_an_error() -> None:
+    mem = Path("/proc/self/mem")  # a regular file whose first bytes cannot be read
+    if not mem.exists():
+        pytest.skip("needs Linux's /proc/self/mem")
+    with pytest.raises(MetadataError, match="/proc/self/mem: cannot be read"):
+        read_metadata_file(mem)

@@ -200,3 +200,8 @@ def test_the_services_usercode_stick_is_preferred(
     finally:
         service_state.clear()
     assert choose_log_folder(tmp_path / "robot.py") == stick / "logs"
+
+
+def test_a_log_that_vanishes_during_rotation_is_passed_over(tmp_path: Path) -> None:
+    assert runlog._size(tmp_path / "gone.log") == 0
+    assert not runlog._is_regular_file(tmp_path / "gone.log")

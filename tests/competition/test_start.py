@@ -289,3 +289,16 @@ def test_a_trigger_to_a_closed_loop_is_harmless() -> None:
     finally:
         start._waiters.discard(waiter)
     assert start._take_trigger() == "trigger"
+
+
+def test_a_start_file_taken_by_another_wait_first_is_not_a_start(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    path = tmp_path / "start"
+    path.touch()
+
+    def gone(self: Path, missing_ok: bool = False) -> None:
+        raise FileNotFoundError(2, "No such file or directory")
+
+    monkeypatch.setattr(Path, "unlink", gone)
+    assert not start._take_start_file(path)
