@@ -37,6 +37,8 @@ CONNECT_TIMEOUT: Final = 3.0
 KEEPALIVE: Final = 5
 #: Messages held for the inbox at most; beyond, the broker is slowed (not the program).
 _MAX_QUEUED: Final = 256
+#: Seconds allowed for a goodbye to the broker.
+_CLOSE_TIMEOUT: Final = 1.0
 
 
 class Link:
@@ -114,6 +116,32 @@ def _payload(value: object) -> bytes | str:
     return "" if value is None else str(value)
 
 
+async def _serve(
+    client: Any, inbox: Inbox, link: Link, backoff: Backoff, faults: FaultLog, where: str
+) -> None:
+    """Subscribe, then hand every message to ``inbox`` until the connection fails."""
+    for topic in inbox.topics.subscriptions:
+        await client.subscribe(topic, qos=1)
+    link.attach(client)
+    backoff.reset()
+    if faults.seen("lost"):
+        LOGGER.warning("Robot service: connected again to the broker at %s", where)
+    else:
+        LOGGER.info("Robot service: connected to the broker at %s", where)
+    faults.forget("lost")
+    async for message in client.messages:
+        inbox.receive(str(message.topic), _payload(message.payload), message.retain)
+
+
+async def _close(client: Any, mqtt_error: type[Exception]) -> None:
+    """Say goodbye to the broker, even when cancelled (else the socket is left open)."""
+    with anyio.CancelScope(shield=True), anyio.move_on_after(_CLOSE_TIMEOUT):
+        try:
+            await client.__aexit__(None, None, None)
+        except (mqtt_error, OSError) as exc:
+            LOGGER.debug("Robot service: closing the connection: %r", exc)
+
+
 async def stay_connected(
     config: ServiceConfig,
     inbox: Inbox,
@@ -135,30 +163,26 @@ async def stay_connected(
     faults = FaultLog(LOGGER)
     where = f"{config.host}:{config.port}"
     while True:
+        client = client_factory(config)
         try:
-            async with client_factory(config) as client:
-                for topic in inbox.topics.subscriptions:
-                    await client.subscribe(topic, qos=1)
-                link.attach(client)
-                backoff.reset()
-                if faults.seen("lost"):
-                    LOGGER.warning("Robot service: connected again to the broker at %s", where)
-                else:
-                    LOGGER.info("Robot service: connected to the broker at %s", where)
-                faults.forget("lost")
-                async for message in client.messages:
-                    inbox.receive(str(message.topic), _payload(message.payload), message.retain)
+            await client.__aenter__()
+        except anyio.get_cancelled_exc_class():
+            await _close(client, aiomqtt.MqttError)  # cancelled half way: close the socket
+            raise
         except (aiomqtt.MqttError, OSError) as exc:
-            if link.connected:
+            faults.report(
+                "lost", "Robot service: cannot reach the broker at %s (%s); retrying in "
+                "the background", where, exc,
+            )
+        else:
+            try:
+                await _serve(client, inbox, link, backoff, faults, where)
+            except (aiomqtt.MqttError, OSError) as exc:
                 faults.report(
                     "lost", "Robot service: lost the broker at %s (%s); retrying in the "
                     "background", where, exc,
                 )
-            else:
-                faults.report(
-                    "lost", "Robot service: cannot reach the broker at %s (%s); retrying in "
-                    "the background", where, exc,
-                )
-        finally:
-            link.detach()
+            finally:
+                link.detach()
+                await _close(client, aiomqtt.MqttError)
         await anyio.sleep(backoff.next())

@@ -62,8 +62,11 @@ def encode_frame(frame: Image | bytes, timestamp: float | None = None) -> bytes:
         from j5aio.vision._optional import require
 
         cv2 = require("cv2")
-        ok, buffer = cv2.imencode(".jpg", frame, [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY])
-        if not ok:
+        try:
+            ok, buffer = cv2.imencode(".jpg", frame, [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY])
+        except (cv2.error, TypeError) as exc:
+            raise ValueError(f"OpenCV could not encode the frame as JPEG: {exc}") from None
+        if not ok:  # pragma: no cover - OpenCV raises rather than saying so
             raise ValueError("OpenCV could not encode the frame as JPEG")
         jpeg = buffer.tobytes()
     data = (_DATA_URL_PREFIX + base64.b64encode(jpeg)).decode("ascii")

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sized
 from typing import Any
 
 import anyio
@@ -51,5 +51,10 @@ def start_event(sender: str = "astctl-test") -> dict[str, object]:
 async def eventually(check: Callable[[], bool], timeout: float = 10.0) -> None:
     """Wait until ``check()`` is true (a generous limit: no timing is asserted)."""
     with anyio.fail_after(timeout):
-        while not check():
+        while not check():  # noqa: ASYNC110 - state changed by other tasks and threads
             await anyio.sleep(0.01)
+
+
+def longer_than(items: Sized, length: int) -> Callable[[], bool]:
+    """A check that ``items`` has grown past ``length``."""
+    return lambda: len(items) > length

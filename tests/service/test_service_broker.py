@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 import logging
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
 from pathlib import Path
 
 import anyio
@@ -21,6 +21,7 @@ from tests.service.helpers import (
     astmetad_message,
     astprocd_message,
     eventually,
+    longer_than,
     start_event,
 )
 
@@ -36,6 +37,10 @@ async def service(broker: Broker) -> AsyncIterator[RobotService]:
     async with RobotService(config_for(broker)) as running:
         await running.wait_connected(timeout=10)
         yield running
+
+
+def zone_is(value: int) -> Callable[[], bool]:
+    return lambda: zone() == value
 
 
 def zone() -> int | None:
@@ -163,7 +168,8 @@ async def test_broker_killed_and_restarted(
                     peer = Peer(client)
                     await peer.publish("astoria/broadcast/start_button", start_event())
                     await peer.publish("astoria/astmetad", astmetad_message(zone=2 + round_))
-                await eventually(lambda r=round_: len(starts) == r + 1 and zone() == 2 + r)
+                await eventually(longer_than(starts, round_))
+                await eventually(zone_is(2 + round_))
             assert svc.link.connections == 3
     lost = [r for r in caplog.records if "lost the broker" in r.getMessage()]
     assert lost and all(r.levelno == logging.WARNING for r in lost)
