@@ -14,9 +14,9 @@ another thread) to the wait returning, for ``trigger_start`` and for the start f
 
 from __future__ import annotations
 
+import argparse
 import os
 import statistics
-import sys
 import tempfile
 import threading
 import time
@@ -64,4 +64,6 @@ async def main(rounds: int) -> None:
 
 
 if __name__ == "__main__":
-    anyio.run(main, int(sys.argv[1]) if len(sys.argv) > 1 else 40)
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
+    parser.add_argument("rounds", nargs="?", type=int, default=40, help="starts of each kind")
+    anyio.run(main, parser.parse_args().rounds)
