@@ -73,7 +73,7 @@ def peer_python(variable: str, module: str) -> str:
         return named
     from importlib.util import find_spec
 
-    if find_spec(module) is not None:
+    if find_spec(module.split(".")[0]) is not None and find_spec(module) is not None:
         return sys.executable
     pytest.skip(
         f"{module} is not installed here and {variable} names no interpreter that has "
