@@ -36,6 +36,7 @@ import json, os, sys
 os.environ["SBOT_PYTEST"] = "1"  # import sbot without it finding boards and waiting
 try:
     from sbot._comp import Comp
+    from sbot.game_specific import GAME_LENGTH
 except ImportError as error:
     print("RESULT " + json.dumps({"missing": str(error)}))
     sys.exit()
@@ -45,7 +46,9 @@ try:
 except Exception as error:
     print("RESULT " + json.dumps({"refused": repr(error)}))
 else:
-    print("RESULT " + json.dumps({"zone": comp.zone, "competition": comp.is_competition}))
+    print("RESULT " + json.dumps(
+        {"zone": comp.zone, "competition": comp.is_competition, "length": GAME_LENGTH}
+    ))
 """
 
 SR3_READER = r"""
@@ -131,7 +134,7 @@ def test_sbots_files_are_read_as_sbot_reads_them(
         return
     ours = load_metadata([])
     assert (ours.zone, ours.is_competition) == (peer["zone"], peer["competition"])
-    assert ours.duration == (150.0 if peer["competition"] else None)
+    assert ours.duration == (float(peer["length"]) if peer["competition"] else None)
 
 
 ASTORIA_FILES = [
