@@ -179,6 +179,14 @@ async def test_a_bad_file_in_a_match_fails_on_entry(
     with pytest.raises(MetadataError, match=r"metadata.json: field 'zone'"):
         async with BaseRobot():
             pass  # pragma: no cover - not reached
+    robot = BaseRobot()
+    try:
+        with pytest.raises(MetadataError):
+            await robot.watch_for_start()
+        assert robot._watch_loop is None  # nothing half started: no listener left
+        assert robot._on_service_change not in service_state._listeners
+    finally:
+        robot.release_lock()
 
 
 async def test_a_failed_watch_is_raised_by_wait_start_then_waited_again(
