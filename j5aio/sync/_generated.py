@@ -508,9 +508,17 @@ class BaseRobot(_SyncWrapper):
     match's metadata (:attr:`~j5aio.robot.BaseRobot.zone`, :attr:`~j5aio.robot.BaseRobot.arena`,
     :attr:`~j5aio.robot.BaseRobot.mode`); in a match with a duration the match timer then ends the
     program when the match is over, every board safe, however the program is written (see
-    :mod:`j5aio.competition`). Use
+    :mod:`j5aio.competition`). ``wait_for_start=True`` makes entering the robot wait for
+    the start, as the kits' own libraries do when their robot is made. In a match, the
+    start starts the match timer even if the program never waits for it
+    (:meth:`~j5aio.robot.BaseRobot.watch_for_start`). Use
     :meth:`~j5aio.robot.BaseRobot.time` and :meth:`~j5aio.robot.BaseRobot.sleep` for timing, so that
     a simulation can run at another speed.
+
+    :param wait_for_start: wait for the start on entering (after
+        :meth:`~j5aio.robot.BaseRobot.setup`), as :meth:`~j5aio.robot.BaseRobot.wait_start`
+        does.
+    :raises TypeError: ``wait_for_start`` is not a bool.
     """
 
     __slots__ = ()
@@ -534,9 +542,27 @@ class BaseRobot(_SyncWrapper):
         """Make every board safe now. Cancellation cannot interrupt it."""
         _call(self._core.make_safe)
 
+    def after_setup(self) -> None:
+        """What entering the robot does once :meth:`setup` has found the boards.
+
+        It starts the robot service's client (if the service is configured), logs the
+        kit, starts :meth:`watch_for_start`, and, if the robot was made with
+        ``wait_for_start=True``, waits for the start (:meth:`wait_start`).
+        ``async with`` calls it; the sync facade calls it after ``setup``; a subclass
+        that overrides ``__aenter__`` must call it.
+
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata is unusable.
+        """
+        _call(self._core.after_setup)
+
     @property
     def metadata(self) -> _competition_metadata.Metadata:
-        """The match's metadata: read at the start, or looked for now if not started yet.
+        """The match's metadata: fixed at the start; until then, what it is now.
+
+        Before the start, what the robot service last said wins (it may change the zone
+        or the mode while the robot waits), else the metadata file, read once. From the
+        start on it is what it was at the start, whatever the service says later.
+        See :func:`~j5aio.competition.metadata.load_metadata` for where it comes from.
 
         :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
             malformed (the message names the file and the field).
@@ -565,13 +591,22 @@ class BaseRobot(_SyncWrapper):
 
     @property
     def usb_stick(self) -> Path | None:
-        """The USB stick the metadata came from, else the first one mounted, else ``None``."""
+        """The team's USB stick, or ``None``.
+
+        The one the robot service says holds the team's code; else the stick the metadata
+        came from; else the first one mounted.
+        """
         return self._core.usb_stick
 
     @property
     def match_timer(self) -> _competition_timer.MatchTimer | None:
         """The running match's timer; ``None`` before the start or outside a timed match."""
         return self._core.match_timer
+
+    @property
+    def started(self) -> bool:
+        """Whether the robot has started (by :meth:`wait_start` or :meth:`watch_for_start`)."""
+        return self._core.started
 
     def time(self) -> float:
         """Robot seconds since the start (since the robot was made, before the start).
@@ -593,18 +628,36 @@ class BaseRobot(_SyncWrapper):
         """Wait for the start of the match, then read the metadata and start the timer.
 
         Flashes the run LED (and a KCH's start LED) and beeps once while waiting; the
-        start button, the start file a competition runner creates, or
-        ``python -m j5aio run``'s console start the robot (:mod:`j5aio.competition.start`).
-        In COMP mode with a duration the match timer starts: when it runs out the
-        robot's work is cancelled, every board is made safe and the program ends.
+        start button, the start file a competition runner creates, a remote start from
+        the robot service, or ``python -m j5aio run``'s console start the robot
+        (:mod:`j5aio.competition.start`). In COMP mode with a duration the match timer
+        starts: when it runs out the robot's work is cancelled, every board is made safe
+        and the program ends. If the start came already (:meth:`watch_for_start` saw
+        it), this returns at once.
 
         :param timeout: give up after this many seconds; ``None`` waits for ever.
         :raises TimeoutError: nothing started the robot within ``timeout`` seconds.
         :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
             malformed (the message names the file and the field).
-        :raises RuntimeError: the robot has started already.
+        :raises RuntimeError: ``wait_start`` has returned already: it runs once.
         """
         _call(self._core.wait_start, timeout)
+
+    def watch_for_start(self) -> None:
+        """In a match, start the match timer when the start comes, waited for or not.
+
+        From now until the start, while the robot is in COMP mode (by its metadata,
+        which the robot service may change), a background task waits for the start as
+        :meth:`wait_start` does: the button, the start file, or a remote start then
+        starts the match and its timer even if the program never calls
+        :meth:`wait_start` (a later :meth:`wait_start` returns at once). In DEV mode
+        nothing is watched: the program waits when it wants to. Entering the robot calls
+        this; calling it again does nothing. It returns at once.
+
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata is unusable:
+            in a match the robot must not run on a guess.
+        """
+        _call(self._core.watch_for_start)
 
     @staticmethod
     def boards() -> set[Board]:
@@ -1212,6 +1265,7 @@ class KitRobot(BaseRobot):
         robot = _adopt(cls, _kit.KitRobot(environment=_unwrap(environment), view=view))
         try:
             _call(robot._core.setup)
+            _call(robot._core.after_setup)
         except BaseException:
             robot._core.release_lock()
             raise
