@@ -29,6 +29,7 @@ from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING, Final
 
 from j5aio.board_kinds import DEFAULT_KIT, BoardKind, KitDefinition, get_kit, simulator_entries
+from j5aio.power_outputs import output_number
 
 from .arena import SimulatedWorld
 from .base import SerialBoardSimulator, UsbBoardSimulator
@@ -38,6 +39,7 @@ from .sr_motor_fw4 import SRMotorBoardFw4Simulator
 from .sr_power_fw3 import SRPowerBoardFw3Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from .sr_servo_fw2 import SRServoBoardFw2Simulator
+from .wiring import KitWiring, PowerBoardSimulator, PowerFed, default_outputs
 
 if TYPE_CHECKING:
     from .camera import SimulatedCamera
@@ -141,13 +143,28 @@ class SimulatedKit:
     ``SIMSB0`` for a servo board, ``SIMSBA0`` for a SourceBots Arduino and ``SIMRD0`` for a
     Ruggeduino (``SIMMB00`` to ``SIMMB11`` in a kit of twelve motor boards).
 
+    A registry kit may give its boards' serial numbers instead
+    (:attr:`KitDefinition.serials <j5aio.board_kinds.KitDefinition>`), as a kit file
+    does (:mod:`j5aio.simulator.kit_file`).
+
+    Power wiring: in a *wired* kit (the default) the motor and servo boards take their
+    12 V from the power board's outputs, as on the robot (:mod:`j5aio.simulator.wiring`):
+    the outputs start off, so these boards start unpowered until a program switches
+    their outputs on (:class:`~j5aio.kit.KitRobot` does, as sr-robot3 and sbot do). The
+    kit definition says which output feeds which board, else the default rule does
+    (motor boards on H0, H1; servo boards on L0). With ``wired=False`` every board is
+    powered all the time, whatever the outputs do: that suits a test of one board's
+    protocol, not a robot program. A kit without a power board is never wired.
+
     :param config: the kit: a :class:`KitConfig`, a registry kit
         (:class:`~j5aio.board_kinds.KitDefinition`) or a kit's name; the default kit if
         omitted.
     :param time_scale: the time scale of a named kit (a :class:`KitConfig` has its own).
+    :param wired: feed the boards from the power board's outputs (see above).
     :raises TypeError: ``config`` is none of those.
-    :raises ValueError: there is no kit of that name (the message lists the kits), or two
-        of its simulators would share serial numbers.
+    :raises ValueError: there is no kit of that name (the message lists the kits), two
+        of its simulators would share serial numbers, or a board is wired to an output
+        its power board does not have.
     """
 
     def __init__(
@@ -155,6 +172,7 @@ class SimulatedKit:
         config: KitConfig | KitDefinition | str | None = None,
         *,
         time_scale: float | None = None,
+        wired: bool = True,
     ) -> None:
         if config is None:
             config = DEFAULT_KIT
@@ -199,12 +217,60 @@ class SimulatedKit:
                     f"simulators {prefixes[entry.serial_prefix]!r} and {entry.name!r} both "
                     f"number their boards {entry.serial_prefix}...: give one another prefix"
                 )
-            made = tuple(
-                entry.factory(_serial(entry.serial_prefix, i, count)) for i in range(count)
-            )
+            given = self._definition.serials.get(simulator_name) if self._definition else None
+            serials = given or [_serial(entry.serial_prefix, i, count) for i in range(count)]
+            made = tuple(entry.factory(serial) for serial in serials)
             self._boards[simulator_name] = made
             for simulator in made:
                 self._kinds[id(simulator)] = kind
+        self._check_distinct_serials()
+        self._wiring: KitWiring | None = self._wire() if wired else None
+
+    def _check_distinct_serials(self) -> None:
+        seen: set[str] = set()
+        for simulator in self._all():
+            serial = getattr(simulator, "serial_number", None)
+            if isinstance(serial, str) and serial in seen:
+                raise ValueError(
+                    f"two boards of the kit have serial number {serial!r}: each board's "
+                    "must be its own"
+                )
+            if isinstance(serial, str):
+                seen.add(serial)
+
+    def _wire(self) -> KitWiring | None:
+        """Join the first power board to the boards it feeds (None without a power board)."""
+        power_board = next(
+            (sim for sim in self._all() if isinstance(sim, PowerBoardSimulator)), None
+        )
+        if power_board is None:
+            return None
+        given = dict(self._definition.wiring) if self._definition is not None else {}
+        feeds: list[tuple[PowerFed, int]] = []
+        for name, made in self._boards.items():
+            if name in given:
+                outputs = [
+                    output_number(output, count=power_board.OUTPUT_COUNT)
+                    for output in given[name]
+                ]
+                feeds += [
+                    (sim, out) for sim, out in zip(made, outputs, strict=True)
+                    if isinstance(sim, PowerFed)
+                ]
+        chosen = {id(sim) for sim, _ in feeds}
+        rest = [
+            sim for sim in self._all() if isinstance(sim, PowerFed) and id(sim) not in chosen
+        ]
+        taken = [out for _, out in feeds]
+        feeds += zip(rest, default_outputs(rest, taken=taken), strict=True)
+        order = {id(sim): index for index, sim in enumerate(self._all())}
+        feeds.sort(key=lambda feed: order[id(feed[0])])
+        return KitWiring(power_board, feeds)
+
+    @property
+    def wiring(self) -> KitWiring | None:
+        """The kit's power wiring, or ``None`` if it is not wired (see the class)."""
+        return self._wiring
 
     @property
     def config(self) -> KitConfig:
@@ -335,6 +401,7 @@ def use_kit(
     kit: KitConfig | KitDefinition | SimulatedKit | str | None = None,
     *,
     time_scale: float | None = None,
+    wired: bool = True,
 ) -> SimulatedKit:
     """Make a fresh kit the current one, and return it.
 
@@ -344,12 +411,14 @@ def use_kit(
     :param kit: the new kit: a configuration, a registry kit or a kit's name
         (``"sr2019"``), or a kit already made; the default kit if omitted.
     :param time_scale: the time scale of a named kit (see :class:`SimulatedKit`).
+    :param wired: feed the boards from the power board's outputs (see
+        :class:`SimulatedKit`); not for a kit already made.
     :raises TypeError: ``kit`` is none of those.
     :raises ValueError: there is no kit of that name; the message lists the kits.
     """
     global _current
     if kit is None or isinstance(kit, KitConfig | KitDefinition | str):
-        kit = SimulatedKit(kit, time_scale=time_scale)
+        kit = SimulatedKit(kit, time_scale=time_scale, wired=wired)
     elif not isinstance(kit, SimulatedKit):
         raise TypeError(
             "use_kit takes a KitConfig, a KitDefinition, a kit's name or a SimulatedKit, "
