@@ -21,6 +21,7 @@ board safe, and the demo checks that every simulated motor is braked.
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from dataclasses import dataclass, field
@@ -34,10 +35,12 @@ from j5aio.boards.sb.arduino_2024 import SBArduino2024Board
 from j5aio.boards.sr.kch import Colour
 from j5aio.components.derived.ultrasound import UltrasoundSensor
 from j5aio.kit import KitRobot
+from j5aio.power_outputs import OUTPUT_NAMES
 from j5aio.simulator.arduino_base import ArduinoBoardSimulator
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kch import KCHSimulator
 from j5aio.simulator.kit import SimulatedKit, kit_from_environment, use_kit
+from j5aio.simulator.kit_file import kit_file_from_environment
 from j5aio.simulator.sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
 from j5aio.simulator.sr_motor_fw4 import MotorChannel, MotorDrive, SRMotorBoardFw4Simulator
 from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
@@ -251,7 +254,11 @@ def describe_boards(kit: SimulatedKit, world: _World | None = None) -> str:
             queue = power.note_queue
             frequency = queue[0].frequency if queue else None
         piezo = "quiet" if frequency is None else f"{frequency} Hz"
-        parts.append(f"run LED {led}, piezo {piezo}")
+        on = [OUTPUT_NAMES[n] for n, lit in enumerate(power.outputs) if lit] or ["none"]
+        parts.append(
+            f"outputs on: {' '.join(on)}, battery {power.loaded_voltage:.2f} V, "
+            f"run LED {led}, piezo {piezo}"
+        )
     for servos in _servo_boards(kit):
         if isinstance(servos, SRServoBoardFw4Simulator):
             pulse = servos.pulse_widths[0]
@@ -302,15 +309,26 @@ async def demo(
 
     :param seconds: how long the robot's tasks run.
     :param out: where to print; standard output by default.
-    :param kit: the name of the kit (:func:`j5aio.board_kinds.kits`); the one
-        ``J5AIO_KIT`` names, or else the default kit, if omitted.
+    :param kit: the name of the kit (:func:`j5aio.board_kinds.kits`); if omitted, the
+        kit of the file ``J5AIO_KIT_FILE`` names, else the one ``J5AIO_KIT`` names, else
+        the default kit.
     :returns: whether every simulated motor was braked at the end.
     :raises ValueError: ``seconds`` is not positive, or there is no such kit.
     """
     if not seconds > 0:
         raise ValueError(f"seconds must be more than 0, not {seconds}")
     out = out if out is not None else sys.stdout
-    simulated = use_kit(kit if kit is not None else kit_from_environment())
+    if kit is None:
+        from j5aio.simulator.kit_file import KIT_FILE_VARIABLE, time_scale_of
+
+        from_file = kit_file_from_environment()
+        if from_file is not None:
+            scale = time_scale_of(os.environ[KIT_FILE_VARIABLE].strip())
+            simulated = use_kit(from_file, time_scale=scale)
+        else:
+            simulated = use_kit(kit_from_environment())
+    else:
+        simulated = use_kit(kit)
     kit_summary = _kit_summary(simulated)
     return await _run(simulated, kit_summary, seconds, out)
 
@@ -361,14 +379,15 @@ def _report(kit: SimulatedKit, log: _Log, out: TextIO) -> bool:
 
 
 def _boards(robot: KitRobot) -> list[object]:
-    return [
+    boards: list[object] = [
         robot.power_board,
         *robot.motor_boards,
         *robot.servo_boards,
         *robot.arduinos,
-        *robot.ruggeduinos,
+        *robot.ruggeduinos,  # (the SR Arduinos are in robot.arduinos too)
         *([robot.kch] if robot.kch is not None else []),
     ]
+    return list({id(board): board for board in boards}.values())
 
 
 def _kit_summary(kit: SimulatedKit) -> str:

@@ -48,6 +48,9 @@ class BoardGroup(Generic[BoardT]):
         self._backend_classes = backends
         self._ports = tuple(ports)
         self._boards: dict[str, BoardT] = {}
+        #: Said when a board is looked up in the group while it is empty: which other
+        #: groups have boards, say (:class:`~j5aio.kit.KitRobot` fills it in).
+        self.empty_hint: str | None = None
 
     @classmethod
     async def get_board_group(
@@ -165,7 +168,7 @@ class BoardGroup(Generic[BoardT]):
                 present = ", ".join(self._boards) or "none"
                 raise KeyError(
                     f"no {self._board_type.__name__} with serial number {key!r}; "
-                    f"connected: {present}",
+                    f"connected: {present}{self._hint()}",
                 ) from None
         if isinstance(key, int) and not isinstance(key, bool):
             boards = self.boards
@@ -173,12 +176,15 @@ class BoardGroup(Generic[BoardT]):
                 return boards[key]
             raise IndexError(
                 f"board index {key} is out of range: there are {len(boards)} "
-                f"{self._board_type.__name__}(s)",
+                f"{self._board_type.__name__}(s){self._hint()}",
             )
         raise TypeError(
             f"look boards up by serial number (a str) or position (an int), not "
             f"{type(key).__name__}",
         )
+
+    def _hint(self) -> str:
+        return f". {self.empty_hint}" if self.empty_hint and not self._boards else ""
 
     def __str__(self) -> str:
         return f"Group of Boards - [{', '.join(map(str, self._boards.values()))}]"

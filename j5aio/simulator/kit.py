@@ -443,10 +443,20 @@ def kit_from_environment() -> str:
 
 
 def current_kit() -> SimulatedKit:
-    """Return the kit in use, making the ``J5AIO_KIT`` kit (or the default) on first use.
+    """Return the kit in use, making it on first use.
 
-    :raises ValueError: ``J5AIO_KIT`` names no kit; the message lists the kits.
+    That is the kit of the file ``J5AIO_KIT_FILE`` names (:mod:`j5aio.simulator.kit_file`),
+    else the ``J5AIO_KIT`` kit, else the default kit.
+
+    :raises ValueError: ``J5AIO_KIT`` names no kit (the message lists the kits), or the
+        kit file cannot be used (the message says why).
     """
     if _current is None:
+        from .kit_file import KIT_FILE_VARIABLE, kit_file_from_environment, time_scale_of
+
+        from_file = kit_file_from_environment()
+        if from_file is not None:
+            scale = time_scale_of(os.environ[KIT_FILE_VARIABLE].strip())
+            return use_kit(from_file, time_scale=scale)
         return use_kit(kit_from_environment())
     return _current

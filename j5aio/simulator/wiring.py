@@ -140,8 +140,9 @@ class KitWiring:
         self._syncing = False
         self._again = False
         self._stops: list[Callable[[], None]] = []
-        for board in (power_board, *(simulator for simulator, _ in self._feeds)):
-            self._stops.append(board.listen(self.sync))
+        self._stops.append(power_board.listen(self.sync))
+        for simulator, _ in self._feeds:
+            self._stops.append(simulator.listen(self.sync))
         self.sync()
 
     @property
