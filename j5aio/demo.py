@@ -105,12 +105,11 @@ class _Log:
 
 @dataclass
 class _World:
-    """The room the robot drives in: a wall ahead, and a battery that the motors load."""
+    """The room the robot drives in: a wall ahead, and a battery that runs down."""
 
     kit: SimulatedKit
     distance: float = START_DISTANCE
     elapsed: float = 0.0
-    amps: float = field(default=0.0)
 
     def step(self, seconds: float) -> None:
         """Move the world on by ``seconds``, from what the simulated motors do now."""
@@ -122,12 +121,12 @@ class _World:
             self.distance += 1.5 * seconds  # turning away: the wall drops out of view
         self.distance = min(max(self.distance, 0.05), 2.0)
         self.elapsed += seconds
-        self.amps = 0.3 + 2.5 * (abs(left) + abs(right))
         for arduino in _of_type(self.kit, (ArduinoBoardSimulator,)):
             arduino.set_ultrasound_distance(TRIGGER_PIN, ECHO_PIN, self.distance)
         for power in _power_boards(self.kit):
-            power.battery_current = self.amps
-            power.battery_voltage = 12.4 - 0.1 * self.amps - 0.02 * self.elapsed
+            # The battery runs down; the kit's wiring adds what the motors draw.
+            power.battery_current = 0.3
+            power.battery_voltage = 12.4 - 0.02 * self.elapsed
 
 
 @dataclass
@@ -245,6 +244,7 @@ def describe_boards(kit: SimulatedKit, world: _World | None = None) -> str:
     parts = []
     for board in _motor_boards(kit):
         motors = ", ".join(_describe_motor(output) for output in board.motors)
+        motors = motors if board.powered else "no power"
         parts.append(f"{board.serial_number} [{motors}]")
     for power in _power_boards(kit):
         led = "on" if power.run_led else "off"
@@ -256,7 +256,7 @@ def describe_boards(kit: SimulatedKit, world: _World | None = None) -> str:
         piezo = "quiet" if frequency is None else f"{frequency} Hz"
         on = [OUTPUT_NAMES[n] for n, lit in enumerate(power.outputs) if lit] or ["none"]
         parts.append(
-            f"outputs on: {' '.join(on)}, battery {power.loaded_voltage:.2f} V, "
+            f"outputs on: {', '.join(on)}, battery {power.loaded_voltage:.2f} V, "
             f"run LED {led}, piezo {piezo}"
         )
     for servos in _servo_boards(kit):
@@ -298,8 +298,16 @@ async def _run_world(world: _World) -> None:
 
 
 def all_motors_braked(kit: SimulatedKit) -> bool:
-    """Whether every motor of every simulated motor board in ``kit`` is braked."""
-    return all(_is_braked(output) for board in _motor_boards(kit) for output in board.motors)
+    """Whether every motor of every simulated motor board in ``kit`` is braked or unpowered.
+
+    A motor board without power (its power board output off, as the power board's safe
+    state leaves it) drives nothing.
+    """
+    return all(
+        _is_braked(output) or not board.powered
+        for board in _motor_boards(kit)
+        for output in board.motors
+    )
 
 
 async def demo(
@@ -372,7 +380,11 @@ def _report(kit: SimulatedKit, log: _Log, out: TextIO) -> bool:
     braked = all_motors_braked(kit)
     log("boards", describe_boards(kit))
     if braked:
-        print("\nThe robot has stopped: every simulated motor is braked.", file=out, flush=True)
+        print(
+            "\nThe robot has stopped: every simulated motor is braked or has no power.",
+            file=out,
+            flush=True,
+        )
     else:  # pragma: no cover - a make-safe failure
         print("\nWARNING: some simulated motors were left running.", file=out, flush=True)
     return braked

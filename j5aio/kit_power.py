@@ -17,6 +17,7 @@ chip is there but whose controller stays silent, a servo board that reports no 1
 from __future__ import annotations
 
 import warnings
+from enum import Enum
 from collections.abc import Iterable, Mapping
 from typing import Final
 
@@ -70,7 +71,7 @@ def check_power_on(power_on: object) -> tuple[int, ...]:
         )
     chosen: list[int] = []
     for output in power_on:
-        value: int | str = getattr(output, "value", output)  # an output enum, too
+        value = output.value if isinstance(output, Enum) else output  # an output enum, too
         number = output_number(value)
         if number == BRAIN_OUTPUT:
             raise ValueError(

@@ -50,13 +50,18 @@ async def test_finds_every_board_of_the_kit() -> None:
         assert list(robot.power_boards) == [robot.power_board]
         assert [b.serial_number for b in robot.motor_boards] == ["SIMMB0", "SIMMB1"]
         assert [b.serial_number for b in robot.servo_boards] == ["SIMSB0"]
-        assert [b.serial_number for b in robot.arduinos] == ["SIMSBA0"]
+        # Every Arduino, whatever its firmware, and the SR ones in ruggeduinos too.
+        assert [b.serial_number for b in robot.arduinos] == ["SIMRD0", "SIMSBA0"]
         assert [b.serial_number for b in robot.ruggeduinos] == ["SIMRD0"]
+        assert robot.arduinos["SIMRD0"] is robot.ruggeduinos[0]
         await robot.motor_boards[1].motors[0].set_power(0.6)
         assert kit.motor_boards[1].motors[0].mode is MotorMode.FORWARD
-    # Leaving the robot made every board safe: the motor boards brake.
+    # Leaving the robot made every board safe: the motor boards braked, then the power
+    # board switched their 12 V off, so their controllers are off (the motors coast).
+    assert kit.power_boards[0].outputs == (False,) * 6
+    assert not any(board.powered for board in kit.motor_boards)
     assert all(
-        output.mode is MotorMode.BRAKE for board in kit.motor_boards for output in board.motors
+        output.mode is MotorMode.COAST for board in kit.motor_boards for output in board.motors
     )
 
 
@@ -183,8 +188,9 @@ async def test_both_generations_are_gathered_so_two_power_boards_are_an_error() 
         robot.release_lock()
 
 
-async def test_the_kch_of_the_sr2023_kit_is_robot_kch() -> None:
-    kit = use_kit("sr2023")
+@pytest.mark.parametrize("kit_name", ["sr2023", "sb2024"])
+async def test_the_kch_of_the_kits_of_today_is_robot_kch(kit_name: str) -> None:
+    kit = use_kit(kit_name)
     async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
         assert isinstance(robot.kch, KCHBoard)
         assert robot.kch.serial_number == "SIMKCH0"
@@ -194,7 +200,7 @@ async def test_the_kch_of_the_sr2023_kit_is_robot_kch() -> None:
         assert simulator.colours[2] == (True, False, True)
 
 
-@pytest.mark.parametrize("kit", ["sr2019", "sb2024"])
+@pytest.mark.parametrize("kit", ["sr2019", "sb2019"])
 async def test_a_kit_without_a_kch_has_none(kit: str) -> None:
     use_kit(kit)
     async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
