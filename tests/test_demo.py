@@ -87,11 +87,11 @@ def test_describe_boards_shows_the_power_outputs_and_the_battery() -> None:
     kit = SimulatedKit()
     assert "outputs on: none, battery 12.00 V" in describe_boards(kit)
     kit.power_boards[0].ctrl_transfer(0x00, 64, 1, 0)  # H0 on: SIMMB0 powered
-    assert "outputs on: H0, battery 12.00 V" in describe_boards(kit)  # idle: 2.5 mV
+    assert "outputs on: H0, battery 12.00 V" in describe_boards(kit)  # motors still
     kit.motor_boards[0].receive(bytes([0x02, 128 + 100]))  # motor 0 at full power
-    # 2.55 A through the battery's 0.05 ohm: 0.13 V less.
+    # 2.5 A through the battery's 0.05 ohm: 0.125 V less.
     assert "SIMMB0 [forward 100%, coast] | SIMMB1 [no power]" in describe_boards(kit)
-    assert "outputs on: H0, battery 11.87 V" in describe_boards(kit)
+    assert "outputs on: H0, battery 11.88 V" in describe_boards(kit)
 
 
 def test_describe_boards_shows_each_board() -> None:
