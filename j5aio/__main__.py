@@ -506,6 +506,7 @@ def _match(args: argparse.Namespace, program: Path) -> Iterator[bool]:
                 use_kit(
                     kit_file_from_environment() or kit_from_environment(),
                     time_scale=args.time_scale,
+                    wired=True,
                 )
         try:
             metadata = load_metadata()

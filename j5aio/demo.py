@@ -332,11 +332,11 @@ async def demo(
         from_file = kit_file_from_environment()
         if from_file is not None:
             scale = time_scale_of(os.environ[KIT_FILE_VARIABLE].strip())
-            simulated = use_kit(from_file, time_scale=scale)
+            simulated = use_kit(from_file, time_scale=scale, wired=True)
         else:
-            simulated = use_kit(kit_from_environment())
+            simulated = use_kit(kit_from_environment(), wired=True)
     else:
-        simulated = use_kit(kit)
+        simulated = use_kit(kit, wired=True)
     kit_summary = _kit_summary(simulated)
     return await _run(simulated, kit_summary, seconds, out)
 

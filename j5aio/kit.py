@@ -147,6 +147,7 @@ class KitRobot(BaseRobot):
         """
         environment = self.environment
         self._start_view()
+        kit_power.wire_simulated_kit(environment)  # (the simulated kit: as the robot is)
         self.power_boards = await environment.get_board_group(PowerBoard)
         if len(self.power_boards) == 1:
             await self._power_up(self.power_boards.singular())

@@ -17,8 +17,8 @@ chip is there but whose controller stays silent, a servo board that reports no 1
 from __future__ import annotations
 
 import warnings
-from enum import Enum
 from collections.abc import Iterable, Mapping
+from enum import Enum
 from typing import Final
 
 from j5aio.boards.sr.v4.power_board import PowerBoard
@@ -29,10 +29,14 @@ __all__ = [
     "POWER_UP_WAIT",
     "KitPowerWarning",
     "PowerOnChoice",
+    "boot_wait",
     "check_power_on",
+    "feeding_outputs",
     "outputs_to_switch_on",
     "power_hint",
+    "silent_motor_boards",
     "warn_unpowered",
+    "wire_simulated_kit",
 ]
 
 #: The outputs switched on at start-up by default: every one but L2 (the brain's), as
@@ -143,6 +147,20 @@ def _simulated_kit_of(environment: object) -> object | None:
     from j5aio.simulator.kit import current_kit
 
     return current_kit()
+
+
+def wire_simulated_kit(environment: object) -> None:
+    """On the simulated kit, wire it now if it waited for a robot to start (see ``wire``).
+
+    From then on its motor and servo boards take their 12 V from the power board's
+    outputs, as on the robot.
+    """
+    kit = _simulated_kit_of(environment)
+    if kit is not None:
+        from j5aio.simulator.kit import SimulatedKit
+
+        assert isinstance(kit, SimulatedKit)
+        kit.wire()
 
 
 def boot_wait(environment: object, seconds: float = POWER_UP_WAIT) -> float:

@@ -68,7 +68,7 @@ async def test_the_run_time_must_be_positive(seconds: float) -> None:
 
 
 def test_all_motors_braked_reads_the_simulators() -> None:
-    kit = SimulatedKit(KitConfig(motor_boards=2), wired=False)
+    kit = SimulatedKit(KitConfig(motor_boards=2))
     # A motor board simulator starts coasting, until the host brakes it.
     assert not all_motors_braked(kit)
     brake_all = bytes([0x02, 2, 0x03, 2])  # fw 3: motor 0 brake, motor 1 brake
@@ -84,7 +84,7 @@ def test_all_motors_braked_reads_the_simulators() -> None:
 
 
 def test_describe_boards_shows_the_power_outputs_and_the_battery() -> None:
-    kit = SimulatedKit()
+    kit = SimulatedKit(wired=True)
     assert "outputs on: none, battery 12.00 V" in describe_boards(kit)
     kit.power_boards[0].ctrl_transfer(0x00, 64, 1, 0)  # H0 on: SIMMB0 powered
     assert "outputs on: H0, battery 12.00 V" in describe_boards(kit)  # motors still

@@ -108,7 +108,7 @@ async def test_hardware_chosen_explicitly_gets_no_hint(
 
 
 async def test_boards_found_by_default_are_the_hardware_backends_boards() -> None:
-    kit = use_kit(KitConfig(motor_boards=1), wired=False)
+    kit = use_kit(KitConfig(motor_boards=1))
     try:
         default = environments._HardwareByDefault(SIMULATED_ENVIRONMENT)
         group = await default.get_board_group(MotorBoard)

@@ -108,7 +108,7 @@ def test_the_parser_is_named_for_python_m() -> None:
 def test_list_prints_each_board_found(
     monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    kit = SimulatedKit(KitConfig(), wired=False)  # (every board powered)
+    kit = SimulatedKit(KitConfig())
 
     async def find_in_kit(*, problems: list[str]) -> list[FoundBoard]:
         return await REAL_FIND_BOARDS(options=kit_discovery_options(kit), problems=problems)

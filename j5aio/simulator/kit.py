@@ -147,20 +147,28 @@ class SimulatedKit:
     (:attr:`KitDefinition.serials <j5aio.board_kinds.KitDefinition>`), as a kit file
     does (:mod:`j5aio.simulator.kit_file`).
 
-    Power wiring: in a *wired* kit (the default) the motor and servo boards take their
-    12 V from the power board's outputs, as on the robot (:mod:`j5aio.simulator.wiring`):
-    the outputs start off, so these boards start unpowered until a program switches
-    their outputs on (:class:`~j5aio.kit.KitRobot` does, as sr-robot3 and sbot do). The
-    kit definition says which output feeds which board, else the default rule does
-    (motor boards on H0, H1; servo boards on L0). With ``wired=False`` every board is
-    powered all the time, whatever the outputs do: that suits a test of one board's
-    protocol, not a robot program. A kit without a power board is never wired.
+    Power wiring: in a *wired* kit the motor and servo boards take their 12 V from the
+    power board's outputs, as on the robot (:mod:`j5aio.simulator.wiring`): the outputs
+    start off, so these boards have no power until a program switches their outputs on
+    (:class:`~j5aio.kit.KitRobot` does, as sr-robot3 and sbot do). The kit definition
+    says which output feeds which board, else the default rule does (motor boards on H0,
+    H1; servo boards on L0). ``wired`` says when the kit is wired:
+
+    - ``True``: from the start. The kit a program runs on (``run --sim``,
+      ``J5AIO_ENV=sim``, ``J5AIO_KIT``, a kit file, the demo) is wired so.
+    - ``None`` (the default for a kit made in code): every board is powered until a
+      robot starts on the kit (:meth:`wire`, which :class:`~j5aio.kit.KitRobot` calls),
+      and wired from then on. So a test of one board's protocol finds its boards
+      straight away, while a robot program meets the robot's wiring.
+    - ``False``: never; every board is powered whatever the outputs do.
+
+    A kit without a power board is never wired: its boards are always powered.
 
     :param config: the kit: a :class:`KitConfig`, a registry kit
         (:class:`~j5aio.board_kinds.KitDefinition`) or a kit's name; the default kit if
         omitted.
     :param time_scale: the time scale of a named kit (a :class:`KitConfig` has its own).
-    :param wired: feed the boards from the power board's outputs (see above).
+    :param wired: when to feed the boards from the power board's outputs (see above).
     :raises TypeError: ``config`` is none of those.
     :raises ValueError: there is no kit of that name (the message lists the kits), two
         of its simulators would share serial numbers, or a board is wired to an output
@@ -172,7 +180,7 @@ class SimulatedKit:
         config: KitConfig | KitDefinition | str | None = None,
         *,
         time_scale: float | None = None,
-        wired: bool = True,
+        wired: bool | None = None,
     ) -> None:
         if config is None:
             config = DEFAULT_KIT
@@ -224,6 +232,7 @@ class SimulatedKit:
             for simulator in made:
                 self._kinds[id(simulator)] = kind
         self._check_distinct_serials()
+        self._wire_when_asked = wired is None
         self._wiring: KitWiring | None = self._wire() if wired else None
 
     def _check_distinct_serials(self) -> None:
@@ -269,7 +278,21 @@ class SimulatedKit:
 
     @property
     def wiring(self) -> KitWiring | None:
-        """The kit's power wiring, or ``None`` if it is not wired (see the class)."""
+        """The kit's power wiring, or ``None`` while it is not wired (see the class)."""
+        return self._wiring
+
+    def wire(self) -> KitWiring | None:
+        """Wire a kit made with ``wired=None`` now (a robot starting on it calls this).
+
+        From now on the boards take their power from the power board's outputs: those
+        that are off leave the boards they feed without power. A kit wired already, or
+        made with ``wired=False``, is left as it is.
+
+        :returns: the kit's wiring, or ``None`` if it is not wired.
+        """
+        if self._wiring is None and self._wire_when_asked:
+            self._wire_when_asked = False
+            self._wiring = self._wire()
         return self._wiring
 
     @property
@@ -401,7 +424,7 @@ def use_kit(
     kit: KitConfig | KitDefinition | SimulatedKit | str | None = None,
     *,
     time_scale: float | None = None,
-    wired: bool = True,
+    wired: bool | None = None,
 ) -> SimulatedKit:
     """Make a fresh kit the current one, and return it.
 
@@ -411,7 +434,7 @@ def use_kit(
     :param kit: the new kit: a configuration, a registry kit or a kit's name
         (``"sr2019"``), or a kit already made; the default kit if omitted.
     :param time_scale: the time scale of a named kit (see :class:`SimulatedKit`).
-    :param wired: feed the boards from the power board's outputs (see
+    :param wired: when to feed the boards from the power board's outputs (see
         :class:`SimulatedKit`); not for a kit already made.
     :raises TypeError: ``kit`` is none of those.
     :raises ValueError: there is no kit of that name; the message lists the kits.
@@ -446,7 +469,8 @@ def current_kit() -> SimulatedKit:
     """Return the kit in use, making it on first use.
 
     That is the kit of the file ``J5AIO_KIT_FILE`` names (:mod:`j5aio.simulator.kit_file`),
-    else the ``J5AIO_KIT`` kit, else the default kit.
+    else the ``J5AIO_KIT`` kit, else the default kit; it is wired from the start, as
+    the robot is (see :class:`SimulatedKit`).
 
     :raises ValueError: ``J5AIO_KIT`` names no kit (the message lists the kits), or the
         kit file cannot be used (the message says why).
@@ -457,6 +481,6 @@ def current_kit() -> SimulatedKit:
         from_file = kit_file_from_environment()
         if from_file is not None:
             scale = time_scale_of(os.environ[KIT_FILE_VARIABLE].strip())
-            return use_kit(from_file, time_scale=scale)
-        return use_kit(kit_from_environment())
+            return use_kit(from_file, time_scale=scale, wired=True)
+        return use_kit(kit_from_environment(), wired=True)
     return _current

@@ -40,7 +40,7 @@ def test_every_simulated_backend_is_the_hardware_backend_for_its_board() -> None
 
 
 async def test_the_default_kit_is_found_board_for_board() -> None:
-    kit = use_kit(wired=False)  # (every board powered: KitRobot's tests power them up)
+    kit = use_kit()
     power = await SIMULATED_ENVIRONMENT.get_board_group(PowerBoard)
     motors = await SIMULATED_ENVIRONMENT.get_board_group(MotorBoard)
     servos = await SIMULATED_ENVIRONMENT.get_board_group(ServoBoard)
@@ -56,7 +56,7 @@ async def test_the_default_kit_is_found_board_for_board() -> None:
 
 
 async def test_commands_travel_through_the_real_protocol_to_the_simulators() -> None:
-    kit = use_kit(KitConfig(motor_boards=1), wired=False)
+    kit = use_kit(KitConfig(motor_boards=1))
     motor_board = (await SIMULATED_ENVIRONMENT.get_board_group(MotorBoard)).singular()
     power_board = (await SIMULATED_ENVIRONMENT.get_board_group(PowerBoard)).singular()
     servo_board = (await SIMULATED_ENVIRONMENT.get_board_group(ServoBoard)).singular()
@@ -86,7 +86,7 @@ async def test_commands_travel_through_the_real_protocol_to_the_simulators() -> 
 
 
 async def test_unplugged_boards_are_not_found() -> None:
-    kit = use_kit(wired=False)
+    kit = use_kit()
     kit.motor_boards[0].unplug()
     kit.servo_boards[0].unplug()
     motors = await SIMULATED_ENVIRONMENT.get_board_group(MotorBoard)
@@ -96,7 +96,7 @@ async def test_unplugged_boards_are_not_found() -> None:
 
 
 async def test_looking_again_gives_back_the_same_boards() -> None:
-    use_kit(wired=False)
+    use_kit()
     first = await SIMULATED_ENVIRONMENT.get_board_group(MotorBoard)
     again = await SIMULATED_ENVIRONMENT.get_board_group(MotorBoard)
     assert list(first) == list(again)
@@ -106,9 +106,9 @@ async def test_looking_again_gives_back_the_same_boards() -> None:
 
 
 async def test_a_new_kit_gives_new_boards_on_its_own_ports() -> None:
-    first_kit = use_kit(KitConfig(motor_boards=1), wired=False)
+    first_kit = use_kit(KitConfig(motor_boards=1))
     first = (await SIMULATED_ENVIRONMENT.get_board_group(MotorBoard)).singular()
-    second_kit = use_kit(KitConfig(motor_boards=1), wired=False)
+    second_kit = use_kit(KitConfig(motor_boards=1))
     second = (await SIMULATED_ENVIRONMENT.get_board_group(MotorBoard)).singular()
     assert first is not second
     await second.motors[0].set_power(0.6)
@@ -147,7 +147,7 @@ async def test_piezo_notes_play_out_in_real_time() -> None:
 
 
 async def test_hardware_listing_finds_the_whole_kit_with_kit_discovery_options() -> None:
-    kit = SimulatedKit(KitConfig(ruggeduinos=1), wired=False)
+    kit = SimulatedKit(KitConfig(ruggeduinos=1))
     found = await find_boards(options=kit_discovery_options(kit))
     assert sorted(board.serial_number for board in found) == sorted(
         str(simulator.serial_number) for simulator in kit
