@@ -1274,7 +1274,10 @@ class KCHBoard(Board):
     Its three user LEDs A, B and C (:attr:`leds`, 0 to 2) each have a red, a green and a
     blue part that are on or off, so they show the eight :class:`Colour` s: any
     brightness above 0 lights a part fully. Its start LED (:attr:`start_led`) flashes
-    while a robot waits for the start button. Colours stay lit when the program ends.
+    while a robot waits for the start button. Colours stay lit while the program runs,
+    also once it is made safe; when the program ends, closing the board releases the
+    GPIO pins and every LED goes dark (sr-robot3, which leaves its user LED pins driven
+    at exit, keeps them lit).
 
     :param serial_number: the KCH's asset code.
     :param backend: the backend that drives the LEDs.
@@ -1307,7 +1310,7 @@ class KCHBoard(Board):
         return _boards_sr_kch.KCHBoard.supported_components()
 
     def make_safe(self) -> None:
-        """Turn the start LED off; the user LEDs keep their colours, as on the real kit."""
+        """Turn the start LED off; the user LEDs keep their colours until the board closes."""
         _call(self._core.make_safe)
 
 
@@ -1924,7 +1927,8 @@ class SBServoBoard(ServoBoardFw4):
     """The servo board of the SourceBots 2024+ kit: SourceBots' firmware 4.4, eight servos.
 
     The same board and protocol as :class:`~j5aio.boards.sr.v4.servo_board_fw4.ServoBoardFw4`,
-    with eight servos (0 to 7) whose pulses may be as short as 300 µs.
+    with eight servos (0 to 7) whose pulses may be as short as 300 µs. Positions -1 to 1
+    give pulses of 350 to 1980 µs until a program sets other limits, as in sbot.
 
     :param serial_number: the board's serial number.
     :param backend: the backend that drives the board.
@@ -2874,8 +2878,9 @@ class ProtectedPowerOutput(PowerOutput):
 class PulseServo(Servo):
     """A servo driven by pulses whose widths are set by its position.
 
-    Position -1 gives the lower pulse limit and 1 the upper one (1000 and 2000 µs unless
-    changed with :meth:`set_pulse_limits`); positions in between are spread evenly.
+    Position -1 gives the lower pulse limit and 1 the upper one (the board's defaults,
+    such as 1000 and 2000 µs, unless changed with :meth:`set_pulse_limits`); positions in
+    between are spread evenly.
 
     :param identifier: the number of the servo on its board.
     :param backend: the backend that drives the servo.
