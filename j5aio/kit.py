@@ -196,9 +196,19 @@ class KitRobot(BaseRobot):
             for board in self.servo_boards
             if isinstance(board, ServoBoardFw4) and not await board.power_good.get_state()
         ]
-        if silent or unpowered:
+        said = {*silent, *unpowered}
+        found = {board.serial_number for board in (*self.motor_boards, *self.servo_boards)}
+        missing = [  # (the simulated kit knows which boards it left without power)
+            serial
+            for serial in kit_power.unpowered_simulated_boards(environment)
+            if serial not in said and serial not in found
+        ]
+        if silent or unpowered or missing:
             self._power_messages = kit_power.warn_unpowered(
-                silent, unpowered, kit_power.feeding_outputs(environment)
+                silent,
+                unpowered,
+                kit_power.feeding_outputs(environment),
+                missing_boards=missing,
             )
 
     def _explain_empty_groups(self) -> None:

@@ -35,6 +35,7 @@ __all__ = [
     "outputs_to_switch_on",
     "power_hint",
     "silent_motor_boards",
+    "unpowered_simulated_boards",
     "warn_unpowered",
     "wire_simulated_kit",
 ]
@@ -48,9 +49,10 @@ DEFAULT_POWER_ON: Final = tuple(n for n in range(len(OUTPUT_NAMES)) if n != BRAI
 #: simulated kit, scaled by its time scale).
 POWER_UP_WAIT: Final = 0.5
 
-PowerOnChoice = bool | Iterable[int | str] | None
+PowerOnChoice = bool | Iterable[int | str | Enum] | None
 """What to switch on at start-up: ``True`` or ``None`` for :data:`DEFAULT_POWER_ON`,
-``False`` for nothing, or the outputs (names such as ``"H0"``, or numbers)."""
+``False`` for nothing, or the outputs (names such as ``"H0"``, numbers, or the boards'
+output enums such as ``PowerBoardOutput.H0``)."""
 
 
 class KitPowerWarning(UserWarning):
@@ -97,12 +99,12 @@ def power_hint(output: int | None) -> str:
     """What to do about a board without power, naming ``output`` if it is known."""
     if output is None:
         return (
-            "switch on the power board output that feeds its 12 V input (KitRobot switches "
+            "Switch on the power board output that feeds its 12 V input (KitRobot switches "
             "on every output but L2 unless power_on says otherwise), and check the cable"
         )
     name = output_name(output)
     return (
-        f"switch on power board output {name}, which feeds it (KitRobot(power_on=...) "
+        f"Switch on power board output {name}, which feeds it (KitRobot(power_on=...) "
         f"or robot.power_board.outputs[{output}].is_enabled = True)"
     )
 
@@ -111,6 +113,8 @@ def warn_unpowered(
     silent_motor_boards: Iterable[str],
     unpowered_servo_boards: Iterable[str],
     feeding: Mapping[str, int],
+    *,
+    missing_boards: Iterable[str] = (),
 ) -> list[str]:
     """Warn (:class:`KitPowerWarning`) about each board without power; return the messages.
 
@@ -118,6 +122,8 @@ def warn_unpowered(
         plugged in but whose controller does not answer.
     :param unpowered_servo_boards: serial numbers of servo boards reporting no 12 V.
     :param feeding: the output feeding each board, by serial number, where it is known.
+    :param missing_boards: other boards known to be there without power, which could
+        not be reached (a simulated firmware 2 servo board, say), by serial number.
     """
     messages = [
         f"motor board {serial} is plugged in but does not answer: its 12 V input is off. "
@@ -127,10 +133,30 @@ def warn_unpowered(
         f"servo board {serial} reports no 12 V, so its servos will not move. "
         + power_hint(feeding.get(serial))
         for serial in unpowered_servo_boards
+    ] + [
+        f"board {serial} has no power, so it could not be reached. "
+        + power_hint(feeding.get(serial))
+        for serial in missing_boards
     ]
     for message in messages:
         warnings.warn(message, KitPowerWarning, stacklevel=3)
     return messages
+
+
+def unpowered_simulated_boards(environment: object) -> list[str]:
+    """Serial numbers of the simulated kit's boards whose power output is off, if any."""
+    kit = _simulated_kit_of(environment)
+    if kit is None:
+        return []
+    from j5aio.simulator.kit import SimulatedKit
+
+    assert isinstance(kit, SimulatedKit)
+    wiring = kit.wiring
+    if wiring is None:
+        return []
+    return [
+        str(getattr(fed, "serial_number", "?")) for fed, _ in wiring.feeds if not fed.powered
+    ]
 
 
 #: The USB strings of the motor board's USB-serial chip, which is powered from USB.

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Callable, Iterable, Sequence
-from typing import Final, Protocol, runtime_checkable
+from typing import ClassVar, Final, Protocol, runtime_checkable
 
 from j5aio.power_outputs import BRAIN_OUTPUT, OUTPUT_NAMES, output_name
 
@@ -72,7 +72,7 @@ class PowerFed(Protocol):
 class PowerBoardSimulator(Protocol):
     """What a kit's wiring needs of a power board simulator (firmware 3 and 4 have it)."""
 
-    OUTPUT_COUNT: int
+    OUTPUT_COUNT: ClassVar[int]
 
     @property
     def outputs(self) -> tuple[bool, ...]:
