@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence, Set
 from datetime import timedelta
+from enum import Enum
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Generic, Self, TypeVar, cast, overload
 
@@ -1105,7 +1106,7 @@ class KitRobot(BaseRobot):
         *args: Any,
         environment: Environment | None = None,
         view: bool | None = None,
-        power_on: bool | Iterable[int | str] | None = True,
+        power_on: bool | Iterable[int | str | Enum] | None = True,
         **kwargs: Any,
     ) -> Self:
         robot = _adopt(cls, _kit.KitRobot(environment=_unwrap(environment), view=view, power_on=power_on))
