@@ -1074,7 +1074,6 @@ class KitRobot(BaseRobot):
     finds the boards at once, with no ``async with``, and they are made safe when the
     program ends.
 
-    :param environment: where to find the boards; the default environment if omitted.
     Start-up powers the kit as sr-robot3 and sbot do: the power board is found first,
     the outputs in ``power_on`` are switched on (by default every output but L2, which
     powers the brain), and after :data:`~j5aio.kit_power.POWER_UP_WAIT` seconds for the
