@@ -244,7 +244,6 @@ def describe_boards(kit: SimulatedKit, world: _World | None = None) -> str:
     parts = []
     for board in _motor_boards(kit):
         motors = ", ".join(_describe_motor(output) for output in board.motors)
-        motors = motors if board.powered else "no power"
         parts.append(f"{board.serial_number} [{motors}]")
     for power in _power_boards(kit):
         led = "on" if power.run_led else "off"
@@ -380,11 +379,7 @@ def _report(kit: SimulatedKit, log: _Log, out: TextIO) -> bool:
     braked = all_motors_braked(kit)
     log("boards", describe_boards(kit))
     if braked:
-        print(
-            "\nThe robot has stopped: every simulated motor is braked or has no power.",
-            file=out,
-            flush=True,
-        )
+        print("\nThe robot has stopped: every simulated motor is braked.", file=out, flush=True)
     else:  # pragma: no cover - a make-safe failure
         print("\nWARNING: some simulated motors were left running.", file=out, flush=True)
     return braked

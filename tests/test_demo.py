@@ -32,16 +32,16 @@ async def test_the_demo_drives_senses_signals_and_ends_braked() -> None:
     # The boards lines come from the simulators: the motors really drove, and turned.
     assert "SIMMB0 [forward 60%, forward 60%]" in text  # power 0.6 drives at 60 % duty
     assert "SIMMB0 [forward 50%, reverse 50%]" in text or "flag servo +1.0" in text
-    assert lines[-1] == "The robot has stopped: every simulated motor is braked or has no power."
+    assert lines[-1] == "The robot has stopped: every simulated motor is braked."
     final = lines[-3]
     # Braked, then the power board's safe state switched their 12 V off.
-    assert "SIMMB0 [no power] | SIMMB1 [no power] | outputs on: none" in final
+    assert "SIMMB0 [brake, brake] | SIMMB1 [brake, brake] | outputs on: none" in final
 
 
 def test_run_demo_runs_it_in_its_own_event_loop() -> None:
     out = io.StringIO()
     assert run_demo(0.3, out=out) is True
-    assert "every simulated motor is braked or has no power" in out.getvalue()
+    assert "every simulated motor is braked" in out.getvalue()
 
 
 async def test_a_demo_that_could_not_start_does_not_warn_about_motors(
@@ -90,7 +90,7 @@ def test_describe_boards_shows_the_power_outputs_and_the_battery() -> None:
     assert "outputs on: H0, battery 12.00 V" in describe_boards(kit)  # motors still
     kit.motor_boards[0].receive(bytes([0x02, 128 + 100]))  # motor 0 at full power
     # 2.5 A through the battery's 0.05 ohm: 0.125 V less.
-    assert "SIMMB0 [forward 100%, coast] | SIMMB1 [no power]" in describe_boards(kit)
+    assert "SIMMB0 [forward 100%, coast] | SIMMB1 [coast, coast]" in describe_boards(kit)
     assert "outputs on: H0, battery 11.88 V" in describe_boards(kit)
 
 
@@ -138,7 +138,7 @@ async def test_the_demo_runs_on_todays_kits_sees_the_wall_and_ends_braked(kit: s
     assert "m ahead: asking drive to turn" in text
     assert "flag servo" in text and "SIMMB0 [" in text
     last = text.strip().splitlines()[-3]
-    assert "SIMMB0 [no power] | outputs on: L2," in last  # the brain's output stays on
+    assert "SIMMB0 [brake, brake] | outputs on: L2," in last  # the brain's stays on
 
 
 async def test_on_the_sr2023_kit_the_demo_finds_the_kch_and_lights_its_leds() -> None:

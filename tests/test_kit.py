@@ -56,13 +56,13 @@ async def test_finds_every_board_of_the_kit() -> None:
         assert robot.arduinos["SIMRD0"] is robot.ruggeduinos[0]
         await robot.motor_boards[1].motors[0].set_power(0.6)
         assert kit.motor_boards[1].motors[0].mode is MotorMode.FORWARD
-    # Leaving the robot made every board safe: the motor boards braked, then the power
-    # board switched their 12 V off, so their controllers are off (the motors coast).
+    # Leaving the robot made every board safe: the motor boards brake, and then the
+    # power board switched their 12 V off (the power board goes last).
+    assert all(
+        output.mode is MotorMode.BRAKE for board in kit.motor_boards for output in board.motors
+    )
     assert kit.power_boards[0].outputs == (False,) * 6
     assert not any(board.powered for board in kit.motor_boards)
-    assert all(
-        output.mode is MotorMode.COAST for board in kit.motor_boards for output in board.motors
-    )
 
 
 async def test_j5aio_env_chooses_the_simulated_kit(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -341,10 +341,9 @@ def test_the_sr2023_kit_ends_braked_and_powered_off_on_sigterm() -> None:
     assert "driving" in out, err
     assert code == 128 + signal.SIGTERM, err
     state = final_state(out)
-    # The motor board was braked first, and then lost its 12 V when the power board was
-    # made safe: its controller is off and the motors coast. (Had the power gone first,
-    # braking would have failed, and said so.)
-    assert state["motors"] == ["COAST", "COAST"], state
+    assert state["motors"] == ["BRAKE", "BRAKE"], state
+    # The motor board was braked before the power board cut its 12 V: had the power gone
+    # first, braking would have failed, and said so.
     assert "Could not make" not in err, err
     # Every output off but L2, the brain's, which the board keeps on.
     assert state["outputs"] == [False, False, False, False, True, False, False], state

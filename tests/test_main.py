@@ -340,8 +340,8 @@ def test_demo_runs_end_to_end_ends_by_itself_and_leaves_every_motor_braked() -> 
     assert any("sense   battery" in line for line in lines)
     assert any("signal  beep" in line for line in lines)
     final_boards = [line for line in lines if "boards" in line][-1]
-    assert "SIMMB0 [no power] | SIMMB1 [no power]" in final_boards
-    assert lines[-1] == "The robot has stopped: every simulated motor is braked or has no power."
+    assert "SIMMB0 [brake, brake] | SIMMB1 [brake, brake]" in final_boards
+    assert lines[-1] == "The robot has stopped: every simulated motor is braked."
 
 
 @posix_only
@@ -370,8 +370,8 @@ def test_an_interrupted_demo_still_leaves_every_motor_braked() -> None:
     assert process.returncode == 130
     assert errors.strip() == "Interrupted."
     lines = rest.splitlines()
-    assert "SIMMB0 [no power] | SIMMB1 [no power]" in lines[-3]
-    assert lines[-1] == "The robot has stopped: every simulated motor is braked or has no power."
+    assert "SIMMB0 [brake, brake] | SIMMB1 [brake, brake]" in lines[-3]
+    assert lines[-1] == "The robot has stopped: every simulated motor is braked."
 
 
 # --- kits and simulator options ------------------------------------------------------------
@@ -538,4 +538,4 @@ def test_demo_on_each_kit_ends_by_itself(kit: str) -> None:
     result = python_m_j5aio("demo", "--kit", kit, "--seconds", "1")
     assert result.returncode == 0, result.stderr
     assert f"The kit: '{kit}'" in result.stdout
-    assert result.stdout.rstrip().endswith("every simulated motor is braked or has no power.")
+    assert result.stdout.rstrip().endswith("every simulated motor is braked.")

@@ -16,7 +16,7 @@ start (and come back from a reset) coasting, with the driver disabled.
 Power: only the USB-serial adapter is powered from USB. The controller sits on the
 isolated side, fed by the board's 12 V input (a power board output): while
 :attr:`~SRMotorBoardFw3Simulator.powered` is false its port is there but nothing answers
-and the motors coast; when power comes the controller boots.
+and no motor is driven; when power comes the controller boots.
 """
 
 from __future__ import annotations
@@ -128,8 +128,9 @@ class SRMotorBoardFw3Simulator(SerialBoardSimulator):
     def powered(self) -> bool:
         """Whether the board's 12 V input is on (it starts on: a kit's wiring switches it).
 
-        Switching it off stops the controller (the motors coast, nothing answers);
-        switching it on boots the controller.
+        Switching it off stops the controller: nothing answers, a motor that was driven
+        coasts to a stop and a braked one stays stopped (its mode still says so).
+        Switching it on boots the controller (the motors coast).
         """
         return self._powered
 
@@ -140,7 +141,11 @@ class SRMotorBoardFw3Simulator(SerialBoardSimulator):
             self.reset()
         elif not on and self._powered:
             self._powered = False
-            self._boot()
+            self._parser = _Parser.IDLE
+            self._motors = [
+                COAST if output.mode in (MotorMode.FORWARD, MotorMode.REVERSE) else output
+                for output in self._motors
+            ]
             self._tell_listeners()
 
     def set_motor_current(self, motor: int, amps: float | None) -> None:

@@ -13,8 +13,8 @@ USB cable changes nothing. ``*SYS:BOOTLOADER`` answers, then the board goes sile
 
 Power: only the FTDI adapter is powered from USB. The controller is fed by the board's
 12 V input (a power board output): while :attr:`~SRMotorBoardFw4Simulator.powered` is
-false its port is there but nothing answers and the motors coast; when power comes the
-controller boots.
+false its port is there but nothing answers and no motor is driven; when power comes
+the controller boots.
 
 The firmware answers a firmware 3 resync byte (``0x00``) as part of a line, so the probe
 ``\x00\n*IDN?\n`` gets a NACK and then the identity.
@@ -121,8 +121,9 @@ class SRMotorBoardFw4Simulator(SerialBoardSimulator):
     def powered(self) -> bool:
         """Whether the board's 12 V input is on (it starts on: a kit's wiring switches it).
 
-        Switching it off stops the controller (the motors coast, nothing answers);
-        switching it on boots the controller.
+        Switching it off stops the controller: nothing answers, a motor that was driven
+        coasts to a stop and a braked one stays stopped (its drive still says so).
+        Switching it on boots the controller (the motors coast).
         """
         return self._powered
 
@@ -133,7 +134,10 @@ class SRMotorBoardFw4Simulator(SerialBoardSimulator):
             self.reset()
         elif not on and self._powered:
             self._powered = False
-            self._boot()
+            self._input.reset()
+            self._motors = [
+                MotorChannel() if channel.value else channel for channel in self._motors
+            ]
             self._tell_listeners()
 
     def supply_current(self) -> float:
