@@ -29,9 +29,11 @@ import anyio
 
 from j5aio import kit_power
 from j5aio.backends.environment import Environment
+from j5aio.boards.arduino.all_digital import AllDigitalUno
 from j5aio.boards.arduino.uno import ArduinoUno
 from j5aio.boards.board_group import BoardGroup
 from j5aio.boards.camera import CameraBoard
+from j5aio.boards.sb import SBArduinoBoard
 from j5aio.boards.sr.kch import KCHBoard
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard, ServoBoardFw4
 from j5aio.components.marker_camera import MarkerCamera
@@ -54,9 +56,10 @@ class KitRobot(BaseRobot):
     - ``robot.motor_boards``, ``robot.servo_boards`` and ``robot.arduinos``: groups of
       every such board found, possibly empty, reached by position or serial number.
       ``robot.arduinos`` holds the kit's Arduinos whatever their firmware (the SR
-      Arduino, the SourceBots Arduinos of 2019 and 2024, a Ruggeduino);
-      ``robot.ruggeduinos`` holds the SR ones (Ruggeduino, SR Arduino), as in j5's
-      programs. Indexing an empty group says which groups do have boards;
+      Arduino, firmware 2; the SourceBots Arduinos of 2019 and 2024), each with
+      ``pins`` and ``ultrasound_sensors``; ``robot.ruggeduinos`` holds the SR ones (the
+      Ruggeduino of the 2019 kit, the SR Arduino), as in j5's programs. Indexing an
+      empty group says which groups do have boards;
     - ``robot.cameras``: the cameras found (webcams; the simulated kit's camera), and
       ``robot.camera``: the first one's :class:`~j5aio.components.marker_camera.MarkerCamera`
       (``None`` without a camera), so that ``await robot.camera.see()`` finds markers;
@@ -98,7 +101,7 @@ class KitRobot(BaseRobot):
     power_boards: BoardGroup[PowerBoard]
     motor_boards: BoardGroup[MotorBoard]
     servo_boards: BoardGroup[ServoBoard]
-    arduinos: BoardGroup[ArduinoUno]
+    arduinos: BoardGroup[SBArduinoBoard | AllDigitalUno]
     ruggeduinos: BoardGroup[Ruggeduino]
     cameras: BoardGroup[CameraBoard]
     camera: MarkerCamera | None
@@ -152,7 +155,7 @@ class KitRobot(BaseRobot):
             await self._power_up(self.power_boards.singular())
         self.motor_boards = await environment.get_board_group(MotorBoard)
         self.servo_boards = await environment.get_board_group(ServoBoard)
-        self.arduinos = await environment.get_board_group(ArduinoUno)
+        self.arduinos = await self._find_arduinos(environment)
         self.ruggeduinos = await environment.get_board_group(Ruggeduino)
         if CameraBoard in environment.supported_boards:
             self.cameras = await environment.get_board_group(CameraBoard)
@@ -226,6 +229,18 @@ class KitRobot(BaseRobot):
         for name, group in named.items():
             if not group:
                 group.empty_hint = f"{name} is empty; {elsewhere}." + (f" {power}" if power else "")
+
+    @staticmethod
+    async def _find_arduinos(
+        environment: Environment,
+    ) -> BoardGroup[SBArduinoBoard | AllDigitalUno]:
+        """The Arduinos of every firmware of today's and the 2019 kits, in one group."""
+        groups: list[BoardGroup[Any]] = [await environment.get_board_group(SBArduinoBoard)]
+        # (an environment that finds one board of each class asked, the console, is
+        # asked for the SourceBots Arduino alone, as before)
+        if environment.gather and environment.might_find(AllDigitalUno):
+            groups.append(await environment.get_board_group(AllDigitalUno))
+        return BoardGroup.of_groups(ArduinoUno, groups)
 
     @staticmethod
     async def _find_kch(environment: Environment) -> KCHBoard | None:

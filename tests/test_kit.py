@@ -50,10 +50,8 @@ async def test_finds_every_board_of_the_kit() -> None:
         assert list(robot.power_boards) == [robot.power_board]
         assert [b.serial_number for b in robot.motor_boards] == ["SIMMB0", "SIMMB1"]
         assert [b.serial_number for b in robot.servo_boards] == ["SIMSB0"]
-        # Every Arduino, whatever its firmware, and the SR ones in ruggeduinos too.
-        assert [b.serial_number for b in robot.arduinos] == ["SIMRD0", "SIMSBA0"]
+        assert [b.serial_number for b in robot.arduinos] == ["SIMSBA0"]
         assert [b.serial_number for b in robot.ruggeduinos] == ["SIMRD0"]
-        assert robot.arduinos["SIMRD0"] is robot.ruggeduinos[0]
         await robot.motor_boards[1].motors[0].set_power(0.6)
         assert kit.motor_boards[1].motors[0].mode is MotorMode.FORWARD
     # Leaving the robot made every board safe: the motor boards brake, and then the

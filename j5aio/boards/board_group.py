@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from typing import TYPE_CHECKING, Generic, TypeVar
+from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 from j5aio.boards.board import Board
 from j5aio.errors import CommunicationError
@@ -78,6 +78,24 @@ class BoardGroup(Generic[BoardT]):
         group = cls(board, backend, ports=ports)
         await group.update_boards()
         return group
+
+    @classmethod
+    def of_groups(
+        cls, board_type: type[BoardT], groups: Sequence[BoardGroup[Any]]
+    ) -> BoardGroup[Any]:
+        """One group of the boards of ``groups``, ordered by serial number.
+
+        Looking again (:meth:`update_boards`) asks every backend of every group.
+
+        :param board_type: a class every board of the groups is an instance of.
+        :param groups: the groups, each already looked in.
+        :raises TypeError: a group's backend drives another kind of board.
+        """
+        backends = tuple(dict.fromkeys(b for group in groups for b in group.backend_classes))
+        combined: BoardGroup[Any] = cls(board_type, backends)
+        found = {board.serial_number: board for group in groups for board in group}
+        combined._boards = dict(sorted(found.items()))
+        return combined
 
     async def update_boards(self) -> None:
         """Look for boards again, so that boards connected since are included.

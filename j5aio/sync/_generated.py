@@ -910,6 +910,175 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         """
         return cast("BoardGroup[Board]", _wrap(_call(_boards_board_group.BoardGroup.get_board_group, _unwrap(board), backend, ports=ports)))
 
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[SyncBoardT],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_arduino.SRArduinoBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sb_arduino_2024.SBArduino2024Board],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sb_servo_board.SBServoBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_arduino_all_digital.AllDigitalUno],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_ruggeduino.Ruggeduino],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sb_arduino.SBArduinoBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_arduino_uno.ArduinoUno],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_camera.CameraBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_kch.KCHBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_motor_board.MotorBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_power_board.PowerBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_servo_board.ServoBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_board.Board],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_board.Board | Board],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        """One group of the boards of ``groups``, ordered by serial number.
+
+        Looking again (:meth:`update_boards`) asks every backend of every group.
+
+        :param board_type: a class every board of the groups is an instance of.
+        :param groups: the groups, each already looked in.
+        :raises TypeError: a group's backend drives another kind of board.
+        """
+        return cast("BoardGroup[Any]", _wrap(_boards_board_group.BoardGroup.of_groups(_unwrap(board_type), _unwrap(groups))))
+
     def update_boards(self) -> None:
         """Look for boards again, so that boards connected since are included.
 
@@ -1060,9 +1229,10 @@ class KitRobot(BaseRobot):
     - ``robot.motor_boards``, ``robot.servo_boards`` and ``robot.arduinos``: groups of
       every such board found, possibly empty, reached by position or serial number.
       ``robot.arduinos`` holds the kit's Arduinos whatever their firmware (the SR
-      Arduino, the SourceBots Arduinos of 2019 and 2024, a Ruggeduino);
-      ``robot.ruggeduinos`` holds the SR ones (Ruggeduino, SR Arduino), as in j5's
-      programs. Indexing an empty group says which groups do have boards;
+      Arduino, firmware 2; the SourceBots Arduinos of 2019 and 2024), each with
+      ``pins`` and ``ultrasound_sensors``; ``robot.ruggeduinos`` holds the SR ones (the
+      Ruggeduino of the 2019 kit, the SR Arduino), as in j5's programs. Indexing an
+      empty group says which groups do have boards;
     - ``robot.cameras``: the cameras found (webcams; the simulated kit's camera), and
       ``robot.camera``: the first one's :class:`~j5aio.components.marker_camera.MarkerCamera`
       (``None`` without a camera), so that ``await robot.camera.see()`` finds markers;
@@ -1154,9 +1324,9 @@ class KitRobot(BaseRobot):
         return cast("BoardGroup[ServoBoard]", _wrap(self._core.servo_boards))
 
     @property
-    def arduinos(self) -> BoardGroup[ArduinoUno]:
+    def arduinos(self) -> BoardGroup[SBArduinoBoard | AllDigitalUno]:
         """The ``arduinos`` of the wrapped object."""
-        return cast("BoardGroup[ArduinoUno]", _wrap(self._core.arduinos))
+        return cast("BoardGroup[SBArduinoBoard | AllDigitalUno]", _wrap(self._core.arduinos))
 
     @property
     def ruggeduinos(self) -> BoardGroup[Ruggeduino]:

@@ -171,7 +171,7 @@ async def test_a_program_seen_and_poked_in_the_browser(browser: Any) -> None:
             await robot.power_board.start_button.wait_until_pressed(timeout=5)
 
         # An analogue voltage set on the page is what the program reads.
-        arduino = robot.arduinos["SIMSBA0"]
+        arduino = robot.arduinos[0]
         control = f'[data-control="{arduino.serial_number}:analog-14"]'
 
         def type_voltage() -> None:

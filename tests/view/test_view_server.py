@@ -139,8 +139,8 @@ async def test_the_page_the_socket_and_the_controls() -> None:
 
 async def test_controls_of_each_simulated_board() -> None:
     async with kit_and_view() as (robot, kit, _view):
-        await robot.arduinos["SIMSBA0"].ultrasound_sensors[4, 5].distance()
-        power, arduino, rugged = robot.power_board, robot.arduinos["SIMSBA0"], robot.ruggeduinos[0]
+        await robot.arduinos[0].ultrasound_sensors[4, 5].distance()
+        power, arduino, rugged = robot.power_board, robot.arduinos[0], robot.ruggeduinos[0]
         names = [c["name"] for c in controls_of(power, board_components(power))]
         assert names == ["start-button", "battery-voltage", "plug"]
         state = ViewState()
