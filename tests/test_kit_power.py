@@ -214,3 +214,14 @@ def test_a_kit_file_names_the_outputs_on_the_robot(
     with pytest.warns(KitPowerWarning, match="SR0UK1L .* output H1") as caught:
         messages = kit_power.warn_unpowered(["SR0UK1L"], [], {"SR0UK1L": 1})
     assert len(messages) == len(caught) == 1
+
+
+async def test_an_unwired_kit_powers_its_boards_whatever_the_outputs_do() -> None:
+    kit = use_kit("sr2019", wired=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", KitPowerWarning)  # no board is without power
+        async with KitRobot(environment=SIMULATED_ENVIRONMENT, power_on=False) as robot:
+            assert kit.power_boards[0].outputs == (False,) * 6
+            assert len(robot.motor_boards) == len(robot.servo_boards) == 1
+    assert kit_power.unpowered_simulated_boards(SIMULATED_ENVIRONMENT) == []
+    assert kit_power.feeding_outputs(SIMULATED_ENVIRONMENT) == {}
