@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import anyio
 
 from j5aio import kit_power
+from j5aio.backends.console.backend import ConsoleBackend
 from j5aio.backends.environment import Environment
 from j5aio.boards.arduino.all_digital import AllDigitalUno
 from j5aio.boards.arduino.uno import ArduinoUno
@@ -185,7 +186,11 @@ class KitRobot(BaseRobot):
         for number in outputs:
             await power_board.outputs[number].set_is_enabled(True)
         if outputs:
-            await anyio.sleep(kit_power.boot_wait(self.environment, self.POWER_UP_WAIT))
+            wait = kit_power.boot_wait(self.environment, self.POWER_UP_WAIT)
+            backend = power_board.backend
+            if isinstance(backend, ConsoleBackend):  # the console kit says what it does
+                await backend.console.info(kit_power.power_up_message(outputs, wait))
+            await anyio.sleep(wait)
 
     async def _warn_about_power(self) -> None:
         """Warn about each board that seems to have no power, naming its output."""

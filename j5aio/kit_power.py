@@ -34,6 +34,7 @@ __all__ = [
     "feeding_outputs",
     "outputs_to_switch_on",
     "power_hint",
+    "power_up_message",
     "silent_motor_boards",
     "unpowered_simulated_boards",
     "warn_unpowered",
@@ -93,6 +94,15 @@ def outputs_to_switch_on(chosen: Iterable[int], board: PowerBoard) -> tuple[int,
     """The chosen outputs that ``board`` has (a firmware 3 board has no 5 V output)."""
     present = {output.identifier for output in board.outputs}
     return tuple(number for number in chosen if number in present)
+
+
+def power_up_message(outputs: Iterable[int], wait: float) -> str:
+    """What powering the kit up did, for people: the outputs switched on, and the wait."""
+    names = ", ".join(output_name(number) for number in outputs)
+    return (
+        f"Switched on outputs {names} to power the kit's boards (L2 powers the brain); "
+        f"waiting {wait:g} s for them to boot"
+    )
 
 
 def power_hint(output: int | None) -> str:

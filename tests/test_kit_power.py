@@ -225,3 +225,26 @@ async def test_an_unwired_kit_powers_its_boards_whatever_the_outputs_do() -> Non
             assert len(robot.motor_boards) == len(robot.servo_boards) == 1
     assert kit_power.unpowered_simulated_boards(SIMULATED_ENVIRONMENT) == []
     assert kit_power.feeding_outputs(SIMULATED_ENVIRONMENT) == {}
+
+
+def test_the_console_kit_says_it_powers_the_boards_up(tmp_path: pytest.TempPathFactory) -> None:
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    env = {**os.environ, "J5AIO_ENV": "console", "PYTHONPATH": str(root)}
+    program = "from j5aio.sync import KitRobot\nKitRobot(power_on=['H0', 'L1'])\n"
+    result = subprocess.run(
+        [sys.executable, "-c", program], input="\n" * 20, capture_output=True, text=True,
+        env=env, cwd=str(tmp_path), timeout=60, check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[:3] == [
+        "PowerBoard(SERIAL): Setting output 0 to True",
+        "PowerBoard(SERIAL): Setting output 3 to True",
+        "PowerBoard(SERIAL): Switched on outputs H0, L1 to power the kit's boards (L2 powers "
+        "the brain); waiting 0.5 s for them to boot",
+    ]
