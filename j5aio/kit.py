@@ -217,6 +217,17 @@ class KitRobot(BaseRobot):
                 kit_power.feeding_outputs(environment),
                 missing_boards=missing,
             )
+            self._show_in_view(self._power_messages)
+
+    @staticmethod
+    def _show_in_view(messages: list[str]) -> None:
+        """Put ``messages`` in the live view's log, if a view is running."""
+        from j5aio.view import current_view
+
+        view = current_view()
+        if view is not None:
+            for message in messages:
+                view.state.add_log_line("power", message)
 
     def _explain_empty_groups(self) -> None:
         """Make indexing an empty group say which groups have boards (and why it may be empty)."""
