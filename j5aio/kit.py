@@ -195,6 +195,7 @@ class KitRobot(BaseRobot):
     async def _warn_about_power(self) -> None:
         """Warn about each board that seems to have no power, naming its output."""
         environment = self.environment
+        kit_power.remember_feeding(kit_power.feeding_outputs(environment))
         silent = await kit_power.silent_motor_boards(
             environment, (board.serial_number for board in self.motor_boards)
         )

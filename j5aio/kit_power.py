@@ -32,9 +32,11 @@ __all__ = [
     "boot_wait",
     "check_power_on",
     "feeding_outputs",
+    "output_feeding",
     "outputs_to_switch_on",
     "power_hint",
     "power_up_message",
+    "remember_feeding",
     "silent_motor_boards",
     "unpowered_simulated_boards",
     "warn_unpowered",
@@ -94,6 +96,29 @@ def outputs_to_switch_on(chosen: Iterable[int], board: PowerBoard) -> tuple[int,
     """The chosen outputs that ``board`` has (a firmware 3 board has no 5 V output)."""
     present = {output.identifier for output in board.outputs}
     return tuple(number for number in chosen if number in present)
+
+
+#: The output feeding each board, by serial number, as the robots of this program found
+#: it (see :func:`remember_feeding`).
+_feeding_seen: dict[str, int] = {}
+
+
+def remember_feeding(feeding: Mapping[str, int]) -> None:
+    """Remember which output feeds each board (a robot starting does), for later messages."""
+    _feeding_seen.update(feeding)
+
+
+def output_feeding(serial_number: str) -> int | None:
+    """The output feeding the board ``serial_number``, if this program knows it.
+
+    From what a robot starting found (:func:`remember_feeding`), else from the kit file
+    (``J5AIO_KIT_FILE``).
+    """
+    if serial_number in _feeding_seen:
+        return _feeding_seen[serial_number]
+    from j5aio.simulator.kit_file import wiring_from_environment
+
+    return wiring_from_environment().get(serial_number)
 
 
 def power_up_message(outputs: Iterable[int], wait: float) -> str:

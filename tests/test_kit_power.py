@@ -7,8 +7,14 @@ import warnings
 import pytest
 
 from j5aio import environments, kit_power
-from j5aio.boards.sr.v4 import PowerBoardOutput, PowerOutputPosition, ServoBoardFw4
+from j5aio.boards.sr.v4 import (
+    MotorBoardFw4,
+    PowerBoardOutput,
+    PowerOutputPosition,
+    ServoBoardFw4,
+)
 from j5aio.environments import ENVIRONMENT_VARIABLE
+from j5aio.errors import CommunicationTimeoutError
 from j5aio.kit import KitRobot
 from j5aio.kit_power import DEFAULT_POWER_ON, KitPowerWarning, check_power_on
 from j5aio.power_outputs import BRAIN_OUTPUT, output_name, output_number
@@ -248,3 +254,20 @@ def test_the_console_kit_says_it_powers_the_boards_up(tmp_path: pytest.TempPathF
         "PowerBoard(SERIAL): Switched on outputs H0, L1 to power the kit's boards (L2 powers "
         "the brain); waiting 0.5 s for them to boot",
     ]
+
+
+async def test_a_motor_board_losing_its_power_says_which_output_to_switch_on() -> None:
+    use_kit("sr2023")
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+        motor_board = robot.motor_boards[0]
+        assert isinstance(motor_board, MotorBoardFw4)
+        motor = motor_board.motors[0]
+        await motor.set_power(0.5)
+        await robot.power_board.outputs[0].set_is_enabled(False)  # H0
+        with pytest.raises(CommunicationTimeoutError, match=r"lost its 12 V .* output H0"):
+            await motor.set_power(0.5)
+        with pytest.raises(CommunicationTimeoutError, match="output H0"):
+            await motor.get_current()
+        await robot.power_board.outputs[0].set_is_enabled(True)
+        await motor.set_power(0.25)  # it booted again, and answers
+        assert kit_power.output_feeding("SIMMB0") == 0
