@@ -121,24 +121,26 @@ async def test_switching_an_output_off_later_silences_its_board() -> None:
         assert drive_powers(kit) == [0.0, 0.0]  # unpowered: the motors coast
 
 
-async def test_a_wired_kit_without_outputs_to_switch_on_gets_no_wait(
+async def test_the_wait_for_the_boards_to_boot_follows_the_kits_time_scale(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    use_kit("sr2019", time_scale=1.0)
+    use_kit("sr2019", time_scale=0.01)
     waits: list[float] = []
+    real_boot_wait = kit_power.boot_wait
 
-    async def sleep(seconds: float) -> None:
-        waits.append(seconds)
+    def recording_boot_wait(environment: object, seconds: float) -> float:
+        waits.append(real_boot_wait(environment, seconds))
+        return waits[-1]
 
-    monkeypatch.setattr("j5aio.kit.anyio.sleep", sleep)
+    monkeypatch.setattr(kit_power, "boot_wait", recording_boot_wait)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", KitPowerWarning)
         async with KitRobot(environment=SIMULATED_ENVIRONMENT, power_on=()):
             pass
-    assert waits == []
+    assert waits == []  # nothing switched on: nothing to wait for
     async with KitRobot(environment=SIMULATED_ENVIRONMENT):
         pass
-    assert waits == [KitRobot.POWER_UP_WAIT]  # scaled by the kit's time scale of 1
+    assert waits == [pytest.approx(KitRobot.POWER_UP_WAIT * 0.01)]
 
 
 @pytest.mark.parametrize(
