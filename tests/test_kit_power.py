@@ -219,6 +219,8 @@ def test_a_kit_file_names_the_outputs_on_the_robot(
     )
     monkeypatch.setenv("J5AIO_KIT_FILE", str(file))
     assert kit_power.feeding_outputs(environments.hardware_environment()) == {"SR0UK1L": 1}
+    assert kit_power.output_feeding("SR0UK1L") == 1
+    assert kit_power.output_feeding("NOT-IN-THE-FILE") is None
     with pytest.warns(KitPowerWarning, match="SR0UK1L .* output H1") as caught:
         messages = kit_power.warn_unpowered(["SR0UK1L"], [], {"SR0UK1L": 1})
     assert len(messages) == len(caught) == 1
