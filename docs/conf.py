@@ -41,6 +41,7 @@ nitpick_ignore = [
     ("py:class", "collections.abc.ValuesView"),
     ("py:class", "datetime"),
     ("py:class", "datetime.timedelta"),
+    ("py:class", "Enum"),
     ("py:class", "enum.Enum"),
     ("py:class", "enum.IntEnum"),
     ("py:class", "enum.StrEnum"),
