@@ -23,7 +23,7 @@ from j5aio.simulator.environment import (
     SRV4PowerBoardSimulatedBackend,
 )
 from j5aio.simulator.kch import KCHSimulator
-from j5aio.simulator.kit import KitConfig, current_kit, use_kit
+from j5aio.simulator.kit import KitConfig, SimulatedKit, current_kit, use_kit
 from j5aio.simulator.sr_motor_fw3 import MotorMode
 from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
 
@@ -250,3 +250,22 @@ async def test_looking_again_for_the_arduinos_asks_every_generation() -> None:
         kit.simulators("sr-arduino-fw2")[0].unplug()  # type: ignore[attr-defined]
         await robot.arduinos.update_boards()
         assert len(robot.arduinos) == 0
+
+
+async def test_wait_for_start_waits_once_the_kit_is_powered_and_found(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from j5aio.competition.metadata import METADATA_VARIABLE
+    from j5aio.competition.start import clear_trigger, trigger_start
+
+    monkeypatch.delenv(METADATA_VARIABLE, raising=False)
+    clear_trigger()
+    kit = use_kit(SimulatedKit(KitConfig(motor_boards=1), wired=True))
+    trigger_start()  # as the button would, while the robot waits
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT, wait_for_start=True) as robot:
+        assert robot.started
+        # the kit was powered before the start: the motor board answers
+        await robot.motor_boards[0].motors[0].set_power(0.5)
+        assert kit.motor_boards[0].motors[0].power != 0
+    with pytest.raises(TypeError, match="wait_for_start must be True or False"):
+        KitRobot(wait_for_start="yes")  # type: ignore[arg-type]

@@ -1441,8 +1441,12 @@ class KitRobot(BaseRobot):
         default) for every output but L2, ``False`` for none (the boards they feed
         will then not work), or the outputs, by name (``"H0"``, ``"L1"``, ``"5V"``) or
         number. L2 is the brain's and cannot be chosen.
-    :raises TypeError: ``environment`` is not an Environment, or ``power_on`` is not
-        one of those.
+    :param wait_for_start: wait for the start of the match once the boards are found,
+        as sr-robot3's ``Robot()`` and ``import sbot`` do (see :doc:`/match-day`); the
+        default, ``False``, returns at once and :meth:`~j5aio.robot.BaseRobot.wait_start`
+        waits later.
+    :raises TypeError: ``environment`` is not an Environment, ``power_on`` is not
+        one of those, or ``wait_for_start`` is not a bool.
     :raises ValueError: ``power_on`` names an output that does not exist, or L2.
     """
 
@@ -1456,9 +1460,10 @@ class KitRobot(BaseRobot):
         environment: Environment | None = None,
         view: bool | None = None,
         power_on: bool | Iterable[int | str | Enum] | None = True,
+        wait_for_start: bool = False,
         **kwargs: Any,
     ) -> Self:
-        robot = _adopt(cls, _kit.KitRobot(environment=_unwrap(environment), view=view, power_on=power_on))
+        robot = _adopt(cls, _kit.KitRobot(environment=_unwrap(environment), view=view, power_on=power_on, wait_for_start=wait_for_start))
         try:
             _call(robot._core.setup)
             _call(robot._core.after_setup)
