@@ -31,14 +31,14 @@ __all__ = ["CONNECT_TIMEOUT", "KEEPALIVE", "Link", "stay_connected"]
 LOGGER = logging.getLogger(__name__)
 
 #: Seconds to wait for the broker to accept a connection.
-CONNECT_TIMEOUT: Final = 3.0
+CONNECT_TIMEOUT: Final = 10.0
 #: Seconds of silence after which the client pings the broker (a broker that vanished
 #: without closing the connection is noticed within one and a half times this).
 KEEPALIVE: Final = 5
 #: Messages held for the inbox at most; beyond, the broker is slowed (not the program).
 _MAX_QUEUED: Final = 256
 #: Seconds allowed for a goodbye to the broker.
-_CLOSE_TIMEOUT: Final = 1.0
+_CLOSE_TIMEOUT: Final = 2.0
 
 
 class Link:
