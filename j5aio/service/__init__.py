@@ -7,11 +7,13 @@ Mosquitto broker. This package is j5aio's client of it:
 
 - :mod:`~j5aio.service.config`: where the broker is (``J5AIO_MQTT_URL``,
   ``SBOT_MQTT_URL``, ``astoria.toml``; ``J5AIO_SERVICE=off`` turns it off);
-- :class:`RobotService` and :func:`start_service`: the client's lifetime;
-- :func:`publish_frame`: camera frames for the web page.
+- :class:`~j5aio.service.service.RobotService` and
+  :func:`~j5aio.service.service.start_service`: the client's lifetime;
+- :func:`~j5aio.service.service.publish_frame`: camera frames for the web page.
 
 This package imports without the optional library ``aiomqtt``; starting the service
-without it raises :class:`ServiceNotInstalledError` (:func:`start_service` logs it)
+without it raises :class:`ServiceNotInstalledError` (:func:`~j5aio.service.service.start_service`
+logs it)
 saying what to install. See "Running on the robot" in the documentation.
 """
 
