@@ -38,17 +38,39 @@ def _trigger_remote_start() -> None:
     trigger_start(REMOTE_START)
 
 
+def robot_is_waiting() -> bool:
+    """Whether a robot in this process is waiting for the start.
+
+    :mod:`j5aio.competition.start` says so through its ``is_waiting()`` where it has one;
+    where it has not, every remote start is passed on (and a start given before the
+    wait is then kept for it, as :func:`~j5aio.competition.start.trigger_start` does).
+    """
+    from j5aio.competition import start
+
+    is_waiting: Callable[[], bool] | None = getattr(start, "is_waiting", None)
+    return True if is_waiting is None else bool(is_waiting())
+
+
 class Inbox:
     """Reads each message from the broker and passes on what it means.
 
     :param topics: the topics in use.
     :param start: called for a remote start (it must be safe to call on the event loop);
         :func:`~j5aio.competition.start.trigger_start` by default.
+    :param waiting: says whether the robot is waiting for the start
+        (:func:`robot_is_waiting` by default). As on astoria's robots, only a remote start
+        that arrives while the robot waits counts: one sent before is stale.
     """
 
-    def __init__(self, topics: Topics, start: Callable[[], None] | None = None) -> None:
+    def __init__(
+        self,
+        topics: Topics,
+        start: Callable[[], None] | None = None,
+        waiting: Callable[[], bool] | None = None,
+    ) -> None:
         self.topics = topics
         self._start = start or _trigger_remote_start
+        self._waiting = waiting or robot_is_waiting
         self.faults = FaultLog(LOGGER)
         #: How many remote starts have been passed on.
         self.starts = 0
@@ -99,5 +121,9 @@ class Inbox:
             self._remote_start()
 
     def _remote_start(self) -> None:
+        if not self._waiting():
+            LOGGER.info("Robot service: the robot is not waiting for the start: the remote "
+                        "start was ignored")
+            return
         self.starts += 1
         self._start()

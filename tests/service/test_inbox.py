@@ -153,3 +153,32 @@ def test_decode_object_accepts_text_and_bytes() -> None:
     with pytest.raises(PayloadError) as caught:
         decode_object(b"[" * 100_000, "t")
     assert caught.value.kind in ("oversized", "not JSON")
+
+
+def test_a_remote_start_counts_only_while_the_robot_waits(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    waiting = False
+    starts: list[int] = []
+    inbox = Inbox(TOPICS, lambda: starts.append(1), lambda: waiting)
+    with caplog.at_level(logging.INFO, "j5aio.service"):
+        send(inbox, TOPICS.start, start_event())
+        send(inbox, TOPICS.sbot_start, {"pressed": True})
+    assert starts == [] and "not waiting" in caplog.text
+    waiting = True
+    send(inbox, TOPICS.start, start_event())
+    assert starts == [1] and inbox.starts == 1
+
+
+def test_whether_the_robot_waits_comes_from_the_start_module(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from j5aio.competition import start
+    from j5aio.service.inbox import robot_is_waiting
+
+    monkeypatch.delattr(start, "is_waiting", raising=False)
+    assert robot_is_waiting()  # it cannot say: every remote start is passed on
+    monkeypatch.setattr(start, "is_waiting", lambda: False, raising=False)
+    assert not robot_is_waiting()
+    monkeypatch.setattr(start, "is_waiting", lambda: True, raising=False)
+    assert robot_is_waiting()
