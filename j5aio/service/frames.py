@@ -21,17 +21,15 @@ import math
 import threading
 import time
 from collections.abc import Awaitable, Callable
-from typing import TYPE_CHECKING, Final
+from typing import Final, TypeAlias
 
 import anyio
 import anyio.to_thread
 
 from j5aio.service.faults import FaultLog
+from j5aio.vision.image import Image  # (only a name at run time: numpy is not imported)
 
-if TYPE_CHECKING:
-    from j5aio.vision.image import Image
-
-__all__ = ["DEFAULT_MAX_RATE", "JPEG_QUALITY", "FramePublisher", "encode_frame"]
+__all__ = ["DEFAULT_MAX_RATE", "JPEG_QUALITY", "FrameLike", "FramePublisher", "encode_frame"]
 
 LOGGER = logging.getLogger(__name__)
 
@@ -44,6 +42,9 @@ _SEND_TIMEOUT: Final = 2.0
 
 #: Sends one encoded payload; raises on failure.
 Sender = Callable[[bytes], Awaitable[None]]
+#: What can be offered: a picture, a JPEG's bytes, or a call that makes either (called
+#: only for a frame that is taken, on the encoding thread: e.g. the annotation).
+FrameLike: TypeAlias = Image | bytes | Callable[[], Image | bytes]
 
 
 def encode_frame(frame: Image | bytes, timestamp: float | None = None) -> bytes:
@@ -74,6 +75,12 @@ def encode_frame(frame: Image | bytes, timestamp: float | None = None) -> bytes:
     return json.dumps({"timestamp": when, "data": data}).encode("ascii")
 
 
+def _make_and_encode(frame: FrameLike) -> bytes:
+    if callable(frame):
+        frame = frame()
+    return encode_frame(frame)
+
+
 class FramePublisher:
     """Takes frames from any thread and sends them, rate-limited, one at a time.
 
@@ -95,18 +102,19 @@ class FramePublisher:
         self._busy = False
         self._last_taken = -math.inf
         self._wake: Callable[[], None] | None = None
-        self._pending: Image | bytes | None = None
+        self._pending: FrameLike | None = None
         self._faults = FaultLog(LOGGER)
         #: How many frames were sent, and how many dropped.
         self.sent = 0
         self.dropped = 0
 
-    def offer(self, frame: Image | bytes) -> bool:
+    def offer(self, frame: FrameLike) -> bool:
         """Hand over a frame to send; from any thread, never blocking.
 
         The publisher keeps a reference to ``frame`` until it is encoded: give it one
         that is not changed afterwards (a new array, such as
-        :func:`~j5aio.vision.annotate.annotate` returns).
+        :func:`~j5aio.vision.annotate.annotate` returns), or a call that makes the frame
+        (it runs only if the frame is taken, on the encoding thread).
 
         :returns: whether the frame was taken (``False``: dropped, because the service
             is not running, the last frame is still going, or it came too soon).
@@ -163,10 +171,10 @@ class FramePublisher:
                 self._busy = False
                 self._pending = None
 
-    async def _send(self, frame: Image | bytes, send: Sender) -> None:
+    async def _send(self, frame: FrameLike, send: Sender) -> None:
         try:
-            message = await anyio.to_thread.run_sync(encode_frame, frame)
-        except (ImportError, ValueError) as exc:
+            message = await anyio.to_thread.run_sync(_make_and_encode, frame)
+        except Exception as exc:  # a frame that cannot be made or encoded is dropped
             self.dropped += 1
             self._faults.report("encode", "Robot service: a camera frame was dropped: %s", exc)
             return

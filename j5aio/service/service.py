@@ -27,7 +27,7 @@ import asyncio
 import logging
 from collections.abc import Callable, Mapping
 from types import TracebackType
-from typing import TYPE_CHECKING, Any, Self
+from typing import Any, Self
 
 import anyio
 
@@ -35,12 +35,9 @@ from j5aio.service._extra import ServiceNotInstalledError, require_aiomqtt
 from j5aio.service.backoff import Backoff
 from j5aio.service.config import ServiceConfig, ServiceConfigError, find_config
 from j5aio.service.connection import Link, make_client, stay_connected
-from j5aio.service.frames import DEFAULT_MAX_RATE, FramePublisher
+from j5aio.service.frames import DEFAULT_MAX_RATE, FrameLike, FramePublisher
 from j5aio.service.inbox import Inbox
 from j5aio.service.messages import Topics
-
-if TYPE_CHECKING:
-    from j5aio.vision.image import Image
 
 __all__ = ["RobotService", "current_service", "publish_frame", "start_service"]
 
@@ -145,7 +142,7 @@ class RobotService:
     async def _send_frame(self, message: bytes) -> None:
         await self.link.publish(self.topics.frames, message)
 
-    def publish_frame(self, frame: Image | bytes) -> bool:
+    def publish_frame(self, frame: FrameLike) -> bool:
         """Offer a camera frame to the robot's web page (see :func:`publish_frame`)."""
         return self.frames.offer(frame)
 
@@ -167,7 +164,7 @@ def current_service() -> RobotService | None:
     return _current
 
 
-def publish_frame(frame: Image | bytes) -> bool:
+def publish_frame(frame: FrameLike) -> bool:
     """Offer an annotated camera frame to the robot's web page; from any thread.
 
     It costs the caller next to nothing and never blocks: the frame is taken only when
@@ -175,7 +172,8 @@ def publish_frame(frame: Image | bytes) -> bool:
     (otherwise it is dropped), then encoded in a worker thread and published.
 
     :param frame: a BGR or greyscale picture (a numpy array that is not changed
-        afterwards), or the bytes of a JPEG.
+        afterwards), the bytes of a JPEG, or a call that makes either (it runs only for
+        a frame that is taken, on the encoding thread: the place for the annotation).
     :returns: whether the frame was taken.
     """
     service = _current
