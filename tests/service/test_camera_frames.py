@@ -33,8 +33,8 @@ def robot_service_env(
     return broker
 
 
-async def test_see_publishes_the_annotated_frame(
-    robot_service_env: Broker, fresh_kit: None
+async def test_see_and_save_publish_the_annotated_frame(
+    robot_service_env: Broker, fresh_kit: None, tmp_path: Path
 ) -> None:
     use_kit()
     frames: list[dict[str, object]] = []
@@ -56,6 +56,13 @@ async def test_see_publishes_the_annotated_frame(
                 markers = await robot.camera.see()
                 assert markers, "the simulated robot looks at the arena's markers"
                 await eventually(lambda: len(frames) == 1)
+                # save() writes the annotated picture and offers it too (taken once the
+                # rate allows: five frames a second at most)
+                with anyio.fail_after(10):
+                    while len(frames) < 2:
+                        await robot.camera.save(tmp_path / "seen.png")
+                        await anyio.sleep(0.05)
+                assert (tmp_path / "seen.png").is_file()
             group.cancel_scope.cancel()
     data = frames[0]["data"]
     assert isinstance(data, str) and data.startswith("data:image/jpeg;base64, ")
