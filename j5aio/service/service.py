@@ -39,11 +39,20 @@ from j5aio.service.frames import DEFAULT_MAX_RATE, FrameLike, FramePublisher
 from j5aio.service.inbox import Inbox
 from j5aio.service.messages import Topics
 
-__all__ = ["RobotService", "current_service", "publish_frame", "start_service"]
+__all__ = [
+    "SETTLE_TIMEOUT",
+    "RobotService",
+    "current_service",
+    "publish_frame",
+    "start_service",
+]
 
 LOGGER = logging.getLogger(__name__)
 
 _current: RobotService | None = None
+#: Seconds :func:`start_service` waits at most for them (a broker that does not answer at
+#: once costs no more than this).
+SETTLE_TIMEOUT = 0.5
 
 
 class RobotService:
@@ -94,6 +103,16 @@ class RobotService:
         """
         with anyio.fail_after(timeout):
             await self.link.wait_connected()
+
+    async def wait_settled(self, timeout: float = 0.5) -> None:
+        """Wait, at most ``timeout`` seconds, for what the service said before the start.
+
+        Returns once the first attempt to reach the broker has failed (an absent broker
+        costs nothing), or has succeeded and the broker's retained messages (astoria's
+        metadata and stick) have been handled.
+        """
+        with anyio.move_on_after(timeout):
+            await self.link.wait_ready()
 
     async def start(self) -> None:
         """Start talking to the service in a background task; returns at once.
@@ -185,6 +204,7 @@ async def start_service(
     *,
     environ: Mapping[str, str] | None = None,
     max_frame_rate: float = DEFAULT_MAX_RATE,
+    settle: float = SETTLE_TIMEOUT,
 ) -> RobotService | None:
     """Start the robot's service client if the service is configured; returns at once.
 
@@ -198,6 +218,9 @@ async def start_service(
     :param config: where the broker is; found from the environment if omitted.
     :param environ: the environment to read (``os.environ`` if omitted).
     :param max_frame_rate: camera frames a second sent at most.
+    :param settle: wait at most this many seconds for the service's retained messages
+        (:meth:`RobotService.wait_settled`), so that a program reading its zone before
+        the start already has the service's; an absent broker is not waited for.
     :returns: the running service, or ``None`` when there is none.
     """
     if config is None:
@@ -219,4 +242,5 @@ async def start_service(
         "Robot service: talking to the broker at %s:%s (from %s)",
         config.host, config.port, config.source,
     )
+    await service.wait_settled(settle)
     return service
