@@ -21,7 +21,6 @@ publishes them.
 from __future__ import annotations
 
 import os
-import tomllib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -201,6 +200,8 @@ def read_astoria_config(path: Path) -> ServiceConfig:
         raise ServiceConfigError(f"{path}: cannot be read: {exc.strerror or exc}") from None
     if len(raw) > _MAX_CONFIG_BYTES:
         raise ServiceConfigError(f"{path}: is larger than {_MAX_CONFIG_BYTES} bytes")
+    import tomllib  # (here: only a robot with astoria's file reads TOML)
+
     try:
         data = tomllib.loads(raw.decode("utf-8"))
     except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:

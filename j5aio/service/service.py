@@ -1,6 +1,7 @@
 """The robot's service client: its lifetime, and the functions a robot calls.
 
-A robot starts it in its setup with :func:`start_service` and stops it when it closes::
+A robot starts it in its setup with :func:`~j5aio.service.auto.start_service` and stops
+it when it closes::
 
     service = await start_service()        # None where no service is configured
     ...
@@ -25,35 +26,25 @@ from __future__ import annotations
 
 import asyncio
 import logging
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from types import TracebackType
 from typing import Any, Self
 
 import anyio
 
-from j5aio.service._extra import ServiceNotInstalledError, require_aiomqtt
+from j5aio.service._extra import require_aiomqtt
 from j5aio.service.backoff import Backoff
-from j5aio.service.config import ServiceConfig, ServiceConfigError, find_config
+from j5aio.service.config import ServiceConfig
 from j5aio.service.connection import Link, make_client, stay_connected
 from j5aio.service.frames import DEFAULT_MAX_RATE, FrameLike, FramePublisher
 from j5aio.service.inbox import Inbox
 from j5aio.service.messages import Topics
 
-__all__ = [
-    "SETTLE_TIMEOUT",
-    "RobotService",
-    "current_service",
-    "publish_frame",
-    "start_service",
-]
+__all__ = ["RobotService", "current_service", "publish_frame"]
 
 LOGGER = logging.getLogger(__name__)
 
 _current: RobotService | None = None
-#: Seconds :func:`start_service` waits at most for them (a broker that does not answer at
-#: once costs no more than this).
-SETTLE_TIMEOUT = 0.5
-
 
 class RobotService:
     """A client of the robot's service (astoria, over MQTT) for this program.
@@ -197,50 +188,3 @@ def publish_frame(frame: FrameLike) -> bool:
     """
     service = _current
     return service is not None and service.publish_frame(frame)
-
-
-async def start_service(
-    config: ServiceConfig | None = None,
-    *,
-    environ: Mapping[str, str] | None = None,
-    max_frame_rate: float = DEFAULT_MAX_RATE,
-    settle: float = SETTLE_TIMEOUT,
-) -> RobotService | None:
-    """Start the robot's service client if the service is configured; returns at once.
-
-    With no ``config``, the environment decides
-    (:func:`~j5aio.service.config.find_config`): on where ``astoria.toml``,
-    ``SBOT_MQTT_URL`` or ``J5AIO_MQTT_URL`` says where the broker is, off where nothing
-    does or ``J5AIO_SERVICE=off``. A configuration that cannot be read, or a missing
-    aiomqtt, is logged as an error and the robot runs without the service (a match
-    must not be lost to it).
-
-    :param config: where the broker is; found from the environment if omitted.
-    :param environ: the environment to read (``os.environ`` if omitted).
-    :param max_frame_rate: camera frames a second sent at most.
-    :param settle: wait at most this many seconds for the service's retained messages
-        (:meth:`RobotService.wait_settled`), so that a program reading its zone before
-        the start already has the service's; an absent broker is not waited for.
-    :returns: the running service, or ``None`` when there is none.
-    """
-    if config is None:
-        try:
-            config = find_config(environ)
-        except ServiceConfigError as exc:
-            LOGGER.error("Robot service: not started, its configuration is bad: %s", exc)
-            return None
-        if config is None:
-            LOGGER.debug("Robot service: not configured here")
-            return None
-    try:
-        service = RobotService(config, max_frame_rate=max_frame_rate)
-    except ServiceNotInstalledError as exc:
-        LOGGER.error("Robot service: not started: %s", exc)
-        return None
-    await service.start()
-    LOGGER.info(
-        "Robot service: talking to the broker at %s:%s (from %s)",
-        config.host, config.port, config.source,
-    )
-    await service.wait_settled(settle)
-    return service

@@ -25,8 +25,12 @@ def test_the_committed_picture_is_up_to_date_and_shown() -> None:
     assert result.returncode == 0, result.stderr
     picture = ROOT / "docs" / "_static" / "on-the-robot.svg"
     document = xml.dom.minidom.parse(str(picture))
-    words = " ".join(node.firstChild.data for node in document.getElementsByTagName("text")
-                     if node.firstChild is not None)
+    words = " ".join(
+        child.data
+        for node in document.getElementsByTagName("text")
+        for child in node.childNodes
+        if isinstance(child, xml.dom.minidom.Text)
+    )
     for name in ("astmetad", "astprocd", "Mosquitto", "j5aio", "boards", "stick"):
         assert name in words, name
     assert "_static/on-the-robot.svg" in (ROOT / "docs" / "on-the-robot.rst").read_text()
