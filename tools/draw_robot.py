@@ -1,5 +1,7 @@
-"""Draw the "Running on the robot" picture as SVG: the service, the broker, the sticks,
-the program and the boards, and what passes between them.
+"""Draw the "Running on the robot" picture as SVG.
+
+It shows the service, the broker, the sticks, the program and the boards, and what
+passes between them.
 
 Run ``python tools/draw_robot.py`` after changing it; it writes
 ``docs/_static/on-the-robot.svg``. ``--check`` only reports whether the committed picture

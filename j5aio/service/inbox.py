@@ -58,8 +58,9 @@ class Inbox:
     :param start: called for a remote start (it must be safe to call on the event loop);
         :func:`~j5aio.competition.start.trigger_start` by default.
     :param waiting: says whether the robot is waiting for the start
-        (:func:`robot_is_waiting` by default). As on astoria's robots, only a remote start
-        that arrives while the robot waits counts: one sent before is stale.
+        (:func:`~j5aio.service.inbox.robot_is_waiting` by default). As on astoria's
+        robots, only a remote start that arrives while the robot waits counts: one sent
+        before is stale.
     """
 
     def __init__(
