@@ -24,7 +24,7 @@ from j5aio.service.messages import (
 )
 from j5aio.service.payloads import PayloadError, decode_object
 
-__all__ = ["REMOTE_START", "Inbox"]
+__all__ = ["REMOTE_START", "Inbox", "robot_is_waiting"]
 
 LOGGER = logging.getLogger(__name__)
 
