@@ -4,7 +4,8 @@ The robot's web page (astoria's) shows the frames the program's camera annotates
 sr-robot3 and sbot send them through april_vision: a JPEG, base64-encoded, after
 ``data:image/jpeg;base64, ``, wrapped as JSON ``{"timestamp": <Unix time>, "data": ...}``
 and published with QoS 1 on ``camera/annotated`` (under sbot's prefix when the service
-is configured by a URL).
+is configured by a URL). As sbot does, the value of the ``run_uuid`` environment variable,
+where it is set, is added as ``"run_uuid"``.
 
 :meth:`FramePublisher.offer` costs its caller no more than a clock read and a lock: at most
 ``max_rate`` frames a second are taken, one at a time; a frame offered while the last is
@@ -18,6 +19,7 @@ import base64
 import json
 import logging
 import math
+import os
 import threading
 import time
 from collections.abc import Awaitable, Callable
@@ -29,7 +31,14 @@ import anyio.to_thread
 from j5aio.service.faults import FaultLog
 from j5aio.vision.image import Image  # (only a name at run time: numpy is not imported)
 
-__all__ = ["DEFAULT_MAX_RATE", "JPEG_QUALITY", "FrameLike", "FramePublisher", "encode_frame"]
+__all__ = [
+    "DEFAULT_MAX_RATE",
+    "JPEG_QUALITY",
+    "RUN_ID_VARIABLE",
+    "FrameLike",
+    "FramePublisher",
+    "encode_frame",
+]
 
 LOGGER = logging.getLogger(__name__)
 
@@ -37,6 +46,8 @@ LOGGER = logging.getLogger(__name__)
 DEFAULT_MAX_RATE: Final = 5.0
 #: The JPEG quality used (as april_vision's sender).
 JPEG_QUALITY: Final = 80
+#: The environment variable whose value sbot adds to each frame as ``run_uuid``.
+RUN_ID_VARIABLE: Final = "run_uuid"
 _DATA_URL_PREFIX: Final = b"data:image/jpeg;base64, "
 _SEND_TIMEOUT: Final = 2.0
 
@@ -72,7 +83,11 @@ def encode_frame(frame: Image | bytes, timestamp: float | None = None) -> bytes:
         jpeg = buffer.tobytes()
     data = (_DATA_URL_PREFIX + base64.b64encode(jpeg)).decode("ascii")
     when = time.time() if timestamp is None else timestamp
-    return json.dumps({"timestamp": when, "data": data}).encode("ascii")
+    message: dict[str, object] = {"timestamp": when, "data": data}
+    run = os.environ.get(RUN_ID_VARIABLE)
+    if run is not None:  # sbot's runner names its runs so
+        message["run_uuid"] = run
+    return json.dumps(message).encode("ascii")
 
 
 def _make_and_encode(frame: FrameLike) -> bytes:

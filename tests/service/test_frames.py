@@ -14,12 +14,19 @@ from tests.service.helpers import eventually, longer_than
 JPEG = b"\xff\xd8\xff\xe0 a tiny jpeg \xff\xd9"
 
 
-def test_encode_bytes_as_the_peers_wrap_them() -> None:
+def test_encode_bytes_as_the_peers_wrap_them(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv("run_uuid", raising=False)
     message = json.loads(encode_frame(JPEG, timestamp=12.5))
+    assert set(message) == {"timestamp", "data"}
     assert message["timestamp"] == 12.5
     prefix = "data:image/jpeg;base64, "
     assert message["data"].startswith(prefix)
     assert base64.b64decode(message["data"][len(prefix):]) == JPEG
+
+
+def test_sbots_run_id_is_added(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("run_uuid", "1234-abcd")
+    assert json.loads(encode_frame(JPEG))["run_uuid"] == "1234-abcd"
 
 
 def test_encode_picture_with_opencv() -> None:
