@@ -367,6 +367,7 @@ class BaseRobot:
         """
         if self._watch_loop is not None or self._started:
             return
+        self.metadata  # noqa: B018 - read now: unusable metadata is an error before the match
         self._watch_loop = asyncio.get_running_loop()
         service_state.add_listener(self._on_service_change)
         self._watch_if_in_a_match()

@@ -522,12 +522,14 @@ class _DuplicateKeyError(ValueError):
     """A JSON object has a key twice (raised while decoding, named in the error)."""
 
 
-def read_metadata_file(path: Path) -> Metadata:
-    """Read and check one metadata file, in whichever format it is (:func:`detect_format`).
+def read_metadata_file(path: Path, kind: MetadataFormat | None = None) -> Metadata:
+    """Read and check one metadata file.
 
     The file must be a regular file (a link to one is followed) of at most 64 KiB of
     UTF-8 JSON (a byte-order mark is allowed) with no key given twice.
 
+    :param path: the file.
+    :param kind: its format; if omitted, :func:`detect_format` says.
     :raises MetadataError: it cannot be read, is not a regular file, is too large, is not
         JSON, is ambiguous, or has a bad field.
     """
@@ -548,7 +550,8 @@ def read_metadata_file(path: Path) -> Metadata:
         raise MetadataError(f"{path}: is not valid JSON: {exc}") from None
     except RecursionError:
         raise MetadataError(f"{path}: is not valid JSON: nested too deeply") from None
-    kind = detect_format(data, path)
+    if kind is None:
+        kind = detect_format(data, path)
     metadata = _PARSERS[kind](data, path)
     LOGGER.debug("%s: read in %s's format", path, kind.value)
     return metadata
@@ -651,8 +654,12 @@ def _named_file() -> Path | None:
     return path
 
 
-def _sbot_files() -> list[Path]:
-    """The files below ``SBOT_METADATA_PATH``: at its top, else one level down (as sbot)."""
+def _sbot_files() -> list[tuple[Path, MetadataFormat | None]]:
+    """The files below ``SBOT_METADATA_PATH``: at its top, else one level down (as sbot).
+
+    A ``metadata.json`` there is in sbot's format (sbot's own folder), an
+    ``astoria.json`` in astoria's (as sr-robot3's simulator puts it there).
+    """
     named = os.environ.get(SBOT_METADATA_VARIABLE)
     if not named:
         return []
@@ -666,7 +673,25 @@ def _sbot_files() -> list[Path]:
     found = _files_in(folder)
     for child in _subdirectories(folder):
         found += _files_in(child)
-    return found
+    return [
+        (path, MetadataFormat.SBOT if path.name == METADATA_FILENAME else None)
+        for path in found
+    ]
+
+
+def _candidates(sticks: Sequence[Path] | None) -> list[tuple[Path, MetadataFormat | None]]:
+    """The metadata files to read, most wanted first, each with its format if it is known."""
+    named = _named_file()
+    if named is not None:
+        return [(named, None)]
+    from_sbot = _sbot_files()
+    if from_sbot:
+        return from_sbot
+    return [
+        (path, None)
+        for stick in (find_usb_sticks() if sticks is None else sticks)
+        for path in _files_in(stick)
+    ]
 
 
 def find_metadata_files(sticks: Sequence[Path] | None = None) -> list[Path]:
@@ -676,15 +701,7 @@ def find_metadata_files(sticks: Sequence[Path] | None = None) -> list[Path]:
     :raises MetadataError: ``J5AIO_METADATA`` names nothing, or ``SBOT_METADATA_PATH``
         is not a directory.
     """
-    named = _named_file()
-    if named is not None:
-        return [named]
-    found = _sbot_files()
-    if found:
-        return found
-    for stick in find_usb_sticks() if sticks is None else sticks:
-        found += _files_in(stick)
-    return found
+    return [path for path, _ in _candidates(sticks)]
 
 
 def find_metadata_file(sticks: Sequence[Path] | None = None) -> Path | None:
@@ -703,11 +720,12 @@ def load_metadata(sticks: Sequence[Path] | None = None) -> Metadata:
     1. the robot service (astoria over MQTT, :mod:`j5aio.competition.service_state`):
        what it last said;
     2. the file named by ``J5AIO_METADATA`` (it must exist then);
-    3. ``metadata.json`` or ``astoria.json`` in the folder named by
+    3. ``metadata.json`` (in sbot's format) or ``astoria.json`` in the folder named by
        ``SBOT_METADATA_PATH``, or in its subfolders (it must be a folder then);
     4. ``metadata.json`` or ``astoria.json`` at the top of each USB stick.
 
-    Each file may be in j5aio's, astoria's or sbot's format (:func:`detect_format`).
+    Elsewhere each file may be in j5aio's, astoria's or sbot's format
+    (:func:`detect_format`).
     Where several files are found they must agree (each stick's copy of the same
     metadata, say); a file that cannot be read is an error, never skipped.
 
@@ -721,16 +739,17 @@ def load_metadata(sticks: Sequence[Path] | None = None) -> Metadata:
     live = service_state.metadata()
     if live is not None:
         return live
-    paths = find_metadata_files(sticks)
-    if not paths:
+    candidates = _candidates(sticks)
+    if not candidates:
         return DEV_DEFAULTS
-    chosen = read_metadata_file(paths[0])
-    for other in paths[1:]:
-        if _match_of(read_metadata_file(other)) != _match_of(chosen):
+    chosen = read_metadata_file(*candidates[0])
+    for other, kind in candidates[1:]:
+        if _match_of(read_metadata_file(other, kind)) != _match_of(chosen):
             raise MetadataError(
-                f"{other}: disagrees with {paths[0]} ({describe(chosen)}); remove the "
-                "file that is wrong"
+                f"{other}: disagrees with {candidates[0][0]} ({describe(chosen)}); remove "
+                "the file that is wrong"
             )
+    paths = [path for path, _ in candidates]
     if len(paths) > 1:
         LOGGER.info("Metadata files agree: %s", ", ".join(map(str, paths)))
     LOGGER.debug("Metadata from %s: %s", paths[0], describe(chosen))

@@ -538,3 +538,13 @@ def test_a_file_that_fails_while_read_is_an_error() -> None:
         pytest.skip("needs Linux's /proc/self/mem")
     with pytest.raises(MetadataError, match="/proc/self/mem: cannot be read"):
         read_metadata_file(mem)
+
+
+def test_in_sbots_folder_metadata_json_is_sbots_format(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    write(tmp_path / "stick" / "metadata.json", {"zone": 2})
+    assert load_metadata([tmp_path / "stick"]).zone == 2  # on a stick: j5aio's, DEV
+    monkeypatch.setenv(SBOT_METADATA_VARIABLE, str(tmp_path / "stick"))
+    with pytest.raises(MetadataError, match="missing: 'is_competition'"):
+        load_metadata([])  # sbot's folder: sbot's format, which needs both fields

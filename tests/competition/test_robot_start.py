@@ -179,6 +179,14 @@ async def test_a_bad_file_in_a_match_fails_on_entry(
     with pytest.raises(MetadataError, match=r"metadata.json: field 'zone'"):
         async with BaseRobot():
             pass  # pragma: no cover - not reached
+    robot = BaseRobot()
+    try:
+        with pytest.raises(MetadataError):
+            await robot.watch_for_start()
+        assert robot._watch_loop is None  # nothing half started: no listener left
+        assert robot._on_service_change not in service_state._listeners
+    finally:
+        robot.release_lock()
 
 
 async def test_a_failed_watch_is_raised_by_wait_start_then_waited_again(
@@ -292,3 +300,30 @@ async def test_leaving_stops_the_watcher(
     live(zone=1, mode="COMP", game_timeout=150)  # no longer listened to
     await anyio.sleep(0.05)
     assert robot._watcher is watcher
+
+
+def test_a_sync_robot_in_a_match_is_watched_too(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, game_over: threading.Event
+) -> None:
+    import time
+
+    from j5aio.environments import ENVIRONMENT_VARIABLE
+    from j5aio.simulator.kit import KitConfig, use_kit
+    from j5aio.sync import KitRobot as SyncKitRobot
+
+    monkeypatch.setenv(METADATA_VARIABLE, str(comp_file(tmp_path)))
+    monkeypatch.setenv(ENVIRONMENT_VARIABLE, "sim")
+    use_kit(KitConfig(1, 0, 0, 0, 0))
+    robot = SyncKitRobot()  # never calls wait_start
+    try:
+        assert robot.is_competition and not robot.started
+        trigger_start("remote start")
+        deadline = time.monotonic() + 10
+        while not robot.started and time.monotonic() < deadline:
+            time.sleep(0.01)
+        assert robot.started
+        assert robot.match_timer is not None
+        robot.match_timer.stop()
+        robot.wait_start(timeout=0)  # started already: returns at once
+    finally:
+        robot.release_lock()
