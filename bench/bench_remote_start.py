@@ -149,7 +149,10 @@ async def over_the_broker(rounds: int, restarts: int) -> None:
     try:
         import aiomqtt  # noqa: F401 - only to say what is missing
 
-        from bench._mosquitto import Mosquitto
+        try:
+            from bench._mosquitto import Mosquitto
+        except ImportError:  # run as a script without the checkout on the path
+            from _mosquitto import Mosquitto  # type: ignore[import-not-found,no-redef]
         broker = Mosquitto()
     except (ImportError, RuntimeError) as exc:
         print(f"Over the broker: skipped ({exc}; needs j5aio[robot] and mosquitto)")
