@@ -27,7 +27,7 @@ if TYPE_CHECKING:
     from j5aio.service.config import ServiceConfig
     from j5aio.service.inbox import Inbox
 
-__all__ = ["CONNECT_TIMEOUT", "KEEPALIVE", "Link", "stay_connected"]
+__all__ = ["CONNECT_TIMEOUT", "KEEPALIVE", "Link", "make_client", "stay_connected"]
 
 LOGGER = logging.getLogger(__name__)
 

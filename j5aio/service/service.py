@@ -3,7 +3,7 @@
 A robot starts it in its setup with :func:`~j5aio.service.auto.start_service` and stops
 it when it closes::
 
-    service = await start_service()        # None where no service is configured
+    service = await start_service()  # None where no service is configured
     ...
     if service is not None:
         await service.stop()
@@ -46,6 +46,7 @@ LOGGER = logging.getLogger(__name__)
 
 _current: RobotService | None = None
 
+
 class RobotService:
     """A client of the robot's service (astoria, over MQTT) for this program.
 
@@ -54,6 +55,8 @@ class RobotService:
     :param start: called for a remote start, on the event loop; by default
         :func:`~j5aio.competition.start.trigger_start` with ``"remote start"``.
     :param backoff: the delays between attempts to reach the broker.
+    :param client_factory: makes the MQTT client for each attempt
+        (:func:`~j5aio.service.connection.make_client`; tests give fakes).
     :raises ~j5aio.service.ServiceNotInstalledError: aiomqtt is not installed.
     """
 
