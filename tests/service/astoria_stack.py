@@ -1,7 +1,8 @@
 """astoria 0.11.3's own daemons (astdiskd, astmetad, astprocd) and ``astctl``, as on a robot.
 
 They run from a virtual environment with astoria installed: ``J5AIO_TEST_ASTORIA`` names
-its ``bin`` folder (``/work/venv-astoria/bin`` by default). astdiskd's USB-stick watcher
+its ``bin`` folder (``/work/venv-astoria/bin`` by default; ``.ci/run`` makes one in
+``.tox/astoria-0.11.3`` and sets the variable). astdiskd's USB-stick watcher
 needs udisks on the system bus; without it astdiskd still serves *static disks*, folders
 that ``astctl static-disk add`` mounts as if they were sticks, which is what the tests use.
 """
