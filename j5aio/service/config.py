@@ -25,7 +25,6 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Final
-from urllib.parse import urlsplit
 
 __all__ = [
     "ASTORIA_CONFIG_PATHS",
@@ -115,6 +114,8 @@ def parse_mqtt_url(url: str, source: str = MQTT_URL_VARIABLE) -> ServiceConfig:
     :raises ServiceConfigError: the scheme is not ``mqtt`` or ``mqtts``, the host is
         missing, or the port is not a number from 1 to 65535.
     """
+    from urllib.parse import urlsplit  # (here: most robots have no URL to read)
+
     parts = urlsplit(url, allow_fragments=False)
     if parts.scheme not in ("mqtt", "mqtts"):
         raise ServiceConfigError(
