@@ -175,6 +175,8 @@ class SerialLink(AsyncResource):
         self._closed = False
         self._wire = wire_logger(self._name)
         self._resync: tuple[bytes, bytes] | None = None
+        self._resync_line: Callable[[], tuple[bytes, bytes]] | None = None
+        self._resync_failed = False
 
     # -- state ---------------------------------------------------------------------------
 
@@ -230,6 +232,24 @@ class SerialLink(AsyncResource):
         if not probe or not answer:
             raise ValueError("a resynchronisation probe and its answer must not be empty")
         self._resync = (bytes(probe), bytes(answer))
+        self._resync_line = None
+
+    def set_resync_line(self, make: Callable[[], tuple[bytes, bytes]]) -> None:
+        r"""Resynchronise a dirty link with a probe answered by one known line.
+
+        For a line protocol whose replies cannot be told apart (one reply line per
+        request, nothing in it naming the request). ``make`` is called before each
+        resynchronisation and returns ``(probe, line)``: the request to send, which must
+        change nothing on the board, and the reply line (without its line ending) that
+        answers it and nothing else. Make it fresh each time where the firmware allows
+        (an echo of a nonce), so that even a late answer to an earlier probe cannot be
+        mistaken for it. The first exchange or send on a dirty link then sends ``probe``
+        and discards whole lines up to and including ``line`` (a ``\r`` before the
+        ``\n`` is ignored), for at most ``drain_limit`` seconds. The board answers in
+        order, so every reply owed to an earlier request has been discarded by then.
+        """
+        self._resync_line = make
+        self._resync = None
 
     # -- requests ------------------------------------------------------------------------
 
@@ -261,7 +281,7 @@ class SerialLink(AsyncResource):
         self._check_open()
         finished = False
         try:
-            if self._dirty and self._resync is not None:
+            if self._dirty and self._can_resync:
                 await self._resync_locked()
             with anyio.move_on_after(seconds):
                 await self._write(data)
@@ -477,7 +497,7 @@ class SerialLink(AsyncResource):
         try:
             if reader.correlates:
                 pass  # foreign replies, late or left over, are recognised and skipped
-            elif self._dirty and self._resync is not None:
+            elif self._dirty and self._can_resync:
                 await self._resync_locked()
             elif self._dirty:
                 await self._drain_locked(self._quiet_time, self._drain_limit)
@@ -535,21 +555,36 @@ class SerialLink(AsyncResource):
             f"within {seconds:g} s (received so far: {_preview(self._buffer)})"
         )
 
+    @property
+    def _can_resync(self) -> bool:
+        return self._resync is not None or self._resync_line is not None
+
     async def _resync_locked(self) -> None:
         """Send the probe and discard input up to and including its known answer."""
-        assert self._resync is not None
-        probe, answer = self._resync
+        if self._resync_failed:
+            # The answer to the last probe never came in time, and may still come; a
+            # fixed answer would then be mistaken for the next probe's. Let it pass first.
+            await self._drain_locked(self._quiet_time, self._drain_limit)
+            self._dirty = True
+        if self._resync_line is not None:
+            probe, answer = self._resync_line()
+            find: Callable[[], tuple[int, int]] = lambda: self._find_line(answer)  # noqa: E731
+        else:
+            assert self._resync is not None
+            probe, answer = self._resync
+            find = lambda: self._find_bytes(answer)  # noqa: E731
         discarded = 0
+        self._resync_failed = True
         with anyio.move_on_after(self._drain_limit):
             await self._write(probe)
-            while (found := self._buffer.find(answer)) < 0:
-                keep = len(answer) - 1
-                if len(self._buffer) > keep:
-                    discarded += len(self._buffer) - keep
-                    del self._buffer[: len(self._buffer) - keep]
+            while True:
+                skipped, end = find()
+                discarded += skipped
+                del self._buffer[:skipped]
+                if end >= 0:
+                    break
                 self._buffer += await self._receive()
-            discarded += found
-            del self._buffer[: found + len(answer)]
+            del self._buffer[:end]
             _log.debug(
                 "%s: resynchronised with %r (discarded %d stale bytes)",
                 self._name,
@@ -557,11 +592,33 @@ class SerialLink(AsyncResource):
                 discarded,
             )
             self._dirty = False
+            self._resync_failed = False
             return
         raise CommunicationError(
             f"{self._name}: could not resynchronise with the board: its answer {answer!r} "
             f"to {probe!r} did not come within {self._drain_limit} s"
         )
+
+    def _find_bytes(self, answer: bytes) -> tuple[int, int]:
+        """Return (bytes that can be discarded, end of ``answer`` in them or -1)."""
+        found = self._buffer.find(answer)
+        if found >= 0:
+            return found, len(answer)
+        return max(len(self._buffer) - len(answer) + 1, 0), -1
+
+    def _find_line(self, answer: bytes) -> tuple[int, int]:
+        """Return (whole lines that can be discarded, end of the ``answer`` line or -1).
+
+        When the answer line is found, the first number counts the lines before it and
+        the second is the length of the answer line, its ending included.
+        """
+        start = 0
+        while (end := self._buffer.find(b"\n", start)) >= 0:
+            line = bytes(self._buffer[start:end]).removesuffix(b"\r")
+            if line == answer:
+                return start, end + 1 - start
+            start = end + 1
+        return start, -1
 
     async def _read_reply(self, reader: ReplyReader[T], request: bytes) -> T:
         while True:

@@ -716,6 +716,34 @@ async def test_a_dirty_link_with_a_probe_resynchronises_before_its_next_exchange
         tg.cancel_scope.cancel()
 
 
+async def test_a_line_probe_discards_whole_lines_up_to_its_fresh_answer(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    nonces = iter([b"n1", b"n2"])
+
+    def probe() -> tuple[bytes, bytes]:
+        nonce = next(nonces)
+        return b"echo " + nonce + b"\n", b"ECHO " + nonce.upper()
+
+    link.set_resync_line(probe)
+    assert link.resync_probe is None  # a fresh probe each time: no fixed pair
+    async with anyio.create_task_group() as tg:
+        peer = await start_peer(tg, board, upper)
+        # Late replies: one that contains the answer but is not it, and an old answer.
+        await board.send(b"XECHO N1\r\nECHO N0\r\n")
+        link.mark_dirty()
+        assert await link.exchange(b"next\n", read_line(), timeout=1) == b"NEXT"
+        assert peer.lines == [b"echo n1", b"next"]
+        await board.send(b"LATE\n")
+        link.mark_dirty()
+        await link.send(b"x\n")
+        assert peer.lines[-2:] == [b"echo n2", b"x"]
+        assert not link.is_dirty
+        tg.cancel_scope.cancel()
+
+
 async def test_a_probe_that_is_never_answered_leaves_the_link_dirty(
     peer_pair: tuple[MemoryStream, MemoryStream],
 ) -> None:
