@@ -75,7 +75,9 @@ strongest rule its firmware allows:
 **Errors.** A timeout raises :class:`~j5aio.errors.CommunicationTimeoutError` naming the
 port and what was sent; a vanished port raises
 :class:`~j5aio.errors.BoardDisconnectionError`; a reply a reader cannot parse raises
-:class:`~j5aio.errors.UnexpectedReplyError`; a stray ``OSError`` or anyio stream error
+:class:`~j5aio.errors.UnexpectedReplyError`, and the bytes received so far are discarded
+(they are noise, or out of step: keeping them would fail every later request, correlated
+or not); a stray ``OSError`` or anyio stream error
 from a stream is wrapped in :class:`~j5aio.errors.CommunicationError`.
 
 **Wire log.** Every chunk sent and received is logged at
@@ -625,6 +627,11 @@ class SerialLink(AsyncResource):
             try:
                 parsed = reader.parse(self._buffer)
             except UnexpectedReplyError as exc:
+                # What the reader refused (line noise, an over-long line) is never part
+                # of a good reply: drop it, or every later request fails on the same
+                # bytes. The link is dirty now, so what follows is resynchronised.
+                _log.debug("%s: discarding unparseable %s", self._name, _preview(self._buffer))
+                self._buffer.clear()
                 about = f" to {_preview(request)}" if request else ""
                 raise UnexpectedReplyError(f"{self._name}: bad reply{about}: {exc}") from exc
             if parsed is not None:
