@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, ClassVar
 import anyio
 
 from j5aio import lifetime
+from j5aio.backends.safe_state_pass import safe_state_pass
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -128,9 +129,12 @@ class Board(ABC):
             else:
                 lifetime.mark_settled(board)
 
-        async with anyio.create_task_group() as group:
-            for board in list(Board.BOARDS):
-                group.start_soon(make_one_safe, board)
+        # Within the pass, a lost board that has come back is looked for once more,
+        # whatever its reconnection rate limit, so that it is stopped too.
+        with safe_state_pass():
+            async with anyio.create_task_group() as group:
+                for board in list(Board.BOARDS):
+                    group.start_soon(make_one_safe, board)
         return failures
 
     def __str__(self) -> str:
