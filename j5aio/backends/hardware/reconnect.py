@@ -158,8 +158,12 @@ class Reconnecting:
         """
 
     def _mark_lost(self) -> None:
-        """Note that the board has vanished (the caller closes the link)."""
-        if not self._lost:
+        """Note that the board has vanished (the caller closes the link).
+
+        A board closed on purpose (at game over, say) has not vanished: the call it cut
+        short fails, but nothing is logged and nothing will look for the board.
+        """
+        if not self._lost and not self._closed_for_good:
             _log.warning("%r: the board has vanished; j5aio will look for it again", self)
         self._lost = True
 

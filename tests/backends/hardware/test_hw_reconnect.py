@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import logging
 from datetime import timedelta
 from types import SimpleNamespace
 from typing import Any
@@ -34,6 +35,7 @@ from j5aio.simulator import (
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kit import KitConfig, use_kit
 from j5aio.testing.reliability import BACKEND_NAMES, replug_trials
+from j5aio.testing.transports import FaultyStream
 
 QUICK = ReconnectPolicy(interval=0.0)
 
@@ -487,3 +489,33 @@ async def test_the_pass_gives_each_lost_board_one_try() -> None:
         with safe_state_pass():  # a pass of its own starts afresh
             assert claim_attempt(first)
     assert not claim_attempt(second)
+
+
+async def test_a_call_cut_short_by_closing_the_board_is_not_a_vanished_board(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """At game over the ports are closed under the program's feet: that is no unplug."""
+    sim = SRMotorBoardFw4Simulator("srM3")
+    faulty = FaultyStream(SimulatorStream(sim, time_scale=0))
+    board = await SRV4MotorBoardFw4HardwareBackend.from_stream(
+        faulty, port="sim", serial_number="srM3"
+    )
+    backend = board.backend
+    assert isinstance(backend, SRV4MotorBoardFw4HardwareBackend)
+    faulty.silence()  # the reply to the call in flight does not come before the end
+    failures: list[BaseException] = []
+
+    async def in_flight() -> None:
+        try:
+            await backend.get_motor_current(0)
+        except BoardDisconnectionError as exc:
+            failures.append(exc)
+
+    with caplog.at_level(logging.INFO, "j5aio"):
+        async with anyio.create_task_group() as group:
+            group.start_soon(in_flight)
+            await anyio.sleep(0.02)  # the request has gone
+            board.close_now()  # as the match timer does
+    assert len(failures) == 1
+    assert "vanished" not in caplog.text
+    assert not backend.is_connected
