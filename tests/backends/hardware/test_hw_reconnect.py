@@ -459,6 +459,7 @@ async def test_a_board_back_just_before_the_end_is_still_made_safe() -> None:
 
     options = DiscoveryOptions(port_source=lambda: ports, opener=opener, time_scale=0.01)
     (board,) = await SRV4MotorBoardFw4HardwareBackend.discover(options=options)
+    assert isinstance(board, MotorBoardFw4)
     backend = board.backend
     assert isinstance(backend, SRV4MotorBoardFw4HardwareBackend)
     # However long the limit, the pass that makes the boards safe tries once more.
