@@ -69,6 +69,18 @@ strongest rule its firmware allows:
    to and including the known answer. The board answers in order, so everything owed
    to earlier requests came before it (the Ruggeduino's ``v``, the motor board's
    ``00 01``).
+
+   For a line protocol (:meth:`~SerialLink.set_resync_line`: one reply line per
+   request, and a probe answered by one known line, fresh each time where the firmware
+   can echo a nonce) the link does more, so that a late reply is never taken even if
+   it comes *after* replies to later requests. It counts the reply lines owed by
+   requests that timed out; while any is owed (for at most ``late_limit`` seconds
+   after the last timeout), every exchange is sent between two probes, ``probe,
+   request, probe``: lines before the first probe's answer are owed lines, discarded
+   and counted off, and the reply is the one thing between the two answers. A late
+   line that lands between them leaves two things there: the exchange then raises
+   :class:`~j5aio.errors.CommunicationError` rather than guess. Once every owed line
+   has come, requests go plain again.
 3. *Otherwise,* input is discarded until the line has been quiet for ``quiet_time``.
    This is a guess about timing, and only as good as the guess.
 
@@ -103,7 +115,7 @@ from j5aio.errors import (
 )
 
 from .completion import run_to_completion
-from .readers import ReplyReader, read_line
+from .readers import LinesReader, ReplyReader, read_line
 from .stream import ByteStream
 from .trace import log_wire, wire_logger
 
@@ -133,6 +145,11 @@ def _check_duration(name: str, value: float) -> float:
     return value
 
 
+def _lines_of(reader: ReplyReader[Any]) -> int:
+    """How many lines a reply read by ``reader`` has, for counting late lines (1 if unsure)."""
+    return reader.count if isinstance(reader, LinesReader) else 1
+
+
 def _preview(data: bytes | bytearray, limit: int = 80) -> str:
     shown = repr(bytes(data[:limit]))
     return shown + (f" (+{len(data) - limit} more bytes)" if len(data) > limit else "")
@@ -148,6 +165,9 @@ class SerialLink(AsyncResource):
         draining a dirty link.
     :param drain_limit: the longest a drain may take before giving up, in seconds.
     :param chunk_size: the most bytes asked of the stream at once.
+    :param late_limit: with a line probe (:meth:`set_resync_line`), how long after a
+        timeout a reply that never came is still waited for, in seconds (see the
+        module's notes on late replies that overtake).
     """
 
     def __init__(
@@ -159,12 +179,14 @@ class SerialLink(AsyncResource):
         quiet_time: float = 0.02,
         drain_limit: float = 0.5,
         chunk_size: int = 4096,
+        late_limit: float = 2.0,
     ) -> None:
         self._stream = stream
         self._name = name if name is not None else stream.name
         self._default_timeout = _check_duration("default_timeout", default_timeout)
         self._quiet_time = _check_duration("quiet_time", quiet_time)
         self._drain_limit = _check_duration("drain_limit", drain_limit)
+        self._late_limit = _check_duration("late_limit", late_limit)
         if chunk_size < 1:
             raise ValueError(f"chunk_size must be at least 1, not {chunk_size}")
         self._chunk_size = chunk_size
@@ -179,6 +201,9 @@ class SerialLink(AsyncResource):
         self._resync: tuple[bytes, bytes] | None = None
         self._resync_line: Callable[[], tuple[bytes, bytes]] | None = None
         self._resync_failed = False
+        # Reply lines owed by requests that timed out, not yet seen (line protocols).
+        self._owed = 0
+        self._owed_until = 0.0
 
     # -- state ---------------------------------------------------------------------------
 
@@ -495,6 +520,8 @@ class SerialLink(AsyncResource):
         self, request: bytes, reader: ReplyReader[T], seconds: float, progress: _Progress
     ) -> T:
         self._check_open()
+        if not reader.correlates and self._owes_lines():
+            return await self._bracketed_locked(request, reader, seconds, progress)
         finished = False
         try:
             if reader.correlates:
@@ -505,6 +532,7 @@ class SerialLink(AsyncResource):
                 await self._drain_locked(self._quiet_time, self._drain_limit)
             if self._buffer and not reader.correlates:
                 _log.debug("%s: discarding stale input %s", self._name, _preview(self._buffer))
+                self._settle(self._buffer.count(b"\n"))
                 self._buffer.clear()
             with anyio.move_on_after(seconds):
                 deadline = anyio.current_time() + seconds
@@ -518,6 +546,88 @@ class SerialLink(AsyncResource):
         finally:
             if not finished:
                 self._dirty = True
+                if progress.deadline is not None:
+                    self._owe(_lines_of(reader))
+
+    async def _bracketed_locked(
+        self, request: bytes, reader: ReplyReader[T], seconds: float, progress: _Progress
+    ) -> T:
+        """Exchange between two probes, while a reply that timed out may still come.
+
+        Sent as ``probe, request, probe``: lines before the first probe's answer are
+        late replies, and the reply is the one thing between the two answers. A late
+        reply that arrives between them (it overtook nothing: the board answered it
+        late) makes two things there, and which is this request's cannot be told: that
+        raises :class:`~j5aio.errors.CommunicationError`, never a wrong answer.
+        """
+        assert self._resync_line is not None
+        opening, opened = self._resync_line()
+        closing, closed = self._resync_line()
+        remaining = 2 + _lines_of(reader)  # what this exchange is owed
+        finished = False
+        # The late lines come first: they get the time a resynchronisation would.
+        seconds += self._drain_limit
+        try:
+            with anyio.move_on_after(seconds):
+                deadline = anyio.current_time() + seconds
+                await self._write(opening + request + closing)
+                progress.deadline, progress.seconds = deadline, seconds
+                await self._skip_to_line(opened)
+                remaining -= 1
+                reply = await self._read_reply(reader, request)
+                remaining -= _lines_of(reader)
+                extra = await self._skip_to_line(closed)
+                remaining -= 1
+                finished = True
+                self._dirty = bool(self._buffer)
+                if extra:
+                    raise CommunicationError(
+                        f"{self._name}: a late reply to an earlier request came amid the "
+                        f"reply to {_preview(request)}; which is which cannot be told, so "
+                        "neither is used"
+                    )
+                return reply
+            raise self._timed_out(request, reader, seconds)
+        finally:
+            if not finished:
+                self._dirty = True
+                if progress.deadline is not None:
+                    self._owe(remaining)
+
+    async def _skip_to_line(self, answer: bytes) -> int:
+        """Discard whole lines up to and including the line ``answer``; return how many.
+
+        Each line discarded was owed by a request that timed out (or is noise).
+        """
+        skipped = 0
+        while True:
+            discard, length, lines = self._find_line(answer)
+            del self._buffer[:discard]
+            skipped += lines
+            self._settle(lines)
+            if length >= 0:
+                del self._buffer[:length]
+                return skipped
+            self._buffer += await self._receive()
+
+    def _owe(self, lines: int) -> None:
+        """Note that ``lines`` reply lines may still come, late (line protocols only)."""
+        if self._resync_line is not None and lines > 0:
+            self._owed += lines
+            self._owed_until = anyio.current_time() + self._late_limit
+
+    def _settle(self, lines: int) -> None:
+        """Note that ``lines`` lines owed by earlier requests have come (and gone)."""
+        self._owed = max(0, self._owed - lines)
+
+    def _owes_lines(self) -> bool:
+        """Whether a late reply line may still come (then every exchange is bracketed)."""
+        if self._owed and (
+            self._resync_line is None or anyio.current_time() >= self._owed_until
+        ):
+            _log.debug("%s: %d late reply lines never came", self._name, self._owed)
+            self._owed = 0
+        return self._owed > 0
 
     async def _finish_reply(
         self, request: bytes, reader: ReplyReader[T], progress: _Progress
@@ -535,6 +645,7 @@ class SerialLink(AsyncResource):
         finally:
             if not finished:
                 self._dirty = True
+                self._owe(_lines_of(reader))
 
     def _after_reply(self, request: bytes, reader: ReplyReader[Any]) -> None:
         # The line was clean when the exchange began (drained, resynchronised, or
@@ -570,7 +681,7 @@ class SerialLink(AsyncResource):
             self._dirty = True
         if self._resync_line is not None:
             probe, answer = self._resync_line()
-            find: Callable[[], tuple[int, int]] = lambda: self._find_line(answer)  # noqa: E731
+            find: Callable[[], tuple[int, int, int]] = lambda: self._find_line(answer)  # noqa: E731
         else:
             assert self._resync is not None
             probe, answer = self._resync
@@ -580,9 +691,10 @@ class SerialLink(AsyncResource):
         with anyio.move_on_after(self._drain_limit):
             await self._write(probe)
             while True:
-                skipped, end = find()
+                skipped, end, lines = find()
                 discarded += skipped
                 del self._buffer[:skipped]
+                self._settle(lines)
                 if end >= 0:
                     break
                 self._buffer += await self._receive()
@@ -601,26 +713,26 @@ class SerialLink(AsyncResource):
             f"to {probe!r} did not come within {self._drain_limit} s"
         )
 
-    def _find_bytes(self, answer: bytes) -> tuple[int, int]:
-        """Return (bytes that can be discarded, end of ``answer`` in them or -1)."""
+    def _find_bytes(self, answer: bytes) -> tuple[int, int, int]:
+        """Return (bytes to discard, length of ``answer`` after them or -1, lines in them)."""
         found = self._buffer.find(answer)
-        if found >= 0:
-            return found, len(answer)
-        return max(len(self._buffer) - len(answer) + 1, 0), -1
+        discard = found if found >= 0 else max(len(self._buffer) - len(answer) + 1, 0)
+        return discard, len(answer) if found >= 0 else -1, self._buffer.count(b"\n", 0, discard)
 
-    def _find_line(self, answer: bytes) -> tuple[int, int]:
-        """Return (whole lines that can be discarded, end of the ``answer`` line or -1).
+    def _find_line(self, answer: bytes) -> tuple[int, int, int]:
+        """Return (bytes of whole lines to discard, length of the line ``answer`` or -1, lines).
 
-        When the answer line is found, the first number counts the lines before it and
-        the second is the length of the answer line, its ending included.
+        The bytes to discard are the lines before the answer line if it has come (its
+        length, ending included, is the second number), else every whole line so far.
         """
-        start = 0
+        start = lines = 0
         while (end := self._buffer.find(b"\n", start)) >= 0:
             line = bytes(self._buffer[start:end]).removesuffix(b"\r")
             if line == answer:
-                return start, end + 1 - start
+                return start, end + 1 - start, lines
             start = end + 1
-        return start, -1
+            lines += 1
+        return start, -1, lines
 
     async def _read_reply(self, reader: ReplyReader[T], request: bytes) -> T:
         while True:
@@ -642,11 +754,14 @@ class SerialLink(AsyncResource):
 
     async def _drain_locked(self, quiet: float, bound: float) -> int:
         discarded = len(self._buffer)
+        self._settle(self._buffer.count(b"\n"))
         self._buffer.clear()
         deadline = anyio.current_time() + bound
         while True:
             with anyio.move_on_after(quiet) as silence:
-                discarded += len(await self._receive())
+                chunk = await self._receive()
+                discarded += len(chunk)
+                self._settle(chunk.count(b"\n"))
             if silence.cancelled_caught:
                 break
             if anyio.current_time() >= deadline:

@@ -307,7 +307,7 @@ async def test_drain_discards_and_counts() -> None:
 
 async def test_a_line_that_never_goes_quiet_fails_the_drain() -> None:
     host, board = memory_stream_pair()
-    link = SerialLink(host, quiet_time=0.02, drain_limit=0.05)
+    link = SerialLink(host, quiet_time=0.25, drain_limit=0.4)
     link.mark_dirty()
 
     async def chatter() -> None:
@@ -416,7 +416,7 @@ async def test_a_reply_with_a_corrupted_terminator_times_out_then_recovers() -> 
         await start_peer(tg, board, lambda line: line + b"\n")
         faulty.corrupt_next_reply(lambda reply: reply.replace(b"\n", b"?"))
         with pytest.raises(CommunicationTimeoutError, match=r"received so far: b'first\?'"):
-            await link.exchange(b"first\n", read_line(), timeout=0.03)
+            await link.exchange(b"first\n", read_line(), timeout=0.3)
         assert await link.exchange(b"second\n", read_line(), timeout=1) == b"second"
         tg.cancel_scope.cancel()
 
@@ -741,6 +741,25 @@ async def test_a_line_probe_discards_whole_lines_up_to_its_fresh_answer(
         await link.send(b"x\n")
         assert peer.lines[-2:] == [b"echo n2", b"x"]
         assert not link.is_dirty
+        tg.cancel_scope.cancel()
+
+
+async def test_after_a_probe_went_unanswered_the_next_waits_for_a_quiet_line_first(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host, drain_limit=0.05)
+    link.set_resync_line(lambda: (b"v\n", b"V"))
+    link.mark_dirty()
+    with pytest.raises(CommunicationError, match="could not resynchronise"):
+        await link.send(b"x\n")
+    assert link.is_dirty
+    async with anyio.create_task_group() as tg:
+        peer = await start_peer(tg, board, upper)
+        # The first probe's answer comes late: it is drained, not taken for the second's.
+        await board.send(b"V\r\n")
+        assert await link.exchange(b"next\n", read_line(), timeout=1) == b"NEXT"
+        assert peer.lines[-2:] == [b"v", b"next"]
         tg.cancel_scope.cancel()
 
 
