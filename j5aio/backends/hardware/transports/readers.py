@@ -303,15 +303,20 @@ class MatchingReader(ReplyReader[T_co]):
 
     def parse(self, buffer: bytes | bytearray) -> tuple[T_co, int] | None:
         """Return the first reply in ``buffer`` that belongs to this request."""
+        found = self.parse_counting(buffer)
+        return None if found is None else found[:2]
+
+    def parse_counting(self, buffer: bytes | bytearray) -> tuple[T_co, int, int] | None:
+        """As :meth:`parse`, and also say how many foreign replies were skipped."""
         position = 0
-        for _ in range(self.max_skipped + 1):
+        for skipped in range(self.max_skipped + 1):
             parsed = self.reader.parse(buffer[position:])
             if parsed is None:
                 return None
             reply, used = parsed
             position += used
             if self.belongs(reply):
-                return reply, position
+                return reply, position, skipped
         raise UnexpectedReplyError(
             f"received {self.max_skipped + 1} replies that belong to other requests"
         )

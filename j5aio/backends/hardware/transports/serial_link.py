@@ -59,10 +59,12 @@ strongest rule its firmware allows:
    true (see :func:`~.readers.matching`) recognises replies to other requests and skips
    them, however late they come. A dirty link then needs no draining at all (the SB
    Arduino 2019 firmware: request ids and command echoes). Tagging costs bytes on the
-   wire, and only a dirty link can have a reply outstanding, so a backend may send the
-   plain request on a clean link and the tagged one only on a dirty link (``when_dirty``
-   of :meth:`~SerialLink.exchange`): the board answers in order, so once the tagged
-   request's own reply has come, every late reply came before it and was skipped.
+   wire, and only a link that has had a timeout can have a reply outstanding, so a
+   backend may send the plain request on a clean link and the tagged one otherwise
+   (``when_dirty`` of :meth:`~SerialLink.exchange`): requests are tagged while the link
+   is dirty or a reply to a request that timed out has not been skipped yet (for at
+   most ``late_limit`` seconds), so that even a late reply that comes after later ones
+   is skipped.
 2. *A resynchronisation probe.* Where nothing in a reply names its request, a backend
    can name a harmless probe whose answer is known (:meth:`~SerialLink.set_resync`).
    The first exchange or send on a dirty link sends the probe and discards every byte up
@@ -115,7 +117,7 @@ from j5aio.errors import (
 )
 
 from .completion import run_to_completion
-from .readers import LinesReader, ReplyReader, read_line
+from .readers import LinesReader, MatchingReader, ReplyReader, read_line
 from .stream import ByteStream
 from .trace import log_wire, wire_logger
 
@@ -385,7 +387,7 @@ class SerialLink(AsyncResource):
         request = bytes(request)
         progress = _Progress()
         async with self._lock:
-            if when_dirty is not None and self._dirty:
+            if when_dirty is not None and (self._dirty or self._owes()):
                 request, reader = when_dirty()
                 request = bytes(request)
             with anyio.CancelScope(shield=True):
@@ -444,7 +446,9 @@ class SerialLink(AsyncResource):
     async def drain(self, quiet_time: float | None = None, *, limit: float | None = None) -> int:
         """Discard input until the line has been quiet for ``quiet_time`` seconds.
 
-        Also clears the dirty mark. Returns how many bytes were discarded.
+        Also clears the dirty mark, and forgets the replies owed by requests that timed
+        out (they are taken to have come, or to be lost). Returns how many bytes were
+        discarded.
 
         :param quiet_time: seconds of silence to wait for; defaults to the link's.
         :param limit: the most seconds to spend; defaults to the link's ``drain_limit``.
@@ -456,7 +460,9 @@ class SerialLink(AsyncResource):
         _check_duration("limit", bound)
         async with self._lock:
             self._check_open()
-            return await self._drain_locked(quiet, bound)
+            discarded = await self._drain_locked(quiet, bound)
+            self._owed = 0
+            return discarded
 
     def send_now(self, data: bytes, *, timeout: float | None = None) -> None:
         """Send ``data`` at once, synchronously, bypassing the lock (the safe state at exit).
@@ -520,7 +526,7 @@ class SerialLink(AsyncResource):
         self, request: bytes, reader: ReplyReader[T], seconds: float, progress: _Progress
     ) -> T:
         self._check_open()
-        if not reader.correlates and self._owes_lines():
+        if not reader.correlates and self._resync_line is not None and self._owes():
             return await self._bracketed_locked(request, reader, seconds, progress)
         finished = False
         try:
@@ -610,22 +616,20 @@ class SerialLink(AsyncResource):
                 return skipped
             self._buffer += await self._receive()
 
-    def _owe(self, lines: int) -> None:
-        """Note that ``lines`` reply lines may still come, late (line protocols only)."""
-        if self._resync_line is not None and lines > 0:
-            self._owed += lines
+    def _owe(self, replies: int) -> None:
+        """Note that ``replies`` replies (lines, on a line protocol) may still come, late."""
+        if replies > 0:
+            self._owed += replies
             self._owed_until = anyio.current_time() + self._late_limit
 
-    def _settle(self, lines: int) -> None:
-        """Note that ``lines`` lines owed by earlier requests have come (and gone)."""
-        self._owed = max(0, self._owed - lines)
+    def _settle(self, replies: int) -> None:
+        """Note that ``replies`` owed by earlier requests have come (and gone)."""
+        self._owed = max(0, self._owed - replies)
 
-    def _owes_lines(self) -> bool:
-        """Whether a late reply line may still come (then every exchange is bracketed)."""
-        if self._owed and (
-            self._resync_line is None or anyio.current_time() >= self._owed_until
-        ):
-            _log.debug("%s: %d late reply lines never came", self._name, self._owed)
+    def _owes(self) -> bool:
+        """Whether a late reply may still come: requests are then bracketed, or tagged."""
+        if self._owed and anyio.current_time() >= self._owed_until:
+            _log.debug("%s: %d late replies never came", self._name, self._owed)
             self._owed = 0
         return self._owed > 0
 
@@ -737,7 +741,11 @@ class SerialLink(AsyncResource):
     async def _read_reply(self, reader: ReplyReader[T], request: bytes) -> T:
         while True:
             try:
-                parsed = reader.parse(self._buffer)
+                parsed: tuple[T, int] | tuple[T, int, int] | None
+                if isinstance(reader, MatchingReader):
+                    parsed = reader.parse_counting(self._buffer)
+                else:
+                    parsed = reader.parse(self._buffer)
             except UnexpectedReplyError as exc:
                 # What the reader refused (line noise, an over-long line) is never part
                 # of a good reply: drop it, or every later request fails on the same
@@ -747,7 +755,9 @@ class SerialLink(AsyncResource):
                 about = f" to {_preview(request)}" if request else ""
                 raise UnexpectedReplyError(f"{self._name}: bad reply{about}: {exc}") from exc
             if parsed is not None:
-                reply, used = parsed
+                reply, used = parsed[:2]
+                if len(parsed) > 2:
+                    self._settle(parsed[2])  # foreign replies skipped: late ones, come
                 del self._buffer[:used]
                 return reply
             self._buffer += await self._receive()
