@@ -125,13 +125,24 @@ __all__ = ["SerialLink"]
 
 
 class _Progress:
-    """How far an exchange got: ``deadline`` is set once its request has gone."""
+    """How far an exchange got: ``deadline`` is set once its request has gone.
 
-    __slots__ = ("deadline", "seconds")
+    A bracketed exchange (see :meth:`SerialLink._bracketed_locked`) also notes the two
+    answers it waits for, which it has seen, and how many lines it is still owed, so
+    that a task that finishes it (after ``Task.cancel``) goes on where it stopped.
+    """
+
+    __slots__ = ("bracket", "deadline", "opened", "remaining", "replied", "reply", "seconds")
 
     def __init__(self) -> None:
         self.deadline: float | None = None
         self.seconds = 0.0
+        self.bracket: tuple[bytes, bytes] | None = None
+        self.opened = False
+        self.replied = False
+        self.reply: Any = None
+        self.remaining = 0
+
 
 T = TypeVar("T")
 U = TypeVar("U")
@@ -569,7 +580,8 @@ class SerialLink(AsyncResource):
         assert self._resync_line is not None
         opening, opened = self._resync_line()
         closing, closed = self._resync_line()
-        remaining = 2 + _lines_of(reader)  # what this exchange is owed
+        progress.bracket = (opened, closed)
+        progress.remaining = 2 + _lines_of(reader)  # what this exchange is owed
         finished = False
         # The late lines come first: they get the time a resynchronisation would.
         seconds += self._drain_limit
@@ -578,27 +590,42 @@ class SerialLink(AsyncResource):
                 deadline = anyio.current_time() + seconds
                 await self._write(opening + request + closing)
                 progress.deadline, progress.seconds = deadline, seconds
-                await self._skip_to_line(opened)
-                remaining -= 1
-                reply = await self._read_reply(reader, request)
-                remaining -= _lines_of(reader)
-                extra = await self._skip_to_line(closed)
-                remaining -= 1
+                reply = await self._read_bracketed(request, reader, progress)
                 finished = True
-                self._dirty = bool(self._buffer)
-                if extra:
-                    raise CommunicationError(
-                        f"{self._name}: a late reply to an earlier request came amid the "
-                        f"reply to {_preview(request)}; which is which cannot be told, so "
-                        "neither is used"
-                    )
                 return reply
             raise self._timed_out(request, reader, seconds)
         finally:
-            if not finished:
+            # Every line it was owed having come (even amid an ambiguous reply), the
+            # link is in step again.
+            if not finished and (progress.deadline is None or progress.remaining > 0):
                 self._dirty = True
                 if progress.deadline is not None:
-                    self._owe(remaining)
+                    self._owe(progress.remaining)
+
+    async def _read_bracketed(
+        self, request: bytes, reader: ReplyReader[T], progress: _Progress
+    ) -> T:
+        """Read a bracketed exchange's answers and reply, from where it had got to."""
+        assert progress.bracket is not None
+        opened, closed = progress.bracket
+        if not progress.opened:
+            await self._skip_to_line(opened)
+            progress.opened = True
+            progress.remaining -= 1
+        if not progress.replied:
+            progress.reply = await self._read_reply(reader, request)
+            progress.replied = True
+            progress.remaining -= _lines_of(reader)
+        extra = await self._skip_to_line(closed)
+        progress.remaining -= 1
+        self._dirty = bool(self._buffer)
+        if extra:
+            raise CommunicationError(
+                f"{self._name}: a late reply to an earlier request came amid the reply to "
+                f"{_preview(request)}; which is which cannot be told, so neither is used"
+            )
+        reply: T = progress.reply
+        return reply
 
     async def _skip_to_line(self, answer: bytes) -> int:
         """Discard whole lines up to and including the line ``answer``; return how many.
@@ -641,6 +668,11 @@ class SerialLink(AsyncResource):
         finished = False
         try:
             with anyio.move_on_after(max(0.0, progress.deadline - anyio.current_time())):
+                if progress.bracket is not None:
+                    try:
+                        return await self._read_bracketed(request, reader, progress)
+                    finally:
+                        finished = progress.remaining <= 0
                 reply = await self._read_reply(reader, request)
                 finished = True
                 self._after_reply(request, reader)
@@ -649,7 +681,7 @@ class SerialLink(AsyncResource):
         finally:
             if not finished:
                 self._dirty = True
-                self._owe(_lines_of(reader))
+                self._owe(progress.remaining if progress.bracket else _lines_of(reader))
 
     def _after_reply(self, request: bytes, reader: ReplyReader[Any]) -> None:
         # The line was clean when the exchange began (drained, resynchronised, or
