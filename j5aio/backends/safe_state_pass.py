@@ -1,7 +1,7 @@
 """The safe-state pass: while every board is being made safe, a lost board gets one try.
 
-A board that vanished is looked for again at most once every
-:attr:`~j5aio.backends.hardware.reconnect.ReconnectPolicy.interval` (see
+A board that vanished is looked for again at most once every ``interval`` of its
+:class:`~j5aio.backends.hardware.reconnect.ReconnectPolicy` (see
 :mod:`j5aio.backends.hardware.reconnect`). When a program ends just after a failed call
 (the usual case: the uncaught :class:`~j5aio.errors.BoardDisconnectionError` ends it),
 that limit would refuse the orderly stop of a board that has come back, and its motors

@@ -18,10 +18,10 @@ __all__ = ["SharedTicker"]
 
 LOGGER = logging.getLogger(__name__)
 
-T = TypeVar("T")
+ReadingT = TypeVar("ReadingT")
 
 
-class SharedTicker(Generic[T]):
+class SharedTicker(Generic[ReadingT]):
     """Calls ``take(tick)`` every ``period`` seconds while it has listeners.
 
     Used from one event loop (the view server's). ``tick`` counts from 0 each time the
@@ -31,14 +31,14 @@ class SharedTicker(Generic[T]):
     :param period: seconds between the starts of two readings.
     """
 
-    def __init__(self, take: Callable[[int], Awaitable[T]], period: float) -> None:
+    def __init__(self, take: Callable[[int], Awaitable[ReadingT]], period: float) -> None:
         if not period > 0:
             raise ValueError(f"the period must be a positive number of seconds, not {period!r}")
         self._take = take
         self._period = period
         self._listeners = 0
         self._task: asyncio.Task[None] | None = None
-        self._latest: tuple[int, T] | None = None
+        self._latest: tuple[int, ReadingT] | None = None
         self._changed = asyncio.Event()
         #: How many readings were taken since the ticker was made.
         self.readings = 0
@@ -63,7 +63,7 @@ class SharedTicker(Generic[T]):
             self._task.cancel()
             self._task = None
 
-    async def next_after(self, seen: int) -> tuple[int, T]:
+    async def next_after(self, seen: int) -> tuple[int, ReadingT]:
         """Wait for a reading newer than tick ``seen`` (-1: any); return ``(tick, reading)``.
 
         A listener that took tick 3 and comes back after tick 7 gets tick 7: the readings
