@@ -104,8 +104,10 @@ class SRArduinoHardwareBackend(
 
         As sr-robot3's ``command()``: the firmware answers one line per command byte, so
         a command of several letters gets several lines; the rest are discarded before
-        the next request. Using a raw command may leave pins in modes the backend does
-        not know of.
+        the next request. (Shortly after a request timed out, while its reply may still
+        come, such a command raises :class:`~j5aio.errors.CommunicationError` instead:
+        its extra lines cannot be told from the late reply.) Using a raw command may
+        leave pins in modes the backend does not know of.
 
         :raises UnexpectedReplyError: the reply is not UTF-8 text.
         :raises CommunicationError: no reply line came in time.
