@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, ClassVar
 import anyio
 
 from j5aio import lifetime
+from j5aio.backends.safe_state_pass import safe_state_pass
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -132,12 +133,15 @@ class Board(ABC):
             else:
                 lifetime.mark_settled(board)
 
+        # Within the pass, a lost board that has come back is looked for once more,
+        # whatever its reconnection rate limit, so that it is stopped too.
         boards = list(Board.BOARDS)
-        for last in (False, True):  # the boards that power the others last
-            async with anyio.create_task_group() as group:
-                for board in boards:
-                    if board.MAKE_SAFE_LAST is last:
-                        group.start_soon(make_one_safe, board)
+        with safe_state_pass():
+            for last in (False, True):  # the boards that power the others last
+                async with anyio.create_task_group() as group:
+                    for board in boards:
+                        if board.MAKE_SAFE_LAST is last:
+                            group.start_soon(make_one_safe, board)
         return failures
 
     def __str__(self) -> str:
