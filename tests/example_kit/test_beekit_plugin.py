@@ -63,8 +63,13 @@ async def _close_boards() -> AsyncIterator[None]:
 
 
 def python_m_j5aio(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
-    """Run ``python -m j5aio`` as a student would, without this run's J5AIO_ settings."""
+    """Run ``python -m j5aio`` as a student would, without this run's J5AIO_ settings.
+
+    All but the robot-lock port: this run's own, so that the program does not take the
+    lock of a robot program running beside the test run (or of another test run).
+    """
     environment = {k: v for k, v in os.environ.items() if not k.startswith("J5AIO_")}
+    environment["J5AIO_LOCK_PORT"] = os.environ["J5AIO_LOCK_PORT"]
     return subprocess.run(
         [sys.executable, "-m", "j5aio", *args],
         capture_output=True, text=True, timeout=60, env=environment, check=False, cwd=cwd,
