@@ -25,6 +25,9 @@ REPO_ROOT = KIT_ROOT.parents[1]
 SYNC_MODULE = KIT_ROOT / "beekit" / "sync.py"
 
 
+WORKER = os.environ.get("PYTEST_XDIST_WORKER", "main")
+
+
 def test_a_student_program_drives_the_board(j5aio_pty_simulator: PtySimulatorFactory) -> None:
     simulator = BeeSimulator()
     simulator.button_held = True  # the student has pressed the button already
@@ -83,7 +86,8 @@ def test_the_generated_module_is_typed(tmp_path: Path) -> None:
             "--strict",
             "--no-error-summary",
             "--cache-dir",
-            str(Path(tempfile.gettempdir()) / "j5aio-beekit-mypy-cache"),
+            # one cache per pytest-xdist worker: two mypy runs never share one
+            str(Path(tempfile.gettempdir()) / f"j5aio-beekit-mypy-cache-{WORKER}"),
             "--config-file",
             str(REPO_ROOT / "pyproject.toml"),
             *map(str, files.values()),
