@@ -21,9 +21,14 @@ from __future__ import annotations
 
 import argparse
 import statistics
+import sys
 import tempfile
 import time
 from pathlib import Path
+
+# The trials' rig is a white-box part of the test suite (tests/testing/reliability_rig.py):
+# the repository's root must be importable.
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import anyio
 import bench_signals  # type: ignore[import-not-found]  # beside this script
@@ -34,7 +39,7 @@ from j5aio.boards.sb.arduino import SBArduinoBoard
 from j5aio.errors import BoardDisconnectionError
 from j5aio.simulator import SBArduinoSimulator
 from j5aio.simulator.serve import serve_on_pty
-from j5aio.testing.reliability import (
+from tests.testing.reliability_rig import (
     BACKEND_NAMES,
     CancellationStyle,
     bad_value_trials,

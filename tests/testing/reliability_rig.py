@@ -1,4 +1,8 @@
-"""Stress trials of the hardware backends against their simulators (issue 9's checks).
+"""Stress trials of the hardware backends against their simulators: a white-box test rig.
+
+It is not part of j5aio's API: a rig reads the backends' private state (their caches) and
+knows only the boards it was written for. The test suite and ``bench/bench_reliability.py``
+import it from here.
 
 Each *rig* connects one real hardware backend to a simulator of its board and knows how
 to compare what the backend remembers (its caches) with what the simulated board really
