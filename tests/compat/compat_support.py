@@ -25,11 +25,11 @@ class Run:
     boards: dict[str, Any]
 
     def lines(self, prefix: str) -> list[str]:
-        """The printed lines that start with ``prefix`` (and a space)."""
+        """The rest of each printed line that is ``prefix``, or starts with it and a space."""
         return [
-            line.removeprefix(prefix + " ")
+            line.removeprefix(prefix).removeprefix(" ")
             for line in self.stdout.splitlines()
-            if line.startswith(prefix + " ")
+            if line == prefix or line.startswith(prefix + " ")
         ]
 
     def line(self, prefix: str) -> str:

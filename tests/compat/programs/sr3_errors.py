@@ -44,7 +44,7 @@ attempt("analogue on digital pin", lambda: pins[5].analog_read())
 pins[15].mode = OUTPUT
 attempt("analogue on output", lambda: pins[15].analog_read())
 pins[15].mode = INPUT
-attempt("serial pin", lambda: pins[0].digital_read())
+attempt("serial pin read", lambda: pins[0].digital_read())
 attempt("serial pin mode", lambda: pins[1].mode)
 attempt("mode not a mode", lambda: setattr(pins[5], "mode", "INPUT"))
 attempt("bad pulse pin", lambda: robot.arduino.ultrasound_measure(1, 5))
