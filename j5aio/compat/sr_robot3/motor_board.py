@@ -35,6 +35,14 @@ class MotorStatus(NamedTuple):
     input_voltage: float
     other: list[str] = []
 
+    @classmethod
+    def from_status_response(cls, response: str) -> MotorStatus:
+        """Read the board's answer to ``*STATUS?``: ``<faults>:<mV>[:...]``."""
+        faults, millivolts, *other = response.split(":")
+        return cls(
+            tuple(flag == "1" for flag in faults.split(",")), float(millivolts) / 1000, other,
+        )
+
 
 class Motor:
     """One motor.

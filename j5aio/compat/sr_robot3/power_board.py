@@ -75,6 +75,18 @@ class PowerStatus(NamedTuple):
     regulator_voltage: float
     other: list[str] = []
 
+    @classmethod
+    def from_status_response(cls, response: str) -> PowerStatus:
+        """Read the board's answer to ``*STATUS?``: ``<trips>:<°C>:<fan>:<mV>[:...]``."""
+        trips, temperature, fan, millivolts, *other = response.split(":")
+        return cls(
+            overcurrent=tuple(flag == "1" for flag in trips.split(",")),
+            temperature=int(temperature),
+            fan_running=fan == "1",
+            regulator_voltage=float(millivolts) / 1000,
+            other=other,
+        )
+
 
 class Output:
     """One power output.

@@ -53,6 +53,11 @@ class RawSerial:
         self.delay_after_connect = 2.0  # (many boards reset when the port opens)
         self._reconnect()
 
+    @staticmethod
+    def get_board_type() -> str:
+        """The board's type: ``RawSerial`` (unused: the device is the team's own)."""
+        return "RawSerial"
+
     @classmethod
     def _get_supported_boards(
         cls, serial_devices: list[tuple[str, int]],

@@ -33,6 +33,12 @@ class ServoStatus(NamedTuple):
     watchdog_failed: bool
     power_good: bool
 
+    @classmethod
+    def from_status_response(cls, response: str) -> ServoStatus:
+        """Read the board's answer to ``*STATUS?``: ``<watchdog>:<power good>``."""
+        fields = response.split(":")
+        return cls(watchdog_failed=fields[0] == "1", power_good=fields[1] == "1")
+
 
 class Servo:
     """One servo.
