@@ -32,7 +32,7 @@ def _state(simulator: Any) -> dict[str, Any]:
         if hasattr(simulator, name):
             state[name] = list(getattr(simulator, name))
     if hasattr(simulator, "motors"):
-        state["motors"] = [str(motor.drive) for motor in simulator.motors]
+        state["motors"] = [str(getattr(motor, "drive", motor)) for motor in simulator.motors]
     return state
 
 
@@ -42,10 +42,10 @@ def main() -> None:
     os.environ.setdefault("J5AIO_ENV", "sim")
     from j5aio.simulator.kit import current_kit
 
-    kit = current_kit()
     setup = os.environ.get("COMPAT_SETUP")
     if setup:
-        exec(setup, {"kit": kit})  # the test's own settings of the simulators
+        exec(setup, {"kit": current_kit()})  # the test's own settings (or kit)
+    kit = current_kit()
     boards: dict[str, tuple[Any, list[bytes]]] = {}
     for name in kit.simulator_names():
         for simulator in kit.simulators(name):

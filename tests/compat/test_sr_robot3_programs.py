@@ -150,3 +150,71 @@ def test_a_program_lights_the_kch_and_sees_markers(tmp_path: Path) -> None:
     assert run.line("saved") == "True True 3"
     assert run.line("from frame") == "True"
     assert run.line("camera") == "camera True"
+
+
+#: A competition runner that presses start again and again (by the start file).
+KEEP_STARTING = """
+import threading, time
+from pathlib import Path
+def keep_starting():
+    while True:
+        time.sleep(0.2)
+        Path({path!r}).touch()
+threading.Thread(target=keep_starting, daemon=True).start()
+"""
+
+
+def test_a_program_on_the_2019_kit_and_sr_robot3s_rarer_calls(tmp_path: Path) -> None:
+    run = run_program(
+        "sr3_old_kit.py", tmp_path, kit="sr2019",
+        setup=KEEP_STARTING.format(path=str(tmp_path / "start")),
+    )
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.line("debug") == "True"
+    assert "sr.robot3.robot - DEBUG - Firmware Version of SIMRD0: 1" in run.stdout
+    assert "manual_boards is not needed on j5aio" in run.stdout
+    assert "Raw ports are not available in the simulator." in run.stdout
+    assert run.line("arduinos") == "['SIMRD0']"
+    assert run.line("raw") == "{}"
+    assert run.line("outputs") == "6 False"  # a firmware 3 board: six outputs, no trips
+    assert run.line("off") == str([False] * 6)
+    assert run.line("motor reads") == "0.25 0.0 False"  # no current sense on firmware 3
+    assert run.line("reset") == "True"
+    assert run.line("servo reset").endswith("cannot unpower a servo (position None); give a "
+                                            "position between -1 and 1")
+    assert run.line("servo position") == "-1.0"
+    for what in ("power status", "servo status", "servo current"):
+        assert run.line(what) == "BoardDisconnectionError"  # firmware 3 / 2 report none
+    assert run.line("motor status") == (
+        "MotorStatus(output_faults=(False, False), input_voltage=0.0, other=[])")
+    assert run.line("kch") == "(False, False, False) False"  # no KCH: the LEDs do nothing
+    assert run.line("colour") == "The LED requires 3 values for it's colour"
+    assert run.line("key error") == "Key 'zone' not present in metadata"
+    assert run.line("command") == "OSError"  # SR's Ruggeduino firmware takes none
+    assert run.line("ultrasound") == "OSError"
+    assert run.line("reprs") == "True True <Pin index=2 analog=False disabled=False>"
+    assert run.line("time") == "True"
+    assert run.line("started twice") == "0"
+    assert run.stdout.count("Start signal received; continuing.") == 2
+    assert "VID:PID - Manufacturer - Product - Serial Number" in run.stdout
+
+
+def test_a_robot_without_a_power_board(tmp_path: Path) -> None:
+    run = run_program(
+        "sr3_no_power_board.py", tmp_path, "--start-after", "0",
+        setup="from j5aio.board_kinds import KitDefinition\n"
+        "from j5aio.simulator.kit import use_kit\n"
+        "use_kit(KitDefinition('motors-only', 'a motor board alone', {'sr-motor-fw4': 1}))\n",
+    )
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.line("power board") == "No power board was initialized"
+    assert run.line("motor") == "-0.5 RobotMode.DEV"
+    assert "MOT:0:SET:-500\n" in run.received("sr-motor-fw4")
+
+
+def test_a_board_that_goes_away_raises_sr_robot3s_disconnection_error(tmp_path: Path) -> None:
+    run = run_program("sr3_unplugged.py", tmp_path)
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.line("caught") == "True j5aio.errors"  # j5aio's error is the cause
+    assert run.line("still running") == "True"
+    assert run.received("sr-motor-fw4").endswith("MOT:0:SET:500\n")  # nothing after

@@ -14,6 +14,7 @@ import json
 import os
 import re
 import sys
+from collections.abc import Callable
 from importlib.util import find_spec
 from pathlib import Path
 
@@ -93,6 +94,15 @@ def strip_end(board: str, found: list[str], peer: bool) -> list[str]:
     return found[:len(found) - len(end)]
 
 
+def recording(log: list[bytes], receive: Callable[[bytes], bytes]) -> Callable[[bytes], bytes]:
+    """``receive``, keeping a copy of every byte received in ``log``."""
+    def record(data: bytes) -> bytes:
+        log.append(bytes(data))
+        return receive(data)
+
+    return record
+
+
 @pytest.fixture
 def peer_python() -> str:
     if find_spec("sr") is not None and find_spec("sr.robot3") is not None:
@@ -111,15 +121,7 @@ def run_sr_robot3(python: str, tmp_path: Path) -> tuple[dict[str, list[str]], st
     try:
         received: dict[str, list[bytes]] = {name: [] for name in SIMULATORS}
         for name, simulator in kit.simulators.items():
-            original = simulator.receive
-
-            def recording(data: bytes, log: list[bytes] = received[name],
-                          receive=original) -> bytes:  # type: ignore[no-untyped-def]
-                log.append(bytes(data))
-                result: bytes = receive(data)
-                return result
-
-            simulator.receive = recording
+            simulator.receive = recording(received[name], simulator.receive)
         arduino = kit.simulators["sr-arduino-fw2"]
         arduino.set_input_level(3, True)
         arduino.set_analogue(14, volts=1.25)
@@ -153,7 +155,9 @@ def run_peer_with(python: str, program: str, env: dict[str, str]) -> str:
 
 
 def printed(output: str) -> list[str]:
-    return [line for line in output.splitlines() if re.match(r"(marks|motors|servos|h1|pins|distance) ", line)]
+    """The program's own lines of output."""
+    program_line = re.compile(r"(marks|motors|servos|h1|pins|distance) ")
+    return [line for line in output.splitlines() if program_line.match(line)]
 
 
 def test_sr_robot3_and_j5aio_send_the_same_commands(peer_python: str, tmp_path: Path) -> None:

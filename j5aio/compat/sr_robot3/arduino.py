@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Final
 from j5aio.compat.sr_robot3.exceptions import disconnected
 from j5aio.compat.sr_robot3.utils import BoardIdentity, map_to_float
 from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
-from j5aio.errors import CommunicationError
+from j5aio.errors import CommunicationError, NotSupportedByHardwareError
 from j5aio.sync import AllDigitalUno, Ruggeduino, SBArduinoBoard
 
 if TYPE_CHECKING:
@@ -226,6 +226,8 @@ class Arduino:
             raise OSError(f"{board.name} does not take raw commands")
         try:
             return board.command(command)
+        except NotSupportedByHardwareError as error:
+            raise OSError(str(error)) from error
         except CommunicationError as error:
             raise disconnected(error) from error
 

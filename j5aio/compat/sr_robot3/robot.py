@@ -30,6 +30,7 @@ from j5aio.compat.sr_robot3.raw_serial import RawSerial
 from j5aio.compat.sr_robot3.servo_board import ServoBoard
 from j5aio.compat.sr_robot3.utils import BoardIdentity, singular
 from j5aio.competition.timer import add_game_over_hook
+from j5aio.sync import ServoBoardFw4
 
 if TYPE_CHECKING:
     from j5aio.sync import ArduinoUno, KitRobot
@@ -117,7 +118,8 @@ class Robot:
         self._motor_boards = MappingProxyType(
             {board.serial_number: MotorBoard(board) for board in kit.motor_boards})
         for servo_board in kit.servo_boards:
-            servo_board.unpower_when_safe = True  # (at the end, as sr-robot3's reset)
+            # At the end, servos off as sr-robot3's reset does (on boards that can).
+            servo_board.unpower_when_safe = isinstance(servo_board, ServoBoardFw4)
         self._servo_boards = MappingProxyType(
             {board.serial_number: ServoBoard(board) for board in kit.servo_boards})
         arduinos: dict[str, Arduino] = {}

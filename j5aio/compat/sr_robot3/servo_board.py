@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING, Final, NamedTuple
 
 from j5aio.compat.sr_robot3.exceptions import disconnected
 from j5aio.compat.sr_robot3.utils import BoardIdentity, float_bounds_check
-from j5aio.errors import CommunicationError
+from j5aio.errors import CommunicationError, NotSupportedByHardwareError
 from j5aio.sync import PulseServo, ServoBoardFw4
 
 if TYPE_CHECKING:
@@ -120,9 +120,14 @@ class Servo:
             raise disconnected(error) from error
 
     def disable(self) -> None:
-        """Switch the servo off (no pulses)."""
+        """Switch the servo off (no pulses).
+
+        :raises OSError: the board cannot switch a servo off (a firmware 2 board).
+        """
         try:
             self._servo.position = None
+        except NotSupportedByHardwareError as error:
+            raise OSError(str(error)) from error
         except CommunicationError as error:
             raise disconnected(error) from error
 
