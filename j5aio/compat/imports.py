@@ -1,13 +1,13 @@
 """Import redirection for ``python -m j5aio run --api``: ``sr.robot3`` and ``sbot`` on j5aio.
 
-:func:`install` puts a finder first on :data:`sys.meta_path` that makes the competition's
+``install(api)`` puts a finder first on ``sys.meta_path`` that makes the competition's
 package names resolve to j5aio's compat modules, for the program being run:
 
 - ``--api sr-robot3``: ``sr.robot3`` (and its submodules) is
-  :mod:`j5aio.compat.sr_robot3`; ``sr`` is a namespace holding it;
+  ``j5aio.compat.sr_robot3``; ``sr`` is a namespace holding it;
 - ``--api sbot``: ``sbot`` (and its submodules) is ``j5aio.compat.sbot``.
 
-:func:`install_hint` is used without ``--api``: when a program imports ``sr.robot3`` or
+``install_hint()`` is used without ``--api``: when a program imports ``sr.robot3`` or
 ``sbot`` and that package is not installed, the error says which flag to add.
 """
 

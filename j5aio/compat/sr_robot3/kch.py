@@ -13,7 +13,6 @@ if TYPE_CHECKING:
 
 __all__ = ["KCH", "LED", "Colour", "UserLED"]
 
-Colour3 = tuple[bool, bool, bool]
 
 
 @unique
