@@ -218,3 +218,17 @@ def test_a_board_that_goes_away_raises_sr_robot3s_disconnection_error(tmp_path: 
     assert run.line("caught") == "True j5aio.errors"  # j5aio's error is the cause
     assert run.line("still running") == "True"
     assert run.received("sr-motor-fw4").endswith("MOT:0:SET:500\n")  # nothing after
+
+
+def test_with_every_cable_pulled_each_call_raises_the_disconnection_error(
+    tmp_path: Path,
+) -> None:
+    run = run_program("sr3_all_unplugged.py", tmp_path)
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.line("reprs") == (
+        "<Outputs: <Output <Led <BatterySensor: <Piezo: <MotorBoard: <Motor <ServoBoard: "
+        "<Servo <Arduino: <Pin <AprilCamera:")
+    assert run.line("types") == "MCv4B SBv4B Arduino Camera PBv4B"
+    assert run.line("status") == "25 True True False"
+    assert run.line("failed") == "28 of 29"
+    assert run.line("worked") == "['servo limits']"  # (kept by j5aio: nothing is sent)
