@@ -195,3 +195,43 @@ def test_a_raw_serial_device_that_will_not_open_is_skipped(
     monkeypatch.setattr("serial.tools.list_ports.comports", lambda: [FakePort("x", "X1")])
     assert dict(raw_serial.RawSerial._get_supported_boards([("X1", 9600)])) == {}
     assert "Failed to connect to X1 because: bad port" in caplog.text
+
+
+class StubCamera:
+    """Stands in for j5aio's marker camera: one marker of the game, one of another."""
+
+    marker_sizes = {3: 80.0}
+    calibration = None
+
+    def see(self) -> list[CoreMarker]:
+        from j5aio.vision.sizes import UnknownMarkerError
+
+        raise UnknownMarkerError("marker 600 has no size")
+
+    def capture(self) -> str:
+        return "a picture"
+
+
+def test_markers_the_game_has_no_size_for_are_left_out(monkeypatch: pytest.MonkeyPatch) -> None:
+    import j5aio.vision.detect as detect
+    from j5aio.compat.sr_robot3.camera import AprilCamera
+
+    corners = tuple(PixelCoordinates(x, y) for x, y in ((1, 2), (3, 2), (3, 4), (1, 4)))
+    asked: list[dict[int, float]] = []
+
+    def markers(frame: str, calibration: None, sizes: dict[int, float]) -> list[CoreMarker]:
+        assert frame == "a picture"
+        asked.append(dict(sizes))
+        return [
+            CoreMarker(marker, sizes[marker], PixelCoordinates(2.0, 3.0),
+                       corners, position=Position(900.0, 0.0, 0.0),  # type: ignore[arg-type]
+                       orientation=Orientation(0.0, 0.0, 0.0))
+            for marker in (3, 600)
+        ]
+
+    monkeypatch.setattr(detect, "detect_marker_ids", lambda frame: [3, 600])
+    monkeypatch.setattr(detect, "detect_markers", markers)
+    camera = AprilCamera(StubCamera(), "stub")  # type: ignore[arg-type]
+    assert [marker.id for marker in camera.see()] == [3]
+    assert asked == [{3: 80.0, 600: 1.0}]  # (600 measured as anything, then dropped)
+    assert [marker.size for marker in camera.see(frame="a picture")] == [80]

@@ -13,6 +13,7 @@ from j5aio.errors import CommunicationError
 
 if TYPE_CHECKING:
     from j5aio.sync import MarkerCamera
+    from j5aio.vision.markers import Marker as CoreMarker
 
 __all__ = ["AprilCamera", "PathLike"]
 
@@ -29,7 +30,8 @@ class AprilCamera:
     """A camera that finds markers, as sr-robot3 shows it.
 
     If the game's marker sizes are not known to j5aio's camera (a webcam), sr-robot3's
-    table of sizes is given to it.
+    table of sizes is given to it. As in sr-robot3, a marker whose id has no size in the
+    table is not reported.
 
     :param camera: j5aio's marker camera.
     :param serial_num: the camera's name.
@@ -64,22 +66,35 @@ class AprilCamera:
         :param save: write the picture here with the markers outlined (``.jpg`` added
             when the name has no suffix).
         """
+        from j5aio.vision.sizes import UnknownMarkerError
+
         try:
             if frame is None and save is None:
-                markers = self._camera.see()
+                try:
+                    markers = self._camera.see()
+                except UnknownMarkerError:  # (rare: then look at a picture of our own)
+                    markers = self._known_markers(self._camera.capture())
             else:
                 from j5aio.vision.annotate import annotate, write_image
-                from j5aio.vision.detect import detect_markers
 
                 if frame is None:
                     frame = self._camera.capture()
-                markers = detect_markers(
-                    frame, self._camera.calibration, self._camera.marker_sizes)
+                markers = self._known_markers(frame)
                 if save:
                     write_image(_jpeg(save), annotate(frame, markers))
         except CommunicationError as error:
             raise disconnected(error) from error
         return [Marker.from_j5aio_marker(marker) for marker in markers]
+
+    def _known_markers(self, frame: Any) -> list[CoreMarker]:
+        """The markers in ``frame`` whose ids have a size, as sr-robot3 reports only those."""
+        from j5aio.vision.detect import detect_marker_ids, detect_markers
+
+        known = self._camera.marker_sizes
+        sizes = {marker: known.get(marker, 1.0) for marker in detect_marker_ids(frame)}
+        sizes.update(known)
+        found = detect_markers(frame, self._camera.calibration, sizes)
+        return [marker for marker in found if marker.id in known]
 
     def capture(self, *, save: PathLike | None = None) -> Any:
         """Take a picture and return it (a BGR numpy array).
