@@ -2,8 +2,9 @@
 
 - ``list``: the boards plugged into this computer, and every kind of board looked for;
 - ``demo [--kit NAME]``: an example robot on the simulated kit, showing what the boards do;
-- ``run [--sim [--kit NAME]] program.py``: a robot program, on the hardware or the
-  simulated kit;
+- ``run [--sim [--kit NAME]] [--api sr-robot3|sbot] program.py``: a robot program, on the
+  hardware or the simulated kit (``--api``: a program written for a competition's own
+  API, :mod:`j5aio.compat`);
 - ``simulate NAME --pty``: a simulated board on a pseudo-terminal, for any program to open;
 - ``sync-gen MODULE -o FILE [--check]``: the typed sync facade of a kit's own boards.
 

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from .compat_support import run_program
 
 ARDUINO_INPUTS = """
@@ -156,6 +158,8 @@ def test_a_program_lights_the_kch_and_sees_markers(tmp_path: Path) -> None:
 KEEP_STARTING = """
 import threading, time
 from pathlib import Path
+
+import pytest
 def keep_starting():
     while True:
         time.sleep(0.2)
@@ -232,3 +236,14 @@ def test_with_every_cable_pulled_each_call_raises_the_disconnection_error(
     assert run.line("status") == "25 True True False"
     assert run.line("failed") == "28 of 29"
     assert run.line("worked") == "['servo limits']"  # (kept by j5aio: nothing is sent)
+
+
+def test_the_api_works_with_the_live_view(tmp_path: Path) -> None:
+    from j5aio.view import web_stack_installed
+
+    if not web_stack_installed():
+        pytest.skip("the live view needs the 'view' extra (aiohttp)")
+    run = run_program("sr3_drive.py", tmp_path, "--start-after", "0", "--view")
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert "http://127.0.0.1:" in run.stderr + run.stdout
+    assert run.line("powers") == "0.5 -0.25"
