@@ -248,3 +248,17 @@ def test_the_api_works_with_the_live_view(tmp_path: Path) -> None:
     assert run.returncode == 0, run.stderr[-3000:]
     assert "http://127.0.0.1:" in run.stderr + run.stdout
     assert run.line("powers") == "0.5 -0.25"
+
+
+def test_sr_robot3s_documented_uses(tmp_path: Path) -> None:
+    run = run_program("sr3_docs_tour.py", tmp_path, "--start-after", "0", "--zone", "3")
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.lines("tour") == [
+        "motors 0.5", "battery True", "arduino True True", "vision True",
+        "metadata 3 A RobotMode.DEV",
+    ]
+    power = run.received("sr-power-fw4")
+    assert "OUT:0:SET:0\nOUT:6:SET:1\nNOTE:1000:500\nNOTE:2349:250\n" in power
+    motor = run.received("sr-motor-fw4")
+    assert "MOT:0:SET:1000\nMOT:1:SET:-1000\nMOT:1:SET:500\nMOT:0:DISABLE\n" in motor
+    assert "SERVO:0:SET:1250\n" in run.received("sr-servo-fw4")
