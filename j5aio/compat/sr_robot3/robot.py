@@ -65,8 +65,8 @@ class Robot:
     """
 
     __slots__ = (
-        "_arduinos", "_cameras", "_epoch", "_kch", "_kit", "_metadata", "_motor_boards",
-        "_no_powerboard", "_power_board", "_raw_ports", "_servo_boards",
+        "_arduinos", "_cameras", "_epoch", "_kch", "_kit", "_motor_boards", "_no_powerboard",
+        "_power_board", "_raw_ports", "_servo_boards", "_started",
     )
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
@@ -85,9 +85,10 @@ class Robot:
     ) -> None:
         setup_logging(debug, trace_logging)
         LOGGER.info(f"sr.robot3 version {SR_ROBOT3_VERSION} (on j5aio {j5aio_version})")
-        self._metadata: RobotMode | None = None
+        self._started = False
         self._no_powerboard = no_powerboard
         self._kit: KitRobot = open_kit(power_board_needed=not no_powerboard)
+        add_game_over_hook(end_of_match)  # (in a match, game over then ends the program)
         self._epoch = time.time() - self._kit.time()
         if manual_boards:
             LOGGER.warning(
@@ -244,7 +245,7 @@ class Robot:
         return robot_mode(self._kit.mode)
 
     def _require_start(self) -> None:
-        if self._metadata is None:
+        if not self._started:
             raise MetadataNotReadyError()
 
     @property
@@ -270,12 +271,11 @@ class Robot:
         start LED); in a match (COMP mode) the robot stops when the match is over.
         """
         LOGGER.info("Waiting for start button.")
-        if self._metadata is None:
+        if not self._started:
             self._kit.wait_start()
             self._epoch = time.time() - self._kit.time()
-            self._metadata = robot_mode(self._kit.mode)
+            self._started = True
             if self._kit.match_timer is not None:
-                add_game_over_hook(end_of_match)
                 LOGGER.info(f"Timeout set: {self._kit.metadata.duration:g}s")
         else:
             self._wait_again()
