@@ -262,3 +262,25 @@ def test_sr_robot3s_documented_uses(tmp_path: Path) -> None:
     motor = run.received("sr-motor-fw4")
     assert "MOT:0:SET:1000\nMOT:1:SET:-1000\nMOT:1:SET:500\nMOT:0:DISABLE\n" in motor
     assert "SERVO:0:SET:1250\n" in run.received("sr-servo-fw4")
+
+
+def test_the_command_line_itself_runs_an_sr_robot3_program(tmp_path: Path) -> None:
+    import os
+    import subprocess
+    import sys
+
+    from .compat_support import PROGRAMS, ROOT
+
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("J5AIO_ENV", "J5AIO_KIT"))}
+    env["PYTHONPATH"] = os.pathsep.join([str(ROOT), env.get("PYTHONPATH", "")])
+    env["J5AIO_START_FILE"] = str(tmp_path / "start")
+    result = subprocess.run(
+        [sys.executable, "-m", "j5aio", "run", "--api", "sr-robot3", "--sim", "--kit", "sr2023",
+         "--start-after", "0", "--log-dir", str(tmp_path / "logs"),
+         str(PROGRAMS / "sr3_drive.py")],
+        capture_output=True, text=True, timeout=90, env=env, cwd=tmp_path, check=False,
+    )
+    assert result.returncode == 0, result.stderr[-3000:]
+    assert "powers 0.5 -0.25" in result.stdout
+    logs = list((tmp_path / "logs").glob("run-*.log"))
+    assert len(logs) == 1 and "Found MotorBoard, serial: SIMMB0" in logs[0].read_text()
