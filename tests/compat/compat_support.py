@@ -57,13 +57,16 @@ def run_program(
     program: str,
     tmp_path: Path,
     *options: str,
-    api: str = "sr-robot3",
+    api: str | None = "sr-robot3",
     kit: str = "sr2023",
     setup: str = "",
     arguments: tuple[str, ...] = (),
     timeout: float = 90,
 ) -> Run:
-    """Run ``programs/<program>`` with ``python -m j5aio run --api API --sim --kit KIT``."""
+    """Run ``programs/<program>`` with ``python -m j5aio run --api API --sim --kit KIT``.
+
+    ``api=None`` leaves ``--api`` out.
+    """
     report = tmp_path / "boards.json"
     env = {k: v for k, v in os.environ.items() if not k.startswith(("J5AIO_ENV", "J5AIO_KIT"))}
     env["PYTHONPATH"] = os.pathsep.join([str(ROOT), env.get("PYTHONPATH", "")])
@@ -73,7 +76,7 @@ def run_program(
     env["COMPAT_SETUP"] = setup
     command = [
         sys.executable, str(RECORDED_RUN), str(report), "--",
-        "run", "--api", api, "--sim", "--kit", kit, "--no-log", *options,
+        "run", *(("--api", api) if api else ()), "--sim", "--kit", kit, "--no-log", *options,
         str(PROGRAMS / program), *arguments,
     ]
     result = subprocess.run(

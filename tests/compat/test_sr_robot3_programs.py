@@ -284,3 +284,10 @@ def test_the_command_line_itself_runs_an_sr_robot3_program(tmp_path: Path) -> No
     assert "powers 0.5 -0.25" in result.stdout
     logs = list((tmp_path / "logs").glob("run-*.log"))
     assert len(logs) == 1 and "Found MotorBoard, serial: SIMMB0" in logs[0].read_text()
+
+
+def test_the_module_works_imported_by_its_own_name(tmp_path: Path) -> None:
+    run = run_program("sr3_direct_import.py", tmp_path, api=None)
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.line("direct") == "0.75 False"
+    assert "MOT:1:SET:750\n" in run.received("sr-motor-fw4")
