@@ -10,7 +10,6 @@ import pytest
 import serial
 
 from j5aio.compat.sr_robot3 import exceptions, raw_serial
-from j5aio.compat.sr_robot3.arduino import sr_robot3_volts
 from j5aio.compat.sr_robot3.astoria import RobotMode, robot_mode
 from j5aio.compat.sr_robot3.camera import _jpeg
 from j5aio.compat.sr_robot3.game_specific import marker_size_table
@@ -25,6 +24,7 @@ from j5aio.compat.sr_robot3.utils import (
     map_to_int,
     singular,
 )
+from j5aio.compat.units import volts_on_1023_scale, whole_millimetres
 from j5aio.competition.metadata import Mode
 from j5aio.errors import CommunicationTimeoutError
 from j5aio.vision.markers import Marker as CoreMarker
@@ -52,7 +52,13 @@ def test_numbers_are_checked_and_mapped_as_sr_robot3_does() -> None:
 @pytest.mark.parametrize("adc", [0, 1, 511, 512, 1000, 1023])
 def test_volts_are_sr_robot3s_for_every_adc_value(adc: int) -> None:
     j5aio_volts = adc / 1024 * 5  # (what j5aio's SR Arduino codec gives)
-    assert sr_robot3_volts(j5aio_volts) == round(adc / 1023 * 5, 3)
+    assert volts_on_1023_scale(j5aio_volts) == round(adc / 1023 * 5, 3)
+
+
+@pytest.mark.parametrize("millimetres", [1, 29, 123, 500, 4000, 10344])
+def test_ultrasound_millimetres_are_the_firmwares(millimetres: int) -> None:
+    assert whole_millimetres(millimetres / 1000) == millimetres  # (j5aio's metres)
+    assert whole_millimetres(None) == 0
 
 
 def test_status_answers_are_read_as_sr_robot3_reads_them() -> None:

@@ -6,7 +6,8 @@ from enum import Enum, IntEnum
 from typing import TYPE_CHECKING, Final
 
 from j5aio.compat.sr_robot3.exceptions import disconnected
-from j5aio.compat.sr_robot3.utils import BoardIdentity, map_to_float
+from j5aio.compat.sr_robot3.utils import BoardIdentity
+from j5aio.compat.units import volts_on_1023_scale, whole_millimetres
 from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
 from j5aio.errors import CommunicationError, NotSupportedByHardwareError
 from j5aio.sync import AllDigitalUno, Ruggeduino, SBArduinoBoard
@@ -38,19 +39,6 @@ class AnalogPins(IntEnum):
 
 _FIRST_ANALOGUE: Final = 14
 _PIN_COUNT: Final = 20
-_ADC_STEPS: Final = 1024  # (j5aio's volts are ADC / 1024 x 5; sr-robot3's ADC / 1023 x 5)
-_ADC_MAX: Final = 1023
-
-
-def sr_robot3_volts(volts: float) -> float:
-    """sr-robot3's reading of the ADC value that j5aio read as ``volts``.
-
-    The firmware sends the 10-bit ADC value; j5aio gives ``value / 1024 x 5`` volts and
-    sr-robot3 gives ``value / 1023 x 5``, rounded to 3 places. The value is worked back
-    exactly from j5aio's volts.
-    """
-    adc = max(0, min(_ADC_MAX, round(volts * _ADC_STEPS / 5)))
-    return map_to_float(adc, 0, _ADC_MAX, 0.0, 5.0)
 
 
 class Pin:
@@ -172,7 +160,7 @@ class Pin:
             raise OSError("Pin does not support analog read")
         try:
             self._put_in(pin, CoreMode.ANALOGUE_INPUT)
-            return sr_robot3_volts(pin.analogue_read())
+            return volts_on_1023_scale(pin.analogue_read())
         except CommunicationError as error:
             raise disconnected(error) from error
 
@@ -267,7 +255,7 @@ class Arduino:
         finally:
             self._pins[pulse_pin]._forget_core_mode()
             self._pins[echo_pin]._forget_core_mode()
-        return 0 if metres is None else round(metres * 1000)
+        return whole_millimetres(metres)
 
     def __repr__(self) -> str:
         return f"<{type(self).__qualname__}: {self._board!r}>"
