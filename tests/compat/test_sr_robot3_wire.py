@@ -13,16 +13,23 @@ from __future__ import annotations
 import json
 import os
 import re
+import subprocess
 import sys
 from collections.abc import Callable
 from importlib.util import find_spec
 from pathlib import Path
+from typing import Any
 
 import pytest
 
-from tests.peers.peer_support import ServedKit, run_peer
+from j5aio.simulator import SERIAL_SIMULATORS
+from j5aio.simulator.serve import PtyServer, serve_on_pty
 
 from .compat_support import PROGRAMS, run_program
+
+if sys.platform == "win32":  # pragma: no cover
+    pytest.skip("sr-robot3's boards are served on pseudo-terminals (POSIX only)",
+                allow_module_level=True)
 
 SIMULATORS = {
     "sr-power-fw4": "SIMPB0", "sr-motor-fw4": "SIMMB0", "sr-servo-fw4": "SIMSB0",
@@ -43,6 +50,27 @@ arduino.set_input_level(3, True)
 arduino.set_analogue(14, volts=1.25)
 arduino.set_ultrasound_distance(4, 5, 0.75)
 """
+
+
+class ServedKit:
+    """The simulated boards, each served on a pseudo-terminal of its own."""
+
+    def __init__(self, boards: dict[str, str]) -> None:
+        self.simulators: dict[str, Any] = {
+            name: SERIAL_SIMULATORS[name](serial) for name, serial in boards.items()
+        }
+        self._servers: dict[str, PtyServer] = {
+            name: serve_on_pty(simulator, time_scale=0)
+            for name, simulator in self.simulators.items()
+        }
+
+    def path(self, name: str) -> str:
+        """The pseudo-terminal of board ``name``."""
+        return self._servers[name].path
+
+    def close(self) -> None:
+        for server in self._servers.values():
+            server.close()
 
 
 def commands(board: str, received: str) -> list[str]:
@@ -128,10 +156,7 @@ def run_sr_robot3(python: str, tmp_path: Path) -> tuple[dict[str, list[str]], st
         arduino.set_ultrasound_distance(4, 5, 0.75)
         ports = {BOARD_TYPES[name]: [kit.path(name)] for name in SIMULATORS}
         program = (PROGRAMS / "sr3_wire.py").read_text()
-        env = {"WIRE_BOARDS": json.dumps(ports)}
-        if python != sys.executable:
-            env["PYTHONPATH"] = ""
-        output = run_peer_with(python, program, env)
+        output = run_sr_robot3_program(python, program, {"WIRE_BOARDS": json.dumps(ports)})
     finally:
         kit.close()
     return {
@@ -140,15 +165,15 @@ def run_sr_robot3(python: str, tmp_path: Path) -> tuple[dict[str, list[str]], st
     }, output
 
 
-def run_peer_with(python: str, program: str, env: dict[str, str]) -> str:
-    if python == sys.executable:
-        return json.dumps(run_peer(program, env=env))
-    import subprocess
-
+def run_sr_robot3_program(python: str, program: str, env: dict[str, str]) -> str:
+    """Run ``program`` with sr-robot3 in ``python``; return what it printed."""
+    environment = {
+        name: value for name, value in os.environ.items()
+        if not name.startswith(("J5AIO", "SBOT_", "WEBOTS_")) and name != "PYTHONPATH"
+    }
     result = subprocess.run(
         [python, "-c", program], capture_output=True, text=True, timeout=120,
-        env={**{k: v for k, v in os.environ.items() if k != "PYTHONPATH"}, **env},
-        check=False,
+        env={**environment, **env}, check=False,
     )
     assert result.returncode == 0, result.stderr[-3000:]
     return result.stdout
@@ -175,5 +200,5 @@ def test_sr_robot3_and_j5aio_send_the_same_commands(peer_python: str, tmp_path: 
         start = found.index("OUT:0:SET:1")
         assert found[start:start + 6] == power_on
     # And the program read the same values through both.
-    if their_output:
-        assert printed(their_output) == printed(run.stdout)
+    assert printed(their_output) == printed(run.stdout)
+    assert len(printed(run.stdout)) == 6
