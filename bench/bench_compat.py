@@ -13,8 +13,10 @@ call both ways, on the same board objects, in interleaved rounds:
 * ``digital_read``: an input pin of the Arduino;
 * ``analog_read``: A0 (sr-robot3 also rescales to its volts).
 
-Each round times ``--calls`` calls of each case on each side; the figure is the median
-over rounds of the mean time per call, in µs, with the ratio compat / sync.
+Each round times ``--calls`` calls of each case on each side, in batches of ``--batch``
+calls, the two sides taking turns batch by batch (so that the load of a shared machine
+falls on both alike); the figure is the median of the batches' mean time per call, in
+µs, with the ratio compat / sync.
 
 sbot (``j5aio.compat.sbot``) is measured the same way once its module exists: its cases
 go in :data:`SBOT_CASES` (``motors.set_power(0, 0.5)`` beside the sync call on the same
@@ -22,7 +24,7 @@ motor, ...), run on the ``sb2024`` kit in a child process (one robot per process
 
 Run::
 
-    PYTHONPATH=$PWD python bench/bench_compat.py [--calls 2000] [--rounds 7]
+    PYTHONPATH=$PWD python bench/bench_compat.py [--calls 2000] [--rounds 7] [--batch 50]
 
 Goal (issue 20): compat / sync <= 1.0 (within the noise of a shared machine: a few %).
 """
@@ -95,21 +97,23 @@ def per_call(call: Callable[[], Any], calls: int) -> float:
     return (time.perf_counter() - start) / calls * 1e6
 
 
-def measure(cases: list[Case], calls: int, rounds: int) -> None:
+def measure(cases: list[Case], calls: int, rounds: int, batch: int) -> None:
     for _, compat, sync in cases:  # (once each first: nothing is measured cold)
         compat()
         sync()
     figures: dict[str, tuple[list[float], list[float]]] = {
         name: ([], []) for name, _, _ in cases}
-    for round_number in range(rounds):
+    batches = max(1, calls // batch)
+    for _ in range(rounds):
         for name, compat, sync in cases:
             mine, theirs = figures[name]
-            if round_number % 2:  # (alternate which side goes first)
-                theirs.append(per_call(sync, calls))
-                mine.append(per_call(compat, calls))
-            else:
-                mine.append(per_call(compat, calls))
-                theirs.append(per_call(sync, calls))
+            for number in range(batches):  # (small batches, in turn: drift hits both)
+                if number % 2:
+                    theirs.append(per_call(sync, batch))
+                    mine.append(per_call(compat, batch))
+                else:
+                    mine.append(per_call(compat, batch))
+                    theirs.append(per_call(sync, batch))
     print(f"{'call':<20}{'compat µs':>11}{'sync µs':>10}{'ratio':>8}")
     for name, (mine, theirs) in figures.items():
         compat_us, sync_us = statistics.median(mine), statistics.median(theirs)
@@ -119,10 +123,12 @@ def measure(cases: list[Case], calls: int, rounds: int) -> None:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--calls", type=int, default=2000, help="calls per case per round")
-    parser.add_argument("--rounds", type=int, default=7, help="interleaved rounds")
+    parser.add_argument("--rounds", type=int, default=7, help="rounds over the cases")
+    parser.add_argument(
+        "--batch", type=int, default=50, help="calls per timed batch (sides alternate)")
     args = parser.parse_args()
     print(f"sr-robot3 on the simulated sr2023 kit: {args.calls} calls x {args.rounds} rounds")
-    measure(sr_robot3_cases(), args.calls, args.rounds)
+    measure(sr_robot3_cases(), args.calls, args.rounds, args.batch)
     if SBOT_CASES is None:
         print("sbot: j5aio.compat.sbot's cases are not written yet (see SBOT_CASES)")
     return 0
