@@ -11,6 +11,7 @@ from j5aio.compat.units import volts_on_1023_scale, whole_millimetres
 from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
 from j5aio.errors import CommunicationError, NotSupportedByHardwareError
 from j5aio.sync import AllDigitalUno, Ruggeduino, SBArduinoBoard
+from j5aio.sync.wrapping import call, unwrap
 
 if TYPE_CHECKING:
     from j5aio.sync import ArduinoUno, GPIOPin
@@ -51,10 +52,11 @@ class Pin:
     :param index: the pin's number.
     """
 
-    __slots__ = ("_core_mode", "_index", "_mode", "_pin")
+    __slots__ = ("_core_mode", "_core_pin", "_index", "_mode", "_pin")
 
     def __init__(self, pin: GPIOPin | None, index: int) -> None:
         self._pin = pin
+        self._core_pin = unwrap(pin)  # (its coroutines, called through the facade's runtime)
         self._index = index
         self._mode = GPIOPinMode.INPUT
         self._core_mode: CoreMode | None = None  # (None: ask j5aio's pin)
@@ -130,9 +132,10 @@ class Pin:
                 else CoreMode.DIGITAL_INPUT
             )
             self._put_in(pin, wanted)
-            return pin.digital_read()
+            level: bool = call(self._core_pin.digital_read)
         except CommunicationError as error:
             raise disconnected(error) from error
+        return level
 
     def digital_write(self, value: bool) -> None:
         """Drive an output pin high (true) or low (false).
@@ -144,7 +147,7 @@ class Pin:
             raise OSError(f"Digital write is not supported in {self._mode}")
         try:
             self._put_in(pin, CoreMode.DIGITAL_OUTPUT)
-            pin.digital_write(bool(value))
+            call(self._core_pin.digital_write, bool(value))
         except CommunicationError as error:
             raise disconnected(error) from error
 
@@ -160,9 +163,10 @@ class Pin:
             raise OSError("Pin does not support analog read")
         try:
             self._put_in(pin, CoreMode.ANALOGUE_INPUT)
-            return volts_on_1023_scale(pin.analogue_read())
+            volts: float = call(self._core_pin.analogue_read)
         except CommunicationError as error:
             raise disconnected(error) from error
+        return volts_on_1023_scale(volts)
 
     def __repr__(self) -> str:
         return (

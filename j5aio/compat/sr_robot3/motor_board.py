@@ -10,6 +10,7 @@ from j5aio.compat.sr_robot3.utils import BoardIdentity, float_bounds_check, map_
 from j5aio.components.motor import MotorSpecialState
 from j5aio.errors import CommunicationError
 from j5aio.sync import MonitoredMotor, MotorBoardFw4
+from j5aio.sync.wrapping import call, unwrap
 
 if TYPE_CHECKING:
     from j5aio.sync import Motor as CoreMotor
@@ -51,11 +52,16 @@ class Motor:
     :param index: its number on the board.
     """
 
-    __slots__ = ("_index", "_motor")
+    __slots__ = ("_get_power", "_index", "_motor", "_set_power")
 
     def __init__(self, motor: CoreMotor, index: int) -> None:
         self._motor = motor
         self._index = index
+        # The core's coroutines, called through the sync facade's runtime (one call each,
+        # as j5aio.sync's own property makes).
+        core = unwrap(motor)
+        self._get_power = core.get_power
+        self._set_power = core.set_power
 
     @property
     def power(self) -> float:
@@ -68,7 +74,7 @@ class Motor:
         :raises ValueError: the power set is outside [-1, 1].
         """
         try:
-            state = self._motor.power
+            state: float | MotorSpecialState = call(self._get_power)
         except CommunicationError as error:
             raise disconnected(error) from error
         if state is _COAST:
@@ -86,7 +92,7 @@ class Motor:
             # sr-robot3's thousandths, truncated; j5aio sends round(p x 1000) of this.
             target = map_to_int(checked, -1.0, 1.0, -1000, 1000) / 1000
         try:
-            self._motor.power = target
+            call(self._set_power, target)
         except CommunicationError as error:
             raise disconnected(error) from error
 

@@ -11,6 +11,7 @@ from j5aio.compat.sr_robot3.utils import BoardIdentity, float_bounds_check
 from j5aio.components.flashing_led import LEDMode
 from j5aio.errors import CommunicationError
 from j5aio.sync import FlashingLED, PowerBoardFw4, ProtectedPowerOutput
+from j5aio.sync.wrapping import call, unwrap
 
 if TYPE_CHECKING:
     from j5aio.sync import LED, PowerOutput
@@ -216,26 +217,31 @@ class BatterySensor:
     :param board: j5aio's power board.
     """
 
-    __slots__ = ("_sensor",)
+    __slots__ = ("_get_current", "_get_voltage", "_sensor")
 
     def __init__(self, board: CorePowerBoard) -> None:
         self._sensor = board.battery_sensor
+        core = unwrap(self._sensor)  # (its coroutines, called through the facade's runtime)
+        self._get_voltage = core.get_voltage
+        self._get_current = core.get_current
 
     @property
     def voltage(self) -> float:
         """The battery's voltage, in volts."""
         try:
-            return self._sensor.voltage
+            voltage: float = call(self._get_voltage)
         except CommunicationError as error:
             raise disconnected(error) from error
+        return voltage
 
     @property
     def current(self) -> float:
         """The current drawn from the battery, in amps."""
         try:
-            return self._sensor.current
+            current: float = call(self._get_current)
         except CommunicationError as error:
             raise disconnected(error) from error
+        return current
 
     def __repr__(self) -> str:
         return f"<{type(self).__qualname__}: {self._sensor!r}>"

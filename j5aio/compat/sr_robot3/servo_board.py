@@ -8,6 +8,7 @@ from j5aio.compat.sr_robot3.exceptions import disconnected
 from j5aio.compat.sr_robot3.utils import BoardIdentity, float_bounds_check
 from j5aio.errors import CommunicationError, NotSupportedByHardwareError
 from j5aio.sync import PulseServo, ServoBoardFw4
+from j5aio.sync.wrapping import call, unwrap
 
 if TYPE_CHECKING:
     from j5aio.sync import Servo as CoreServo
@@ -47,11 +48,14 @@ class Servo:
     :param index: its number on the board.
     """
 
-    __slots__ = ("_duty_max", "_duty_min", "_index", "_servo")
+    __slots__ = ("_duty_max", "_duty_min", "_get_position", "_index", "_servo", "_set_position")
 
     def __init__(self, servo: CoreServo, index: int) -> None:
         self._servo = servo
         self._index = index
+        core = unwrap(servo)  # (its coroutines, called through the sync facade's runtime)
+        self._get_position = core.get_position
+        self._set_position = core.set_position
         self._duty_min = START_DUTY_MIN
         self._duty_max = START_DUTY_MAX
 
@@ -98,7 +102,7 @@ class Servo:
         :raises ValueError: the position set is outside [-1, 1].
         """
         try:
-            position = self._servo.position
+            position: float | None = call(self._get_position)
         except CommunicationError as error:
             raise disconnected(error) from error
         if position is None:
@@ -115,7 +119,7 @@ class Servo:
         try:
             # Reversed limits are j5aio's limits in order with the position turned round:
             # the pulse is the same.
-            self._servo.position = -checked if self._reversed else checked
+            call(self._set_position, -checked if self._reversed else checked)
         except CommunicationError as error:
             raise disconnected(error) from error
 
