@@ -165,6 +165,18 @@ def run_sr_robot3(python: str, tmp_path: Path) -> tuple[dict[str, list[str]], st
     }, output
 
 
+#: Run before the program: sr-robot3 takes its robot lock on TCP port 10653, which a robot
+#: program running beside the tests may hold; it is given a free port instead.
+OWN_LOCK_PORT = """
+import functools, os, socket
+import sr.robot3.robot, sr.robot3.utils
+with socket.socket() as probe:
+    probe.bind(("127.0.0.1", 0))
+    port = probe.getsockname()[1]
+sr.robot3.robot.obtain_lock = functools.partial(sr.robot3.utils.obtain_lock, port)
+"""
+
+
 def run_sr_robot3_program(python: str, program: str, env: dict[str, str]) -> str:
     """Run ``program`` with sr-robot3 in ``python``; return what it printed."""
     environment = {
@@ -172,7 +184,7 @@ def run_sr_robot3_program(python: str, program: str, env: dict[str, str]) -> str
         if not name.startswith(("J5AIO", "SBOT_", "WEBOTS_")) and name != "PYTHONPATH"
     }
     result = subprocess.run(
-        [python, "-c", program], capture_output=True, text=True, timeout=120,
+        [python, "-c", OWN_LOCK_PORT + program], capture_output=True, text=True, timeout=120,
         env={**environment, **env}, check=False,
     )
     assert result.returncode == 0, result.stderr[-3000:]
