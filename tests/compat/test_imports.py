@@ -36,8 +36,7 @@ def test_sr_robot3_is_j5aios_module_under_the_api() -> None:
     assert robot3 is compat
     assert importlib.import_module("sr.robot3.power_board") is importlib.import_module(
         "j5aio.compat.sr_robot3.power_board")
-    sr = importlib.import_module("sr")
-    assert sr.robot3 is compat and list(sr.__path__) == []
+    assert importlib.import_module("sr").robot3 is compat  # (sr: ours, or sr-robot3's)
     with pytest.raises(ModuleNotFoundError):
         importlib.import_module("sr.robot3.no_such_module")
     with pytest.raises(ModuleNotFoundError):
@@ -55,6 +54,13 @@ def test_sbot_is_redirected_to_j5aios_sbot_module() -> None:
     assert importlib.import_module("sbot") is importlib.import_module("json")
     assert importlib.import_module("sbot.decoder") is importlib.import_module("json.decoder")
     assert finder.find_spec("sbotanical") is None
+
+
+@pytest.mark.usefixtures("clean_modules")
+def test_a_dotted_name_gets_an_empty_parent_package() -> None:
+    sys.meta_path.insert(0, imports.CompatFinder({"sbot.inner": "json"}))
+    assert importlib.import_module("sbot.inner") is importlib.import_module("json")
+    assert list(importlib.import_module("sbot").__path__) == []
 
 
 def test_an_unknown_api_is_refused() -> None:
