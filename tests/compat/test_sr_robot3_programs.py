@@ -291,3 +291,10 @@ def test_the_module_works_imported_by_its_own_name(tmp_path: Path) -> None:
     assert run.returncode == 0, run.stderr[-3000:]
     assert run.line("direct") == "0.75 False"
     assert "MOT:1:SET:750\n" in run.received("sr-motor-fw4")
+
+
+def test_trace_logging_shows_the_wire_traffic(tmp_path: Path) -> None:
+    run = run_program("sr3_trace.py", tmp_path)
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert "root - TRACE - Trace Mode is enabled" in run.stdout
+    assert "- TRACE - -> b'MOT:0:SET:500\\n'" in run.stdout
