@@ -1,0 +1,202 @@
+"""sbot's ``arduino``: the SourceBots Arduino's pins, read and written as sbot does.
+
+sbot sends pin commands as they come and lets the firmware decide; j5aio's pins check
+each use against the pin's mode. The two agree on what the board ends up doing: this
+module keeps j5aio's pin in the mode that matches what sbot would have told the board.
+
+- ``INPUT`` is j5aio's ``ANALOGUE_INPUT`` on A0 to A5 and ``DIGITAL_INPUT`` on the others
+  (both are a plain input on the wire); a digital read of A0 to A5 or an analogue read
+  of a pin put in ``DIGITAL_INPUT`` switches between the two, which changes nothing on
+  the board.
+- A digital read of an output gives the level last written to it.
+- A digital write to an input sets its pull-up, as the firmware does: ``True`` makes it
+  ``INPUT_PULLUP``, ``False`` ``INPUT``.
+"""
+
+from __future__ import annotations
+
+from enum import Enum, IntEnum
+from typing import TYPE_CHECKING
+
+from ._checks import map_to_float
+from ._kit import KitLink
+
+if TYPE_CHECKING:
+    from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
+    from j5aio.sync import GPIOPin
+
+__all__ = [
+    "ADC_MAX",
+    "ADC_MIN",
+    "AVAILABLE_PINS",
+    "DISABLED_PINS",
+    "AnalogPin",
+    "Arduino",
+    "GPIOPinMode",
+]
+
+
+class GPIOPinMode(str, Enum):  # noqa: UP042 - sbot's str() of a mode
+    """The modes of a pin."""
+
+    INPUT = "INPUT"
+    INPUT_PULLUP = "INPUT_PULLUP"
+    OUTPUT = "OUTPUT"
+
+
+class AnalogPin(IntEnum):
+    """The analogue pins, by their pin numbers."""
+
+    A0 = 14
+    A1 = 15
+    A2 = 16
+    A3 = 17
+    A4 = 18
+    A5 = 19
+
+
+#: The pins of the serial link to the brain.
+DISABLED_PINS = (0, 1)
+#: Every pin number of the Arduino.
+AVAILABLE_PINS = range(0, max(AnalogPin) + 1)
+#: The largest reading of the 10-bit ADC.
+ADC_MAX = 1023
+#: The smallest reading of the ADC.
+ADC_MIN = 0
+#: The steps j5aio's sb2024 codec divides 5 V into (volts = reading / 1024 x 5).
+_J5AIO_ADC_STEPS = 1024
+
+
+class Arduino:
+    """The Arduino running the sb2024 firmware.
+
+    :param boards: the kit the Arduino is found on.
+    """
+
+    __slots__ = ("_boards",)
+
+    def __init__(self, boards: KitLink) -> None:
+        self._boards = boards
+
+    def _pin(self, pin: int) -> GPIOPin:
+        board = self._boards.arduino()
+        _validate_pin(pin)
+        return board.pins[pin]
+
+    def set_pin_mode(self, pin: int, mode: GPIOPinMode) -> None:
+        """Put ``pin`` in ``mode``: INPUT or INPUT_PULLUP to read it, OUTPUT to write it.
+
+        :raises IOError: ``mode`` is not a :class:`GPIOPinMode`, or the pin is 0 or 1.
+        :raises IndexError: there is no such pin.
+        """
+        from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
+
+        target = self._pin(pin)
+        if not isinstance(mode, GPIOPinMode):
+            raise OSError("Pin mode only supports being set to a GPIOPinMode")
+        if mode is GPIOPinMode.OUTPUT:
+            target.mode = CoreMode.DIGITAL_OUTPUT
+        elif mode is GPIOPinMode.INPUT_PULLUP:
+            target.mode = CoreMode.DIGITAL_INPUT_PULLUP
+        else:
+            target.mode = _plain_input(pin)
+
+    def digital_read(self, pin: int) -> bool:
+        """Read ``pin``'s level (an output gives the level last written to it).
+
+        :raises IOError: the pin is 0 or 1.
+        :raises IndexError: there is no such pin.
+        """
+        from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
+
+        target = self._pin(pin)
+        mode = target.mode
+        if mode == CoreMode.DIGITAL_OUTPUT:
+            return target.last_digital_write
+        if mode == CoreMode.ANALOGUE_INPUT:
+            target.mode = CoreMode.DIGITAL_INPUT
+        return target.digital_read()
+
+    def digital_write(self, pin: int, value: bool) -> None:
+        """Drive output ``pin`` high or low (on an input: switch its pull-up on or off).
+
+        :raises IOError: the pin is 0 or 1.
+        :raises IndexError: there is no such pin.
+        """
+        from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
+
+        target = self._pin(pin)
+        if target.mode == CoreMode.DIGITAL_OUTPUT:
+            target.digital_write(bool(value))
+        elif value:
+            target.mode = CoreMode.DIGITAL_INPUT_PULLUP
+        else:
+            target.mode = _plain_input(pin)
+
+    def analog_read(self, pin: int) -> float:
+        """Return the voltage on analogue ``pin`` (A0 to A5), 0 to 5 V.
+
+        :raises IOError: the pin is not an analogue pin, or it is not in INPUT mode.
+        :raises IndexError: there is no such pin.
+        """
+        from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
+
+        target = self._pin(pin)
+        try:
+            AnalogPin(pin)
+        except ValueError:
+            raise OSError("Pin does not support analog read") from None
+        mode = target.mode
+        if mode == CoreMode.DIGITAL_INPUT:
+            target.mode = CoreMode.ANALOGUE_INPUT
+        elif mode != CoreMode.ANALOGUE_INPUT:
+            raise OSError(
+                f"Pin {pin} is in {_sbot_mode_name(mode)} mode: analog_read needs it in "
+                f"INPUT mode (arduino.set_pin_mode({pin}, GPIOPinMode.INPUT))",
+            )
+        # j5aio's codec gives volts as reading / 1024 x 5; sbot maps 0-1023 onto 0-5 V.
+        reading = round(target.analogue_read() / 5 * _J5AIO_ADC_STEPS)
+        return map_to_float(reading, ADC_MIN, ADC_MAX, 0.0, 5.0)
+
+    def measure_ultrasound_distance(self, pulse_pin: int, echo_pin: int) -> int:
+        """Return the distance an ultrasound sensor measures, in mm (0: no echo).
+
+        :raises ValueError: either pin is not a usable pin.
+        """
+        board = self._boards.arduino()
+        try:
+            _validate_pin(pulse_pin)
+        except (IndexError, OSError):
+            raise ValueError("Invalid pulse pin provided") from None
+        try:
+            _validate_pin(echo_pin)
+        except (IndexError, OSError):
+            raise ValueError("Invalid echo pin provided") from None
+        metres = board.ultrasound_sensors[pulse_pin, echo_pin].distance()
+        return 0 if metres is None else round(metres * 1000)
+
+    def __repr__(self) -> str:
+        if not self._boards.arduinos:
+            return f"<{self.__class__.__qualname__} no arduino connected>"
+        return f"<{self.__class__.__qualname__} {self._boards.arduinos[0].serial_number}>"
+
+
+def _validate_pin(pin: int) -> None:
+    if pin in DISABLED_PINS:
+        raise OSError("This pin cannot be controlled.")
+    if pin not in AVAILABLE_PINS:
+        raise IndexError(f"Pin {pin} is not available on the Arduino.")
+
+
+def _plain_input(pin: int) -> CoreMode:
+    """j5aio's mode for sbot's INPUT on ``pin``: analogue input on A0 to A5."""
+    from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
+
+    return CoreMode.ANALOGUE_INPUT if pin >= AnalogPin.A0 else CoreMode.DIGITAL_INPUT
+
+
+def _sbot_mode_name(mode: object) -> str:
+    """Return the name sbot gives j5aio's pin mode ``mode``."""
+    names = {"DIGITAL_OUTPUT": "OUTPUT", "DIGITAL_INPUT_PULLUP": "INPUT_PULLUP"}
+    name = str(getattr(mode, "name", mode))
+    return names.get(name, name)

@@ -1,0 +1,1 @@
+"""sbot's internal modules that programs reach: :mod:`.exceptions`."""

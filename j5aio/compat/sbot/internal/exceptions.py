@@ -1,0 +1,39 @@
+"""The exceptions of sbot, with sbot's base classes so that ``except`` clauses still catch them."""
+
+from __future__ import annotations
+
+from j5aio.errors import BoardDisconnectionError as _CoreDisconnection
+
+__all__ = ["BoardDisconnectionError", "MetadataKeyError", "MetadataNotReadyError"]
+
+
+class MetadataKeyError(KeyError):
+    """A metadata key has no value.
+
+    :param key: the key that was not found.
+    """
+
+    def __init__(self, key: str) -> None:
+        super().__init__(key)
+        self.key = key
+
+    def __str__(self) -> str:
+        return f"Key {self.key!r} not present in metadata"
+
+
+class MetadataNotReadyError(RuntimeError):
+    """The metadata (``comp.zone``, ``comp.is_competition``) was read before the start."""
+
+    def __str__(self) -> str:
+        return (
+            "Metadata (e.g. zone or is_competition) can only be used after"
+            " wait_start has been called"
+        )
+
+
+class BoardDisconnectionError(_CoreDisconnection, OSError):
+    """Talking to a board failed and could not be restarted.
+
+    It is both j5aio's :class:`~j5aio.errors.BoardDisconnectionError` and an ``IOError``
+    (sbot's base), so either kind of ``except`` clause catches it.
+    """
