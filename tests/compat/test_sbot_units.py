@@ -128,6 +128,7 @@ def test_a_marker_without_a_pose_is_refused_as_sbot_does() -> None:
     marker = Marker.from_core(posed)
     assert marker.position.distance == 1234 and marker.size == 100
     assert marker.orientation.roll == 3
+    assert type(marker.pixel_centre).__module__ == "j5aio.compat.sbot.marker"
 
 
 def test_the_exceptions_keep_sbots_base_classes() -> None:
@@ -174,3 +175,19 @@ def test_the_leds_light_the_hat_and_a_missing_arduino_is_named() -> None:
     assert got["colours"] == ["CYAN", "OFF", "YELLOW"]
     assert got["no_arduino"] == "No Arduinos connected"
     assert got["repr"] == "<Arduino no arduino connected>"
+
+
+def test_status_replies_parse_as_sbot_parses_them() -> None:
+    from j5aio.compat.sbot._motors import MotorStatus
+    from j5aio.compat.sbot._power import PowerStatus
+    from j5aio.compat.sbot._servos import ServoStatus
+    from j5aio.compat.sbot.internal.exceptions import IncorrectBoardError
+
+    assert MotorStatus.from_status_response("0,1:12250") == ((False, True), 12.25, [])
+    assert PowerStatus.from_status_response("0,0,1,0,0,0,0:31:1:5012:x") == (
+        (False, False, True, False, False, False, False), 31, True, 5.012, ["x"],
+    )
+    assert ServoStatus.from_status_response("1:0") == (True, False)
+    error = IncorrectBoardError("MCv4B", "PBv4B")
+    assert isinstance(error, OSError)
+    assert str(error) == "Board returned type 'MCv4B', expected 'PBv4B'"

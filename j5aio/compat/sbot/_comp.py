@@ -9,7 +9,12 @@ from .internal.exceptions import MetadataNotReadyError
 if TYPE_CHECKING:
     from j5aio.sync import KitRobot
 
-__all__ = ["DEFAULT_METADATA", "Comp", "Metadata"]
+__all__ = ["DEFAULT_METADATA", "METADATA_ENV_VAR", "METADATA_NAME", "Comp", "Metadata"]
+
+#: The environment variable naming the folder sbot searches for the metadata file.
+METADATA_ENV_VAR = "SBOT_METADATA_PATH"
+#: The name of sbot's metadata file.
+METADATA_NAME = "metadata.json"
 
 
 class Metadata(TypedDict):

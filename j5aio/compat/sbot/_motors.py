@@ -27,6 +27,16 @@ class MotorStatus(NamedTuple):
     input_voltage: float
     other: list[str] = []
 
+    @classmethod
+    def from_status_response(cls, response: str) -> MotorStatus:
+        """Parse the board's reply to ``*STATUS?``: ``<faults>:<input mV>[:...]``.
+
+        :raises ValueError: the reply is not of that form.
+        """
+        output_fault_str, input_voltage_mv, *other = response.split(":")
+        output_faults = tuple(port == "1" for port in output_fault_str.split(","))
+        return cls(output_faults, float(input_voltage_mv) / 1000, other)
+
 
 class Motor:
     """Every motor of the robot, by number: 0 and 1 on the first motor board, 2 and 3 next.

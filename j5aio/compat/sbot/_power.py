@@ -41,6 +41,21 @@ class PowerStatus(NamedTuple):
     regulator_voltage: float
     other: list[str] = []
 
+    @classmethod
+    def from_status_response(cls, response: str) -> PowerStatus:
+        """Parse the board's reply to ``*STATUS?``: ``<trips>:<°C>:<fan>:<5 V mV>[:...]``.
+
+        :raises ValueError: the reply is not of that form.
+        """
+        oc_flags, temp, fan_running, raw_voltage, *other = response.split(":")
+        return cls(
+            overcurrent=tuple(flag == "1" for flag in oc_flags.split(",")),
+            temperature=int(temp),
+            fan_running=fan_running == "1",
+            regulator_voltage=float(raw_voltage) / 1000,
+            other=other,
+        )
+
 
 #: The output that powers the brain: always on, not switchable.
 BRAIN_OUTPUT = PowerOutputPosition.L2

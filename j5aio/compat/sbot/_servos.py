@@ -39,6 +39,15 @@ class ServoStatus(NamedTuple):
     watchdog_failed: bool
     power_good: bool
 
+    @classmethod
+    def from_status_response(cls, response: str) -> ServoStatus:
+        """Parse the board's reply to ``*STATUS?``: ``<watchdog failed>:<power good>``.
+
+        :raises IndexError: the reply has fewer than two fields.
+        """
+        data = response.split(":")
+        return cls(watchdog_failed=data[0] == "1", power_good=data[1] == "1")
+
 
 class Servo:
     """Every servo of the robot, by number: 0 to 7 on the first servo board, 8 to 15 next.

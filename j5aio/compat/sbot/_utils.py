@@ -10,8 +10,9 @@ from enum import IntEnum
 from ._checks import float_bounds_check
 from ._comp import Comp
 from ._kit import KitLink
+from .game_specific import GAME_LENGTH
 
-__all__ = ["Note", "Utils"]
+__all__ = ["GAME_LENGTH", "Note", "Utils"]
 
 LOGGER = logging.getLogger("sbot._utils")
 

@@ -4,12 +4,19 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, NamedTuple
 
-from j5aio.vision.markers import Orientation, PixelCoordinates
+from j5aio.vision.markers import Orientation
 
 if TYPE_CHECKING:
     from j5aio.vision.markers import Marker as CoreMarker
 
 __all__ = ["Coordinates", "Marker", "Orientation", "PixelCoordinates", "PixelCorners", "Position"]
+
+
+class PixelCoordinates(NamedTuple):
+    """A point on the picture, in pixels from its top-left corner (x right, y down)."""
+
+    x: float
+    y: float
 
 
 class Coordinates(NamedTuple):
@@ -61,8 +68,13 @@ class Marker(NamedTuple):
         return cls(
             id=marker.id,
             size=int(marker.size),
-            pixel_corners=marker.pixel_corners,
-            pixel_centre=marker.pixel_centre,
+            pixel_corners=(
+                PixelCoordinates(*marker.pixel_corners[0]),
+                PixelCoordinates(*marker.pixel_corners[1]),
+                PixelCoordinates(*marker.pixel_corners[2]),
+                PixelCoordinates(*marker.pixel_corners[3]),
+            ),
+            pixel_centre=PixelCoordinates(*marker.pixel_centre),
             position=Position(
                 distance=int(marker.position.distance),
                 horizontal_angle=marker.position.horizontal_angle,

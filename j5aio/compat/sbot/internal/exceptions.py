@@ -4,7 +4,12 @@ from __future__ import annotations
 
 from j5aio.errors import BoardDisconnectionError as _CoreDisconnection
 
-__all__ = ["BoardDisconnectionError", "MetadataKeyError", "MetadataNotReadyError"]
+__all__ = [
+    "BoardDisconnectionError",
+    "IncorrectBoardError",
+    "MetadataKeyError",
+    "MetadataNotReadyError",
+]
 
 
 class MetadataKeyError(KeyError):
@@ -37,3 +42,19 @@ class BoardDisconnectionError(_CoreDisconnection, OSError):
     It is both j5aio's :class:`~j5aio.errors.BoardDisconnectionError` and an ``IOError``
     (sbot's base), so either kind of ``except`` clause catches it.
     """
+
+
+class IncorrectBoardError(OSError):
+    """A board answered ``*IDN?`` with another board type than the one expected.
+
+    :param board_type: the board type the board gave.
+    :param expected_type: the board type expected.
+    """
+
+    def __init__(self, board_type: str, expected_type: str) -> None:
+        super().__init__(board_type, expected_type)
+        self.returned_type = board_type
+        self.expected_type = expected_type
+
+    def __str__(self) -> str:
+        return f"Board returned type {self.returned_type!r}, expected {self.expected_type!r}"
