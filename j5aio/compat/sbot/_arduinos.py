@@ -15,8 +15,9 @@ module keeps j5aio's pin in the mode that matches what sbot would have told the 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from enum import Enum, IntEnum
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar, cast
 
 from ._checks import map_to_float
 from ._kit import KitLink
@@ -24,6 +25,8 @@ from ._kit import KitLink
 if TYPE_CHECKING:
     from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
     from j5aio.sync import GPIOPin
+
+T = TypeVar("T")
 
 __all__ = [
     "ADC_MAX",
@@ -70,18 +73,51 @@ _J5AIO_ADC_STEPS = 1024
 class Arduino:
     """The Arduino running the sb2024 firmware.
 
+    Each pin's j5aio mode is remembered here, so that a read or a write is one call to
+    the board; if the board's mode changed behind this module's back (the board came
+    back after a reset), the mode is read again and the call retried once.
+
     :param boards: the kit the Arduino is found on.
     """
 
-    __slots__ = ("_boards",)
+    __slots__ = ("_boards", "_modes", "_pins")
 
     def __init__(self, boards: KitLink) -> None:
         self._boards = boards
+        self._modes: dict[int, CoreMode] = {}
+        # The facade's pins, each looked up once (a lookup costs as much as a call).
+        self._pins: dict[int, GPIOPin] = {}
 
     def _pin(self, pin: int) -> GPIOPin:
         board = self._boards.arduino()
-        _validate_pin(pin)
-        return board.pins[pin]
+        found = self._pins.get(pin)
+        if found is None:
+            _validate_pin(pin)
+            found = self._pins[pin] = board.pins[pin]
+        return found
+
+    def _mode(self, pin: int, target: GPIOPin) -> CoreMode:
+        """The j5aio mode ``pin`` is in (remembered, or asked for the first time)."""
+        mode = self._modes.get(pin)
+        if mode is None:
+            mode = self._modes[pin] = _core_mode(target.mode)
+        return mode
+
+    def _set_mode(self, pin: int, target: GPIOPin, mode: CoreMode) -> None:
+        self._modes.pop(pin, None)  # (unknown until the board has taken it)
+        target.mode = mode
+        self._modes[pin] = mode
+
+    def _with_mode(self, pin: int, call: Callable[[GPIOPin, CoreMode], T]) -> T:
+        """Run ``call(pin, its mode)``; if the mode was stale, read it and run it again."""
+        from j5aio.errors import BadGPIOPinModeError
+
+        target = self._pin(pin)
+        try:
+            return call(target, self._mode(pin, target))
+        except BadGPIOPinModeError:
+            self._modes.pop(pin, None)
+            return call(target, self._mode(pin, target))
 
     def set_pin_mode(self, pin: int, mode: GPIOPinMode) -> None:
         """Put ``pin`` in ``mode``: INPUT or INPUT_PULLUP to read it, OUTPUT to write it.
@@ -89,17 +125,17 @@ class Arduino:
         :raises IOError: ``mode`` is not a :class:`GPIOPinMode`, or the pin is 0 or 1.
         :raises IndexError: there is no such pin.
         """
-        from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
+        from j5aio.components.gpio_pin import GPIOPinMode as Core
 
         target = self._pin(pin)
         if not isinstance(mode, GPIOPinMode):
             raise OSError("Pin mode only supports being set to a GPIOPinMode")
         if mode is GPIOPinMode.OUTPUT:
-            target.mode = CoreMode.DIGITAL_OUTPUT
+            self._set_mode(pin, target, Core.DIGITAL_OUTPUT)
         elif mode is GPIOPinMode.INPUT_PULLUP:
-            target.mode = CoreMode.DIGITAL_INPUT_PULLUP
+            self._set_mode(pin, target, Core.DIGITAL_INPUT_PULLUP)
         else:
-            target.mode = _plain_input(pin)
+            self._set_mode(pin, target, _plain_input(pin))
 
     def digital_read(self, pin: int) -> bool:
         """Read ``pin``'s level (an output gives the level last written to it).
@@ -107,15 +143,16 @@ class Arduino:
         :raises IOError: the pin is 0 or 1.
         :raises IndexError: there is no such pin.
         """
-        from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
+        from j5aio.components.gpio_pin import GPIOPinMode as Core
 
-        target = self._pin(pin)
-        mode = target.mode
-        if mode == CoreMode.DIGITAL_OUTPUT:
-            return target.last_digital_write
-        if mode == CoreMode.ANALOGUE_INPUT:
-            target.mode = CoreMode.DIGITAL_INPUT
-        return target.digital_read()
+        def read(target: GPIOPin, mode: CoreMode) -> bool:
+            if mode is Core.DIGITAL_OUTPUT:
+                return target.last_digital_write
+            if mode is Core.ANALOGUE_INPUT:
+                self._set_mode(pin, target, Core.DIGITAL_INPUT)
+            return target.digital_read()
+
+        return self._with_mode(pin, read)
 
     def digital_write(self, pin: int, value: bool) -> None:
         """Drive output ``pin`` high or low (on an input: switch its pull-up on or off).
@@ -123,15 +160,17 @@ class Arduino:
         :raises IOError: the pin is 0 or 1.
         :raises IndexError: there is no such pin.
         """
-        from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
+        from j5aio.components.gpio_pin import GPIOPinMode as Core
 
-        target = self._pin(pin)
-        if target.mode == CoreMode.DIGITAL_OUTPUT:
-            target.digital_write(bool(value))
-        elif value:
-            target.mode = CoreMode.DIGITAL_INPUT_PULLUP
-        else:
-            target.mode = _plain_input(pin)
+        def write(target: GPIOPin, mode: CoreMode) -> None:
+            if mode is Core.DIGITAL_OUTPUT:
+                target.digital_write(bool(value))
+            elif value:
+                self._set_mode(pin, target, Core.DIGITAL_INPUT_PULLUP)
+            else:
+                self._set_mode(pin, target, _plain_input(pin))
+
+        self._with_mode(pin, write)
 
     def analog_read(self, pin: int) -> float:
         """Return the voltage on analogue ``pin`` (A0 to A5), 0 to 5 V.
@@ -139,30 +178,37 @@ class Arduino:
         :raises IOError: the pin is not an analogue pin, or it is not in INPUT mode.
         :raises IndexError: there is no such pin.
         """
-        from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
+        from j5aio.components.gpio_pin import GPIOPinMode as Core
 
-        target = self._pin(pin)
+        self._pin(pin)
         try:
             AnalogPin(pin)
         except ValueError:
             raise OSError("Pin does not support analog read") from None
-        mode = target.mode
-        if mode == CoreMode.DIGITAL_INPUT:
-            target.mode = CoreMode.ANALOGUE_INPUT
-        elif mode != CoreMode.ANALOGUE_INPUT:
-            raise OSError(
-                f"Pin {pin} is in {_sbot_mode_name(mode)} mode: analog_read needs it in "
-                f"INPUT mode (arduino.set_pin_mode({pin}, GPIOPinMode.INPUT))",
-            )
+
+        def read(target: GPIOPin, mode: CoreMode) -> float:
+            if mode is Core.DIGITAL_INPUT:
+                self._set_mode(pin, target, Core.ANALOGUE_INPUT)
+            elif mode is not Core.ANALOGUE_INPUT:
+                raise OSError(
+                    f"Pin {pin} is in {_sbot_mode_name(mode)} mode: analog_read needs it in "
+                    f"INPUT mode (arduino.set_pin_mode({pin}, GPIOPinMode.INPUT))",
+                )
+            return target.analogue_read()
+
         # j5aio's codec gives volts as reading / 1024 x 5; sbot maps 0-1023 onto 0-5 V.
-        reading = round(target.analogue_read() / 5 * _J5AIO_ADC_STEPS)
+        reading = round(self._with_mode(pin, read) / 5 * _J5AIO_ADC_STEPS)
         return map_to_float(reading, ADC_MIN, ADC_MAX, 0.0, 5.0)
 
     def measure_ultrasound_distance(self, pulse_pin: int, echo_pin: int) -> int:
         """Return the distance an ultrasound sensor measures, in mm (0: no echo).
 
+        The firmware leaves the pulse pin a low output and the echo pin an input.
+
         :raises ValueError: either pin is not a usable pin.
         """
+        from j5aio.components.gpio_pin import GPIOPinMode as Core
+
         board = self._boards.arduino()
         try:
             _validate_pin(pulse_pin)
@@ -172,7 +218,11 @@ class Arduino:
             _validate_pin(echo_pin)
         except (IndexError, OSError):
             raise ValueError("Invalid echo pin provided") from None
+        self._modes.pop(pulse_pin, None)
+        self._modes.pop(echo_pin, None)
         metres = board.ultrasound_sensors[pulse_pin, echo_pin].distance()
+        self._modes[pulse_pin] = Core.DIGITAL_OUTPUT
+        self._modes[echo_pin] = Core.DIGITAL_INPUT
         return 0 if metres is None else round(metres * 1000)
 
     def __repr__(self) -> str:
@@ -186,6 +236,13 @@ def _validate_pin(pin: int) -> None:
         raise OSError("This pin cannot be controlled.")
     if pin not in AVAILABLE_PINS:
         raise IndexError(f"Pin {pin} is not available on the Arduino.")
+
+
+def _core_mode(mode: object) -> CoreMode:
+    """A pin's mode as j5aio's :class:`~j5aio.components.gpio_pin.GPIOPinMode`."""
+    from j5aio.components.gpio_pin import GPIOPinMode as Core
+
+    return Core(cast(int, mode))
 
 
 def _plain_input(pin: int) -> CoreMode:

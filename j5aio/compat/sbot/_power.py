@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from enum import IntEnum
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING, NamedTuple, cast
 
 from ._kit import KitLink
 
@@ -67,18 +67,24 @@ class Power:
     :param boards: the kit the power board is found on.
     """
 
-    __slots__ = ("_boards",)
+    __slots__ = ("_boards", "_outputs")
 
     def __init__(self, boards: KitLink) -> None:
         self._boards = boards
+        # The facade's outputs, each looked up once (a lookup costs as much as a call).
+        self._outputs: dict[int, ProtectedPowerOutput] = {}
 
     def _output(self, id: int) -> ProtectedPowerOutput:
         board = self._boards.power_board()
-        if isinstance(id, bool) or not isinstance(id, int):
-            raise TypeError(f"a power output is an int from 0 to 6, not {id!r}")
-        if not 0 <= id < len(PowerOutputPosition):
-            raise ValueError(f"Output {id} does not exist on power board")
-        return board.outputs[id]  # type: ignore[return-value]
+        found = self._outputs.get(id)
+        if found is None:
+            if isinstance(id, bool) or not isinstance(id, int):
+                raise TypeError(f"a power output is an int from 0 to 6, not {id!r}")
+            if not 0 <= id < len(PowerOutputPosition):
+                raise ValueError(f"Output {id} does not exist on power board")
+            found = cast("ProtectedPowerOutput", board.outputs[id])
+            self._outputs[id] = found
+        return found
 
     def set_output(self, id: int, on: bool) -> None:
         """Switch output ``id`` on or off (an output tripped by over-current stays off).
