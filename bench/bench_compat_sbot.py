@@ -54,7 +54,7 @@ def main() -> None:
         "SBOT_SKIP_WAIT_START": "1",
     })
     from j5aio.compat.sbot import arduino, motors, power, servos, utils
-    from j5aio.compat.sbot.robot import boards
+    from j5aio.compat.sbot._robot import boards
     from j5aio.sync import shutdown
 
     utils.load_boards()

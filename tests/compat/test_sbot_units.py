@@ -159,12 +159,43 @@ def test_sbot_pytest_imports_the_names_without_a_robot() -> None:
             sys.executable, "-c",
             "import j5aio.compat.sbot as sbot, sys\n"
             "print(sbot.BRAKE == 0, sbot.COAST == -1024, hasattr(sbot, 'motors'),\n"
-            "      'j5aio.compat.sbot.robot' in sys.modules, 'j5aio.kit' in sys.modules)\n",
+            "      'j5aio.compat.sbot._robot' in sys.modules, 'j5aio.kit' in sys.modules)\n",
         ],
         capture_output=True, text=True, timeout=60, env=environment, cwd=ROOT, check=False,
     )
     assert result.returncode == 0, result.stderr
     assert result.stdout.split() == ["True", "True", "False", "False", "False"]
+
+
+def test_the_robot_is_made_when_a_program_first_takes_its_modules() -> None:
+    environment = {
+        **{k: v for k, v in os.environ.items() if not k.startswith("SBOT_")},
+        "SBOT_SKIP_WAIT_START": "1",
+        "PYTHONPATH": str(ROOT),
+    }
+    result = subprocess.run(
+        [
+            sys.executable, "-c",
+            "import sys\n"
+            "import j5aio.compat.sbot as sbot\n"
+            "from j5aio.compat.sbot import marker, game_specific\n"
+            "print('_robot' in dir(sbot), 'j5aio.compat.sbot._robot' in sys.modules)\n"
+            "from j5aio.compat.sbot import motors, utils\n"
+            "print('j5aio.compat.sbot._robot' in sys.modules, sbot.utils is utils)\n"
+            "try:\n"
+            "    sbot.motor\n"
+            "except AttributeError as error:\n"
+            "    print(error)\n",
+        ],
+        capture_output=True, text=True, timeout=60, env=environment, cwd=ROOT, check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "sbot.robot - INFO - SourceBots API v2026.1.0" in result.stdout
+    assert [line for line in result.stdout.splitlines() if " - INFO - " not in line] == [
+        "False False",
+        "True True",
+        "module 'j5aio.compat.sbot' has no attribute 'motor'",
+    ]
 
 
 def test_the_leds_light_the_hat_and_a_missing_arduino_is_named() -> None:
@@ -191,3 +222,42 @@ def test_status_replies_parse_as_sbot_parses_them() -> None:
     error = IncorrectBoardError("MCv4B", "PBv4B")
     assert isinstance(error, OSError)
     assert str(error) == "Board returned type 'MCv4B', expected 'PBv4B'"
+
+
+class _FakePin:
+    """A facade pin whose board has forgotten what it was told (it rebooted)."""
+
+    def __init__(self) -> None:
+        from j5aio.components.gpio_pin import GPIOPinMode as Core
+
+        self.mode = Core.DIGITAL_INPUT
+        self.reads = 0
+
+    @property
+    def last_digital_write(self) -> bool:
+        from j5aio.components.gpio_pin import GPIOPinMode as Core
+        from j5aio.errors import BadGPIOPinModeError
+
+        if self.mode is not Core.DIGITAL_OUTPUT:
+            raise BadGPIOPinModeError("not an output")
+        return True
+
+    def digital_read(self) -> bool:
+        self.reads += 1
+        return True
+
+
+def test_a_pin_mode_the_board_forgot_is_read_again() -> None:
+    from j5aio.compat.sbot._arduinos import Arduino, GPIOPinMode
+    from j5aio.components.gpio_pin import GPIOPinMode as Core
+
+    pin = _FakePin()
+    board = SimpleNamespace(pins={3: pin}, serial_number="AR1")
+    boards: Any = SimpleNamespace(arduino=lambda: board, arduinos=[board])
+    arduino = Arduino(boards)
+    arduino.set_pin_mode(3, GPIOPinMode.OUTPUT)
+    assert arduino.digital_read(3) is True  # the output's last level
+    pin.mode = Core.DIGITAL_INPUT  # the board rebooted: every pin an input
+    assert arduino.digital_read(3) is True
+    assert pin.reads == 1  # read from the board once the mode was known again
+    assert repr(arduino) == "<Arduino AR1>"

@@ -12,12 +12,19 @@ Run it with ``python -m j5aio run --api sbot robot.py`` (add ``--sim --kit sb202
 the simulated kit), or import this package directly:
 ``from j5aio.compat.sbot import motors``.
 
-As with sbot, importing the modules (``motors``, ``utils``...) finds the boards and waits
-for the start button, unless ``SBOT_SKIP_WAIT_START=1`` is set. With ``SBOT_PYTEST`` set
-only the enums and constants are imported, and no board is looked for.
+As with sbot, taking the robot's modules (``from sbot import motors``) finds the boards
+and waits for the start button, unless ``SBOT_SKIP_WAIT_START=1`` is set; then the
+program calls ``utils.load_boards()`` and ``utils.wait_start()`` itself. sbot does this
+as ``import sbot`` runs; here it happens when the first of ``motors``, ``servos``,
+``power``, ``arduino``, ``leds``, ``vision``, ``utils`` or ``comp`` is taken from the
+package, which for ``from sbot import ...`` is the same moment, and otherwise is before
+the program's first use of the robot. So the package itself, its constants and its
+submodules can be imported (by documentation, by tests) without a robot. With
+``SBOT_PYTEST`` set, as in sbot, those eight names do not exist at all.
 """
 
 from os import environ as _environ
+from typing import TYPE_CHECKING, Any
 
 from ._arduinos import AnalogPin, GPIOPinMode
 from ._leds import Colour
@@ -25,8 +32,23 @@ from ._motors import MotorPower
 from ._power import PowerOutputPosition
 from ._utils import Note
 
-if "SBOT_PYTEST" not in _environ:
-    from .robot import arduino, comp, leds, motors, power, servos, utils, vision
+if TYPE_CHECKING:
+    from ._robot import arduino, comp, leds, motors, power, servos, utils, vision
+
+_ROBOT_NAMES = frozenset(
+    {"arduino", "comp", "leds", "motors", "power", "servos", "utils", "vision"},
+)
+
+
+
+def __getattr__(name: str) -> Any:
+    """Give the robot's modules, finding the boards and waiting for the start first."""
+    if name in _ROBOT_NAMES and "SBOT_PYTEST" not in _environ:
+        from . import _robot
+
+        return getattr(_robot, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 BRAKE = MotorPower.BRAKE
 COAST = MotorPower.COAST
