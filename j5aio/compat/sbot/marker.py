@@ -1,4 +1,13 @@
-"""sbot's marker: what the camera reports about each marker it sees, in sbot's units."""
+"""sbot's marker: what the camera reports about each marker it sees, in sbot's units.
+
+``vision.detect_markers()`` returns a list of ``Marker``, each a named tuple of ``id``,
+``size`` (mm), ``pixel_corners`` and ``pixel_centre`` (``PixelCoordinates``: ``x``,
+``y``), ``position`` (``Position``: ``distance`` in whole mm, ``horizontal_angle``
+positive to the right and ``vertical_angle`` positive upwards, in radians) and
+``orientation`` (:class:`j5aio.vision.markers.Orientation`: ``yaw``, ``pitch``,
+``roll`` in radians). They are made from j5aio's own markers
+(:class:`j5aio.vision.markers.Marker`), which use the same axes.
+"""
 
 from __future__ import annotations
 
@@ -9,7 +18,7 @@ from j5aio.vision.markers import Orientation
 if TYPE_CHECKING:
     from j5aio.vision.markers import Marker as CoreMarker
 
-__all__ = ["Coordinates", "Marker", "Orientation", "PixelCoordinates", "PixelCorners", "Position"]
+__all__ = ["Coordinates", "Marker", "PixelCoordinates", "PixelCorners", "Position"]
 
 
 class PixelCoordinates(NamedTuple):
@@ -40,14 +49,15 @@ class Position(NamedTuple):
 
 
 PixelCorners = tuple[PixelCoordinates, PixelCoordinates, PixelCoordinates, PixelCoordinates]
+"""A marker's four corners on the picture."""
 
 
 class Marker(NamedTuple):
     """A marker the camera saw.
 
     ``size`` in mm; ``pixel_corners`` and ``pixel_centre`` on the picture;
-    ``position`` from the camera; ``orientation`` (yaw, pitch, roll in radians) of the
-    marker.
+    ``position`` from the camera; ``orientation`` (a
+    :class:`~j5aio.vision.markers.Orientation`: yaw, pitch, roll in radians) of the marker.
     """
 
     id: int

@@ -1,4 +1,12 @@
-"""The exceptions of sbot, with sbot's base classes so that ``except`` clauses still catch them."""
+"""The exceptions of sbot, with sbot's base classes so that ``except`` clauses still catch them.
+
+- ``MetadataNotReadyError`` (a ``RuntimeError``): ``comp.zone`` or
+  ``comp.is_competition`` was read before the start.
+- ``MetadataKeyError`` (a ``KeyError``): the metadata lacks a key.
+- ``BoardDisconnectionError``: both an ``IOError``, as in sbot, and j5aio's
+  :class:`j5aio.errors.BoardDisconnectionError`.
+- ``IncorrectBoardError`` (an ``IOError``): a board gave another board type.
+"""
 
 from __future__ import annotations
 
