@@ -163,3 +163,13 @@ def test_a_program_that_finds_the_boards_itself() -> None:
     assert got["reprs"] == ["<Power no power board>", "<Arduino no arduino connected>"]
     assert got["zone"] == 2 and got["competition"] is False
     assert kit["motors"][1] == ["FORWARD", 250]
+
+
+def test_a_match_ends_the_program_quietly_as_sbot_does() -> None:
+    process, _, _ = run_sbot_program(
+        "sbot_match.py", "--mode", "COMP", "--zone", "3", "--duration", "1",
+    )
+    assert "zone 3 competition True" in process.stdout
+    assert "sbot.internal.timeout - INFO - Timeout expired: Game Over!" in process.stdout
+    assert process.returncode == 0, process.stderr[-3000:]
+    assert "Traceback" not in process.stderr

@@ -261,3 +261,37 @@ def test_a_pin_mode_the_board_forgot_is_read_again() -> None:
     assert arduino.digital_read(3) is True
     assert pin.reads == 1  # read from the board once the mode was known again
     assert repr(arduino) == "<Arduino AR1>"
+
+
+class _UnpluggedMotor:
+    @property
+    def current(self) -> float:
+        from j5aio.errors import CommunicationTimeoutError
+
+        raise CommunicationTimeoutError("the motor board did not answer")
+
+
+def test_a_board_that_stops_answering_is_sbots_disconnection_error() -> None:
+    from j5aio.compat.sbot import _errors
+    from j5aio.compat.sbot._motors import Motor
+
+    output = SimpleNamespace(component=_UnpluggedMotor())
+    boards: Any = SimpleNamespace(motor=lambda id: output)
+    motors = Motor(boards)
+    with pytest.raises(OSError, match="did not answer") as caught:
+        motors.get_motor_current(0)
+    assert isinstance(caught.value, BoardDisconnectionError)
+    assert isinstance(caught.value.__cause__, CommunicationError)
+    assert motors.get_motor_current.__name__ == "get_motor_current"
+    timer: Any = SimpleNamespace(ended_at=None)
+    _errors._timers.append(timer)
+    try:
+        timer.ended_at = 1.0  # the match is over: the program ends quietly
+        with pytest.raises(SystemExit) as ended:
+            motors.get_motor_current(0)
+        assert ended.value.code == 0
+        assert _errors._game_over.is_set()
+        _errors.end_of_match()  # (once only)
+    finally:
+        _errors._timers.remove(timer)
+        _errors._game_over.clear()

@@ -20,6 +20,7 @@ from enum import Enum, IntEnum
 from typing import TYPE_CHECKING, TypeVar, cast
 
 from ._checks import map_to_float
+from ._errors import translate_errors
 from ._kit import KitLink
 
 if TYPE_CHECKING:
@@ -70,6 +71,7 @@ ADC_MIN = 0
 _J5AIO_ADC_STEPS = 1024
 
 
+@translate_errors
 class Arduino:
     """The Arduino running the sb2024 firmware.
 

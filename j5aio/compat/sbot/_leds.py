@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from enum import Enum
 
+from ._errors import translate_errors
 from ._kit import KitLink
 
 __all__ = ["Colour", "Led"]
@@ -22,6 +23,7 @@ class Colour(Enum):
     WHITE = (True, True, True)
 
 
+@translate_errors
 class Led:
     """The user LEDs 0, 1 and 2.
 

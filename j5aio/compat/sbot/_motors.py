@@ -6,6 +6,7 @@ from enum import IntEnum
 from typing import NamedTuple
 
 from ._checks import float_bounds_check, map_to_float, map_to_int
+from ._errors import translate_errors
 from ._kit import KitLink
 
 __all__ = ["Motor", "MotorPower", "MotorStatus"]
@@ -38,6 +39,7 @@ class MotorStatus(NamedTuple):
         return cls(output_faults, float(input_voltage_mv) / 1000, other)
 
 
+@translate_errors
 class Motor:
     """Every motor of the robot, by number: 0 and 1 on the first motor board, 2 and 3 next.
 

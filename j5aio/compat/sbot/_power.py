@@ -5,6 +5,7 @@ from __future__ import annotations
 from enum import IntEnum
 from typing import TYPE_CHECKING, NamedTuple, cast
 
+from ._errors import translate_errors
 from ._kit import KitLink
 
 if TYPE_CHECKING:
@@ -61,6 +62,7 @@ class PowerStatus(NamedTuple):
 BRAIN_OUTPUT = PowerOutputPosition.L2
 
 
+@translate_errors
 class Power:
     """The power board: switch its outputs, read its meters.
 

@@ -6,6 +6,7 @@ from collections import defaultdict
 from typing import TYPE_CHECKING, NamedTuple
 
 from ._checks import float_bounds_check, map_to_float, map_to_int
+from ._errors import translate_errors
 from ._kit import KitLink
 
 if TYPE_CHECKING:
@@ -49,6 +50,7 @@ class ServoStatus(NamedTuple):
         return cls(watchdog_failed=data[0] == "1", power_good=data[1] == "1")
 
 
+@translate_errors
 class Servo:
     """Every servo of the robot, by number: 0 to 7 on the first servo board, 8 to 15 next.
 

@@ -9,6 +9,7 @@ from enum import IntEnum
 
 from ._checks import float_bounds_check
 from ._comp import Comp
+from ._errors import translate_errors, watch_match
 from ._kit import KitLink
 from .game_specific import GAME_LENGTH
 
@@ -37,6 +38,7 @@ class Note(IntEnum):
     C8 = 4186
 
 
+@translate_errors
 class Utils:
     """The robot as a whole: its boards, its start, its time and its buzzer.
 
@@ -75,6 +77,9 @@ class Utils:
         LOGGER.info("Waiting for start button.")
         robot.wait_start()
         LOGGER.info("Start button pressed.")
+        timer = robot.match_timer
+        if timer is not None:
+            watch_match(timer)
         self._comp._load(robot)
 
     def sound_buzzer(self, frequency: int, duration: float) -> None:

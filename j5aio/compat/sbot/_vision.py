@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Union
 
+from ._errors import translate_errors
 from ._kit import KitLink
 from .game_specific import MARKER_SIZES
 from .marker import Marker
@@ -35,6 +36,7 @@ def _jpeg_path(save: PathLike) -> Path:
     return path if path.suffix else path.with_suffix(".jpg")
 
 
+@translate_errors
 class Vision:
     """The robot's camera: find markers (as sbot's ``Marker``) and take pictures.
 
