@@ -28,7 +28,7 @@ def _free_port() -> str:
 def run_sbot_program(
     name: str,
     *options: str,
-    kit: str = "sb2024",
+    kit: str | None = "sb2024",
     env: dict[str, str] | None = None,
     cwd: Path = ROOT,
 ) -> tuple[subprocess.CompletedProcess[str], dict[str, Any], dict[str, Any]]:
@@ -46,7 +46,7 @@ def run_sbot_program(
     })
     process = subprocess.run(
         [
-            sys.executable, "-m", "j5aio", "run", "--sim", "--kit", kit,
+            sys.executable, "-m", "j5aio", "run", "--sim", *(["--kit", kit] if kit else []),
             "--start-after", "0", "--no-log", *options,
             str(PROGRAMS / "sbot_harness.py"), str(PROGRAMS / name),
         ],
@@ -173,3 +173,12 @@ def test_a_match_ends_the_program_quietly_as_sbot_does() -> None:
     assert "sbot.internal.timeout - INFO - Timeout expired: Game Over!" in process.stdout
     assert process.returncode == 0, process.stderr[-3000:]
     assert "Traceback" not in process.stderr
+
+
+def test_on_the_simulator_an_sbot_program_gets_sourcebots_kit() -> None:
+    process, _, kit = run_sbot_program(
+        "sbot_wire.py", kit=None, env={"SBOT_SKIP_WAIT_START": "1", "SBOT_HARNESS_BENCH": "0"},
+    )
+    assert process.returncode == 0, process.stderr[-3000:]
+    assert "Simulated kit: sb2024 (SourceBots' kit)" in process.stdout
+    assert "SERVO:0:SET:1572" in kit["received"]["SIMSB0"]  # the 8-servo SourceBots board

@@ -12,6 +12,7 @@ eight to a board.
 from __future__ import annotations
 
 import logging
+import os
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any, Final, Generic, NamedTuple, TypeVar, cast
 
@@ -28,7 +29,7 @@ if TYPE_CHECKING:
         ServoBoardFw4,
     )
 
-__all__ = ["NOT_LOADED", "KitLink", "Output"]
+__all__ = ["NOT_LOADED", "SBOT_KIT", "KitLink", "Output", "choose_sourcebots_kit"]
 
 LOGGER = logging.getLogger("sbot.internal.board_manager")
 
@@ -36,6 +37,9 @@ LOGGER = logging.getLogger("sbot.internal.board_manager")
 NOT_LOADED: Final = (
     "Boards cannot be accessed before they are loaded. Run utils.load_boards() first."
 )
+
+#: The simulated kit an sbot program gets when the simulator is chosen but no kit is.
+SBOT_KIT: Final = "sb2024"
 
 BoardT = TypeVar("BoardT")
 ComponentT = TypeVar("ComponentT")
@@ -105,6 +109,7 @@ class KitLink:
             raise RuntimeError("Boards have already been loaded")
         from j5aio.sync import KitRobot
 
+        choose_sourcebots_kit()
         robot = KitRobot()
         # sbot switches on every output but the brain's before it looks for the other
         # boards; the motor and servo boards are powered from them.
@@ -195,6 +200,20 @@ class KitLink:
             LOGGER.info("Connected camera: %s", robot.cameras[0].serial_number)
         else:
             LOGGER.info("No cameras connected")
+
+
+def choose_sourcebots_kit() -> None:
+    """On the simulator with no kit named, make the kit SourceBots' own (``sb2024``).
+
+    An sbot program is written for that kit; a kit named with ``--kit`` or
+    ``J5AIO_KIT`` (or already made) is left as it is.
+    """
+    from j5aio.environments import ENVIRONMENT_VARIABLE
+    from j5aio.simulator.kit import KIT_VARIABLE
+
+    if os.environ.get(ENVIRONMENT_VARIABLE) == "sim" and not os.environ.get(KIT_VARIABLE):
+        os.environ[KIT_VARIABLE] = SBOT_KIT
+        LOGGER.info("Simulated kit: %s (SourceBots' kit)", SBOT_KIT)
 
 
 def _sb2024_arduinos(robot: KitRobot) -> list[SBArduino2024Board]:
