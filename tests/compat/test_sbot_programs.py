@@ -182,3 +182,28 @@ def test_on_the_simulator_an_sbot_program_gets_sourcebots_kit() -> None:
     assert process.returncode == 0, process.stderr[-3000:]
     assert "Simulated kit: sb2024 (SourceBots' kit)" in process.stdout
     assert "SERVO:0:SET:1572" in kit["received"]["SIMSB0"]  # the 8-servo SourceBots board
+
+
+def test_the_example_of_sbots_readme_runs_unchanged() -> None:
+    process, _, kit = run_sbot_program(
+        "sbot_readme.py", "--mode", "COMP", "--duration", "60",
+    )
+    assert process.returncode == 0, process.stderr[-3000:]
+    lines = [line for line in process.stdout.splitlines() if " - " not in line]
+    assert lines[0] == "500"  # the bench's obstacle, 0.5 m away, in mm
+    assert lines[1].startswith("markers [") and lines[1] != "markers []"
+    assert kit["motors"] == [["FORWARD", 300], ["FORWARD", 300]]
+    assert kit["servos"][0] == 1570  # 45/90 is 0.5: 1572 µs, kept in 5 µs steps
+    assert kit["note"] == [880, 500]
+
+
+def test_sbots_override_file_in_the_working_directory_is_read(tmp_path: Path) -> None:
+    # The README's override.env (NO_POWERBOARD is not supported: the robot has one).
+    (tmp_path / "override.env").write_text(
+        "ENABLE_DEBUG_LOGGING=1\nSKIP_WAIT_START=1\nNO_POWERBOARD=1\n", encoding="utf-8",
+    )
+    process, _, kit = run_sbot_program("sbot_readme_start.py", cwd=tmp_path)
+    assert process.returncode == 0, process.stderr[-3000:]
+    assert "root - DEBUG - Debug Mode is enabled" in process.stdout
+    assert "started" in process.stdout.splitlines()
+    assert kit["motors"][0] == ["REVERSE", -500]
