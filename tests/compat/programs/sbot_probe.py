@@ -5,6 +5,7 @@
 
 import json
 import os
+import shutil
 import sys
 import tempfile
 from collections.abc import Callable
@@ -100,6 +101,7 @@ results["vision"] = {
     "distance_is_int": all(isinstance(m.position.distance, int) for m in seen),
     "repr": repr(seen[0]) if seen else "",
 }
+shutil.rmtree(folder)
 
 attempt("negative_sleep", lambda: utils.sleep(-1))
 attempt("low_note", lambda: utils.sound_buzzer(5, 1))
