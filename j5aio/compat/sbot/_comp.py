@@ -54,6 +54,11 @@ class Comp:
             raise MetadataNotReadyError()
         return self._metadata["zone"]
 
+    @property
+    def loaded(self) -> bool:
+        """Whether the metadata has been read (the robot has started)."""
+        return self._metadata is not None
+
     def _load(self, robot: KitRobot) -> None:
         """Take the metadata j5aio's robot read at the start."""
         metadata = robot.metadata

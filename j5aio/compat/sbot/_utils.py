@@ -18,6 +18,15 @@ __all__ = ["GAME_LENGTH", "Note", "Utils"]
 LOGGER = logging.getLogger("sbot._utils")
 
 
+def _wait_again() -> None:
+    """Wait for the start once more, signalling on the boards as the first wait did."""
+    from j5aio.competition.start import wait_for_start
+    from j5aio.robot import BaseRobot
+    from j5aio.sync.wrapping import call
+
+    call(wait_for_start, BaseRobot.boards(), None)
+
+
 class Note(IntEnum):
     """Notes in scientific pitch notation, by their frequencies in Hz."""
 
@@ -69,18 +78,22 @@ class Utils:
 
         The run LED flashes and the buzzer beeps while the robot waits. Once started,
         :attr:`Comp.zone` and :attr:`Comp.is_competition` are known and, in a match,
-        the match timer runs: the program is stopped when the match ends.
+        the match timer runs: the program is stopped when the match ends. Called again,
+        it waits for another press (the match, and its metadata, stay the first one's).
         """
         if not self._boards.loaded:
             self.load_boards()
         robot = self._boards.robot
         LOGGER.info("Waiting for start button.")
-        robot.wait_start()
+        if self._comp.loaded:
+            _wait_again()
+        else:
+            robot.wait_start()
+            self._comp._load(robot)
+            timer = robot.match_timer
+            if timer is not None:
+                watch_match(timer)
         LOGGER.info("Start button pressed.")
-        timer = robot.match_timer
-        if timer is not None:
-            watch_match(timer)
-        self._comp._load(robot)
 
     def sound_buzzer(self, frequency: int, duration: float) -> None:
         """Play ``frequency`` Hz for ``duration`` seconds on the power board's buzzer.
