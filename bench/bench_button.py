@@ -13,11 +13,11 @@ Each *side* runs in a child process of its own, so that CPU figures are the side
 * ``wait_start``: :func:`j5aio.competition.start.wait_for_start` (what
   ``robot.wait_start()`` runs: the button, the start file, the trigger, the run LED
   flashing), async;
-* ``polling``: as ``async``, but the simulated backend polls the simulator over the link
-  as the hardware backend polls a real board (every ``BUTTON_POLL_INTERVAL``, on the USB
-  link's worker thread), instead of listening to the simulator's press events: the
-  figures a real fw 3 power board gets, bar the USB transfer's own time (here the
-  simulator's, standing in for pyusb's). ``--intervals 10,15,20`` runs one such side
+* ``polling``: as ``async`` (the simulated backend, being the hardware backend, polls
+  the simulator over the link as it polls a real board: every ``BUTTON_POLL_INTERVAL``,
+  on the USB link's worker thread), with the poll's own figures: those a real fw 3 power
+  board gets, bar the USB transfer's own time (here the simulator's, standing in for
+  pyusb's). ``--intervals 10,15,20`` runs one such side
   per interval (``polling@10ms``...), to choose the interval; without it, the backend's
   own ``BUTTON_POLL_INTERVAL``. Each also reports the CPU time of one idle poll (the
   idle CPU over the reads made), and, as the machine's floor, the CPU time of a thread
@@ -189,14 +189,9 @@ def child_async(
     import anyio
 
     from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
-    from j5aio.simulator.environment import SRV4PowerBoardSimulatedBackend
 
-    if mode == "polling":  # the hardware path: read the button over the link, no events
-        SRV4PowerBoardSimulatedBackend._poll_button = (  # type: ignore[method-assign]
-            SRV4PowerBoardHardwareBackend._poll_button
-        )
-        if interval is not None:
-            SRV4PowerBoardHardwareBackend.BUTTON_POLL_INTERVAL = interval
+    if mode == "polling" and interval is not None:
+        SRV4PowerBoardHardwareBackend.BUTTON_POLL_INTERVAL = interval
     poll_interval = SRV4PowerBoardHardwareBackend.BUTTON_POLL_INTERVAL
 
     from j5aio.competition.start import wait_for_start

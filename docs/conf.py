@@ -93,3 +93,23 @@ nitpick_ignore = [
     ("py:obj", "j5aio.testing.conformance._base.SubjectT"),
     ("py:obj", "typing.~P"),
 ]
+
+
+def _keep_constants(
+    app: object, what: str, name: str, obj: object, skip: bool, options: object
+) -> bool | None:
+    """Show a class's named constants (an Enum's members, ``Colour.RED``) with no docstring.
+
+    Autodoc leaves out members without a docstring; an enumeration's members are its whole
+    point (``PowerBoardOutput.H0``, ``Note.A6``), so they are always listed.
+    """
+    import enum
+
+    if what == "class" and (isinstance(obj, enum.Enum) or (name.isupper() and not callable(obj))):
+        return False
+    return None
+
+
+def setup(app: object) -> None:
+    """Connect the hooks above."""
+    app.connect("autodoc-skip-member", _keep_constants)  # type: ignore[attr-defined]

@@ -580,7 +580,22 @@ def main(argv: Sequence[str] | None = None) -> int:
     if handler is None:
         parser.print_help()
         return 2
-    return handler(args)
+    try:
+        return handler(args)
+    except (BrokenPipeError, BaseExceptionGroup) as error:
+        if not _only_broken_pipes(error):
+            raise
+        # The reader of our output went away (``j5aio demo | head``): stop quietly. Python
+        # flushes stdout once more at exit, so it is pointed at nowhere first.
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
+
+
+def _only_broken_pipes(error: BaseException) -> bool:
+    """Whether ``error`` is a broken pipe, or a group of nothing but broken pipes."""
+    if isinstance(error, BaseExceptionGroup):
+        return all(_only_broken_pipes(inner) for inner in error.exceptions)
+    return isinstance(error, BrokenPipeError)
 
 
 if __name__ == "__main__":

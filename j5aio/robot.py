@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import asyncio
+import contextlib
+import importlib
 import logging
 import os
 import socket
@@ -14,10 +16,19 @@ import anyio
 
 from j5aio import lifetime
 from j5aio.boards.board import Board
+from j5aio.competition import service_state
 from j5aio.competition.clock import MatchClock
-from j5aio.competition.metadata import Metadata, Mode, describe, find_usb_sticks, load_metadata
+from j5aio.competition.metadata import (
+    Metadata,
+    MetadataError,
+    Mode,
+    describe,
+    find_usb_sticks,
+    load_metadata,
+)
 from j5aio.competition.start import wait_for_start
 from j5aio.competition.timer import MatchTimer
+from j5aio.components._checks import check_timeout
 from j5aio.errors import UnableToObtainLock
 from j5aio.safety import make_all_safe_uncancellably
 
@@ -52,9 +63,17 @@ class BaseRobot:
     match's metadata (:attr:`~j5aio.robot.BaseRobot.zone`, :attr:`~j5aio.robot.BaseRobot.arena`,
     :attr:`~j5aio.robot.BaseRobot.mode`); in a match with a duration the match timer then ends the
     program when the match is over, every board safe, however the program is written (see
-    :mod:`j5aio.competition`). Use
+    :mod:`j5aio.competition`). ``wait_for_start=True`` makes entering the robot wait for
+    the start, as the kits' own libraries do when their robot is made. In a match, the
+    start starts the match timer even if the program never waits for it
+    (:meth:`~j5aio.robot.BaseRobot.watch_for_start`). Use
     :meth:`~j5aio.robot.BaseRobot.time` and :meth:`~j5aio.robot.BaseRobot.sleep` for timing, so that
     a simulation can run at another speed.
+
+    :param wait_for_start: wait for the start on entering (after
+        :meth:`~j5aio.robot.BaseRobot.setup`), as :meth:`~j5aio.robot.BaseRobot.wait_start`
+        does.
+    :raises TypeError: ``wait_for_start`` is not a bool.
     """
 
     #: The localhost TCP port used as the machine-wide lock. ``J5AIO_LOCK_PORT`` overrides it.
@@ -65,6 +84,14 @@ class BaseRobot:
     _clock: MatchClock
     _match_timer: MatchTimer | None
     _started: bool
+    _waits_for_start_on_entry: bool
+    _wait_start_returned: bool
+    _waiting: bool
+    _watcher: asyncio.Task[None] | None
+    _watch_scope: anyio.CancelScope | None
+    _watch_loop: asyncio.AbstractEventLoop | None
+    _watch_error: Exception | None
+    _service: Any
 
     def __new__(cls, *args: Any, **kwargs: Any) -> Self:
         """Create the robot and take the machine-wide lock (before any ``__init__``)."""
@@ -74,9 +101,23 @@ class BaseRobot:
         robot._clock = MatchClock()
         robot._match_timer = None
         robot._started = False
+        robot._waits_for_start_on_entry = False
+        robot._wait_start_returned = False
+        robot._waiting = False
+        robot._watcher = None
+        robot._watch_scope = None
+        robot._watch_loop = None
+        robot._watch_error = None
+        robot._service = None
         robot._obtain_lock()
         lifetime.install()
         return robot
+
+    def __init__(self, *, wait_for_start: bool = False) -> None:
+        if not isinstance(wait_for_start, bool):
+            self.release_lock()
+            raise TypeError(f"wait_for_start must be True or False, not {wait_for_start!r}")
+        self._waits_for_start_on_entry = wait_for_start
 
     def _obtain_lock(self) -> None:
         port = int(os.environ.get("J5AIO_LOCK_PORT", self.lock_port))
@@ -115,12 +156,30 @@ class BaseRobot:
             asyncio.get_running_loop(), self._on_terminate
         )
         try:
+            await self._start_service()
             await self.setup()
+            await self.after_setup()
         except BaseException:
             await self.__aexit__(None, None, None)
             raise
-        self._log_kit()
         return self
+
+    async def after_setup(self) -> None:
+        """What entering the robot does once :meth:`setup` has found the boards.
+
+        It starts the robot service's client (if the service is configured), logs the
+        kit, starts :meth:`watch_for_start`, and, if the robot was made with
+        ``wait_for_start=True``, waits for the start (:meth:`wait_start`).
+        ``async with`` calls it; the sync facade calls it after ``setup``; a subclass
+        that overrides ``__aenter__`` must call it.
+
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata is unusable.
+        """
+        await self._start_service()
+        self._log_kit()
+        await self.watch_for_start()
+        if self._waits_for_start_on_entry and not self._wait_start_returned:
+            await self.wait_start()
 
     async def __aexit__(
         self,
@@ -131,7 +190,9 @@ class BaseRobot:
         try:
             # Shielded: the robot's own SIGTERM cancellation must not cut this short.
             with anyio.CancelScope(shield=True):
+                await self._stop_watching()
                 await make_all_safe_uncancellably()
+                await self._stop_service()
         finally:
             self._stop_handling_signals()
             self.release_lock()
@@ -145,15 +206,47 @@ class BaseRobot:
         self._terminated_by = signum
         self._sigterm_scope.cancel()
 
-    # -- match day (issue 10) ------------------------------------------------------------
+    # -- the robot service ---------------------------------------------------------------
+
+    async def _start_service(self) -> None:
+        """Start the robot service's client, if :mod:`j5aio.service` is there and configured.
+
+        The service (astoria over MQTT) gives the match's metadata, the team's USB stick
+        and the remote start (:mod:`j5aio.competition.service_state`). It is optional:
+        without the package, or where no service is configured, nothing happens.
+        """
+        if self._service is not None:
+            return
+        try:
+            service = importlib.import_module("j5aio.service")
+        except ImportError:  # (a build of j5aio without the service client)
+            LOGGER.debug("No robot service client in this j5aio", exc_info=True)
+            return
+        self._service = await service.start_service()
+
+    async def _stop_service(self) -> None:
+        service, self._service = self._service, None
+        if service is not None:
+            await service.stop()
+
+    # -- match day ---------------------------------------------------------------------
 
     @property
     def metadata(self) -> Metadata:
-        """The match's metadata: read at the start, or looked for now if not started yet.
+        """The match's metadata: fixed at the start; until then, what it is now.
+
+        Before the start, what the robot service last said wins (it may change the zone
+        or the mode while the robot waits), else the metadata file, read once. From the
+        start on it is what it was at the start, whatever the service says later.
+        See :func:`~j5aio.competition.metadata.load_metadata` for where it comes from.
 
         :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
             malformed (the message names the file and the field).
         """
+        if not self._started:
+            live = service_state.metadata()
+            if live is not None:
+                return live
         if self._metadata is None:
             self._metadata = load_metadata()
         return self._metadata
@@ -180,7 +273,14 @@ class BaseRobot:
 
     @property
     def usb_stick(self) -> Path | None:
-        """The USB stick the metadata came from, else the first one mounted, else ``None``."""
+        """The team's USB stick, or ``None``.
+
+        The one the robot service says holds the team's code; else the stick the metadata
+        came from; else the first one mounted.
+        """
+        usercode = service_state.usercode_path()
+        if usercode is not None:
+            return usercode
         source = self.metadata.source
         sticks = find_usb_sticks()
         for stick in sticks:
@@ -192,6 +292,11 @@ class BaseRobot:
     def match_timer(self) -> MatchTimer | None:
         """The running match's timer; ``None`` before the start or outside a timed match."""
         return self._match_timer
+
+    @property
+    def started(self) -> bool:
+        """Whether the robot has started (by :meth:`wait_start` or :meth:`watch_for_start`)."""
+        return self._started
 
     def time(self) -> float:
         """Robot seconds since the start (since the robot was made, before the start).
@@ -213,25 +318,117 @@ class BaseRobot:
         """Wait for the start of the match, then read the metadata and start the timer.
 
         Flashes the run LED (and a KCH's start LED) and beeps once while waiting; the
-        start button, the start file a competition runner creates, or
-        ``python -m j5aio run``'s console start the robot (:mod:`j5aio.competition.start`).
-        In COMP mode with a duration the match timer starts: when it runs out the
-        robot's work is cancelled, every board is made safe and the program ends.
+        start button, the start file a competition runner creates, a remote start from
+        the robot service, or ``python -m j5aio run``'s console start the robot
+        (:mod:`j5aio.competition.start`). In COMP mode with a duration the match timer
+        starts: when it runs out the robot's work is cancelled, every board is made safe
+        and the program ends. If the start came already (:meth:`watch_for_start` saw
+        it), this returns at once.
 
         :param timeout: give up after this many seconds; ``None`` waits for ever.
         :raises TimeoutError: nothing started the robot within ``timeout`` seconds.
         :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
             malformed (the message names the file and the field).
-        :raises RuntimeError: the robot has started already.
+        :raises RuntimeError: ``wait_start`` has returned already: it runs once.
         """
-        if self._started:
+        limit = check_timeout(timeout)
+        if self._wait_start_returned:
             raise RuntimeError("the robot has started already: wait_start runs once")
         self._log_kit()
-        await wait_for_start(self.boards(), timeout)
+        watcher = self._watcher
+        if watcher is not None and not watcher.done():
+            with anyio.fail_after(limit):
+                await asyncio.shield(watcher)  # a timeout leaves the watcher watching
+        error, self._watch_error = self._watch_error, None
+        if error is not None:  # the watcher failed: say why (a later call waits again)
+            raise error
+        if not self._started:  # no watcher, or it failed: wait here
+            self._waiting = True
+            try:
+                how = await wait_for_start(self.boards(), limit)
+            finally:
+                self._waiting = False
+            self._begin_match(how)
+        self._wait_start_returned = True
+
+    async def watch_for_start(self) -> None:
+        """In a match, start the match timer when the start comes, waited for or not.
+
+        From now until the start, while the robot is in COMP mode (by its metadata,
+        which the robot service may change), a background task waits for the start as
+        :meth:`wait_start` does: the button, the start file, or a remote start then
+        starts the match and its timer even if the program never calls
+        :meth:`wait_start` (a later :meth:`wait_start` returns at once). In DEV mode
+        nothing is watched: the program waits when it wants to. Entering the robot calls
+        this; calling it again does nothing. It returns at once.
+
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata is unusable:
+            in a match the robot must not run on a guess.
+        """
+        if self._watch_loop is not None or self._started:
+            return
+        self.metadata  # noqa: B018 - read now: unusable metadata is an error before the match
+        self._watch_loop = asyncio.get_running_loop()
+        service_state.add_listener(self._on_service_change)
+        self._watch_if_in_a_match()
+
+    def _on_service_change(self) -> None:
+        """The service's metadata changed (on its thread): look again, on the robot's loop."""
+        loop = self._watch_loop
+        if loop is not None:
+            with contextlib.suppress(RuntimeError):  # the loop has closed: nothing to do
+                loop.call_soon_threadsafe(self._look_again)
+
+    def _look_again(self) -> None:
+        try:
+            self._watch_if_in_a_match()
+        except MetadataError as error:
+            LOGGER.error("The match's metadata is unusable: %s", error)
+
+    def _watch_if_in_a_match(self) -> None:
+        if self._started or self._waiting or self._watcher is not None:
+            return
+        metadata = self.metadata
+        if not metadata.is_competition:
+            return
+        LOGGER.info("In a match (%s): watching for the start", describe(metadata))
+        self._watch_scope = None
+        self._watcher = asyncio.get_running_loop().create_task(
+            self._watch(), name="j5aio start watcher"
+        )
+
+    async def _watch(self) -> None:
+        # (the scope is made here: anyio needs a running task to make one)
+        with anyio.CancelScope() as self._watch_scope:
+            try:
+                how = await wait_for_start(self.boards())
+                self._begin_match(how)
+            except Exception as exc:  # a board or the metadata failed: say so; the
+                # program's wait_start() raises it, and waits itself when called again
+                LOGGER.error("Watching for the start failed: %s", exc)
+                self._watch_error = exc
+                self._watcher = None
+
+    async def _stop_watching(self) -> None:
+        """Stop watching for the start (on leaving the robot)."""
+        service_state.remove_listener(self._on_service_change)
+        self._watch_loop = None
+        watcher, scope = self._watcher, self._watch_scope
+        if watcher is None or watcher.done():
+            return
+        if scope is None:
+            watcher.cancel()  # it has not run yet: nothing of it to unwind
+        else:
+            scope.cancel()
+        await asyncio.wait([watcher])
+
+    def _begin_match(self, how: str) -> None:
+        """The start has come (by ``how``): fix the metadata and start the match timer."""
+        metadata = load_metadata()
         self._started = True
-        self._metadata = metadata = load_metadata()
+        self._metadata = metadata
         self._clock = MatchClock(self._clock.scale)
-        LOGGER.info("Match metadata: %s", describe(metadata))
+        LOGGER.info("Match metadata (started by the %s): %s", how, describe(metadata))
         if metadata.is_competition and metadata.duration is not None:
             loop = asyncio.get_running_loop()
 

@@ -107,6 +107,7 @@ CORE_SCOPE = Scope(
         ("j5aio.backends.environment", "Environment"),
         ("j5aio.robot", "BaseRobot"),
         ("j5aio.kit", "KitRobot"),
+        ("j5aio.vision.track", "PositionTracker"),
     ),
     environment_packages=("j5aio.backends",),
     function_modules=("j5aio.environments",),
@@ -1005,7 +1006,9 @@ class _ClassWriter:
 
         A base's ``__new__`` (the robot lock) must not run as well, and a subclass written
         by a student may take arguments of its own (for its ``__init__``): they are let by.
-        Its ``setup`` runs at once; if it fails, the robot gives up its lock.
+        Its ``setup`` runs at once, then ``after_setup`` (what ``async with`` does next: the
+        robot service, the watch for the start, ``wait_for_start``); if either fails, the
+        robot gives up its lock.
         """
         any_ = self.r.typing_ref("Any")
         keywords = [d for d in decls if d not in ("*", "/") and not d.startswith("*")]
@@ -1016,6 +1019,7 @@ class _ClassWriter:
             f"        robot = _adopt(cls, {self.r.core_ref(self.cls)}({', '.join(keyword_call)}))",
             "        try:",
             "            _call(robot._core.setup)",
+            "            _call(robot._core.after_setup)",
             "        except BaseException:",
             "            robot._core.release_lock()",
             "            raise",

@@ -5,6 +5,11 @@ program stops with an exception, the traceback shows the student's lines and the
 as pytest does, not the thirty lines of runpy, the sync facade's portal and the board
 code under them. One line says how many frames were hidden and how to see them all
 (``J5AIO_FULL_TRACEBACK=1``), for a bug report.
+
+Python 3.12 and later print "Did you mean: 'buzz'?" under a misspelt attribute or name
+by themselves. Python 3.11 does so only in its own last-chance handler, which a program
+run through ``python -m j5aio run`` never reaches; there :func:`suggestion` adds the same
+hint, so a student sees it however the program is started.
 """
 
 from __future__ import annotations
@@ -16,13 +21,24 @@ import traceback
 from pathlib import Path
 from typing import Final, TextIO
 
-__all__ = ["FULL_TRACEBACK_VARIABLE", "format_trimmed", "is_ours", "run_program"]
+__all__ = [
+    "FULL_TRACEBACK_VARIABLE",
+    "format_trimmed",
+    "is_ours",
+    "run_program",
+    "suggestion",
+]
 
 #: Set this environment variable (to anything but empty or ``0``) to keep every frame.
 FULL_TRACEBACK_VARIABLE: Final = "J5AIO_FULL_TRACEBACK"
 
 _PACKAGE: Final = str(Path(__file__).resolve().parent) + os.sep
 _RUNPY: Final = str(Path(runpy.__file__).resolve())
+#: Whether the traceback module adds "Did you mean" hints itself (Python 3.12 on).
+_TRACEBACK_SUGGESTS: Final = sys.version_info >= (3, 12)
+#: Names longer than this, or more candidates than this, are not looked at (as CPython).
+_MAX_NAME_LENGTH: Final = 40
+_MAX_CANDIDATES: Final = 750
 
 
 def is_ours(filename: str) -> bool:
@@ -53,11 +69,84 @@ def _trim(summary: traceback.TracebackException) -> int:
     return hidden
 
 
+def _edit_distance(first: str, second: str) -> int:
+    """How many single-character edits turn ``first`` into ``second`` (a case change: 1)."""
+    previous = list(range(len(second) + 1))
+    for i, char in enumerate(first, 1):
+        current = [i]
+        for j, other in enumerate(second, 1):
+            cost = 0 if char == other else 1
+            current.append(min(previous[j] + 1, current[j - 1] + 1, previous[j - 1] + cost))
+        previous = current
+    return previous[-1]
+
+
+def _closest(name: str, candidates: list[str]) -> str | None:
+    """The candidate nearest ``name``, if it is near enough to be a slip of the keyboard."""
+    if len(name) > _MAX_NAME_LENGTH or len(candidates) > _MAX_CANDIDATES:
+        return None
+    best: str | None = None
+    best_distance = 0
+    for candidate in candidates:
+        if candidate == name or len(candidate) > _MAX_NAME_LENGTH:
+            continue
+        # A leading underscore is a private name: only suggested for a private name.
+        if candidate.startswith("_") and not name.startswith("_"):
+            continue
+        allowed = (len(name) + len(candidate) + 3) // 6
+        distance = _edit_distance(name, candidate)
+        if distance <= max(allowed, 1) and (best is None or distance < best_distance):
+            best, best_distance = candidate, distance
+    return best
+
+
+def suggestion(error: BaseException) -> str | None:
+    """The name ``error`` probably meant, for a misspelt attribute or name; else ``None``.
+
+    An :class:`AttributeError` is compared with the object's attributes, a
+    :class:`NameError` with the names visible where it was raised (local, global and
+    built-in).
+    """
+    name = getattr(error, "name", None)
+    if not isinstance(name, str):
+        return None
+    if isinstance(error, AttributeError):
+        try:
+            candidates = dir(error.obj)
+        except Exception:  # an object whose __dir__ fails gets no hint
+            return None
+        return _closest(name, candidates)
+    if isinstance(error, NameError):
+        frame = error.__traceback__
+        while frame is not None and frame.tb_next is not None:
+            frame = frame.tb_next
+        if frame is None:
+            return None
+        scope = frame.tb_frame
+        candidates = [*scope.f_locals, *scope.f_globals, *scope.f_builtins]
+        return _closest(name, list(dict.fromkeys(candidates)))
+    return None
+
+
+def _with_suggestion(text: str, error: BaseException) -> str:
+    """Add "Did you mean" to the error's own line of ``text``, where Python would."""
+    if _TRACEBACK_SUGGESTS:
+        return text
+    meant = suggestion(error)
+    if meant is None:
+        return text
+    line = "".join(traceback.format_exception_only(type(error), error)).rstrip("\n")
+    head, found, tail = text.rpartition(line)
+    if not found:
+        return text
+    return f"{head}{line}. Did you mean: {meant!r}?{tail}"
+
+
 def format_trimmed(error: BaseException) -> str:
     """The traceback of ``error`` without j5aio's and runpy's frames, with a note of them."""
     summary = traceback.TracebackException.from_exception(error)
     hidden = _trim(summary)
-    text = "".join(summary.format())
+    text = _with_suggestion("".join(summary.format()), error)
     if hidden:
         text += (
             f"({hidden} frame{'s' if hidden != 1 else ''} inside j5aio hidden; "
@@ -80,7 +169,8 @@ def run_program(program: Path, *, stderr: TextIO | None = None) -> int:
     except Exception as error:
         out = stderr if stderr is not None else sys.stderr
         if _want_full():
-            traceback.print_exception(error, file=out)
+            print(_with_suggestion("".join(traceback.format_exception(error)), error),
+                  end="", file=out)
         else:
             print(format_trimmed(error), end="", file=out)
         return 1

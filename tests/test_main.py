@@ -539,3 +539,42 @@ def test_demo_on_each_kit_ends_by_itself(kit: str) -> None:
     assert result.returncode == 0, result.stderr
     assert f"The kit: '{kit}'" in result.stdout
     assert result.stdout.rstrip().endswith("every simulated motor is braked.")
+
+
+def test_a_reader_that_goes_away_ends_the_demo_quietly() -> None:
+    root = Path(__file__).resolve().parents[1]
+    path = os.pathsep.join([str(root), os.environ.get("PYTHONPATH", "")])
+    env = {**os.environ, "PYTHONPATH": path}
+    demo = subprocess.Popen(
+        [sys.executable, "-m", "j5aio", "demo"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env,
+    )
+    assert demo.stdout is not None and demo.stderr is not None
+    assert demo.stdout.readline().startswith(b"j5aio demo")
+    demo.stdout.close()  # as `j5aio demo | head -1` does
+    try:
+        status = demo.wait(timeout=60)
+    finally:
+        demo.kill()
+    assert status == 1
+    assert b"Traceback" not in demo.stderr.read()
+    demo.stderr.close()
+
+
+def test_only_broken_pipes_are_taken_for_a_reader_gone() -> None:
+    from j5aio.__main__ import _only_broken_pipes
+
+    assert _only_broken_pipes(BrokenPipeError())
+    assert _only_broken_pipes(BaseExceptionGroup("g", [BrokenPipeError(), BrokenPipeError()]))
+    assert not _only_broken_pipes(BaseExceptionGroup("g", [BrokenPipeError(), ValueError()]))
+
+
+def test_any_other_error_group_from_a_command_is_not_swallowed(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    def failing(args: object) -> int:
+        raise ExceptionGroup("boards", [ValueError("bad")])
+
+    monkeypatch.setattr("j5aio.__main__._list", failing)
+    with pytest.raises(ExceptionGroup):
+        main(["list"])

@@ -116,3 +116,70 @@ def test_the_members_of_an_exception_group_are_trimmed_too(tmp_path: Path) -> No
     assert "ExceptionGroup: two (2 sub-exceptions)" in text
     assert "ValueError: one" in text and "KeyError: 'other'" in text
     assert "runpy" not in text
+
+
+# -- "Did you mean": Python 3.12 prints it itself; on 3.11 j5aio adds it -------------------
+
+
+class _Piezo:
+    def buzz(self) -> None: ...
+
+
+def _raised(code: str, scope: dict[str, object]) -> BaseException:
+    try:
+        exec(code, scope)
+    except Exception as error:
+        return error
+    raise AssertionError("no error")  # pragma: no cover
+
+
+def test_a_misspelt_attribute_gets_the_name_it_meant() -> None:
+    from j5aio.tracebacks import suggestion
+
+    error = _raised("piezo.buz()", {"piezo": _Piezo()})
+    assert suggestion(error) == "buzz"
+    assert "no attribute 'buz'. Did you mean: 'buzz'?" in format_trimmed(error)
+
+
+def test_a_misspelt_name_gets_the_name_it_meant() -> None:
+    from j5aio.tracebacks import suggestion
+
+    error = _raised("motor_power = 1\nprint(motor_powr)", {})
+    assert suggestion(error) == "motor_power"
+    assert suggestion(_raised("prnt(1)", {})) == "print"
+
+
+def test_nothing_is_suggested_for_a_name_far_from_every_other() -> None:
+    from j5aio.tracebacks import suggestion
+
+    assert suggestion(_raised("piezo.sing()", {"piezo": _Piezo()})) is None
+    assert suggestion(_raised("xyzzy_plugh", {})) is None
+    assert suggestion(ValueError("no name here")) is None
+    # a private name is offered only for a private name
+    assert suggestion(_raised("piezo.dict__", {"piezo": _Piezo()})) is None
+
+
+def test_an_object_whose_dir_fails_gets_no_hint() -> None:
+    from j5aio.tracebacks import suggestion
+
+    class Broken:
+        def __dir__(self) -> list[str]:
+            raise RuntimeError("no listing")
+
+    assert suggestion(_raised("thing.nme", {"thing": Broken()})) is None
+
+
+def test_the_hint_appears_under_j5aio_run_as_under_plain_python(tmp_path: Path) -> None:
+    program = tmp_path / "robot.py"
+    program.write_text(
+        "from j5aio.sync import KitRobot\nrobot = KitRobot()\nrobot.power_board.piezo.buz(1, 2)\n",
+        encoding="utf-8",
+    )
+    path = os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])
+    for full in ("", "1"):
+        result = subprocess.run(
+            [sys.executable, "-m", "j5aio", "run", "--sim", "--no-log", str(program)],
+            capture_output=True, text=True, timeout=60, check=False,
+            env={**os.environ, "PYTHONPATH": path, "J5AIO_FULL_TRACEBACK": full},
+        )
+        assert result.stderr.count("Did you mean: 'buzz'?") == 1, result.stderr

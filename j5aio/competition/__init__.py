@@ -1,14 +1,20 @@
 """Match day: metadata, the start, the match timer and run logs (for every kit).
 
 - :mod:`j5aio.competition.metadata`: the match's arena, zone, mode and duration, from
-  ``metadata.json`` (USB stick, ``J5AIO_METADATA``, or development defaults);
-- :mod:`j5aio.competition.start`: waiting for the start button or a runner's start file;
+  the robot service, ``J5AIO_METADATA``, ``SBOT_METADATA_PATH`` or a USB stick, in
+  j5aio's, astoria's or sbot's format (else the development defaults);
+- :mod:`j5aio.competition.start`: waiting for the start button, a runner's start file or
+  a remote start;
+- :mod:`j5aio.competition.service_state`: what the robot service has said (metadata,
+  the team's stick), for the rest of this package;
 - :mod:`j5aio.competition.timer`: the watchdog that ends a match with every board safe;
 - :mod:`j5aio.competition.clock`: robot time, scaled on a simulated kit;
 - :mod:`j5aio.competition.runlog`: ``python -m j5aio run``'s log files.
 
-A robot uses them through :meth:`~j5aio.robot.BaseRobot.wait_start` and its
-``arena`` / ``zone`` / ``mode`` / ``is_competition`` / ``usb_stick`` properties.
+A robot uses them through :meth:`~j5aio.robot.BaseRobot.wait_start` (or
+``wait_for_start=True``, or, in a match, the watch
+:meth:`~j5aio.robot.BaseRobot.watch_for_start` starts on entry) and its ``arena`` /
+``zone`` / ``mode`` / ``is_competition`` / ``usb_stick`` properties.
 """
 
 from typing import TYPE_CHECKING

@@ -4,9 +4,15 @@
 error, and j5aio's log (from INFO up), to ``run-YYYYMMDD-HHMMSS.log``:
 
 - in ``J5AIO_LOG_DIR`` if that is set;
-- else in ``logs`` on the USB stick (the one holding ``metadata.json``, else the first
-  one mounted);
+- else in ``logs`` on the team's USB stick: the one the robot service says holds the
+  team's code, else the one holding the metadata file, else the first one mounted
+  (not if ``logs`` there is a link: it could lead off the stick, where rotation would
+  delete files; a warning says so);
 - else in ``j5aio-logs`` beside the program.
+
+The file can be read by its owner only (where the drive keeps permissions), and the
+live view's secret (``token=...`` in its address) is replaced by ``token=<hidden>``
+in it: the stick is handed round on match day.
 
 The file starts with a header (j5aio's version, Python's, the program, the metadata);
 the robot adds a line per board it found (type, serial number, firmware) when it starts.
@@ -23,7 +29,9 @@ import contextlib
 import logging
 import os
 import platform
+import re
 import shutil
+import stat
 import sys
 import threading
 from collections.abc import Callable, Iterator
@@ -56,6 +64,8 @@ MAX_FILE_BYTES: Final = 5 * 1024 * 1024
 #: The bytes left free on the drive (old logs are deleted to keep them free).
 RESERVE_BYTES: Final = 2 * MAX_FILE_BYTES
 _PATTERN: Final = "run-*.log"
+#: A live view's secret in its address (``?token=...``), hidden in run logs.
+_TOKEN: Final = re.compile(r"(\btoken=)[A-Za-z0-9_\-]+")
 
 LOGGER = logging.getLogger(__name__)
 
@@ -65,12 +75,28 @@ def choose_log_folder(program: Path, metadata: Metadata | None = None) -> Path:
     named = os.environ.get(LOG_DIR_VARIABLE)
     if named:
         return Path(named)
-    sticks = find_usb_sticks()
-    if metadata is not None and metadata.source is not None and metadata.source.parent in sticks:
-        return metadata.source.parent / "logs"
-    if sticks:
-        return sticks[0] / "logs"
+    for stick in _sticks_in_order(metadata):
+        folder = stick / "logs"
+        if folder.is_symlink() or (folder.exists() and not folder.is_dir()):
+            LOGGER.warning(
+                "Not logging to %s: it is a link or not a folder; make it a folder", folder
+            )
+            continue
+        return folder
     return program.resolve().parent / "j5aio-logs"
+
+
+def _sticks_in_order(metadata: Metadata | None) -> list[Path]:
+    """The team's stick first (the service's, else the metadata's), then the others."""
+    from j5aio.competition import service_state
+
+    sticks = find_usb_sticks()
+    usercode = service_state.usercode_path()
+    if usercode is not None:
+        return [usercode]
+    if metadata is not None and metadata.source is not None and metadata.source.parent in sticks:
+        return [metadata.source.parent]
+    return sticks[:1]
 
 
 def rotate(
@@ -91,7 +117,7 @@ def rotate(
     """
     if free_bytes is None:
         free_bytes = _free_bytes
-    logs = sorted(folder.glob(_PATTERN))
+    logs = sorted(log for log in folder.glob(_PATTERN) if _is_regular_file(log))
     sizes = {log: _size(log) for log in logs}
     deleted: list[Path] = []
     while logs and (
@@ -108,9 +134,17 @@ def rotate(
 
 def _size(path: Path) -> int:
     try:
-        return path.stat().st_size
+        return path.lstat().st_size
     except OSError:
         return 0
+
+
+def _is_regular_file(path: Path) -> bool:
+    """Whether ``path`` is a file itself (not a link to one: rotation never follows one)."""
+    try:
+        return stat.S_ISREG(path.lstat().st_mode)
+    except OSError:
+        return False
 
 
 def _free_bytes(folder: Path) -> int:
@@ -132,20 +166,20 @@ class RunLog:
         folder.mkdir(parents=True, exist_ok=True)
         self.deleted = rotate(folder)
         stamp = (now or datetime.now(UTC)).strftime("%Y%m%d-%H%M%S")
-        path = folder / f"run-{stamp}.log"
-        number = 1
-        while path.exists():
-            number += 1
-            path = folder / f"run-{stamp}-{number}.log"
-        self.path = path
-        self._file = path.open("w", encoding="utf-8", errors="replace")
+        self.path, descriptor = _create_new(folder, stamp)
+        # (a descriptor made with O_EXCL and mode 0o600; closed by close())
+        self._file = os.fdopen(descriptor, "w", encoding="utf-8", errors="replace")
         self._lock = threading.Lock()
         self._written = 0
         self._max_bytes = max_bytes
         self._full = False
 
     def write(self, text: str) -> None:
-        """Add ``text`` (until the file is full; then one line says so)."""
+        """Add ``text`` (until the file is full; then one line says so).
+
+        A live view's address has its secret replaced: ``token=<hidden>``.
+        """
+        text = _TOKEN.sub(r"\1<hidden>", text)
         with self._lock:
             if self._full or self._file.closed:
                 return
@@ -180,6 +214,26 @@ class RunLog:
         """Close the file."""
         with self._lock:
             self._file.close()
+
+
+def _create_new(folder: Path, stamp: str) -> tuple[Path, int]:
+    """Make a new log file for ``stamp``, readable by its owner only, never through a link.
+
+    :returns: its path and an open descriptor.
+    :raises OSError: it cannot be made.
+    """
+    flags = (
+        os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
+        | getattr(os, "O_CLOEXEC", 0)
+    )
+    number = 1
+    path = folder / f"run-{stamp}.log"
+    while True:
+        try:
+            return path, os.open(path, flags, 0o600)
+        except FileExistsError:
+            number += 1
+            path = folder / f"run-{stamp}-{number}.log"
 
 
 class _Tee:

@@ -1,6 +1,6 @@
 """What the robot's management service has told this program, for the competition layer.
 
-On a competition robot a service (astoria, over MQTT: see :mod:`j5aio.service`) knows the
+On a competition robot a service (astoria, over MQTT: ``j5aio.service``) knows the
 match's metadata and where the team's USB stick is mounted. The service client writes
 what it hears here; the competition layer (:mod:`j5aio.competition.metadata`, the run
 log, :class:`~j5aio.robot.BaseRobot`) reads it. Neither imports the other, so the

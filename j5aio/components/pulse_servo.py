@@ -76,8 +76,9 @@ class PulseServoInterface(ServoInterface):
 class PulseServo(Servo):
     """A servo driven by pulses whose widths are set by its position.
 
-    Position -1 gives the lower pulse limit and 1 the upper one (1000 and 2000 µs unless
-    changed with :meth:`set_pulse_limits`); positions in between are spread evenly.
+    Position -1 gives the lower pulse limit and 1 the upper one (the board's defaults,
+    such as 1000 and 2000 µs, unless changed with :meth:`set_pulse_limits`); positions in
+    between are spread evenly.
 
     :param identifier: the number of the servo on its board.
     :param backend: the backend that drives the servo.

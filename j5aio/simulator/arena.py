@@ -22,6 +22,8 @@ import math
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
+from j5aio.vision.arena_map import ArenaMap, WallMarker
+from j5aio.vision.locate import CameraMount
 from j5aio.vision.sizes import MarkerSizes
 
 __all__ = [
@@ -163,6 +165,15 @@ class Arena:
         """The table of sizes of every marker id in the arena."""
         return MarkerSizes({m.marker_id: m.size for m in self.all_markers()})
 
+    def arena_map(self) -> ArenaMap:
+        """The map a robot locates itself by: the wall markers and the tokens' ids."""
+        return ArenaMap(
+            tuple(WallMarker(m.marker_id, m.x, m.y, m.facing, m.size, m.z) for m in self.markers),
+            width=self.width,
+            length=self.length,
+            token_sizes={t.marker_id: t.marker_size for t in self.tokens},
+        )
+
 
 @dataclass(frozen=True)
 class Pose:
@@ -231,6 +242,9 @@ class SimulatedWorld:
     :param camera_forward: how far in front of the robot's centre the camera is, mm (by
         default at the front edge of the robot, so the camera's distance to a wall is the
         gap between the robot and the wall).
+    :param camera_left: how far to the left of the robot's centre the camera is, mm.
+    :param camera_angle: which way the camera looks, radians anticlockwise from the
+        robot's forward direction (it always looks level).
     """
 
     arena: Arena = field(default_factory=Arena.standard)
@@ -238,6 +252,8 @@ class SimulatedWorld:
     drive: DifferentialDrive = field(default_factory=DifferentialDrive)
     camera_height: float = 200.0
     camera_forward: float = 200.0
+    camera_left: float = 0.0
+    camera_angle: float = 0.0
     _powers: tuple[float, float] = (0.0, 0.0)
     _time: float | None = None
 
@@ -268,8 +284,21 @@ class SimulatedWorld:
     def camera_position(self) -> tuple[float, float, float]:
         """Where the camera's lens is in the world, mm."""
         p = self.pose
+        c, s = math.cos(p.heading), math.sin(p.heading)
         return (
-            p.x + self.camera_forward * math.cos(p.heading),
-            p.y + self.camera_forward * math.sin(p.heading),
+            p.x + self.camera_forward * c - self.camera_left * s,
+            p.y + self.camera_forward * s + self.camera_left * c,
             self.camera_height,
+        )
+
+    def camera_heading(self) -> float:
+        """Which way the camera looks in the world, radians from east."""
+        return self.pose.heading + self.camera_angle
+
+    def camera_mount(self) -> CameraMount:
+        """Where the camera is on the robot, as :func:`~j5aio.vision.locate.locate` takes it."""
+        return CameraMount(
+            forward=self.camera_forward,
+            left=self.camera_left,
+            angle=math.remainder(self.camera_angle, math.tau),
         )

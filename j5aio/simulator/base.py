@@ -1,8 +1,9 @@
 """The two seams every board simulator plugs into: a serial port and a USB device.
 
-A simulator is a synchronous, pure state machine: it never sleeps, never starts a thread and
-never looks at the clock. Transports (in-memory serial links, a fake pyusb device, a pty)
-wrap it and add timing.
+A simulator is a synchronous state machine: it never sleeps, never starts a thread and
+never reads the computer's clock. A firmware that keeps time reads it from the clock it is
+given (:mod:`j5aio.simulator.clock`), when its state is read or bytes arrive. Transports
+(in-memory serial links, a fake pyusb device, a pty) wrap it and add the wire's timing.
 
 - :class:`SerialBoardSimulator` is a board behind a UART: the host opens the port, writes
   bytes and reads what the board emits.

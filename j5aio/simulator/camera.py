@@ -15,7 +15,6 @@ import asyncio
 import copy
 import functools
 import math
-import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, ClassVar
@@ -88,7 +87,7 @@ class SimulatedCamera:
 
 
 def _basis(world: SimulatedWorld) -> tuple[Vector3, Vector3, Vector3, Vector3]:
-    h = world.pose.heading
+    h = world.camera_heading()
     forward = (math.cos(h), math.sin(h), 0.0)
     left = (-math.sin(h), math.cos(h), 0.0)
     return world.camera_position(), forward, left, (0.0, 0.0, 1.0)
@@ -355,7 +354,11 @@ class _WorldClock:
 
 
 def update_world(kit: SimulatedKit, now: float | None = None) -> bool:
-    """Move ``kit``'s robot on to ``now`` (the monotonic clock by default) from its motors.
+    """Move ``kit``'s robot on to ``now`` from its motors.
+
+    ``now`` is a time of the kit's clock (``kit.clock``, :mod:`j5aio.simulator.clock`),
+    its present by default: the robot drives in the kit's time, as its boards' timers
+    run, so under a time scale of 2 a robot second of driving lasts two real seconds.
 
     :returns: whether the robot drives on from ``now`` (a drive motor's power is not 0).
     """
@@ -366,5 +369,5 @@ def update_world(kit: SimulatedKit, now: float | None = None) -> bool:
             powers.append(kit.drive_motor_boards[board_index].motors[motor_index].power)
         except IndexError:
             powers.append(0.0)
-    kit.world.update(time.monotonic() if now is None else now, powers[0], powers[1])
+    kit.world.update(kit.clock.now() if now is None else now, powers[0], powers[1])
     return powers[0] != 0 or powers[1] != 0

@@ -10,8 +10,6 @@ as a port named ``sim://<kit name>/<serial number>``, a USB board as a
 
 from __future__ import annotations
 
-import time
-import weakref
 from typing import TYPE_CHECKING, Any
 
 from j5aio.backends.hardware.options import DiscoveryOptions
@@ -20,7 +18,6 @@ from j5aio.backends.hardware.transports.memory import SimulatorStream
 
 from .base import SerialBoardSimulator, UsbBoardSimulator
 from .kit import SimulatedKit
-from .sr_power_fw3 import SRPowerBoardFw3Simulator
 from .usb_support import no_device_error
 
 if TYPE_CHECKING:
@@ -40,20 +37,13 @@ def port_name(kit: SimulatedKit, simulator: SerialBoardSimulator) -> str:
     return f"sim://{kit.name}/{simulator.serial_number}"
 
 
-
-# Piezo time on each simulated power board: when its notes last moved on.
-_piezo_clocks: weakref.WeakKeyDictionary[SRPowerBoardFw3Simulator, float] = (
-    weakref.WeakKeyDictionary()
-)
-
-
 class SimulatedUSBDevice:
     """A USB board simulator as discovery finds it, standing in for a pyusb device.
 
-    Every attribute is the simulator's, with two additions: ``bus`` and ``address`` name
-    its place in the kit (so that finding it again gives back the same board), and each
-    transfer first lets the real time since the last one pass on a power board's piezo,
-    so that queued notes finish playing.
+    Every attribute is the simulator's, with one addition: ``bus`` and ``address`` name
+    its place in the kit (so that finding it again gives back the same board). Transfers
+    go straight to the simulator, whose firmware keeps its own time
+    (:mod:`j5aio.simulator.clock`).
 
     :param simulator: the simulated board.
     :param kit: the kit it belongs to.
@@ -96,28 +86,16 @@ class SimulatedUSBDevice:
         data_or_wLength: Any = None,  # noqa: N803
         timeout: int | None = None,
     ) -> Any:
-        """Do a control transfer on the simulator, after letting time pass on it.
+        """Do a control transfer on the simulator, as pyusb does on a device.
 
         A device found before the board was unplugged is dead for good (errno 19), as a
         pyusb device is after its cable came out, even once the board is back.
         """
         if self._simulator.connection != self._connection:
             raise no_device_error()
-        self._let_time_pass()
         return self._simulator.ctrl_transfer(
             bmRequestType, bRequest, wValue, wIndex, data_or_wLength, timeout
         )
-
-    def _let_time_pass(self) -> None:
-        simulator = self._simulator
-        if not isinstance(simulator, SRPowerBoardFw3Simulator):
-            return
-        now = time.monotonic()
-        last = _piezo_clocks.get(simulator, now)
-        elapsed_ms = int((now - last) * 1000)
-        if elapsed_ms > 0 or simulator not in _piezo_clocks:
-            simulator.advance_piezo(elapsed_ms)
-            _piezo_clocks[simulator] = last + elapsed_ms / 1000
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self._simulator, name)

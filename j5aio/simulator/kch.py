@@ -12,8 +12,11 @@ same code as on a robot, and this object shows what the LEDs show::
     simulator.colours[0]                        # (False, True, True)
 
 Pins are BCM numbers: START 9; A 24/10/25, B 27/23/22, C 4/18/17 (red/green/blue), all
-active high. The pin numbers are written here from the protocol description, not taken
-from the backend.
+active high. An LED is lit only while its pin is driven high: once the board is closed
+(as at the end of a program) gpiozero releases the pins, which on a Raspberry Pi makes
+them inputs (lgpio's and RPi.GPIO's pin factories both do), so the LEDs go dark; a
+released mock pin is shown dark here too, whatever level it was left at. The pin
+numbers are written here from the protocol description, not taken from the backend.
 """
 
 from __future__ import annotations
@@ -81,11 +84,16 @@ class KCHSimulator:
         return self._board
 
     def _level(self, pin: int) -> bool:
-        return bool(self._factory.pin(pin).state)
+        """Whether ``pin`` lights its LED: driven (an output) and high."""
+        mock = self._factory.pin(pin)
+        return mock.function == "output" and bool(mock.state)
 
     @property
     def colours(self) -> tuple[tuple[bool, bool, bool], ...]:
-        """User LEDs A, B and C, each as whether its (red, green, blue) parts are lit."""
+        """User LEDs A, B and C, each as whether its (red, green, blue) parts are lit.
+
+        Every part is dark once the board has been closed: its pins are no longer driven.
+        """
         return tuple(
             (self._level(red), self._level(green), self._level(blue))
             for red, green, blue in _USER_LEDS

@@ -32,6 +32,7 @@ from j5aio.board_kinds import DEFAULT_KIT, BoardKind, KitDefinition, get_kit, si
 
 from .arena import SimulatedWorld
 from .base import SerialBoardSimulator, UsbBoardSimulator
+from .clock import Clock, drive, kit_clock
 from .sb_arduino_2019 import SBArduinoSimulator
 from .sr_motor_fw3 import SRMotorBoardFw3Simulator
 from .sr_motor_fw4 import SRMotorBoardFw4Simulator
@@ -86,7 +87,8 @@ class KitConfig:
     :param ruggeduinos: SR Ruggeduinos (firmware 1, serial).
     :param time_scale: multiplies the time a board takes to boot when its port opens (an
         Arduino's 1.5 s): ``1.0`` is as slow as the real boards, ``0`` (the default)
-        instant. Other time (a piezo note playing) passes at the real rate.
+        instant. The boards' firmware timers (a note playing, an LED flashing) run on the
+        kit's clock, at ``1 / time_scale`` of real time, or real time for ``0``.
     :raises TypeError: a count is not an int, or ``time_scale`` not a number.
     :raises ValueError: a count is outside 0 to 99, or ``time_scale`` is negative.
     """
@@ -176,6 +178,9 @@ class SimulatedKit:
                 f"{type(config).__name__}"
             )
         self._name = f"kit{next(_kit_numbers)}"
+        #: The kit's clock, which its boards' firmware timers follow: real time divided by
+        #: the time scale (:func:`~j5aio.simulator.clock.kit_clock`); see :meth:`use_clock`.
+        self.clock: Clock = kit_clock(self._config.time_scale)
         #: The arena, the robot's pose and its drive (see :mod:`j5aio.simulator.arena`).
         self.world = SimulatedWorld()
         #: The robot's camera (a :class:`~j5aio.simulator.camera.SimulatedCamera`), or
@@ -205,6 +210,12 @@ class SimulatedKit:
             self._boards[simulator_name] = made
             for simulator in made:
                 self._kinds[id(simulator)] = kind
+        drive(self._all(), self.clock)
+
+    def use_clock(self, clock: Clock) -> None:
+        """Run every board's firmware timers on ``clock`` from now on (a test's manual one)."""
+        self.clock = clock
+        drive(self._all(), clock)
 
     @property
     def config(self) -> KitConfig:

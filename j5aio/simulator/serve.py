@@ -50,6 +50,8 @@ from typing import Self
 
 from j5aio.backends.hardware.transports.memory import SerialSimulatorLike
 
+from .clock import Clock, drive, kit_clock
+
 __all__ = ["OPEN_SETTLE_TIME", "PtyServer", "reply_due", "serve_on_pty"]
 
 LOGGER = logging.getLogger(__name__)
@@ -82,6 +84,9 @@ class PtyServer:
         simulator's baud rate), as on the real wire.
     :param link: a path to keep as a symbolic link to the current pseudo-terminal;
         an existing symbolic link there is replaced, anything else is refused.
+    :param clock: the clock the board's firmware timers (a note, a flashing LED) follow
+        from now on; by default real time divided by ``time_scale``
+        (:func:`~j5aio.simulator.clock.kit_clock`). A board without timers ignores it.
     :raises FileExistsError: ``link`` exists and is not a symbolic link.
     """
 
@@ -92,9 +97,11 @@ class PtyServer:
         time_scale: float = 1.0,
         uart_timing: bool = False,
         link: str | os.PathLike[str] | None = None,
+        clock: Clock | None = None,
     ) -> None:
         if time_scale < 0:
             raise ValueError(f"time_scale must be zero or more, not {time_scale}")
+        drive([simulator], clock if clock is not None else kit_clock(time_scale))
         self._link = os.fspath(link) if link is not None else None
         link_path = self._link
         if link_path is not None and os.path.lexists(link_path) and not os.path.islink(link_path):
@@ -380,6 +387,7 @@ def serve_on_pty(
     time_scale: float = 1.0,
     uart_timing: bool = False,
     link: str | os.PathLike[str] | None = None,
+    clock: Clock | None = None,
 ) -> PtyServer:
     """Serve ``simulator`` on a new pseudo-terminal and return the running server.
 
@@ -396,10 +404,14 @@ def serve_on_pty(
         receive the request and send the reply.
     :param link: keep a symbolic link at this path pointing at the pseudo-terminal, also
         across an unplug (see the module's notes); removed when the server closes.
+    :param clock: the clock the board's firmware timers follow; by default real time
+        divided by ``time_scale`` (see :class:`PtyServer`).
     :raises ValueError: ``time_scale`` is negative.
     :raises FileExistsError: ``link`` exists and is not a symbolic link.
     :raises OSError: no pseudo-terminal could be made.
     """
-    server = PtyServer(simulator, time_scale=time_scale, uart_timing=uart_timing, link=link)
+    server = PtyServer(
+        simulator, time_scale=time_scale, uart_timing=uart_timing, link=link, clock=clock
+    )
     server.start()
     return server

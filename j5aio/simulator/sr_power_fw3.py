@@ -18,6 +18,11 @@ wIndex wLength  reply
 Writes (``bmRequestType`` 0x00): wIndex 0-5 switch output n (wValue 0 = off), 6 the RUN
 LED, 7 the ERROR LED, 8 queue piezo notes (payload of ``<HH`` (Hz, ms) samples).
 
+The piezo plays its queue on the firmware's clock (:mod:`j5aio.simulator.clock`): a
+simulated kit's, which runs in real or scaled time, or, for a board made on its own, a
+manual clock that stands still until moved on. The queue is brought up to date whenever
+it is read or a request arrives.
+
 Stalls: any other request or wIndex, a read with too small a wLength, a piezo payload that
 is empty, not a multiple of 4 bytes, or longer than the room left in the 31-note queue.
 """
@@ -26,9 +31,9 @@ from __future__ import annotations
 
 import struct
 from collections import deque
-from collections.abc import Callable
 from typing import ClassVar, Final, NamedTuple
 
+from .clock import BoardTime, Clock
 from .sr_usb import SRUsbBoardSimulator
 from .usb_support import UsbStall
 
@@ -76,8 +81,8 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
     """An SR Power Board v4 with firmware 3, seen through pyusb.
 
     The board starts powered up, enumerated (RUN LED on, ERROR LED off), with all outputs
-    off and a 12 V battery, so its output drivers are running. Time does not pass by itself:
-    :meth:`advance_piezo` plays queued notes.
+    off and a 12 V battery, so its output drivers are running. Queued notes play out on
+    the board's clock (:meth:`use_clock`; :meth:`advance_piezo` lets more time pass).
     """
 
     idVendor: ClassVar[int] = 0x1BDA  # noqa: N815
@@ -105,13 +110,14 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         self._output_ma = [0] * self.OUTPUT_COUNT
         self._internal_button = False
         self._external_button = False
-        self._press_listeners: list[Callable[[], None]] = []
         self._outputs = [False] * self.OUTPUT_COUNT
         self._trips = [False] * self.OUTPUT_COUNT
         self._run_led = True
         self._error_led = True
         self._notes: deque[PiezoNote] = deque()
         self._note_elapsed_ms = 0
+        self._time = BoardTime()
+        self._piezo_ms = 0  # the board's time the piezo queue was brought up to
         self._drivers_ready = False
         self.power_cycle()
 
@@ -184,8 +190,21 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
 
     @property
     def note_queue(self) -> list[PiezoNote]:
-        """The queued piezo notes, the one playing first."""
+        """The queued piezo notes still to finish now, the one playing first."""
+        self._play_until_now()
         return list(self._notes)
+
+    # --- time ---
+
+    def use_clock(self, clock: Clock) -> None:
+        """Play the piezo on ``clock`` from now on (a simulated kit gives its own)."""
+        self._play_until_now()
+        self._time.follow(clock)
+
+    @property
+    def clock(self) -> Clock:
+        """The clock the firmware's piezo follows."""
+        return self._time.clock
 
     # --- outside control ---
 
@@ -204,30 +223,10 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         self._set_button(external=external, held=False)
 
     def _set_button(self, *, external: bool, held: bool) -> None:
-        was_held = self.start_button_pressed
         if external:
             self._external_button = held
         else:
             self._internal_button = held
-        if self.start_button_pressed and not was_held:
-            for listener in list(self._press_listeners):
-                listener()
-
-    def watch_start_button(self, listener: Callable[[], None]) -> Callable[[], None]:
-        """Call ``listener()`` whenever a start button goes down; return what stops it.
-
-        Not part of the board (the real one must be asked): a host that knows it talks
-        to a simulator may listen instead of reading the button again and again. The
-        listener runs in the thread that pressed the button, so it must only hand the
-        news on (``loop.call_soon_threadsafe``, say).
-        """
-        self._press_listeners.append(listener)
-
-        def stop() -> None:
-            if listener in self._press_listeners:
-                self._press_listeners.remove(listener)
-
-        return stop
 
     @property
     def start_button_pressed(self) -> bool:
@@ -277,9 +276,26 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         return self._output_ma[output] / 1000
 
     def advance_piezo(self, milliseconds: int) -> list[PiezoNote]:
-        """Let ``milliseconds`` of playing time pass; return the notes that finished."""
+        """Let ``milliseconds`` pass beside the clock; return the notes that finished.
+
+        That is every note finished since the queue was last looked at (by a request,
+        :attr:`note_queue` or this), the clock's time included.
+
+        :raises ValueError: ``milliseconds`` is negative (time only runs forwards).
+        """
         if milliseconds < 0:
             raise ValueError("time only runs forwards")
+        finished = self._play_until_now()
+        self._time.skip(milliseconds / 1000)
+        return finished + self._play_until_now()
+
+    def _play_until_now(self) -> list[PiezoNote]:
+        """Bring the piezo queue up to the board's time; return the notes that finished."""
+        now = self._time.milliseconds()
+        elapsed, self._piezo_ms = now - self._piezo_ms, now
+        return self._play(elapsed)
+
+    def _play(self, milliseconds: int) -> list[PiezoNote]:
         finished: list[PiezoNote] = []
         remaining = milliseconds
         while self._notes:
@@ -294,6 +310,7 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         return finished
 
     def _stop_piezo(self) -> None:
+        self._piezo_ms = self._time.milliseconds()
         self._notes.clear()
         self._note_elapsed_ms = 0
 
@@ -356,6 +373,7 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
     def _queue_notes(self, data: bytes) -> None:
         if not data or len(data) % _SAMPLE.size:
             raise UsbStall()
+        self._play_until_now()  # the queue's room is what is left of it now
         notes = [PiezoNote(*sample) for sample in _SAMPLE.iter_unpack(data)]
         free_slots = _RING_SLOTS - len(self._notes)
         if len(notes) >= free_slots:

@@ -14,10 +14,13 @@ down) is remembered until the next ``BTN:START:GET?``, which reports it once.
 darkens both LEDs, stops the buzzer and clears the button latches. Pulling the USB
 cable switches every output but the brain off, stops the buzzer and lights both LEDs.
 
-The simulator keeps no clock: :meth:`SRPowerBoardFw4Simulator.advance` passes time, for
-the buzzer's remaining time and the flashing LEDs (which toggle once a second).
-Over-current trips happen when the outside says so
-(:meth:`~j5aio.simulator.sr_power_fw4.SRPowerBoardFw4Simulator.trip_output`).
+The firmware's timers (the buzzer's note, the flashing LEDs, which toggle once a second)
+follow a clock (:mod:`j5aio.simulator.clock`): a simulated kit's clock, which runs in real
+or scaled time, or, for a board made on its own, a manual clock that stands still until
+moved on (:meth:`~SRPowerBoardFw4Simulator.use_clock`,
+:meth:`~SRPowerBoardFw4Simulator.advance`). They are worked out whenever the board's state
+is read or a command arrives. Over-current trips happen when the outside says so
+(:meth:`~SRPowerBoardFw4Simulator.trip_output`).
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ from dataclasses import dataclass
 from typing import ClassVar, Final
 
 from .base import SerialBoardSimulator
+from .clock import BoardTime, Clock
 from .sr_text_line import BoundedLineInput
 
 __all__ = ["BuzzerNote", "SRPowerBoardFw4Simulator"]
@@ -100,7 +104,7 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         self._leds = ["0", "0"]
         self._held = [False, False]
         self._pressed = [False, False]
-        self._now_ms = 0
+        self._time = BoardTime()
         self._note: BuzzerNote | None = None
         self._note_ends_ms = 0
         self._delay_coefficients: tuple[int, ...] = _DEFAULT_DELAY_COEFFICIENTS
@@ -174,11 +178,34 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         self._latches[output] = True
         self._outputs[output] = False
 
+    def use_clock(self, clock: Clock) -> None:
+        """Run the firmware's timers on ``clock`` from now on (a kit gives its own)."""
+        self._time.follow(clock)
+
+    @property
+    def clock(self) -> Clock:
+        """The clock the firmware's timers follow."""
+        return self._time.clock
+
     def advance(self, seconds: float) -> None:
-        """Let ``seconds`` pass: the buzzer plays on, flashing LEDs toggle."""
-        self._now_ms += round(seconds * 1000)
-        if self._note is not None and self._now_ms >= self._note_ends_ms:
+        """Let ``seconds`` pass beside the clock: the buzzer plays on, flashing LEDs toggle.
+
+        :raises ValueError: ``seconds`` is negative.
+        """
+        self._time.skip(seconds)
+
+    @property
+    def uptime(self) -> float:
+        """Seconds the firmware has run on its clock (the time its timers go by)."""
+        return self._time.seconds()
+
+    @property
+    def _now_ms(self) -> int:
+        """The firmware's millisecond tick; reading it ends a note whose time is up."""
+        now = self._time.milliseconds()
+        if self._note is not None and now >= self._note_ends_ms:
             self._note = None
+        return now
 
     # --- readable state ---
 
@@ -199,7 +226,11 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
 
     @property
     def run_led(self) -> bool:
-        """Whether the RUN LED is lit now (a flashing LED is lit in even seconds)."""
+        """Whether the RUN LED is lit now.
+
+        A flashing LED toggles once a second on the firmware's tick: lit in the even
+        seconds of :attr:`uptime`, dark in the odd ones.
+        """
         return self._lit(0)
 
     @property
@@ -214,7 +245,8 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
 
     @property
     def playing(self) -> BuzzerNote | None:
-        """The note the buzzer is playing, or ``None`` when it is silent."""
+        """The note the buzzer is playing now, or ``None`` when it is silent."""
+        _ = self._now_ms  # a note whose time is up has ended
         return self._note
 
     @property
@@ -263,11 +295,12 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         return bytes(replies[:_REPLY_BUFFER])
 
     def _start_note(self, frequency: int, duration_ms: int) -> None:
+        now = self._time.milliseconds()
         if frequency == 0 or duration_ms == 0:
             self._note = None
             return
         self._note = BuzzerNote(frequency, duration_ms)
-        self._note_ends_ms = self._now_ms + duration_ms
+        self._note_ends_ms = now + duration_ms
 
     def _execute(self, command: str) -> str:
         fields = command.split(":")
@@ -393,9 +426,10 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         if not args or not args[0]:
             return "NACK:Missing note frequency"
         if args[0] == "GET?":
+            now = self._now_ms
             if self._note is None:
                 return "0:0"
-            remaining = self._note_ends_ms - self._now_ms
+            remaining = self._note_ends_ms - now
             return f"{min(self._note.frequency, _MAX_FREQUENCY)}:{remaining}"
         frequency = _leading_number(args[0])
         if frequency is None or frequency > 0xFFFF:

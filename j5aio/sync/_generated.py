@@ -57,6 +57,7 @@ import j5aio.components.temperature_sensor as _components_temperature_sensor
 import j5aio.components.voltage_sensor as _components_voltage_sensor
 import j5aio.kit as _kit
 import j5aio.robot as _robot
+import j5aio.vision.track as _vision_track
 from j5aio._lazy import lazy_modules as _lazy_modules
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt as _adopt
@@ -74,7 +75,9 @@ if TYPE_CHECKING:
     import j5aio.competition.timer as _competition_timer
     import j5aio.environments as _environments
     import j5aio.numbered as _numbered
+    import j5aio.vision.arena_map as _vision_arena_map
     import j5aio.vision.calibration as _vision_calibration
+    import j5aio.vision.locate as _vision_locate
     import j5aio.vision.markers as _vision_markers
     import j5aio.vision.sizes as _vision_sizes
     CONSOLE_ENVIRONMENT: Environment
@@ -90,7 +93,9 @@ else:
         "_competition_timer": "j5aio.competition.timer",
         "_environments": "j5aio.environments",
         "_numbered": "j5aio.numbered",
+        "_vision_arena_map": "j5aio.vision.arena_map",
         "_vision_calibration": "j5aio.vision.calibration",
+        "_vision_locate": "j5aio.vision.locate",
         "_vision_markers": "j5aio.vision.markers",
         "_vision_sizes": "j5aio.vision.sizes",
     })
@@ -125,6 +130,7 @@ __all__ = [
     "MotorBoard",
     "MotorBoardFw4",
     "Piezo",
+    "PositionTracker",
     "PowerBoard",
     "PowerBoardFw4",
     "PowerBoardOutputGroup",
@@ -502,9 +508,17 @@ class BaseRobot(_SyncWrapper):
     match's metadata (:attr:`~j5aio.robot.BaseRobot.zone`, :attr:`~j5aio.robot.BaseRobot.arena`,
     :attr:`~j5aio.robot.BaseRobot.mode`); in a match with a duration the match timer then ends the
     program when the match is over, every board safe, however the program is written (see
-    :mod:`j5aio.competition`). Use
+    :mod:`j5aio.competition`). ``wait_for_start=True`` makes entering the robot wait for
+    the start, as the kits' own libraries do when their robot is made. In a match, the
+    start starts the match timer even if the program never waits for it
+    (:meth:`~j5aio.robot.BaseRobot.watch_for_start`). Use
     :meth:`~j5aio.robot.BaseRobot.time` and :meth:`~j5aio.robot.BaseRobot.sleep` for timing, so that
     a simulation can run at another speed.
+
+    :param wait_for_start: wait for the start on entering (after
+        :meth:`~j5aio.robot.BaseRobot.setup`), as :meth:`~j5aio.robot.BaseRobot.wait_start`
+        does.
+    :raises TypeError: ``wait_for_start`` is not a bool.
     """
 
     __slots__ = ()
@@ -528,9 +542,27 @@ class BaseRobot(_SyncWrapper):
         """Make every board safe now. Cancellation cannot interrupt it."""
         _call(self._core.make_safe)
 
+    def after_setup(self) -> None:
+        """What entering the robot does once :meth:`setup` has found the boards.
+
+        It starts the robot service's client (if the service is configured), logs the
+        kit, starts :meth:`watch_for_start`, and, if the robot was made with
+        ``wait_for_start=True``, waits for the start (:meth:`wait_start`).
+        ``async with`` calls it; the sync facade calls it after ``setup``; a subclass
+        that overrides ``__aenter__`` must call it.
+
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata is unusable.
+        """
+        _call(self._core.after_setup)
+
     @property
     def metadata(self) -> _competition_metadata.Metadata:
-        """The match's metadata: read at the start, or looked for now if not started yet.
+        """The match's metadata: fixed at the start; until then, what it is now.
+
+        Before the start, what the robot service last said wins (it may change the zone
+        or the mode while the robot waits), else the metadata file, read once. From the
+        start on it is what it was at the start, whatever the service says later.
+        See :func:`~j5aio.competition.metadata.load_metadata` for where it comes from.
 
         :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
             malformed (the message names the file and the field).
@@ -559,13 +591,22 @@ class BaseRobot(_SyncWrapper):
 
     @property
     def usb_stick(self) -> Path | None:
-        """The USB stick the metadata came from, else the first one mounted, else ``None``."""
+        """The team's USB stick, or ``None``.
+
+        The one the robot service says holds the team's code; else the stick the metadata
+        came from; else the first one mounted.
+        """
         return self._core.usb_stick
 
     @property
     def match_timer(self) -> _competition_timer.MatchTimer | None:
         """The running match's timer; ``None`` before the start or outside a timed match."""
         return self._core.match_timer
+
+    @property
+    def started(self) -> bool:
+        """Whether the robot has started (by :meth:`wait_start` or :meth:`watch_for_start`)."""
+        return self._core.started
 
     def time(self) -> float:
         """Robot seconds since the start (since the robot was made, before the start).
@@ -587,23 +628,162 @@ class BaseRobot(_SyncWrapper):
         """Wait for the start of the match, then read the metadata and start the timer.
 
         Flashes the run LED (and a KCH's start LED) and beeps once while waiting; the
-        start button, the start file a competition runner creates, or
-        ``python -m j5aio run``'s console start the robot (:mod:`j5aio.competition.start`).
-        In COMP mode with a duration the match timer starts: when it runs out the
-        robot's work is cancelled, every board is made safe and the program ends.
+        start button, the start file a competition runner creates, a remote start from
+        the robot service, or ``python -m j5aio run``'s console start the robot
+        (:mod:`j5aio.competition.start`). In COMP mode with a duration the match timer
+        starts: when it runs out the robot's work is cancelled, every board is made safe
+        and the program ends. If the start came already (:meth:`watch_for_start` saw
+        it), this returns at once.
 
         :param timeout: give up after this many seconds; ``None`` waits for ever.
         :raises TimeoutError: nothing started the robot within ``timeout`` seconds.
         :raises ~j5aio.competition.metadata.MetadataError: the metadata file is
             malformed (the message names the file and the field).
-        :raises RuntimeError: the robot has started already.
+        :raises RuntimeError: ``wait_start`` has returned already: it runs once.
         """
         _call(self._core.wait_start, timeout)
+
+    def watch_for_start(self) -> None:
+        """In a match, start the match timer when the start comes, waited for or not.
+
+        From now until the start, while the robot is in COMP mode (by its metadata,
+        which the robot service may change), a background task waits for the start as
+        :meth:`wait_start` does: the button, the start file, or a remote start then
+        starts the match and its timer even if the program never calls
+        :meth:`wait_start` (a later :meth:`wait_start` returns at once). In DEV mode
+        nothing is watched: the program waits when it wants to. Entering the robot calls
+        this; calling it again does nothing. It returns at once.
+
+        :raises ~j5aio.competition.metadata.MetadataError: the metadata is unusable:
+            in a match the robot must not run on a guess.
+        """
+        _call(self._core.watch_for_start)
 
     @staticmethod
     def boards() -> set[Board]:
         """Every board that is set up in this program."""
         return cast("set[Board]", _wrap(_robot.BaseRobot.boards()))
+
+
+class PositionTracker(_SyncWrapper):
+    """Keeps an estimate of the robot's pose from its camera's markers and its own motion.
+
+    :param camera: the robot's marker camera (``robot.camera``), looked through by
+        :meth:`update`; ``None`` for a tracker fed only by :meth:`observe`.
+    :param arena_map: the arena's wall markers.
+    :param mount: where the camera is on the robot (by default at its centre, forwards).
+    :param wander: how fast the robot may move unseen while the program says nothing of
+        its motion, mm/s (the estimate's uncertainty grows by so much a second, as a
+        random walk); 0 trusts that the robot stands still.
+    :param slip: the fraction by which the real motion may differ from what the program
+        says (wheels slip, speeds are guessed): the uncertainty grows by this fraction of
+        the distance driven and of the angle turned since the last fix.
+    :param clock: the clock, in seconds (``time.monotonic`` by default).
+    :raises TypeError: ``arena_map`` is not an ArenaMap, or ``camera`` not a MarkerCamera.
+    :raises ValueError: ``wander`` or ``slip`` is negative.
+    """
+
+    __slots__ = ()
+
+    _core: _vision_track.PositionTracker
+
+    def __init__(
+        self,
+        camera: MarkerCamera | None,
+        arena_map: _vision_arena_map.ArenaMap,
+        mount: _vision_locate.CameraMount | None = None,
+        *,
+        wander: float = 300.0,
+        slip: float = 0.1,
+        clock: Callable[[], float] | None = None,
+    ) -> None:
+        _adopt_into(self, _vision_track.PositionTracker(_unwrap(camera), arena_map, mount, wander=wander, slip=slip, clock=clock))
+
+    @property
+    def arena_map(self) -> _vision_arena_map.ArenaMap:
+        """The arena the robot is located in."""
+        return self._core.arena_map
+
+    @property
+    def mount(self) -> _vision_locate.CameraMount:
+        """Where the camera is on the robot."""
+        return self._core.mount
+
+    def estimate(self) -> _vision_track.Estimate | None:
+        """Where the robot is now, carried on from the last fix; ``None`` before any fix."""
+        return self._core.estimate()
+
+    def moved(self, forward: float, turned: float = 0.0, *, left: float = 0.0) -> None:
+        """Say that the robot has just moved: ``forward`` mm, turning ``turned`` radians.
+
+        The move is taken along an arc (a differential drive's), in the robot's frame as
+        it was; ``left`` is a sideways move, mm (for a robot that can). Its uncertainty is
+        :attr:`slip` of it.
+
+        :raises TypeError: a value is not a number.
+        :raises ValueError: a value is not finite.
+        """
+        self._core.moved(forward, turned, left=left)
+
+    def set_motion(self, speed: float = 0.0, turn_rate: float = 0.0) -> None:
+        """Say how the robot drives from now on (both 0: it stands still).
+
+        It drives forwards at ``speed`` mm/s, turning anticlockwise at ``turn_rate``
+        rad/s. Until the next call the estimate moves so, with :attr:`slip` of uncertainty.
+
+        :raises TypeError: a value is not a number.
+        :raises ValueError: a value is not finite.
+        """
+        self._core.set_motion(speed, turn_rate)
+
+    def update(self) -> _vision_track.Estimate | None:
+        """Take a picture, fold in the fix its markers give, and return the estimate.
+
+        The fix is folded in where the robot was when the picture was asked for; any
+        motion said while the picture was taken is kept.
+
+        :returns: the estimate now (``None`` until a fix has been had).
+        :raises RuntimeError: the tracker has no camera.
+        :raises ~j5aio.vision.sizes.UnknownMarkerError: the camera saw a marker that its
+            table of sizes lacks: give it the map's,
+            ``camera.set_marker_sizes(arena_map.marker_sizes())``.
+        """
+        return _call(self._core.update)
+
+    def observe(
+        self,
+        markers: Iterable[_vision_locate.MarkerLike],
+        at: float | None = None,
+    ) -> _vision_track.Estimate | None:
+        """Fold in the fix of one picture's markers, taken at ``at``; return the estimate.
+
+        ``at`` is the tracker's clock time the picture was taken (now by default). For a
+        program that looks through the camera itself (``markers = await
+        robot.camera.see()``, or a competition API's camera).
+        """
+        return self._core.observe(markers, at)
+
+    def reset(
+        self,
+        pose: Sequence[float] | None = None,
+        *,
+        position_error: float = 50.0,
+        heading_error: float = 0.05,
+    ) -> None:
+        """Forget the estimate; or, given ``(x, y, heading)``, start from that pose.
+
+        :param pose: where the robot is known to be (its starting zone), or ``None``.
+        :param position_error: how well ``pose`` is known, mm.
+        :param heading_error: how well its heading is known, radians.
+        """
+        self._core.reset(pose, position_error=position_error, heading_error=heading_error)
+
+    def run(self, interval: float = 0.0) -> None:
+        """Look through the camera again and again, until cancelled (run it in a task group).
+
+        :param interval: seconds to wait between pictures (0: as fast as the camera goes).
+        """
+        _call(self._core.run, interval)
 
 
 class Board(_SyncWrapper):
@@ -1085,6 +1265,7 @@ class KitRobot(BaseRobot):
         robot = _adopt(cls, _kit.KitRobot(environment=_unwrap(environment), view=view))
         try:
             _call(robot._core.setup)
+            _call(robot._core.after_setup)
         except BaseException:
             robot._core.release_lock()
             raise
@@ -1246,7 +1427,10 @@ class KCHBoard(Board):
     Its three user LEDs A, B and C (:attr:`leds`, 0 to 2) each have a red, a green and a
     blue part that are on or off, so they show the eight :class:`Colour` s: any
     brightness above 0 lights a part fully. Its start LED (:attr:`start_led`) flashes
-    while a robot waits for the start button. Colours stay lit when the program ends.
+    while a robot waits for the start button. Colours stay lit while the program runs,
+    also once it is made safe; when the program ends, closing the board releases the
+    GPIO pins and every LED goes dark (sr-robot3, which leaves its user LED pins driven
+    at exit, keeps them lit).
 
     :param serial_number: the KCH's asset code.
     :param backend: the backend that drives the LEDs.
@@ -1279,7 +1463,7 @@ class KCHBoard(Board):
         return _boards_sr_kch.KCHBoard.supported_components()
 
     def make_safe(self) -> None:
-        """Turn the start LED off; the user LEDs keep their colours, as on the real kit."""
+        """Turn the start LED off; the user LEDs keep their colours until the board closes."""
         _call(self._core.make_safe)
 
 
@@ -1894,7 +2078,8 @@ class SBServoBoard(ServoBoardFw4):
     """The servo board of the SourceBots 2024+ kit: SourceBots' firmware 4.4, eight servos.
 
     The same board and protocol as :class:`~j5aio.boards.sr.v4.servo_board_fw4.ServoBoardFw4`,
-    with eight servos (0 to 7) whose pulses may be as short as 300 µs.
+    with eight servos (0 to 7) whose pulses may be as short as 300 µs. Positions -1 to 1
+    give pulses of 350 to 1980 µs until a program sets other limits, as in sbot.
 
     :param serial_number: the board's serial number.
     :param backend: the backend that drives the board.
@@ -2844,8 +3029,9 @@ class ProtectedPowerOutput(PowerOutput):
 class PulseServo(Servo):
     """A servo driven by pulses whose widths are set by its position.
 
-    Position -1 gives the lower pulse limit and 1 the upper one (1000 and 2000 µs unless
-    changed with :meth:`set_pulse_limits`); positions in between are spread evenly.
+    Position -1 gives the lower pulse limit and 1 the upper one (the board's defaults,
+    such as 1000 and 2000 µs, unless changed with :meth:`set_pulse_limits`); positions in
+    between are spread evenly.
 
     :param identifier: the number of the servo on its board.
     :param backend: the backend that drives the servo.
@@ -2926,6 +3112,7 @@ _register(_backends_environment.Environment, Environment)
 _register(_boards_sb_arduino.UltrasoundSensors, UltrasoundSensors)
 _register(_boards_sr_kch.Colour, Colour)
 _register(_robot.BaseRobot, BaseRobot)
+_register(_vision_track.PositionTracker, PositionTracker)
 _register(_boards_board.Board, Board)
 _register(_boards_board_group.BoardGroup, BoardGroup)
 _register(_components_component.Component, Component)

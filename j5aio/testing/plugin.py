@@ -38,6 +38,7 @@ saying what to install, and every other test runs as usual.
 
 from __future__ import annotations
 
+import re
 import sys
 from collections.abc import AsyncIterator, Iterable, Iterator, Mapping
 from typing import TYPE_CHECKING
@@ -80,7 +81,11 @@ def pytest_configure(config: pytest.Config) -> None:
 
 
 def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
-    """List the conformance checks that were skipped for want of a subject's hook."""
+    """Say which conformance checks were skipped for want of a subject's hook.
+
+    One line counts them and names the hooks; with ``-rs`` (or ``-v``) every skipped
+    check is listed with its reason.
+    """
     # Only a run that used the suites can have such skips; importing them otherwise
     # would need pytest-asyncio, which a suite without async tests may not have.
     base = sys.modules.get("j5aio.testing.conformance._base")
@@ -92,10 +97,21 @@ def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
         longrepr = getattr(report, "longrepr", None)
         if isinstance(longrepr, tuple) and len(longrepr) == 3 and mark in longrepr[2]:
             lines.append(f"{report.nodeid}: {longrepr[2].removeprefix('Skipped: ')}")
-    if lines:
+    if not lines:
+        return
+    config = terminalreporter.config
+    report_chars = config.getoption("reportchars", "") or ""
+    if config.getoption("verbose", 0) > 0 or any(char in report_chars for char in "saA"):
         terminalreporter.section("j5aio conformance: checks not run for want of a hook")
         for line in lines:
             terminalreporter.write_line(line)
+        return
+    hooks = sorted({name for line in lines for name in re.findall(r"'(\w+)'", line)})
+    terminalreporter.write_line(
+        f"j5aio conformance: {len(lines)} check{'s' if len(lines) != 1 else ''} not run for "
+        f"want of a subject's hook ({', '.join(repr(name) for name in hooks)}); "
+        "-rs lists them"
+    )
 
 
 @pytest.fixture

@@ -2,7 +2,9 @@
 
 On the simulated kit the robot drives in an arena (:mod:`j5aio.simulator.arena`): the
 page draws it from above, with the robot's pose and its camera's field of view, and
-moves the robot as the kit's motors drive it. The arena is sent to a page once; the pose
+moves the robot as the kit's motors drive it. Beside the true pose it draws where the
+program believes the robot is, when the program keeps an estimate
+(:class:`~j5aio.vision.track.PositionTracker`). The arena is sent to a page once; the pose
 each time it changes. Both are plain JSON-ready dictionaries, in the world frame of the
 arena (mm, x east, y north; headings in radians anticlockwise from east).
 
@@ -17,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 
 from j5aio.boards.board import Board
 from j5aio.simulator.kit import SimulatedKit, current_kit
+from j5aio.vision.track import latest_estimate
 
 from .controls import simulator_of
 
@@ -75,14 +78,27 @@ def describe_arena(kit: SimulatedKit) -> dict[str, Any]:
 
 
 def describe_pose(kit: SimulatedKit) -> dict[str, Any]:
-    """Where ``kit``'s robot is now, and what its camera can see (``None`` without one)."""
+    """Where ``kit``'s robot is now, and what its camera can see (``None`` without one).
+
+    ``estimate`` is where the program believes the robot is: ``None`` until a
+    :class:`~j5aio.vision.track.PositionTracker` has an estimate.
+    """
     world = kit.world
     pose = world.pose
-    shown: dict[str, Any] = {"x": pose.x, "y": pose.y, "heading": pose.heading, "camera": None}
+    shown: dict[str, Any] = {
+        "x": pose.x, "y": pose.y, "heading": pose.heading, "camera": None, "estimate": None,
+    }
+    estimate = latest_estimate()
+    if estimate is not None:
+        shown["estimate"] = {
+            "x": estimate.x, "y": estimate.y, "heading": estimate.heading,
+            "error": estimate.position_error, "age": estimate.age,
+        }
     if kit.camera is not None:
         x, y, _ = world.camera_position()
         left, right = field_of_view(kit.camera)
         shown["camera"] = {
-            "x": x, "y": y, "left": pose.heading + left, "right": pose.heading + right,
+            "x": x, "y": y,
+            "left": world.camera_heading() + left, "right": world.camera_heading() + right,
         }
     return shown

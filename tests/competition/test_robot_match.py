@@ -16,7 +16,12 @@ from j5aio import robot as robot_module
 from j5aio.boards.board import Board
 from j5aio.competition import timer as timer_module
 from j5aio.competition.clock import TIME_SCALE_VARIABLE
-from j5aio.competition.metadata import MEDIA_ROOTS_VARIABLE, METADATA_VARIABLE, Mode
+from j5aio.competition.metadata import (
+    MEDIA_ROOTS_VARIABLE,
+    METADATA_VARIABLE,
+    SBOT_METADATA_VARIABLE,
+    Mode,
+)
 from j5aio.competition.start import START_FILE_VARIABLE, clear_trigger, trigger_start
 from j5aio.competition.timer import MatchTimer
 from j5aio.kit import KitRobot
@@ -33,6 +38,7 @@ async def _fresh(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> AsyncIterat
     monkeypatch.setenv(START_FILE_VARIABLE, str(tmp_path / "start"))
     monkeypatch.setenv(MEDIA_ROOTS_VARIABLE, str(tmp_path / "media"))
     monkeypatch.delenv(METADATA_VARIABLE, raising=False)
+    monkeypatch.delenv(SBOT_METADATA_VARIABLE, raising=False)
     monkeypatch.delenv(TIME_SCALE_VARIABLE, raising=False)
     monkeypatch.setattr(timer_module, "_hooks", [])
     for board in lifetime.open_boards():  # boards other tests left: not this test's kit

@@ -12,7 +12,11 @@ import pytest
 
 from j5aio.__main__ import main
 from j5aio.competition.clock import TIME_SCALE_VARIABLE
-from j5aio.competition.metadata import MEDIA_ROOTS_VARIABLE, METADATA_VARIABLE
+from j5aio.competition.metadata import (
+    MEDIA_ROOTS_VARIABLE,
+    METADATA_VARIABLE,
+    SBOT_METADATA_VARIABLE,
+)
 from j5aio.competition.runlog import LOG_DIR_VARIABLE
 from j5aio.competition.start import START_FILE_VARIABLE
 from j5aio.environments import ENVIRONMENT_VARIABLE
@@ -42,7 +46,10 @@ anyio.run(main)
 
 @pytest.fixture(autouse=True)
 def _isolated(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
-    for name in (METADATA_VARIABLE, TIME_SCALE_VARIABLE, LOG_DIR_VARIABLE, ENVIRONMENT_VARIABLE):
+    for name in (
+        METADATA_VARIABLE, SBOT_METADATA_VARIABLE, TIME_SCALE_VARIABLE, LOG_DIR_VARIABLE,
+        ENVIRONMENT_VARIABLE,
+    ):
         monkeypatch.setenv(name, "")  # recorded, so that teardown restores it
         monkeypatch.delenv(name)
     monkeypatch.setenv(MEDIA_ROOTS_VARIABLE, str(tmp_path / "media"))
@@ -117,6 +124,53 @@ def test_a_match_on_the_named_sr2023_kit(tmp_path: Path) -> None:
     assert "Kit: Student Robotics v4 Motor Board (firmware 4)" in log.read_text()
 
 
+NEVER_WAITS_PROGRAM = """
+import time
+import anyio
+from j5aio.kit import KitRobot
+
+async def main():
+    began = time.monotonic()
+    async with KitRobot() as robot:  # no wait_start(): the start still starts the match
+        motor = robot.motor_boards[0].motors[0]
+        while True:
+            try:
+                await motor.set_power(0.5)
+                await robot.sleep(0.05)
+            except BaseException:
+                pass
+            if time.monotonic() - began > 20:
+                print("ran on past the match")
+                return
+
+anyio.run(main)
+"""
+
+
+@pytest.mark.parametrize(
+    ("metadata", "log_line"),
+    [
+        ({"zone": 1, "is_competition": True}, "zone 1, 150 s"),
+        ({"zone": 3, "mode": "COMP", "game_timeout": 1}, "zone 3, 1 s"),
+    ],
+)
+def test_a_match_program_that_never_waits_ends_with_the_match(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, metadata: dict[str, object], log_line: str
+) -> None:
+    path = tmp_path / "competition" / ("astoria.json" if "mode" in metadata else "metadata.json")
+    path.parent.mkdir()
+    path.write_text(json.dumps(metadata))
+    args = ["--sim", "--start-after", "0.2"]
+    if "is_competition" in metadata:
+        args += ["--time-scale", "0.01"]  # sbot's 150 s match in 1.5 real seconds
+    monkeypatch.setenv(SBOT_METADATA_VARIABLE, str(path.parent))
+    result = run_j5aio(tmp_path, NEVER_WAITS_PROGRAM, *args)
+    assert result.returncode == 0, result.stderr
+    assert "Game over" in result.stderr and "ran on past the match" not in result.stdout
+    (log,) = (tmp_path / "j5aio-logs").glob("run-*.log")
+    assert log_line in log.read_text()
+
+
 def test_a_bad_metadata_file_stops_before_the_program(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -126,7 +180,7 @@ def test_a_bad_metadata_file_stops_before_the_program(
     program = tmp_path / "robot.py"
     program.write_text("raise SystemExit('must not run')")
     assert main(["run", "--sim", "--no-log", str(program)]) == 2
-    assert "in COMP mode every field must be given" in capsys.readouterr().err
+    assert "in COMP mode the file must say how long the match is" in capsys.readouterr().err
 
 
 def test_dev_run_with_log_dir_and_options(
@@ -192,5 +246,5 @@ def test_console_start_thread(monkeypatch: pytest.MonkeyPatch) -> None:
     start.clear_trigger()
     monkeypatch.setattr(sys, "stdin", io.StringIO("\n"))
     cli._start_on_enter()
-    assert start._triggered.is_set()
+    assert start._take_trigger() == "trigger"
     start.clear_trigger()

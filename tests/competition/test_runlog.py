@@ -115,3 +115,93 @@ def test_header_with_unusable_metadata(tmp_path: Path) -> None:
 def test_constants_keep_a_stick_from_filling() -> None:
     assert runlog.MAX_FILE_BYTES * runlog.MAX_LOG_FILES <= 2 * runlog.MAX_TOTAL_BYTES
     assert runlog.RESERVE_BYTES >= runlog.MAX_FILE_BYTES
+
+
+async def test_the_live_views_token_is_hidden_in_the_log(tmp_path: Path) -> None:
+    pytest.importorskip("aiohttp", reason="the live view needs the 'view' extra")
+    from j5aio.view import start_view
+
+    log = RunLog(tmp_path)
+    with teeing(log):
+        view = start_view()  # prints its address, token and all, to standard output
+    try:
+        token = view.url.split("token=", 1)[1]
+        assert len(token) >= 16
+    finally:
+        view.close()
+    log.write("see http://x/?a=1&token=abc-DEF_123 and token=zz\n")
+    log.close()
+    text = log.path.read_text()
+    assert "View: " in text and token not in text and "token=<hidden>" in text
+    assert "abc-DEF_123" not in text and "token=zz" not in text
+
+
+def test_the_log_is_readable_by_its_owner_only(tmp_path: Path) -> None:
+    log = RunLog(tmp_path)
+    log.close()
+    assert log.path.stat().st_mode & 0o777 == 0o600
+
+
+def test_a_stick_whose_logs_is_a_link_is_not_logged_to(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    stick = tmp_path / "media" / "STICK"
+    stick.mkdir(parents=True)
+    outside = tmp_path / "home"
+    old = make_logs(outside, 25, 1)
+    (stick / "logs").symlink_to(outside)
+    monkeypatch.setattr("j5aio.competition.metadata.os.path.ismount", lambda p: Path(p) == stick)
+    program = tmp_path / "code" / "robot.py"
+    folder = choose_log_folder(program)
+    assert folder == tmp_path / "code" / "j5aio-logs"
+    assert "Not logging to" in caplog.text
+    RunLog(folder).close()
+    assert all(log.exists() for log in old)  # nothing outside the stick was rotated away
+    (stick / "logs").unlink()
+    (stick / "logs").write_text("a file")
+    assert choose_log_folder(program) == tmp_path / "code" / "j5aio-logs"
+
+
+def test_rotation_never_follows_a_link(tmp_path: Path) -> None:
+    outside = tmp_path / "outside.log"
+    outside.write_text("keep me")
+    folder = tmp_path / "logs"
+    folder.mkdir()
+    (folder / "run-20200101-000000.log").symlink_to(outside)
+    assert rotate(folder, max_files=1, reserve=0) == []
+    assert outside.read_text() == "keep me"
+
+
+def test_a_link_in_place_of_the_new_log_is_not_written_through(tmp_path: Path) -> None:
+    when = datetime(2026, 11, 23, 9, 30, 0, tzinfo=UTC)
+    outside = tmp_path / "outside.txt"
+    outside.write_text("keep me")
+    folder = tmp_path / "logs"
+    folder.mkdir()
+    (folder / "run-20261123-093000.log").symlink_to(outside)
+    log = RunLog(folder, now=when)
+    log.write("hello")
+    log.close()
+    assert log.path.name == "run-20261123-093000-2.log"
+    assert outside.read_text() == "keep me"
+
+
+def test_the_services_usercode_stick_is_preferred(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    from j5aio.competition import service_state
+
+    stick = tmp_path / "media" / "STICK"
+    stick.mkdir(parents=True)
+    monkeypatch.setattr("j5aio.competition.metadata.os.path.ismount", lambda p: Path(p) == stick)
+    service_state.set_usercode_path(tmp_path / "usercode")
+    try:
+        assert choose_log_folder(tmp_path / "robot.py") == tmp_path / "usercode" / "logs"
+    finally:
+        service_state.clear()
+    assert choose_log_folder(tmp_path / "robot.py") == stick / "logs"
+
+
+def test_a_log_that_vanishes_during_rotation_is_passed_over(tmp_path: Path) -> None:
+    assert runlog._size(tmp_path / "gone.log") == 0
+    assert not runlog._is_regular_file(tmp_path / "gone.log")

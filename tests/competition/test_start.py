@@ -108,12 +108,66 @@ async def test_the_start_file_starts_and_a_stale_one_does_not(tmp_path: Path) ->
     assert not path.exists()
 
 
-async def test_an_unremovable_start_file_is_reported(
+async def test_a_directory_at_the_start_file_never_starts(
     tmp_path: Path, caplog: pytest.LogCaptureFixture
 ) -> None:
     (tmp_path / "start").mkdir()
-    assert await wait_for_start([], timeout=5) == "start file"
-    assert "Cannot remove the start file" in caplog.text
+    for _ in range(2):
+        with pytest.raises(TimeoutError):
+            await wait_for_start([], timeout=0.2)
+    assert caplog.text.count("is not a regular file") == 1  # reported once, not each poll
+    assert (tmp_path / "start").is_dir()
+
+
+async def test_a_link_at_the_start_file_never_starts(tmp_path: Path) -> None:
+    (tmp_path / "target").touch()
+    (tmp_path / "start").symlink_to(tmp_path / "target")
+    with pytest.raises(TimeoutError):
+        await wait_for_start([], timeout=0.2)
+    assert (tmp_path / "target").exists()
+
+
+async def test_another_users_start_file_never_starts(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    path = tmp_path / "start"
+    path.touch()
+    owner = path.stat().st_uid
+    monkeypatch.setattr(start, "_trusted_owners", lambda: {owner + 1})  # not its owner
+    with pytest.raises(TimeoutError):
+        await wait_for_start([], timeout=0.2)
+    assert path.exists()
+    assert f"belongs to another user (uid {owner})" in caplog.text
+    monkeypatch.setattr(start, "_trusted_owners", lambda: None)  # a system without users
+    with pytest.raises(TimeoutError):  # the stale file is removed as the wait begins
+        await wait_for_start([], timeout=0.2)
+    assert not path.exists()
+
+
+async def test_a_start_file_that_cannot_be_removed_never_starts(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    path = tmp_path / "start"
+    path.touch()
+
+    def refuse(self: Path, missing_ok: bool = False) -> None:
+        raise PermissionError(1, "Operation not permitted")
+
+    monkeypatch.setattr(Path, "unlink", refuse)
+    with pytest.raises(TimeoutError):
+        await wait_for_start([], timeout=0.2)
+    assert "cannot be removed: Operation not permitted" in caplog.text
+
+
+def test_a_start_file_that_cannot_be_looked_at_is_reported(
+    monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
+) -> None:
+    def refuse(self: Path) -> None:
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(Path, "lstat", refuse)
+    assert not start._take_start_file(Path("/nowhere/start"))
+    assert "cannot be looked at: Permission denied" in caplog.text
 
 
 async def test_a_trigger_from_another_thread_starts() -> None:
@@ -177,3 +231,74 @@ async def test_a_press_from_another_thread_starts() -> None:
     async with anyio.create_task_group() as tasks:
         tasks.start_soon(press_from_a_thread)
         assert await wait_for_start([board], timeout=30) == "button"
+
+
+async def test_a_trigger_wakes_the_wait_without_polling(monkeypatch: pytest.MonkeyPatch) -> None:
+    # With the start file looked for once an hour, only a wake-up can start this wait.
+    monkeypatch.setattr(start, "POLL_INTERVAL", 3600.0)
+
+    async def later() -> None:
+        await anyio.sleep(0.05)
+        await anyio.to_thread.run_sync(trigger_start, "remote start")
+
+    async with anyio.create_task_group() as tasks:
+        tasks.start_soon(later)
+        assert await wait_for_start([], timeout=30) == "remote start"
+
+
+async def test_a_trigger_from_the_loop_itself_wakes_the_wait(
+    monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
+) -> None:
+    monkeypatch.setattr(start, "POLL_INTERVAL", 3600.0)
+    caplog.set_level("INFO")
+
+    async def later() -> None:
+        await anyio.sleep(0.05)
+        trigger_start("remote start")
+
+    async with anyio.create_task_group() as tasks:
+        tasks.start_soon(later)
+        assert await wait_for_start([], timeout=30) == "remote start"
+    assert "Started (by the remote start)" in caplog.text
+    assert not start._waiters  # the wait unregistered itself
+
+
+async def test_a_trigger_before_the_wait_is_kept_for_it() -> None:
+    trigger_start("remote start")
+    assert await wait_for_start([], timeout=5) == "remote start"
+    trigger_start()
+    clear_trigger()
+    with pytest.raises(TimeoutError):
+        await wait_for_start([], timeout=0.1)
+
+
+def test_trigger_start_refuses_a_non_text_how() -> None:
+    with pytest.raises(TypeError, match="how must be text"):
+        trigger_start(3)  # type: ignore[arg-type]
+
+
+def test_a_trigger_to_a_closed_loop_is_harmless() -> None:
+    import asyncio
+
+    loop = asyncio.new_event_loop()
+    loop.close()
+    waiter = (loop, asyncio.Event())
+    start._waiters.add(waiter)
+    try:
+        trigger_start()  # that loop's wait is over; nothing to wake
+    finally:
+        start._waiters.discard(waiter)
+    assert start._take_trigger() == "trigger"
+
+
+def test_a_start_file_taken_by_another_wait_first_is_not_a_start(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    path = tmp_path / "start"
+    path.touch()
+
+    def gone(self: Path, missing_ok: bool = False) -> None:
+        raise FileNotFoundError(2, "No such file or directory")
+
+    monkeypatch.setattr(Path, "unlink", gone)
+    assert not start._take_start_file(path)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import ast
 import importlib
 import re
+from pathlib import Path
 from typing import TypeVar
 
 from .snippets import DOCS, ROOT
@@ -119,3 +120,19 @@ def test_bare_names_ignored_are_not_j5aio_classes_or_functions() -> None:
     bare = {name.removeprefix("~") for _role, name in ignored if "." not in name}
     assert bare
     assert not bare & ours, sorted(bare & ours)
+
+
+def test_the_reference_lists_the_members_of_enumerations_and_colour_constants() -> None:
+    import runpy
+
+    from j5aio.boards.sr.kch import Colour
+    from j5aio.boards.sr.v4.power_board_fw4 import PowerBoardOutput
+    from j5aio.components.piezo import Note
+
+    conf = runpy.run_path(str(Path(__file__).resolve().parents[2] / "docs" / "conf.py"))
+    keep = conf["_keep_constants"]
+    for name, member in (("H0", PowerBoardOutput.H0), ("A6", Note.A6), ("RED", Colour.RED)):
+        assert keep(None, "class", name, member, True, {}) is False
+    # methods and module-level names are left to autodoc's own rules
+    assert keep(None, "class", "buzz", lambda: None, True, {}) is None
+    assert keep(None, "module", "H0", PowerBoardOutput.H0, True, {}) is None

@@ -2,10 +2,11 @@
 
 A copy of every tracked file (what a clone holds), then the README's commands: the
 set-up command's demo, the first program saved as the README says and run with the
-README's ``--sim`` command, and the async program likewise. Only ``pip install -e .``
-is not repeated here: the test suite already runs from an installed checkout, and CI's
-``tox`` installs the package in a fresh environment of its own. ``python3`` in a command
-is this interpreter.
+README's ``--sim`` command, and the async program likewise. Only the virtual environment
+and ``pip install -e .`` are not repeated here: the test suite already runs from an
+installed checkout, and CI's ``.ci/run`` follows the README's test command into a fresh
+virtual environment of its own. ``python3`` or ``python`` in a command is this
+interpreter.
 """
 
 from __future__ import annotations
@@ -21,7 +22,11 @@ import pytest
 
 from .snippets import ROOT, markdown_snippets
 
-SETUP = "python3 -m pip install -e ."
+SETUP = (
+    "python3 -m venv .venv",
+    ". .venv/bin/activate",
+    "python -m pip install -e .",
+)
 
 
 def fresh_copy(target: Path) -> Path:
@@ -38,9 +43,9 @@ def fresh_copy(target: Path) -> Path:
 
 
 def run(command: str, cwd: Path) -> subprocess.CompletedProcess[str]:
-    """Run one README command line, with ``python3`` meaning this interpreter."""
+    """Run one README command line, with ``python3`` or ``python`` meaning this interpreter."""
     words = shlex.split(command)
-    assert words[0] == "python3", command
+    assert words[0] in ("python3", "python"), command
     env = {k: v for k, v in os.environ.items() if k != "J5AIO_ENV"}
     env["PYTHONPATH"] = str(cwd)
     return subprocess.run(
@@ -64,9 +69,9 @@ def test_the_readme_has_no_links_outside_the_clone(clone: Path) -> None:
 def test_the_setup_command_runs_the_demo(clone: Path) -> None:
     blocks = [s for s in markdown_snippets(clone / "README.md") if s.language == "sh"]
     setup = blocks[0].code.strip()
-    first, second = (part.strip() for part in setup.split("&&"))
-    assert first == SETUP
-    result = run(second, clone)
+    *steps, demo = (part.strip() for part in setup.split("&&"))
+    assert tuple(steps) == SETUP
+    result = run(demo, clone)
     assert result.returncode == 0, result.stderr
     assert "every simulated motor is braked" in result.stdout
 
@@ -85,7 +90,7 @@ def test_the_first_program_and_the_async_program_run_with_sim(clone: Path) -> No
     assert result.returncode == 0, result.stderr
     assert result.stdout.startswith("Battery: ")
 
-    assert "`python3 -m j5aio run --sim robot.py`" in readme
+    assert "`python -m j5aio run --sim robot.py`" in readme
     (clone / "robot.py").write_text(async_program.code, encoding="utf-8")
-    result = run("python3 -m j5aio run --sim robot.py", clone)
+    result = run("python -m j5aio run --sim robot.py", clone)
     assert result.returncode == 0, result.stderr

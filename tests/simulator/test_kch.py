@@ -31,15 +31,34 @@ async def test_the_simulated_kch_runs_the_real_backend_and_shows_the_leds(
             await anyio.sleep(0.01)
     await board.make_safe()
     assert not simulator.start_led
-    assert simulator.colours[2] == (True, True, True)  # colours stay after the program
+    assert simulator.colours[2] == (True, True, True)  # colours stay once made safe
     await board.close()
+
+
+async def test_closing_the_kch_releases_its_pins_and_every_led_goes_dark() -> None:
+    simulator = KCHSimulator()
+    board = simulator.board()
+    assert isinstance(board, KCHBoard)
+    await board.leds[0].set_colour(Colour.RED)
+    await board.leds[2].set_colour(Colour.WHITE)
+    await board.start_led.set_state(True)
+    assert simulator.colours[0] == (True, False, False) and simulator.start_led
+    await board.close()  # as at the end of a program
+    pin = simulator.pin_factory.pin(24)
+    assert pin.function == "input"  # released: gpiozero no longer drives it
+    assert simulator.colours == ((False, False, False),) * 3
+    assert not simulator.start_led
 
 
 def test_a_given_pin_factory_is_used() -> None:
     factory = MockFactory()
     simulator = KCHSimulator(factory)
     assert simulator.pin_factory is factory
-    factory.pin(24).drive_high()
+    pin = factory.pin(24)
+    pin.drive_high()  # an input held high lights nothing: no pin drives the LED
+    assert simulator.colours[0] == (False, False, False)
+    pin.function = "output"
+    pin.state = True
     assert simulator.colours[0] == (True, False, False)
 
 

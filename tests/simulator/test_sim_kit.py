@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import math
-import time
 from collections.abc import Iterator
 
 import pytest
 
 from j5aio.simulator import kit as kit_module
+from j5aio.simulator.clock import ManualClock
 from j5aio.simulator.kit import KitConfig, SimulatedKit, current_kit, use_kit
 from j5aio.simulator.sb_arduino_2019 import SBArduinoSimulator
 from j5aio.simulator.sr_motor_fw3 import SRMotorBoardFw3Simulator
@@ -129,6 +129,8 @@ async def test_the_world_moves_by_the_motor_boards_of_every_generation(kit_name:
     from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 
     kit = use_kit(kit_name)
+    clock = ManualClock()
+    kit.use_clock(clock)  # the world moves only when the test moves the clock on
     assert len(kit.drive_motor_boards) == 1 if kit_name != "sr2019" else 2
     kit.world.place_robot(Pose(2875.0, 1000.0, 0.0))
     async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
@@ -136,9 +138,9 @@ async def test_the_world_moves_by_the_motor_boards_of_every_generation(kit_name:
         await motors[0].set_power(0.5)
         await motors[1].set_power(0.5)
         assert [m.power for m in kit.drive_motor_boards[0].motors] == [0.5, 0.5]
-        now = time.monotonic()
-        update_world(kit, now=now)
-        update_world(kit, now=now + 1.0)  # one second at half power, straight ahead
+        update_world(kit)
+        clock.advance(1.0)
+        update_world(kit)  # one second of the kit's time at half power, straight ahead
         await motors[0].set_power(0)
         await motors[1].set_power(0)
     moved = math.dist((kit.world.pose.x, kit.world.pose.y), (2875.0, 1000.0))

@@ -53,9 +53,12 @@ async def servo_subject(
     stream.clear()
     assert isinstance(board.backend, backend_class)
 
+    lower, upper = board.backend.firmware.default_limits  # the kit library's defaults
+    middle, half = (lower + upper) / 2, (upper - lower) / 2
+
     async def observe(identifier: int) -> ServoPosition:
         pulse = sim.pulse_widths[identifier]
-        return None if pulse is None else (pulse - 1500) / 500  # default limits 1000-2000 µs
+        return None if pulse is None else (pulse - middle) / half
 
     async def observe_pulse(identifier: int) -> int | None:
         return sim.pulse_widths[identifier]

@@ -154,7 +154,15 @@ def test_fixtures_clean_up_after_the_test(pytester: pytest.Pytester) -> None:
     )
     result = pytester.runpytest_subprocess("-o", "asyncio_mode=strict")
     result.assert_outcomes(passed=10, skipped=1)
+    # a passing run says it in one line...
     result.stdout.fnmatch_lines(
+        ["j5aio conformance: 1 check not run for want of a subject's hook ('observe', "
+         "'traffic'); -rs lists them"],
+    )
+    assert "TestLEDs::test_every_hook_is_given" not in result.stdout.str()
+    # ...and -rs lists each check with its reason
+    listed = pytester.runpytest_subprocess("-o", "asyncio_mode=strict", "-rs")
+    listed.stdout.fnmatch_lines(
         [
             "*j5aio conformance: checks not run for want of a hook*",
             "*TestLEDs::test_every_hook_is_given: no 'traffic', 'observe' (each a hook of*",

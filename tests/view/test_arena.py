@@ -12,7 +12,9 @@ from j5aio.simulator.camera import SimulatedCamera
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kit import KitConfig, SimulatedKit, use_kit
 from j5aio.view.arena import describe_arena, describe_pose, field_of_view, kit_of
+from j5aio.vision.arena_map import ArenaMap
 from j5aio.vision.calibration import CameraCalibration
+from j5aio.vision.track import PositionTracker
 
 pytestmark = pytest.mark.usefixtures("fresh_kit")
 
@@ -75,6 +77,19 @@ def test_the_pose_and_what_the_camera_sees() -> None:
     assert camera["right"] == pytest.approx(math.pi / 2 - half)
     kit.camera = None
     assert describe_pose(kit)["camera"] is None
+
+
+def test_the_estimate_of_a_tracker_is_shown_beside_the_true_pose() -> None:
+    kit = small_kit()
+    assert describe_pose(kit)["estimate"] is None
+    tracker = PositionTracker(None, ArenaMap.standard(), clock=lambda: 10.0)
+    tracker.reset((900.0, 1450.0, 1.5), position_error=40.0)
+    assert tracker.estimate() is not None
+    shown = describe_pose(kit)["estimate"]
+    assert shown == {"x": 900.0, "y": 1450.0, "heading": 1.5, "error": pytest.approx(40.0),
+                     "age": 0.0}
+    del tracker  # gone with its tracker
+    assert describe_pose(kit)["estimate"] is None
 
 
 def test_the_pose_moves_as_the_world_does() -> None:

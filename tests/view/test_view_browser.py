@@ -26,6 +26,8 @@ from j5aio.kit import KitRobot
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kit import KitConfig, use_kit
 from j5aio.view.describe import board_components, component_id
+from j5aio.vision.arena_map import ArenaMap
+from j5aio.vision.track import PositionTracker
 
 
 def _load_tool() -> Any:
@@ -363,6 +365,19 @@ async def test_the_arena_is_drawn_and_the_robot_moves_on_it(browser: Any) -> Non
         shown = await in_thread(pose)
         assert shown is not None
         assert shown[:2] == pytest.approx((world.pose.x, world.pose.y), abs=150)
+
+        # Where a tracker believes the robot is, is drawn beside it.
+        estimate = "#arena [data-estimate]"
+        assert await in_thread(attribute, browser, estimate, "display") == "none"
+        tracker = PositionTracker(None, ArenaMap.standard())
+        tracker.reset((1000.0, 1200.0, 0.0))
+        tracker.estimate()
+        await in_thread(
+            wait_for, lambda: attribute(browser, estimate, "data-estimate") == "1000,1200,0.0"
+        )
+        assert await in_thread(attribute, browser, estimate, "display") == "inline"
+        text = await in_thread(lambda: browser.find_element("css selector", "#pose-text").text)
+        assert "believed at x 1.00 m, y 1.20 m" in text
 
 
 async def test_wrong_token_and_foreign_origin_refused(browser: Any) -> None:

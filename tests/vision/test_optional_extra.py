@@ -65,11 +65,13 @@ def test_j5aio_imports_and_the_simulated_robot_runs_without_the_extra() -> None:
     assert INSTALL_HINT in result.stdout
 
 
-def test_webcam_discovery_finds_none_and_says_what_to_install() -> None:
-    result = run_blocked(
-        """
-        import anyio, logging
+def discover_blocked(devices: list[str]) -> subprocess.CompletedProcess[str]:
+    return run_blocked(
+        f"""
+        import anyio, glob, logging
         logging.basicConfig(level=logging.WARNING, format="%(message)s")
+        sys.platform = "linux"
+        glob.glob = lambda pattern: {devices!r}
         from j5aio.backends.camera import OpenCVCameraBackend
         print("FOUND", anyio.run(OpenCVCameraBackend.discover))
         try:
@@ -78,10 +80,21 @@ def test_webcam_discovery_finds_none_and_says_what_to_install() -> None:
             print("DIRECT:", exc)
         """
     )
+
+
+def test_webcam_discovery_finds_none_and_says_what_to_install() -> None:
+    result = discover_blocked(["/dev/video0"])
     assert result.returncode == 0, result.stderr
     assert "FOUND []" in result.stdout
     assert "DIRECT: Cameras need" in result.stdout
     assert INSTALL_HINT in result.stderr
+
+
+def test_with_no_camera_plugged_in_nothing_is_said_about_the_extra() -> None:
+    result = discover_blocked([])
+    assert result.returncode == 0, result.stderr
+    assert "FOUND []" in result.stdout
+    assert INSTALL_HINT not in result.stderr
 
 
 def test_require_names_the_package_to_install() -> None:

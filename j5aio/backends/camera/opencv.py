@@ -97,18 +97,24 @@ class OpenCVCameraBackend(FrameCameraBackend):
 
     @classmethod
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
-        """Open every camera found; none (with a warning) without the vision libraries.
+        """Open every camera found.
+
+        Without the vision libraries none is opened: a camera plugged in then gets one
+        warning saying what to install; with no camera plugged in nothing is said (a
+        program that uses no camera should not hear about one).
 
         ``options`` (for serial and USB discovery) is accepted and ignored.
         """
+        on_linux = sys.platform.startswith("linux")
+        devices: list[str | int] = sorted(glob.glob("/dev/video*")) if on_linux else [0, 1, 2, 3]
+        if not devices:
+            return []
         try:
             require("cv2")
         except VisionNotInstalledError as exc:
-            LOGGER.warning("%s", exc)
+            # Elsewhere than Linux the devices are guesses: no warning for a guess.
+            LOGGER.log(logging.WARNING if on_linux else logging.DEBUG, "%s", exc)
             return []
-        devices: list[str | int] = (
-            sorted(glob.glob("/dev/video*")) if sys.platform.startswith("linux") else [0, 1, 2, 3]
-        )
         boards: list[Board] = []
         for device in devices:
             try:

@@ -13,7 +13,8 @@ class SBServoBoard(ServoBoardFw4):
     """The servo board of the SourceBots 2024+ kit: SourceBots' firmware 4.4, eight servos.
 
     The same board and protocol as :class:`~j5aio.boards.sr.v4.servo_board_fw4.ServoBoardFw4`,
-    with eight servos (0 to 7) whose pulses may be as short as 300 µs.
+    with eight servos (0 to 7) whose pulses may be as short as 300 µs. Positions -1 to 1
+    give pulses of 350 to 1980 µs until a program sets other limits, as in sbot.
 
     :param serial_number: the board's serial number.
     :param backend: the backend that drives the board.

@@ -35,7 +35,10 @@ class KCHBoard(Board):
     Its three user LEDs A, B and C (:attr:`leds`, 0 to 2) each have a red, a green and a
     blue part that are on or off, so they show the eight :class:`Colour` s: any
     brightness above 0 lights a part fully. Its start LED (:attr:`start_led`) flashes
-    while a robot waits for the start button. Colours stay lit when the program ends.
+    while a robot waits for the start button. Colours stay lit while the program runs,
+    also once it is made safe; when the program ends, closing the board releases the
+    GPIO pins and every LED goes dark (sr-robot3, which leaves its user LED pins driven
+    at exit, keeps them lit).
 
     :param serial_number: the KCH's asset code.
     :param backend: the backend that drives the LEDs.
@@ -69,5 +72,5 @@ class KCHBoard(Board):
         return {RGBLED, FlashingLED}
 
     async def make_safe(self) -> None:
-        """Turn the start LED off; the user LEDs keep their colours, as on the real kit."""
+        """Turn the start LED off; the user LEDs keep their colours until the board closes."""
         await self._start_led.set_state(False)

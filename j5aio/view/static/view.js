@@ -371,9 +371,14 @@ function showArena(a) {
   const body = svg("circle", { class: "body", cx: 0, cy: 0, r: a.robot.radius });
   const nose = svg("line", { class: "nose", x1: 0, y1: 0, x2: a.robot.radius, y2: 0 });
   robot.append(body, nose);
-  parts.push(fov, robot);
+  // Where the program believes the robot is (a PositionTracker's estimate), when it says.
+  const estimate = svg("g", { "data-estimate": "", class: "estimate", display: "none" });
+  const spread = svg("circle", { class: "spread", cx: 0, cy: 0, r: 0 });
+  estimate.append(spread, svg("circle", { class: "ghost", cx: 0, cy: 0, r: a.robot.radius }),
+    svg("line", { class: "ghost-nose", x1: 0, y1: 0, x2: a.robot.radius, y2: 0 }));
+  parts.push(fov, robot, estimate);
   root.replaceChildren(...parts);
-  arena = { length: a.length, width: a.width, robot, fov };
+  arena = { length: a.length, width: a.width, robot, fov, estimate, spread };
   figure.hidden = false;
 }
 
@@ -390,8 +395,20 @@ function showPose(p) {
     arena.fov.setAttribute("points", `${c.x},${Y(c.y)} ${edge(c.left)} ${edge(c.right)}`);
   }
   arena.fov.style.display = c ? "" : "none";
-  document.getElementById("pose-text").textContent =
-    `robot at x ${(p.x / 1000).toFixed(2)} m, y ${(p.y / 1000).toFixed(2)} m, heading ${degrees.toFixed(0)}°`;
+  let text = `robot at x ${(p.x / 1000).toFixed(2)} m, y ${(p.y / 1000).toFixed(2)} m, heading ${degrees.toFixed(0)}°`;
+  const e = p.estimate;
+  if (e) {
+    const believed = e.heading * 180 / Math.PI;
+    arena.estimate.setAttribute("transform", `translate(${e.x} ${Y(e.y)}) rotate(${-believed})`);
+    arena.estimate.dataset.estimate = `${Math.round(e.x)},${Math.round(e.y)},${believed.toFixed(1)}`;
+    arena.spread.setAttribute("r", String(Math.max(e.error, 20)));
+    arena.estimate.setAttribute("display", "inline");
+    text += `; believed at x ${(e.x / 1000).toFixed(2)} m, y ${(e.y / 1000).toFixed(2)} m` +
+      ` ± ${Math.round(e.error)} mm, heading ${believed.toFixed(0)}° (${e.age.toFixed(1)} s since markers)`;
+  } else {
+    arena.estimate.setAttribute("display", "none");
+  }
+  document.getElementById("pose-text").textContent = text;
 }
 
 // ---------------------------------------------------------------- wire log

@@ -44,6 +44,7 @@ async def test_the_fork_has_eight_servos_from_300us() -> None:
     board = SBServoBoard("SERIAL", SBServoBoardConsoleBackend("SERIAL", terminal.console_class()))
     assert len(board.servos) == 8
     assert await board.servos[7].get_pulse_range() == (300, 4000)
+    assert await board.servos[0].get_pulse_limits() == (350, 1980)  # sbot's defaults
     await board.servos[7].set_pulse_limits(300, 400)
     with pytest.raises(ValueError, match="invalid servo identifier 8"):
         await board.backend.get_servo_pulse_limits(8)  # type: ignore[attr-defined]

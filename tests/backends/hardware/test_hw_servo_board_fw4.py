@@ -119,6 +119,27 @@ async def test_the_fork_accepts_its_shorter_pulses() -> None:
 
 
 @pytest.mark.parametrize(
+    ("backend", "sim", "limits", "pulse_at_minus_one", "pulse_at_one"),
+    [
+        (SR, SRServoBoardFw4Simulator, (1000, 2000), 1000, 2000),  # sr-robot3's defaults
+        (SB, SBServoBoardFw4Simulator, (350, 1980), 350, 1980),  # sbot's defaults
+    ],
+)
+async def test_each_firmware_starts_with_its_kit_librarys_pulse_limits(
+    backend: AnyServoBackend, sim: type[SRServoBoardFw4Simulator], limits: tuple[int, int],
+    pulse_at_minus_one: int, pulse_at_one: int,
+) -> None:
+    simulator = sim("x")
+    board, _ = await connect(backend, simulator)
+    assert await board.servos[0].get_pulse_limits() == limits
+    await board.servos[0].set_position(-1)
+    assert simulator.pulse_widths[0] == pulse_at_minus_one
+    await board.servos[0].set_position(1)
+    assert simulator.pulse_widths[0] == pulse_at_one
+    await board.close()
+
+
+@pytest.mark.parametrize(
     ("lower", "upper", "error", "match"),
     [
         (400, 2000, ValueError, "500 to 4000"),

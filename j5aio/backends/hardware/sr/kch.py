@@ -248,6 +248,10 @@ class KCHHardwareBackend(RGBLEDInterface, FlashingLEDInterface, Backend):
         self._close_devices()
 
     async def close(self) -> None:
-        """Stop flashing and release the pins."""
+        """Stop flashing and release the pins.
+
+        gpiozero makes a released pin an input (with lgpio and RPi.GPIO alike), so every
+        LED, the user LEDs included, goes dark: a program's colours end with it.
+        """
         self._flashing = False
         self._close_devices()

@@ -6,6 +6,7 @@ from typing import ClassVar
 
 from j5aio.backends.console.backend import ConsoleBackend
 from j5aio.backends.console.console import Console
+from j5aio.backends.hardware.sr.v4.servo_fw4_codec import SB_DEFAULT_PULSE_LIMITS
 from j5aio.boards.sb.servo_board import SBServoBoard
 from j5aio.boards.sr.v4.servo_board_fw4 import ServoBoardFw4
 from j5aio.components.flag import FlagInterface
@@ -43,11 +44,13 @@ class SRV4ServoBoardFw4ConsoleBackend(
     MIN_PULSE: ClassVar[int] = 500
     #: The longest pulse the firmware accepts, in µs.
     MAX_PULSE: ClassVar[int] = 4000
+    #: The pulses positions -1 and 1 give until a program sets its own, in µs.
+    DEFAULT_LIMITS: ClassVar[PulseLimits] = DEFAULT_PULSE_LIMITS
 
     def __init__(self, serial: str, console_class: type[Console] | None = None) -> None:
         super().__init__(serial, console_class)
         self._servos = range(self.board.SERVO_COUNT)
-        self._limits: list[PulseLimits] = [DEFAULT_PULSE_LIMITS for _ in self._servos]
+        self._limits: list[PulseLimits] = [self.DEFAULT_LIMITS for _ in self._servos]
         self._pulses: list[int | None] = [None for _ in self._servos]
 
     async def get_servo_pulse_range(self, identifier: int) -> PulseLimits:
@@ -116,3 +119,4 @@ class SBServoBoardConsoleBackend(SRV4ServoBoardFw4ConsoleBackend):
 
     board = SBServoBoard
     MIN_PULSE: ClassVar[int] = 300
+    DEFAULT_LIMITS: ClassVar[PulseLimits] = SB_DEFAULT_PULSE_LIMITS

@@ -9,7 +9,8 @@ from the SourceBots fork 4.4 (8 servos, :class:`SBServoBoardHardwareBackend`).
 a port first. Nothing is sent to the servos at start-up: they keep whatever the board
 was doing.
 
-Positions map onto each servo's pulse limits (1000 to 2000 µs unless changed). Every
+Positions map onto each servo's pulse limits (until changed, 1000 to 2000 µs on SR's
+firmware and 350 to 1980 µs on SourceBots', as sr-robot3 and sbot map them). Every
 read asks the board, so nothing about the board is cached. The state kept here is what
 the handshake found (firmware, version, asset tag: running
 :meth:`~j5aio.backends.hardware.serial_backend.SerialHardwareBackend._handshake` again
@@ -80,7 +81,7 @@ class _ServoBoardFw4Backend(
         self._asset_tag = identity.asset_tag
         # The limits are the user's: a handshake run again (the board came back) keeps them.
         if len(self._limits) != firmware.servo_count:
-            self._limits = [codec.DEFAULT_PULSE_LIMITS] * firmware.servo_count
+            self._limits = [firmware.default_limits] * firmware.servo_count
 
     @property
     def firmware(self) -> codec.Firmware:

@@ -6,7 +6,9 @@ an action, data for a query (its name ends in ``?``), or ``NACK:<reason>``.
 
 ``*IDN?`` answers ``Student Robotics:SBv4B:<asset>:<version>``. The version tells the two
 firmwares apart (see :data:`FIRMWARES`): SR's 4.3 drives 12 servos with pulses of 500 to
-4000 µs, the SourceBots fork 4.4 drives 8 servos with pulses of 300 to 4000 µs. Both keep a
+4000 µs, the SourceBots fork 4.4 drives 8 servos with pulses of 300 to 4000 µs. Each kit's
+library maps positions -1 to 1 onto its own default pulse limits (sr-robot3: 1000 to
+2000 µs; sbot: 350 to 1980 µs), kept here as each firmware's ``default_limits``. Both keep a
 pulse in 5 µs ticks, rounded down, so ``SERVO:<n>:GET?`` reads back a multiple of 5 (``0``
 for a disabled servo).
 
@@ -26,6 +28,7 @@ from typing import Final
 
 from j5aio.components.pulse_servo import (
     DEFAULT_PULSE_LIMITS,
+    PulseLimits,
     position_for_pulse,
     pulse_for_position,
 )
@@ -43,6 +46,7 @@ __all__ = [
     "READ_STATUS",
     "READ_VOLTAGE",
     "RESET",
+    "SB_DEFAULT_PULSE_LIMITS",
     "TICK_US",
     "VID",
     "Firmware",
@@ -93,6 +97,11 @@ _VERSION: Final = re.compile(r"[0-9]+(\.[0-9]+)+")
 _MAX_MILLI: Final = 65_535
 
 
+#: The pulses positions -1 and 1 give on the SourceBots servo board until a program sets
+#: its own, in µs: sbot's defaults (its ``START_DUTY_MIN`` and ``START_DUTY_MAX``).
+SB_DEFAULT_PULSE_LIMITS: Final[PulseLimits] = (350, 1980)
+
+
 @dataclass(frozen=True)
 class Firmware:
     """What one servo board firmware can do.
@@ -102,6 +111,8 @@ class Firmware:
     :param servo_count: how many servo channels it drives.
     :param min_pulse: the shortest pulse it accepts, in µs.
     :param max_pulse: the longest pulse it accepts, in µs.
+    :param default_limits: the pulses positions -1 and 1 give until a program sets its
+        own, in µs: the defaults of the kit's own library.
     """
 
     version: str
@@ -109,12 +120,19 @@ class Firmware:
     servo_count: int
     min_pulse: int
     max_pulse: int
+    default_limits: PulseLimits = DEFAULT_PULSE_LIMITS
 
 
 #: The firmwares this codec speaks, by version.
 FIRMWARES: Final = {
-    "4.3": Firmware("4.3", "Student Robotics", servo_count=12, min_pulse=500, max_pulse=4000),
-    "4.4": Firmware("4.4", "SourceBots", servo_count=8, min_pulse=300, max_pulse=4000),
+    "4.3": Firmware(
+        "4.3", "Student Robotics", servo_count=12, min_pulse=500, max_pulse=4000,
+        default_limits=DEFAULT_PULSE_LIMITS,  # sr-robot3's
+    ),
+    "4.4": Firmware(
+        "4.4", "SourceBots", servo_count=8, min_pulse=300, max_pulse=4000,
+        default_limits=SB_DEFAULT_PULSE_LIMITS,  # sbot's
+    ),
 }
 
 
