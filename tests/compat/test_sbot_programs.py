@@ -207,3 +207,16 @@ def test_sbots_override_file_in_the_working_directory_is_read(tmp_path: Path) ->
     assert "root - DEBUG - Debug Mode is enabled" in process.stdout
     assert "started" in process.stdout.splitlines()
     assert kit["motors"][0] == ["REVERSE", -500]
+
+
+def test_sbots_metadata_file_gives_the_zone_and_the_mode(tmp_path: Path) -> None:
+    stick = tmp_path / "usb"
+    stick.mkdir()
+    (stick / "metadata.json").write_text('{"zone": 2, "is_competition": true}')
+    process, got, _ = run_sbot_program(
+        "sbot_start.py",
+        env={"SBOT_SKIP_WAIT_START": "1", "SBOT_METADATA_PATH": str(tmp_path)},
+    )
+    assert process.returncode == 0, process.stderr[-3000:]
+    assert got["zone"] == 2 and got["competition"] is True
+    assert "The match has started: it ends in 150 s." in process.stdout  # sbot's length
