@@ -220,3 +220,14 @@ def test_sbots_metadata_file_gives_the_zone_and_the_mode(tmp_path: Path) -> None
     assert process.returncode == 0, process.stderr[-3000:]
     assert got["zone"] == 2 and got["competition"] is True
     assert "The match has started: it ends in 150 s." in process.stdout  # sbot's length
+
+
+def test_a_competition_robot_runs_on_the_simulated_arena() -> None:
+    process, _, kit = run_sbot_program("sbot_team.py")
+    assert process.returncode == 0, process.stderr[-3000:]
+    assert "starting in zone 0" in process.stdout
+    summary = next(line for line in process.stdout.splitlines() if line.startswith("steps"))
+    assert "saw markers True" in summary
+    assert kit["motors"] == [["BRAKE", 0], ["BRAKE", 0]]
+    assert kit["servos"][0] is None
+    assert "SERVO:0:SET:500" in kit["received"]["SIMSB0"]  # open, under its own limits
