@@ -11,6 +11,8 @@ module keeps j5aio's pin in the mode that matches what sbot would have told the 
 - A digital read of an output gives the level last written to it.
 - A digital write to an input sets its pull-up, as the firmware does: ``True`` makes it
   ``INPUT_PULLUP``, ``False`` ``INPUT``.
+- An analogue read of a pin in ``INPUT_PULLUP`` or ``OUTPUT`` mode raises ``IOError``
+  (sbot would read a voltage the pull-up or the output disturbs).
 """
 
 from __future__ import annotations
