@@ -112,13 +112,15 @@ anyio.run(main)
     "sync": RECORDER
     + """
 import time
-from j5aio.boards.sr.v4 import MotorBoard
+from j5aio.boards.sr.v4 import MotorBoard, PowerBoard
 from j5aio.competition import trigger_start
 from j5aio.sync import BaseRobot, get_default_environment
 
 robot = BaseRobot()
 _robot.append(robot._core)
-motor = get_default_environment().get_board_group(MotorBoard)[0].motors[0]
+environment = get_default_environment()
+environment.get_board_group(PowerBoard)[0].outputs.power_on()  # the motor boards' 12 V
+motor = environment.get_board_group(MotorBoard)[0].motors[0]
 trigger_start()
 robot.wait_start()
 while True:
@@ -178,7 +180,7 @@ anyio.run(main)
     "sr2023": RECORDER
     + """
 import anyio
-from j5aio.boards.sr.v4 import MotorBoard
+from j5aio.boards.sr.v4 import MotorBoard, PowerBoard
 from j5aio.competition import trigger_start
 from j5aio.environments import get_default_environment
 from j5aio.robot import BaseRobot
@@ -186,7 +188,10 @@ from j5aio.robot import BaseRobot
 
 class Robot(BaseRobot):
     async def setup(self):
-        self.motor_boards = await get_default_environment().get_board_group(MotorBoard)
+        environment = get_default_environment()
+        power_board = (await environment.get_board_group(PowerBoard))[0]
+        await power_board.outputs.power_on()  # the motor board's 12 V
+        self.motor_boards = await environment.get_board_group(MotorBoard)
 
 
 async def main():

@@ -54,10 +54,12 @@ atexit.register(lambda: print("HISTORY " + json.dumps(_history), flush=True))
 PROGRAMS = {
     "sync": RECORDER
     + """
-from j5aio.boards.sr.v4 import MotorBoard
+from j5aio.boards.sr.v4 import MotorBoard, PowerBoard
 from j5aio.sync import get_default_environment
 
-motor = get_default_environment().get_board_group(MotorBoard)[0].motors[0]
+environment = get_default_environment()
+environment.get_board_group(PowerBoard)[0].outputs.power_on()  # the motor boards' 12 V
+motor = environment.get_board_group(MotorBoard)[0].motors[0]
 motor.power = 0.5
 print("ready", flush=True)
 while True:
@@ -66,12 +68,14 @@ while True:
     "async": RECORDER
     + """
 import anyio
-from j5aio.boards.sr.v4 import MotorBoard
+from j5aio.boards.sr.v4 import MotorBoard, PowerBoard
 from j5aio.environments import get_default_environment
 
 
 async def main():
-    motor = (await get_default_environment().get_board_group(MotorBoard))[0].motors[0]
+    environment = get_default_environment()
+    await (await environment.get_board_group(PowerBoard))[0].outputs.power_on()
+    motor = (await environment.get_board_group(MotorBoard))[0].motors[0]
     await motor.set_power(0.5)
     print("ready", flush=True)
     while True:

@@ -41,6 +41,7 @@ nitpick_ignore = [
     ("py:class", "collections.abc.ValuesView"),
     ("py:class", "datetime"),
     ("py:class", "datetime.timedelta"),
+    ("py:class", "Enum"),
     ("py:class", "enum.Enum"),
     ("py:class", "enum.IntEnum"),
     ("py:class", "enum.StrEnum"),
@@ -65,6 +66,7 @@ nitpick_ignore = [
     ("py:class", "InterfaceT"),
     ("py:class", "K"),
     ("py:class", "P_co"),
+    ("py:class", "ReadingT"),
     ("py:class", "T_co"),
     ("py:class", "j5aio.backends.console.console.T"),
     ("py:class", "j5aio.backends.environment.BoardT"),
@@ -80,6 +82,7 @@ nitpick_ignore = [
     ("py:class", "j5aio.sync.wrapping.W"),
     ("py:class", "j5aio.testing.conformance._base.SubjectT"),
     ("py:class", "j5aio.testing.simkit.BoardT"),
+    ("py:class", "j5aio.view.ticker.ReadingT"),
     ("py:class", "j5aio.vision.worker.T"),
     ("py:class", "~P"),
     ("py:obj", "j5aio.backends.hardware.transports.readers.T_co"),
@@ -91,6 +94,7 @@ nitpick_ignore = [
     ("py:obj", "j5aio.sync.wrapping.K"),
     ("py:obj", "j5aio.sync.wrapping.V"),
     ("py:obj", "j5aio.testing.conformance._base.SubjectT"),
+    ("py:obj", "j5aio.view.ticker.ReadingT"),
     ("py:obj", "typing.~P"),
 ]
 

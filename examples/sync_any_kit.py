@@ -6,6 +6,8 @@
     printf '12.2\n' | J5AIO_ENV=console python examples/sync_any_kit.py
 """
 
+import time
+
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard
 from j5aio.sync import get_default_environment
 
@@ -13,6 +15,11 @@ environment = get_default_environment()
 print(f"Using the {environment.name}.")
 
 power_board = environment.get_board_group(PowerBoard).singular()
+# The motor board takes its 12 V from the power board's outputs, which are off when the
+# power board starts: switch them on, and give the motor board a moment to boot, before
+# looking for it (KitRobot does this for you).
+power_board.outputs.power_on()
+time.sleep(0.5)
 motor_board = environment.get_board_group(MotorBoard)[0]
 
 power_board.run_led.state = True

@@ -11,11 +11,13 @@ import math
 import time
 
 from j5aio.boards.camera import CameraBoard
-from j5aio.boards.sr.v4 import MotorBoard
+from j5aio.boards.sr.v4 import MotorBoard, PowerBoard
 from j5aio.sync import get_default_environment
 
 environment = get_default_environment()
 camera = environment.get_board_group(CameraBoard)[0].camera
+# The motor board takes its 12 V from the power board's outputs, off at power-up.
+environment.get_board_group(PowerBoard)[0].outputs.power_on()
 left, right = environment.get_board_group(MotorBoard)[0].motors
 camera.set_marker_sizes({i: 150 for i in range(28)} | {i: 80 for i in range(100, 104)})
 

@@ -30,6 +30,7 @@ from j5aio import syncgen
 from j5aio.board_kinds import get_kit, kits, simulator_entries
 from j5aio.environments import ENVIRONMENT_NAMES, ENVIRONMENT_VARIABLE
 from j5aio.simulator.kit import KIT_VARIABLE
+from j5aio.simulator.kit_file import KIT_FILE_VARIABLE
 from j5aio.simulator.pin_options import apply_pin_options, parse_analog, parse_digital
 
 if TYPE_CHECKING:
@@ -211,7 +212,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _add_kit_option(parser: argparse.ArgumentParser, implies: str = "") -> None:
     names = ", ".join(kits())
-    parser.add_argument(
+    chosen = parser.add_mutually_exclusive_group()
+    chosen.add_argument(
         "--kit",
         type=_kit_name,
         default=None,
@@ -219,6 +221,25 @@ def _add_kit_option(parser: argparse.ArgumentParser, implies: str = "") -> None:
         help=f"the simulated kit: one of {names} (default: ${KIT_VARIABLE}, else "
         f"'default'){implies}",
     )
+    chosen.add_argument(
+        "--kit-file",
+        type=_kit_file,
+        default=None,
+        metavar="FILE",
+        help="the simulated kit described as your robot in a TOML file: its boards, "
+        f"their serial numbers and power wiring (sets ${KIT_FILE_VARIABLE}){implies}",
+    )
+
+
+def _kit_file(text: str) -> str:
+    from j5aio.simulator.kit_file import load_kit_file
+
+    path = Path(text).expanduser()
+    try:
+        load_kit_file(path)
+    except (OSError, ValueError) as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+    return str(path.resolve())
 
 
 def _kit_name(text: str) -> str:
@@ -350,7 +371,10 @@ def _demo(args: argparse.Namespace) -> int:
         return 2
     default = VIEW_DEMO_SECONDS if args.view else DEFAULT_SECONDS
     try:
-        braked = run_demo(args.seconds if args.seconds is not None else default, kit=args.kit)
+        seconds = args.seconds if args.seconds is not None else default
+        if args.kit_file is not None:
+            os.environ[KIT_FILE_VARIABLE] = args.kit_file
+        braked = run_demo(seconds, kit=args.kit)
     except KeyboardInterrupt:
         print("Interrupted.", file=sys.stderr)
         return 130
@@ -375,6 +399,11 @@ def _run(args: argparse.Namespace) -> int:
             return 2
         args.environment = "sim"
         os.environ[KIT_VARIABLE] = args.kit
+    if args.kit_file is not None:
+        # The simulated kit, unless another environment is asked for: on the robot the
+        # file's wiring still names the output to switch on for a board without power.
+        args.environment = args.environment or "sim"
+        os.environ[KIT_FILE_VARIABLE] = args.kit_file
     go_on, view = _start_view_option(args)
     if not go_on:
         return 2
@@ -472,8 +501,13 @@ def _match(args: argparse.Namespace, program: Path) -> Iterator[bool]:
             os.environ[TIME_SCALE_VARIABLE] = repr(args.time_scale)
             if args.environment == "sim":
                 from j5aio.simulator.kit import kit_from_environment, use_kit
+                from j5aio.simulator.kit_file import kit_file_from_environment
 
-                use_kit(kit_from_environment(), time_scale=args.time_scale)
+                use_kit(
+                    kit_file_from_environment() or kit_from_environment(),
+                    time_scale=args.time_scale,
+                    wired=True,
+                )
         try:
             metadata = load_metadata()
         except MetadataError as error:

@@ -262,18 +262,21 @@ def entries() -> list[BoardKind | KitDefinition]:
             DEFAULT_KIT,
             "one power board, two motor boards, one servo board and a SourceBots Arduino",
             {"sr-power": 1, "sr-motor": 2, "sr-servo": 1, "sb-arduino": 1},
+            wiring={"sr-motor": ("H0", "H1"), "sr-servo": ("L0",)},
         ),
         KitDefinition(
             "sr2019",
             "Student Robotics' kit of 2019 to 2022: SR v4 power (fw 3), motor (fw 3) and "
             "servo (fw 2) boards and a Ruggeduino (fw 1)",
             {"sr-power": 1, "sr-motor": 1, "sr-servo": 1, "sr-ruggeduino": 1},
+            wiring={"sr-motor": ("H0",), "sr-servo": ("L0",)},
         ),
         KitDefinition(
             "sb2019",
             "SourceBots' kit of 2019 to 2023: SR v4 power (fw 3), motor (fw 3) and servo "
             "(fw 2) boards and a SourceBots Arduino (2019 firmware)",
             {"sr-power": 1, "sr-motor": 1, "sr-servo": 1, "sb-arduino": 1},
+            wiring={"sr-motor": ("H0",), "sr-servo": ("L0",)},
         ),
         KitDefinition(
             "sr2023",
@@ -283,12 +286,17 @@ def entries() -> list[BoardKind | KitDefinition]:
                 "sr-power-fw4": 1, "sr-motor-fw4": 1, "sr-servo-fw4": 1,
                 "sr-arduino-fw2": 1, "kch": 1,
             },
+            wiring={"sr-motor-fw4": ("H0",), "sr-servo-fw4": ("L0",)},
         ),
         KitDefinition(
             "sb2024",
             "SourceBots' kit from 2024: SR v4 power (fw 4.4), motor (SourceBots fw 4.5) "
-            "and servo (SourceBots fw 4.4, 8 servos) boards and a SourceBots Arduino "
-            "(sb2024 firmware)",
-            {"sr-power-fw4": 1, "sb-motor-fw4": 1, "sb-servo-fw4": 1, "sb-arduino-2024": 1},
+            "and servo (SourceBots fw 4.4, 8 servos) boards, a SourceBots Arduino "
+            "(sb2024 firmware) and the KCH on the Raspberry Pi (sbot drives its LEDs)",
+            {
+                "sr-power-fw4": 1, "sb-motor-fw4": 1, "sb-servo-fw4": 1,
+                "sb-arduino-2024": 1, "kch": 1,
+            },
+            wiring={"sb-motor-fw4": ("H0",), "sb-servo-fw4": ("L0",)},
         ),
     ]

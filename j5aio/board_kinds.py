@@ -41,9 +41,9 @@ from __future__ import annotations
 import importlib
 import warnings
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from types import MappingProxyType
-from typing import Final, cast, overload
+from typing import Any, Final, cast, overload
 
 from j5aio import _entry_points
 from j5aio.backends.backend import Backend
@@ -322,19 +322,40 @@ class BoardKind:
 
 @dataclass(frozen=True)
 class KitDefinition:
-    """A named simulated kit: how many boards of each simulator it has.
+    """A named simulated kit: how many boards of each simulator it has, and how they are wired.
+
+    ::
+
+        KitDefinition(
+            "ourbot", "our robot", {"sr-power-fw4": 1, "sr-motor-fw4": 2},
+            serials={"sr-motor-fw4": ("SR0UK1L", "SR0AB12")},
+            wiring={"sr-motor-fw4": ("H0", "H1")},
+        )
 
     :param name: the kit's name, e.g. ``"sr2019"``.
     :param description: what it is, for people.
     :param boards: simulator names (each :class:`~j5aio.board_kinds.SimulatorEntry`'s ``name``) and
         how many of each, in the order the kit makes them.
     :param package: the distribution that registered it (filled in for plugins).
+    :param wiring: for a simulator whose boards take 12 V from the power board (motor
+        and servo boards), the power output feeding each of its boards, in order: a name
+        (``"H0"``, ``"H1"``, ``"L0"``, ``"L1"``, ``"L3"``, ``"5V"``) or a number (0-6).
+        Simulators left out are wired by the default rule
+        (:func:`j5aio.simulator.wiring.default_outputs`).
+    :param serials: the serial numbers of a simulator's boards, in order; simulators
+        left out number their boards from the simulator's serial prefix (``SIMMB0``...).
+    :raises ValueError: a count is not a whole number of 0 or more; ``wiring`` or
+        ``serials`` name a simulator the kit does not have, give another number of
+        entries than it has boards, or repeat a serial number; an output does not exist
+        or is L2 (the brain's).
     """
 
     name: str
     description: str
     boards: Mapping[str, int]
     package: str = "j5aio"
+    wiring: Mapping[str, tuple[int | str, ...]] = field(default_factory=dict)
+    serials: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         _check_name("kit", self.name)
@@ -345,6 +366,62 @@ class KitDefinition:
                     f"kit {self.name!r} has {count!r} of {simulator!r}: give a whole number "
                     "of 0 or more"
                 )
+        wiring = self._per_board("wiring", self.wiring)
+        for simulator, outputs in wiring.items():
+            for output in outputs:
+                _check_fed_output(self.name, simulator, output)
+        serials = self._per_board("serials", self.serials)
+        seen: set[str] = set()
+        for simulator, numbers in serials.items():
+            for number in numbers:
+                if not isinstance(number, str) or not number.strip() or " " in number:
+                    raise ValueError(
+                        f"kit {self.name!r}: a serial number of {simulator!r} must be a "
+                        f"non-empty string without spaces, not {number!r}"
+                    )
+                if number in seen:
+                    raise ValueError(
+                        f"kit {self.name!r}: serial number {number!r} is given twice; each "
+                        "board's must be its own"
+                    )
+                seen.add(number)
+        object.__setattr__(self, "wiring", MappingProxyType(wiring))
+        object.__setattr__(self, "serials", MappingProxyType(serials))
+
+    def _per_board(self, what: str, given: Mapping[str, object]) -> dict[str, tuple[Any, ...]]:
+        result: dict[str, tuple[Any, ...]] = {}
+        for simulator, values in dict(given).items():
+            if simulator not in self.boards:
+                raise ValueError(
+                    f"kit {self.name!r}: its {what} names {simulator!r}, which the kit has "
+                    f"no boards of; it has {', '.join(self.boards) or 'none'}"
+                )
+            items = (values,) if isinstance(values, str | int) else tuple(cast(Any, values))
+            if len(items) != self.boards[simulator]:
+                raise ValueError(
+                    f"kit {self.name!r}: its {what} give {len(items)} for {simulator!r}, "
+                    f"which the kit has {self.boards[simulator]} of: give one for each board"
+                )
+            result[simulator] = items
+        return result
+
+
+def _check_fed_output(kit: str, simulator: str, output: object) -> None:
+    from j5aio.power_outputs import BRAIN_OUTPUT, output_number
+
+    if not isinstance(output, int | str) or isinstance(output, bool):
+        raise ValueError(
+            f"kit {kit!r}: {simulator!r} is wired to {output!r}: give an output's name "
+            "(H0, H1, L0, L1, L3, 5V) or number"
+        )
+    try:
+        number = output_number(output)
+    except ValueError as error:
+        raise ValueError(f"kit {kit!r}: {simulator!r}: {error}") from None
+    if number == BRAIN_OUTPUT:
+        raise ValueError(
+            f"kit {kit!r}: {simulator!r} cannot be wired to L2: that output powers the brain"
+        )
 
 
 class _Registry:
@@ -442,9 +519,7 @@ class _Registry:
                     kit = result.get(kit_name)
                     if kit is None or entry.name in kit.boards:
                         continue
-                    result[kit_name] = KitDefinition(
-                        kit.name, kit.description, {**kit.boards, entry.name: count}, kit.package
-                    )
+                    result[kit_name] = replace(kit, boards={**kit.boards, entry.name: count})
         return result
 
 
@@ -468,8 +543,6 @@ def _flatten(obj: object) -> list[BoardKind | KitDefinition]:
 def _with_package(item: BoardKind | KitDefinition, package: str) -> BoardKind | KitDefinition:
     if item.package != "j5aio":
         return item
-    from dataclasses import replace
-
     if isinstance(item, KitDefinition):
         return replace(item, package=package)
     # (the backends as given: reading them would import those named by path)

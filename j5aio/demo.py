@@ -21,6 +21,7 @@ board safe, and the demo checks that every simulated motor is braked.
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from dataclasses import dataclass, field
@@ -34,10 +35,12 @@ from j5aio.boards.sb.arduino_2024 import SBArduino2024Board
 from j5aio.boards.sr.kch import Colour
 from j5aio.components.derived.ultrasound import UltrasoundSensor
 from j5aio.kit import KitRobot
+from j5aio.power_outputs import OUTPUT_NAMES
 from j5aio.simulator.arduino_base import ArduinoBoardSimulator
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kch import KCHSimulator
 from j5aio.simulator.kit import SimulatedKit, kit_from_environment, use_kit
+from j5aio.simulator.kit_file import kit_file_from_environment
 from j5aio.simulator.sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
 from j5aio.simulator.sr_motor_fw4 import MotorChannel, MotorDrive, SRMotorBoardFw4Simulator
 from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
@@ -102,12 +105,11 @@ class _Log:
 
 @dataclass
 class _World:
-    """The room the robot drives in: a wall ahead, and a battery that the motors load."""
+    """The room the robot drives in: a wall ahead, and a battery that runs down."""
 
     kit: SimulatedKit
     distance: float = START_DISTANCE
     elapsed: float = 0.0
-    amps: float = field(default=0.0)
 
     def step(self, seconds: float) -> None:
         """Move the world on by ``seconds``, from what the simulated motors do now."""
@@ -119,12 +121,12 @@ class _World:
             self.distance += 1.5 * seconds  # turning away: the wall drops out of view
         self.distance = min(max(self.distance, 0.05), 2.0)
         self.elapsed += seconds
-        self.amps = 0.3 + 2.5 * (abs(left) + abs(right))
         for arduino in _of_type(self.kit, (ArduinoBoardSimulator,)):
             arduino.set_ultrasound_distance(TRIGGER_PIN, ECHO_PIN, self.distance)
         for power in _power_boards(self.kit):
-            power.battery_current = self.amps
-            power.battery_voltage = 12.4 - 0.1 * self.amps - 0.02 * self.elapsed
+            # The battery runs down; the kit's wiring adds what the motors draw.
+            power.battery_current = 0.3
+            power.battery_voltage = 12.4 - 0.02 * self.elapsed
 
 
 @dataclass
@@ -251,7 +253,11 @@ def describe_boards(kit: SimulatedKit, world: _World | None = None) -> str:
             queue = power.note_queue
             frequency = queue[0].frequency if queue else None
         piezo = "quiet" if frequency is None else f"{frequency} Hz"
-        parts.append(f"run LED {led}, piezo {piezo}")
+        on = [OUTPUT_NAMES[n] for n, lit in enumerate(power.outputs) if lit] or ["none"]
+        parts.append(
+            f"outputs on: {', '.join(on)}, battery {power.loaded_voltage:.2f} V, "
+            f"run LED {led}, piezo {piezo}"
+        )
     for servos in _servo_boards(kit):
         if isinstance(servos, SRServoBoardFw4Simulator):
             pulse = servos.pulse_widths[0]
@@ -291,8 +297,16 @@ async def _run_world(world: _World) -> None:
 
 
 def all_motors_braked(kit: SimulatedKit) -> bool:
-    """Whether every motor of every simulated motor board in ``kit`` is braked."""
-    return all(_is_braked(output) for board in _motor_boards(kit) for output in board.motors)
+    """Whether every motor of every simulated motor board in ``kit`` is braked or unpowered.
+
+    A motor board without power (its power board output off, as the power board's safe
+    state leaves it) drives nothing.
+    """
+    return all(
+        _is_braked(output) or not board.powered
+        for board in _motor_boards(kit)
+        for output in board.motors
+    )
 
 
 async def demo(
@@ -302,15 +316,26 @@ async def demo(
 
     :param seconds: how long the robot's tasks run.
     :param out: where to print; standard output by default.
-    :param kit: the name of the kit (:func:`j5aio.board_kinds.kits`); the one
-        ``J5AIO_KIT`` names, or else the default kit, if omitted.
+    :param kit: the name of the kit (:func:`j5aio.board_kinds.kits`); if omitted, the
+        kit of the file ``J5AIO_KIT_FILE`` names, else the one ``J5AIO_KIT`` names, else
+        the default kit.
     :returns: whether every simulated motor was braked at the end.
     :raises ValueError: ``seconds`` is not positive, or there is no such kit.
     """
     if not seconds > 0:
         raise ValueError(f"seconds must be more than 0, not {seconds}")
     out = out if out is not None else sys.stdout
-    simulated = use_kit(kit if kit is not None else kit_from_environment())
+    if kit is None:
+        from j5aio.simulator.kit_file import KIT_FILE_VARIABLE, time_scale_of
+
+        from_file = kit_file_from_environment()
+        if from_file is not None:
+            scale = time_scale_of(os.environ[KIT_FILE_VARIABLE].strip())
+            simulated = use_kit(from_file, time_scale=scale, wired=True)
+        else:
+            simulated = use_kit(kit_from_environment(), wired=True)
+    else:
+        simulated = use_kit(kit, wired=True)
     kit_summary = _kit_summary(simulated)
     return await _run(simulated, kit_summary, seconds, out)
 
@@ -361,14 +386,15 @@ def _report(kit: SimulatedKit, log: _Log, out: TextIO) -> bool:
 
 
 def _boards(robot: KitRobot) -> list[object]:
-    return [
+    boards: list[object] = [
         robot.power_board,
         *robot.motor_boards,
         *robot.servo_boards,
         *robot.arduinos,
-        *robot.ruggeduinos,
+        *robot.ruggeduinos,  # (the SR Arduinos are in robot.arduinos too)
         *([robot.kch] if robot.kch is not None else []),
     ]
+    return list({id(board): board for board in boards}.values())
 
 
 def _kit_summary(kit: SimulatedKit) -> str:

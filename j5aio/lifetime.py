@@ -222,7 +222,8 @@ def _in_loop(
 def _make_safe(boards: list[Board], reason: str, close: bool, deadline: float) -> list[Board]:
     global _failures
     rescued = []
-    for board in boards:
+    # The boards that power the others (MAKE_SAFE_LAST) after them.
+    for board in sorted(boards, key=lambda board: board.MAKE_SAFE_LAST):
         left = deadline - time.monotonic()
         with _lock:
             if board not in _open:

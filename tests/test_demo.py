@@ -34,7 +34,8 @@ async def test_the_demo_drives_senses_signals_and_ends_braked() -> None:
     assert "SIMMB0 [forward 50%, reverse 50%]" in text or "flag servo +1.0" in text
     assert lines[-1] == "The robot has stopped: every simulated motor is braked."
     final = lines[-3]
-    assert "SIMMB0 [brake, brake] | SIMMB1 [brake, brake]" in final
+    # Braked, then the power board's safe state switched their 12 V off.
+    assert "SIMMB0 [brake, brake] | SIMMB1 [brake, brake] | outputs on: none" in final
 
 
 def test_run_demo_runs_it_in_its_own_event_loop() -> None:
@@ -78,6 +79,19 @@ def test_all_motors_braked_reads_the_simulators() -> None:
     kit.motor_boards[1].receive(bytes([0x03, 128 + 50]))  # motor 1 forwards
     assert kit.motor_boards[1].motors[1].mode is MotorMode.FORWARD
     assert not all_motors_braked(kit)
+    kit.motor_boards[1].powered = False  # its 12 V is cut: it drives nothing
+    assert all_motors_braked(kit)
+
+
+def test_describe_boards_shows_the_power_outputs_and_the_battery() -> None:
+    kit = SimulatedKit(wired=True)
+    assert "outputs on: none, battery 12.00 V" in describe_boards(kit)
+    kit.power_boards[0].ctrl_transfer(0x00, 64, 1, 0)  # H0 on: SIMMB0 powered
+    assert "outputs on: H0, battery 12.00 V" in describe_boards(kit)  # motors still
+    kit.motor_boards[0].receive(bytes([0x02, 128 + 100]))  # motor 0 at full power
+    # 2.5 A through the battery's 0.05 ohm: 0.125 V less.
+    assert "SIMMB0 [forward 100%, coast] | SIMMB1 [coast, coast]" in describe_boards(kit)
+    assert "outputs on: H0, battery 11.88 V" in describe_boards(kit)
 
 
 def test_describe_boards_shows_each_board() -> None:
@@ -124,7 +138,7 @@ async def test_the_demo_runs_on_todays_kits_sees_the_wall_and_ends_braked(kit: s
     assert "m ahead: asking drive to turn" in text
     assert "flag servo" in text and "SIMMB0 [" in text
     last = text.strip().splitlines()[-3]
-    assert "SIMMB0 [brake, brake]" in last
+    assert "SIMMB0 [brake, brake] | outputs on: L2," in last  # the brain's stays on
 
 
 async def test_on_the_sr2023_kit_the_demo_finds_the_kch_and_lights_its_leds() -> None:

@@ -12,6 +12,7 @@ from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.boards.board import Board
 from j5aio.boards.sr.kch import Colour, KCHBoard
 from j5aio.boards.sr.v4 import PowerBoard
+from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.environments import ENVIRONMENT_VARIABLE
 from j5aio.errors import CommunicationError
 from j5aio.kit import KitRobot
@@ -22,7 +23,7 @@ from j5aio.simulator.environment import (
     SRV4PowerBoardSimulatedBackend,
 )
 from j5aio.simulator.kch import KCHSimulator
-from j5aio.simulator.kit import KitConfig, current_kit, use_kit
+from j5aio.simulator.kit import KitConfig, SimulatedKit, current_kit, use_kit
 from j5aio.simulator.sr_motor_fw3 import MotorMode
 from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
 
@@ -54,10 +55,13 @@ async def test_finds_every_board_of_the_kit() -> None:
         assert [b.serial_number for b in robot.ruggeduinos] == ["SIMRD0"]
         await robot.motor_boards[1].motors[0].set_power(0.6)
         assert kit.motor_boards[1].motors[0].mode is MotorMode.FORWARD
-    # Leaving the robot made every board safe: the motor boards brake.
+    # Leaving the robot made every board safe: the motor boards brake, and then the
+    # power board switched their 12 V off (the power board goes last).
     assert all(
         output.mode is MotorMode.BRAKE for board in kit.motor_boards for output in board.motors
     )
+    assert kit.power_boards[0].outputs == (False,) * 6
+    assert not any(board.powered for board in kit.motor_boards)
 
 
 async def test_j5aio_env_chooses_the_simulated_kit(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -183,8 +187,9 @@ async def test_both_generations_are_gathered_so_two_power_boards_are_an_error() 
         robot.release_lock()
 
 
-async def test_the_kch_of_the_sr2023_kit_is_robot_kch() -> None:
-    kit = use_kit("sr2023")
+@pytest.mark.parametrize("kit_name", ["sr2023", "sb2024"])
+async def test_the_kch_of_the_kits_of_today_is_robot_kch(kit_name: str) -> None:
+    kit = use_kit(kit_name)
     async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
         assert isinstance(robot.kch, KCHBoard)
         assert robot.kch.serial_number == "SIMKCH0"
@@ -194,7 +199,7 @@ async def test_the_kch_of_the_sr2023_kit_is_robot_kch() -> None:
         assert simulator.colours[2] == (True, False, True)
 
 
-@pytest.mark.parametrize("kit", ["sr2019", "sb2024"])
+@pytest.mark.parametrize("kit", ["sr2019", "sb2019"])
 async def test_a_kit_without_a_kch_has_none(kit: str) -> None:
     use_kit(kit)
     async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
@@ -209,3 +214,58 @@ async def test_an_environment_that_cannot_find_a_kch_has_none() -> None:
             environment.register_backend(backend)
     async with KitRobot(environment=environment) as robot:
         assert robot.kch is None
+
+
+@pytest.mark.parametrize(
+    ("kit_name", "arduinos", "ruggeduinos"),
+    [
+        ("sr2023", ["SIMSRA0"], ["SIMSRA0"]),  # the SR Arduino (fw 2) is in both
+        ("sb2024", ["SIMSBA0"], []),
+        ("sb2019", ["SIMSBA0"], []),
+        ("sr2019", [], ["SIMRD0"]),  # the Ruggeduino (fw 1) is j5's
+    ],
+)
+async def test_robot_arduinos_holds_the_arduinos_of_every_firmware(
+    kit_name: str, arduinos: list[str], ruggeduinos: list[str]
+) -> None:
+    use_kit(kit_name)
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+        assert [board.serial_number for board in robot.arduinos] == arduinos
+        assert [board.serial_number for board in robot.ruggeduinos] == ruggeduinos
+        for serial in arduinos:
+            assert robot.arduinos[serial] is robot.arduinos[0]
+            await robot.arduinos[0].pins[13].set_mode(GPIOPinMode.DIGITAL_OUTPUT)
+        if not arduinos:
+            # An empty group names the groups that do have boards.
+            with pytest.raises(IndexError, match=r"robot\.ruggeduinos \(1\)"):
+                robot.arduinos[0]
+            with pytest.raises(KeyError, match=r"robot\.arduinos is empty"):
+                robot.arduinos["SIMRD0"]
+
+
+async def test_looking_again_for_the_arduinos_asks_every_generation() -> None:
+    kit = use_kit("sr2023")
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT) as robot:
+        assert len(robot.arduinos.backend_classes) == 2  # SourceBots 2019, and the rest
+        kit.simulators("sr-arduino-fw2")[0].unplug()  # type: ignore[attr-defined]
+        await robot.arduinos.update_boards()
+        assert len(robot.arduinos) == 0
+
+
+async def test_wait_for_start_waits_once_the_kit_is_powered_and_found(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from j5aio.competition.metadata import METADATA_VARIABLE
+    from j5aio.competition.start import clear_trigger, trigger_start
+
+    monkeypatch.delenv(METADATA_VARIABLE, raising=False)
+    clear_trigger()
+    kit = use_kit(SimulatedKit(KitConfig(motor_boards=1), wired=True))
+    trigger_start()  # as the button would, while the robot waits
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT, wait_for_start=True) as robot:
+        assert robot.started
+        # the kit was powered before the start: the motor board answers
+        await robot.motor_boards[0].motors[0].set_power(0.5)
+        assert kit.motor_boards[0].motors[0].power != 0
+    with pytest.raises(TypeError, match="wait_for_start must be True or False"):
+        KitRobot(wait_for_start="yes")  # type: ignore[arg-type]

@@ -60,11 +60,12 @@ from j5aio.simulator.kit import current_kit
 
 async def drive():
     environment = get_default_environment()
-    motors = await environment.get_board_group(MotorBoard)
     power = await environment.get_board_group(PowerBoard)
+    await power[0].outputs[1].set_is_enabled(True)  # the motor boards' 12 V (H0, H1)
+    await power[0].outputs[0].set_is_enabled(True)
+    motors = await environment.get_board_group(MotorBoard)
     await motors[0].motors[0].set_power(0.5)
     await motors[1].motors[1].set_power(-1)
-    await power[0].outputs[0].set_is_enabled(True)
     kit = current_kit()
     assert kit.motor_boards[0].motors[0].mode.name == "FORWARD"
     assert kit.power_boards[0].outputs[0]
@@ -315,12 +316,12 @@ from j5aio.simulator.kit import current_kit
 
 async def main():
     environment = get_default_environment()
-    motor = (await environment.get_board_group(MotorBoardFw4)).singular()
     power = (await environment.get_board_group(PowerBoardFw4)).singular()
+    await power.outputs[PowerBoardOutput.H0].set_is_enabled(True)  # the motor board's 12 V
+    await power.outputs[PowerBoardOutput.L3].set_is_enabled(True)
+    motor = (await environment.get_board_group(MotorBoardFw4)).singular()
     await motor.motors[0].set_power(0.5)
     await motor.motors[1].set_power(-1)
-    await power.outputs[PowerBoardOutput.H0].set_is_enabled(True)
-    await power.outputs[PowerBoardOutput.L3].set_is_enabled(True)
     kit = current_kit()
     assert kit.simulators("sr-motor-fw4")[0].motors[0].drive.name == "FORWARD"
     assert kit.simulators("sr-power-fw4")[0].outputs[0]
@@ -341,6 +342,9 @@ def test_the_sr2023_kit_ends_braked_and_powered_off_on_sigterm() -> None:
     assert code == 128 + signal.SIGTERM, err
     state = final_state(out)
     assert state["motors"] == ["BRAKE", "BRAKE"], state
+    # The motor board was braked before the power board cut its 12 V: had the power gone
+    # first, braking would have failed, and said so.
+    assert "Could not make" not in err, err
     # Every output off but L2, the brain's, which the board keeps on.
     assert state["outputs"] == [False, False, False, False, True, False, False], state
     rescued = [line for line in err.splitlines() if "made safe by j5aio's safety net" in line]

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, ClassVar
 import anyio
 
 from j5aio import lifetime
+from j5aio.backends.safe_state_pass import safe_state_pass
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -37,6 +38,10 @@ class Board(ABC):
 
     #: Every board that is set up and not yet closed.
     BOARDS: ClassVar[set[Board]] = set()
+
+    #: Whether this board is made safe after every other one: a board that powers the
+    #: others (the power board) must not cut their power before they stopped.
+    MAKE_SAFE_LAST: ClassVar[bool] = False
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
         self._serial_number = serial_number
@@ -110,7 +115,7 @@ class Board(ABC):
 
     @staticmethod
     async def make_all_safe() -> list[BaseException]:
-        """Make every set-up board safe, all at once.
+        """Make every set-up board safe, all at once (those that power the others last).
 
         A board that fails to become safe does not stop the others: its error is logged
         and returned, so that the caller can decide what to do with it.
@@ -128,9 +133,15 @@ class Board(ABC):
             else:
                 lifetime.mark_settled(board)
 
-        async with anyio.create_task_group() as group:
-            for board in list(Board.BOARDS):
-                group.start_soon(make_one_safe, board)
+        # Within the pass, a lost board that has come back is looked for once more,
+        # whatever its reconnection rate limit, so that it is stopped too.
+        boards = list(Board.BOARDS)
+        with safe_state_pass():
+            for last in (False, True):  # the boards that power the others last
+                async with anyio.create_task_group() as group:
+                    for board in boards:
+                        if board.MAKE_SAFE_LAST is last:
+                            group.start_soon(make_one_safe, board)
         return failures
 
     def __str__(self) -> str:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from typing import TYPE_CHECKING, Generic, TypeVar
+from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 from j5aio.boards.board import Board
 from j5aio.errors import CommunicationError
@@ -48,6 +48,9 @@ class BoardGroup(Generic[BoardT]):
         self._backend_classes = backends
         self._ports = tuple(ports)
         self._boards: dict[str, BoardT] = {}
+        #: Said when a board is looked up in the group while it is empty: which other
+        #: groups have boards, say (:class:`~j5aio.kit.KitRobot` fills it in).
+        self.empty_hint: str | None = None
 
     @classmethod
     async def get_board_group(
@@ -75,6 +78,24 @@ class BoardGroup(Generic[BoardT]):
         group = cls(board, backend, ports=ports)
         await group.update_boards()
         return group
+
+    @classmethod
+    def of_groups(
+        cls, board_type: type[BoardT], groups: Sequence[BoardGroup[Any]]
+    ) -> BoardGroup[Any]:
+        """One group of the boards of ``groups``, ordered by serial number.
+
+        Looking again (:meth:`update_boards`) asks every backend of every group.
+
+        :param board_type: a class every board of the groups is an instance of.
+        :param groups: the groups, each already looked in.
+        :raises TypeError: a group's backend drives another kind of board.
+        """
+        backends = tuple(dict.fromkeys(b for group in groups for b in group.backend_classes))
+        combined: BoardGroup[Any] = cls(board_type, backends)
+        found = {board.serial_number: board for group in groups for board in group}
+        combined._boards = dict(sorted(found.items()))
+        return combined
 
     async def update_boards(self) -> None:
         """Look for boards again, so that boards connected since are included.
@@ -165,7 +186,7 @@ class BoardGroup(Generic[BoardT]):
                 present = ", ".join(self._boards) or "none"
                 raise KeyError(
                     f"no {self._board_type.__name__} with serial number {key!r}; "
-                    f"connected: {present}",
+                    f"connected: {present}{self._hint()}",
                 ) from None
         if isinstance(key, int) and not isinstance(key, bool):
             boards = self.boards
@@ -173,12 +194,15 @@ class BoardGroup(Generic[BoardT]):
                 return boards[key]
             raise IndexError(
                 f"board index {key} is out of range: there are {len(boards)} "
-                f"{self._board_type.__name__}(s)",
+                f"{self._board_type.__name__}(s){self._hint()}",
             )
         raise TypeError(
             f"look boards up by serial number (a str) or position (an int), not "
             f"{type(key).__name__}",
         )
+
+    def _hint(self) -> str:
+        return f". {self.empty_hint}" if self.empty_hint and not self._boards else ""
 
     def __str__(self) -> str:
         return f"Group of Boards - [{', '.join(map(str, self._boards.values()))}]"

@@ -49,6 +49,7 @@ __all__ = [
     "POLL_INTERVAL",
     "START_FILE_VARIABLE",
     "clear_trigger",
+    "is_waiting",
     "start_file",
     "trigger_start",
     "wait_for_start",
@@ -102,6 +103,16 @@ def trigger_start(how: str = "trigger") -> None:
     for loop, event in waiters:
         with contextlib.suppress(RuntimeError):  # that loop has closed: its wait is over
             loop.call_soon_threadsafe(event.set)
+
+
+def is_waiting() -> bool:
+    """Whether a :func:`wait_for_start` is waiting now, in any thread of this process.
+
+    The robot service passes a remote start on only then, as a robot's own service does:
+    a start sent while nothing waits (or left retained on the broker) starts nothing.
+    """
+    with _trigger_lock:
+        return bool(_waiters)
 
 
 def clear_trigger() -> None:

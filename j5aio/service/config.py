@@ -21,12 +21,10 @@ publishes them.
 from __future__ import annotations
 
 import os
-import tomllib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Final
-from urllib.parse import urlsplit
 
 __all__ = [
     "ASTORIA_CONFIG_PATHS",
@@ -116,6 +114,8 @@ def parse_mqtt_url(url: str, source: str = MQTT_URL_VARIABLE) -> ServiceConfig:
     :raises ServiceConfigError: the scheme is not ``mqtt`` or ``mqtts``, the host is
         missing, or the port is not a number from 1 to 65535.
     """
+    from urllib.parse import urlsplit  # (here: most robots have no URL to read)
+
     parts = urlsplit(url, allow_fragments=False)
     if parts.scheme not in ("mqtt", "mqtts"):
         raise ServiceConfigError(
@@ -201,6 +201,8 @@ def read_astoria_config(path: Path) -> ServiceConfig:
         raise ServiceConfigError(f"{path}: cannot be read: {exc.strerror or exc}") from None
     if len(raw) > _MAX_CONFIG_BYTES:
         raise ServiceConfigError(f"{path}: is larger than {_MAX_CONFIG_BYTES} bytes")
+    import tomllib  # (here: only a robot with astoria's file reads TOML)
+
     try:
         data = tomllib.loads(raw.decode("utf-8"))
     except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:

@@ -9,6 +9,7 @@ connection comes back.
 
 from __future__ import annotations
 
+import asyncio
 import logging
 import os
 import ssl
@@ -26,19 +27,19 @@ if TYPE_CHECKING:
     from j5aio.service.config import ServiceConfig
     from j5aio.service.inbox import Inbox
 
-__all__ = ["CONNECT_TIMEOUT", "KEEPALIVE", "Link", "stay_connected"]
+__all__ = ["CONNECT_TIMEOUT", "KEEPALIVE", "Link", "make_client", "stay_connected"]
 
 LOGGER = logging.getLogger(__name__)
 
 #: Seconds to wait for the broker to accept a connection.
-CONNECT_TIMEOUT: Final = 3.0
+CONNECT_TIMEOUT: Final = 10.0
 #: Seconds of silence after which the client pings the broker (a broker that vanished
 #: without closing the connection is noticed within one and a half times this).
 KEEPALIVE: Final = 5
 #: Messages held for the inbox at most; beyond, the broker is slowed (not the program).
 _MAX_QUEUED: Final = 256
 #: Seconds allowed for a goodbye to the broker.
-_CLOSE_TIMEOUT: Final = 1.0
+_CLOSE_TIMEOUT: Final = 2.0
 
 
 class Link:
@@ -48,7 +49,9 @@ class Link:
         self.client: Any = None
         #: How many times a connection has been made.
         self.connections = 0
-        self._connected = anyio.Event()
+        # asyncio's events: they may be made outside the loop that waits on them
+        self._connected = asyncio.Event()
+        self._ready = asyncio.Event()
 
     @property
     def connected(self) -> bool:
@@ -60,6 +63,18 @@ class Link:
         if self.client is None:
             await self._connected.wait()
 
+    async def wait_ready(self) -> None:
+        """Wait until the first attempt to connect has ended.
+
+        That is: it has failed, or it has succeeded and the broker's retained messages
+        (what the service said before) have been handled.
+        """
+        await self._ready.wait()
+
+    def ready(self) -> None:
+        """Record that :meth:`wait_ready` need wait no more."""
+        self._ready.set()
+
     def attach(self, client: Any) -> None:
         """Record a new connection."""
         self.client = client
@@ -69,8 +84,7 @@ class Link:
     def detach(self) -> None:
         """Record that the connection has ended."""
         self.client = None
-        if self._connected.is_set():
-            self._connected = anyio.Event()
+        self._connected.clear()
 
     async def publish(self, topic: str, payload: bytes) -> None:
         """Publish with QoS 1, as astoria's peers do.
@@ -122,6 +136,10 @@ async def _serve(
     """Subscribe, then hand every message to ``inbox`` until the connection fails."""
     for topic in inbox.topics.subscriptions:
         await client.subscribe(topic, qos=1)
+    # One more round trip: the broker answers it after sending the retained messages of
+    # the subscriptions above, so they are all queued by the time it returns.
+    await client.unsubscribe(inbox.topics.metadata + "/j5aio-settle")
+    retained = len(client.messages)
     link.attach(client)
     backoff.reset()
     if faults.seen("lost"):
@@ -129,8 +147,13 @@ async def _serve(
     else:
         LOGGER.info("Robot service: connected to the broker at %s", where)
     faults.forget("lost")
+    if not retained:
+        link.ready()
     async for message in client.messages:
         inbox.receive(str(message.topic), _payload(message.payload), message.retain)
+        retained -= 1
+        if retained == 0:
+            link.ready()
 
 
 async def _close(client: Any, mqtt_error: type[Exception]) -> None:
@@ -170,6 +193,7 @@ async def stay_connected(
             await _close(client, aiomqtt.MqttError)  # cancelled half way: close the socket
             raise
         except (aiomqtt.MqttError, OSError) as exc:
+            link.ready()
             faults.report(
                 "lost", "Robot service: cannot reach the broker at %s (%s); retrying in "
                 "the background", where, exc,

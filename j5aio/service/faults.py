@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import logging
 import threading
-from collections.abc import Hashable
 
 __all__ = ["FaultLog"]
 
@@ -20,10 +19,10 @@ class FaultLog:
     def __init__(self, logger: logging.Logger, level: int = logging.WARNING) -> None:
         self._logger = logger
         self._level = level
-        self._seen: set[Hashable] = set()
+        self._seen: set[str | tuple[str, str]] = set()
         self._lock = threading.Lock()
 
-    def report(self, kind: Hashable, message: str, *args: object) -> bool:
+    def report(self, kind: str | tuple[str, str], message: str, *args: object) -> bool:
         """Log ``message % args``; loudly only the first time ``kind`` is reported.
 
         :returns: whether this was the first time.
@@ -34,12 +33,12 @@ class FaultLog:
         self._logger.log(self._level if first else logging.DEBUG, message, *args)
         return first
 
-    def forget(self, kind: Hashable) -> None:
+    def forget(self, kind: str | tuple[str, str]) -> None:
         """Let the next report of ``kind`` be logged loudly again."""
         with self._lock:
             self._seen.discard(kind)
 
-    def seen(self, kind: Hashable) -> bool:
+    def seen(self, kind: str | tuple[str, str]) -> bool:
         """Whether ``kind`` has been reported (and not forgotten)."""
         with self._lock:
             return kind in self._seen

@@ -4,7 +4,8 @@ The robot's web page (astoria's) shows the frames the program's camera annotates
 sr-robot3 and sbot send them through april_vision: a JPEG, base64-encoded, after
 ``data:image/jpeg;base64, ``, wrapped as JSON ``{"timestamp": <Unix time>, "data": ...}``
 and published with QoS 1 on ``camera/annotated`` (under sbot's prefix when the service
-is configured by a URL).
+is configured by a URL). As sbot does, the value of the ``run_uuid`` environment variable,
+where it is set, is added as ``"run_uuid"``.
 
 :meth:`FramePublisher.offer` costs its caller no more than a clock read and a lock: at most
 ``max_rate`` frames a second are taken, one at a time; a frame offered while the last is
@@ -18,20 +19,26 @@ import base64
 import json
 import logging
 import math
+import os
 import threading
 import time
 from collections.abc import Awaitable, Callable
-from typing import TYPE_CHECKING, Final
+from typing import Final, TypeAlias
 
 import anyio
 import anyio.to_thread
 
 from j5aio.service.faults import FaultLog
+from j5aio.vision.image import Image  # (only a name at run time: numpy is not imported)
 
-if TYPE_CHECKING:
-    from j5aio.vision.image import Image
-
-__all__ = ["DEFAULT_MAX_RATE", "JPEG_QUALITY", "FramePublisher", "encode_frame"]
+__all__ = [
+    "DEFAULT_MAX_RATE",
+    "JPEG_QUALITY",
+    "RUN_ID_VARIABLE",
+    "FrameLike",
+    "FramePublisher",
+    "encode_frame",
+]
 
 LOGGER = logging.getLogger(__name__)
 
@@ -39,11 +46,16 @@ LOGGER = logging.getLogger(__name__)
 DEFAULT_MAX_RATE: Final = 5.0
 #: The JPEG quality used (as april_vision's sender).
 JPEG_QUALITY: Final = 80
+#: The environment variable whose value sbot adds to each frame as ``run_uuid``.
+RUN_ID_VARIABLE: Final = "run_uuid"
 _DATA_URL_PREFIX: Final = b"data:image/jpeg;base64, "
 _SEND_TIMEOUT: Final = 2.0
 
 #: Sends one encoded payload; raises on failure.
 Sender = Callable[[bytes], Awaitable[None]]
+#: What can be offered: a picture, a JPEG's bytes, or a call that makes either (called
+#: only for a frame that is taken, on the encoding thread: e.g. the annotation).
+FrameLike: TypeAlias = Image | bytes | Callable[[], Image | bytes]
 
 
 def encode_frame(frame: Image | bytes, timestamp: float | None = None) -> bytes:
@@ -71,7 +83,17 @@ def encode_frame(frame: Image | bytes, timestamp: float | None = None) -> bytes:
         jpeg = buffer.tobytes()
     data = (_DATA_URL_PREFIX + base64.b64encode(jpeg)).decode("ascii")
     when = time.time() if timestamp is None else timestamp
-    return json.dumps({"timestamp": when, "data": data}).encode("ascii")
+    message: dict[str, object] = {"timestamp": when, "data": data}
+    run = os.environ.get(RUN_ID_VARIABLE)
+    if run is not None:  # sbot's runner names its runs so
+        message["run_uuid"] = run
+    return json.dumps(message).encode("ascii")
+
+
+def _make_and_encode(frame: FrameLike) -> bytes:
+    if callable(frame):
+        frame = frame()
+    return encode_frame(frame)
 
 
 class FramePublisher:
@@ -95,18 +117,19 @@ class FramePublisher:
         self._busy = False
         self._last_taken = -math.inf
         self._wake: Callable[[], None] | None = None
-        self._pending: Image | bytes | None = None
+        self._pending: FrameLike | None = None
         self._faults = FaultLog(LOGGER)
         #: How many frames were sent, and how many dropped.
         self.sent = 0
         self.dropped = 0
 
-    def offer(self, frame: Image | bytes) -> bool:
+    def offer(self, frame: FrameLike) -> bool:
         """Hand over a frame to send; from any thread, never blocking.
 
         The publisher keeps a reference to ``frame`` until it is encoded: give it one
         that is not changed afterwards (a new array, such as
-        :func:`~j5aio.vision.annotate.annotate` returns).
+        :func:`~j5aio.vision.annotate.annotate` returns), or a call that makes the frame
+        (it runs only if the frame is taken, on the encoding thread).
 
         :returns: whether the frame was taken (``False``: dropped, because the service
             is not running, the last frame is still going, or it came too soon).
@@ -163,10 +186,10 @@ class FramePublisher:
                 self._busy = False
                 self._pending = None
 
-    async def _send(self, frame: Image | bytes, send: Sender) -> None:
+    async def _send(self, frame: FrameLike, send: Sender) -> None:
         try:
-            message = await anyio.to_thread.run_sync(encode_frame, frame)
-        except (ImportError, ValueError) as exc:
+            message = await anyio.to_thread.run_sync(_make_and_encode, frame)
+        except Exception as exc:  # a frame that cannot be made or encoded is dropped
             self.dropped += 1
             self._faults.report("encode", "Robot service: a camera frame was dropped: %s", exc)
             return

@@ -24,7 +24,7 @@ from j5aio.service.messages import (
 )
 from j5aio.service.payloads import PayloadError, decode_object
 
-__all__ = ["REMOTE_START", "Inbox"]
+__all__ = ["REMOTE_START", "Inbox", "robot_is_waiting"]
 
 LOGGER = logging.getLogger(__name__)
 
@@ -38,17 +38,37 @@ def _trigger_remote_start() -> None:
     trigger_start(REMOTE_START)
 
 
+def robot_is_waiting() -> bool:
+    """Whether a robot in this process is waiting for the start now.
+
+    (:func:`j5aio.competition.start.is_waiting`: a remote start counts only then.)
+    """
+    from j5aio.competition.start import is_waiting
+
+    return is_waiting()
+
+
 class Inbox:
     """Reads each message from the broker and passes on what it means.
 
     :param topics: the topics in use.
     :param start: called for a remote start (it must be safe to call on the event loop);
         :func:`~j5aio.competition.start.trigger_start` by default.
+    :param waiting: says whether the robot is waiting for the start
+        (:func:`~j5aio.service.inbox.robot_is_waiting` by default). As on astoria's
+        robots, only a remote start that arrives while the robot waits counts: one sent
+        before is stale.
     """
 
-    def __init__(self, topics: Topics, start: Callable[[], None] | None = None) -> None:
+    def __init__(
+        self,
+        topics: Topics,
+        start: Callable[[], None] | None = None,
+        waiting: Callable[[], bool] | None = None,
+    ) -> None:
         self.topics = topics
         self._start = start or _trigger_remote_start
+        self._waiting = waiting or robot_is_waiting
         self.faults = FaultLog(LOGGER)
         #: How many remote starts have been passed on.
         self.starts = 0
@@ -99,5 +119,9 @@ class Inbox:
             self._remote_start()
 
     def _remote_start(self) -> None:
+        if not self._waiting():
+            LOGGER.info("Robot service: the robot is not waiting for the start: the remote "
+                        "start was ignored")
+            return
         self.starts += 1
         self._start()

@@ -1,8 +1,9 @@
 """The robot's service client: its lifetime, and the functions a robot calls.
 
-A robot starts it in its setup with :func:`start_service` and stops it when it closes::
+A robot starts it in its setup with :func:`~j5aio.service.auto.start_service` and stops
+it when it closes::
 
-    service = await start_service()        # None where no service is configured
+    service = await start_service()  # None where no service is configured
     ...
     if service is not None:
         await service.stop()
@@ -25,24 +26,21 @@ from __future__ import annotations
 
 import asyncio
 import logging
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from types import TracebackType
-from typing import TYPE_CHECKING, Any, Self
+from typing import Any, Self
 
 import anyio
 
-from j5aio.service._extra import ServiceNotInstalledError, require_aiomqtt
+from j5aio.service._extra import require_aiomqtt
 from j5aio.service.backoff import Backoff
-from j5aio.service.config import ServiceConfig, ServiceConfigError, find_config
+from j5aio.service.config import ServiceConfig
 from j5aio.service.connection import Link, make_client, stay_connected
-from j5aio.service.frames import DEFAULT_MAX_RATE, FramePublisher
+from j5aio.service.frames import DEFAULT_MAX_RATE, FrameLike, FramePublisher
 from j5aio.service.inbox import Inbox
 from j5aio.service.messages import Topics
 
-if TYPE_CHECKING:
-    from j5aio.vision.image import Image
-
-__all__ = ["RobotService", "current_service", "publish_frame", "start_service"]
+__all__ = ["RobotService", "current_service", "publish_frame"]
 
 LOGGER = logging.getLogger(__name__)
 
@@ -57,6 +55,8 @@ class RobotService:
     :param start: called for a remote start, on the event loop; by default
         :func:`~j5aio.competition.start.trigger_start` with ``"remote start"``.
     :param backoff: the delays between attempts to reach the broker.
+    :param client_factory: makes the MQTT client for each attempt
+        (:func:`~j5aio.service.connection.make_client`; tests give fakes).
     :raises ~j5aio.service.ServiceNotInstalledError: aiomqtt is not installed.
     """
 
@@ -97,6 +97,16 @@ class RobotService:
         """
         with anyio.fail_after(timeout):
             await self.link.wait_connected()
+
+    async def wait_settled(self, timeout: float = 0.5) -> None:
+        """Wait, at most ``timeout`` seconds, for what the service said before the start.
+
+        Returns once the first attempt to reach the broker has failed (an absent broker
+        costs nothing), or has succeeded and the broker's retained messages (astoria's
+        metadata and stick) have been handled.
+        """
+        with anyio.move_on_after(timeout):
+            await self.link.wait_ready()
 
     async def start(self) -> None:
         """Start talking to the service in a background task; returns at once.
@@ -145,7 +155,7 @@ class RobotService:
     async def _send_frame(self, message: bytes) -> None:
         await self.link.publish(self.topics.frames, message)
 
-    def publish_frame(self, frame: Image | bytes) -> bool:
+    def publish_frame(self, frame: FrameLike) -> bool:
         """Offer a camera frame to the robot's web page (see :func:`publish_frame`)."""
         return self.frames.offer(frame)
 
@@ -167,7 +177,7 @@ def current_service() -> RobotService | None:
     return _current
 
 
-def publish_frame(frame: Image | bytes) -> bool:
+def publish_frame(frame: FrameLike) -> bool:
     """Offer an annotated camera frame to the robot's web page; from any thread.
 
     It costs the caller next to nothing and never blocks: the frame is taken only when
@@ -175,50 +185,9 @@ def publish_frame(frame: Image | bytes) -> bool:
     (otherwise it is dropped), then encoded in a worker thread and published.
 
     :param frame: a BGR or greyscale picture (a numpy array that is not changed
-        afterwards), or the bytes of a JPEG.
+        afterwards), the bytes of a JPEG, or a call that makes either (it runs only for
+        a frame that is taken, on the encoding thread: the place for the annotation).
     :returns: whether the frame was taken.
     """
     service = _current
     return service is not None and service.publish_frame(frame)
-
-
-async def start_service(
-    config: ServiceConfig | None = None,
-    *,
-    environ: Mapping[str, str] | None = None,
-    max_frame_rate: float = DEFAULT_MAX_RATE,
-) -> RobotService | None:
-    """Start the robot's service client if the service is configured; returns at once.
-
-    With no ``config``, the environment decides
-    (:func:`~j5aio.service.config.find_config`): on where ``astoria.toml``,
-    ``SBOT_MQTT_URL`` or ``J5AIO_MQTT_URL`` says where the broker is, off where nothing
-    does or ``J5AIO_SERVICE=off``. A configuration that cannot be read, or a missing
-    aiomqtt, is logged as an error and the robot runs without the service (a match
-    must not be lost to it).
-
-    :param config: where the broker is; found from the environment if omitted.
-    :param environ: the environment to read (``os.environ`` if omitted).
-    :param max_frame_rate: camera frames a second sent at most.
-    :returns: the running service, or ``None`` when there is none.
-    """
-    if config is None:
-        try:
-            config = find_config(environ)
-        except ServiceConfigError as exc:
-            LOGGER.error("Robot service: not started, its configuration is bad: %s", exc)
-            return None
-        if config is None:
-            LOGGER.debug("Robot service: not configured here")
-            return None
-    try:
-        service = RobotService(config, max_frame_rate=max_frame_rate)
-    except ServiceNotInstalledError as exc:
-        LOGGER.error("Robot service: not started: %s", exc)
-        return None
-    await service.start()
-    LOGGER.info(
-        "Robot service: talking to the broker at %s:%s (from %s)",
-        config.host, config.port, config.source,
-    )
-    return service

@@ -191,6 +191,25 @@ class UsbBoardSimulator(ABC):
         self._connected = True
         self._connection = 0
         self._configuration = SimulatedConfiguration(1, self.interface_descriptors)
+        self._listeners: list[Callable[[], None]] = []
+
+    def listen(self, listener: Callable[[], None]) -> Callable[[], None]:
+        """Call ``listener`` each time the board may have changed state.
+
+        That is after each host-to-device transfer (in the thread that made it) and
+        whenever the simulator says so. Returns the function that stops the calls.
+        """
+        self._listeners.append(listener)
+
+        def stop() -> None:
+            with contextlib.suppress(ValueError):
+                self._listeners.remove(listener)
+
+        return stop
+
+    def _tell_listeners(self) -> None:
+        for listener in tuple(self._listeners):
+            listener()
 
     # --- descriptor strings: read from the device once, then cached, as pyusb does ---
 
@@ -316,6 +335,9 @@ class UsbBoardSimulator(ABC):
             self._control_out(request_type, request, value, index, payload)
         except UsbStall:
             raise pipe_error() from None
+        finally:
+            if self._listeners:
+                self._tell_listeners()
         return len(payload)
 
     @abstractmethod

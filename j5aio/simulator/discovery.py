@@ -135,6 +135,9 @@ def kit_discovery_options(
         boot, say); by default the kit's time scale, but at least
         :data:`~j5aio.simulator.discovery.MINIMUM_TIMEOUT_SCALE`.
     :param kind: list only the boards (serial and USB) simulating this board kind.
+
+    While a board of a wired kit has no power, a board failing its handshake is logged
+    and passed over instead of raising (``skip_failures``).
     """
     if timeout_scale is None:
         timeout_scale = max(kit.time_scale, MINIMUM_TIMEOUT_SCALE)
@@ -171,11 +174,16 @@ def kit_discovery_options(
             and (simulator.idVendor, simulator.idProduct) == (idVendor, idProduct)
         ]
 
+    wiring = kit.wiring
     return DiscoveryOptions(
         port_source=list_ports,
         opener=open_port,
         usb_finder=find,
         time_scale=timeout_scale,
+        # A board without power is passed over (and logged), as discovery on the robot
+        # passes over a motor board whose controller is silent: whoever looks for the
+        # boards says so (KitRobot warns, naming the output to switch on).
+        skip_failures=wiring is not None and not all(fed.powered for fed, _ in wiring.feeds),
         # Each simulated backend lists its own kind's boards only.
         identify_shared_ports=serial_type is SerialBoardSimulator and kind is None,
     )

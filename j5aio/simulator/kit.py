@@ -29,6 +29,7 @@ from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING, Final
 
 from j5aio.board_kinds import DEFAULT_KIT, BoardKind, KitDefinition, get_kit, simulator_entries
+from j5aio.power_outputs import output_number
 
 from .arena import SimulatedWorld
 from .base import SerialBoardSimulator, UsbBoardSimulator
@@ -39,6 +40,7 @@ from .sr_motor_fw4 import SRMotorBoardFw4Simulator
 from .sr_power_fw3 import SRPowerBoardFw3Simulator
 from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from .sr_servo_fw2 import SRServoBoardFw2Simulator
+from .wiring import KitWiring, PowerBoardSimulator, PowerFed, default_outputs
 
 if TYPE_CHECKING:
     from .camera import SimulatedCamera
@@ -143,13 +145,36 @@ class SimulatedKit:
     ``SIMSB0`` for a servo board, ``SIMSBA0`` for a SourceBots Arduino and ``SIMRD0`` for a
     Ruggeduino (``SIMMB00`` to ``SIMMB11`` in a kit of twelve motor boards).
 
+    A registry kit may give its boards' serial numbers instead
+    (:attr:`KitDefinition.serials <j5aio.board_kinds.KitDefinition>`), as a kit file
+    does (:mod:`j5aio.simulator.kit_file`).
+
+    Power wiring: in a *wired* kit the motor and servo boards take their 12 V from the
+    power board's outputs, as on the robot (:mod:`j5aio.simulator.wiring`): the outputs
+    start off, so these boards have no power until a program switches their outputs on
+    (:class:`~j5aio.kit.KitRobot` does, as sr-robot3 and sbot do). The kit definition
+    says which output feeds which board, else the default rule does (motor boards on H0,
+    H1; servo boards on L0). ``wired`` says when the kit is wired:
+
+    - ``True``: from the start. The kit a program runs on (``run --sim``,
+      ``J5AIO_ENV=sim``, ``J5AIO_KIT``, a kit file, the demo) is wired so.
+    - ``None`` (the default for a kit made in code): every board is powered until a
+      robot starts on the kit (:meth:`wire`, which :class:`~j5aio.kit.KitRobot` calls),
+      and wired from then on. So a test of one board's protocol finds its boards
+      straight away, while a robot program meets the robot's wiring.
+    - ``False``: never; every board is powered whatever the outputs do.
+
+    A kit without a power board is never wired: its boards are always powered.
+
     :param config: the kit: a :class:`KitConfig`, a registry kit
         (:class:`~j5aio.board_kinds.KitDefinition`) or a kit's name; the default kit if
         omitted.
     :param time_scale: the time scale of a named kit (a :class:`KitConfig` has its own).
+    :param wired: when to feed the boards from the power board's outputs (see above).
     :raises TypeError: ``config`` is none of those.
-    :raises ValueError: there is no kit of that name (the message lists the kits), or two
-        of its simulators would share serial numbers.
+    :raises ValueError: there is no kit of that name (the message lists the kits), two
+        of its simulators would share serial numbers, or a board is wired to an output
+        its power board does not have.
     """
 
     def __init__(
@@ -157,6 +182,7 @@ class SimulatedKit:
         config: KitConfig | KitDefinition | str | None = None,
         *,
         time_scale: float | None = None,
+        wired: bool | None = None,
     ) -> None:
         if config is None:
             config = DEFAULT_KIT
@@ -204,13 +230,76 @@ class SimulatedKit:
                     f"simulators {prefixes[entry.serial_prefix]!r} and {entry.name!r} both "
                     f"number their boards {entry.serial_prefix}...: give one another prefix"
                 )
-            made = tuple(
-                entry.factory(_serial(entry.serial_prefix, i, count)) for i in range(count)
-            )
+            given = self._definition.serials.get(simulator_name) if self._definition else None
+            serials = given or [_serial(entry.serial_prefix, i, count) for i in range(count)]
+            made = tuple(entry.factory(serial) for serial in serials)
             self._boards[simulator_name] = made
             for simulator in made:
                 self._kinds[id(simulator)] = kind
+        self._check_distinct_serials()
         drive(self._all(), self.clock)
+        self._wire_when_asked = wired is None
+        self._wiring: KitWiring | None = self._wire() if wired else None
+
+    def _check_distinct_serials(self) -> None:
+        seen: set[str] = set()
+        for simulator in self._all():
+            serial = getattr(simulator, "serial_number", None)
+            if isinstance(serial, str) and serial in seen:
+                raise ValueError(
+                    f"two boards of the kit have serial number {serial!r}: each board's "
+                    "must be its own"
+                )
+            if isinstance(serial, str):
+                seen.add(serial)
+
+    def _wire(self) -> KitWiring | None:
+        """Join the first power board to the boards it feeds (None without a power board)."""
+        power_board = next(
+            (sim for sim in self._all() if isinstance(sim, PowerBoardSimulator)), None
+        )
+        if power_board is None:
+            return None
+        given = dict(self._definition.wiring) if self._definition is not None else {}
+        feeds: list[tuple[PowerFed, int]] = []
+        for name, made in self._boards.items():
+            if name in given:
+                outputs = [
+                    output_number(output, count=power_board.OUTPUT_COUNT)
+                    for output in given[name]
+                ]
+                feeds += [
+                    (sim, out) for sim, out in zip(made, outputs, strict=True)
+                    if isinstance(sim, PowerFed)
+                ]
+        chosen = {id(sim) for sim, _ in feeds}
+        rest = [
+            sim for sim in self._all() if isinstance(sim, PowerFed) and id(sim) not in chosen
+        ]
+        taken = [out for _, out in feeds]
+        feeds += zip(rest, default_outputs(rest, taken=taken), strict=True)
+        order = {id(sim): index for index, sim in enumerate(self._all())}
+        feeds.sort(key=lambda feed: order[id(feed[0])])
+        return KitWiring(power_board, feeds)
+
+    @property
+    def wiring(self) -> KitWiring | None:
+        """The kit's power wiring, or ``None`` while it is not wired (see the class)."""
+        return self._wiring
+
+    def wire(self) -> KitWiring | None:
+        """Wire a kit made with ``wired=None`` now (a robot starting on it calls this).
+
+        From now on the boards take their power from the power board's outputs: those
+        that are off leave the boards they feed without power. A kit wired already, or
+        made with ``wired=False``, is left as it is.
+
+        :returns: the kit's wiring, or ``None`` if it is not wired.
+        """
+        if self._wiring is None and self._wire_when_asked:
+            self._wire_when_asked = False
+            self._wiring = self._wire()
+        return self._wiring
 
     def use_clock(self, clock: Clock) -> None:
         """Run every board's firmware timers on ``clock`` from now on (a test's manual one)."""
@@ -346,6 +435,7 @@ def use_kit(
     kit: KitConfig | KitDefinition | SimulatedKit | str | None = None,
     *,
     time_scale: float | None = None,
+    wired: bool | None = None,
 ) -> SimulatedKit:
     """Make a fresh kit the current one, and return it.
 
@@ -355,12 +445,14 @@ def use_kit(
     :param kit: the new kit: a configuration, a registry kit or a kit's name
         (``"sr2019"``), or a kit already made; the default kit if omitted.
     :param time_scale: the time scale of a named kit (see :class:`SimulatedKit`).
+    :param wired: when to feed the boards from the power board's outputs (see
+        :class:`SimulatedKit`); not for a kit already made.
     :raises TypeError: ``kit`` is none of those.
     :raises ValueError: there is no kit of that name; the message lists the kits.
     """
     global _current
     if kit is None or isinstance(kit, KitConfig | KitDefinition | str):
-        kit = SimulatedKit(kit, time_scale=time_scale)
+        kit = SimulatedKit(kit, time_scale=time_scale, wired=wired)
     elif not isinstance(kit, SimulatedKit):
         raise TypeError(
             "use_kit takes a KitConfig, a KitDefinition, a kit's name or a SimulatedKit, "
@@ -385,10 +477,21 @@ def kit_from_environment() -> str:
 
 
 def current_kit() -> SimulatedKit:
-    """Return the kit in use, making the ``J5AIO_KIT`` kit (or the default) on first use.
+    """Return the kit in use, making it on first use.
 
-    :raises ValueError: ``J5AIO_KIT`` names no kit; the message lists the kits.
+    That is the kit of the file ``J5AIO_KIT_FILE`` names (:mod:`j5aio.simulator.kit_file`),
+    else the ``J5AIO_KIT`` kit, else the default kit; it is wired from the start, as
+    the robot is (see :class:`SimulatedKit`).
+
+    :raises ValueError: ``J5AIO_KIT`` names no kit (the message lists the kits), or the
+        kit file cannot be used (the message says why).
     """
     if _current is None:
-        return use_kit(kit_from_environment())
+        from .kit_file import KIT_FILE_VARIABLE, kit_file_from_environment, time_scale_of
+
+        from_file = kit_file_from_environment()
+        if from_file is not None:
+            scale = time_scale_of(os.environ[KIT_FILE_VARIABLE].strip())
+            return use_kit(from_file, time_scale=scale, wired=True)
+        return use_kit(kit_from_environment(), wired=True)
     return _current

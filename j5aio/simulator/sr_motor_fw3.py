@@ -12,6 +12,11 @@ machine:
 
 The board does not reset when its port is opened and prints nothing at boot; the motors
 start (and come back from a reset) coasting, with the driver disabled.
+
+Power: only the USB-serial adapter is powered from USB. The controller sits on the
+isolated side, fed by the board's 12 V input (a power board output): while
+:attr:`~SRMotorBoardFw3Simulator.powered` is false its port is there but nothing answers
+and no motor is driven; when power comes the controller boots.
 """
 
 from __future__ import annotations
@@ -21,6 +26,7 @@ from dataclasses import dataclass
 from typing import ClassVar, Final
 
 from .base import SerialBoardSimulator
+from .loads import MOTOR_BOARD_IDLE_CURRENT, MOTOR_FULL_POWER_CURRENT
 
 __all__ = ["MotorMode", "MotorOutput", "SRMotorBoardFw3Simulator"]
 
@@ -114,7 +120,47 @@ class SRMotorBoardFw3Simulator(SerialBoardSimulator):
         self._motors = [COAST] * self.MOTOR_COUNT
         self._parser = _Parser.IDLE
         self._in_bootloader = False
+        self._powered = True
+        self._motor_currents: list[float | None] = [None] * self.MOTOR_COUNT
         self._boot()
+
+    @property
+    def powered(self) -> bool:
+        """Whether the board's 12 V input is on (it starts on: a kit's wiring switches it).
+
+        Switching it off stops the controller: nothing answers, a motor that was driven
+        coasts to a stop and a braked one stays stopped (its mode still says so).
+        Switching it on boots the controller (the motors coast).
+        """
+        return self._powered
+
+    @powered.setter
+    def powered(self, on: bool) -> None:
+        if on and not self._powered:
+            self._powered = True
+            self.reset()
+        elif not on and self._powered:
+            self._powered = False
+            self._parser = _Parser.IDLE
+            self._motors = [
+                COAST if output.mode in (MotorMode.FORWARD, MotorMode.REVERSE) else output
+                for output in self._motors
+            ]
+            self._tell_listeners()
+
+    def set_motor_current(self, motor: int, amps: float | None) -> None:
+        """Make ``motor`` draw ``amps`` while it is driven (``None``: the load model's figure)."""
+        self._motor_currents[motor] = amps
+
+    def supply_current(self) -> float:
+        """The amps the board draws from its 12 V input now (see :mod:`.loads`)."""
+        if not self._powered:
+            return 0.0
+        total = MOTOR_BOARD_IDLE_CURRENT
+        for output, fixed in zip(self._motors, self._motor_currents, strict=True):
+            if output.mode in (MotorMode.FORWARD, MotorMode.REVERSE):
+                total += fixed if fixed is not None else output.duty * MOTOR_FULL_POWER_CURRENT
+        return total
 
     @property
     def motors(self) -> tuple[MotorOutput, ...]:
@@ -139,6 +185,8 @@ class SRMotorBoardFw3Simulator(SerialBoardSimulator):
 
     def _process(self, data: bytes) -> bytes:
         emitted = bytearray()
+        if not self._powered:  # the USB-serial adapter takes the bytes; nobody reads them
+            return b""
         for byte in data:
             if self._in_bootloader:
                 break

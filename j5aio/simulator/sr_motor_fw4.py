@@ -11,6 +11,11 @@ the value 0 while disabled. Both motors coast at power-up and after ``*RESET``, 
 also clears the faults and the filtered currents. There is no watchdog: unplugging the
 USB cable changes nothing. ``*SYS:BOOTLOADER`` answers, then the board goes silent.
 
+Power: only the FTDI adapter is powered from USB. The controller is fed by the board's
+12 V input (a power board output): while :attr:`~SRMotorBoardFw4Simulator.powered` is
+false its port is there but nothing answers and no motor is driven; when power comes
+the controller boots.
+
 The firmware answers a firmware 3 resync byte (``0x00``) as part of a line, so the probe
 ``\x00\n*IDN?\n`` gets a NACK and then the identity.
 """
@@ -22,6 +27,7 @@ from dataclasses import dataclass
 from typing import ClassVar, Final
 
 from .base import SerialBoardSimulator
+from .loads import MOTOR_BOARD_IDLE_CURRENT, MOTOR_FULL_POWER_CURRENT
 from .sr_text_line import BoundedLineInput
 
 __all__ = ["MotorChannel", "MotorDrive", "SRMotorBoardFw4Simulator"]
@@ -106,9 +112,49 @@ class SRMotorBoardFw4Simulator(SerialBoardSimulator):
         self._load_ma = [0] * _MOTOR_COUNT
         self._input_mv = round(input_voltage * 1000)
         self._in_bootloader = False
+        self._powered = True
         self._boot()
 
     # --- outside control ---
+
+    @property
+    def powered(self) -> bool:
+        """Whether the board's 12 V input is on (it starts on: a kit's wiring switches it).
+
+        Switching it off stops the controller: nothing answers, a motor that was driven
+        coasts to a stop and a braked one stays stopped (its drive still says so).
+        Switching it on boots the controller (the motors coast).
+        """
+        return self._powered
+
+    @powered.setter
+    def powered(self, on: bool) -> None:
+        if on and not self._powered:
+            self._powered = True
+            self.reset()
+        elif not on and self._powered:
+            self._powered = False
+            self._input.reset()
+            self._motors = [
+                MotorChannel() if channel.value else channel for channel in self._motors
+            ]
+            self._tell_listeners()
+
+    def supply_current(self) -> float:
+        """The amps the board draws from its 12 V input now (see :mod:`.loads`).
+
+        A motor told what it draws (:meth:`set_motor_current`) draws that while its
+        driver is enabled; otherwise a driven motor draws in proportion to its duty.
+        """
+        if not self._powered:
+            return 0.0
+        total = MOTOR_BOARD_IDLE_CURRENT * 1000
+        for motor, channel in enumerate(self._motors):
+            if self._load_ma[motor]:
+                total += self._current_ma(motor)
+            else:
+                total += channel.duty * MOTOR_FULL_POWER_CURRENT * 1000
+        return total / 1000
 
     def set_motor_current(self, motor: int, amps: float) -> None:
         """Make ``motor`` draw ``amps`` while its driver is enabled."""
@@ -163,6 +209,8 @@ class SRMotorBoardFw4Simulator(SerialBoardSimulator):
 
     def _process(self, data: bytes) -> bytes:
         replies = bytearray()
+        if not self._powered:  # the FTDI adapter takes the bytes; nobody reads them
+            return b""
         for line in self._input.feed(data):
             if self._in_bootloader:
                 break

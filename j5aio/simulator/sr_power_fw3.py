@@ -34,6 +34,7 @@ from collections import deque
 from typing import ClassVar, Final, NamedTuple
 
 from .clock import BoardTime, Clock
+from .loads import BATTERY_INTERNAL_RESISTANCE
 from .sr_usb import SRUsbBoardSimulator
 from .usb_support import UsbStall
 
@@ -108,6 +109,7 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         self.battery_voltage = battery_voltage
         self.battery_current = battery_current
         self._output_ma = [0] * self.OUTPUT_COUNT
+        self._supplied_ma = [0] * self.OUTPUT_COUNT
         self._internal_button = False
         self._external_button = False
         self._outputs = [False] * self.OUTPUT_COUNT
@@ -135,6 +137,7 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         self._drivers_ready = self._battery_mv > _UNDERVOLTAGE_MV
         if self.connected:
             self._enumerated()
+        self._tell_listeners()
 
     def bus_reset(self) -> None:
         """Reset the USB bus and enumerate again, as a host does when it re-enumerates.
@@ -144,6 +147,7 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         """
         self._reset_callback()
         self._enumerated()
+        self._tell_listeners()
 
     def _reset_callback(self) -> None:
         self._outputs = [False] * self.OUTPUT_COUNT
@@ -213,6 +217,7 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         self._check_output(output)
         self._trips[output] = True
         self._outputs[output] = False
+        self._tell_listeners()
 
     def press_start(self, *, external: bool = False) -> None:
         """Hold the start button down (the internal one, or the external one)."""
@@ -271,9 +276,34 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         self._output_ma[output] = round(amps * 1000)
 
     def output_current(self, output: int) -> float:
-        """The current output ``output`` reports, in amps."""
+        """The current output ``output`` reports, in amps (what it was set to, and the load)."""
         self._check_output(output)
-        return self._output_ma[output] / 1000
+        return self._reported_output_current(output) / 1000
+
+    def set_supplied_current(self, output: int, amps: float) -> None:
+        """Set what the boards fed by ``output`` draw through it (a kit's wiring does).
+
+        While the output is on, it adds to the output's current and the battery's, and
+        pulls the battery voltage down (:data:`.loads.BATTERY_INTERNAL_RESISTANCE`).
+        """
+        self._check_output(output)
+        self._supplied_ma[output] = round(amps * 1000)
+
+    @property
+    def load_current(self) -> float:
+        """The amps the boards fed by the outputs that are on draw, in all."""
+        return sum(
+            ma for ma, on in zip(self._supplied_ma, self._outputs, strict=True) if on
+        ) / 1000
+
+    @property
+    def loaded_voltage(self) -> float:
+        """The battery voltage under the outputs' load, in volts (what the board reads)."""
+        return max(0.0, self.battery_voltage - self.load_current * BATTERY_INTERNAL_RESISTANCE)
+
+    def _reported_output_current(self, output: int) -> int:
+        supplied = self._supplied_ma[output] if self._outputs[output] else 0
+        return self._output_ma[output] + supplied
 
     def advance_piezo(self, milliseconds: int) -> list[PiezoNote]:
         """Let ``milliseconds`` pass beside the clock; return the notes that finished.
@@ -322,20 +352,22 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
 
     def _reported_battery_current(self) -> int:
         """The fw 3 battery current: shunt steps of 20 mA; below the offset it reads 1 mA."""
-        sensed = (self._battery_ma + _BATTERY_OFFSET_MA) // _SHUNT_STEP_MA * _SHUNT_STEP_MA
+        true_ma = self._battery_ma + round(self.load_current * 1000)
+        sensed = (true_ma + _BATTERY_OFFSET_MA) // _SHUNT_STEP_MA * _SHUNT_STEP_MA
         if sensed < _BATTERY_OFFSET_MA:
             return 1
         return sensed - _BATTERY_OFFSET_MA
 
     def _reported_battery_voltage(self) -> int:
         """The INA219 bus voltage: 4 mV steps up to its 32 V range."""
-        return min(self._battery_mv // _BUS_STEP_MV * _BUS_STEP_MV, _BUS_MAX_MV)
+        loaded_mv = round(self.loaded_voltage * 1000)
+        return min(loaded_mv // _BUS_STEP_MV * _BUS_STEP_MV, _BUS_MAX_MV)
 
     # --- the firmware's request handlers ---
 
     def _read(self, command: int, length: int) -> bytes:
         if command <= _READ_OUTPUT_LAST:
-            reply = _U32.pack(self._output_ma[command])
+            reply = _U32.pack(self._reported_output_current(command))
         elif command == _READ_5V_RAIL:
             reply = bytes(self._control_buffer[:4])
         elif command == _READ_BATTERY:

@@ -30,6 +30,7 @@ from typing import ClassVar, Final
 
 from .base import SerialBoardSimulator
 from .clock import BoardTime, Clock
+from .loads import BATTERY_INTERNAL_RESISTANCE
 from .sr_text_line import BoundedLineInput
 
 __all__ = ["BuzzerNote", "SRPowerBoardFw4Simulator"]
@@ -96,6 +97,7 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         self._outputs = [False] * _OUTPUT_COUNT
         self._latches = [False] * _OUTPUT_COUNT
         self._output_ma = [0] * _OUTPUT_COUNT
+        self._supplied_ma = [0] * _OUTPUT_COUNT
         self._battery_mv = round(battery_voltage * 1000)
         self._battery_ma = 0
         self._temperature = 25
@@ -177,6 +179,27 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         """Trip the over-current protection of ``output``: off, and latched off."""
         self._latches[output] = True
         self._outputs[output] = False
+        self._tell_listeners()
+
+    def set_supplied_current(self, output: int, amps: float) -> None:
+        """Set what the boards fed by ``output`` draw through it (a kit's wiring does).
+
+        While the output is on, it adds to the output's current and the battery's, and
+        pulls the battery voltage down (:data:`.loads.BATTERY_INTERNAL_RESISTANCE`).
+        """
+        self._supplied_ma[output] = round(amps * 1000)
+
+    @property
+    def load_current(self) -> float:
+        """The amps the boards fed by the outputs that are on draw, in all."""
+        return sum(
+            ma for ma, on in zip(self._supplied_ma, self._outputs, strict=True) if on
+        ) / 1000
+
+    @property
+    def loaded_voltage(self) -> float:
+        """The battery voltage under the outputs' load, in volts (what ``BATT:V?`` reads)."""
+        return max(0.0, self.battery_voltage - self.load_current * BATTERY_INTERNAL_RESISTANCE)
 
     def use_clock(self, clock: Clock) -> None:
         """Run the firmware's timers on ``clock`` from now on (a kit gives its own)."""
@@ -281,6 +304,7 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         self._note = None
         self._leds = ["1", "1"]
         self._input.reset()
+        self._tell_listeners()
 
     def plug(self) -> None:
         """Plug the USB cable back in: the host enumerates the board (ERROR LED off)."""
@@ -367,7 +391,8 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         if args[1] == "GET?":
             return str(int(self._outputs[output]))
         if args[1] == "I?":
-            return str(self._output_ma[output] if self._outputs[output] else 0)
+            on = self._outputs[output]
+            return str(self._output_ma[output] + self._supplied_ma[output] if on else 0)
         if args[1] != "SET":
             return "NACK:Unknown output command"
         if output == _BRAIN:
@@ -385,9 +410,9 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         if not args:
             return "NACK:Missing argument"
         if args[0] == "V?":
-            return str(self._battery_mv)
+            return str(round(self.loaded_voltage * 1000))
         if args[0] == "I?":
-            return str(self._battery_ma)
+            return str(self._battery_ma + round(self.load_current * 1000))
         return "NACK:Unknown battery command"
 
     def _led(self, args: list[str]) -> str:

@@ -12,6 +12,8 @@ Protocol (protocols.md §3A), ``bRequest`` 64, standard type, device recipient:
 The expander is powered from the board's 12 V input. Without it (``has_12v=False``) the
 initialise request hangs in the firmware's I²C set-up: the host sees a timeout (errno 110)
 and every later transfer times out too, until 12 V comes back and the set-up completes.
+Servos get no pulses while the 12 V is off. A kit's wiring switches the 12 V through
+:attr:`~SRServoBoardFw2Simulator.powered` (the same as ``has_12v``).
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from __future__ import annotations
 import struct
 from typing import ClassVar, Final
 
+from .loads import SERVO_BOARD_IDLE_CURRENT, SERVO_HOLDING_CURRENT
 from .sr_usb import SRUsbBoardSimulator
 from .usb_support import UsbStall, timeout_error
 
@@ -79,8 +82,11 @@ class SRServoBoardFw2Simulator(SRUsbBoardSimulator):
 
     @property
     def pulse_widths_us(self) -> tuple[int | None, ...]:
-        """Each servo's pulse width in µs, or None while the board is not initialised."""
-        if not self._initialised:
+        """Each servo's pulse width in µs, or None while the board is not initialised.
+
+        Without 12 V the expander that makes the pulses is off: every one is None.
+        """
+        if not self._initialised or not self._has_12v:
             return (None,) * self.SERVO_COUNT
         return tuple(_CENTRE_US + _US_PER_STEP * position for position in self._positions)
 
@@ -97,6 +103,22 @@ class SRServoBoardFw2Simulator(SRUsbBoardSimulator):
         if powered and self._hung:
             self._hung = False
             self._initialised = True
+
+    @property
+    def powered(self) -> bool:
+        """Whether the board's 12 V input is on: :attr:`has_12v` under a kit wiring's name."""
+        return self._has_12v
+
+    @powered.setter
+    def powered(self, on: bool) -> None:
+        self.has_12v = on
+
+    def supply_current(self) -> float:
+        """The amps the board draws from its 12 V input now (see :mod:`.loads`)."""
+        if not self._has_12v:
+            return 0.0
+        pulsing = sum(width is not None for width in self.pulse_widths_us)
+        return SERVO_BOARD_IDLE_CURRENT + pulsing * SERVO_HOLDING_CURRENT
 
     def power_cycle(self) -> None:
         """Switch the board off and on: positions back to 0, not initialised, not hung."""

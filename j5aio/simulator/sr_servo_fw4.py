@@ -28,6 +28,12 @@ command                 reply
 ``ECHO:<text>``         ``<text>`` (the first ``:``-separated field)
 ======================= ============================================================
 
+Power: the microcontroller is powered from USB and always answers, but the pulse
+expander and the servo rail hang off the board's 12 V input (a power board output).
+While :attr:`~SRServoBoardFw4Simulator.powered` is false, ``*STATUS?`` reports the
+watchdog failed and power not good, the rail reads 0 V and no servo gets pulses
+(setpoints are still taken, and pulses start when power comes).
+
 Errors are ``NACK:<reason>`` with the firmware's texts. The board has no USB disconnect
 handler: servos keep pulsing when the host goes away; plugging it in again (a USB-powered
 boot) starts with every servo disabled.
@@ -39,6 +45,7 @@ from collections.abc import Callable
 from typing import ClassVar, Final
 
 from .base import SerialBoardSimulator
+from .loads import SERVO_BOARD_IDLE_CURRENT, SERVO_HOLDING_CURRENT
 
 __all__ = ["SBServoBoardFw4Simulator", "SRServoBoardFw4Simulator"]
 
@@ -93,6 +100,7 @@ class SRServoBoardFw4Simulator(SerialBoardSimulator):
         self.power_good = True
         #: Whether the I²C link to the pulse expander has timed out.
         self.watchdog_failed = False
+        self._powered = True
         self._commands: dict[bytes, Callable[[list[bytes]], bytes]] = {
             b"*IDN?": self._identify,
             b"*STATUS?": self._status,
@@ -112,8 +120,31 @@ class SRServoBoardFw4Simulator(SerialBoardSimulator):
 
     @property
     def pulse_widths(self) -> tuple[int | None, ...]:
-        """Each servo's pulse in µs (whole ticks), ``None`` for a disabled servo."""
+        """Each servo's pulse in µs (whole ticks), ``None`` for a servo getting no pulses.
+
+        That is a disabled servo, or every servo while the board has no 12 V.
+        """
+        if not self._powered:
+            return (None,) * self.SERVO_COUNT
         return tuple(None if ticks is None else ticks * _TICK_US for ticks in self._ticks)
+
+    @property
+    def powered(self) -> bool:
+        """Whether the board's 12 V input is on (it starts on: a kit's wiring switches it)."""
+        return self._powered
+
+    @powered.setter
+    def powered(self, on: bool) -> None:
+        if on != self._powered:
+            self._powered = on
+            self._tell_listeners()
+
+    def supply_current(self) -> float:
+        """The amps the board draws from its 12 V input now (see :mod:`.loads`)."""
+        if not self._powered:
+            return 0.0
+        pulsing = sum(width is not None for width in self.pulse_widths)
+        return SERVO_BOARD_IDLE_CURRENT + pulsing * SERVO_HOLDING_CURRENT
 
     def set_supply(self, *, voltage: float | None = None, current: float | None = None) -> None:
         """Set what the servo rail's meters read, in volts and amps."""
@@ -153,7 +184,8 @@ class SRServoBoardFw4Simulator(SerialBoardSimulator):
         return self.identity.encode("ascii")
 
     def _status(self, _arguments: list[bytes]) -> bytes:
-        return b"%d:%d" % (self.watchdog_failed, self.power_good)
+        watchdog_failed = self.watchdog_failed or not self._powered
+        return b"%d:%d" % (watchdog_failed, self.power_good and self._powered)
 
     def _reset_servos(self, _arguments: list[bytes]) -> bytes:
         self._ticks = [None] * self.SERVO_COUNT
@@ -166,9 +198,9 @@ class SRServoBoardFw4Simulator(SerialBoardSimulator):
         if not arguments or not arguments[0]:
             return b"NACK:Missing servo number"
         if arguments[0] == b"I?":
-            return str(self.current_ma).encode("ascii")
+            return str(self.current_ma if self._powered else 0).encode("ascii")
         if arguments[0] == b"V?":
-            return str(self.voltage_mv).encode("ascii")
+            return str(self.voltage_mv if self._powered else 0).encode("ascii")
         servo = _leading_number(arguments[0])
         if servo is None or servo >= self.SERVO_COUNT:
             return b"NACK:Invalid servo number"

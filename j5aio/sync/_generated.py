@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence, Set
 from datetime import timedelta
+from enum import Enum
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Generic, Self, TypeVar, cast, overload
 
@@ -805,6 +806,8 @@ class Board(_SyncWrapper):
 
     name: ClassVar[str] = _boards_board.Board.name
 
+    MAKE_SAFE_LAST: ClassVar[bool] = _boards_board.Board.MAKE_SAFE_LAST
+
     @property
     def serial_number(self) -> str:
         """The serial number of the board."""
@@ -847,7 +850,7 @@ class Board(_SyncWrapper):
 
     @staticmethod
     def make_all_safe() -> list[BaseException]:
-        """Make every set-up board safe, all at once.
+        """Make every set-up board safe, all at once (those that power the others last).
 
         A board that fails to become safe does not stop the others: its error is logged
         and returned, so that the caller can decide what to do with it.
@@ -1087,6 +1090,175 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         """
         return cast("BoardGroup[Board]", _wrap(_call(_boards_board_group.BoardGroup.get_board_group, _unwrap(board), backend, ports=ports)))
 
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[SyncBoardT],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_arduino.SRArduinoBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sb_arduino_2024.SBArduino2024Board],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sb_servo_board.SBServoBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_arduino_all_digital.AllDigitalUno],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_ruggeduino.Ruggeduino],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sb_arduino.SBArduinoBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_arduino_uno.ArduinoUno],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_camera.CameraBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_kch.KCHBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_motor_board.MotorBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_power_board.PowerBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_sr_v4_servo_board.ServoBoard],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @overload
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_board.Board],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        ...
+
+    @classmethod
+    def of_groups(
+        cls,
+        board_type: type[_boards_board.Board | Board],
+        groups: Sequence[BoardGroup[Any]],
+    ) -> BoardGroup[Any]:
+        """One group of the boards of ``groups``, ordered by serial number.
+
+        Looking again (:meth:`update_boards`) asks every backend of every group.
+
+        :param board_type: a class every board of the groups is an instance of.
+        :param groups: the groups, each already looked in.
+        :raises TypeError: a group's backend drives another kind of board.
+        """
+        return cast("BoardGroup[Any]", _wrap(_boards_board_group.BoardGroup.of_groups(_unwrap(board_type), _unwrap(groups))))
+
     def update_boards(self) -> None:
         """Look for boards again, so that boards connected since are included.
 
@@ -1145,6 +1317,11 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         :raises TypeError: the key is neither a string nor an integer.
         """
         return cast("BoardT", _wrap(self._core.__getitem__(key)))
+
+    @property
+    def empty_hint(self) -> str | None:
+        """The ``empty_hint`` of the wrapped object."""
+        return self._core.empty_hint
 
 
 class Component(_SyncWrapper):
@@ -1229,9 +1406,13 @@ class KitRobot(BaseRobot):
 
     - ``robot.power_board``: the one power board (an error says so if there is not
       exactly one);
-    - ``robot.motor_boards``, ``robot.servo_boards``, ``robot.arduinos`` (SourceBots
-      Arduinos) and ``robot.ruggeduinos``: groups of every such board found, possibly
-      empty, reached by position or serial number;
+    - ``robot.motor_boards``, ``robot.servo_boards`` and ``robot.arduinos``: groups of
+      every such board found, possibly empty, reached by position or serial number.
+      ``robot.arduinos`` holds the kit's Arduinos whatever their firmware (the SR
+      Arduino, firmware 2; the SourceBots Arduinos of 2019 and 2024), each with
+      ``pins`` and ``ultrasound_sensors``; ``robot.ruggeduinos`` holds the SR ones (the
+      Ruggeduino of the 2019 kit, the SR Arduino), as in j5's programs. Indexing an
+      empty group says which groups do have boards;
     - ``robot.cameras``: the cameras found (webcams; the simulated kit's camera), and
       ``robot.camera``: the first one's :class:`~j5aio.components.marker_camera.MarkerCamera`
       (``None`` without a camera), so that ``await robot.camera.see()`` finds markers;
@@ -1243,12 +1424,30 @@ class KitRobot(BaseRobot):
     finds the boards at once, with no ``async with``, and they are made safe when the
     program ends.
 
+    Start-up powers the kit as sr-robot3 and sbot do: the power board is found first,
+    the outputs in ``power_on`` are switched on (by default every output but L2, which
+    powers the brain), and after :data:`~j5aio.kit_power.POWER_UP_WAIT` seconds for the
+    boards they feed to boot (scaled by a simulated kit's time scale) the other boards
+    are looked for. A motor board that is plugged in but stays silent, or a servo board
+    that reports no 12 V, gets a :class:`~j5aio.kit_power.KitPowerWarning` naming the
+    output to switch on.
+
     :param environment: where to find the boards; the default environment if omitted.
     :param view: serve the live view of the boards while the robot runs (see
         :mod:`j5aio.view`; needs the ``view`` extra). ``None`` (the default) follows
         ``J5AIO_VIEW``. A view already running (``python -m j5aio run --view`` starts
         one) shows this robot's boards, and no second one is started.
-    :raises TypeError: ``environment`` is not an Environment.
+    :param power_on: the power board outputs to switch on at start-up: ``True`` (the
+        default) for every output but L2, ``False`` for none (the boards they feed
+        will then not work), or the outputs, by name (``"H0"``, ``"L1"``, ``"5V"``) or
+        number. L2 is the brain's and cannot be chosen.
+    :param wait_for_start: wait for the start of the match once the boards are found,
+        as sr-robot3's ``Robot()`` and ``import sbot`` do (see :doc:`/match-day`); the
+        default, ``False``, returns at once and :meth:`~j5aio.robot.BaseRobot.wait_start`
+        waits later.
+    :raises TypeError: ``environment`` is not an Environment, ``power_on`` is not
+        one of those, or ``wait_for_start`` is not a bool.
+    :raises ValueError: ``power_on`` names an output that does not exist, or L2.
     """
 
     __slots__ = ()
@@ -1260,9 +1459,11 @@ class KitRobot(BaseRobot):
         *args: Any,
         environment: Environment | None = None,
         view: bool | None = None,
+        power_on: bool | Iterable[int | str | Enum] | None = True,
+        wait_for_start: bool = False,
         **kwargs: Any,
     ) -> Self:
-        robot = _adopt(cls, _kit.KitRobot(environment=_unwrap(environment), view=view))
+        robot = _adopt(cls, _kit.KitRobot(environment=_unwrap(environment), view=view, power_on=power_on, wait_for_start=wait_for_start))
         try:
             _call(robot._core.setup)
             _call(robot._core.after_setup)
@@ -1271,13 +1472,15 @@ class KitRobot(BaseRobot):
             raise
         return robot
 
+    POWER_UP_WAIT: ClassVar[float] = _kit.KitRobot.POWER_UP_WAIT
+
     @property
     def environment(self) -> Environment:
         """The environment the boards are found in."""
         return cast("Environment", _wrap(self._core.environment))
 
     def setup(self) -> None:
-        """Find every board of the kit, then the power board.
+        """Find the power board, power the kit up, then find every other board.
 
         :raises CommunicationError: there is not exactly one power board, or a board
             could not be reached. When the hardware was looked at only by default and
@@ -1307,9 +1510,9 @@ class KitRobot(BaseRobot):
         return cast("BoardGroup[ServoBoard]", _wrap(self._core.servo_boards))
 
     @property
-    def arduinos(self) -> BoardGroup[SBArduinoBoard]:
+    def arduinos(self) -> BoardGroup[SBArduinoBoard | AllDigitalUno]:
         """The ``arduinos`` of the wrapped object."""
-        return cast("BoardGroup[SBArduinoBoard]", _wrap(self._core.arduinos))
+        return cast("BoardGroup[SBArduinoBoard | AllDigitalUno]", _wrap(self._core.arduinos))
 
     @property
     def ruggeduinos(self) -> BoardGroup[Ruggeduino]:
@@ -1532,6 +1735,8 @@ class PowerBoard(Board):
         _adopt_into(self, _boards_sr_v4_power_board.PowerBoard(serial_number, backend))
 
     name: ClassVar[str] = _boards_sr_v4_power_board.PowerBoard.name
+
+    MAKE_SAFE_LAST: ClassVar[bool] = _boards_sr_v4_power_board.PowerBoard.MAKE_SAFE_LAST
 
     START_POLL_INTERVAL: ClassVar[float] = _boards_sr_v4_power_board.PowerBoard.START_POLL_INTERVAL
 

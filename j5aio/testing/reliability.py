@@ -843,6 +843,7 @@ async def _fuzz_serial(name: str, trials: int, rng: random.Random, report: FuzzR
 
     class Quick(backend_class):  # type: ignore[misc]
         DEFAULT_TIMEOUT = 0.02
+        ULTRASOUND_TIMEOUT = 0.02  # a fuzzed reply need not be waited for seconds
 
     board = await Quick.from_stream(
         SimulatorStream(sim, time_scale=0), port="fuzz", serial_number="F", time_scale=0.01

@@ -20,7 +20,8 @@ the backend's handshake over the stream and returns its board:
 
 * :class:`RecordingStream` wraps any stream and records every chunk both ways.
 * :class:`FaultyStream` wraps any stream and injects faults, on demand or on a schedule:
-  a delayed, dropped or corrupted reply, a disconnection, or a board gone silent.
+  a delayed (in order, or overtaken by later replies), dropped or corrupted reply, a
+  disconnection, or a board gone silent.
 """
 
 from __future__ import annotations
@@ -137,6 +138,8 @@ class FaultKind(enum.Enum):
 
     #: Hold the next reply (and everything after it) back for a while.
     DELAY = "delay"
+    #: Hold the next reply back for a while, letting later replies overtake it.
+    HOLD = "hold"
     #: Throw the next reply away.
     DROP = "drop"
     #: Pass the next reply through a function that damages it.
@@ -173,6 +176,17 @@ class Fault:
         if seconds < 0:
             raise ValueError(f"a delay cannot be negative, not {seconds}")
         return cls(FaultKind.DELAY, seconds=seconds, terminator=None)
+
+    @classmethod
+    def hold(cls, seconds: float, terminator: bytes | None = b"\n") -> Fault:
+        """Hold the next reply (bytes up to ``terminator``) back for ``seconds``.
+
+        Unlike :meth:`delay`, replies after it are not held: they overtake it, and it
+        arrives out of order (as from a firmware that answers some requests later).
+        """
+        if seconds < 0:
+            raise ValueError(f"a delay cannot be negative, not {seconds}")
+        return cls(FaultKind.HOLD, seconds=seconds, terminator=terminator)
 
     @classmethod
     def drop(cls, terminator: bytes | None = b"\n") -> Fault:
@@ -224,6 +238,7 @@ class FaultyStream(ByteStream):
         self._collected = bytearray()
         self._ready = bytearray()
         self._release_at = 0.0
+        self._held: list[tuple[float, bytes]] = []  # (when it is released, the reply)
         self._silent = False
         self._disconnected = False
         self._wait_scope: anyio.CancelScope | None = None
@@ -272,6 +287,10 @@ class FaultyStream(ByteStream):
         """Hold the next chunk received (and all after it) back for ``seconds``."""
         self.inject(Fault.delay(seconds))
 
+    def hold_next_reply(self, seconds: float, terminator: bytes | None = b"\n") -> None:
+        """Hold the next reply back for ``seconds``, letting later replies overtake it."""
+        self.inject(Fault.hold(seconds, terminator))
+
     def drop_next_reply(self, terminator: bytes | None = b"\n") -> None:
         """Throw away the next reply (bytes up to ``terminator``, or the next chunk)."""
         self.inject(Fault.drop(terminator))
@@ -314,6 +333,7 @@ class FaultyStream(ByteStream):
         await anyio.lowlevel.checkpoint()
         while True:
             self._check_connected()
+            self._release_held()
             if self._ready:
                 wait = self._release_at - anyio.current_time()
                 if wait <= 0:
@@ -322,9 +342,10 @@ class FaultyStream(ByteStream):
                     return data
                 await self._interruptible(anyio.sleep(wait))
             else:
-                chunk = await self._interruptible(self._inner.receive(max_bytes))
-                if chunk is not None and not self._silent:
-                    self._process(chunk)
+                with anyio.move_on_after(self._until_held()):
+                    chunk = await self._interruptible(self._inner.receive(max_bytes))
+                    if chunk is not None and not self._silent:
+                        self._process(chunk)
 
     def send_now(self, data: bytes, timeout: float) -> None:
         """Send through the wrapped stream synchronously (no fault applies)."""
@@ -341,6 +362,20 @@ class FaultyStream(ByteStream):
         await self._inner.aclose()
 
     # -- internals -------------------------------------------------------------------------
+
+    def _release_held(self) -> None:
+        now = anyio.current_time()
+        due = [reply for when, reply in self._held if when <= now]
+        if due:
+            self._held = [(when, reply) for when, reply in self._held if when > now]
+            for reply in due:
+                self._ready += reply
+
+    def _until_held(self) -> float:
+        """Seconds until the next held reply is released (infinite with none)."""
+        if not self._held:
+            return float("inf")
+        return max(0.0, min(when for when, _ in self._held) - anyio.current_time())
 
     def _check_connected(self) -> None:
         if self._disconnected:
@@ -389,6 +424,8 @@ class FaultyStream(ByteStream):
         if fault.kind is FaultKind.DELAY:
             self._release_at = anyio.current_time() + fault.seconds
             self._ready += reply
+        elif fault.kind is FaultKind.HOLD:
+            self._held.append((anyio.current_time() + fault.seconds, reply))
         elif fault.kind is FaultKind.CORRUPT:
             self._ready += fault.corrupter(reply)
         # DROP: the reply is simply not passed on.

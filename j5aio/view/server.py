@@ -34,6 +34,7 @@ from .arena import describe_arena, describe_pose, kit_of
 from .controls import ControlError, apply_control, controls_of
 from .describe import component_id
 from .state import ViewState
+from .ticker import SharedTicker
 
 __all__ = ["BOARDS_EVERY", "TICK_SECONDS", "ViewServer"]
 
@@ -90,6 +91,10 @@ class ViewServer:
         self.watchers = 0
         self._kit: SimulatedKit | None = None  # the simulated kit of the boards, if any
         self._arena: dict[str, Any] | None = None  # how the page draws its arena
+        # The boards as last read, and how many times they have been read.
+        self._boards_seen: list[dict[str, Any]] | None = None
+        self._boards_version = 0
+        self._ticker: SharedTicker[dict[str, Any]] | None = None  # made in the server loop
 
     @property
     def url(self) -> str:
@@ -128,6 +133,7 @@ class ViewServer:
     async def _serve(self) -> None:
         self._loop = asyncio.get_running_loop()
         self._stop = asyncio.Event()
+        self._ticker = SharedTicker(self._read_program, TICK_SECONDS)
         app = web.Application(middlewares=[self._guard])
         app.router.add_get("/", self._index)
         app.router.add_get("/ws", self._websocket)
@@ -196,21 +202,41 @@ class ViewServer:
             self.watchers -= 1
         return ws
 
+    @property
+    def readings(self) -> int:
+        """How many times the program has been read for the pages (one per tick, shared)."""
+        return 0 if self._ticker is None else self._ticker.readings
+
+    async def _read_program(self, tick: int) -> dict[str, Any]:
+        """The ticker's reading: what every page is sent from the program this tick."""
+        with_boards = tick % BOARDS_EVERY == 0
+        snapshot: dict[str, Any] = {}
+        if with_boards or self._kit is not None:  # else nothing to read in the program
+            snapshot = await self._snapshot_if_running(with_boards)
+        if "boards" in snapshot:
+            self._boards_seen = snapshot["boards"]
+            self._boards_version += 1
+        return snapshot
+
     async def _push(self, ws: web.WebSocketResponse) -> None:
-        """Send one page what changed, every tick. A slow page waits in send: never a queue."""
-        value_mark = log_mark = 0
-        tick = 0
+        """Send one page what changed, every tick. A slow page waits in send: never a queue.
+
+        What is read in the program is read once per tick for every page together (see
+        :mod:`.ticker`), so another page costs the robot's loop nothing more.
+        """
+        assert self._ticker is not None
+        value_mark = log_mark = boards_version = 0
+        tick = -1
         arena_key: str | None = None  # the arena this page has
         pose: dict[str, Any] | None = None  # the pose this page shows
+        self._ticker.add_listener()
         try:
             while not ws.closed:
+                tick, snapshot = await self._ticker.next_after(tick)
                 message: dict[str, Any] = {"t": time.time()}
-                with_boards = tick % BOARDS_EVERY == 0
-                snapshot: dict[str, Any] = {}
-                if with_boards or self._kit is not None:  # else nothing to read in the program
-                    snapshot = await self._snapshot_if_running(with_boards)
-                if "boards" in snapshot:
-                    message["boards"] = snapshot["boards"]
+                if self._boards_version > boards_version and self._boards_seen is not None:
+                    message["boards"] = self._boards_seen
+                    boards_version = self._boards_version
                 arena = snapshot.get("arena")
                 if arena is not None and arena["key"] != arena_key:
                     message["arena"], arena_key = arena, arena["key"]
@@ -226,13 +252,13 @@ class ViewServer:
                     message["dropped"] = changes.dropped_log_lines
                 if len(message) > 1:
                     await ws.send_str(json.dumps(message))
-                tick += 1
-                await asyncio.sleep(TICK_SECONDS)
         except (ConnectionError, asyncio.CancelledError):
             return
         except Exception:  # pragma: no cover - never let a page break the robot
             LOGGER.exception("live view: could not update a page")
             await ws.close()
+        finally:
+            self._ticker.remove_listener()
 
     async def _in_program(self, function: Callable[[], _T]) -> _T:
         """Run ``function`` in the program's event loop (where boards and simulators live)."""

@@ -95,6 +95,7 @@ class Robot(BaseRobot):
     async def setup(self):
         environment = get_default_environment()
         self.power_board = (await environment.get_board_group(PowerBoard)).singular()
+        await self.power_board.outputs.power_on()  # the motor board's 12 V
         self.motor_boards = await environment.get_board_group(MotorBoard)
 
 async def main():

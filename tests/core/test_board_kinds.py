@@ -313,3 +313,43 @@ def test_reading_the_kinds_while_they_load_is_refused(
     fresh_registry.append(FakeEntryPoint("nested", lambda: board_kinds.board_kinds()))
     with pytest.warns(BoardPluginWarning, match="RuntimeError: the board kinds were read while"):
         board_kinds.board_kinds()
+
+
+def test_a_kit_definition_says_how_its_boards_are_wired_and_numbered() -> None:
+    kit = KitDefinition(
+        "wired", "a wired kit", {"sr-power-fw4": 1, "sr-motor-fw4": 2},
+        wiring={"sr-motor-fw4": ("H0", 1)}, serials={"sr-motor-fw4": ("A", "B")},
+    )
+    assert kit.wiring == {"sr-motor-fw4": ("H0", 1)}
+    assert kit.serials == {"sr-motor-fw4": ("A", "B")}
+    one = KitDefinition(
+        "one", "one board", {"sr-motor": 1}, wiring={"sr-motor": "L1"}  # type: ignore[dict-item]
+    )
+    assert one.wiring == {"sr-motor": ("L1",)}
+
+
+
+def test_a_kit_a_plugins_board_joins_keeps_its_wiring(gen9: BoardKind) -> None:
+    kit = get_kit("sr2019")
+    assert kit.boards["test-motor-gen9"] == 2
+    assert kit.wiring == {"sr-motor": ("H0",), "sr-servo": ("L0",)}
+
+
+@pytest.mark.parametrize(
+    ("wiring", "serials", "match"),
+    [
+        ({"sr-servo": ("L0",)}, {}, "names 'sr-servo', which the kit has no boards of"),
+        ({"sr-motor": ("H0",)}, {}, "give 1 for 'sr-motor', which the kit has 2 of"),
+        ({"sr-motor": ("H0", "L2")}, {}, "cannot be wired to L2"),
+        ({"sr-motor": ("H0", "Q1")}, {}, "no output 'Q1'"),
+        ({"sr-motor": ("H0", None)}, {}, "give an output's name"),
+        ({}, {"sr-motor": ("A", "A")}, "serial number 'A' is given twice"),
+        ({}, {"sr-motor": ("A", "B C")}, "without spaces"),
+        ({}, {"sr-motor": ("A", 7)}, "without spaces"),
+    ],
+)
+def test_a_kit_definitions_wiring_and_serials_are_checked(
+    wiring: dict[str, Any], serials: dict[str, Any], match: str
+) -> None:
+    with pytest.raises(ValueError, match=match):
+        KitDefinition("bad", "a bad kit", {"sr-motor": 2}, wiring=wiring, serials=serials)

@@ -70,7 +70,7 @@ async def test_astmetad_and_astctl_drive_the_program(
 
         async with anyio.create_task_group() as group:
             group.start_soon(wait)
-            await astoria.astctl("usercode", "trigger")
+            await astoria.trigger(config.port)
         assert started == ["remote start"]
 
 
@@ -108,7 +108,7 @@ anyio.run(main)
 
 
 async def test_a_program_run_by_astprocd_gets_its_stick_and_the_remote_start(
-    astoria: AstoriaStack, tmp_path: Path
+    astoria: AstoriaStack, broker: Broker, tmp_path: Path
 ) -> None:
     stick = tmp_path / "stick"
     stick.mkdir()
@@ -123,11 +123,14 @@ async def test_a_program_run_by_astprocd_gets_its_stick_and_the_remote_start(
     def logged(word: str) -> bool:
         return log.exists() and word in log.read_text(errors="replace")
 
-    await eventually(lambda: (astoria.directory / "astprocd.log").exists(), timeout=30)
-    await astoria.astctl("static-disk", "add", str(stick))
-    await eventually(lambda: logged("WAITING"), timeout=60)
-    await astoria.astctl("metadata", "set", "zone", "3")
-    await astoria.astctl("usercode", "trigger")
-    await eventually(lambda: logged("STARTED by"), timeout=60)
+    try:
+        await astoria.ready(broker.port)
+        await astoria.astctl("static-disk", "add", str(stick))
+        await eventually(lambda: logged("WAITING"), timeout=60)
+        await astoria.astctl("metadata", "set", "zone", "3")
+        await astoria.trigger(broker.port)
+        await eventually(lambda: logged("STARTED by"), timeout=60)
+    except TimeoutError:
+        raise AssertionError(astoria.explain(log)) from None
     line = next(x for x in log.read_text().splitlines() if "STARTED by" in x)
     assert line.endswith(f"STARTED by remote start in zone 3, stick {stick}"), log.read_text()

@@ -57,3 +57,41 @@ async def test_a_bug_in_the_client_ends_the_task_and_is_logged(
     with caplog.at_level(logging.ERROR, "j5aio.service"):
         await service.stop()
     assert "its task failed" in caplog.text and "a bug" in caplog.text
+
+
+class SlowToConnect:
+    """A client whose broker never answers the connection."""
+
+    def __init__(self) -> None:
+        self.closed = False
+        self.entered = anyio.Event()
+
+    async def __aenter__(self) -> SlowToConnect:
+        self.entered.set()
+        await anyio.sleep_forever()
+        raise AssertionError("unreachable")
+
+    async def __aexit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        traceback: TracebackType | None,
+    ) -> None:
+        self.closed = True
+
+
+async def test_stopping_while_connecting_closes_the_half_made_connection() -> None:
+    clients: list[SlowToConnect] = []
+
+    def factory(config: Config) -> SlowToConnect:
+        clients.append(SlowToConnect())
+        return clients[-1]
+
+    service = RobotService(ServiceConfig(host="127.0.0.1", port=1), client_factory=factory)
+    await service.start()
+    with anyio.fail_after(10):
+        while not clients:  # noqa: ASYNC110 - the service's task makes it
+            await anyio.sleep(0.01)
+        await clients[0].entered.wait()
+        await service.stop()
+    assert clients[0].closed and not service.running

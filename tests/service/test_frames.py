@@ -14,12 +14,19 @@ from tests.service.helpers import eventually, longer_than
 JPEG = b"\xff\xd8\xff\xe0 a tiny jpeg \xff\xd9"
 
 
-def test_encode_bytes_as_the_peers_wrap_them() -> None:
+def test_encode_bytes_as_the_peers_wrap_them(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv("run_uuid", raising=False)
     message = json.loads(encode_frame(JPEG, timestamp=12.5))
+    assert set(message) == {"timestamp", "data"}
     assert message["timestamp"] == 12.5
     prefix = "data:image/jpeg;base64, "
     assert message["data"].startswith(prefix)
     assert base64.b64decode(message["data"][len(prefix):]) == JPEG
+
+
+def test_sbots_run_id_is_added(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("run_uuid", "1234-abcd")
+    assert json.loads(encode_frame(JPEG))["run_uuid"] == "1234-abcd"
 
 
 def test_encode_picture_with_opencv() -> None:
@@ -120,3 +127,26 @@ async def test_offer_after_the_loop_closed_is_dropped() -> None:
     assert not publisher.offer(JPEG)
     publisher._wake = None
     assert publisher.dropped == 1
+
+
+async def test_a_frame_made_on_demand_is_made_only_when_taken() -> None:
+    publisher = FramePublisher(max_rate=0.001)  # one frame, then none for a long while
+    made: list[str] = []
+    sent: list[bytes] = []
+
+    def make() -> bytes:
+        made.append(threading.current_thread().name)
+        return JPEG
+
+    async def send(message: bytes) -> None:
+        sent.append(message)
+
+    async with anyio.create_task_group() as group:
+        group.start_soon(publisher.run, send)
+        await eventually(lambda: publisher.offer(make))
+        for _ in range(10):
+            assert not publisher.offer(make)  # too soon: never made
+        await eventually(lambda: len(sent) == 1)
+        group.cancel_scope.cancel()
+    assert len(made) == 1 and made[0] != threading.current_thread().name
+    assert json.loads(sent[0])["data"].endswith(base64.b64encode(JPEG).decode())

@@ -4,6 +4,7 @@ import json
 import logging
 from pathlib import Path
 
+import anyio
 import pytest
 
 from j5aio.competition import service_state
@@ -19,7 +20,7 @@ TOPICS = Topics.for_config(ServiceConfig(host="localhost"))
 
 def make_inbox() -> tuple[Inbox, list[int]]:
     starts: list[int] = []
-    return Inbox(TOPICS, lambda: starts.append(1)), starts
+    return Inbox(TOPICS, lambda: starts.append(1), lambda: True), starts  # a robot waits
 
 
 def send(inbox: Inbox, topic: str, payload: object, retained: bool = False) -> None:
@@ -133,7 +134,7 @@ def test_a_failing_start_does_not_escape(caplog: pytest.LogCaptureFixture) -> No
     def broken() -> None:
         raise RuntimeError("boom")
 
-    inbox = Inbox(TOPICS, broken)
+    inbox = Inbox(TOPICS, broken, lambda: True)
     for _ in range(3):
         send(inbox, TOPICS.start, start_event())
     tracebacks = [r for r in caplog.records if r.exc_info is not None]
@@ -142,10 +143,20 @@ def test_a_failing_start_does_not_escape(caplog: pytest.LogCaptureFixture) -> No
 
 async def test_default_start_triggers_wait_for_start() -> None:
     from j5aio.competition.start import wait_for_start
+    from j5aio.service.inbox import robot_is_waiting
 
     inbox = Inbox(TOPICS)
-    send(inbox, TOPICS.start, start_event())
-    assert await wait_for_start([], timeout=10) == "remote start"
+    send(inbox, TOPICS.start, start_event())  # nothing waits yet: this starts nothing
+    async with anyio.create_task_group() as tasks:
+
+        async def wait() -> None:
+            assert await wait_for_start([], timeout=10) == "remote start"
+
+        tasks.start_soon(wait)
+        with anyio.fail_after(10):
+            while not robot_is_waiting():  # noqa: ASYNC110 - a state another task sets
+                await anyio.sleep(0.01)
+        send(inbox, TOPICS.start, start_event())
 
 
 def test_decode_object_accepts_text_and_bytes() -> None:
@@ -153,3 +164,35 @@ def test_decode_object_accepts_text_and_bytes() -> None:
     with pytest.raises(PayloadError) as caught:
         decode_object(b"[" * 100_000, "t")
     assert caught.value.kind in ("oversized", "not JSON")
+
+
+def test_a_remote_start_counts_only_while_the_robot_waits(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    waiting = False
+    starts: list[int] = []
+    inbox = Inbox(TOPICS, lambda: starts.append(1), lambda: waiting)
+    with caplog.at_level(logging.INFO, "j5aio.service"):
+        send(inbox, TOPICS.start, start_event())
+        send(inbox, TOPICS.sbot_start, {"pressed": True})
+    assert starts == [] and "not waiting" in caplog.text
+    waiting = True
+    send(inbox, TOPICS.start, start_event())
+    assert starts == [1] and inbox.starts == 1
+
+
+async def test_whether_the_robot_waits_comes_from_the_start_module() -> None:
+    from j5aio.competition.start import clear_trigger, trigger_start, wait_for_start
+    from j5aio.service.inbox import robot_is_waiting
+
+    assert not robot_is_waiting()  # nothing waits: a remote start now would count for nothing
+    async with anyio.create_task_group() as tasks:
+        tasks.start_soon(wait_for_start, [])
+        for _ in range(200):
+            if robot_is_waiting():
+                break
+            await anyio.sleep(0.01)
+        assert robot_is_waiting()
+        trigger_start("remote start")
+    assert not robot_is_waiting()
+    clear_trigger()

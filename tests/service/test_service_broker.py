@@ -32,6 +32,12 @@ def config_for(broker: Broker, prefix: str = "astoria") -> ServiceConfig:
     return ServiceConfig(host="127.0.0.1", port=broker.port, topic_prefix=prefix)
 
 
+@pytest.fixture(autouse=True)
+def _a_robot_waits(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A robot is waiting for the start throughout (the gate itself: test_inbox.py)."""
+    monkeypatch.setattr("j5aio.competition.start.is_waiting", lambda: True)
+
+
 @pytest.fixture
 async def service(broker: Broker) -> AsyncIterator[RobotService]:
     async with RobotService(config_for(broker)) as running:
@@ -218,3 +224,35 @@ async def test_stop_is_prompt_and_repeatable(broker: Broker) -> None:
         await svc.stop()
     assert not svc.running and not svc.connected
     await svc.stop()
+
+
+@pytest.mark.parametrize("v311", [False, True])
+async def test_start_service_returns_with_the_retained_state(
+    broker: Broker, peer: Peer, v311: bool
+) -> None:
+    from j5aio.service import start_service
+
+    await peer.publish("astoria/astmetad", astmetad_message(zone=7), retain=True)
+    await peer.publish("astoria/astprocd", astprocd_message("/media/team"), retain=True)
+    config = ServiceConfig(host="127.0.0.1", port=broker.port, mqtt_v311=v311)
+    service = await start_service(config, settle=30)
+    assert service is not None
+    try:
+        # no waiting here: start_service returned once the retained messages were handled
+        assert zone() == 7
+        assert service_state.usercode_path() == Path("/media/team")
+    finally:
+        await service.stop()
+
+
+async def test_start_service_does_not_wait_for_an_absent_broker(broker: Broker) -> None:
+    from j5aio.service import start_service
+
+    broker.stop()
+    with anyio.fail_after(20):  # it would wait the whole 30 s for a broker it waited for
+        service = await start_service(config_for(broker), settle=30)
+    assert service is not None
+    try:
+        assert not service.connected  # returned after the first failed attempt
+    finally:
+        await service.stop()

@@ -152,10 +152,12 @@ def test_ctrl_c_during_a_motor_command_cancels_it_and_brakes(tmp_path: Path) -> 
 
 
 BUSY_SIMULATED = """
-from j5aio.boards.sr.v4 import MotorBoard
+from j5aio.boards.sr.v4 import MotorBoard, PowerBoard
 from j5aio.sync import get_default_environment
 
-motor = get_default_environment().get_board_group(MotorBoard)[0].motors[0]
+environment = get_default_environment()
+environment.get_board_group(PowerBoard)[0].outputs.power_on()  # the motor boards' 12 V
+motor = environment.get_board_group(MotorBoard)[0].motors[0]
 motor.power = 0.5
 print("busy", flush=True)
 while True:

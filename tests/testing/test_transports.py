@@ -324,3 +324,17 @@ async def test_closing_a_scripted_stream() -> None:
         await stream.send(b"x")
     with pytest.raises(BoardDisconnectionError, match="closed"):
         await stream.receive()
+
+
+
+async def test_a_held_reply_is_overtaken_by_later_replies() -> None:
+    host, board = memory_stream_pair()
+    faulty = FaultyStream(host)
+    faulty.hold_next_reply(0.05)
+    await board.send(b"first\n")
+    await board.send(b"second\n")
+    with anyio.fail_after(2):
+        assert await faulty.receive() == b"second\n"  # at once, ahead of the held one
+        assert await faulty.receive() == b"first\n"  # once its time has come
+    with pytest.raises(ValueError, match="negative"):
+        Fault.hold(-1)

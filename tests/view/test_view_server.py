@@ -335,3 +335,33 @@ async def test_the_arena_is_sent_once_and_the_pose_as_it_moves() -> None:
         assert moved["pose"]["x"] == pytest.approx(start["x"], abs=1)
         await left.set_power(0)
         await right.set_power(0)
+
+
+async def test_every_page_shares_one_reading_of_the_program_per_tick() -> None:
+    """Another open page costs the robot's loop nothing more: the readings are shared."""
+    pages, wanted = 6, 3
+    async with kit_and_view() as (_robot, _kit, view), aiohttp.ClientSession() as session:
+        server = view.server
+        board_readings = 0
+        snapshot = server._snapshot
+
+        def counting(with_boards: bool) -> dict[str, Any]:
+            nonlocal board_readings
+            board_readings += with_boards
+            return snapshot(with_boards)
+
+        server._snapshot = counting  # type: ignore[method-assign]
+        received = [0] * pages
+
+        async def watch(index: int) -> None:
+            async with session.ws_connect(ws_url(view)) as ws:
+                while received[index] < wanted:
+                    if "boards" in json.loads((await ws.receive()).data):
+                        received[index] += 1
+
+        async with asyncio.timeout(30), asyncio.TaskGroup() as group:
+            for index in range(pages):
+                group.create_task(watch(index))
+        # Read once per page, each page's board lists would need a reading each.
+        assert board_readings * 2 <= sum(received)
+        assert server.readings >= board_readings

@@ -2,13 +2,16 @@
 
 A subclass says how to get one picture (:meth:`FrameCameraBackend.grab`, a blocking call);
 this base runs it and the detector on the camera's own worker thread, so the event loop is
-never blocked by a capture or a detection.
+never blocked by a capture or a detection. Where the robot's service runs
+(:mod:`j5aio.service`), each frame looked at is offered, annotated, to the robot's web
+page, as sr-robot3 and sbot do.
 """
 
 from __future__ import annotations
 
+import sys
 from abc import abstractmethod
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, ClassVar
 
@@ -26,6 +29,29 @@ if TYPE_CHECKING:
     from j5aio.vision.sizes import MarkerSizes
 
 __all__ = ["FrameCameraBackend"]
+
+
+def _share_with_the_robot_service(frame: Image, markers: Sequence[Marker] | None) -> None:
+    """Offer the frame, annotated, to the robot's web page if the robot service runs.
+
+    Costs nothing without the service (its module is not even imported then); with it,
+    the annotation is drawn only for a frame the service takes (see
+    :func:`j5aio.service.service.publish_frame`).
+    """
+    service = sys.modules.get("j5aio.service.service")
+    if service is None:
+        return
+    if markers is None:
+        service.publish_frame(frame)
+        return
+    found = list(markers)
+
+    def annotated() -> Image:
+        from j5aio.vision.annotate import annotate
+
+        return annotate(frame, found)
+
+    service.publish_frame(annotated)
 
 
 class FrameCameraBackend(Backend, MarkerCameraInterface):
@@ -86,7 +112,10 @@ class FrameCameraBackend(Backend, MarkerCameraInterface):
         return self.grab
 
     def _see(self, source: Callable[[], Image], sizes: MarkerSizes) -> list[Marker]:
-        return self._detector_here().detect(source(), self._calibration, sizes)
+        frame = source()
+        markers = self._detector_here().detect(frame, self._calibration, sizes)
+        _share_with_the_robot_service(frame, markers)
+        return markers
 
     def _see_ids(self, source: Callable[[], Image]) -> list[int]:
         return self._detector_here().detect_ids(source())
@@ -96,7 +125,9 @@ class FrameCameraBackend(Backend, MarkerCameraInterface):
 
         frame = source()
         markers = self._detector_here().detect(frame, self._calibration, sizes)
-        write_image(path, annotate(frame, markers))
+        annotated = annotate(frame, markers)
+        write_image(path, annotated)
+        _share_with_the_robot_service(annotated, None)
 
     async def see_markers(self, identifier: int, marker_sizes: MarkerSizes) -> list[Marker]:
         """Take a picture and return the markers in it, nearest first."""

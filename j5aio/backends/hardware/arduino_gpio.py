@@ -23,7 +23,7 @@ from j5aio.backends.backend import BoardT
 from j5aio.backends.hardware.arduino import ARDUINO_USB_IDS, UnoLEDAndLimits
 from j5aio.backends.hardware.arduino_pin_table import PinTable, wire_mode
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
-from j5aio.backends.hardware.transports.readers import read_line
+from j5aio.backends.hardware.transports.readers import read_line, read_lines
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.components.derived.ultrasound import UltrasoundInterface
 from j5aio.components.gpio_pin import GPIOPinMode
@@ -37,6 +37,7 @@ __all__ = ["ArduinoGPIOBackend", "PinCodec", "echo_distance", "echo_pulse"]
 T = TypeVar("T")
 
 _LINE = read_line()
+_TWO_LINES = read_lines(2)
 #: Microseconds of echo per millimetre in both firmwares' formula, mm = 5 x µs / 29.
 _US_PER_MM = 29 / 5
 
@@ -210,16 +211,41 @@ class ArduinoGPIOBackend(UnoLEDAndLimits, UltrasoundInterface, SerialHardwareBac
     async def set_gpio_pin_mode(self, identifier: int, pin_mode: GPIOPinMode) -> None:
         """Put a pin in ``pin_mode``; an output starts at the level last written to it.
 
-        The level is set before the pin becomes an output, so it never glitches.
+        The level is set before the pin becomes an output, so it never glitches. Both
+        requests go as one exchange, which the link runs to its end: a cancelled caller
+        never leaves the level written (an input's pull-up switched) and the mode not.
         """
         self._pins.check_mode(identifier, pin_mode)
-        if pin_mode is GPIOPinMode.DIGITAL_OUTPUT:
-            await self._send_level(identifier, self._pins.state(identifier).level)
-        await self._send_mode(
-            identifier,
-            wire_mode(pin_mode),
-            then=lambda: self._pins.record(identifier, mode=pin_mode),
-        )
+        remember = lambda: self._pins.record(identifier, mode=pin_mode)  # noqa: E731
+        if pin_mode is not GPIOPinMode.DIGITAL_OUTPUT:
+            await self._send_mode(identifier, wire_mode(pin_mode), then=remember)
+            return
+        level = self.CODEC.encode_digital_write(identifier, self._pins.state(identifier).level)
+        mode = self.CODEC.encode_mode(identifier, wire_mode(pin_mode))
+        try:
+            await self._exchange(
+                level + mode, _TWO_LINES, then=self._both_done((level, mode), remember),
+            )
+        except CommunicationTimeoutError as exc:
+            raise CommunicationTimeoutError(f"{self.board.name} did not answer: {exc}") from exc
+
+    def _both_done(
+        self, requests: tuple[bytes, bytes], then: Callable[[], None],
+    ) -> Callable[[list[bytes]], None]:
+        """Check the replies to two requests sent together, then run ``then``."""
+
+        def check(lines: list[bytes]) -> None:
+            for request, line in zip(requests, lines, strict=True):
+                try:
+                    self.CODEC.parse_done(line)
+                except UnexpectedReplyError as exc:
+                    raise UnexpectedReplyError(
+                        f"{self.board.name} on {self.port}: bad reply {line!r} to "
+                        f"{request!r}: {exc}",
+                    ) from exc
+            then()
+
+        return check
 
     async def get_gpio_pin_mode(self, identifier: int) -> GPIOPinMode:
         """Return the mode last set on a pin."""

@@ -9,9 +9,11 @@ Every hardware backend (serial and USB) is a :class:`Reconnecting` backend:
 * While lost, each call first looks for the same board again (by USB serial number, or
   at the same port path for a board attached by port), at most once every
   ``ReconnectPolicy.interval`` seconds; a call made when it is not back fails at
-  once with :class:`~j5aio.errors.BoardDisconnectionError`. There is no background task:
-  the next call after the board is back finds it (so it answers again within
-  ``interval`` of being back, plus its own boot time).
+  once with :class:`~j5aio.errors.BoardDisconnectionError`. While every board is being
+  made safe (:mod:`j5aio.backends.safe_state_pass`), a lost board is looked for once
+  more whatever the interval, so that a board back by then is stopped too. There is
+  no background task: the next call after the board is back finds it (so it answers
+  again within ``interval`` of being back, plus its own boot time).
 * Finding it re-runs the handshake on a new link, after calling the backend's
   :meth:`Reconnecting.reset_board_state` hook: the board has just been reset, so the
   backend forgets everything it remembered and starts again from the board's power-up
@@ -37,6 +39,7 @@ from typing import ClassVar, TypeVar
 
 import anyio
 
+from j5aio.backends.safe_state_pass import claim_attempt
 from j5aio.errors import BoardDisconnectionError
 
 __all__ = ["ReconnectPolicy", "Reconnecting"]
@@ -155,8 +158,12 @@ class Reconnecting:
         """
 
     def _mark_lost(self) -> None:
-        """Note that the board has vanished (the caller closes the link)."""
-        if not self._lost:
+        """Note that the board has vanished (the caller closes the link).
+
+        A board closed on purpose (at game over, say) has not vanished: the call it cut
+        short fails, but nothing is logged and nothing will look for the board.
+        """
+        if not self._lost and not self._closed_for_good:
             _log.warning("%r: the board has vanished; j5aio will look for it again", self)
         self._lost = True
 
@@ -185,7 +192,10 @@ class Reconnecting:
         if not self._lost:
             return
         policy = self.reconnect_policy
-        if policy.enabled and anyio.current_time() - self._last_attempt >= policy.interval:
+        if policy.enabled and (
+            anyio.current_time() - self._last_attempt >= policy.interval
+            or claim_attempt(self)  # making the boards safe: one try, whatever the limit
+        ):
             await self.reconnect()
         if self._lost:
             raise BoardDisconnectionError(

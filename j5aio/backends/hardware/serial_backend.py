@@ -180,6 +180,7 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         except BaseException:
             await link.aclose()
             raise
+        backend._link_ready()
         return cast(BoardT, cls.board(serial_number, backend))
 
     @classmethod
@@ -438,10 +439,20 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
             self._lost = True
             link.close_now()
             raise
+        self._link_ready()
 
     @abstractmethod
     async def _handshake(self, *, time_scale: float) -> None:
         """Check the board and its firmware version; set ``_firmware_version``."""
+
+    def _link_ready(self) -> None:
+        """Configure the link once the handshake has passed (a hook; nothing here).
+
+        Called on every new link (the first, and after a reconnection), once the board
+        is known to run firmware this backend drives: the place to name the
+        resynchronisation probe (:meth:`.SerialLink.set_resync_line`), which is sent
+        only to a board that understands it.
+        """
 
     # -- talking to the board -----------------------------------------------------------
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import logging
 from datetime import timedelta
 from types import SimpleNamespace
 from typing import Any
@@ -18,6 +19,8 @@ from j5aio.backends.hardware.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4Hardw
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
 from j5aio.backends.hardware.transports.memory import SimulatorStream
+from j5aio.backends.safe_state_pass import claim_attempt, safe_state_pass
+from j5aio.boards.board import Board
 from j5aio.boards.sr.v4.motor_board_fw4 import MotorBoardFw4
 from j5aio.boards.sr.v4.power_board import PowerBoard
 from j5aio.components.gpio_pin import GPIOPinMode
@@ -32,6 +35,7 @@ from j5aio.simulator import (
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kit import KitConfig, use_kit
 from j5aio.testing.reliability import BACKEND_NAMES, replug_trials
+from j5aio.testing.transports import FaultyStream
 
 QUICK = ReconnectPolicy(interval=0.0)
 
@@ -442,3 +446,77 @@ async def test_a_replugged_sb2024_arduino_forgets_its_pins_and_works_again() -> 
     assert await board.pins[4].get_mode() is GPIOPinMode.DIGITAL_INPUT
     assert sim.pin_mode(4) is PinMode.INPUT
     await board.close()
+
+
+async def test_a_board_back_just_before_the_end_is_still_made_safe() -> None:
+    """The program ends at once after the failed call: the rate limit must not stop make_safe."""
+    sim = SRMotorBoardFw4Simulator("srM2")
+    ports = [usb_port("/dev/ttyUSB0", "srM2", 0x0403, 0x6001,
+                      manufacturer="Student Robotics", product="MCV4B")]
+
+    async def opener(port: str, baudrate: int) -> Any:
+        return SimulatorStream(sim, time_scale=0)
+
+    options = DiscoveryOptions(port_source=lambda: ports, opener=opener, time_scale=0.01)
+    (board,) = await SRV4MotorBoardFw4HardwareBackend.discover(options=options)
+    assert isinstance(board, MotorBoardFw4)
+    backend = board.backend
+    assert isinstance(backend, SRV4MotorBoardFw4HardwareBackend)
+    # However long the limit, the pass that makes the boards safe tries once more.
+    backend.reconnect_policy = ReconnectPolicy(interval=3600)
+    await board.setup()
+    await board.motors[0].set_power(0.5)
+
+    sim.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.motors[1].get_power()
+    sim.plug()  # the board is on the battery: it kept driving, and is back
+    assert sim.motors[0].value == 500
+    with pytest.raises(BoardDisconnectionError, match="disconnected"):
+        await board.motors[1].get_power()  # the limit holds outside the pass
+    assert await Board.make_all_safe() == []
+    assert (sim.motors[0].enabled, sim.motors[0].value) == (True, 0)  # braked
+    assert backend.reconnections == 1
+    await board.close()
+
+
+async def test_the_pass_gives_each_lost_board_one_try() -> None:
+    first, second = object(), object()
+    assert not claim_attempt(first)  # outside a pass: never
+    with safe_state_pass():
+        assert claim_attempt(first)
+        assert not claim_attempt(first)
+        assert claim_attempt(second)
+        with safe_state_pass():  # a pass of its own starts afresh
+            assert claim_attempt(first)
+    assert not claim_attempt(second)
+
+
+async def test_a_call_cut_short_by_closing_the_board_is_not_a_vanished_board(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """At game over the ports are closed under the program's feet: that is no unplug."""
+    sim = SRMotorBoardFw4Simulator("srM3")
+    faulty = FaultyStream(SimulatorStream(sim, time_scale=0))
+    board = await SRV4MotorBoardFw4HardwareBackend.from_stream(
+        faulty, port="sim", serial_number="srM3"
+    )
+    backend = board.backend
+    assert isinstance(backend, SRV4MotorBoardFw4HardwareBackend)
+    faulty.silence()  # the reply to the call in flight does not come before the end
+    failures: list[BaseException] = []
+
+    async def in_flight() -> None:
+        try:
+            await backend.get_motor_current(0)
+        except BoardDisconnectionError as exc:
+            failures.append(exc)
+
+    with caplog.at_level(logging.INFO, "j5aio"):
+        async with anyio.create_task_group() as group:
+            group.start_soon(in_flight)
+            await anyio.sleep(0.02)  # the request has gone
+            board.close_now()  # as the match timer does
+    assert len(failures) == 1
+    assert "vanished" not in caplog.text
+    assert not backend.is_connected

@@ -240,11 +240,12 @@ async def test_a_cancelled_mode_change_leaves_the_cache_as_the_board_is() -> Non
     faulty.delay_next_reply(0.2)
     with anyio.move_on_after(0.05):
         await backend.set_gpio_pin_mode(3, GPIOPinMode.DIGITAL_OUTPUT)
-    # The level write went out and completed (shielded); the mode change never went.
-    assert backend.pins.mode(3) is GPIOPinMode.DIGITAL_INPUT
-    assert sim.pin_mode(3) is PinMode.INPUT
-    await backend.set_gpio_pin_mode(3, GPIOPinMode.DIGITAL_OUTPUT)
+    # The level and the mode went as one exchange, which ran to its end (shielded):
+    # the board and the cache agree that the pin is an output.
+    assert backend.pins.mode(3) is GPIOPinMode.DIGITAL_OUTPUT
     assert sim.pin_mode(3) is PinMode.OUTPUT
+    await backend.set_gpio_pin_mode(3, GPIOPinMode.DIGITAL_INPUT)
+    assert sim.pin_mode(3) is PinMode.INPUT
     await board.close()
 
 

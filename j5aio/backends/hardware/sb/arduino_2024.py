@@ -5,6 +5,12 @@ sent and re-sent while there is no answer, or a NACK (the first bytes may reach 
 sketch half way through a line), for at most 26 attempts of 1.25 s each, times the time
 scale. The reply must be ``SourceBots:Arduino:<asset>:2.0``. The pins' initial modes are
 then applied by the board's ``setup()``.
+
+Late replies: nothing in a reply names its request, so after a request timed out (its
+reply may still come) the link sends ``*STATUS?`` before the next request and discards
+every line up to the ``Yes`` that answers it (only that query is answered so; the
+identity query is not used, since late answers to the handshake's own ``*IDN?`` could
+be taken for its answer).
 """
 
 from __future__ import annotations
@@ -70,6 +76,9 @@ class SBArduino2024HardwareBackend(ArduinoGPIOBackend[SBArduino2024Board]):
             f"{attempts or cls.IDENTIFY_ATTEMPTS} tries of *IDN? (last: {last}): is it "
             "powered, and does it run the sb2024 firmware?",
         )
+
+    def _link_ready(self) -> None:
+        self._link.set_resync_line(lambda: (codec.STATUS, codec.STATUS_REPLY))
 
     async def read_pin_mode(self, identifier: int) -> GPIOPinMode:
         """Ask the board which digital mode a pin is in (``MODE:GET?``), bypassing the cache.

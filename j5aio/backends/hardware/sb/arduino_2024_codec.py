@@ -7,6 +7,7 @@ every request gets one reply line: ``ACK``, a value, or ``NACK:<reason>``.
 request                                     reply
 =========================================== ===========================================
 ``*IDN?``                                   ``SourceBots:Arduino:X:2.0``
+``*STATUS?``                                ``Yes``
 ``PIN:<n>:MODE:SET:<mode>``                 ``ACK`` (mode INPUT, INPUT_PULLUP, OUTPUT)
 ``PIN:<n>:MODE:GET?``                       ``INPUT``, ``INPUT_PULLUP`` or ``OUTPUT``
 ``PIN:<n>:DIGITAL:SET:<1|0>``               ``ACK``
@@ -39,6 +40,8 @@ __all__ = [
     "MANUFACTURER",
     "MAX_ULTRASOUND_MM",
     "MIN_ULTRASOUND_MM",
+    "STATUS",
+    "STATUS_REPLY",
     "SUPPORTED_VERSIONS",
     "Identity",
     "encode_analogue_read",
@@ -58,6 +61,10 @@ __all__ = [
 
 #: The identity query.
 IDENTIFY: Final = b"*IDN?\n"
+#: The status query: it changes nothing, and only it is answered :data:`STATUS_REPLY`.
+STATUS: Final = b"*STATUS?\n"
+#: The reply to :data:`STATUS`.
+STATUS_REPLY: Final = b"Yes"
 #: The manufacturer field of the identity.
 MANUFACTURER: Final = "SourceBots"
 #: The board-type field of the identity.

@@ -45,6 +45,7 @@ if TYPE_CHECKING:
         line_starts_with,
         read_exactly,
         read_line,
+        read_lines,
         read_lines_until,
     )
     from j5aio.backends.hardware.transports.serial_link import SerialLink
@@ -82,6 +83,7 @@ __all__ = [
     "open_serial_stream",
     "read_exactly",
     "read_line",
+    "read_lines",
     "read_lines_until",
     "wire_logger",
 ]
@@ -100,7 +102,8 @@ if not TYPE_CHECKING:
                 "MemoryStream", "SerialSimulatorLike", "SimulatorStream", "memory_stream_pair",
             ],
             "j5aio.backends.hardware.transports.readers": [
-                "ReplyReader", "line_starts_with", "read_exactly", "read_line", "read_lines_until",
+                "ReplyReader", "line_starts_with", "read_exactly", "read_line", "read_lines",
+                "read_lines_until",
             ],
             "j5aio.backends.hardware.transports.serial_link": ["SerialLink"],
             "j5aio.backends.hardware.transports.serial_stream": [

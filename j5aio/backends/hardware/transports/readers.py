@@ -28,6 +28,7 @@ from j5aio.errors import UnexpectedReplyError
 __all__ = [
     "ExactReader",
     "LineReader",
+    "LinesReader",
     "LinesUntilReader",
     "MatchingReader",
     "ReplyReader",
@@ -35,6 +36,7 @@ __all__ = [
     "matching",
     "read_exactly",
     "read_line",
+    "read_lines",
     "read_lines_until",
 ]
 
@@ -124,6 +126,38 @@ class LineReader(ReplyReader[bytes]):
 
 
 @dataclass(frozen=True)
+class LinesReader(ReplyReader[list[bytes]]):
+    """A fixed number of lines; see :func:`read_lines`."""
+
+    count: int
+    terminator: bytes = b"\n"
+    keep_ends: bool = False
+    max_length: int = DEFAULT_MAX_LINE
+
+    def __post_init__(self) -> None:
+        if not self.terminator:
+            raise ValueError("the line terminator must not be empty")
+        if self.count < 1:
+            raise ValueError(f"the line count must be at least 1, not {self.count}")
+
+    def parse(self, buffer: bytes | bytearray) -> tuple[list[bytes], int] | None:
+        """Return the first ``count`` lines of ``buffer``, once they have all arrived."""
+        lines: list[bytes] = []
+        position = 0
+        while len(lines) < self.count:
+            found = _split_line(buffer, position, self.terminator, self.max_length)
+            if found is None:
+                return None
+            line, position = found
+            lines.append(line if self.keep_ends else _strip_line(line, self.terminator))
+        return lines, position
+
+    def describe(self) -> str:
+        """Describe this reader."""
+        return f"{self.count} lines ending {self.terminator!r}"
+
+
+@dataclass(frozen=True)
 class ExactReader(ReplyReader[bytes]):
     """A fixed number of bytes; see :func:`read_exactly`."""
 
@@ -198,6 +232,22 @@ def read_line(
     return LineReader(terminator, keep_ends, max_length)
 
 
+def read_lines(
+    count: int,
+    terminator: bytes = b"\n",
+    *,
+    keep_ends: bool = False,
+    max_length: int = DEFAULT_MAX_LINE,
+) -> LinesReader:
+    """Read ``count`` lines: the replies to as many one-line requests sent together.
+
+    Options as :func:`read_line`. Sending several requests as one exchange makes them one
+    unit for cancellation: the link runs an exchange to its end, so a caller cancelled
+    between them never leaves the first done and the second not.
+    """
+    return LinesReader(count, terminator, keep_ends, max_length)
+
+
 def read_exactly(count: int) -> ExactReader:
     """Read exactly ``count`` bytes."""
     return ExactReader(count)
@@ -253,15 +303,20 @@ class MatchingReader(ReplyReader[T_co]):
 
     def parse(self, buffer: bytes | bytearray) -> tuple[T_co, int] | None:
         """Return the first reply in ``buffer`` that belongs to this request."""
+        found = self.parse_counting(buffer)
+        return None if found is None else found[:2]
+
+    def parse_counting(self, buffer: bytes | bytearray) -> tuple[T_co, int, int] | None:
+        """As :meth:`parse`, and also say how many foreign replies were skipped."""
         position = 0
-        for _ in range(self.max_skipped + 1):
+        for skipped in range(self.max_skipped + 1):
             parsed = self.reader.parse(buffer[position:])
             if parsed is None:
                 return None
             reply, used = parsed
             position += used
             if self.belongs(reply):
-                return reply, position
+                return reply, position, skipped
         raise UnexpectedReplyError(
             f"received {self.max_skipped + 1} replies that belong to other requests"
         )

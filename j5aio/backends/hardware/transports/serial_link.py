@@ -59,23 +59,39 @@ strongest rule its firmware allows:
    true (see :func:`~.readers.matching`) recognises replies to other requests and skips
    them, however late they come. A dirty link then needs no draining at all (the SB
    Arduino 2019 firmware: request ids and command echoes). Tagging costs bytes on the
-   wire, and only a dirty link can have a reply outstanding, so a backend may send the
-   plain request on a clean link and the tagged one only on a dirty link (``when_dirty``
-   of :meth:`~SerialLink.exchange`): the board answers in order, so once the tagged
-   request's own reply has come, every late reply came before it and was skipped.
+   wire, and only a link that has had a timeout can have a reply outstanding, so a
+   backend may send the plain request on a clean link and the tagged one otherwise
+   (``when_dirty`` of :meth:`~SerialLink.exchange`): requests are tagged while the link
+   is dirty or a reply to a request that timed out has not been skipped yet (for at
+   most ``late_limit`` seconds), so that even a late reply that comes after later ones
+   is skipped.
 2. *A resynchronisation probe.* Where nothing in a reply names its request, a backend
    can name a harmless probe whose answer is known (:meth:`~SerialLink.set_resync`).
    The first exchange or send on a dirty link sends the probe and discards every byte up
    to and including the known answer. The board answers in order, so everything owed
    to earlier requests came before it (the Ruggeduino's ``v``, the motor board's
    ``00 01``).
+
+   For a line protocol (:meth:`~SerialLink.set_resync_line`: one reply line per
+   request, and a probe answered by one known line, fresh each time where the firmware
+   can echo a nonce) the link does more, so that a late reply is never taken even if
+   it comes *after* replies to later requests. It counts the reply lines owed by
+   requests that timed out; while any is owed (for at most ``late_limit`` seconds
+   after the last timeout), every exchange is sent between two probes, ``probe,
+   request, probe``: lines before the first probe's answer are owed lines, discarded
+   and counted off, and the reply is the one thing between the two answers. A late
+   line that lands between them leaves two things there: the exchange then raises
+   :class:`~j5aio.errors.CommunicationError` rather than guess. Once every owed line
+   has come, requests go plain again.
 3. *Otherwise,* input is discarded until the line has been quiet for ``quiet_time``.
    This is a guess about timing, and only as good as the guess.
 
 **Errors.** A timeout raises :class:`~j5aio.errors.CommunicationTimeoutError` naming the
 port and what was sent; a vanished port raises
 :class:`~j5aio.errors.BoardDisconnectionError`; a reply a reader cannot parse raises
-:class:`~j5aio.errors.UnexpectedReplyError`; a stray ``OSError`` or anyio stream error
+:class:`~j5aio.errors.UnexpectedReplyError`, and the bytes received so far are discarded
+(they are noise, or out of step: keeping them would fail every later request, correlated
+or not); a stray ``OSError`` or anyio stream error
 from a stream is wrapped in :class:`~j5aio.errors.CommunicationError`.
 
 **Wire log.** Every chunk sent and received is logged at
@@ -101,7 +117,7 @@ from j5aio.errors import (
 )
 
 from .completion import run_to_completion
-from .readers import ReplyReader, read_line
+from .readers import LinesReader, MatchingReader, ReplyReader, read_line
 from .stream import ByteStream
 from .trace import log_wire, wire_logger
 
@@ -109,13 +125,24 @@ __all__ = ["SerialLink"]
 
 
 class _Progress:
-    """How far an exchange got: ``deadline`` is set once its request has gone."""
+    """How far an exchange got: ``deadline`` is set once its request has gone.
 
-    __slots__ = ("deadline", "seconds")
+    A bracketed exchange (see :meth:`SerialLink._bracketed_locked`) also notes the two
+    answers it waits for, which it has seen, and how many lines it is still owed, so
+    that a task that finishes it (after ``Task.cancel``) goes on where it stopped.
+    """
+
+    __slots__ = ("bracket", "deadline", "opened", "remaining", "replied", "reply", "seconds")
 
     def __init__(self) -> None:
         self.deadline: float | None = None
         self.seconds = 0.0
+        self.bracket: tuple[bytes, bytes] | None = None
+        self.opened = False
+        self.replied = False
+        self.reply: Any = None
+        self.remaining = 0
+
 
 T = TypeVar("T")
 U = TypeVar("U")
@@ -129,6 +156,11 @@ def _check_duration(name: str, value: float) -> float:
     if not value > 0 or math.isnan(value):
         raise ValueError(f"{name} must be a positive number of seconds, not {value!r}")
     return value
+
+
+def _lines_of(reader: ReplyReader[Any]) -> int:
+    """How many lines a reply read by ``reader`` has, for counting late lines (1 if unsure)."""
+    return reader.count if isinstance(reader, LinesReader) else 1
 
 
 def _preview(data: bytes | bytearray, limit: int = 80) -> str:
@@ -146,6 +178,9 @@ class SerialLink(AsyncResource):
         draining a dirty link.
     :param drain_limit: the longest a drain may take before giving up, in seconds.
     :param chunk_size: the most bytes asked of the stream at once.
+    :param late_limit: with a line probe (:meth:`set_resync_line`), how long after a
+        timeout a reply that never came is still waited for, in seconds (see the
+        module's notes on late replies that overtake).
     """
 
     def __init__(
@@ -157,12 +192,14 @@ class SerialLink(AsyncResource):
         quiet_time: float = 0.02,
         drain_limit: float = 0.5,
         chunk_size: int = 4096,
+        late_limit: float = 2.0,
     ) -> None:
         self._stream = stream
         self._name = name if name is not None else stream.name
         self._default_timeout = _check_duration("default_timeout", default_timeout)
         self._quiet_time = _check_duration("quiet_time", quiet_time)
         self._drain_limit = _check_duration("drain_limit", drain_limit)
+        self._late_limit = _check_duration("late_limit", late_limit)
         if chunk_size < 1:
             raise ValueError(f"chunk_size must be at least 1, not {chunk_size}")
         self._chunk_size = chunk_size
@@ -175,6 +212,11 @@ class SerialLink(AsyncResource):
         self._closed = False
         self._wire = wire_logger(self._name)
         self._resync: tuple[bytes, bytes] | None = None
+        self._resync_line: Callable[[], tuple[bytes, bytes]] | None = None
+        self._resync_failed = False
+        # Reply lines owed by requests that timed out, not yet seen (line protocols).
+        self._owed = 0
+        self._owed_until = 0.0
 
     # -- state ---------------------------------------------------------------------------
 
@@ -230,6 +272,24 @@ class SerialLink(AsyncResource):
         if not probe or not answer:
             raise ValueError("a resynchronisation probe and its answer must not be empty")
         self._resync = (bytes(probe), bytes(answer))
+        self._resync_line = None
+
+    def set_resync_line(self, make: Callable[[], tuple[bytes, bytes]]) -> None:
+        r"""Resynchronise a dirty link with a probe answered by one known line.
+
+        For a line protocol whose replies cannot be told apart (one reply line per
+        request, nothing in it naming the request). ``make`` is called before each
+        resynchronisation and returns ``(probe, line)``: the request to send, which must
+        change nothing on the board, and the reply line (without its line ending) that
+        answers it and nothing else. Make it fresh each time where the firmware allows
+        (an echo of a nonce), so that even a late answer to an earlier probe cannot be
+        mistaken for it. The first exchange or send on a dirty link then sends ``probe``
+        and discards whole lines up to and including ``line`` (a ``\r`` before the
+        ``\n`` is ignored), for at most ``drain_limit`` seconds. The board answers in
+        order, so every reply owed to an earlier request has been discarded by then.
+        """
+        self._resync_line = make
+        self._resync = None
 
     # -- requests ------------------------------------------------------------------------
 
@@ -261,7 +321,7 @@ class SerialLink(AsyncResource):
         self._check_open()
         finished = False
         try:
-            if self._dirty and self._resync is not None:
+            if self._dirty and self._can_resync:
                 await self._resync_locked()
             with anyio.move_on_after(seconds):
                 await self._write(data)
@@ -338,7 +398,7 @@ class SerialLink(AsyncResource):
         request = bytes(request)
         progress = _Progress()
         async with self._lock:
-            if when_dirty is not None and self._dirty:
+            if when_dirty is not None and (self._dirty or self._owes()):
                 request, reader = when_dirty()
                 request = bytes(request)
             with anyio.CancelScope(shield=True):
@@ -397,7 +457,9 @@ class SerialLink(AsyncResource):
     async def drain(self, quiet_time: float | None = None, *, limit: float | None = None) -> int:
         """Discard input until the line has been quiet for ``quiet_time`` seconds.
 
-        Also clears the dirty mark. Returns how many bytes were discarded.
+        Also clears the dirty mark, and forgets the replies owed by requests that timed
+        out (they are taken to have come, or to be lost). Returns how many bytes were
+        discarded.
 
         :param quiet_time: seconds of silence to wait for; defaults to the link's.
         :param limit: the most seconds to spend; defaults to the link's ``drain_limit``.
@@ -409,7 +471,9 @@ class SerialLink(AsyncResource):
         _check_duration("limit", bound)
         async with self._lock:
             self._check_open()
-            return await self._drain_locked(quiet, bound)
+            discarded = await self._drain_locked(quiet, bound)
+            self._owed = 0
+            return discarded
 
     def send_now(self, data: bytes, *, timeout: float | None = None) -> None:
         """Send ``data`` at once, synchronously, bypassing the lock (the safe state at exit).
@@ -473,16 +537,19 @@ class SerialLink(AsyncResource):
         self, request: bytes, reader: ReplyReader[T], seconds: float, progress: _Progress
     ) -> T:
         self._check_open()
+        if not reader.correlates and self._resync_line is not None and self._owes():
+            return await self._bracketed_locked(request, reader, seconds, progress)
         finished = False
         try:
             if reader.correlates:
                 pass  # foreign replies, late or left over, are recognised and skipped
-            elif self._dirty and self._resync is not None:
+            elif self._dirty and self._can_resync:
                 await self._resync_locked()
             elif self._dirty:
                 await self._drain_locked(self._quiet_time, self._drain_limit)
             if self._buffer and not reader.correlates:
                 _log.debug("%s: discarding stale input %s", self._name, _preview(self._buffer))
+                self._settle(self._buffer.count(b"\n"))
                 self._buffer.clear()
             with anyio.move_on_after(seconds):
                 deadline = anyio.current_time() + seconds
@@ -496,6 +563,102 @@ class SerialLink(AsyncResource):
         finally:
             if not finished:
                 self._dirty = True
+                if progress.deadline is not None:
+                    self._owe(_lines_of(reader))
+
+    async def _bracketed_locked(
+        self, request: bytes, reader: ReplyReader[T], seconds: float, progress: _Progress
+    ) -> T:
+        """Exchange between two probes, while a reply that timed out may still come.
+
+        Sent as ``probe, request, probe``: lines before the first probe's answer are
+        late replies, and the reply is the one thing between the two answers. A late
+        reply that arrives between them (it overtook nothing: the board answered it
+        late) makes two things there, and which is this request's cannot be told: that
+        raises :class:`~j5aio.errors.CommunicationError`, never a wrong answer.
+        """
+        assert self._resync_line is not None
+        opening, opened = self._resync_line()
+        closing, closed = self._resync_line()
+        progress.bracket = (opened, closed)
+        progress.remaining = 2 + _lines_of(reader)  # what this exchange is owed
+        finished = False
+        # The late lines come first: they get the time a resynchronisation would.
+        seconds += self._drain_limit
+        try:
+            with anyio.move_on_after(seconds):
+                deadline = anyio.current_time() + seconds
+                await self._write(opening + request + closing)
+                progress.deadline, progress.seconds = deadline, seconds
+                reply = await self._read_bracketed(request, reader, progress)
+                finished = True
+                return reply
+            raise self._timed_out(request, reader, seconds)
+        finally:
+            # Every line it was owed having come (even amid an ambiguous reply), the
+            # link is in step again.
+            if not finished and (progress.deadline is None or progress.remaining > 0):
+                self._dirty = True
+                if progress.deadline is not None:
+                    self._owe(progress.remaining)
+
+    async def _read_bracketed(
+        self, request: bytes, reader: ReplyReader[T], progress: _Progress
+    ) -> T:
+        """Read a bracketed exchange's answers and reply, from where it had got to."""
+        assert progress.bracket is not None
+        opened, closed = progress.bracket
+        if not progress.opened:
+            await self._skip_to_line(opened)
+            progress.opened = True
+            progress.remaining -= 1
+        if not progress.replied:
+            progress.reply = await self._read_reply(reader, request)
+            progress.replied = True
+            progress.remaining -= _lines_of(reader)
+        extra = await self._skip_to_line(closed)
+        progress.remaining -= 1
+        self._dirty = bool(self._buffer)
+        if extra:
+            raise CommunicationError(
+                f"{self._name}: a late reply to an earlier request came amid the reply to "
+                f"{_preview(request)}; which is which cannot be told, so neither is used"
+            )
+        reply: T = progress.reply
+        return reply
+
+    async def _skip_to_line(self, answer: bytes) -> int:
+        """Discard whole lines up to and including the line ``answer``; return how many.
+
+        Each line discarded was owed by a request that timed out (or is noise).
+        """
+        skipped = 0
+        while True:
+            discard, length, lines = self._find_line(answer)
+            del self._buffer[:discard]
+            skipped += lines
+            self._settle(lines)
+            if length >= 0:
+                del self._buffer[:length]
+                return skipped
+            self._buffer += await self._receive()
+
+    def _owe(self, replies: int) -> None:
+        """Note that ``replies`` replies (lines, on a line protocol) may still come, late."""
+        if replies > 0:
+            self._owed += replies
+            self._owed_until = anyio.current_time() + self._late_limit
+
+    def _settle(self, replies: int) -> None:
+        """Note that ``replies`` owed by earlier requests have come (and gone)."""
+        self._owed = max(0, self._owed - replies)
+
+    def _owes(self) -> bool:
+        """Whether a late reply may still come: requests are then bracketed, or tagged."""
+        if self._owed and anyio.current_time() >= self._owed_until:
+            _log.debug("%s: %d late replies never came", self._name, self._owed)
+            self._owed = 0
+        return self._owed > 0
 
     async def _finish_reply(
         self, request: bytes, reader: ReplyReader[T], progress: _Progress
@@ -505,6 +668,11 @@ class SerialLink(AsyncResource):
         finished = False
         try:
             with anyio.move_on_after(max(0.0, progress.deadline - anyio.current_time())):
+                if progress.bracket is not None:
+                    try:
+                        return await self._read_bracketed(request, reader, progress)
+                    finally:
+                        finished = progress.remaining <= 0
                 reply = await self._read_reply(reader, request)
                 finished = True
                 self._after_reply(request, reader)
@@ -513,6 +681,7 @@ class SerialLink(AsyncResource):
         finally:
             if not finished:
                 self._dirty = True
+                self._owe(progress.remaining if progress.bracket else _lines_of(reader))
 
     def _after_reply(self, request: bytes, reader: ReplyReader[Any]) -> None:
         # The line was clean when the exchange began (drained, resynchronised, or
@@ -535,21 +704,37 @@ class SerialLink(AsyncResource):
             f"within {seconds:g} s (received so far: {_preview(self._buffer)})"
         )
 
+    @property
+    def _can_resync(self) -> bool:
+        return self._resync is not None or self._resync_line is not None
+
     async def _resync_locked(self) -> None:
         """Send the probe and discard input up to and including its known answer."""
-        assert self._resync is not None
-        probe, answer = self._resync
+        if self._resync_failed:
+            # The answer to the last probe never came in time, and may still come; a
+            # fixed answer would then be mistaken for the next probe's. Let it pass first.
+            await self._drain_locked(self._quiet_time, self._drain_limit)
+            self._dirty = True
+        if self._resync_line is not None:
+            probe, answer = self._resync_line()
+            find: Callable[[], tuple[int, int, int]] = lambda: self._find_line(answer)  # noqa: E731
+        else:
+            assert self._resync is not None
+            probe, answer = self._resync
+            find = lambda: self._find_bytes(answer)  # noqa: E731
         discarded = 0
+        self._resync_failed = True
         with anyio.move_on_after(self._drain_limit):
             await self._write(probe)
-            while (found := self._buffer.find(answer)) < 0:
-                keep = len(answer) - 1
-                if len(self._buffer) > keep:
-                    discarded += len(self._buffer) - keep
-                    del self._buffer[: len(self._buffer) - keep]
+            while True:
+                skipped, end, lines = find()
+                discarded += skipped
+                del self._buffer[:skipped]
+                self._settle(lines)
+                if end >= 0:
+                    break
                 self._buffer += await self._receive()
-            discarded += found
-            del self._buffer[: found + len(answer)]
+            del self._buffer[:end]
             _log.debug(
                 "%s: resynchronised with %r (discarded %d stale bytes)",
                 self._name,
@@ -557,32 +742,68 @@ class SerialLink(AsyncResource):
                 discarded,
             )
             self._dirty = False
+            self._resync_failed = False
             return
         raise CommunicationError(
             f"{self._name}: could not resynchronise with the board: its answer {answer!r} "
             f"to {probe!r} did not come within {self._drain_limit} s"
         )
 
+    def _find_bytes(self, answer: bytes) -> tuple[int, int, int]:
+        """Return (bytes to discard, length of ``answer`` after them or -1, lines in them)."""
+        found = self._buffer.find(answer)
+        discard = found if found >= 0 else max(len(self._buffer) - len(answer) + 1, 0)
+        return discard, len(answer) if found >= 0 else -1, self._buffer.count(b"\n", 0, discard)
+
+    def _find_line(self, answer: bytes) -> tuple[int, int, int]:
+        """Return (bytes of whole lines to discard, length of the line ``answer`` or -1, lines).
+
+        The bytes to discard are the lines before the answer line if it has come (its
+        length, ending included, is the second number), else every whole line so far.
+        """
+        start = lines = 0
+        while (end := self._buffer.find(b"\n", start)) >= 0:
+            line = bytes(self._buffer[start:end]).removesuffix(b"\r")
+            if line == answer:
+                return start, end + 1 - start, lines
+            start = end + 1
+            lines += 1
+        return start, -1, lines
+
     async def _read_reply(self, reader: ReplyReader[T], request: bytes) -> T:
         while True:
             try:
-                parsed = reader.parse(self._buffer)
+                parsed: tuple[T, int] | tuple[T, int, int] | None
+                if isinstance(reader, MatchingReader):
+                    parsed = reader.parse_counting(self._buffer)
+                else:
+                    parsed = reader.parse(self._buffer)
             except UnexpectedReplyError as exc:
+                # What the reader refused (line noise, an over-long line) is never part
+                # of a good reply: drop it, or every later request fails on the same
+                # bytes. The link is dirty now, so what follows is resynchronised.
+                _log.debug("%s: discarding unparseable %s", self._name, _preview(self._buffer))
+                self._buffer.clear()
                 about = f" to {_preview(request)}" if request else ""
                 raise UnexpectedReplyError(f"{self._name}: bad reply{about}: {exc}") from exc
             if parsed is not None:
-                reply, used = parsed
+                reply, used = parsed[:2]
+                if len(parsed) > 2:
+                    self._settle(parsed[2])  # foreign replies skipped: late ones, come
                 del self._buffer[:used]
                 return reply
             self._buffer += await self._receive()
 
     async def _drain_locked(self, quiet: float, bound: float) -> int:
         discarded = len(self._buffer)
+        self._settle(self._buffer.count(b"\n"))
         self._buffer.clear()
         deadline = anyio.current_time() + bound
         while True:
             with anyio.move_on_after(quiet) as silence:
-                discarded += len(await self._receive())
+                chunk = await self._receive()
+                discarded += len(chunk)
+                self._settle(chunk.count(b"\n"))
             if silence.cancelled_caught:
                 break
             if anyio.current_time() >= deadline:

@@ -136,6 +136,29 @@ class _SerialProtocol(asyncio.Protocol):
         self._stream._wake_writer()
 
 
+class _QuietSerialTransport(serial_asyncio_fast.SerialTransport):
+    """pyserial-asyncio-fast's transport, but a port that vanished is not an event-loop error.
+
+    The library reports a failed read or write to the event loop's exception handler,
+    which prints a traceback ("Fatal write error on serial transport") for what is only a
+    board being unplugged. The stream raises
+    :class:`~j5aio.errors.BoardDisconnectionError` for it, which says what to check; here
+    the failure is logged at DEBUG level instead, and the transport closed as before.
+    (Should the library stop calling this hook, the traceback is printed again: nothing
+    else changes.)
+    """
+
+    def _fatal_error(
+        self, exc: BaseException, message: str = "Fatal error on serial transport"
+    ) -> None:
+        abort = getattr(self, "_abort", None)
+        if not isinstance(exc, serial.SerialException) or abort is None:
+            super()._fatal_error(exc, message)
+            return
+        _log.debug("%s: %s: %r", getattr(self.serial, "port", "?"), message, exc)
+        abort(exc)
+
+
 class _EventSerialStream(SerialStream):
     """A port with a file descriptor, watched by the event loop."""
 
@@ -149,10 +172,8 @@ class _EventSerialStream(SerialStream):
 
     async def _attach(self) -> None:
         loop = asyncio.get_running_loop()
-        transport, _ = await serial_asyncio_fast.connection_for_serial(
-            loop, functools.partial(_SerialProtocol, self), self._port
-        )
-        self._transport = transport
+        # (What the library's connection_for_serial does, with the quieter transport.)
+        self._transport = _QuietSerialTransport(loop, _SerialProtocol(self), self._port)
 
     async def send(self, data: bytes) -> None:
         """Queue ``data`` on the port; waits while the output buffer is over its limit.

@@ -54,6 +54,9 @@ class PowerBoard(Board):
 
     name: ClassVar[str] = "Student Robotics v4 Power Board"
 
+    #: Its outputs feed the motor and servo boards: it is made safe after them.
+    MAKE_SAFE_LAST: ClassVar[bool] = True
+
     #: :meth:`wait_for_start_flash` switches the run LED every ``START_POLL_INTERVAL *
     #: START_FLASH_POLLS`` seconds (0.3 s). The button itself is waited for as
     #: :meth:`.Button.wait_until_pressed` does (the backend says as soon as it is

@@ -5,6 +5,7 @@ from __future__ import annotations
 import time
 
 import anyio
+import anyio.lowlevel
 import pytest
 
 from j5aio.backends.hardware.transports import (
@@ -68,11 +69,18 @@ async def test_receive_returns_at_most_max_bytes_and_keeps_the_rest() -> None:
 
 async def test_receive_waits_for_data() -> None:
     a, b = memory_stream_pair()
+    received: list[bytes] = []
+
+    async def receive() -> None:
+        received.append(await b.receive())
+
     async with anyio.create_task_group() as tg:
-        tg.start_soon(b.receive)
-        await anyio.sleep(0.01)
+        tg.start_soon(receive)
+        for _ in range(5):
+            await anyio.lowlevel.checkpoint()
+        assert received == []  # nothing sent yet: still waiting
         await a.send(b"x")
-    # The receive above finished, or the task group would not have exited.
+    assert received == [b"x"]
 
 
 async def test_receive_rejects_a_max_bytes_below_one() -> None:

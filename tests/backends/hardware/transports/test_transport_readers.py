@@ -8,6 +8,7 @@ from j5aio.backends.hardware.transports import (
     line_starts_with,
     read_exactly,
     read_line,
+    read_lines,
     read_lines_until,
 )
 from j5aio.errors import UnexpectedReplyError
@@ -84,3 +85,17 @@ def test_line_starts_with_names_itself() -> None:
     assert predicate(b"+ OK")
     assert not predicate(b"- Error")
     assert "line_starts_with" in predicate.__name__
+
+
+def test_read_lines_waits_for_all_of_them() -> None:
+    reader = read_lines(2)
+    assert reader.parse(b"a\r\n") is None
+    assert reader.parse(b"a\r\nb\nrest") == ([b"a", b"b"], 5)
+    assert read_lines(1, keep_ends=True).parse(b"a\r\n") == ([b"a\r\n"], 3)
+    assert "2 lines" in reader.describe()
+    with pytest.raises(UnexpectedReplyError):
+        read_lines(2, max_length=4).parse(b"ok\nlonger")
+    with pytest.raises(ValueError, match="at least 1"):
+        read_lines(0)
+    with pytest.raises(ValueError, match="must not be empty"):
+        read_lines(2, b"")

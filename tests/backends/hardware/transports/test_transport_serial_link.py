@@ -307,7 +307,7 @@ async def test_drain_discards_and_counts() -> None:
 
 async def test_a_line_that_never_goes_quiet_fails_the_drain() -> None:
     host, board = memory_stream_pair()
-    link = SerialLink(host, quiet_time=0.02, drain_limit=0.05)
+    link = SerialLink(host, quiet_time=0.25, drain_limit=0.4)
     link.mark_dirty()
 
     async def chatter() -> None:
@@ -416,7 +416,7 @@ async def test_a_reply_with_a_corrupted_terminator_times_out_then_recovers() -> 
         await start_peer(tg, board, lambda line: line + b"\n")
         faulty.corrupt_next_reply(lambda reply: reply.replace(b"\n", b"?"))
         with pytest.raises(CommunicationTimeoutError, match=r"received so far: b'first\?'"):
-            await link.exchange(b"first\n", read_line(), timeout=0.03)
+            await link.exchange(b"first\n", read_line(), timeout=0.3)
         assert await link.exchange(b"second\n", read_line(), timeout=1) == b"second"
         tg.cancel_scope.cancel()
 
@@ -716,6 +716,53 @@ async def test_a_dirty_link_with_a_probe_resynchronises_before_its_next_exchange
         tg.cancel_scope.cancel()
 
 
+async def test_a_line_probe_discards_whole_lines_up_to_its_fresh_answer(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    nonces = iter([b"n1", b"n2"])
+
+    def probe() -> tuple[bytes, bytes]:
+        nonce = next(nonces)
+        return b"echo " + nonce + b"\n", b"ECHO " + nonce.upper()
+
+    link.set_resync_line(probe)
+    assert link.resync_probe is None  # a fresh probe each time: no fixed pair
+    async with anyio.create_task_group() as tg:
+        peer = await start_peer(tg, board, upper)
+        # Late replies: one that contains the answer but is not it, and an old answer.
+        await board.send(b"XECHO N1\r\nECHO N0\r\n")
+        link.mark_dirty()
+        assert await link.exchange(b"next\n", read_line(), timeout=1) == b"NEXT"
+        assert peer.lines == [b"echo n1", b"next"]
+        await board.send(b"LATE\n")
+        link.mark_dirty()
+        await link.send(b"x\n")
+        assert peer.lines[-2:] == [b"echo n2", b"x"]
+        assert not link.is_dirty
+        tg.cancel_scope.cancel()
+
+
+async def test_after_a_probe_went_unanswered_the_next_waits_for_a_quiet_line_first(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host, drain_limit=0.05)
+    link.set_resync_line(lambda: (b"v\n", b"V"))
+    link.mark_dirty()
+    with pytest.raises(CommunicationError, match="could not resynchronise"):
+        await link.send(b"x\n")
+    assert link.is_dirty
+    async with anyio.create_task_group() as tg:
+        peer = await start_peer(tg, board, upper)
+        # The first probe's answer comes late: it is drained, not taken for the second's.
+        await board.send(b"V\r\n")
+        assert await link.exchange(b"next\n", read_line(), timeout=1) == b"NEXT"
+        assert peer.lines[-2:] == [b"v", b"next"]
+        tg.cancel_scope.cancel()
+
+
 async def test_a_probe_that_is_never_answered_leaves_the_link_dirty(
     peer_pair: tuple[MemoryStream, MemoryStream],
 ) -> None:
@@ -839,3 +886,76 @@ async def test_a_request_is_tagged_only_while_a_late_reply_may_come(
         tg.start_soon(answer, b"d\n", b"D\n")
         assert await link.exchange(b"d\n", read_line(), timeout=1, when_dirty=tag(b"d\n")) == b"D"
         assert tagged == [b"c\n"]
+
+
+# -- late replies that overtake (line protocols) ---------------------------------------------
+
+
+def _echo_probes() -> Callable[[], tuple[bytes, bytes]]:
+    count = iter(range(1, 1000))
+
+    def probe() -> tuple[bytes, bytes]:
+        nonce = b"n%d" % next(count)
+        return b"echo " + nonce + b"\n", b"ECHO " + nonce.upper()
+
+    return probe
+
+
+async def test_while_a_late_line_is_owed_requests_go_between_two_probes(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host, drain_limit=0.2)
+    link.set_resync_line(_echo_probes())
+    held: list[bytes] = []
+
+    def answer(line: bytes) -> bytes:
+        if line == b"first":
+            held.append(b"FIRST\r\n")  # answered later, after later replies
+            return b""
+        return upper(line)
+
+    async with anyio.create_task_group() as tg:
+        peer = await start_peer(tg, board, answer)
+        with pytest.raises(CommunicationTimeoutError):
+            await link.exchange(b"first\n", read_line(), timeout=0.02)
+        assert await link.exchange(b"second\n", read_line(), timeout=1) == b"SECOND"
+        assert peer.lines[-3:] == [b"echo n1", b"second", b"echo n2"]
+        # The late line lands amid the next reply: an error, not a wrong answer.
+        peer.respond = lambda line: (held.pop() if held and line == b"third" else b"") + (
+            upper(line)
+        )
+        with pytest.raises(CommunicationError, match="cannot be told"):
+            await link.exchange(b"third\n", read_line(), timeout=1)
+        assert not link.is_dirty or not link.buffered
+        # Every owed line has come: plain again.
+        peer.respond = upper
+        assert await link.exchange(b"fourth\n", read_line(), timeout=1) == b"FOURTH"
+        assert peer.lines[-2:] == [b"echo n4", b"fourth"], peer.lines
+        tg.cancel_scope.cancel()
+
+
+async def test_a_bracketed_exchange_torn_by_task_cancel_still_reads_its_own_reply(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host, drain_limit=0.2)
+    link.set_resync_line(_echo_probes())
+    seen: list[bytes] = []
+    async with anyio.create_task_group() as tg:
+        peer = await start_peer(tg, board, lambda line: b"" if line == b"lost" else upper(line))
+        with pytest.raises(CommunicationTimeoutError):
+            await link.exchange(b"lost\n", read_line(), timeout=0.02)
+        peer.delay = lambda: 0.01
+
+        async def caller() -> None:
+            await link.exchange(b"kept\n", read_line(), timeout=1, then=seen.append)
+
+        task = asyncio.ensure_future(caller())
+        await anyio.sleep(0.003)  # the bracket is on its way; no answer has come yet
+        task.cancel()
+        with pytest.raises(asyncio.CancelledError):
+            await task
+        assert seen == [b"KEPT"]  # the reply, not a probe's answer
+        assert peer.lines[-3:] == [b"echo n1", b"kept", b"echo n2"]
+        tg.cancel_scope.cancel()

@@ -412,8 +412,12 @@ def test_the_file_descriptor_probe() -> None:
 
 
 async def test_a_write_that_fails_raises_board_disconnection(
-    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+    board: PtyBoard,
+    stream: SerialStream,
+    monkeypatch: pytest.MonkeyPatch,
+    caplog: pytest.LogCaptureFixture,
 ) -> None:
+    caplog.set_level(logging.DEBUG, logger="j5aio.backends.hardware.transports.serial_stream")
     loop = asyncio.get_running_loop()
     reported: list[dict[str, Any]] = []
     loop.set_exception_handler(lambda _loop, context: reported.append(context))
@@ -429,7 +433,28 @@ async def test_a_write_that_fails_raises_board_disconnection(
             await stream.receive()
     finally:
         loop.set_exception_handler(None)
-    assert reported and isinstance(reported[0]["exception"], serial.SerialException)
+    # An unplugged board is not an event-loop error: no "Fatal write error" traceback.
+    assert reported == []
+    assert "Fatal write error on serial transport" in caplog.text  # at DEBUG level only
+
+
+async def test_other_transport_failures_still_reach_the_event_loop(
+    stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    loop = asyncio.get_running_loop()
+    reported: list[dict[str, Any]] = []
+    loop.set_exception_handler(lambda _loop, context: reported.append(context))
+
+    def broken_write(data: Any) -> int:
+        raise RuntimeError("a bug, not an unplugged board")
+
+    monkeypatch.setattr(stream.serial, "write", broken_write)
+    try:
+        with pytest.raises(BoardDisconnectionError):
+            await stream.send(b"x")
+    finally:
+        loop.set_exception_handler(None)
+    assert reported and isinstance(reported[0]["exception"], RuntimeError)
 
 
 async def test_the_transport_closing_by_itself_ends_the_stream(stream: SerialStream) -> None:

@@ -78,6 +78,10 @@ class SRArduinoHardwareBackend(
                 raise UnsupportedFirmwareError(
                     cls.board.name, version.version, codec.SUPPORTED_VERSIONS,
                 )
+            if last is not None:
+                # An earlier 'v' may still be answered, by the very line that the
+                # resynchronisation probe waits for (see _link_ready): let it pass.
+                await link.drain()
             return version
         raise CommunicationTimeoutError(
             f"{cls.board.name} on {link.name} did not answer the version query after "
@@ -88,13 +92,22 @@ class SRArduinoHardwareBackend(
         self._version = await self._read_version(self._link, time_scale, None)
         self._firmware_version = self._version.version
 
+    def _link_ready(self) -> None:
+        # Late replies: nothing in a reply names its request, so after a timeout the
+        # link sends ``v`` and discards lines up to the version line it answers.
+        assert self._version is not None
+        line = f"{self._version.name}:{self._version.version}".encode("ascii")
+        self._link.set_resync_line(lambda: (codec.VERSION_QUERY, line))
+
     async def execute_string_command(self, command: str) -> str:
         """Send ``command`` as it is (no terminator) and return the first reply line.
 
         As sr-robot3's ``command()``: the firmware answers one line per command byte, so
         a command of several letters gets several lines; the rest are discarded before
-        the next request. Using a raw command may leave pins in modes the backend does
-        not know of.
+        the next request. (Shortly after a request timed out, while its reply may still
+        come, such a command raises :class:`~j5aio.errors.CommunicationError` instead:
+        its extra lines cannot be told from the late reply.) Using a raw command may
+        leave pins in modes the backend does not know of.
 
         :raises UnexpectedReplyError: the reply is not UTF-8 text.
         :raises CommunicationError: no reply line came in time.

@@ -9,7 +9,10 @@ Correlation guarantee: a reply names nothing of its request (``h``, ``l``, a num
 empty line), so after a timeout the link resynchronises with ``v``, whose answer is the
 version line read in the handshake: every byte up to and including that answer is
 discarded, and since the board answers in order, nothing owed to an earlier request can
-come after it. ``v`` is sent only by the handshake and by this probe, so the one
+come after it. While a reply that timed out may still come, each request is sent
+between two such probes (see :meth:`.SerialLink.set_resync_line`), so that even a reply
+that comes after later ones is never taken. ``v`` is sent only by the handshake and by
+these probes, so the one
 remaining risk is a probe that itself timed out; its answer, a version line, is no
 valid reply to any pin command, so it fails as an :class:`~j5aio.errors.UnexpectedReplyError`
 rather than being taken as a value. (A team's own firmware answering ``v`` with a line
@@ -69,10 +72,12 @@ class SRV4RuggeduinoHardwareBackend(
     async def _handshake(self, *, time_scale: float) -> None:
         wait = scaled(self.DEFAULT_TIMEOUT, time_scale)
         line = b""
+        retried = False
         for _ in range(self.VERSION_ATTEMPTS):
             try:
                 raw = await self._exchange(codec.VERSION_QUERY, _LINE_WITH_END, timeout=wait)
             except CommunicationTimeoutError:
+                retried = True
                 continue
             line = raw.rstrip(b"\r\n")
             if line.strip():
@@ -90,7 +95,11 @@ class SRV4RuggeduinoHardwareBackend(
             )
         self._version = version
         self._firmware_version = version.version.strip()
-        self._link.set_resync(codec.VERSION_QUERY, raw)
+        if retried:
+            # A 'v' that timed out while the board booted may still be answered, by the
+            # very line the probe below waits for: let it pass first.
+            await self._link.drain()
+        self._link.set_resync_line(lambda: (codec.VERSION_QUERY, line))
 
     async def _command(self, command: bytes, then: Callable[[], None] | None = None) -> bytes:
         """Send one command and return its reply line (often empty).

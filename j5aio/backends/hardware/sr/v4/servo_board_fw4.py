@@ -28,6 +28,7 @@ from typing import ClassVar, Final
 
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
 from j5aio.backends.hardware.sr.v4 import servo_fw4_codec as codec
+from j5aio.backends.hardware.sr.v4.text_protocol import echo_probe
 from j5aio.backends.hardware.transports.readers import read_line
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.boards.sb.servo_board import SBServoBoard
@@ -82,6 +83,11 @@ class _ServoBoardFw4Backend(
         # The limits are the user's: a handshake run again (the board came back) keeps them.
         if len(self._limits) != firmware.servo_count:
             self._limits = [firmware.default_limits] * firmware.servo_count
+
+    def _link_ready(self) -> None:
+        # Late replies: after a timeout, resynchronise with an echoed nonce (as the
+        # other text firmwares; see :mod:`.text_backend`).
+        self._link.set_resync_line(echo_probe)
 
     @property
     def firmware(self) -> codec.Firmware:

@@ -3,6 +3,12 @@
 Each command is one line and gets one reply line (see :mod:`.text_protocol`). This base
 sends a command and reads its reply, turning a NACK or a reply the firmware cannot send
 into a :class:`~j5aio.errors.CommunicationError` that names the board and the command.
+
+Late replies: these firmwares answer in order, and nothing in a reply names its request,
+so after a request timed out (its reply may still come) the link resynchronises before
+the next request: it sends ``ECHO:<nonce>``, which the firmware answers with the nonce
+alone, and discards every line up to that answer. The nonce is new each time, so not
+even a late answer to an earlier probe is mistaken for it.
 """
 
 from __future__ import annotations
@@ -11,7 +17,11 @@ from collections.abc import Callable
 from typing import TypeVar
 
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
-from j5aio.backends.hardware.sr.v4.text_protocol import check_ack, check_not_nack
+from j5aio.backends.hardware.sr.v4.text_protocol import (
+    check_ack,
+    check_not_nack,
+    echo_probe,
+)
 from j5aio.backends.hardware.transports.readers import read_line
 
 __all__ = ["SRTextBackend"]
@@ -24,6 +34,9 @@ _REPLY = read_line(max_length=128)
 
 class SRTextBackend(SerialHardwareBackend):
     """Sends the one-line commands of an SR 2023 text firmware and checks the replies."""
+
+    def _link_ready(self) -> None:
+        self._link.set_resync_line(echo_probe)
 
     async def _query(self, command: bytes) -> bytes:
         """Send ``command`` and return its reply line (a NACK raises :class:`NackError`)."""

@@ -13,6 +13,8 @@ firmware's reason.
 
 from __future__ import annotations
 
+import itertools
+import random
 import re
 from dataclasses import dataclass
 from typing import Final
@@ -28,6 +30,7 @@ __all__ = [
     "check_ack",
     "check_not_nack",
     "command_line",
+    "echo_probe",
     "parse_flag",
     "parse_identity",
     "parse_int",
@@ -73,6 +76,27 @@ class Identity:
 def command_line(*fields: object) -> bytes:
     r"""Return the command made of ``fields`` joined by ``:``, ending ``\n``."""
     return (":".join(str(field) for field in fields) + "\n").encode("ascii")
+
+
+#: The start of every resynchronisation nonce: no reply of these firmwares starts so.
+_NONCE_PREFIX: Final = "SYNC"
+_nonces = itertools.count(random.randrange(0x10000))
+
+
+def echo_probe() -> tuple[bytes, bytes]:
+    r"""Return an ``ECHO`` request with a fresh nonce, and the reply line that answers it.
+
+    ``ECHO:<text>`` changes nothing on the board and is answered by ``<text>`` alone,
+    so a link that may have a late reply on its way sends it and discards every line
+    up to the nonce (see :meth:`.SerialLink.set_resync_line`). The nonce differs from
+    the last 65 535, so even a late answer to an earlier probe is not mistaken for it.
+
+    >>> request, answer = echo_probe()
+    >>> request == b"ECHO:" + answer + b"\n"
+    True
+    """
+    nonce = f"{_NONCE_PREFIX}{next(_nonces) % 0x10000:04X}".encode("ascii")
+    return b"ECHO:" + nonce + b"\n", nonce
 
 
 def _shown(command: bytes) -> str:

@@ -1,0 +1,49 @@
+"""What the simulated boards draw from the power board's 12 V outputs, and what it costs.
+
+The figures are a plain model, chosen to be of the right size for the Student Robotics
+kit (the kit's motors, a 3-cell LiPo battery), not measured on any one robot:
+
+- each motor draws :data:`MOTOR_FULL_POWER_CURRENT` times the fraction of full power it
+  is driven at (nothing while it coasts or brakes), unless the simulator is told what a
+  motor draws (a stalled motor, say: ``set_motor_current``);
+- each servo that is being sent pulses draws :data:`SERVO_HOLDING_CURRENT` (an unloaded
+  servo holding its place);
+- the boards' own electronics draw nothing worth counting
+  (:data:`MOTOR_BOARD_IDLE_CURRENT` and :data:`SERVO_BOARD_IDLE_CURRENT` are 0), so a
+  kit whose motors are still and whose servos are off reads the battery's idle voltage;
+- the battery behaves as a source of its idle voltage behind
+  :data:`BATTERY_INTERNAL_RESISTANCE`: under a load of ``I`` amps it reads
+  ``idle - I x BATTERY_INTERNAL_RESISTANCE`` volts.
+
+The power board's limits are the real board's (protocols.md §11): 20 A on H0 and H1,
+10 A on L0 to L3, 2 A on the 5 V rail and 30 A for the whole board.
+"""
+
+from __future__ import annotations
+
+from typing import Final
+
+__all__ = [
+    "BATTERY_INTERNAL_RESISTANCE",
+    "BOARD_CURRENT_LIMIT",
+    "MOTOR_BOARD_IDLE_CURRENT",
+    "MOTOR_FULL_POWER_CURRENT",
+    "OUTPUT_CURRENT_LIMITS",
+    "SERVO_BOARD_IDLE_CURRENT",
+    "SERVO_HOLDING_CURRENT",
+]
+
+#: Amps a motor driven at full power draws.
+MOTOR_FULL_POWER_CURRENT: Final = 2.5
+#: Amps a powered motor board draws with its motors still.
+MOTOR_BOARD_IDLE_CURRENT: Final = 0.0
+#: Amps a servo draws while the board sends it pulses.
+SERVO_HOLDING_CURRENT: Final = 0.02
+#: Amps a powered servo board draws with no servo pulsing.
+SERVO_BOARD_IDLE_CURRENT: Final = 0.0
+#: Ohms between the battery's idle voltage and the power board (cells and wiring).
+BATTERY_INTERNAL_RESISTANCE: Final = 0.05
+#: The over-current limit of each power board output, in amps (H0, H1, L0, L1, L2, L3, 5 V).
+OUTPUT_CURRENT_LIMITS: Final = (20.0, 20.0, 10.0, 10.0, 10.0, 10.0, 2.0)
+#: The whole power board's over-current limit, in amps.
+BOARD_CURRENT_LIMIT: Final = 30.0

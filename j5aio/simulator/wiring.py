@@ -1,0 +1,215 @@
+"""The power wiring of a simulated kit: which power board output feeds which board.
+
+On the Student Robotics kit the motor boards and the servo board take their 12 V from
+the power board's outputs, which are off when the power board starts (only L2, the
+brain's, is on). A board whose output is off behaves as the real one does: a motor
+board's controller does not answer and its motors coast; a servo board answers but
+reports its 12 V missing and moves no servo. The Arduinos and the KCH are powered by
+USB and are never fed.
+
+A :class:`KitWiring` joins a power board simulator to the boards it feeds. Each time
+one of them may have changed (a command from the host, an output switched), it:
+
+- powers each fed board from its output (:attr:`PowerFed.powered`);
+- tells the power board what each output supplies (the sum of
+  :meth:`PowerFed.supply_current` of the boards on it), so that output currents, the
+  battery current and the sagging battery voltage follow what the motors and servos
+  draw (the figures are in :mod:`j5aio.simulator.loads`);
+- trips and latches an output whose current is over its limit, and every output when
+  the whole board is over its limit, as the firmware does (at once: the firmware's
+  short hold-off is not modelled).
+
+Outputs are numbered as on the wire (:mod:`j5aio.power_outputs` has their names).
+
+The default wiring (:func:`default_outputs`) puts motor boards on the high-current
+outputs first (H0, H1, then L0, L1, L3) and servo boards on the low-current ones first
+(L0, L1, L3, then H0, H1), each board on the first output left free; once every output
+feeds a board, boards share them in the same order. L2 is the brain's and feeds no board.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable, Iterable, Sequence
+from typing import ClassVar, Final, Protocol, runtime_checkable
+
+from j5aio.power_outputs import BRAIN_OUTPUT, OUTPUT_NAMES, output_name
+
+from .loads import BOARD_CURRENT_LIMIT, OUTPUT_CURRENT_LIMITS
+
+__all__ = [
+    "KitWiring",
+    "PowerBoardSimulator",
+    "PowerFed",
+    "default_outputs",
+]
+
+_MOTOR_ORDER: Final = (0, 1, 2, 3, 5)
+_SERVO_ORDER: Final = (2, 3, 5, 0, 1)
+#: How many rounds of "a trip switched an output off" one change may take.
+_MAX_ROUNDS: Final = 16
+
+
+@runtime_checkable
+class PowerFed(Protocol):
+    """A board simulator that takes its 12 V from a power board output."""
+
+    @property
+    def powered(self) -> bool:
+        """Whether its 12 V input is on."""
+
+    @powered.setter
+    def powered(self, on: bool) -> None: ...
+
+    def supply_current(self) -> float:
+        """The amps it draws from its 12 V input now."""
+
+    def listen(self, listener: Callable[[], None]) -> Callable[[], None]:
+        """Call ``listener`` whenever it may have changed; return what stops the calls."""
+
+
+@runtime_checkable
+class PowerBoardSimulator(Protocol):
+    """What a kit's wiring needs of a power board simulator (firmware 3 and 4 have it)."""
+
+    OUTPUT_COUNT: ClassVar[int]
+
+    @property
+    def outputs(self) -> tuple[bool, ...]:
+        """Whether each output is on."""
+
+    def set_supplied_current(self, output: int, amps: float) -> None:
+        """Set what the boards on ``output`` draw through it."""
+
+    def trip_output(self, output: int) -> None:
+        """Switch ``output`` off and latch it off, as an over-current does."""
+
+    def listen(self, listener: Callable[[], None]) -> Callable[[], None]:
+        """Call ``listener`` whenever it may have changed; return what stops the calls."""
+
+
+def _is_motor_board(simulator: object) -> bool:
+    from .sr_motor_fw3 import SRMotorBoardFw3Simulator
+    from .sr_motor_fw4 import SRMotorBoardFw4Simulator
+
+    return isinstance(simulator, SRMotorBoardFw3Simulator | SRMotorBoardFw4Simulator)
+
+
+def default_outputs(fed: Sequence[object], *, taken: Iterable[int] = ()) -> list[int]:
+    """The outputs the default wiring gives ``fed`` boards, in their order.
+
+    :param fed: the boards to wire (motor boards go on H outputs first, others on L).
+    :param taken: outputs already feeding a board, chosen elsewhere.
+    """
+    used = list(taken)
+    chosen: list[int] = []
+    for simulator in fed:
+        order = _MOTOR_ORDER if _is_motor_board(simulator) else _SERVO_ORDER
+        # The first output feeding fewest boards, in this board's order of preference.
+        output = min(order, key=lambda out: (used.count(out), order.index(out)))
+        used.append(output)
+        chosen.append(output)
+    return chosen
+
+
+class KitWiring:
+    """Feeds boards from a power board's outputs, and loads the battery with them.
+
+    :param power_board: the power board simulator.
+    :param feeds: each fed board with the number of the output feeding it.
+    :raises ValueError: an output does not exist on the board, or is L2 (the brain's).
+    """
+
+    def __init__(
+        self, power_board: PowerBoardSimulator, feeds: Iterable[tuple[PowerFed, int]]
+    ) -> None:
+        self._power_board = power_board
+        self._feeds = tuple(feeds)
+        count = power_board.OUTPUT_COUNT
+        for simulator, output in self._feeds:
+            if not 0 <= output < count:
+                raise ValueError(
+                    f"{simulator!r} is wired to output {output}, which the power board "
+                    f"does not have: it has {', '.join(OUTPUT_NAMES[:count])}"
+                )
+            if output == BRAIN_OUTPUT:
+                raise ValueError(
+                    f"{simulator!r} cannot be wired to L2: that output powers the brain"
+                )
+        self._lock = threading.RLock()
+        self._syncing = False
+        self._again = False
+        self._stops: list[Callable[[], None]] = []
+        self._stops.append(power_board.listen(self.sync))
+        for simulator, _ in self._feeds:
+            self._stops.append(simulator.listen(self.sync))
+        self.sync()
+
+    @property
+    def power_board(self) -> PowerBoardSimulator:
+        """The power board whose outputs feed the boards."""
+        return self._power_board
+
+    @property
+    def feeds(self) -> tuple[tuple[PowerFed, int], ...]:
+        """Each fed board with the number of the output feeding it."""
+        return self._feeds
+
+    def output_feeding(self, simulator: object) -> int | None:
+        """The number of the output feeding ``simulator``, or ``None`` if none does."""
+        return next((out for fed, out in self._feeds if fed is simulator), None)
+
+    def output_current(self, output: int) -> float:
+        """What the boards on ``output`` draw now, in amps (0 while it is off)."""
+        if not self._power_board.outputs[output]:
+            return 0.0
+        return sum(fed.supply_current() for fed, out in self._feeds if out == output)
+
+    def sync(self) -> None:
+        """Bring every fed board's power and the power board's loads up to date.
+
+        Called whenever one of the boards may have changed; safe to call at any time.
+        """
+        with self._lock:
+            if self._syncing:  # a change made by this very update: go round again
+                self._again = True
+                return
+            self._syncing = True
+            try:
+                for _ in range(_MAX_ROUNDS):
+                    self._again = False
+                    self._update()
+                    if not self._again:
+                        break
+            finally:
+                self._syncing = False
+
+    def _update(self) -> None:
+        board = self._power_board
+        outputs = board.outputs
+        for fed, output in self._feeds:
+            if fed.powered != outputs[output]:
+                fed.powered = outputs[output]
+        loads = [self.output_current(output) for output in range(board.OUTPUT_COUNT)]
+        for output, amps in enumerate(loads):
+            board.set_supplied_current(output, amps)
+        for output, amps in enumerate(loads):
+            if outputs[output] and amps > OUTPUT_CURRENT_LIMITS[output]:
+                board.trip_output(output)
+        if sum(loads) > BOARD_CURRENT_LIMIT:
+            for output, on in enumerate(board.outputs):
+                if on and output != BRAIN_OUTPUT:
+                    board.trip_output(output)
+
+    def close(self) -> None:
+        """Stop following the boards (they keep the power they have)."""
+        for stop in self._stops:
+            stop()
+        self._stops.clear()
+
+    def __repr__(self) -> str:
+        wires = ", ".join(
+            f"{output_name(out)}: {type(fed).__name__} {getattr(fed, 'serial_number', '?')}"
+            for fed, out in self._feeds
+        )
+        return f"<KitWiring {wires}>"
