@@ -101,7 +101,7 @@ class KitLink:
         return self._robot
 
     def load(self) -> None:
-        """Find the boards (j5aio's KitRobot), switch the power outputs on, number outputs.
+        """Find the boards (j5aio's KitRobot, which powers the kit up) and number outputs.
 
         :raises RuntimeError: the boards have been loaded already.
         """
@@ -110,10 +110,9 @@ class KitLink:
         from j5aio.sync import KitRobot
 
         choose_sourcebots_kit()
+        # (As sbot, KitRobot switches on every power output but the brain's before it
+        # looks for the motor and servo boards, which those outputs feed.)
         robot = KitRobot()
-        # sbot switches on every output but the brain's before it looks for the other
-        # boards; the motor and servo boards are powered from them.
-        robot.power_board.outputs.power_on()
         overrides = get_overrides()
         self.motor_boards = _sorted_boards(
             cast("list[MotorBoardFw4]", list(robot.motor_boards)),
@@ -217,21 +216,11 @@ def choose_sourcebots_kit() -> None:
 
 
 def _sb2024_arduinos(robot: KitRobot) -> list[SBArduino2024Board]:
-    """The SourceBots Arduinos with the sb2024 firmware on the robot.
-
-    Found among ``robot.arduinos``; where the robot does not gather that generation
-    there, they are asked for from the robot's environment.
-    """
+    """The SourceBots Arduinos with the sb2024 firmware among ``robot.arduinos``."""
     from j5aio.sync import SBArduino2024Board
 
-    found: list[SBArduino2024Board] = [
+    return [
         board
         for board in cast("list[object]", list(robot.arduinos))
         if isinstance(board, SBArduino2024Board)
     ]
-    if found:
-        return found
-    environment = robot.environment
-    if not environment.might_find(SBArduino2024Board):
-        return []
-    return list(environment.get_board_group(SBArduino2024Board))
