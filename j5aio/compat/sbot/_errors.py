@@ -5,7 +5,7 @@ j5aio raises its :class:`~j5aio.errors.CommunicationError`. :func:`translate_err
 wraps the public methods of sbot's modules so that a program gets sbot's error (which
 is j5aio's :class:`~j5aio.errors.BoardDisconnectionError` too, with j5aio's error as
 its cause), and, once the match is over (every board is then safe and closed), a quiet
-end with status 0, as sbot's timeout ends a program.
+end with status 0 for whatever a call then fails with, as sbot's timeout ends a program.
 """
 
 from __future__ import annotations
@@ -60,13 +60,15 @@ def _translated(method: Callable[..., Any]) -> Callable[..., Any]:
     def call(*args: Any, **kwargs: Any) -> Any:
         try:
             return method(*args, **kwargs)
-        except BoardDisconnectionError:
-            raise
-        except CommunicationError as error:
-            if _match_over():
+        except Exception as error:
+            if _match_over():  # the boards are safe and closed: whatever failed, stop
                 end_of_match()
                 raise SystemExit(0) from None
-            raise BoardDisconnectionError(str(error)) from error
+            if isinstance(error, CommunicationError) and not isinstance(
+                error, BoardDisconnectionError,
+            ):
+                raise BoardDisconnectionError(str(error)) from error
+            raise
 
     return call
 
