@@ -1,8 +1,9 @@
 """sbot-style programs run unchanged on the simulated sb2024 kit (``j5aio.compat.sbot``).
 
-Each program runs in a child ``python -m j5aio run --sim --kit sb2024 --start-after 0``
-under ``programs/sbot_harness.py``, which makes ``import sbot`` give the compatibility
-package, sets the kit's inputs and prints what the simulated boards did at the end.
+Each program runs in a child ``python -m j5aio run --api sbot --sim --kit sb2024
+--start-after 0`` (``--api sbot``: ``import sbot`` gives the compatibility package) under
+``programs/sbot_harness.py``, which sets the kit's inputs and prints what the simulated
+boards did at the end.
 """
 
 from __future__ import annotations
@@ -46,8 +47,8 @@ def run_sbot_program(
     })
     process = subprocess.run(
         [
-            sys.executable, "-m", "j5aio", "run", "--sim", *(["--kit", kit] if kit else []),
-            "--start-after", "0", "--no-log", *options,
+            sys.executable, "-m", "j5aio", "run", "--api", "sbot", "--sim",
+            *(["--kit", kit] if kit else []), "--start-after", "0", "--no-log", *options,
             str(PROGRAMS / "sbot_harness.py"), str(PROGRAMS / name),
         ],
         capture_output=True, text=True, timeout=120, env=environment, cwd=cwd, check=False,

@@ -243,16 +243,29 @@ class _FakePin:
         return True
 
     def digital_read(self) -> bool:
+        from j5aio.components.gpio_pin import GPIOPinMode as Core
+        from j5aio.errors import BadGPIOPinModeError
+
+        if self.mode not in (Core.DIGITAL_INPUT, Core.DIGITAL_INPUT_PULLUP):
+            raise BadGPIOPinModeError("not a digital input")
         self.reads += 1
         return True
+
+    def analogue_read(self) -> float:
+        from j5aio.components.gpio_pin import GPIOPinMode as Core
+        from j5aio.errors import BadGPIOPinModeError
+
+        if self.mode is not Core.ANALOGUE_INPUT:
+            raise BadGPIOPinModeError("not an analogue input")
+        return 2.5
 
 
 def test_a_pin_mode_the_board_forgot_is_read_again() -> None:
     from j5aio.compat.sbot._arduinos import Arduino, GPIOPinMode
     from j5aio.components.gpio_pin import GPIOPinMode as Core
 
-    pin = _FakePin()
-    board = SimpleNamespace(pins={3: pin}, serial_number="AR1")
+    pin, analogue = _FakePin(), _FakePin()
+    board = SimpleNamespace(pins={3: pin, 14: analogue}, serial_number="AR1")
     boards: Any = SimpleNamespace(arduino=lambda: board, arduinos=[board])
     arduino = Arduino(boards)
     arduino.set_pin_mode(3, GPIOPinMode.OUTPUT)
@@ -260,6 +273,13 @@ def test_a_pin_mode_the_board_forgot_is_read_again() -> None:
     pin.mode = Core.DIGITAL_INPUT  # the board rebooted: every pin an input
     assert arduino.digital_read(3) is True
     assert pin.reads == 1  # read from the board once the mode was known again
+    pin.mode = Core.DIGITAL_OUTPUT  # (behind the module's back again)
+    assert arduino.digital_read(3) is True  # now the output's last level
+    arduino.set_pin_mode(14, GPIOPinMode.INPUT)
+    assert arduino.analog_read(14) == 2.502  # 2.5 V is 512 of 1023 steps
+    analogue.mode = Core.DIGITAL_INPUT  # the board rebooted
+    assert arduino.analog_read(14) == 2.502  # the pin is made an analogue input again
+    assert analogue.mode is Core.ANALOGUE_INPUT
     assert repr(arduino) == "<Arduino AR1>"
 
 

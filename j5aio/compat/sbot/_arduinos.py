@@ -21,13 +21,16 @@ from collections.abc import Callable
 from enum import Enum, IntEnum
 from typing import TYPE_CHECKING, TypeVar, cast
 
+from j5aio.components.gpio_pin import GPIOPinMode as Core
+from j5aio.errors import BadGPIOPinModeError
+
 from ._checks import map_to_float
 from ._errors import translate_errors
 from ._kit import KitLink
 
 if TYPE_CHECKING:
-    from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
     from j5aio.sync import GPIOPin
+
 
 T = TypeVar("T")
 
@@ -71,6 +74,8 @@ ADC_MAX = 1023
 ADC_MIN = 0
 #: The steps j5aio's sb2024 codec divides 5 V into (volts = reading / 1024 x 5).
 _J5AIO_ADC_STEPS = 1024
+_ANALOGUE_PINS = frozenset(AnalogPin)
+_DIGITAL_INPUTS = frozenset({Core.DIGITAL_INPUT, Core.DIGITAL_INPUT_PULLUP})
 
 
 @translate_errors
@@ -88,7 +93,7 @@ class Arduino:
 
     def __init__(self, boards: KitLink) -> None:
         self._boards = boards
-        self._modes: dict[int, CoreMode] = {}
+        self._modes: dict[int, Core] = {}
         # The facade's pins, each looked up once (a lookup costs as much as a call).
         self._pins: dict[int, GPIOPin] = {}
 
@@ -100,22 +105,20 @@ class Arduino:
             found = self._pins[pin] = board.pins[pin]
         return found
 
-    def _mode(self, pin: int, target: GPIOPin) -> CoreMode:
+    def _mode(self, pin: int, target: GPIOPin) -> Core:
         """The j5aio mode ``pin`` is in (remembered, or asked for the first time)."""
         mode = self._modes.get(pin)
         if mode is None:
             mode = self._modes[pin] = _core_mode(target.mode)
         return mode
 
-    def _set_mode(self, pin: int, target: GPIOPin, mode: CoreMode) -> None:
+    def _set_mode(self, pin: int, target: GPIOPin, mode: Core) -> None:
         self._modes.pop(pin, None)  # (unknown until the board has taken it)
         target.mode = mode
         self._modes[pin] = mode
 
-    def _with_mode(self, pin: int, call: Callable[[GPIOPin, CoreMode], T]) -> T:
+    def _with_mode(self, pin: int, call: Callable[[GPIOPin, Core], T]) -> T:
         """Run ``call(pin, its mode)``; if the mode was stale, read it and run it again."""
-        from j5aio.errors import BadGPIOPinModeError
-
         target = self._pin(pin)
         try:
             return call(target, self._mode(pin, target))
@@ -129,8 +132,6 @@ class Arduino:
         :raises IOError: ``mode`` is not a :class:`GPIOPinMode`, or the pin is 0 or 1.
         :raises IndexError: there is no such pin.
         """
-        from j5aio.components.gpio_pin import GPIOPinMode as Core
-
         target = self._pin(pin)
         if not isinstance(mode, GPIOPinMode):
             raise OSError("Pin mode only supports being set to a GPIOPinMode")
@@ -147,9 +148,14 @@ class Arduino:
         :raises IOError: the pin is 0 or 1.
         :raises IndexError: there is no such pin.
         """
-        from j5aio.components.gpio_pin import GPIOPinMode as Core
+        target = self._pin(pin)
+        if self._modes.get(pin) in _DIGITAL_INPUTS:  # (the usual case: one call)
+            try:
+                return target.digital_read()
+            except BadGPIOPinModeError:
+                self._modes.pop(pin, None)
 
-        def read(target: GPIOPin, mode: CoreMode) -> bool:
+        def read(target: GPIOPin, mode: Core) -> bool:
             if mode is Core.DIGITAL_OUTPUT:
                 return target.last_digital_write
             if mode is Core.ANALOGUE_INPUT:
@@ -164,9 +170,7 @@ class Arduino:
         :raises IOError: the pin is 0 or 1.
         :raises IndexError: there is no such pin.
         """
-        from j5aio.components.gpio_pin import GPIOPinMode as Core
-
-        def write(target: GPIOPin, mode: CoreMode) -> None:
+        def write(target: GPIOPin, mode: Core) -> None:
             if mode is Core.DIGITAL_OUTPUT:
                 target.digital_write(bool(value))
             elif value:
@@ -182,15 +186,11 @@ class Arduino:
         :raises IOError: the pin is not an analogue pin, or it is not in INPUT mode.
         :raises IndexError: there is no such pin.
         """
-        from j5aio.components.gpio_pin import GPIOPinMode as Core
+        target = self._pin(pin)
+        if pin not in _ANALOGUE_PINS:
+            raise OSError("Pin does not support analog read")
 
-        self._pin(pin)
-        try:
-            AnalogPin(pin)
-        except ValueError:
-            raise OSError("Pin does not support analog read") from None
-
-        def read(target: GPIOPin, mode: CoreMode) -> float:
+        def read(target: GPIOPin, mode: Core) -> float:
             if mode is Core.DIGITAL_INPUT:
                 self._set_mode(pin, target, Core.ANALOGUE_INPUT)
             elif mode is not Core.ANALOGUE_INPUT:
@@ -200,8 +200,16 @@ class Arduino:
                 )
             return target.analogue_read()
 
+        volts: float | None = None
+        if self._modes.get(pin) is Core.ANALOGUE_INPUT:  # (the usual case: one call)
+            try:
+                volts = target.analogue_read()
+            except BadGPIOPinModeError:
+                self._modes.pop(pin, None)
+        if volts is None:
+            volts = self._with_mode(pin, read)
         # j5aio's codec gives volts as reading / 1024 x 5; sbot maps 0-1023 onto 0-5 V.
-        reading = round(self._with_mode(pin, read) / 5 * _J5AIO_ADC_STEPS)
+        reading = round(volts / 5 * _J5AIO_ADC_STEPS)
         return map_to_float(reading, ADC_MIN, ADC_MAX, 0.0, 5.0)
 
     def measure_ultrasound_distance(self, pulse_pin: int, echo_pin: int) -> int:
@@ -211,8 +219,6 @@ class Arduino:
 
         :raises ValueError: either pin is not a usable pin.
         """
-        from j5aio.components.gpio_pin import GPIOPinMode as Core
-
         board = self._boards.arduino()
         try:
             _validate_pin(pulse_pin)
@@ -242,18 +248,16 @@ def _validate_pin(pin: int) -> None:
         raise IndexError(f"Pin {pin} is not available on the Arduino.")
 
 
-def _core_mode(mode: object) -> CoreMode:
+def _core_mode(mode: object) -> Core:
     """A pin's mode as j5aio's :class:`~j5aio.components.gpio_pin.GPIOPinMode`."""
-    from j5aio.components.gpio_pin import GPIOPinMode as Core
-
     return Core(cast(int, mode))
 
 
-def _plain_input(pin: int) -> CoreMode:
+def _plain_input(pin: int) -> Core:
     """j5aio's mode for sbot's INPUT on ``pin``: analogue input on A0 to A5."""
-    from j5aio.components.gpio_pin import GPIOPinMode as CoreMode
+    from j5aio.components.gpio_pin import GPIOPinMode as Core
 
-    return CoreMode.ANALOGUE_INPUT if pin >= AnalogPin.A0 else CoreMode.DIGITAL_INPUT
+    return Core.ANALOGUE_INPUT if pin >= AnalogPin.A0 else Core.DIGITAL_INPUT
 
 
 def _sbot_mode_name(mode: object) -> str:

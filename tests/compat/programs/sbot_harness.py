@@ -1,10 +1,9 @@
 """Runs an sbot-style program on the simulated kit, then prints what the boards did.
 
-Used by tests/compat/test_sbot_*.py as ``python -m j5aio run --sim --kit sb2024
---start-after 0 sbot_harness.py PROGRAM``. Before the program runs, the harness:
+Used by tests/compat/test_sbot_*.py as ``python -m j5aio run --api sbot --sim --kit
+sb2024 --start-after 0 sbot_harness.py PROGRAM`` (``--api sbot`` makes ``import sbot``
+give :mod:`j5aio.compat.sbot`). Before the program runs, the harness:
 
-- makes ``import sbot`` give :mod:`j5aio.compat.sbot` when nothing else does (the
-  ``--api sbot`` option of ``j5aio run`` does it otherwise);
 - sets the kit's inputs (``SBOT_HARNESS_BENCH=1``): pin 3 high, pin 4 low, A0 at 2.5 V,
   an obstacle 0.5 m from the ultrasound sensor on pins 8 and 9, motor 0 drawing 0.75 A,
   a 12.25 V battery giving 2.5 A;
@@ -17,15 +16,10 @@ the recorded lines.
 
 from __future__ import annotations
 
-import importlib
-import importlib.abc
-import importlib.util
 import json
 import os
 import runpy
 import sys
-from collections.abc import Sequence
-from types import ModuleType
 from typing import Any, TypeVar, cast
 
 from j5aio.simulator.base import SerialBoardSimulator
@@ -36,34 +30,6 @@ from j5aio.simulator.sr_power_fw4 import SRPowerBoardFw4Simulator
 from j5aio.simulator.sr_servo_fw4 import SRServoBoardFw4Simulator
 
 T = TypeVar("T")
-
-_ALIAS = "sbot"
-_TARGET = "j5aio.compat.sbot"
-
-
-class _AliasFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
-    """``sbot`` and ``sbot.<sub>`` are ``j5aio.compat.sbot`` and its submodules."""
-
-    def find_spec(
-        self, fullname: str, path: Sequence[str] | None, target: ModuleType | None = None,
-    ) -> importlib.machinery.ModuleSpec | None:
-        if fullname == _ALIAS or fullname.startswith(_ALIAS + "."):
-            return importlib.util.spec_from_loader(fullname, self)
-        return None
-
-    def create_module(self, spec: importlib.machinery.ModuleSpec) -> ModuleType:
-        module = importlib.import_module(_TARGET + spec.name[len(_ALIAS):])
-        sys.modules[spec.name] = module
-        return module
-
-    def exec_module(self, module: ModuleType) -> None:
-        """The module ran when it was imported under its own name."""
-
-
-def _alias_sbot() -> None:
-    if importlib.util.find_spec(_ALIAS) is None:
-        sys.meta_path.insert(0, _AliasFinder())
-
 
 _received: dict[str, list[str]] = {}
 
@@ -130,7 +96,6 @@ def _state() -> dict[str, Any]:
 def main() -> None:
     program = sys.argv[1]
     sys.argv = sys.argv[1:]
-    _alias_sbot()
     if os.environ.get("SBOT_HARNESS_RECORD") == "1":
         _record()
     if os.environ.get("SBOT_HARNESS_BENCH") == "1":
