@@ -53,11 +53,12 @@ def run_sbot_program(
         ],
         capture_output=True, text=True, timeout=120, env=environment, cwd=cwd, check=False,
     )
-    found: dict[str, dict[str, Any]] = {"RESULT": {}, "KIT": {}}
+    found: dict[str, dict[str, Any]] = {"RESULT": {}, "KIT": {}, "EXIT": {}}
     for line in process.stdout.splitlines():
         tag, _, data = line.partition(" ")
         if tag in found:
             found[tag] = json.loads(data)
+    found["KIT"]["exit"] = found["EXIT"]
     return process, found["RESULT"], found["KIT"]
 
 
@@ -86,6 +87,12 @@ def test_a_team_program_drives_the_kit_as_under_sbot() -> None:
     assert kit["pins"]["3"] == ["INPUT_PULLUP", True]
     assert kit["pins"]["13"] == ["OUTPUT", True]
     assert kit["received"]["SIMPB0"][-1] == "NOTE:1760:500"
+    # At the end, as sbot's reset of the boards: servos off, outputs off but the brain's;
+    # the motors brake (j5aio's safe state; sbot's reset lets them coast).
+    end = kit["exit"]
+    assert end["servos"] == [None] * 8
+    assert end["outputs"] == [False, False, False, False, True, False, False]
+    assert end["motors"] == [["BRAKE", 0], ["BRAKE", 0]]
     motor_lines = kit["received"]["SIMMB0"]
     assert motor_lines[-4:] == ["MOT:1:GET?", "MOT:0:I?", "MOT:0:SET:0", "MOT:1:DISABLE"]
     # sbot's log lines, where a volunteer reads them.

@@ -129,6 +129,8 @@ class KitLink:
             for board in self.motor_boards
             for idx, motor in enumerate(board.motors)
         ]
+        for servo_board in self.servo_boards:
+            servo_board.unpower_when_safe = True  # (sbot resets the board at exit: servos off)
         self.servos = [
             Output(board, idx, servo)
             for board in self.servo_boards

@@ -11,7 +11,8 @@ give :mod:`j5aio.compat.sbot`). Before the program runs, the harness:
 
 When the program ends (normally, or by ``SystemExit``), before the boards are made safe,
 it prints one line ``KIT <json>``: outputs, motors, servos, pins, the note playing, and
-the recorded lines.
+the recorded lines; after a normal end it makes the boards safe, as the end of the
+program does, and prints the same again as ``EXIT <json>``.
 """
 
 from __future__ import annotations
@@ -104,6 +105,10 @@ def main() -> None:
         runpy.run_path(program, run_name="__main__")
     finally:
         print("KIT " + json.dumps(_state()), flush=True)
+    from j5aio.sync import shutdown
+
+    shutdown()  # (what the end of the program does: every board made safe)
+    print("EXIT " + json.dumps(_state()), flush=True)
 
 
 main()
