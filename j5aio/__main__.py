@@ -429,14 +429,17 @@ def _run(args: argparse.Namespace) -> int:
     from j5aio.compat import imports
     from j5aio.tracebacks import run_program
 
-    finder = imports.install(args.api) if args.api else imports.install_hint()
+    finder = imports.install(args.api) if args.api else None
+    if finder is None:
+        imports.install_hint()
     try:
         with _match(args, program) as ready:
             if not ready:
                 return 2
             return run_program(program)
     finally:
-        imports.uninstall(finder)
+        if finder is not None:
+            imports.uninstall(finder)
         if view is not None:
             view.close()
 

@@ -7,8 +7,9 @@ package names resolve to j5aio's compat modules, for the program being run:
   ``j5aio.compat.sr_robot3``; ``sr`` is a namespace holding it;
 - ``--api sbot``: ``sbot`` (and its submodules) is ``j5aio.compat.sbot``.
 
-``install_hint()`` is used without ``--api``: when a program imports ``sr.robot3`` or
-``sbot`` and that package is not installed, the error says which flag to add.
+``install_hint()`` is used without ``--api``: when a program stops because it imports
+``sr.robot3`` or ``sbot`` and that package is not installed, a line under the error says
+which flag to add.
 """
 
 from __future__ import annotations
@@ -25,9 +26,9 @@ from typing import Final
 __all__ = [
     "API_NAMES",
     "CompatFinder",
-    "MissingPackageHint",
     "install",
     "install_hint",
+    "missing_package_hint",
     "uninstall",
 ]
 
@@ -105,30 +106,22 @@ class CompatFinder(importlib.abc.MetaPathFinder):
         return None
 
 
-class MissingPackageHint(importlib.abc.MetaPathFinder):
-    """Turns "no module named sr" into an error that names ``--api``.
+def missing_package_hint(error: BaseException) -> str | None:
+    """The line that names ``--api`` under an uncaught import error of a competition's package.
 
-    It is put last on the meta path, so it is asked only about a name that no other
-    finder found: a competition's package that is not installed.
+    :returns: the hint for a ``ModuleNotFoundError`` of ``sr``, ``sr.robot3`` or ``sbot``
+        (the package is not installed); ``None`` for any other error.
     """
-
-    def find_spec(
-        self,
-        fullname: str,
-        path: Sequence[str] | None = None,
-        target: types.ModuleType | None = None,
-    ) -> importlib.machinery.ModuleSpec | None:
-        """Raise the hint for a competition's package; ``None`` for any other name."""
-        for api, redirects in API_NAMES.items():
-            for name in redirects:
-                if fullname in (name, name.split(".")[0]):
-                    raise ModuleNotFoundError(
-                        f"No module named {fullname!r}: {name} is not installed. To run "
-                        f"this {api} program on j5aio, add --api {api}: python -m j5aio "
-                        f"run --api {api} [options] program.py",
-                        name=fullname,
-                    )
+    if not isinstance(error, ModuleNotFoundError):
         return None
+    for api, redirects in API_NAMES.items():
+        for name in redirects:
+            if error.name in (name, name.split(".")[0]):
+                return (
+                    f"j5aio: {name} is not installed. To run this {api} program on j5aio, "
+                    f"add --api {api}: python -m j5aio run --api {api} [options] program.py"
+                )
+    return None
 
 
 def install(api: str) -> CompatFinder:
@@ -148,11 +141,15 @@ def install(api: str) -> CompatFinder:
     return finder
 
 
-def install_hint() -> MissingPackageHint:
-    """Put the hint last on the meta path: it acts only for a package nothing else found."""
-    hint = MissingPackageHint()
-    sys.meta_path.append(hint)
-    return hint
+def install_hint() -> None:
+    """Have ``run`` print :func:`missing_package_hint` under a program's uncaught error.
+
+    The import itself fails as usual (so ``importlib.util.find_spec("sbot")`` still
+    says ``None`` where sbot is not installed, and ``except ImportError`` still works).
+    """
+    from j5aio.tracebacks import add_hint
+
+    add_hint(missing_package_hint)
 
 
 def uninstall(finder: importlib.abc.MetaPathFinder) -> None:

@@ -105,11 +105,14 @@ class Robot:
             LOGGER.debug("Not waiting for start button.")
 
     def _init_power_board(self) -> None:
-        """Switch every output on, so that the boards they feed are powered."""
+        """The power board, whose outputs KitRobot has switched on (but L2, the brain's).
+
+        KitRobot does what sr-robot3 does at start-up: it finds the power board, switches
+        every output on, then looks for the boards they feed.
+        """
         if self._no_powerboard:
             return
         self._power_board = PowerBoard(self._kit.power_board)
-        self._power_board.outputs.power_on()
 
     def _init_aux_boards(
         self, ignored_arduinos: list[str], raw_ports: list[tuple[str, int]] | None,
