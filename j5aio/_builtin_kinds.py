@@ -40,6 +40,11 @@ def _simulated(name: str) -> str:
     return f"j5aio.simulator.sim_backends:{name}"
 
 
+def _simulated_2023(name: str) -> str:
+    """The import path of a simulated backend of :mod:`j5aio.simulator.sim_backends_2023`."""
+    return f"j5aio.simulator.sim_backends_2023:{name}"
+
+
 def entries() -> list[BoardKind | KitDefinition]:
     """j5aio's board kinds, in the order discovery and listing try them, then its kits.
 
@@ -137,7 +142,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR v4 power board, firmware 4.4 (CDC serial)",
             hardware="j5aio.backends.hardware.sr.v4.power_board_fw4:SRV4PowerBoardFw4HardwareBackend",
             console="j5aio.backends.console.sr.v4:SRV4PowerBoardFw4ConsoleBackend",
-            simulated=_simulated("SRV4PowerBoardFw4SimulatedBackend"),
+            simulated=_simulated_2023("SRV4PowerBoardFw4SimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sr-power-fw4", _sim("sr_power_fw4:SRPowerBoardFw4Simulator"),
@@ -153,7 +158,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR v4 motor board, firmware 4.4 / 4.5 (serial, 115200 baud)",
             hardware="j5aio.backends.hardware.sr.v4.motor_board_fw4:SRV4MotorBoardFw4HardwareBackend",
             console="j5aio.backends.console.sr.v4:SRV4MotorBoardFw4ConsoleBackend",
-            simulated=_simulated("SRV4MotorBoardFw4SimulatedBackend"),
+            simulated=_simulated_2023("SRV4MotorBoardFw4SimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sr-motor-fw4", _sim("sr_motor_fw4:SRMotorBoardFw4Simulator"),
@@ -177,7 +182,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR v4 servo board, firmware 4.3 (CDC serial, 12 servos)",
             hardware="j5aio.backends.hardware.sr.v4.servo_board_fw4:SRV4ServoBoardFw4HardwareBackend",
             console="j5aio.backends.console.sr.v4:SRV4ServoBoardFw4ConsoleBackend",
-            simulated=_simulated("SRV4ServoBoardFw4SimulatedBackend"),
+            simulated=_simulated_2023("SRV4ServoBoardFw4SimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sr-servo-fw4", _sim("sr_servo_fw4:SRServoBoardFw4Simulator"),
@@ -193,7 +198,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR v4 servo board, SourceBots firmware 4.4 (CDC serial, 8 servos)",
             hardware="j5aio.backends.hardware.sr.v4.servo_board_fw4:SBServoBoardHardwareBackend",
             console="j5aio.backends.console.sr.v4:SBServoBoardConsoleBackend",
-            simulated=_simulated("SBServoBoardSimulatedBackend"),
+            simulated=_simulated_2023("SBServoBoardSimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sb-servo-fw4", _sim("sr_servo_fw4:SBServoBoardFw4Simulator"),
@@ -209,7 +214,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR Arduino, firmware 2 (serial, 115200 baud)",
             hardware="j5aio.backends.hardware.sr.v4.arduino:SRArduinoHardwareBackend",
             console="j5aio.backends.console.sr.v4:SRArduinoConsoleBackend",
-            simulated=_simulated("SRArduinoSimulatedBackend"),
+            simulated=_simulated_2023("SRArduinoSimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sr-arduino-fw2",
@@ -226,7 +231,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SourceBots Arduino, sb2024 firmware 2.0 (serial, 115200 baud)",
             hardware="j5aio.backends.hardware.sb.arduino_2024:SBArduino2024HardwareBackend",
             console="j5aio.backends.console.sb.arduino_2024:SBArduino2024ConsoleBackend",
-            simulated=_simulated("SBArduino2024SimulatedBackend"),
+            simulated=_simulated_2023("SBArduino2024SimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sb-arduino-2024", _sim("sb_arduino_2024:SBArduino2024Simulator"),

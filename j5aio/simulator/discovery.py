@@ -15,18 +15,19 @@ from typing import TYPE_CHECKING, Any
 from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.transports.discovery import PortInfo
 from j5aio.backends.hardware.transports.memory import SimulatorStream
+from j5aio.board_kinds import BoardKind, board_kinds
 
 from .base import SerialBoardSimulator, UsbBoardSimulator
-from .kit import SimulatedKit
+from .kit import SimulatedKit, current_kit
 from .usb_support import no_device_error
 
 if TYPE_CHECKING:
     from j5aio.backends.hardware.transports.stream import ByteStream
-    from j5aio.board_kinds import BoardKind
 
 __all__ = [
     "MINIMUM_TIMEOUT_SCALE",
     "SimulatedUSBDevice",
+    "kind_options",
     "kit_discovery_options",
     "port_name",
 ]
@@ -193,3 +194,26 @@ def _of_kind(
     kit: SimulatedKit, simulator: SerialBoardSimulator | UsbBoardSimulator, kind: BoardKind | None
 ) -> bool:
     return kind is None or kit.kind_of(simulator) is kind
+
+
+def _kind_of(backend: type) -> BoardKind:
+    """The registered kind naming ``backend`` (or a class it derives from) as ``simulated``."""
+    for cls in backend.__mro__:
+        reference = f"{cls.__module__}:{cls.__qualname__}"
+        for kind in board_kinds():
+            if kind.backend_reference("simulated") == reference:
+                return kind
+    raise LookupError(
+        f"{backend.__qualname__} is the simulated backend of no registered board kind: "
+        "name it as one's simulated= backend"
+    )
+
+
+def kind_options(backend: type) -> DiscoveryOptions:
+    """Discovery options finding the current kit's boards of ``backend``'s kind, and no others.
+
+    :param backend: a simulated backend, named by a registered kind as its ``simulated``
+        backend (or a subclass of one).
+    :raises LookupError: no registered kind names it.
+    """
+    return kit_discovery_options(current_kit(), kind=_kind_of(backend))

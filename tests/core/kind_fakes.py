@@ -9,7 +9,7 @@ from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBack
 from j5aio.board_kinds import BoardKind, SimulatorEntry
 from j5aio.boards.board import Board
 from j5aio.boards.sr.v4 import MotorBoard
-from j5aio.simulator.sim_backends import kind_options
+from j5aio.simulator.discovery import kind_options
 from j5aio.simulator.sr_motor_fw3 import SRMotorBoardFw3Simulator
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from j5aio.backends.hardware.options import DiscoveryOptions
-from j5aio.simulator.sim_backends import kind_options
+from j5aio.simulator.discovery import kind_options
 
 from .backend import BeeBackend
 from .boards import BeeBoard
