@@ -44,7 +44,7 @@ from dataclasses import replace
 from types import MappingProxyType
 from typing import Final
 
-from j5aio import _entry_points
+from j5aio import _entry_points, _kind_types
 from j5aio._kind_types import (
     _BACKEND_ROLES,
     DEFAULT_KIT,
@@ -53,8 +53,6 @@ from j5aio._kind_types import (
     KitDefinition,
     SimulatorClass,
     SimulatorEntry,
-    SimulatorFactory,
-    SimulatorTransport,
 )
 
 __all__ = [
@@ -76,6 +74,19 @@ __all__ = [
     "simulator_entries",
     "unregister",
 ]
+
+SimulatorFactory = _kind_types.SimulatorFactory
+"""Makes a simulator given the serial number it reports: a
+:class:`~j5aio.simulator.base.SerialBoardSimulator` (which ``simulate`` can serve on a
+pty), a :class:`~j5aio.simulator.base.UsbBoardSimulator`, or, for a board reached
+otherwise (a HAT's GPIO), a simulator of its own that the kind's ``simulated`` backend
+finds in the kit."""
+
+SimulatorTransport = _kind_types.SimulatorTransport
+"""How a simulator's board is reached, as its :class:`SimulatorEntry` declares:
+``"serial"`` (a :class:`~j5aio.simulator.base.SerialBoardSimulator`, which ``simulate``
+can serve on a pty), ``"usb"`` (a :class:`~j5aio.simulator.base.UsbBoardSimulator`) or
+``"other"`` (a HAT's GPIO, say)."""
 
 #: The entry point group through which other packages register board kinds and kits.
 ENTRY_POINT_GROUP: Final = "j5aio.boards"
