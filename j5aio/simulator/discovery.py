@@ -10,6 +10,7 @@ as a port named ``sim://<kit name>/<serial number>``, a USB board as a
 
 from __future__ import annotations
 
+import warnings
 from typing import TYPE_CHECKING, Any
 
 from j5aio.backends.hardware.options import DiscoveryOptions
@@ -27,6 +28,7 @@ if TYPE_CHECKING:
 __all__ = [
     "MINIMUM_TIMEOUT_SCALE",
     "SimulatedUSBDevice",
+    "UnmatchedSimulatorWarning",
     "kind_options",
     "kit_discovery_options",
     "port_name",
@@ -212,8 +214,40 @@ def _kind_of(backend: type) -> BoardKind:
 def kind_options(backend: type) -> DiscoveryOptions:
     """Discovery options finding the current kit's boards of ``backend``'s kind, and no others.
 
+    A serial backend finds a port by its USB IDs, on a robot as in the simulated kit: if
+    a simulator of the kind in the kit reports IDs that the backend's ``USB_IDS`` do not
+    hold (none set, say), the backend would find none of its boards, so a
+    :class:`UnmatchedSimulatorWarning` says so.
+
     :param backend: a simulated backend, named by a registered kind as its ``simulated``
         backend (or a subclass of one).
     :raises LookupError: no registered kind names it.
     """
-    return kit_discovery_options(current_kit(), kind=_kind_of(backend))
+    kit = current_kit()
+    kind = _kind_of(backend)
+    _check_usb_ids(kit, kind, backend)
+    return kit_discovery_options(kit, kind=kind)
+
+
+class UnmatchedSimulatorWarning(UserWarning):
+    """A simulator of the kit is not found by its kind's backend: their USB IDs differ."""
+
+
+def _check_usb_ids(kit: SimulatedKit, kind: BoardKind, backend: type) -> None:
+    ids = getattr(backend, "USB_IDS", None)
+    if ids is None:  # (not a serial backend)
+        return
+    for simulator in kit.serial_simulators():
+        if kit.kind_of(simulator) is not kind or (simulator.usb_vid, simulator.usb_pid) in ids:
+            continue
+        given = ", ".join(f"{vid:04X}:{pid:04X}" for vid, pid in sorted(ids)) or "none"
+        warnings.warn(
+            f"board kind {kind.name!r}: its backend {backend.__qualname__} finds ports by "
+            f"USB_IDS ({given}), and its simulator {simulator.serial_number} reports "
+            f"{simulator.usb_vid:04X}:{simulator.usb_pid:04X}, so no board of the kind is "
+            "found, on the simulated kit as on a robot: set the hardware backend's USB_IDS "
+            "to the (vendor, product) IDs of the board's USB-serial adapter",
+            UnmatchedSimulatorWarning,
+            stacklevel=3,
+        )
+        return

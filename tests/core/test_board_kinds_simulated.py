@@ -153,3 +153,35 @@ def test_a_simulator_of_another_shape_is_in_the_kit_but_not_served_on_a_pty() ->
         assert len(kit) == 1  # the boards reached by USB or a serial port
     finally:
         unregister(hat.name)
+
+
+@pytest.mark.usefixtures("_close_boards")
+async def test_a_backend_whose_usb_ids_miss_its_simulators_says_so() -> None:
+    from j5aio.simulator.discovery import UnmatchedSimulatorWarning
+
+    class NoUsbIds(Gen9SimulatedBackend):
+        """A backend whose author forgot the USB IDs."""
+
+        USB_IDS = frozenset()
+
+    register(GEN9)
+    try:
+        use_kit(KitDefinition("x", "x", {"test-motor-gen9": 1}))
+        with pytest.warns(
+            UnmatchedSimulatorWarning,
+            match=r"'test-motor-gen9'.*USB_IDS \(none\).*SIMG90 reports [0-9A-F]{4}:[0-9A-F]{4}",
+        ):
+            assert await NoUsbIds.discover() == []
+        boards = await Gen9SimulatedBackend.discover()  # with its IDs: found, and no warning
+        for board in boards:
+            await board.setup()
+        assert [board.serial_number for board in boards] == ["SIMG90"]
+    finally:
+        unregister(GEN9.name)
+
+
+def test_a_backend_no_kind_names_cannot_find_a_kind_s_boards() -> None:
+    from j5aio.simulator.discovery import kind_options
+
+    with pytest.raises(LookupError, match="Gen9HardwareBackend is the simulated backend of no"):
+        kind_options(Gen9HardwareBackend)
