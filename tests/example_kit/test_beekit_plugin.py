@@ -148,3 +148,68 @@ async def test_attach_identifies_a_bee_board_after_j5aios_own_boards() -> None:
         await board.led.set_state(True)
         assert await board.led.get_state() is True
         await board.close()
+
+
+# --- a plugin's boards held by KitRobot like its own ------------------------------------
+
+
+@pytest.mark.usefixtures("fresh_kit")
+async def test_kit_robot_holds_a_plugin_s_boards_like_its_own() -> None:
+    from j5aio.boards.sr.v4 import PowerBoard
+    from j5aio.kit import KitRobot
+    from j5aio.simulator.kit import use_kit
+
+    kit = use_kit("bee", time_scale=0)
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT, boards={"bees": BeeBoard}) as robot:
+        bees = robot.board_group(BeeBoard)
+        assert vars(robot)["bees"] is bees  # robot.bees, for students
+        assert [bee.serial_number for bee in bees] == ["SIMBEE0"]
+        await bees[0].motors[0].set_power(0.5)
+        assert kit.simulators("bee")[0].motor_steps[0] == 50  # type: ignore[attr-defined]
+        assert robot.power_board.serial_number == "SIMPB0"
+        with pytest.raises(KeyError, match=r"no group of 'PowerBoard'.*it holds: BeeBoard"):
+            robot.board_group(PowerBoard)
+
+
+@pytest.mark.parametrize(
+    ("boards", "error", "message"),
+    [
+        ({"motor_boards": BeeBoard}, ValueError, "'motor_boards' is already the robot's own"),
+        ({"board_group": BeeBoard}, ValueError, "already the robot's own"),
+        ({"2bees": BeeBoard}, ValueError, "give an identifier"),
+        ({"_bees": BeeBoard}, ValueError, "not starting with '_'"),
+        ({"bees": BeeBackend}, TypeError, "'bees' must name a Board subclass"),
+        ([BeeBoard], TypeError, "must map attribute names to board classes"),
+    ],
+)
+def test_kit_robot_refuses_boards_it_cannot_hold(
+    boards: object, error: type[Exception], message: str
+) -> None:
+    from j5aio.kit import KitRobot
+
+    with pytest.raises(error, match=message):
+        KitRobot(environment=SIMULATED_ENVIRONMENT, boards=boards)  # type: ignore[arg-type]
+
+
+def test_the_sync_kit_robot_takes_the_kit_s_wrapper_class() -> None:
+    program = textwrap.dedent("""
+        import os
+        os.environ["J5AIO_LOCK_PORT"] = "0"
+        import beekit.sync
+        from j5aio.simulator.kit import use_kit
+        from j5aio.sync import KitRobot, get_environment
+
+        use_kit("bee", time_scale=0)
+        robot = KitRobot(environment=get_environment("sim"), boards={"bees": beekit.sync.BeeBoard})
+        bees = robot.board_group(beekit.sync.BeeBoard)
+        assert type(bees[0]) is beekit.sync.BeeBoard, type(bees[0])
+        bees[0].led.state = True
+        print("held", bees[0].serial_number, bees[0].led.state)
+    """)
+    environment = {k: v for k, v in os.environ.items() if not k.startswith("J5AIO_")}
+    result = subprocess.run(
+        [sys.executable, "-c", program], capture_output=True, text=True, timeout=60,
+        env=environment, check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "held SIMBEE0 True"
