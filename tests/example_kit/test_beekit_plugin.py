@@ -137,6 +137,51 @@ def test_run_sim_finds_the_bee_board_in_its_kit(tmp_path: Path) -> None:
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="pseudo-terminals exist on POSIX only")
+async def test_attach_identifies_a_board_that_answers_in_one_quick_round(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from j5aio.backends.hardware import identify
+
+    async def full_round(*args: object, **kwargs: object) -> Board:
+        raise AssertionError("every kind was tried in turn, with its full waits")
+
+    monkeypatch.setattr(identify, "_identify", full_round)
+    simulator = BeeSimulator("BEE1")
+    with serve_on_pty(simulator) as server:  # (at full time scale: the board answers)
+        board = await attach(server.path)
+        assert isinstance(board, BeeBoard)
+        assert board.firmware_version == "2.1"
+        await board.close()
+
+
+async def test_attach_asks_each_kind_in_turn_when_no_quick_answer_comes(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from j5aio.backends.hardware import identify
+
+    monkeypatch.setattr(identify, "QUICK_BUDGET", 0.0)  # too short for any board
+    with serve_on_pty(BeeSimulator("BEE1"), time_scale=0) as server:
+        board = await attach(server.path, time_scale=0.05)
+        assert isinstance(board, BeeBoard)
+        await board.close()
+
+
+async def test_attach_asks_each_kind_in_turn_when_the_quick_answer_misleads(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from j5aio.backends.hardware import identify
+    from j5aio.backends.hardware.sb.arduino_2024 import SBArduino2024HardwareBackend
+
+    async def misled(*args: object, **kwargs: object) -> type[SBArduino2024HardwareBackend]:
+        return SBArduino2024HardwareBackend  # which will not recognise a Bee Board
+
+    monkeypatch.setattr(identify, "_answering_kind", misled)
+    with serve_on_pty(BeeSimulator("BEE1"), time_scale=0) as server:
+        board = await attach(server.path, time_scale=0.05)
+        assert isinstance(board, BeeBoard)
+        await board.close()
+
+
 async def test_attach_identifies_a_bee_board_after_j5aios_own_boards() -> None:
     simulator = BeeSimulator("BEE1")
     with serve_on_pty(simulator, time_scale=0) as server:
