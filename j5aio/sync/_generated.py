@@ -1436,8 +1436,8 @@ class KitRobot(BaseRobot):
     :param boards: more boards to hold, a plugin's say, as ``{"bees": BeeBoard}``: each
         group of that board class is found with the kit's own (after the power-up) and
         held as the attribute of that name (``robot.bees``), and by
-        :meth:`board_group` (``robot.board_group(BeeBoard)``, typed), and is made safe at
-        the end with the others.
+        :meth:`~j5aio.kit.KitRobot.board_group` (``robot.board_group(BeeBoard)``,
+        typed), and is made safe at the end with the others.
     :param view: serve the live view of the boards while the robot runs (see
         :mod:`j5aio.view`; needs the ``view`` extra). ``None`` (the default) follows
         ``J5AIO_VIEW``. A view already running (``python -m j5aio run --view`` starts

@@ -63,8 +63,14 @@ async def _close_boards() -> AsyncIterator[None]:
 
 
 def python_m_j5aio(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
-    """Run ``python -m j5aio`` as a student would, without this run's J5AIO_ settings."""
-    environment = {k: v for k, v in os.environ.items() if not k.startswith("J5AIO_")}
+    """Run ``python -m j5aio`` as a student would, without this run's J5AIO_ settings.
+
+    (Only its robot lock port is kept, so that the program runs beside another robot.)
+    """
+    environment = {
+        k: v for k, v in os.environ.items()
+        if not k.startswith("J5AIO_") or k == "J5AIO_LOCK_PORT"
+    }
     return subprocess.run(
         [sys.executable, "-m", "j5aio", *args],
         capture_output=True, text=True, timeout=60, env=environment, check=False, cwd=cwd,
