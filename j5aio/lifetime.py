@@ -43,13 +43,19 @@ from collections.abc import Callable, Iterator
 from types import FrameType, TracebackType
 from typing import TYPE_CHECKING, Any, Final
 
+from j5aio.errors import GameOverError
+
 if TYPE_CHECKING:
     from j5aio.boards.board import Board
 
 __all__ = [
+    "GAME_OVER_WAIT",
     "NET_BUDGET",
     "PER_BOARD_TIMEOUT",
     "add_exit_step",
+    "begin_game_over",
+    "end_game_over",
+    "game_over_begun",
     "install",
     "make_all_safe_now",
     "mark_settled",
@@ -58,6 +64,7 @@ __all__ = [
     "quiet_interrupts",
     "track",
     "untrack",
+    "wait_for_game_over",
 ]
 
 LOGGER = logging.getLogger(__name__)
@@ -87,6 +94,12 @@ _finished = False
 _failures = 0
 #: Whether a terminating signal has been asked to stop a running loop.
 _terminating = False
+#: Set when game over begins: from then on no board may be opened.
+_game_over = threading.Event()
+#: Set when game over has finished (the process is ending).
+_game_over_done = threading.Event()
+#: The most seconds a program that ends during game over waits for game over to end it.
+GAME_OVER_WAIT: Final = 5.0
 
 
 # -- which boards are open ---------------------------------------------------------------
@@ -97,14 +110,28 @@ def track(board: Board) -> None:
 
     The event loop running now, if any, is the board's: when it finishes, the board is
     made safe and closed.
+
+    :raises ~j5aio.errors.GameOverError: the match is over (the board's port is closed
+        at once: after game over nothing may drive a board again).
     """
     try:
         loop: asyncio.AbstractEventLoop | None = asyncio.get_running_loop()
     except RuntimeError:
         loop = None
     with _lock:
-        _open[board] = loop
-        _settled.discard(board)
+        sealed = _game_over.is_set()
+        if not sealed:
+            _open[board] = loop
+            _settled.discard(board)
+    if sealed:
+        close_now = getattr(board.backend, "close_now", None)
+        if close_now is not None:
+            with contextlib.suppress(Exception):
+                close_now()
+        raise GameOverError(
+            f"the match is over: {board} cannot be opened after game over (the program "
+            "is ending with every board safe)"
+        )
     install()
     if loop is not None:
         _watch(loop)
@@ -128,6 +155,42 @@ def open_boards() -> list[Board]:
     """Every board opened and not yet closed."""
     with _lock:
         return list(_open)
+
+
+# -- game over ---------------------------------------------------------------------------
+
+
+def begin_game_over() -> None:
+    """The match has ended: from now on opening a board raises, and the program's end waits.
+
+    The match timer calls this before it makes the boards safe, so that a program cannot
+    open fresh links and drive again before the process ends. A program that ends
+    meanwhile (an unhandled exception, the end of its code) waits for game over to end
+    the process, so that it ends with "Game over" and status 0, not a traceback.
+    """
+    with _lock:
+        _game_over.set()
+
+
+def game_over_begun() -> bool:
+    """Whether the match has ended (:func:`begin_game_over` was called)."""
+    return _game_over.is_set()
+
+
+def end_game_over() -> None:
+    """Game over has finished (its process-ending call returned: only in tests)."""
+    _game_over_done.set()
+
+
+def wait_for_game_over(timeout: float = GAME_OVER_WAIT) -> bool:
+    """If game over has begun, wait (at most ``timeout`` s) for it to end the process.
+
+    :returns: whether game over had begun.
+    """
+    if not _game_over.is_set():
+        return False
+    _game_over_done.wait(timeout)
+    return True
 
 
 # -- the net -----------------------------------------------------------------------------
@@ -290,6 +353,9 @@ def add_exit_step(step: Callable[[], None]) -> None:
 def _finish(reason: str) -> None:
     """Run the exit steps, then the net over every board still open; once."""
     global _finished
+    # The match timer is ending the match: it makes the boards safe, logs "Game over"
+    # and ends the process with status 0; the program's own end must not pre-empt it.
+    wait_for_game_over()
     with _lock:
         if _finished:
             return
@@ -312,6 +378,11 @@ def _excepthook(
     kind: type[BaseException], value: BaseException, traceback: TracebackType | None
 ) -> None:
     interactive = hasattr(sys, "ps1") or sys.flags.interactive
+    if wait_for_game_over():
+        # The program ended because the match did (its boards were closed under it): the
+        # match timer ends the process with "Game over" and status 0, not this traceback.
+        LOGGER.debug("The program stopped at game over on %s", kind.__name__)
+        return
     if not interactive:
         if issubclass(kind, KeyboardInterrupt):
             _finish("the program was stopped with Ctrl-C")

@@ -9,6 +9,7 @@ from collections.abc import AsyncIterator, Iterator
 
 import pytest
 
+from j5aio import lifetime
 from j5aio.boards.board import Board
 from j5aio.robot import DEFAULT_LOCK_PORT
 from j5aio.simulator import kit as kit_module
@@ -55,10 +56,12 @@ os.environ["J5AIO_LOCK_PORT"] = str(_free_lock_port())
 
 @pytest.fixture(autouse=True)
 def _forget_boards() -> Iterator[None]:
-    """Start and end every test with no registered boards."""
+    """Start and end every test with no registered boards, and no match over."""
     Board.BOARDS.clear()
     yield
     Board.BOARDS.clear()
+    lifetime._game_over.clear()
+    lifetime._game_over_done.clear()
 
 
 @pytest.fixture

@@ -17,7 +17,7 @@ import anyio.to_thread
 import pytest
 
 from j5aio import lifetime
-from j5aio.errors import CommunicationError
+from j5aio.errors import CommunicationError, GameOverError
 
 from .conftest import LampBackend, LampBoard
 
@@ -338,3 +338,41 @@ def test_a_board_whose_backend_is_no_backend_is_passed_over(
     assert good.states[0] is False
     assert "STANDIN" not in caplog.text
     assert lifetime._failures == 0
+
+
+def test_a_program_ending_during_game_over_waits_for_it_without_a_traceback(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    previous: list[type[BaseException]] = []
+    reasons: list[str] = []
+    monkeypatch.setattr(lifetime, "_previous_excepthook", lambda k, v, t: previous.append(k))
+    monkeypatch.setattr(lifetime, "_finish", reasons.append)
+    assert not lifetime.wait_for_game_over()  # no match has ended: nothing to wait for
+    waited: list[float] = []
+    monkeypatch.setattr(lifetime._game_over_done, "wait", waited.append)
+    lifetime.begin_game_over()
+    assert lifetime.game_over_begun()
+    lifetime._excepthook(RuntimeError, RuntimeError("the board has been closed"), None)
+    assert previous == [] and reasons == [] and capsys.readouterr().err == ""
+    assert waited == [lifetime.GAME_OVER_WAIT]
+
+
+def test_the_exit_hook_during_game_over_waits_for_it_first(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setattr(lifetime, "_exit_steps", [])
+    monkeypatch.setattr(lifetime, "_finished", False)
+    order: list[str] = []
+    monkeypatch.setattr(lifetime._game_over_done, "wait", lambda t: order.append("waited"))
+    lifetime.add_exit_step(lambda: order.append("step"))
+    lifetime.begin_game_over()
+    lifetime._at_exit()
+    assert order == ["waited", "step"]
+
+
+def test_a_board_made_after_game_over_is_refused_and_its_port_closed() -> None:
+    lifetime.begin_game_over()
+    backend = NetLampBackend()
+    with pytest.raises(GameOverError, match="after game over"):
+        LampBoard("L", backend)
+    assert backend.closed_now and lifetime.open_boards() == []
