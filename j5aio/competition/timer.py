@@ -119,6 +119,9 @@ class MatchTimer:
             raise RuntimeError("the match timer was started already")
         self._ends_at = time.monotonic() + self._duration
         self._thread.start()
+        from j5aio.competition import supervisor
+
+        supervisor.report_start(self._ends_at)  # game over from outside, if supervised
         LOGGER.info("The match has started: it ends in %g s.", self._duration)
 
     def _disarm(self) -> None:
@@ -159,6 +162,9 @@ class MatchTimer:
         for board in lifetime.open_boards():
             lifetime.mark_settled(board)  # the end of a match is no program's mistake
         _make_safe_and_close()
+        from j5aio.competition import supervisor
+
+        supervisor.report_safe()
         LOGGER.warning("Game over: the match has ended and every board is safe.")
         for hook in list(_hooks):
             try:
