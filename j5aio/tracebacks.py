@@ -170,7 +170,7 @@ def run_program(program: Path, *, stderr: TextIO | None = None) -> int:
     try:
         runpy.run_path(str(program), run_name="__main__")
     except Exception as error:
-        from j5aio.lifetime import wait_for_game_over
+        from j5aio.safety.registry import wait_for_game_over
 
         if wait_for_game_over():
             return 0  # the match ended under the program: game over ends the process

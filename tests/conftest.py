@@ -9,9 +9,9 @@ from collections.abc import AsyncIterator, Iterator
 
 import pytest
 
-from j5aio import lifetime
 from j5aio.boards.board import Board
 from j5aio.robot import DEFAULT_LOCK_PORT
+from j5aio.safety import registry
 from j5aio.simulator import kit as kit_module
 
 
@@ -60,8 +60,8 @@ def _forget_boards() -> Iterator[None]:
     Board.BOARDS.clear()
     yield
     Board.BOARDS.clear()
-    lifetime._game_over.clear()
-    lifetime._game_over_done.clear()
+    registry._game_over.clear()
+    registry._game_over_done.clear()
 
 
 @pytest.fixture

@@ -8,7 +8,7 @@ When the match ends it
 1. asks the robot's event loop to cancel the robot's work (a well-behaved program
    unwinds in order);
 2. makes every open board safe and closes its port at once, through the boards' own
-   links, with the library's one safety net (:func:`j5aio.lifetime.make_all_safe_now`):
+   links, with the library's one rescue (:func:`j5aio.safety.rescue.make_all_safe_now`):
    from the loop if it answers within :data:`LOOP_WAIT` seconds, else from this thread;
    closing the ports means nothing the program still sends reaches a board;
 3. logs ``Game over``, runs the :func:`add_game_over_hook` hooks and, after
@@ -19,8 +19,8 @@ From the moment game over begins, no board can be opened any more (opening one r
 :class:`~j5aio.errors.GameOverError`), so a program cannot drive again in the grace; and
 a program that ends meanwhile, by an exception from a board closed under it or by
 reaching its end, waits for game over to end the process, so it ends with "Game over"
-and status 0 (:func:`j5aio.lifetime.wait_for_game_over`). Nothing in the program can stop
-the timer. What a program in the same interpreter can still hold back (C code that keeps
+and status 0 (:func:`j5aio.safety.registry.wait_for_game_over`). Nothing in the program
+can stop the timer. What a program in the same interpreter can still hold back (C code that keeps
 the GIL, a huge switch interval, a forked child) is ended by the match supervisor of
 ``j5aio run``, outside the program's interpreter.
 """
@@ -36,7 +36,7 @@ import time
 from collections.abc import Callable
 from typing import Final, TextIO
 
-from j5aio import lifetime
+from j5aio.safety import registry, rescue
 
 __all__ = ["GRACE", "LOOP_WAIT", "MatchTimer", "add_game_over_hook"]
 
@@ -153,14 +153,14 @@ class MatchTimer:
         """End the match now (see the module's documentation for what happens)."""
         self.ended_at = time.monotonic()
         sys.setswitchinterval(_SWITCH_INTERVAL)
-        lifetime.begin_game_over()  # from now on no board can be opened
+        registry.begin_game_over()  # from now on no board can be opened
         if self._cancel is not None:
             try:
                 self._cancel()
             except Exception as exc:  # the loop closed meanwhile: nothing to cancel
                 LOGGER.debug("Could not cancel the robot's work: %r", exc)
-        for board in lifetime.open_boards():
-            lifetime.mark_settled(board)  # the end of a match is no program's mistake
+        for board in registry.open_boards():
+            registry.mark_settled(board)  # the end of a match is no program's mistake
         _make_safe_and_close()
         from j5aio.competition import supervisor
 
@@ -177,7 +177,7 @@ class MatchTimer:
         try:
             self._end_process(0)
         finally:
-            lifetime.end_game_over()
+            registry.end_game_over()
 
 
 def _make_safe_and_close() -> None:
@@ -186,10 +186,10 @@ def _make_safe_and_close() -> None:
     # so the boards after it get another pass.
     for _ in range(_PASSES):
         try:
-            lifetime.make_all_safe_now("the match ended", close=True, loop_wait=LOOP_WAIT)
+            rescue.make_all_safe_now("the match ended", close=True, loop_wait=LOOP_WAIT)
         except Exception as exc:
             LOGGER.error("Making the boards safe at game over failed: %r", exc)
-        if not lifetime.open_boards():
+        if not registry.open_boards():
             break
 
 

@@ -10,8 +10,8 @@ A serial backend can be made three ways, all ending in the same handshake:
   already open. This is the seam the simulated environment uses: it hands over a
   :class:`~j5aio.backends.hardware.transports.memory.SimulatorStream`.
 
-Ports are claimed in :mod:`.registry`, so a port that a live backend holds is never
-opened twice. Every failure is a :class:`~j5aio.errors.CommunicationError`.
+Ports are claimed in :mod:`~j5aio.backends.hardware.registry`, so a port that a live
+backend holds is never opened twice. Every failure is a :class:`~j5aio.errors.CommunicationError`.
 
 A board found by discovery or attached by port is looked for again when it vanishes
 (see :mod:`.reconnect`): by its USB serial number for a discovered board (its port
