@@ -419,6 +419,9 @@ def _run(args: argparse.Namespace) -> int:
         os.environ[ENVIRONMENT_VARIABLE] = args.environment
     sys.argv = [str(program), *args.arguments]
     sys.path.insert(0, str(program.resolve().parent))
+    from j5aio.safety import install
+
+    install()  # the exit hook, excepthook and signal handlers, before the program runs
     from j5aio.tracebacks import run_program
 
     try:

@@ -82,10 +82,9 @@ def track(board: Board) -> None:
             f"the match is over: {board} cannot be opened after game over (the program "
             "is ending with every board safe)"
         )
-    from j5aio.safety import hooks, rescue
-
-    hooks.install()
     if loop is not None:
+        from j5aio.safety import rescue
+
         rescue.watch(loop)
 
 

@@ -377,3 +377,20 @@ def test_a_board_made_after_game_over_is_refused_and_its_port_closed() -> None:
     with pytest.raises(GameOverError, match="after game over"):
         LampBoard("L", backend)
     assert backend.closed_now and lifetime.open_boards() == []
+
+
+async def test_making_a_board_installs_no_process_hooks_a_group_does(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from j5aio.boards.board_group import BoardGroup
+
+    from .conftest import LampBackend
+
+    installs: list[str] = []
+    monkeypatch.setattr(hooks, "install", lambda: installs.append("install"))
+    board, _ = lamp()
+    assert board in lifetime.open_boards() and installs == []  # a test's board: nothing
+    group = await BoardGroup.get_board_group(LampBoard, LampBackend)
+    assert installs == ["install"]  # a program's way to its boards installs the hooks
+    for found in group:
+        await found.close()

@@ -34,6 +34,7 @@ from j5aio.backends.hardware.transports.discovery import (
 )
 from j5aio.boards.board import Board
 from j5aio.errors import CommunicationError, UnsupportedFirmwareError
+from j5aio.safety import hooks as safety_hooks
 
 __all__ = ["REOPEN_DELAY", "attach", "discover_serial_boards", "serial_backends"]
 
@@ -127,6 +128,7 @@ async def attach(
     :raises CommunicationError: no kind recognised the board; the message lists what
         was tried.
     """
+    safety_hooks.install()  # a program's way to a board: it gets the safety hooks
     backends = serial_backends()
 
     async def connect() -> Board:

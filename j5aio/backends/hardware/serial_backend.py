@@ -51,6 +51,7 @@ from j5aio.errors import (
     DeviceMissingSerialNumberError,
     UnsupportedFirmwareError,
 )
+from j5aio.safety import hooks as safety_hooks
 
 __all__ = ["SerialHardwareBackend", "scaled"]
 
@@ -205,6 +206,7 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         :raises CommunicationError: the port could not be opened, or the board did not
             answer as it should.
         """
+        safety_hooks.install()  # a program's way to a board: it gets the safety hooks
 
         async def connect() -> BoardT:
             found = await anyio.to_thread.run_sync(find_port, port)
