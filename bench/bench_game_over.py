@@ -39,6 +39,7 @@ import argparse
 import json
 import os
 import re
+import socket
 import statistics
 import subprocess
 import sys
@@ -397,6 +398,14 @@ def _alive(pid: int) -> bool:
     return state not in ("Z", "X")
 
 
+def _free_port() -> int:
+    """A free TCP port for the child's robot lock (so no other robot program stops it)."""
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
+        probe.bind(("127.0.0.1", 0))
+        port: int = probe.getsockname()[1]
+        return port
+
+
 def run_trial(kind: str, *, duration: float = DURATION, timeout: float = 60.0) -> Trial:
     """Run one program through a match of ``duration`` seconds under ``j5aio run``."""
     with tempfile.TemporaryDirectory() as folder:
@@ -415,6 +424,7 @@ def run_trial(kind: str, *, duration: float = DURATION, timeout: float = 60.0) -
         env["J5AIO_METADATA"] = str(metadata)
         env["J5AIO_START_FILE"] = str(Path(folder) / "start")
         env["J5AIO_MEDIA_ROOTS"] = str(Path(folder) / "media")
+        env["J5AIO_LOCK_PORT"] = str(_free_port())
         env["PYTHONPATH"] = os.pathsep.join([str(ROOT), env.get("PYTHONPATH", "")])
         process = subprocess.run(
             [sys.executable, "-m", "j5aio", "run", "--no-log", str(program)],
@@ -489,6 +499,10 @@ def report(results: list[Trial]) -> None:
         if missing:
             print(f"  {missing} trial(s) without a Game over line")
         print(f"  exit statuses: {sorted({r.returncode for r in mine})}")
+        failed = next((r for r in mine if r.returncode != 0), None)
+        if failed is not None:
+            last = (failed.stderr.strip().splitlines() or ["(nothing on stderr)"])[-1]
+            print(f"  a failed trial's last line: {last}")
 
 
 def main() -> None:

@@ -57,10 +57,12 @@ def test_report_and_braked_after(capsys: pytest.CaptureFixture[str]) -> None:
     assert bench.braked_after([(1.0, "A", ["FORWARD", "BRAKE"])], 0.0) is None
     bench.report([
         bench.Trial("spin", 0.01, True, 0, "Game over", group_gone_after=0.3),
-        bench.Trial("spin", None, True, 0, "", group_gone_after=1.5, forked_alive=True),
+        bench.Trial("spin", None, True, 1, "Traceback\nboom", group_gone_after=1.5,
+                    forked_alive=True),
     ])
     out = capsys.readouterr().out
     assert "within 50 ms" in out and "still driving" in out
     assert "1 trial(s) with the process group alive after 1000 ms" in out
     assert "a forked child outlived the match" in out
     assert "1 trial(s) without a Game over line" in out
+    assert "a failed trial's last line: boom" in out
