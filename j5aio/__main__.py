@@ -563,6 +563,9 @@ def _match(args: argparse.Namespace, program: Path) -> Iterator[bool]:
                 stack.callback(log.close)
                 log.write_header(program.resolve(), metadata)
                 print(f"j5aio: logging this run to {log.path}", file=sys.stderr)
+                from j5aio.competition.supervisor import report_log
+
+                report_log(log.path)  # the supervisor's game over goes in the log too
                 stack.enter_context(teeing(log))
         yield True
 

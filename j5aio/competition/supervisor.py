@@ -50,6 +50,7 @@ __all__ = [
     "adopt",
     "is_supervised",
     "make_boards_safe",
+    "report_log",
     "report_safe",
     "report_start",
     "supervise",
@@ -108,6 +109,11 @@ def report_safe() -> None:
     _report("safe")
 
 
+def report_log(path: os.PathLike[str] | str) -> None:
+    """Tell the supervisor (if any) where the run log is, for its own game-over line."""
+    _report(f"log {os.fspath(path)}")
+
+
 # -- the supervisor's side --------------------------------------------------------------------
 
 
@@ -147,6 +153,8 @@ class _Watch:
     def __init__(self) -> None:
         self.ends_at: float | None = None
         self.safe = False
+        #: The program's run log, if it keeps one.
+        self.log: str | None = None
         self._buffer = b""
 
     def deadline(self) -> float | None:
@@ -165,6 +173,8 @@ class _Watch:
                     self.ends_at = float(rest)
             elif word == "safe":
                 self.safe = True
+            elif word == "log" and rest:
+                self.log = rest
 
 
 def supervise(
@@ -228,11 +238,13 @@ def _watch(
             _end_group(child.pid)
             if not watch.safe:
                 make_safe(environment)
-                tell(
+                line = (
                     f"Game over: the program did not stop its boards in time; its "
                     f"processes were ended {1000 * (killed_at - watch.ends_at):.0f} ms "
                     "after the end and every board is safe."
                 )
+                tell(line)
+                _append_to_log(watch.log, line)
             continue
         if killed_at is not None:
             timeout = 0.01  # ended: only waiting for the kernel to say so
@@ -251,6 +263,17 @@ def _watch(
         else:
             with contextlib.suppress(subprocess.TimeoutExpired):
                 child.wait(timeout)
+
+
+def _append_to_log(path: str | None, line: str) -> None:
+    """Add the supervisor's line to the program's run log (if it keeps one)."""
+    if path is None:
+        return
+    try:
+        with open(path, "a", encoding="utf-8") as log:
+            log.write(f"{time.strftime('%H:%M:%S')} [supervisor] {line}\n")
+    except OSError as error:
+        _say(f"j5aio: could not add to the run log {path}: {error}")
 
 
 def _select(fd: int, timeout: float) -> tuple[list[int], list[int], list[int]]:

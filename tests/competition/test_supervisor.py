@@ -129,7 +129,8 @@ def test_the_program_side_reports_over_the_pipe_and_hides_it(
         assert SUPERVISOR_FD_VARIABLE not in os.environ  # not passed on to its programs
         supervisor.report_start(12.5)
         supervisor.report_safe()
-        assert os.read(read_end, 100) == b"start 12.5\nsafe\n"
+        supervisor.report_log(Path("/tmp/run.log"))
+        assert os.read(read_end, 100) == b"start 12.5\nsafe\nlog /tmp/run.log\n"
     finally:
         os.close(read_end)
         os.close(write_end)
@@ -148,8 +149,16 @@ def test_the_watch_reads_lines_in_pieces() -> None:
     assert watch.ends_at is None
     watch.feed(b"2.5\nsta")
     assert watch.ends_at == 12.5 and not watch.safe
-    watch.feed(b"rt soon\nnoise\nsafe\n")
-    assert watch.ends_at == 12.5 and watch.safe
+    watch.feed(b"rt soon\nnoise\nsafe\nlog /tmp/run 1.log\n")
+    assert watch.ends_at == 12.5 and watch.safe and watch.log == "/tmp/run 1.log"
+
+
+def test_a_run_log_that_cannot_be_written_is_reported(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    supervisor._append_to_log(None, "Game over")  # no log kept: nothing to do
+    supervisor._append_to_log(str(tmp_path / "absent" / "run.log"), "Game over")
+    assert "could not add to the run log" in capsys.readouterr().err
 
 
 def test_only_the_hardware_has_boards_to_stop_after_the_program(
@@ -209,12 +218,14 @@ def test_run_supervises_a_timed_match_from_outside(tmp_path: Path) -> None:
     env["J5AIO_START_FILE"] = str(tmp_path / "start")
     env["J5AIO_MEDIA_ROOTS"] = str(tmp_path / "media")
     result = subprocess.run(
-        [sys.executable, "-m", "j5aio", "run", "--sim", "--no-log", "--mode", "comp",
-         "--duration", "0.5", "--start-after", "0.1", str(program)],
+        [sys.executable, "-m", "j5aio", "run", "--sim", "--log-dir", str(tmp_path / "logs"),
+         "--mode", "comp", "--duration", "0.5", "--start-after", "0.1", str(program)],
         capture_output=True, text=True, env=env, timeout=60, check=False,
     )
     assert result.returncode == 0, result.stderr
     assert "Game over: the program did not stop its boards in time" in result.stderr
+    (log,) = (tmp_path / "logs").glob("run-*.log")
+    assert "[supervisor] Game over: the program did not stop" in log.read_text()
 
 
 def test_run_supervises_only_timed_matches(
