@@ -50,6 +50,7 @@ __all__ = [
     "adopt",
     "is_supervised",
     "make_boards_safe",
+    "prepare_boards_safe",
     "report_log",
     "report_safe",
     "report_start",
@@ -117,6 +118,27 @@ def report_log(path: os.PathLike[str] | str) -> None:
 # -- the supervisor's side --------------------------------------------------------------------
 
 
+def _has_boards_left(environment: str | None) -> bool:
+    """Whether boards of ``environment`` outlive the program's process (the hardware's)."""
+    return environment in (None, "", "hardware")
+
+
+def prepare_boards_safe(environment: str | None) -> None:
+    """Load what :func:`make_boards_safe` needs now, so that it loses no time at the end.
+
+    The supervisor calls it while the program starts (it saves about a third of a second
+    of imports after the end).
+    """
+    if not _has_boards_left(environment):
+        return
+    import anyio  # noqa: F401 - loaded now, used at the end
+
+    from j5aio.environments import hardware_environment
+    from j5aio.safety import orderly  # noqa: F401 - loaded now, used at the end
+
+    hardware_environment().backends  # noqa: B018 - loads every hardware backend
+
+
 def make_boards_safe(environment: str | None) -> None:
     """Make the boards safe after the program's processes were ended.
 
@@ -124,7 +146,7 @@ def make_boards_safe(environment: str | None) -> None:
         ``console``; ``None`` or empty: the hardware). Only the hardware has boards left
         to stop: the simulated kit ended with the program's process.
     """
-    if environment not in (None, "", "hardware"):
+    if not _has_boards_left(environment):
         return
     import anyio
 
@@ -182,6 +204,7 @@ def supervise(
     *,
     environment: str | None = None,
     make_safe: Callable[[str | None], None] = make_boards_safe,
+    prepare: Callable[[str | None], None] = prepare_boards_safe,
     say: Callable[[str], None] | None = None,
 ) -> int:
     """Run ``command`` (a supervised program) and end its match from outside it.
@@ -190,6 +213,7 @@ def supervise(
         :data:`SUPERVISOR_FD_VARIABLE`).
     :param environment: the program's environment name, for :func:`make_boards_safe`.
     :param make_safe: makes the boards safe after the program was ended (tests replace it).
+    :param prepare: loads what ``make_safe`` needs, while the program starts.
     :param say: prints a line for the user (standard error by default).
     :returns: the exit status: the program's own, or 0 after game over.
     """
@@ -205,6 +229,10 @@ def supervise(
         os.close(write_end)
     previous = _forward_signals(child.pid)
     try:
+        try:
+            prepare(environment)
+        except Exception as error:  # making safe at the end will try (and say) again
+            tell(f"j5aio: could not prepare to make the boards safe: {error!r}")
         return _watch(child, read_end, environment, make_safe, tell)
     finally:
         os.close(read_end)

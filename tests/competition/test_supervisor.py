@@ -53,16 +53,18 @@ def gone(pid: int) -> bool:
 
 def test_a_program_holding_the_gil_is_ended_and_its_boards_made_safe() -> None:
     safe_for: list[str | None] = []
+    prepared: list[str | None] = []
     said: list[str] = []
     started = time.monotonic()
     status = supervise(
         child(0.2, "while True:\n    sum(range(4 * 10**8))\n"),
         environment="hardware",
         make_safe=safe_for.append,
+        prepare=prepared.append,
         say=said.append,
     )
     assert status == 0
-    assert safe_for == ["hardware"]
+    assert prepared == ["hardware"] and safe_for == ["hardware"]
     assert len(said) == 1 and said[0].startswith("Game over: the program did not stop")
     assert time.monotonic() - started < 30  # ended, not waited out
 
@@ -89,6 +91,36 @@ os._exit(0)
     while not gone(forked) and time.monotonic() < deadline:
         time.sleep(0.01)
     assert gone(forked)
+
+
+def test_a_failure_to_prepare_is_told_and_the_program_still_watched() -> None:
+    said: list[str] = []
+
+    def broken(environment: str | None) -> None:
+        raise ImportError("no hardware backends")
+
+    command = [sys.executable, "-c", "raise SystemExit(4)"]
+    assert supervise(command, prepare=broken, say=said.append) == 4
+    assert said == ["j5aio: could not prepare to make the boards safe: "
+                    "ImportError('no hardware backends')"]
+
+
+def test_preparing_loads_the_hardware_backends_only_for_the_hardware(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    loaded: list[str] = []
+
+    class Hardware:
+        @property
+        def backends(self) -> list[str]:
+            loaded.append("backends")
+            return []
+
+    monkeypatch.setattr("j5aio.environments.hardware_environment", Hardware)
+    supervisor.prepare_boards_safe("sim")
+    assert loaded == []
+    supervisor.prepare_boards_safe("hardware")
+    assert loaded == ["backends"]
 
 
 def test_a_program_ending_before_the_match_keeps_its_status() -> None:
