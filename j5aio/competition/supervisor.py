@@ -45,6 +45,7 @@ from typing import Final
 
 __all__ = [
     "GROUP_WAIT",
+    "NO_SUPERVISOR_VARIABLE",
     "SAFE_WAIT",
     "SUPERVISOR_FD_VARIABLE",
     "adopt",
@@ -59,6 +60,10 @@ __all__ = [
 
 #: The environment variable through which a supervised program finds its pipe.
 SUPERVISOR_FD_VARIABLE: Final = "J5AIO_SUPERVISOR_FD"
+#: Set to ``1`` by a test harness that must run the program in its own process (to look
+#: into the simulated kit): ``j5aio run`` then runs it there, with the in-process match
+#: timer only. It is read before the program runs, so a program cannot set it for itself.
+NO_SUPERVISOR_VARIABLE: Final = "J5AIO_NO_SUPERVISOR"
 #: Seconds after the end by which the program must have reported its boards safe.
 SAFE_WAIT: Final = 0.03
 #: Seconds after the end by which the program's whole process group is ended.
