@@ -13,6 +13,7 @@ import pytest
 
 from j5aio.boards.board import Board
 from j5aio.robot import DEFAULT_LOCK_PORT
+from j5aio.safety import registry
 from j5aio.simulator import kit as kit_module
 
 
@@ -106,10 +107,12 @@ _children_start_with_default_signals()
 
 @pytest.fixture(autouse=True)
 def _forget_boards() -> Iterator[None]:
-    """Start and end every test with no registered boards."""
+    """Start and end every test with no registered boards, and no match over."""
     Board.BOARDS.clear()
     yield
     Board.BOARDS.clear()
+    registry._game_over.clear()
+    registry._game_over_done.clear()
 
 
 @pytest.fixture
