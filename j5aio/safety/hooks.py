@@ -101,6 +101,10 @@ def _excepthook(
         return
     if not interactive:
         if issubclass(kind, KeyboardInterrupt):
+            # The program is ending: a further Ctrl-C would only tear the safe stop and the
+            # interpreter's own exit hooks (with a traceback), so it is ignored from now on,
+            # before anything else is done.
+            _ignore_further_interrupts()
             _finish("the program was stopped with Ctrl-C")
         else:
             _finish(f"the program stopped on an unhandled {kind.__name__}")
@@ -114,13 +118,16 @@ def _excepthook(
         else:
             message = "Stopped (Ctrl-C); every board was made safe."
         print(message, file=sys.stderr, flush=True)
-        # The program is ending: a further Ctrl-C would only tear the interpreter's own
-        # exit hooks (with a traceback), so it is ignored from now on.
-        if threading.current_thread() is threading.main_thread():
-            with contextlib.suppress(ValueError, OSError):
-                signal.signal(signal.SIGINT, _ignore_interrupt)
+        _ignore_further_interrupts()
         return
     _previous_excepthook(kind, value, traceback)
+
+
+def _ignore_further_interrupts() -> None:
+    """Ignore Ctrl-C from now on (the main thread only can say so)."""
+    if threading.current_thread() is threading.main_thread():
+        with contextlib.suppress(ValueError, OSError):
+            signal.signal(signal.SIGINT, _ignore_interrupt)
 
 
 _previous_excepthook = sys.excepthook
