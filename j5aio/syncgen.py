@@ -749,12 +749,21 @@ class _ClassWriter:
         lines.append(self.body_line("        ", self.result_expr(expr, returns, subst), returns))
         return lines
 
-    def property_lines(self, name: str, returns: Any, doc: str, expr: str) -> list[str]:
-        """A read-only property ``name`` returning ``expr`` (wrapped if it must be)."""
+    def property_lines(
+        self, name: str, returns: Any, doc: str, expr: str, *, kept: bool = False,
+    ) -> list[str]:
+        """A read-only property ``name`` returning ``expr`` (wrapped if it must be).
+
+        With ``kept``, ``expr`` reads an attribute of the core object, and the sync face
+        of a fixed collection it gives is kept by the wrapper (``wrap_kept``).
+        """
         lines = ["    @property"]
         lines += self.def_line("    ", name, ["self"], self.r.render(returns))
         lines += _docstring(doc, "        ", "")
-        lines.append(f"        return {self.result_expr(expr, returns, None)}")
+        result = self.result_expr(expr, returns, None)
+        if kept and result != expr:
+            result = result.replace(f"_wrap({expr})", f'_wrap_kept(self, "{name}", {expr})')
+        lines.append(f"        return {result}")
         return lines
 
     def setter_lines(self, name: str, function: Any, value_name: str, body: str) -> list[str]:
@@ -799,7 +808,7 @@ class _ClassWriter:
     def plain_property(self, name: str, prop: property) -> list[str]:
         returns = self.hints(prop.fget).get("return", Any)
         doc = inspect.getdoc(prop) or f"The {name}."
-        lines = self.property_lines(name, returns, doc, f"self._core.{name}")
+        lines = self.property_lines(name, returns, doc, f"self._core.{name}", kept=True)
         if prop.fset is not None:
             value_name = list(inspect.signature(prop.fset).parameters)[1]
             body = f"self._core.{name} = {{value}}"
@@ -808,7 +817,7 @@ class _ClassWriter:
 
     def instance_attribute(self, name: str, annotation: Any) -> list[str]:
         doc = f"The ``{name}`` of the wrapped object."
-        return self.property_lines(name, annotation, doc, f"self._core.{name}")
+        return self.property_lines(name, annotation, doc, f"self._core.{name}", kept=True)
 
     def class_constant(self, name: str, annotation: Any) -> list[str]:
         rendered = self.r.render(annotation)
@@ -1152,7 +1161,8 @@ def render_module(
     if lazy:
         out.append("from j5aio._lazy import lazy_modules as _lazy_modules")
     used = "\n".join([*bodies, *functions, *environment_lines])
-    for name in ("SyncWrapper", "adopt", "adopt_into", "call", "register", "unwrap", "wrap"):
+    for name in ("SyncWrapper", "adopt", "adopt_into", "call", "register", "unwrap", "wrap",
+                 "wrap_kept"):
         if name == "register" or re.search(rf"\b_{name}\b", used):
             out.append(f"from j5aio.sync.wrapping import {name} as _{name}")
     out.append("")
