@@ -68,6 +68,9 @@ BOARDS = {
     "arduino": "sr-arduino-fw2",
 }
 GOAL = 0.35
+#: The sync facade's loop (one board after another, as sr-robot3): p50 and p95 ratios.
+SYNC_GOAL = 0.95
+SYNC_P95_GOAL = 1.0
 #: Each board's request and reply in one iteration of the loop, for the wire-time figures.
 WIRE_BYTES = {
     "power": (b"BATT:V?\n", b"12000\n"),
@@ -159,6 +162,51 @@ class J5aioLoop:
             await board.close()
 
 
+class J5aioSyncLoop:
+    """The loop through j5aio's sync facade, as a student writes it: one board after another."""
+
+    def __init__(self, paths: dict[str, str]) -> None:
+        from j5aio.sync import wrapping
+
+        backends: dict[str, Any] = {
+            "power": SRV4PowerBoardFw4HardwareBackend,
+            "motor": SRV4MotorBoardFw4HardwareBackend,
+            "servo": SRV4ServoBoardFw4HardwareBackend,
+            "arduino": SRArduinoHardwareBackend,
+        }
+        self.cores: list[Any] = []
+        boards: dict[str, Any] = {}
+        for role, backend in backends.items():
+            core = wrapping.call(backend.attach, paths[role])
+            wrapping.call(core.setup)
+            self.cores.append(core)
+            boards[role] = wrapping.wrap(core)
+        self.power, self.motor = boards["power"], boards["motor"]
+        self.servo, self.arduino = boards["servo"], boards["arduino"]
+        self.arduino.pins[3].mode = GPIOPinMode.DIGITAL_INPUT
+
+    def iteration(self, index: int) -> None:
+        power = 0.5 if index % 2 else -0.5
+        self.power.battery_sensor.voltage  # noqa: B018 - a read over the wire
+        self.motor.motors[0].power = power
+        self.servo.servos[0].position = power
+        self.arduino.pins[3].digital_read()
+
+    def batch(self, iterations: int) -> list[float]:
+        times = []
+        for index in range(iterations):
+            start = time.perf_counter()
+            self.iteration(index)
+            times.append(time.perf_counter() - start)
+        return times
+
+    def close(self) -> None:
+        from j5aio.sync import wrapping
+
+        for core in self.cores:
+            wrapping.call(core.close)
+
+
 class SRRobot3Loop:
     """The same loop through sr-robot3: one board after another."""
 
@@ -196,6 +244,7 @@ class Figures:
 
     def __init__(self) -> None:
         self.ours: list[list[float]] = []
+        self.ours_sync: list[list[float]] = []
         self.theirs: list[list[float]] = []
 
     @staticmethod
@@ -207,11 +256,16 @@ class Figures:
             statistics.quantiles(loops, n=20, method="inclusive")[18] * 1e3,
         )
 
-    def paired_ratio(self) -> float:
-        """The median over neighbouring batches of (j5aio's median / sr-robot3's median)."""
+    def paired_ratio(self, ours_batches: list[list[float]] | None = None) -> float:
+        """The median over neighbouring batches of (j5aio's median / sr-robot3's median).
+
+        ``ours_batches`` are j5aio's async batches unless given (the sync facade's).
+        """
         return statistics.median(
             statistics.median(ours) / statistics.median(theirs)
-            for ours, theirs in zip(self.ours, self.theirs, strict=True)
+            for ours, theirs in zip(
+                self.ours if ours_batches is None else ours_batches, self.theirs, strict=True,
+            )
         )
 
 
@@ -222,20 +276,27 @@ async def run(iterations: int, repeats: int) -> Figures:
     )
     with contextlib.ExitStack() as stack:
         ours_paths = stack.enter_context(served_kit("J5AIO"))
+        sync_paths = stack.enter_context(served_kit("J5SYNC"))
         theirs_paths = stack.enter_context(served_kit("SRR3")) if have_peer else None
         ours = await J5aioLoop.attach(ours_paths)
+        # The sync facade blocks this thread (this loop has nothing else to do meanwhile),
+        # as it blocks a student's main thread.
+        ours_sync = J5aioSyncLoop(sync_paths)
         theirs = SRRobot3Loop(theirs_paths) if theirs_paths is not None else None
         figures = Figures()
         await ours.batch(5)  # warm up
+        ours_sync.batch(5)
         if theirs is not None:
             theirs.batch(5)
         for index in range(repeats):  # interleaved batches, alternating who goes first
             if theirs is not None and index % 2:
                 figures.theirs.append(theirs.batch(iterations))
             figures.ours.append(await ours.batch(iterations))
+            figures.ours_sync.append(ours_sync.batch(iterations))
             if theirs is not None and not index % 2:
                 figures.theirs.append(theirs.batch(iterations))
         await ours.close()
+        ours_sync.close()
     # sr-robot3 resets its boards at exit, after their simulators have gone: quiet.
     logging.getLogger("sr.robot3").setLevel(logging.CRITICAL)
     return figures
@@ -261,6 +322,8 @@ def main(argv: list[str] | None = None) -> None:
     print("                                    p50        p95")
     ours50, ours95 = figures.p50_p95_ms(figures.ours)
     print(f"  j5aio (4 boards at once)       {ours50:8.2f}   {ours95:8.2f} ms")
+    sync50, sync95 = figures.p50_p95_ms(figures.ours_sync)
+    print(f"  j5aio sync (one after another) {sync50:8.2f}   {sync95:8.2f} ms")
     if not figures.theirs:
         print("  sr-robot3                      not installed (pip install sr-robot3); skipped")
         return
@@ -272,6 +335,15 @@ def main(argv: list[str] | None = None) -> None:
     print(
         f"  ratio j5aio / sr-robot3, median over {len(figures.ours)} neighbouring batches "
         f"{ratio:.3f}   (goal <= {GOAL}: {verdict})"
+    )
+    sync_ratio = figures.paired_ratio(figures.ours_sync)
+    sync_verdict = "met" if sync_ratio <= SYNC_GOAL and sync95 <= theirs95 * SYNC_P95_GOAL else (
+        "NOT met"
+    )
+    print(
+        f"  sync facade: ratio of the p95s {sync95 / theirs95:.3f}, j5aio sync / sr-robot3 "
+        f"median over neighbouring batches {sync_ratio:.3f}   (goals <= {SYNC_GOAL}, "
+        f"p95 <= {SYNC_P95_GOAL}: {sync_verdict})"
     )
 
 
