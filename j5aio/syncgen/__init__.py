@@ -8,7 +8,7 @@ of a third-party kit::
 
 The generator imports the given modules (a package is walked) and reads their public
 classes by introspection: every board and component class defined there (a simulator or
-a backend beside them is left alone). For j5aio's own facade (:data:`CORE_SCOPE`) that is every
+a backend beside them is left alone). For j5aio's own facade (``CORE_SCOPE``) that is every
 class of :mod:`j5aio.components` and :mod:`j5aio.boards`, plus
 :class:`~j5aio.backends.environment.Environment`, :class:`~j5aio.robot.BaseRobot`, the
 module-level :class:`~j5aio.backends.environment.Environment` objects of
@@ -30,12 +30,12 @@ A function whose signature uses a type variable bound to a wrapped class
 per core class of the module being generated (pass ``j5aio.boards.sr.v4.MotorBoard``, get
 a ``BoardGroup[j5aio.sync.MotorBoard]``), so that the type checker knows the exact wrapper.
 
-The generator is a package of small modules, one job each: :mod:`~j5aio.syncgen.scope`
-(what to wrap), :mod:`~j5aio.syncgen.discovery` (finding it),
-:mod:`~j5aio.syncgen.namespace` (resolving annotations), :mod:`~j5aio.syncgen.renderer`
-(annotations as source), :mod:`~j5aio.syncgen.members` (kinds of members),
-:mod:`~j5aio.syncgen.class_writer` (one wrapper class),
-:mod:`~j5aio.syncgen.module_writer` (the whole module) and :mod:`~j5aio.syncgen.cli` (the
+The generator is a package of small modules, one job each: ``scope``
+(what to wrap), ``discovery`` (finding it),
+``namespace`` (resolving annotations), ``renderer``
+(annotations as source), ``members`` (kinds of members),
+``class_writer`` (one wrapper class),
+``module_writer`` (the whole module) and ``cli`` (the
 command line). Importing this package loads none of them until a name is used, so the
 command line of j5aio pays for the generator only when ``sync-gen`` runs.
 """
