@@ -9,6 +9,9 @@ board's serial line takes to carry the request and the reply, as on the real wir
 
 * j5aio touches the four boards at once (one task each, in a task group): the loop
   takes as long as the slowest board.
+* j5aio's sync facade (a student's program) touches them one after another, as
+  sr-robot3 does, and so does j5aio's async API awaiting the same requests in turn: the
+  difference between these two is what the facade's thread hand-off costs.
 * sr-robot3 (Student Robotics' own library, from PyPI: ``pip install sr-robot3``, and
   ``opencv-python-headless`` for its vision import) does what its programs do, one
   board after another.
@@ -27,8 +30,8 @@ as 115 200 baud lines here, as the motor board and the Arduino really are.)
 Batches of iterations alternate between the two, so that drift affects both alike.
 Printed: the median (p50) and p95 of each library's loop time, and the median over the
 pairs of neighbouring batches of the ratio of their medians (the headline figure: robust
-against the load of a shared machine changing during the run). Goal: j5aio's loop
-<= 0.35x sr-robot3's.
+against the load of a shared machine changing during the run). Goals: j5aio's loop
+<= 0.35x sr-robot3's; the sync facade's <= 0.95x sr-robot3's at p50 and <= 1.0x at p95.
 
 Run: ``python bench/bench_kits.py [--iterations N] [--repeats R]`` (where sr-robot3 is
 installed, e.g. the ``peers`` tox environment; without it only j5aio is measured).
@@ -149,11 +152,20 @@ class J5aioLoop:
             group.start_soon(self.servo.servos[0].set_position, power)
             group.start_soon(self.arduino.pins[3].digital_read)
 
-    async def batch(self, iterations: int) -> list[float]:
+    async def iteration_in_turn(self, index: int) -> None:
+        """The same requests awaited one after another, as the sync facade makes them."""
+        power = 0.5 if index % 2 else -0.5
+        await self.power.battery_sensor.get_voltage()
+        await self.motor.motors[0].set_power(power)
+        await self.servo.servos[0].set_position(power)
+        await self.arduino.pins[3].digital_read()
+
+    async def batch(self, iterations: int, *, in_turn: bool = False) -> list[float]:
+        iteration = self.iteration_in_turn if in_turn else self.iteration
         times = []
         for index in range(iterations):
             start = time.perf_counter()
-            await self.iteration(index)
+            await iteration(index)
             times.append(time.perf_counter() - start)
         return times
 
@@ -245,6 +257,7 @@ class Figures:
     def __init__(self) -> None:
         self.ours: list[list[float]] = []
         self.ours_sync: list[list[float]] = []
+        self.ours_in_turn: list[list[float]] = []
         self.theirs: list[list[float]] = []
 
     @staticmethod
@@ -293,6 +306,7 @@ async def run(iterations: int, repeats: int) -> Figures:
                 figures.theirs.append(theirs.batch(iterations))
             figures.ours.append(await ours.batch(iterations))
             figures.ours_sync.append(ours_sync.batch(iterations))
+            figures.ours_in_turn.append(await ours.batch(iterations, in_turn=True))
             if theirs is not None and not index % 2:
                 figures.theirs.append(theirs.batch(iterations))
         await ours.close()
@@ -324,6 +338,9 @@ def main(argv: list[str] | None = None) -> None:
     print(f"  j5aio (4 boards at once)       {ours50:8.2f}   {ours95:8.2f} ms")
     sync50, sync95 = figures.p50_p95_ms(figures.ours_sync)
     print(f"  j5aio sync (one after another) {sync50:8.2f}   {sync95:8.2f} ms")
+    turn50, turn95 = figures.p50_p95_ms(figures.ours_in_turn)
+    print(f"  j5aio async, awaited in turn   {turn50:8.2f}   {turn95:8.2f} ms"
+          "   (the sync loop's requests with no thread hand-off)")
     if not figures.theirs:
         print("  sr-robot3                      not installed (pip install sr-robot3); skipped")
         return
