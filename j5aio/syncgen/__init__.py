@@ -30,14 +30,12 @@ A function whose signature uses a type variable bound to a wrapped class
 per core class of the module being generated (pass ``j5aio.boards.sr.v4.MotorBoard``, get
 a ``BoardGroup[j5aio.sync.MotorBoard]``), so that the type checker knows the exact wrapper.
 
-The generator is a package of small modules, one job each: ``scope``
-(what to wrap), ``discovery`` (finding it),
-``namespace`` (resolving annotations), ``renderer``
-(annotations as source), ``members`` (kinds of members),
-``class_writer`` (one wrapper class),
-``module_writer`` (the whole module) and ``cli`` (the
-command line). Importing this package loads none of them until a name is used, so the
-command line of j5aio pays for the generator only when ``sync-gen`` runs.
+The generator is a package of small private modules, one job each: ``_scope`` (what to
+wrap), ``_discovery`` (finding it), ``_namespace`` (resolving annotations), ``_renderer``
+(annotations as source), ``_members`` (kinds of members), ``_class_writer`` (one wrapper
+class), ``_module_writer`` (the whole module) and ``_cli`` (the command line). Importing
+this package loads none of them until a name is used, so the command line of j5aio pays
+for the generator only when ``sync-gen`` runs.
 """
 
 from __future__ import annotations
@@ -45,10 +43,10 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from j5aio.syncgen.cli import add_arguments, check_or_write, main, run
-    from j5aio.syncgen.discovery import Discovery, discover, existing_wrappers
-    from j5aio.syncgen.module_writer import generate, render_module
-    from j5aio.syncgen.scope import CORE_OUTPUT, CORE_SCOPE, Scope
+    from j5aio.syncgen._cli import add_arguments, check_or_write, main, run
+    from j5aio.syncgen._discovery import Discovery, discover, existing_wrappers
+    from j5aio.syncgen._module_writer import generate, render_module
+    from j5aio.syncgen._scope import CORE_OUTPUT, CORE_SCOPE, Scope
 
 __all__ = [
     "CORE_OUTPUT",
@@ -67,18 +65,18 @@ __all__ = [
 
 #: The module of each public name.
 _HOMES = {
-    "CORE_OUTPUT": "scope",
-    "CORE_SCOPE": "scope",
-    "Scope": "scope",
-    "Discovery": "discovery",
-    "discover": "discovery",
-    "existing_wrappers": "discovery",
-    "generate": "module_writer",
-    "render_module": "module_writer",
-    "add_arguments": "cli",
-    "check_or_write": "cli",
-    "main": "cli",
-    "run": "cli",
+    "CORE_OUTPUT": "_scope",
+    "CORE_SCOPE": "_scope",
+    "Scope": "_scope",
+    "Discovery": "_discovery",
+    "discover": "_discovery",
+    "existing_wrappers": "_discovery",
+    "generate": "_module_writer",
+    "render_module": "_module_writer",
+    "add_arguments": "_cli",
+    "check_or_write": "_cli",
+    "main": "_cli",
+    "run": "_cli",
 }
 
 if not TYPE_CHECKING:  # the names are imported above for type checkers

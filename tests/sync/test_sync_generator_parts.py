@@ -10,7 +10,7 @@ from typing import Annotated, ClassVar
 
 import pytest
 
-from j5aio.syncgen import namespace
+from j5aio.syncgen import _namespace as namespace
 
 from .sync_fakes import ROOT, child_env
 
@@ -80,7 +80,7 @@ def test_the_package_loads_its_parts_on_first_use() -> None:
         "after_cli = sorted(m for m in sys.modules if m.startswith('j5aio.syncgen.'))\n"
         "assert 'generate' in dir(g)\n"
         "g.generate\n"
-        "print(before, after_cli, 'j5aio.syncgen.class_writer' in sys.modules)\n"
+        "print(before, after_cli, 'j5aio.syncgen._class_writer' in sys.modules)\n"
         "try:\n"
         "    g.nothing_here\n"
         "except AttributeError as error:\n"
@@ -92,7 +92,7 @@ def test_the_package_loads_its_parts_on_first_use() -> None:
     )
     assert result.returncode == 0, result.stderr
     first, second = result.stdout.splitlines()
-    assert first == "[] ['j5aio.syncgen.cli'] True"
+    assert first == "[] ['j5aio.syncgen._cli'] True"
     assert second == "module 'j5aio.syncgen' has no attribute 'nothing_here'"
 
 

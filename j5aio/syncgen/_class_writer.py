@@ -10,16 +10,16 @@ import typing
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from j5aio.syncgen.members import (
+from j5aio.syncgen._members import (
     _docstring,
     _getter_property_name,
     _is_coroutine_function,
     _is_setter,
     _required_params,
 )
-from j5aio.syncgen.namespace import evaluate
-from j5aio.syncgen.renderer import _Either, _Member, _Renderer, _SyncVar
-from j5aio.syncgen.scope import _NONE_TYPE, FORWARDED_DUNDERS, LINE_LENGTH
+from j5aio.syncgen._namespace import evaluate
+from j5aio.syncgen._renderer import _Either, _Member, _Renderer, _SyncVar
+from j5aio.syncgen._scope import _NONE_TYPE, FORWARDED_DUNDERS, LINE_LENGTH
 
 __all__ = []
 

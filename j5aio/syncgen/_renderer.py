@@ -11,9 +11,9 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from j5aio.syncgen.discovery import Discovery, _public_module
-from j5aio.syncgen.namespace import _Namespace
-from j5aio.syncgen.scope import _NONE_TYPE
+from j5aio.syncgen._discovery import Discovery, _public_module
+from j5aio.syncgen._namespace import _Namespace
+from j5aio.syncgen._scope import _NONE_TYPE
 
 __all__ = []
 

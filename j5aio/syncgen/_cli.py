@@ -58,7 +58,7 @@ def run(options: argparse.Namespace) -> int:
     """Run ``sync-gen`` with parsed ``options`` (see :func:`add_arguments`)."""
     modules: list[str] = list(options.modules)
     command = f"python -m j5aio sync-gen {' '.join(modules)} -o {options.output}"
-    from j5aio.syncgen.module_writer import generate  # (here: only sync-gen needs it)
+    from j5aio.syncgen._module_writer import generate  # (here: only sync-gen needs it)
 
     try:
         source = generate(modules)

@@ -5,10 +5,10 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping, Sequence
 
-from j5aio.syncgen.class_writer import _ClassWriter
-from j5aio.syncgen.discovery import Discovery, discover, existing_wrappers
-from j5aio.syncgen.renderer import _Renderer
-from j5aio.syncgen.scope import CORE_SCOPE, LINE_LENGTH, Scope
+from j5aio.syncgen._class_writer import _ClassWriter
+from j5aio.syncgen._discovery import Discovery, discover, existing_wrappers
+from j5aio.syncgen._renderer import _Renderer
+from j5aio.syncgen._scope import CORE_SCOPE, LINE_LENGTH, Scope
 
 __all__ = ["generate", "render_module"]
 

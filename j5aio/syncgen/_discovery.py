@@ -12,7 +12,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
-from j5aio.syncgen.scope import CORE_SCOPE, Scope
+from j5aio.syncgen._scope import CORE_SCOPE, Scope
 
 __all__ = ["Discovery", "discover", "existing_wrappers"]
 
