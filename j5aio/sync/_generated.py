@@ -1866,8 +1866,22 @@ class ServoBoard(Board):
         """The component classes on a Servo Board."""
         return _boards_sr_v4_servo_board.ServoBoard.supported_components()
 
+    @property
+    def unpower_when_safe(self) -> bool:
+        """Whether :meth:`make_safe` switches every servo off (``False`` unless set).
+
+        By default the servos are left where they are, the safest choice for most
+        mechanisms; sr-robot3 and sbot switch them off when the program ends, and their
+        APIs on j5aio (:mod:`j5aio.compat`) set this to do the same.
+        """
+        return self._core.unpower_when_safe
+
+    @unpower_when_safe.setter
+    def unpower_when_safe(self, value: bool) -> None:
+        self._core.unpower_when_safe = value
+
     def make_safe(self) -> None:
-        """Do nothing: leaving the servos where they are is the safest choice."""
+        """Leave the servos where they are, or switch them off if :attr:`unpower_when_safe`."""
         _call(self._core.make_safe)
 
 
