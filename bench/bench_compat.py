@@ -18,15 +18,24 @@ calls, the two sides taking turns batch by batch (so that the load of a shared m
 falls on both alike); the figure is the median of the batches' mean time per call, in
 µs, with the ratio compat / sync.
 
-sbot (``j5aio.compat.sbot``) is measured the same way once its module exists: its cases
-go in :data:`SBOT_CASES` (``motors.set_power(0, 0.5)`` beside the sync call on the same
-motor, ...), run on the ``sb2024`` kit in a child process (one robot per process).
+sbot (``j5aio.compat.sbot``) is measured the same way on the ``sb2024`` kit, in a child
+process (one robot per process; ``--api sbot`` runs only that part), with the same
+j5aio objects as the sync side:
+
+* ``motors.set_power``: ``motors.set_power(0, 0.5)`` beside ``motor.power = 0.5``;
+* ``motors.get_power``: reading it back;
+* ``battery data``: ``power.get_battery_data()`` beside the battery sensor's voltage and
+  current;
+* ``is_output_on``: ``power.is_output_on(0)`` beside ``output.is_enabled``;
+* ``set_position``: ``servos.set_position(0, 0.25)`` beside ``servo.position = 0.25``;
+* ``digital_read``, ``analog_read``: pin 3 and A0 of the Arduino.
 
 Run::
 
     PYTHONPATH=$PWD python bench/bench_compat.py [--calls 2000] [--rounds 7] [--batch 50]
+        [--api sr-robot3|sbot]
 
-Goal (issue 20): compat / sync <= 1.0 (within the noise of a shared machine: a few %).
+Goal: compat / sync <= 1.0 (within the noise of a shared machine: a few %).
 """
 
 from __future__ import annotations
@@ -34,6 +43,7 @@ from __future__ import annotations
 import argparse
 import os
 import statistics
+import subprocess
 import sys
 import time
 from collections.abc import Callable
@@ -84,9 +94,52 @@ def sr_robot3_cases() -> list[Case]:
     ]
 
 
-#: sbot's cases, once ``j5aio.compat.sbot`` exists: a function giving
-#: ``(name, compat call, sync call)`` triples on the sb2024 kit, as :func:`sr_robot3_cases`.
-SBOT_CASES: Callable[[], list[Case]] | None = None
+def sbot_cases() -> list[Case]:
+    """The sbot cases, on the sb2024 kit: (name, the compat call, the call through j5aio.sync)."""
+    os.environ.update({"J5AIO_ENV": "sim", "J5AIO_KIT": "sb2024", "SBOT_SKIP_WAIT_START": "1"})
+    import logging
+
+    from j5aio.compat.sbot import AnalogPin, GPIOPinMode, arduino, motors, power, servos, utils
+    from j5aio.compat.sbot._robot import boards
+
+    utils.load_boards()
+    logging.getLogger().setLevel(logging.WARNING)  # (sbot logs at INFO)
+    motor = boards.motor(0).component
+    servo = boards.servo(0).component
+    servos.set_position(0, 0.25)  # (gives the servo sbot's pulse limits first)
+    board = boards.power_board()
+    output, battery = board.outputs[0], board.battery_sensor
+    arduino.set_pin_mode(3, GPIOPinMode.INPUT)
+    pin, analogue = boards.arduino().pins[3], boards.arduino().pins[AnalogPin.A0]
+
+    def set_power() -> None:
+        motors.set_power(0, 0.5)
+
+    def set_core_power() -> None:
+        motor.power = 0.5
+
+    def set_position() -> None:
+        servos.set_position(0, 0.25)
+
+    def set_core_position() -> None:
+        servo.position = 0.25
+
+    return [
+        ("motors.set_power", set_power, set_core_power),
+        ("motors.get_power", lambda: motors.get_power(0), lambda: motor.power),
+        ("battery data", power.get_battery_data, lambda: (battery.voltage, battery.current)),
+        ("is_output_on", lambda: power.is_output_on(0), lambda: output.is_enabled),
+        ("set_position", set_position, set_core_position),
+        ("digital_read", lambda: arduino.digital_read(3), pin.digital_read),
+        ("analog_read", lambda: arduino.analog_read(AnalogPin.A0), analogue.analogue_read),
+    ]
+
+
+#: The cases of each API, by the name ``--api`` gives it.
+CASES: dict[str, tuple[str, Callable[[], list[Case]]]] = {
+    "sr-robot3": ("sr-robot3 on the simulated sr2023 kit", sr_robot3_cases),
+    "sbot": ("sbot on the simulated sb2024 kit", sbot_cases),
+}
 
 
 def per_call(call: Callable[[], Any], calls: int) -> float:
@@ -126,11 +179,20 @@ def main() -> int:
     parser.add_argument("--rounds", type=int, default=7, help="rounds over the cases")
     parser.add_argument(
         "--batch", type=int, default=50, help="calls per timed batch (sides alternate)")
+    parser.add_argument(
+        "--api", choices=tuple(CASES), help="measure only this API (default: each, in turn)")
     args = parser.parse_args()
-    print(f"sr-robot3 on the simulated sr2023 kit: {args.calls} calls x {args.rounds} rounds")
-    measure(sr_robot3_cases(), args.calls, args.rounds, args.batch)
-    if SBOT_CASES is None:
-        print("sbot: j5aio.compat.sbot's cases are not written yet (see SBOT_CASES)")
+    if args.api is None:  # one robot per process: each API in a child of its own
+        options = ["--calls", str(args.calls), "--rounds", str(args.rounds),
+                   "--batch", str(args.batch)]
+        for api in CASES:
+            done = subprocess.run([sys.executable, __file__, *options, "--api", api], check=False)
+            if done.returncode:
+                return done.returncode
+        return 0
+    title, cases = CASES[args.api]
+    print(f"{title}: {args.calls} calls x {args.rounds} rounds", flush=True)
+    measure(cases(), args.calls, args.rounds, args.batch)
     return 0
 
 

@@ -7,7 +7,7 @@ spoken to: this is the cost of the wrappers alone. Run::
 
     python bench/bench_sync_wrappers.py [--accesses 20000] [--rounds 7]
 
-Goal (issue 21): a wrapped container access through the facade <= 2 µs.
+Goal: a wrapped container access through the facade <= 2 µs.
 """
 
 from __future__ import annotations

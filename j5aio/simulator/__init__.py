@@ -1,6 +1,7 @@
 """Board simulators that speak each board's wire protocol, byte for byte.
 
-Each simulator is written from the protocol description alone (``protocols.md``), so that
+Each simulator is written from the protocol description alone (the protocol pages of
+:doc:`/internals/index`), so that
 it checks the host code rather than mirroring it. They are synchronous state machines with
 no clock; transports wrap them.
 
@@ -97,10 +98,17 @@ class SerialSimulatorFactory(Protocol):
 
 
 def _unwrap(factory: object) -> object:
-    """A factory as given, or the class a :class:`~j5aio.board_kinds.SimulatorClass` names."""
+    """A factory as given, or the class a :class:`~j5aio.board_kinds.SimulatorClass` names.
+
+    (One that makes its class with more arguments stays as it is.)
+    """
     from j5aio.board_kinds import SimulatorClass
 
-    return factory.resolve() if isinstance(factory, SimulatorClass) else factory
+    if isinstance(factory, SimulatorClass) and factory.serial_keyword is None and not (
+        factory.keywords
+    ):
+        return factory.resolve()
+    return factory
 
 
 class _SerialSimulators(Mapping[str, SerialSimulatorFactory]):
