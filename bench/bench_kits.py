@@ -9,6 +9,9 @@ board's serial line takes to carry the request and the reply, as on the real wir
 
 * j5aio touches the four boards at once (one task each, in a task group): the loop
   takes as long as the slowest board.
+* j5aio's sync facade (a student's program) touches them one after another, as
+  sr-robot3 does, and so does j5aio's async API awaiting the same requests in turn: the
+  difference between these two is what the facade's thread hand-off costs.
 * sr-robot3 (Student Robotics' own library, from PyPI: ``pip install sr-robot3``, and
   ``opencv-python-headless`` for its vision import) does what its programs do, one
   board after another.
@@ -27,8 +30,8 @@ as 115 200 baud lines here, as the motor board and the Arduino really are.)
 Batches of iterations alternate between the two, so that drift affects both alike.
 Printed: the median (p50) and p95 of each library's loop time, and the median over the
 pairs of neighbouring batches of the ratio of their medians (the headline figure: robust
-against the load of a shared machine changing during the run). Goal: j5aio's loop
-<= 0.35x sr-robot3's.
+against the load of a shared machine changing during the run). Goals: j5aio's loop
+<= 0.35x sr-robot3's; the sync facade's <= 0.95x sr-robot3's at p50 and <= 1.0x at p95.
 
 Run: ``python bench/bench_kits.py [--iterations N] [--repeats R]`` (where sr-robot3 is
 installed, e.g. the ``peers`` tox environment; without it only j5aio is measured).
@@ -68,6 +71,9 @@ BOARDS = {
     "arduino": "sr-arduino-fw2",
 }
 GOAL = 0.35
+#: The sync facade's loop (one board after another, as sr-robot3): p50 and p95 ratios.
+SYNC_GOAL = 0.95
+SYNC_P95_GOAL = 1.0
 #: Each board's request and reply in one iteration of the loop, for the wire-time figures.
 WIRE_BYTES = {
     "power": (b"BATT:V?\n", b"12000\n"),
@@ -146,17 +152,71 @@ class J5aioLoop:
             group.start_soon(self.servo.servos[0].set_position, power)
             group.start_soon(self.arduino.pins[3].digital_read)
 
-    async def batch(self, iterations: int) -> list[float]:
+    async def iteration_in_turn(self, index: int) -> None:
+        """The same requests awaited one after another, as the sync facade makes them."""
+        power = 0.5 if index % 2 else -0.5
+        await self.power.battery_sensor.get_voltage()
+        await self.motor.motors[0].set_power(power)
+        await self.servo.servos[0].set_position(power)
+        await self.arduino.pins[3].digital_read()
+
+    async def batch(self, iterations: int, *, in_turn: bool = False) -> list[float]:
+        iteration = self.iteration_in_turn if in_turn else self.iteration
         times = []
         for index in range(iterations):
             start = time.perf_counter()
-            await self.iteration(index)
+            await iteration(index)
             times.append(time.perf_counter() - start)
         return times
 
     async def close(self) -> None:
         for board in (self.power, self.motor, self.servo, self.arduino):
             await board.close()
+
+
+class J5aioSyncLoop:
+    """The loop through j5aio's sync facade, as a student writes it: one board after another."""
+
+    def __init__(self, paths: dict[str, str]) -> None:
+        from j5aio.sync import wrapping
+
+        backends: dict[str, Any] = {
+            "power": SRV4PowerBoardFw4HardwareBackend,
+            "motor": SRV4MotorBoardFw4HardwareBackend,
+            "servo": SRV4ServoBoardFw4HardwareBackend,
+            "arduino": SRArduinoHardwareBackend,
+        }
+        self.cores: list[Any] = []
+        boards: dict[str, Any] = {}
+        for role, backend in backends.items():
+            core = wrapping.call(backend.attach, paths[role])
+            wrapping.call(core.setup)
+            self.cores.append(core)
+            boards[role] = wrapping.wrap(core)
+        self.power, self.motor = boards["power"], boards["motor"]
+        self.servo, self.arduino = boards["servo"], boards["arduino"]
+        self.arduino.pins[3].mode = GPIOPinMode.DIGITAL_INPUT
+
+    def iteration(self, index: int) -> None:
+        power = 0.5 if index % 2 else -0.5
+        self.power.battery_sensor.voltage  # noqa: B018 - a read over the wire
+        self.motor.motors[0].power = power
+        self.servo.servos[0].position = power
+        self.arduino.pins[3].digital_read()
+
+    def batch(self, iterations: int) -> list[float]:
+        times = []
+        for index in range(iterations):
+            start = time.perf_counter()
+            self.iteration(index)
+            times.append(time.perf_counter() - start)
+        return times
+
+    def close(self) -> None:
+        from j5aio.sync import wrapping
+
+        for core in self.cores:
+            wrapping.call(core.close)
 
 
 class SRRobot3Loop:
@@ -196,6 +256,8 @@ class Figures:
 
     def __init__(self) -> None:
         self.ours: list[list[float]] = []
+        self.ours_sync: list[list[float]] = []
+        self.ours_in_turn: list[list[float]] = []
         self.theirs: list[list[float]] = []
 
     @staticmethod
@@ -207,11 +269,16 @@ class Figures:
             statistics.quantiles(loops, n=20, method="inclusive")[18] * 1e3,
         )
 
-    def paired_ratio(self) -> float:
-        """The median over neighbouring batches of (j5aio's median / sr-robot3's median)."""
+    def paired_ratio(self, ours_batches: list[list[float]] | None = None) -> float:
+        """The median over neighbouring batches of (j5aio's median / sr-robot3's median).
+
+        ``ours_batches`` are j5aio's async batches unless given (the sync facade's).
+        """
         return statistics.median(
             statistics.median(ours) / statistics.median(theirs)
-            for ours, theirs in zip(self.ours, self.theirs, strict=True)
+            for ours, theirs in zip(
+                self.ours if ours_batches is None else ours_batches, self.theirs, strict=True,
+            )
         )
 
 
@@ -222,20 +289,28 @@ async def run(iterations: int, repeats: int) -> Figures:
     )
     with contextlib.ExitStack() as stack:
         ours_paths = stack.enter_context(served_kit("J5AIO"))
+        sync_paths = stack.enter_context(served_kit("J5SYNC"))
         theirs_paths = stack.enter_context(served_kit("SRR3")) if have_peer else None
         ours = await J5aioLoop.attach(ours_paths)
+        # The sync facade blocks this thread (this loop has nothing else to do meanwhile),
+        # as it blocks a student's main thread.
+        ours_sync = J5aioSyncLoop(sync_paths)
         theirs = SRRobot3Loop(theirs_paths) if theirs_paths is not None else None
         figures = Figures()
         await ours.batch(5)  # warm up
+        ours_sync.batch(5)
         if theirs is not None:
             theirs.batch(5)
         for index in range(repeats):  # interleaved batches, alternating who goes first
             if theirs is not None and index % 2:
                 figures.theirs.append(theirs.batch(iterations))
             figures.ours.append(await ours.batch(iterations))
+            figures.ours_sync.append(ours_sync.batch(iterations))
+            figures.ours_in_turn.append(await ours.batch(iterations, in_turn=True))
             if theirs is not None and not index % 2:
                 figures.theirs.append(theirs.batch(iterations))
         await ours.close()
+        ours_sync.close()
     # sr-robot3 resets its boards at exit, after their simulators have gone: quiet.
     logging.getLogger("sr.robot3").setLevel(logging.CRITICAL)
     return figures
@@ -261,6 +336,11 @@ def main(argv: list[str] | None = None) -> None:
     print("                                    p50        p95")
     ours50, ours95 = figures.p50_p95_ms(figures.ours)
     print(f"  j5aio (4 boards at once)       {ours50:8.2f}   {ours95:8.2f} ms")
+    sync50, sync95 = figures.p50_p95_ms(figures.ours_sync)
+    print(f"  j5aio sync (one after another) {sync50:8.2f}   {sync95:8.2f} ms")
+    turn50, turn95 = figures.p50_p95_ms(figures.ours_in_turn)
+    print(f"  j5aio async, awaited in turn   {turn50:8.2f}   {turn95:8.2f} ms"
+          "   (the sync loop's requests with no thread hand-off)")
     if not figures.theirs:
         print("  sr-robot3                      not installed (pip install sr-robot3); skipped")
         return
@@ -272,6 +352,15 @@ def main(argv: list[str] | None = None) -> None:
     print(
         f"  ratio j5aio / sr-robot3, median over {len(figures.ours)} neighbouring batches "
         f"{ratio:.3f}   (goal <= {GOAL}: {verdict})"
+    )
+    sync_ratio = figures.paired_ratio(figures.ours_sync)
+    sync_verdict = "met" if sync_ratio <= SYNC_GOAL and sync95 <= theirs95 * SYNC_P95_GOAL else (
+        "NOT met"
+    )
+    print(
+        f"  sync facade: ratio of the p95s {sync95 / theirs95:.3f}, j5aio sync / sr-robot3 "
+        f"median over neighbouring batches {sync_ratio:.3f}   (goals <= {SYNC_GOAL}, "
+        f"p95 <= {SYNC_P95_GOAL}: {sync_verdict})"
     )
 
 

@@ -9,6 +9,8 @@ Measures, in one run, the median time of:
   loop in another thread (``call_soon_threadsafe``) and being woken back by a lock, with
   no coroutine at all; and the floor for any two-thread hand-off, a lock each way (two
   futex wake-ups, which is what j5aio's portal pays);
+* (simulated case only) the floor of a facade with no hand-off at all: the calling thread
+  runs the event loop itself until its coroutine is done (``loop.run_until_complete``);
 
 for a no-op coroutine, for a console backend call (``motor.get_power()`` on the SR v4
 motor board's console backend, which answers from memory without printing), and for
@@ -104,6 +106,22 @@ def time_direct_simulated(calls: int) -> list[float]:
         return samples
 
     return asyncio.run(run())
+
+
+def time_caller_driven_simulated(loop: asyncio.AbstractEventLoop, calls: int) -> list[float]:
+    """Time ``motor.set_power(0.5)`` run by the calling thread driving ``loop`` itself.
+
+    The floor of a facade with no thread hand-off: each blocking call runs the event loop
+    in the caller's thread until its coroutine is done (``run_until_complete``).
+    """
+    motor = loop.run_until_complete(simulated_motor())
+    samples = []
+    for _ in range(calls):
+        start = time.perf_counter()
+        loop.run_until_complete(motor.set_power(0.5))
+        samples.append(time.perf_counter() - start)
+    loop.run_until_complete(motor.set_power(0))
+    return samples
 
 
 def time_blocking(fn: Callable[[], Any], calls: int) -> list[float]:
@@ -254,6 +272,7 @@ def main() -> None:
     def add(case: str, way: str, values: list[float]) -> None:
         samples.setdefault((case, way), []).extend(values)
 
+    driven_loop = asyncio.new_event_loop()
     handoff_loop = asyncio.new_event_loop()
     handoff_thread = threading.Thread(target=handoff_loop.run_forever, daemon=True)
     handoff_thread.start()
@@ -278,8 +297,14 @@ def main() -> None:
             )
             add(SIMULATED, "direct await", time_direct_simulated(n))
             add(SIMULATED, "j5aio.sync facade", time_blocking(set_simulated, n))
+            add(
+                SIMULATED,
+                "caller drives the loop (no hand-off)",
+                time_caller_driven_simulated(driven_loop, n),
+            )
     handoff_loop.call_soon_threadsafe(handoff_loop.stop)
     handoff_thread.join()
+    driven_loop.close()
 
     print(f"{options.rounds} rounds x {options.calls} calls; microseconds\n")
     print(f"{'case':<28} {'way':<34} {'median':>8} {'mean':>8} {'overhead':>9} {'(mean)':>8}")

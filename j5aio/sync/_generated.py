@@ -67,6 +67,7 @@ from j5aio.sync.wrapping import call as _call
 from j5aio.sync.wrapping import register as _register
 from j5aio.sync.wrapping import unwrap as _unwrap
 from j5aio.sync.wrapping import wrap as _wrap
+from j5aio.sync.wrapping import wrap_kept as _wrap_kept
 
 if TYPE_CHECKING:
     import j5aio.backends.backend as _backends_backend
@@ -1296,7 +1297,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
     @property
     def boards(self) -> list[BoardT]:
         """The boards, ordered by serial number."""
-        return cast("list[BoardT]", _wrap(self._core.boards))
+        return cast("list[BoardT]", _wrap_kept(self, "boards", self._core.boards))
 
     def __len__(self) -> int:
         """Call ``__len__``."""
@@ -1486,7 +1487,7 @@ class KitRobot(BaseRobot):
     @property
     def environment(self) -> Environment:
         """The environment the boards are found in."""
-        return cast("Environment", _wrap(self._core.environment))
+        return cast("Environment", _wrap_kept(self, "environment", self._core.environment))
 
     def setup(self) -> None:
         """Find the power board, power the kit up, then find every other board.
@@ -1613,47 +1614,47 @@ class KitRobot(BaseRobot):
     @property
     def power_board(self) -> PowerBoard:
         """The ``power_board`` of the wrapped object."""
-        return cast("PowerBoard", _wrap(self._core.power_board))
+        return cast("PowerBoard", _wrap_kept(self, "power_board", self._core.power_board))
 
     @property
     def power_boards(self) -> BoardGroup[PowerBoard]:
         """The ``power_boards`` of the wrapped object."""
-        return cast("BoardGroup[PowerBoard]", _wrap(self._core.power_boards))
+        return cast("BoardGroup[PowerBoard]", _wrap_kept(self, "power_boards", self._core.power_boards))
 
     @property
     def motor_boards(self) -> BoardGroup[MotorBoard]:
         """The ``motor_boards`` of the wrapped object."""
-        return cast("BoardGroup[MotorBoard]", _wrap(self._core.motor_boards))
+        return cast("BoardGroup[MotorBoard]", _wrap_kept(self, "motor_boards", self._core.motor_boards))
 
     @property
     def servo_boards(self) -> BoardGroup[ServoBoard]:
         """The ``servo_boards`` of the wrapped object."""
-        return cast("BoardGroup[ServoBoard]", _wrap(self._core.servo_boards))
+        return cast("BoardGroup[ServoBoard]", _wrap_kept(self, "servo_boards", self._core.servo_boards))
 
     @property
     def arduinos(self) -> BoardGroup[SBArduinoBoard | AllDigitalUno]:
         """The ``arduinos`` of the wrapped object."""
-        return cast("BoardGroup[SBArduinoBoard | AllDigitalUno]", _wrap(self._core.arduinos))
+        return cast("BoardGroup[SBArduinoBoard | AllDigitalUno]", _wrap_kept(self, "arduinos", self._core.arduinos))
 
     @property
     def ruggeduinos(self) -> BoardGroup[Ruggeduino]:
         """The ``ruggeduinos`` of the wrapped object."""
-        return cast("BoardGroup[Ruggeduino]", _wrap(self._core.ruggeduinos))
+        return cast("BoardGroup[Ruggeduino]", _wrap_kept(self, "ruggeduinos", self._core.ruggeduinos))
 
     @property
     def cameras(self) -> BoardGroup[CameraBoard]:
         """The ``cameras`` of the wrapped object."""
-        return cast("BoardGroup[CameraBoard]", _wrap(self._core.cameras))
+        return cast("BoardGroup[CameraBoard]", _wrap_kept(self, "cameras", self._core.cameras))
 
     @property
     def camera(self) -> MarkerCamera | None:
         """The ``camera`` of the wrapped object."""
-        return cast("MarkerCamera | None", _wrap(self._core.camera))
+        return cast("MarkerCamera | None", _wrap_kept(self, "camera", self._core.camera))
 
     @property
     def kch(self) -> KCHBoard | None:
         """The ``kch`` of the wrapped object."""
-        return cast("KCHBoard | None", _wrap(self._core.kch))
+        return cast("KCHBoard | None", _wrap_kept(self, "kch", self._core.kch))
 
 
 class ArduinoUno(Board):
@@ -1696,12 +1697,12 @@ class ArduinoUno(Board):
 
         Iterating gives the pins themselves, as in j5; ``pins.keys()`` gives the numbers.
         """
-        return cast("_numbered.Pins[GPIOPin]", _wrap(self._core.pins))
+        return cast("_numbered.Pins[GPIOPin]", _wrap_kept(self, "pins", self._core.pins))
 
     @property
     def led(self) -> LED:
         """The LED on the board, wired to digital pin 13."""
-        return cast("LED", _wrap(self._core.led))
+        return cast("LED", _wrap_kept(self, "led", self._core.led))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -1733,7 +1734,7 @@ class CameraBoard(Board):
     @property
     def camera(self) -> MarkerCamera:
         """The camera's marker finder: ``await board.camera.see()``."""
-        return cast("MarkerCamera", _wrap(self._core.camera))
+        return cast("MarkerCamera", _wrap_kept(self, "camera", self._core.camera))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -1774,12 +1775,12 @@ class KCHBoard(Board):
     @property
     def leds(self) -> tuple[RGBLED, ...]:
         """The user LEDs A, B and C (0, 1 and 2)."""
-        return cast("tuple[RGBLED, ...]", _wrap(self._core.leds))
+        return cast("tuple[RGBLED, ...]", _wrap_kept(self, "leds", self._core.leds))
 
     @property
     def start_led(self) -> FlashingLED:
         """The start LED, which flashes while the robot waits to be started."""
-        return cast("FlashingLED", _wrap(self._core.start_led))
+        return cast("FlashingLED", _wrap_kept(self, "start_led", self._core.start_led))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -1821,7 +1822,7 @@ class MotorBoard(Board):
     @property
     def motors(self) -> tuple[Motor, ...]:
         """The motors, numbered 0 and 1."""
-        return cast("tuple[Motor, ...]", _wrap(self._core.motors))
+        return cast("tuple[Motor, ...]", _wrap_kept(self, "motors", self._core.motors))
 
     @property
     def safe_state(self) -> float | _components_motor.MotorSpecialState:
@@ -1866,32 +1867,32 @@ class PowerBoard(Board):
     @property
     def outputs(self) -> PowerOutputGroup[_boards_sr_v4_power_board.PowerOutputPosition]:
         """The six power outputs, by :class:`PowerOutputPosition` or by number."""
-        return cast("PowerOutputGroup[_boards_sr_v4_power_board.PowerOutputPosition]", _wrap(self._core.outputs))
+        return cast("PowerOutputGroup[_boards_sr_v4_power_board.PowerOutputPosition]", _wrap_kept(self, "outputs", self._core.outputs))
 
     @property
     def piezo(self) -> Piezo:
         """The piezo sounder."""
-        return cast("Piezo", _wrap(self._core.piezo))
+        return cast("Piezo", _wrap_kept(self, "piezo", self._core.piezo))
 
     @property
     def start_button(self) -> Button:
         """The start button."""
-        return cast("Button", _wrap(self._core.start_button))
+        return cast("Button", _wrap_kept(self, "start_button", self._core.start_button))
 
     @property
     def battery_sensor(self) -> BatterySensor:
         """The battery voltage and current sensor."""
-        return cast("BatterySensor", _wrap(self._core.battery_sensor))
+        return cast("BatterySensor", _wrap_kept(self, "battery_sensor", self._core.battery_sensor))
 
     @property
     def run_led(self) -> LED:
         """The run LED (LED 0), which :meth:`wait_for_start_flash` flashes."""
-        return cast("LED", _wrap(self._core.run_led))
+        return cast("LED", _wrap_kept(self, "run_led", self._core.run_led))
 
     @property
     def error_led(self) -> LED:
         """The error LED (LED 1)."""
-        return cast("LED", _wrap(self._core.error_led))
+        return cast("LED", _wrap_kept(self, "error_led", self._core.error_led))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -1979,7 +1980,7 @@ class ServoBoard(Board):
     @property
     def servos(self) -> tuple[Servo, ...]:
         """The servos, numbered 0 to 11."""
-        return cast("tuple[Servo, ...]", _wrap(self._core.servos))
+        return cast("tuple[Servo, ...]", _wrap_kept(self, "servos", self._core.servos))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -2053,7 +2054,7 @@ class AllDigitalUno(ArduinoUno):
     @property
     def ultrasound_sensors(self) -> UltrasoundSensors:
         """Ultrasound sensors on demand: ``board.ultrasound_sensors[trigger_pin, echo_pin]``."""
-        return cast("UltrasoundSensors", _wrap(self._core.ultrasound_sensors))
+        return cast("UltrasoundSensors", _wrap_kept(self, "ultrasound_sensors", self._core.ultrasound_sensors))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -2087,12 +2088,12 @@ class SBArduinoBoard(ArduinoUno):
     @property
     def servos(self) -> tuple[Servo, ...]:
         """The servos, numbered 0 to 15."""
-        return cast("tuple[Servo, ...]", _wrap(self._core.servos))
+        return cast("tuple[Servo, ...]", _wrap_kept(self, "servos", self._core.servos))
 
     @property
     def ultrasound_sensors(self) -> UltrasoundSensors:
         """Ultrasound sensors on demand: ``board.ultrasound_sensors[trigger_pin, echo_pin]``."""
-        return cast("UltrasoundSensors", _wrap(self._core.ultrasound_sensors))
+        return cast("UltrasoundSensors", _wrap_kept(self, "ultrasound_sensors", self._core.ultrasound_sensors))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -2131,12 +2132,12 @@ class MotorBoardFw4(MotorBoard):
     @property
     def motors(self) -> _numbered.NumberedComponents[MonitoredMotor]:
         """The motors, numbered 0 and 1."""
-        return cast("_numbered.NumberedComponents[MonitoredMotor]", _wrap(self._core.motors))
+        return cast("_numbered.NumberedComponents[MonitoredMotor]", _wrap_kept(self, "motors", self._core.motors))
 
     @property
     def input_voltage_sensor(self) -> VoltageSensor:
         """The voltmeter on the board's power input."""
-        return cast("VoltageSensor", _wrap(self._core.input_voltage_sensor))
+        return cast("VoltageSensor", _wrap_kept(self, "input_voltage_sensor", self._core.input_voltage_sensor))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -2178,32 +2179,32 @@ class PowerBoardFw4(PowerBoard):
     @property
     def outputs(self) -> PowerBoardOutputGroup:
         """The seven outputs, by :class:`PowerBoardOutput`, ``PowerOutputPosition`` or number."""
-        return cast("PowerBoardOutputGroup", _wrap(self._core.outputs))
+        return cast("PowerBoardOutputGroup", _wrap_kept(self, "outputs", self._core.outputs))
 
     @property
     def run_led(self) -> FlashingLED:
         """The run LED (LED 0), which can flash by itself."""
-        return cast("FlashingLED", _wrap(self._core.run_led))
+        return cast("FlashingLED", _wrap_kept(self, "run_led", self._core.run_led))
 
     @property
     def error_led(self) -> FlashingLED:
         """The error LED (LED 1), which can flash by itself."""
-        return cast("FlashingLED", _wrap(self._core.error_led))
+        return cast("FlashingLED", _wrap_kept(self, "error_led", self._core.error_led))
 
     @property
     def temperature_sensor(self) -> TemperatureSensor:
         """The board's thermometer."""
-        return cast("TemperatureSensor", _wrap(self._core.temperature_sensor))
+        return cast("TemperatureSensor", _wrap_kept(self, "temperature_sensor", self._core.temperature_sensor))
 
     @property
     def fan(self) -> Fan:
         """The board's fan, which runs above 40 °C."""
-        return cast("Fan", _wrap(self._core.fan))
+        return cast("Fan", _wrap_kept(self, "fan", self._core.fan))
 
     @property
     def regulator_sensor(self) -> VoltageSensor:
         """The voltmeter on the 5 V regulator's output."""
-        return cast("VoltageSensor", _wrap(self._core.regulator_sensor))
+        return cast("VoltageSensor", _wrap_kept(self, "regulator_sensor", self._core.regulator_sensor))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -2252,7 +2253,7 @@ class Ruggeduino(ArduinoUno):
     @property
     def command(self) -> StringCommandComponent:
         """Sends raw text commands to the board's firmware."""
-        return cast("StringCommandComponent", _wrap(self._core.command))
+        return cast("StringCommandComponent", _wrap_kept(self, "command", self._core.command))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -2299,22 +2300,22 @@ class ServoBoardFw4(ServoBoard):
     @property
     def servos(self) -> tuple[PulseServo, ...]:
         """The servos, numbered from 0."""
-        return cast("tuple[PulseServo, ...]", _wrap(self._core.servos))
+        return cast("tuple[PulseServo, ...]", _wrap_kept(self, "servos", self._core.servos))
 
     @property
     def supply(self) -> SupplySensor:
         """The servo rail's voltage and current."""
-        return cast("SupplySensor", _wrap(self._core.supply))
+        return cast("SupplySensor", _wrap_kept(self, "supply", self._core.supply))
 
     @property
     def power_good(self) -> Flag:
         """Raised while the servo rail's regulator reports good power."""
-        return cast("Flag", _wrap(self._core.power_good))
+        return cast("Flag", _wrap_kept(self, "power_good", self._core.power_good))
 
     @property
     def watchdog_failed(self) -> Flag:
         """Raised when the board lost touch with its pulse generator (often: no 12 V)."""
-        return cast("Flag", _wrap(self._core.watchdog_failed))
+        return cast("Flag", _wrap_kept(self, "watchdog_failed", self._core.watchdog_failed))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:

@@ -17,13 +17,15 @@ its output, kept stable for generated modules of other packages.
 from __future__ import annotations
 
 import weakref
+from collections import deque
 from collections.abc import Iterator, Mapping, Sequence, Set
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, Any, Final, TypeVar
 
 from j5aio.numbered import NumberedComponents, Pins
 from j5aio.sync._runtime import call
 
 __all__ = [
+    "RECENT_WRAPPERS",
     "SyncWrapper",
     "WrappedMapping",
     "WrappedSequence",
@@ -35,6 +37,7 @@ __all__ = [
     "registered",
     "unwrap",
     "wrap",
+    "wrap_kept",
 ]
 
 K = TypeVar("K")
@@ -51,13 +54,25 @@ _WRAPPERS: weakref.WeakValueDictionary[int, SyncWrapper] = weakref.WeakValueDict
 
 _LEAVES = (str, bytes, bytearray, int, float, type(None))
 
+#: How many wrappers made by :func:`wrap` are kept alive even when the program holds none.
+RECENT_WRAPPERS: Final = 256
+#: The wrappers last made by :func:`wrap`, oldest first: ``robot.motor_boards[0]`` read
+#: again finds the same wrapper (and quickly) without the table above ever growing
+#: without bound when a program makes many short-lived core objects.
+_RECENT: deque[SyncWrapper] = deque(maxlen=RECENT_WRAPPERS)
+
 
 class SyncWrapper:
-    """The base class of every generated sync wrapper: it holds one core object."""
+    """The base class of every generated sync wrapper: it holds one core object.
 
-    __slots__ = ("__weakref__", "_core")
+    It also keeps, once made, the sync faces of the core object's fixed collections
+    (``board.pins``, ``board.motors``: see :func:`wrap_kept`).
+    """
+
+    __slots__ = ("__weakref__", "_core", "_kept")
 
     _core: Any
+    _kept: dict[str, tuple[Any, Any]]
 
     @classmethod
     def _from_core(cls, core: Any) -> Any:
@@ -150,6 +165,11 @@ def _wrapper_class_of(cls: type) -> type[SyncWrapper] | None:
     return found
 
 
+def _keep_recent(wrapper: SyncWrapper) -> None:
+    """Keep ``wrapper`` alive until :data:`RECENT_WRAPPERS` newer ones have been made."""
+    _RECENT.append(wrapper)
+
+
 def wrap(obj: Any) -> Any:
     """Return the sync face of ``obj``: its wrapper, a wrapping view, or ``obj`` itself."""
     if isinstance(obj, _LEAVES):
@@ -159,7 +179,9 @@ def wrap(obj: Any) -> Any:
         return wrapper
     wrapper_class = _wrapper_class_of(type(obj))
     if wrapper_class is not None:
-        return _WRAPPERS.setdefault(id(obj), wrapper_class._from_core(obj))
+        wrapper = _WRAPPERS.setdefault(id(obj), wrapper_class._from_core(obj))
+        _keep_recent(wrapper)
+        return wrapper
     if isinstance(obj, type):
         return obj
     if isinstance(obj, list):
@@ -181,6 +203,41 @@ def wrap(obj: Any) -> Any:
     if isinstance(obj, Iterator):
         return (wrap(item) for item in obj)
     return obj
+
+
+#: The collections whose sync face may be kept: they cannot change once made.
+_FIXED_COLLECTIONS = (NumberedComponents, Pins, tuple)
+
+
+def wrap_kept(owner: SyncWrapper, name: str, value: Any) -> Any:
+    """Return :func:`wrap` of ``value``, attribute ``name`` of ``owner``'s core object.
+
+    The sync face of a collection that cannot change (a tuple, ``board.motors``,
+    ``board.pins``), and the wrapper of a single core object, are kept by ``owner`` for
+    as long as the core object gives that same value, so ``board.pins[3]`` costs no more
+    than a lookup and ``board.pins is board.pins``. Anything else is wrapped afresh: a
+    list, say, may change.
+    """
+    try:
+        kept = owner._kept
+    except AttributeError:
+        kept = {}
+        object.__setattr__(owner, "_kept", kept)
+    entry = kept.get(name)
+    if entry is not None and entry[0] is value:
+        return entry[1]
+    wrapped = wrap(value)
+    if isinstance(wrapped, SyncWrapper) or (
+        isinstance(value, _FIXED_COLLECTIONS) and _holds_only_fixed_faces(wrapped)
+    ):
+        kept[name] = (value, wrapped)
+    return wrapped
+
+
+def _holds_only_fixed_faces(wrapped: Any) -> bool:
+    """Whether every item of a wrapped collection is a wrapper or an immutable leaf."""
+    items = wrapped.values() if isinstance(wrapped, Pins) else wrapped
+    return all(isinstance(item, (SyncWrapper, *_LEAVES)) for item in items)
 
 
 def unwrap(obj: Any) -> Any:

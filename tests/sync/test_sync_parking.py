@@ -13,10 +13,10 @@ import anyio
 import anyio.to_thread
 import pytest
 
-from j5aio.sync import _runtime
+from j5aio.sync import _selectors
 from j5aio.sync._runtime import call, get_loop
 
-pytestmark = pytest.mark.skipif(not _runtime._CAN_PARK, reason="a selector event loop only")
+pytestmark = pytest.mark.skipif(not _selectors.CAN_PARK, reason="a selector event loop only")
 
 LIVENESS = 10.0  # generous: only a hang fails
 
@@ -37,14 +37,14 @@ def in_thread(fn: Callable[[], object]) -> tuple[threading.Thread, list[object]]
 
 
 @pytest.fixture
-def selector() -> Iterator[_runtime._ParkingSelector]:
-    chosen = _runtime._ParkingSelector()
+def selector() -> Iterator[_selectors.ParkingSelector]:
+    chosen = _selectors.ParkingSelector()
     yield chosen
     chosen.close()
 
 
 def test_a_ring_before_the_wait_makes_it_return_at_once(
-    selector: _runtime._ParkingSelector,
+    selector: _selectors.ParkingSelector,
 ) -> None:
     selector.ring()
     thread, out = in_thread(lambda: selector.select(None))
@@ -52,7 +52,7 @@ def test_a_ring_before_the_wait_makes_it_return_at_once(
     assert out == [[]]
 
 
-def test_a_ring_wakes_a_parked_loop(selector: _runtime._ParkingSelector) -> None:
+def test_a_ring_wakes_a_parked_loop(selector: _selectors.ParkingSelector) -> None:
     waiting = threading.Event()
     selector.before_wait = waiting.set
     thread, out = in_thread(lambda: selector.select(None))
@@ -68,7 +68,7 @@ def test_a_ring_wakes_a_parked_loop(selector: _runtime._ParkingSelector) -> None
 
 
 def test_a_wait_times_out_and_a_late_ring_only_shortens_the_next(
-    selector: _runtime._ParkingSelector,
+    selector: _selectors.ParkingSelector,
 ) -> None:
     assert selector.select(0.01) == []
     selector.ring()  # nobody parked: remembered
@@ -77,7 +77,7 @@ def test_a_wait_times_out_and_a_late_ring_only_shortens_the_next(
     assert selector._bell.locked()
 
 
-def test_hooks_run_around_every_wait(selector: _runtime._ParkingSelector) -> None:
+def test_hooks_run_around_every_wait(selector: _selectors.ParkingSelector) -> None:
     seen: list[str] = []
     selector.before_wait = lambda: seen.append("before")
     selector.after_wait = lambda: seen.append("after")
@@ -87,7 +87,7 @@ def test_hooks_run_around_every_wait(selector: _runtime._ParkingSelector) -> Non
 
 
 def test_with_files_watched_a_ring_goes_through_the_pipe(
-    selector: _runtime._ParkingSelector,
+    selector: _selectors.ParkingSelector,
 ) -> None:
     watched, peer = socket.socketpair()
     pipe_in, pipe_out = socket.socketpair()
@@ -130,7 +130,7 @@ async def add(a: int, b: int) -> int:
 
 def test_the_portal_loop_parks_when_it_watches_no_file() -> None:
     loop = get_loop()
-    assert isinstance(loop, _runtime._PortalLoop)
+    assert isinstance(loop, _selectors.ParkingLoop)
     assert call(add, 1, 2) == 3
     assert len(loop.parking.get_map()) == loop.parking.own_files
 
@@ -147,7 +147,7 @@ def test_calls_are_served_while_the_portal_loop_watches_a_file() -> None:
         asyncio.get_running_loop().remove_reader(watched)
 
     loop = get_loop()
-    assert isinstance(loop, _runtime._PortalLoop)
+    assert isinstance(loop, _selectors.ParkingLoop)
     call(watch)
     try:
         assert len(loop.parking.get_map()) > loop.parking.own_files

@@ -2,20 +2,31 @@
 
 from __future__ import annotations
 
+import functools
 import inspect
 import signal
 import socket
 import threading
 import time
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable, Callable, Iterator
 
 import anyio
 import anyio.lowlevel
 import anyio.to_thread
 import pytest
 
-from j5aio.sync import _runtime
+from j5aio.sync import _runtime, _signals
+from j5aio.sync._calls import DONE, Call, new_done_lock
+from j5aio.sync._loop_thread import LoopThread
 from j5aio.sync._runtime import call, get_loop, shutdown
+from j5aio.sync._selectors import CAN_PARK, ParkingLoop
+
+#: The kinds of portal loop: parking on a lock where asyncio allows, and the plain one
+#: (the fallback where it does not), which must keep every promise alike.
+LOOP_KINDS = [
+    pytest.param(True, id="parking", marks=pytest.mark.skipif(not CAN_PARK, reason="no parking")),
+    pytest.param(False, id="plain"),
+]
 
 
 async def add(a: int, b: int, *, c: int = 0) -> int:
@@ -128,9 +139,10 @@ def test_cancellation_respects_anyio_shields() -> None:
     assert events == ["exchange whole"]
 
 
-def test_call_cancelled_before_it_starts_never_runs() -> None:
+@pytest.mark.parametrize("park", LOOP_KINDS)
+def test_call_cancelled_before_it_starts_never_runs(park: bool) -> None:
     ran: list[bool] = []
-    portal = _runtime._LoopThread()
+    portal = LoopThread(park=park)
     blocker = threading.Event()
 
     async def busy() -> None:
@@ -151,8 +163,9 @@ def test_call_cancelled_before_it_starts_never_runs() -> None:
     assert "before it started" in str(second.error)
 
 
-def test_portal_that_has_stopped_refuses_new_calls() -> None:
-    portal = _runtime._LoopThread()
+@pytest.mark.parametrize("park", LOOP_KINDS)
+def test_portal_that_has_stopped_refuses_new_calls(park: bool) -> None:
+    portal = LoopThread(park=park)
     portal.stop(2)
     assert not portal.thread.is_alive()
 
@@ -163,8 +176,9 @@ def test_portal_that_has_stopped_refuses_new_calls() -> None:
         portal.submit(never())
 
 
-def test_stopping_a_portal_cancels_calls_still_running() -> None:
-    portal = _runtime._LoopThread()
+@pytest.mark.parametrize("park", LOOP_KINDS)
+def test_stopping_a_portal_cancels_calls_still_running(park: bool) -> None:
+    portal = LoopThread(park=park)
     request = portal.submit(anyio.sleep(10))
     time.sleep(0.05)
     portal.stop(2)
@@ -199,7 +213,7 @@ class RecordingLock:
     """A caller's lock that records the time limit of every wait on it."""
 
     def __init__(self) -> None:
-        self.lock = _runtime._new_done_lock()
+        self.lock = new_done_lock()
         self.timeouts: list[float] = []
 
     def acquire(self, blocking: bool = True, timeout: float = -1) -> bool:
@@ -213,8 +227,9 @@ class RecordingLock:
         self.lock.release()
 
 
-def test_a_waiting_caller_sleeps_until_woken_with_no_periodic_wake_up() -> None:
-    portal = _runtime._LoopThread()
+@pytest.mark.parametrize("park", LOOP_KINDS)
+def test_a_waiting_caller_sleeps_until_woken_with_no_periodic_wake_up(park: bool) -> None:
+    portal = LoopThread(park=park)
     try:
         lock = RecordingLock()
         request = portal.submit(anyio.sleep(0.3), lock)  # type: ignore[arg-type]
@@ -234,7 +249,7 @@ def test_a_signal_that_lands_on_another_thread_still_cancels_the_call() -> None:
         signal.pthread_kill(threading.get_ident(), signal.SIGINT)
 
     call(add, 0, 0)
-    assert _runtime._signal_writer is not None
+    assert _signals._signal_writer is not None
     timer = threading.Timer(0.1, ctrl_c_on_this_thread)
     timer.start()
     with pytest.raises(KeyboardInterrupt):
@@ -249,7 +264,7 @@ def test_a_signal_wake_up_file_of_the_program_is_left_alone() -> None:
     theirs.setblocking(False)
     try:
         previous = signal.set_wakeup_fd(theirs.fileno())
-        _runtime._start_signal_watch()
+        _signals.start_signal_watch(_runtime._wake_waiting_callers)
         assert signal.set_wakeup_fd(previous) == theirs.fileno()
     finally:
         theirs.close()
@@ -272,14 +287,15 @@ class InterruptedJustAfterAcquiring:
         return taken
 
 
+@pytest.mark.parametrize("park", LOOP_KINDS)
 def test_an_interrupt_just_after_the_call_finished_does_not_wait(
-    caplog: pytest.LogCaptureFixture,
+    caplog: pytest.LogCaptureFixture, park: bool,
 ) -> None:
-    portal = _runtime._LoopThread()
+    portal = LoopThread(park=park)
     try:
         request = portal.submit(add(1, 2))
         deadline = time.monotonic() + 2
-        while request.state != _runtime._DONE:
+        while request.state != DONE:
             assert time.monotonic() < deadline
             time.sleep(0.001)
         late = InterruptedJustAfterAcquiring(request.done)
@@ -300,8 +316,9 @@ def test_the_worker_keeps_serving_after_a_cancelled_call() -> None:
     assert call(add, 4, 3) == 7
 
 
-def test_calls_still_queued_when_the_portal_stops_are_refused() -> None:
-    portal = _runtime._LoopThread()
+@pytest.mark.parametrize("park", LOOP_KINDS)
+def test_calls_still_queued_when_the_portal_stops_are_refused(park: bool) -> None:
+    portal = LoopThread(park=park)
     first = portal.submit(anyio.sleep(5))
     queued = portal.submit(add(1, 1))
     portal.stop(2)
@@ -368,18 +385,46 @@ def test_shutdown_waits_for_the_boards_even_when_a_signal_wakes_it(
     assert not portal.thread.is_alive()
 
 
-def test_a_call_queued_as_the_portal_stops_is_taken_back_or_left_withdrawn() -> None:
-    portal = _runtime._LoopThread()
+@pytest.mark.parametrize("park", LOOP_KINDS)
+def test_a_call_queued_as_the_portal_stops_is_taken_back_or_left_withdrawn(park: bool) -> None:
+    portal = LoopThread(park=park)
     portal.stop(2)
     coro = add(1, 1)
-    queued = _runtime._Call(coro, _runtime._new_done_lock())
+    queued = Call(coro, new_done_lock())
     portal._queue.append(queued)  # as if appended just after the stop was seen
     with pytest.raises(RuntimeError, match="portal has stopped"):
         portal._take_back(queued)
     assert not portal._queue
     assert inspect.getcoroutinestate(coro) == inspect.CORO_CLOSED  # closed, never run
-    withdrawn = _runtime._Call(add(2, 2), _runtime._new_done_lock())
+    withdrawn = Call(add(2, 2), new_done_lock())
     withdrawn.withdraw("the board call was cancelled: the j5aio sync portal is stopping")
     portal._take_back(withdrawn)  # the loop got there first: the caller reads its error
     assert withdrawn.done.acquire(timeout=1)
     assert isinstance(withdrawn.error, RuntimeError)
+
+
+@pytest.fixture
+def plain_portal(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
+    """The facade's portal on the plain event loop, as where asyncio's loop cannot park."""
+    shutdown()
+    monkeypatch.setattr(_runtime, "LoopThread", functools.partial(LoopThread, park=False))
+    yield
+    shutdown()
+
+
+@pytest.mark.usefixtures("plain_portal")
+def test_the_plain_loop_keeps_the_promises_of_the_parking_one() -> None:
+    loop = get_loop()
+    assert not isinstance(loop, ParkingLoop)
+    assert [call(add, n, 1) for n in range(20)] == list(range(1, 21))
+    with pytest.raises(ValueError, match="allowed are 1 to 3"):
+        call(fail)
+    # A worker thread's result comes back through call_soon_threadsafe.
+    assert call(anyio.to_thread.run_sync, time.sleep, 0.001) is None
+    events: list[str] = []
+    interrupt_main_after(0.1)
+    with pytest.raises(KeyboardInterrupt):
+        call(recorded_command(events, 5, cleanup=0.1))
+    assert events == ["started", "cancelled", "cleaned up"]
+    assert call(add, 2, 3) == 5  # the worker serves on after a cancelled call
+    assert get_loop() is loop

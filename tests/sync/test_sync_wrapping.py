@@ -5,6 +5,7 @@ from __future__ import annotations
 import gc
 from collections.abc import Iterator, Mapping, Sequence
 
+from j5aio.numbered import NumberedComponents, Pins
 from j5aio.sync import wrapping as _wrapping
 from j5aio.sync.wrapping import (
     SyncWrapper,
@@ -14,7 +15,10 @@ from j5aio.sync.wrapping import (
     register,
     unwrap,
     wrap,
+    wrap_kept,
 )
+
+from .sync_fakes import ScriptedConsoleLog, motor_board
 
 
 class CoreThing:
@@ -71,12 +75,68 @@ def test_subclasses_of_a_registered_class_use_its_wrapper() -> None:
     assert isinstance(wrap(SpecialCoreThing("s")), Thing)
 
 
-def test_a_wrapper_nobody_holds_is_forgotten() -> None:
+def test_a_wrapper_nobody_holds_is_forgotten_once_enough_newer_ones_were_made() -> None:
     core = CoreThing("short-lived")
-    wrap(core)
+    first = id(wrap(core))
+    gc.collect()
+    assert id(wrap(core)) == first  # kept for a while: reading it again finds the same one
+    others = [CoreThing(str(number)) for number in range(_wrapping.RECENT_WRAPPERS)]
+    for other in others:
+        wrap(other)
     gc.collect()
     assert id(core) not in _wrapping._WRAPPERS
     assert isinstance(wrap(core), Thing)
+
+
+class Owner:
+    """A core object with fixed and changing collections, as boards have."""
+
+    def __init__(self) -> None:
+        self.things = (CoreThing("0"), CoreThing("1"))
+        self.pins = Pins({2: CoreThing("pin 2"), 3: CoreThing("pin 3")}, owner="owner")
+        self.motors = NumberedComponents([CoreThing("m0")], owner="owner", kind="motor")
+        self.names = ["a", "b"]
+        self.mixed = (CoreThing("x"), ["a list"])
+        self.part = CoreThing("part")
+
+
+class OwnerWrapper(SyncWrapper):
+    __slots__ = ()
+
+
+def test_fixed_collections_and_single_wrappers_are_kept_by_their_owner() -> None:
+    owner = OwnerWrapper._from_core(Owner())
+    core = owner._core
+    for name in ("things", "pins", "motors", "part"):
+        first = wrap_kept(owner, name, getattr(core, name))
+        assert wrap_kept(owner, name, getattr(core, name)) is first, name
+    assert wrap_kept(owner, "pins", core.pins)[3]._core is core.pins[3]
+    assert wrap_kept(owner, "motors", core.motors)[0]._core is core.motors[0]
+    # A new collection from the core object is wrapped afresh, and then kept in turn.
+    core.things = (CoreThing("new"),)
+    renewed = wrap_kept(owner, "things", core.things)
+    assert renewed[0]._core is core.things[0]
+    assert wrap_kept(owner, "things", core.things) is renewed
+
+
+def test_collections_that_may_change_are_wrapped_afresh() -> None:
+    owner = OwnerWrapper._from_core(Owner())
+    core = owner._core
+    names = wrap_kept(owner, "names", core.names)
+    core.names.append("c")
+    assert wrap_kept(owner, "names", core.names) == ["a", "b", "c"]
+    assert names == ["a", "b"]
+    mixed = wrap_kept(owner, "mixed", core.mixed)
+    assert wrap_kept(owner, "mixed", core.mixed) is not mixed  # a tuple holding a list
+    assert wrap_kept(owner, "leaf", 3) == 3
+
+
+def test_generated_wrappers_keep_their_boards_collections() -> None:
+    log = ScriptedConsoleLog()
+    board = motor_board(log, "MB-kept")
+    assert board.motors is board.motors
+    assert board.motors[0] is board.motors[0]
+    assert board.motors[0]._core is board._core.motors[0]
 
 
 def test_adopted_wrappers_are_the_ones_wrap_returns() -> None:

@@ -18,7 +18,7 @@ import j5aio.sync as _sync
 from j5aio.sync.wrapping import adopt_into as _adopt_into
 from j5aio.sync.wrapping import call as _call
 from j5aio.sync.wrapping import register as _register
-from j5aio.sync.wrapping import wrap as _wrap
+from j5aio.sync.wrapping import wrap_kept as _wrap_kept
 
 __all__ = [
     "BeeBoard",
@@ -46,17 +46,17 @@ class BeeBoard(_sync.Board):
     @property
     def motors(self) -> tuple[_sync.Motor, ...]:
         """The motors, numbered 0 and 1."""
-        return cast("tuple[_sync.Motor, ...]", _wrap(self._core.motors))
+        return cast("tuple[_sync.Motor, ...]", _wrap_kept(self, "motors", self._core.motors))
 
     @property
     def led(self) -> _sync.LED:
         """The LED."""
-        return cast("_sync.LED", _wrap(self._core.led))
+        return cast("_sync.LED", _wrap_kept(self, "led", self._core.led))
 
     @property
     def button(self) -> _sync.Button:
         """The button."""
-        return cast("_sync.Button", _wrap(self._core.button))
+        return cast("_sync.Button", _wrap_kept(self, "button", self._core.button))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
