@@ -24,6 +24,7 @@ if TYPE_CHECKING:
         GPIOPinMode,
         PinMode,
     )
+    from j5aio.components.identified import IdentifiedComponent, checked_backend
     from j5aio.components.led import LED, LEDInterface
     from j5aio.components.marker_camera import MarkerCamera, MarkerCameraInterface
     from j5aio.components.monitored_motor import MonitoredMotor, MonitoredMotorInterface
@@ -72,6 +73,7 @@ __all__ = [
     "GPIOPin",
     "GPIOPinInterface",
     "GPIOPinMode",
+    "IdentifiedComponent",
     "Interface",
     "LEDInterface",
     "LEDMode",
@@ -114,6 +116,7 @@ __all__ = [
     "VoltageSensor",
     "VoltageSensorInterface",
     "check_motor_state",
+    "checked_backend",
 ]
 
 if not TYPE_CHECKING:  # the names are imported above for type checkers
@@ -134,6 +137,7 @@ if not TYPE_CHECKING:  # the names are imported above for type checkers
                 "GPIOPinMode",
                 "PinMode",
             ],
+            "j5aio.components.identified": ["IdentifiedComponent", "checked_backend"],
             "j5aio.components.led": ["LED", "LEDInterface"],
             "j5aio.components.marker_camera": ["MarkerCamera", "MarkerCameraInterface"],
             "j5aio.components.monitored_motor": ["MonitoredMotor", "MonitoredMotorInterface"],

@@ -33,7 +33,6 @@ import j5aio.boards.sr.v4.power_board_fw4 as _boards_sr_v4_power_board_fw4
 import j5aio.boards.sr.v4.ruggeduino as _boards_sr_v4_ruggeduino
 import j5aio.boards.sr.v4.servo_board as _boards_sr_v4_servo_board
 import j5aio.boards.sr.v4.servo_board_fw4 as _boards_sr_v4_servo_board_fw4
-import j5aio.components._identified as _components_identified
 import j5aio.components.battery_sensor as _components_battery_sensor
 import j5aio.components.button as _components_button
 import j5aio.components.component as _components_component
@@ -42,6 +41,7 @@ import j5aio.components.fan as _components_fan
 import j5aio.components.flag as _components_flag
 import j5aio.components.flashing_led as _components_flashing_led
 import j5aio.components.gpio_pin as _components_gpio_pin
+import j5aio.components.identified as _components_identified
 import j5aio.components.led as _components_led
 import j5aio.components.marker_camera as _components_marker_camera
 import j5aio.components.monitored_motor as _components_monitored_motor
@@ -2187,25 +2187,6 @@ class ServoBoardFw4(ServoBoard):
         return _boards_sr_v4_servo_board_fw4.ServoBoardFw4.supported_components()
 
 
-class IdentifiedComponent(Component, Generic[InterfaceT]):
-    """A component known by a number on its board, driven through one backend.
-
-    A board passes its backend as it is (typed as any :class:`~j5aio.backends.backend.Backend`,
-    with no ``cast``): that the backend implements the component's interface is checked
-    when the backend class is made (see :class:`~j5aio.backends.backend.BackendMeta`) and
-    again here.
-
-    :param identifier: the number of the component on its board.
-    :param backend: the backend that implements this component's interface.
-    :raises TypeError: ``backend`` does not implement
-        :meth:`~j5aio.components.component.Component.interface_class`.
-    """
-
-    __slots__ = ()
-
-    _core: _components_identified.IdentifiedComponent[Any]
-
-
 class UltrasoundSensor(DerivedComponent):
     """An ultrasound distance sensor, such as an HC-SR04, wired to two GPIO pins.
 
@@ -2258,6 +2239,33 @@ class UltrasoundSensor(DerivedComponent):
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         return _call(self._core.distance)
+
+
+class IdentifiedComponent(Component, Generic[InterfaceT]):
+    """A component known by a number on its board, driven through one backend.
+
+    A subclass names its interface as the type argument
+    (``IdentifiedComponent[ThingInterface]``), sets ``__slots__ = ()`` (so that a misspelt
+    attribute is an error), returns the interface from the classmethod
+    :meth:`~j5aio.components.component.Component.interface_class`, and writes one
+    coroutine per thing a program may do, each checking its arguments and then awaiting
+    ``self._backend.<interface method>(self._identifier, ...)``. ``_backend`` (typed as
+    the interface) and ``_identifier`` are set here; :attr:`identifier` is public.
+
+    A board passes its backend as it is (typed as any :class:`~j5aio.backends.backend.Backend`,
+    with no ``cast``): that the backend implements the component's interface is checked
+    when the backend class is made (see :class:`~j5aio.backends.backend.BackendMeta`) and
+    again here.
+
+    :param identifier: the number of the component on its board.
+    :param backend: the backend that implements this component's interface.
+    :raises TypeError: ``backend`` does not implement
+        :meth:`~j5aio.components.component.Component.interface_class`.
+    """
+
+    __slots__ = ()
+
+    _core: _components_identified.IdentifiedComponent[Any]
 
 
 class SBArduino2024Board(AllDigitalUno):
@@ -3337,8 +3345,8 @@ _register(_boards_sr_v4_motor_board_fw4.MotorBoardFw4, MotorBoardFw4)
 _register(_boards_sr_v4_power_board_fw4.PowerBoardFw4, PowerBoardFw4)
 _register(_boards_sr_v4_ruggeduino.Ruggeduino, Ruggeduino)
 _register(_boards_sr_v4_servo_board_fw4.ServoBoardFw4, ServoBoardFw4)
-_register(_components_identified.IdentifiedComponent, IdentifiedComponent)
 _register(_components_derived_ultrasound.UltrasoundSensor, UltrasoundSensor)
+_register(_components_identified.IdentifiedComponent, IdentifiedComponent)
 _register(_boards_sb_arduino_2024.SBArduino2024Board, SBArduino2024Board)
 _register(_boards_sb_servo_board.SBServoBoard, SBServoBoard)
 _register(_components_battery_sensor.BatterySensor, BatterySensor)

@@ -6,9 +6,9 @@ from abc import abstractmethod
 from datetime import timedelta
 from typing import TYPE_CHECKING
 
-from j5aio.components._identified import checked_backend
 from j5aio.components.component import DerivedComponent, Interface
 from j5aio.components.gpio_pin import GPIOPin
+from j5aio.components.identified import checked_backend
 from j5aio.errors import NotSupportedByComponentError
 
 if TYPE_CHECKING:
