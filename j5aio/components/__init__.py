@@ -14,6 +14,11 @@ if TYPE_CHECKING:
     from j5aio.components.button import Button, ButtonInterface
     from j5aio.components.component import Component, DerivedComponent, Interface
     from j5aio.components.derived.ultrasound import UltrasoundInterface, UltrasoundSensor
+    from j5aio.components.distance_sensor import (
+        DistanceSensor,
+        DistanceSensorInterface,
+        Rangefinder,
+    )
     from j5aio.components.fan import Fan, FanInterface
     from j5aio.components.flag import Flag, FlagInterface
     from j5aio.components.flashing_led import FlashingLED, FlashingLEDInterface, LEDMode
@@ -62,6 +67,8 @@ __all__ = [
     "ButtonInterface",
     "Component",
     "DerivedComponent",
+    "DistanceSensor",
+    "DistanceSensorInterface",
     "Duration",
     "Fan",
     "FanInterface",
@@ -102,6 +109,7 @@ __all__ = [
     "RGBChannel",
     "RGBColour",
     "RGBLEDInterface",
+    "Rangefinder",
     "Servo",
     "ServoInterface",
     "ServoPosition",
@@ -127,6 +135,11 @@ if not TYPE_CHECKING:  # the names are imported above for type checkers
             "j5aio.components.button": ["Button", "ButtonInterface"],
             "j5aio.components.component": ["Component", "DerivedComponent", "Interface"],
             "j5aio.components.derived.ultrasound": ["UltrasoundInterface", "UltrasoundSensor"],
+            "j5aio.components.distance_sensor": [
+                "DistanceSensor",
+                "DistanceSensorInterface",
+                "Rangefinder",
+            ],
             "j5aio.components.fan": ["Fan", "FanInterface"],
             "j5aio.components.flag": ["Flag", "FlagInterface"],
             "j5aio.components.flashing_led": ["FlashingLED", "FlashingLEDInterface", "LEDMode"],

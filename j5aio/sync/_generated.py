@@ -37,6 +37,7 @@ import j5aio.components.battery_sensor as _components_battery_sensor
 import j5aio.components.button as _components_button
 import j5aio.components.component as _components_component
 import j5aio.components.derived.ultrasound as _components_derived_ultrasound
+import j5aio.components.distance_sensor as _components_distance_sensor
 import j5aio.components.fan as _components_fan
 import j5aio.components.flag as _components_flag
 import j5aio.components.flashing_led as _components_flashing_led
@@ -117,6 +118,7 @@ __all__ = [
     "Colour",
     "Component",
     "DerivedComponent",
+    "DistanceSensor",
     "Environment",
     "Fan",
     "Flag",
@@ -139,6 +141,7 @@ __all__ = [
     "PowerOutputGroup",
     "ProtectedPowerOutput",
     "PulseServo",
+    "Rangefinder",
     "Ruggeduino",
     "SBArduino2024Board",
     "SBArduinoBoard",
@@ -1890,6 +1893,35 @@ class DerivedComponent(Component):
         return self._core.identifier
 
 
+class Rangefinder(Component):
+    """Anything that measures how far away the nearest object is.
+
+    A subclass implements :meth:`distance_mm`; :meth:`distance` gives the same reading in
+    metres. Neither takes an argument, so a program can take any rangefinder, whatever its
+    board, and read it the same way.
+    """
+
+    __slots__ = ()
+
+    _core: _components_distance_sensor.Rangefinder
+
+    def distance_mm(self) -> float | None:
+        """Measure the distance to the nearest object, in millimetres.
+
+        :returns: the distance, or ``None`` when there is no reading (nothing in range).
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.distance_mm)
+
+    def distance(self) -> float | None:
+        """Measure the distance to the nearest object, in metres.
+
+        :returns: the distance, or ``None`` when there is no reading (nothing in range).
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.distance)
+
+
 class AllDigitalUno(ArduinoUno):
     """An Uno whose pins 2 to 19 are all digital, with ultrasound on any pair of them.
 
@@ -2187,60 +2219,6 @@ class ServoBoardFw4(ServoBoard):
         return _boards_sr_v4_servo_board_fw4.ServoBoardFw4.supported_components()
 
 
-class UltrasoundSensor(DerivedComponent):
-    """An ultrasound distance sensor, such as an HC-SR04, wired to two GPIO pins.
-
-    The sensor sends a burst of sound when its trigger pin is pulsed and raises its echo
-    pin until the sound's echo comes back; the time taken gives the distance to the
-    nearest object.
-
-    :param gpio_trigger: the pin wired to the sensor's trigger.
-    :param gpio_echo: the pin wired to the sensor's echo.
-    :param backend: the backend that times the echo.
-    :param distance_mode: allow :meth:`distance`; with ``False`` only :meth:`pulse`
-        may be used.
-    :raises NotSupportedByComponentError: a pin does not list ``UltrasoundSensor``
-        among its firmware modes.
-    """
-
-    __slots__ = ()
-
-    _core: _components_derived_ultrasound.UltrasoundSensor
-
-    def __init__(
-        self,
-        gpio_trigger: GPIOPin,
-        gpio_echo: GPIOPin,
-        backend: _components_derived_ultrasound.UltrasoundInterface | _backends_backend.Backend,
-        *,
-        distance_mode: bool = True,
-    ) -> None:
-        _adopt_into(self, _components_derived_ultrasound.UltrasoundSensor(_unwrap(gpio_trigger), _unwrap(gpio_echo), backend, distance_mode=distance_mode))
-
-    @classmethod
-    def interface_class(cls) -> type[_components_derived_ultrasound.UltrasoundInterface]:
-        """The interface a backend implements for these sensors: :class:`UltrasoundInterface`."""
-        return _components_derived_ultrasound.UltrasoundSensor.interface_class()
-
-    def pulse(self) -> timedelta | None:
-        """Send a pulse and return how long its echo took, or ``None`` if none came back.
-
-        :raises CommunicationError: the board did not answer, or answered wrongly.
-        """
-        return _call(self._core.pulse)
-
-    def distance(self) -> float | None:
-        """Send a pulse and return the distance to the nearest object, in metres.
-
-        Returns ``None`` if no echo came back (nothing in range).
-
-        :raises NotSupportedByComponentError: the sensor was made with
-            ``distance_mode=False``; use :meth:`pulse` instead.
-        :raises CommunicationError: the board did not answer, or answered wrongly.
-        """
-        return _call(self._core.distance)
-
-
 class IdentifiedComponent(Component, Generic[InterfaceT]):
     """A component known by a number on its board, driven through one backend.
 
@@ -2377,6 +2355,74 @@ class Button(IdentifiedComponent[_components_button.ButtonInterface]):
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         _call(self._core.wait_until_pressed, timeout)
+
+
+class UltrasoundSensor(DerivedComponent, Rangefinder):
+    """An ultrasound distance sensor, such as an HC-SR04, wired to two GPIO pins.
+
+    The sensor sends a burst of sound when its trigger pin is pulsed and raises its echo
+    pin until the sound's echo comes back; the time taken gives the distance to the
+    nearest object. It is a :class:`~j5aio.components.distance_sensor.Rangefinder`, read
+    like every distance sensor: :meth:`distance` in metres, :meth:`distance_mm` in
+    millimetres.
+
+    :param gpio_trigger: the pin wired to the sensor's trigger.
+    :param gpio_echo: the pin wired to the sensor's echo.
+    :param backend: the backend that times the echo.
+    :param distance_mode: allow :meth:`distance`; with ``False`` only :meth:`pulse`
+        may be used.
+    :raises NotSupportedByComponentError: a pin does not list ``UltrasoundSensor``
+        among its firmware modes.
+    """
+
+    __slots__ = ()
+
+    _core: _components_derived_ultrasound.UltrasoundSensor
+
+    def __init__(
+        self,
+        gpio_trigger: GPIOPin,
+        gpio_echo: GPIOPin,
+        backend: _components_derived_ultrasound.UltrasoundInterface | _backends_backend.Backend,
+        *,
+        distance_mode: bool = True,
+    ) -> None:
+        _adopt_into(self, _components_derived_ultrasound.UltrasoundSensor(_unwrap(gpio_trigger), _unwrap(gpio_echo), backend, distance_mode=distance_mode))
+
+    @classmethod
+    def interface_class(cls) -> type[_components_derived_ultrasound.UltrasoundInterface]:
+        """The interface a backend implements for these sensors: :class:`UltrasoundInterface`."""
+        return _components_derived_ultrasound.UltrasoundSensor.interface_class()
+
+    def pulse(self) -> timedelta | None:
+        """Send a pulse and return how long its echo took, or ``None`` if none came back.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.pulse)
+
+    def distance(self) -> float | None:
+        """Send a pulse and return the distance to the nearest object, in metres.
+
+        Returns ``None`` if no echo came back (nothing in range).
+
+        :raises NotSupportedByComponentError: the sensor was made with
+            ``distance_mode=False``; use :meth:`pulse` instead.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.distance)
+
+    def distance_mm(self) -> float | None:
+        """Send a pulse and return the distance to the nearest object, in millimetres.
+
+        The same reading as :meth:`distance`, a thousand times larger; ``None`` if no
+        echo came back (nothing in range).
+
+        :raises NotSupportedByComponentError: the sensor was made with
+            ``distance_mode=False``; use :meth:`pulse` instead.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.distance_mm)
 
 
 class Fan(IdentifiedComponent[_components_fan.FanInterface]):
@@ -3131,6 +3177,35 @@ class SRArduinoBoard(AllDigitalUno, Ruggeduino):
         return _boards_sr_v4_arduino.SRArduinoBoard.supported_components()
 
 
+class DistanceSensor(IdentifiedComponent[_components_distance_sensor.DistanceSensorInterface], Rangefinder):
+    """A distance sensor that a board numbers and reads with one command.
+
+    A board lists them as ``distance_sensors``; each reads in millimetres
+    (:meth:`distance_mm`) and in metres (:meth:`distance`), ``None`` when nothing is in
+    range.
+
+    :param identifier: the number of the sensor on its board.
+    :param backend: the backend that reads the sensor.
+    """
+
+    __slots__ = ()
+
+    _core: _components_distance_sensor.DistanceSensor
+
+    @classmethod
+    def interface_class(cls) -> type[_components_distance_sensor.DistanceSensorInterface]:
+        """The interface a backend implements: :class:`DistanceSensorInterface`."""
+        return _components_distance_sensor.DistanceSensor.interface_class()
+
+    def distance_mm(self) -> float | None:
+        """Measure the distance to the nearest object, in millimetres.
+
+        :returns: the distance, or ``None`` when nothing is in range.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.distance_mm)
+
+
 class FlashingLED(LED):
     """An LED that can be off, on, or flashing without the program's help.
 
@@ -3339,18 +3414,19 @@ _register(_boards_sr_v4_power_board.PowerBoard, PowerBoard)
 _register(_boards_sr_v4_power_board_fw4.PowerBoardOutputGroup, PowerBoardOutputGroup)
 _register(_boards_sr_v4_servo_board.ServoBoard, ServoBoard)
 _register(_components_component.DerivedComponent, DerivedComponent)
+_register(_components_distance_sensor.Rangefinder, Rangefinder)
 _register(_boards_arduino_all_digital.AllDigitalUno, AllDigitalUno)
 _register(_boards_sb_arduino.SBArduinoBoard, SBArduinoBoard)
 _register(_boards_sr_v4_motor_board_fw4.MotorBoardFw4, MotorBoardFw4)
 _register(_boards_sr_v4_power_board_fw4.PowerBoardFw4, PowerBoardFw4)
 _register(_boards_sr_v4_ruggeduino.Ruggeduino, Ruggeduino)
 _register(_boards_sr_v4_servo_board_fw4.ServoBoardFw4, ServoBoardFw4)
-_register(_components_derived_ultrasound.UltrasoundSensor, UltrasoundSensor)
 _register(_components_identified.IdentifiedComponent, IdentifiedComponent)
 _register(_boards_sb_arduino_2024.SBArduino2024Board, SBArduino2024Board)
 _register(_boards_sb_servo_board.SBServoBoard, SBServoBoard)
 _register(_components_battery_sensor.BatterySensor, BatterySensor)
 _register(_components_button.Button, Button)
+_register(_components_derived_ultrasound.UltrasoundSensor, UltrasoundSensor)
 _register(_components_fan.Fan, Fan)
 _register(_components_flag.Flag, Flag)
 _register(_components_gpio_pin.GPIOPin, GPIOPin)
@@ -3366,6 +3442,7 @@ _register(_components_supply_sensor.SupplySensor, SupplySensor)
 _register(_components_temperature_sensor.TemperatureSensor, TemperatureSensor)
 _register(_components_voltage_sensor.VoltageSensor, VoltageSensor)
 _register(_boards_sr_v4_arduino.SRArduinoBoard, SRArduinoBoard)
+_register(_components_distance_sensor.DistanceSensor, DistanceSensor)
 _register(_components_flashing_led.FlashingLED, FlashingLED)
 _register(_components_monitored_motor.MonitoredMotor, MonitoredMotor)
 _register(_components_protected_power_output.ProtectedPowerOutput, ProtectedPowerOutput)
