@@ -74,8 +74,8 @@ class DistanceSensor(IdentifiedComponent[DistanceSensorInterface], Rangefinder):
     """A distance sensor that a board numbers and reads with one command.
 
     A board lists them as ``distance_sensors``; each reads in millimetres
-    (:meth:`distance_mm`) and in metres (:meth:`distance`), ``None`` when nothing is in
-    range.
+    (:meth:`distance_mm`) and in metres (:meth:`~Rangefinder.distance`), ``None`` when
+    nothing is in range.
 
     :param identifier: the number of the sensor on its board.
     :param backend: the backend that reads the sensor.

@@ -3181,8 +3181,8 @@ class DistanceSensor(IdentifiedComponent[_components_distance_sensor.DistanceSen
     """A distance sensor that a board numbers and reads with one command.
 
     A board lists them as ``distance_sensors``; each reads in millimetres
-    (:meth:`distance_mm`) and in metres (:meth:`distance`), ``None`` when nothing is in
-    range.
+    (:meth:`distance_mm`) and in metres (:meth:`~Rangefinder.distance`), ``None`` when
+    nothing is in range.
 
     :param identifier: the number of the sensor on its board.
     :param backend: the backend that reads the sensor.
