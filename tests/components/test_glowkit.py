@@ -17,6 +17,7 @@ from j5aio.backends.hardware.transports import SimulatorStream
 from j5aio.components import DistanceSensor
 from j5aio.testing import RecordingStream
 from j5aio.testing.conformance import DistanceSensorInterfaceConformance, DistanceSensorSubject
+from j5aio.testing.console import ConsoleScript
 from j5aio.testing.plugin import PtySimulatorFactory
 from j5aio.view.describe import Update, board_components, describe_call
 
@@ -24,6 +25,7 @@ from .glowkit import boards, light_sensor
 from .glowkit.backend import GlowBackend
 from .glowkit.boards import GlowBoard
 from .glowkit.conformance import LightSensorInterfaceConformance, LightSensorSubject
+from .glowkit.console import GlowConsoleBackend
 from .glowkit.light_sensor import LightSensor
 from .glowkit.simulator import GlowSimulator
 
@@ -135,6 +137,61 @@ class TestGlowDistanceSensor(Connected, DistanceSensorInterfaceConformance):
             place_object=place_object,
             traffic=lambda: self.stream.sent,
         )
+
+
+class ConsoleGlow:
+    """A Glow Board's console backend, whose prompts a :class:`ConsoleScript` answers."""
+
+    script: ConsoleScript
+
+    def console_backend(self) -> GlowConsoleBackend:
+        self.script = ConsoleScript()
+        return GlowConsoleBackend("GLOW1", self.script.console_class())
+
+    def printed(self) -> bytes:
+        """What the console printed: the console's traffic, for the suites' ``traffic``."""
+        return "\n".join(self.script.printed).encode()
+
+
+class TestGlowConsoleLightSensors(ConsoleGlow, LightSensorInterfaceConformance):
+    async def make_backend(self) -> LightSensorSubject:
+        backend = self.console_backend()
+
+        async def set_lux(identifier: int, lux: float) -> None:
+            self.script.answer(f"Light on light sensor {identifier} ", str(lux), replace=True)
+
+        async def observe_gain(identifier: int) -> int:
+            said = f"Light sensor {identifier} gain set to "
+            last = [line for line in self.script.printed if said in line][-1]
+            return int(last.rpartition(said)[2])
+
+        return LightSensorSubject(
+            backend=backend, identifiers=range(4), set_lux=set_lux,
+            observe_gain=observe_gain, traffic=self.printed,
+        )
+
+
+class TestGlowConsoleDistanceSensor(ConsoleGlow, DistanceSensorInterfaceConformance):
+    async def make_backend(self) -> DistanceSensorSubject:
+        backend = self.console_backend()
+
+        async def place_object(identifier: int, millimetres: float | None) -> None:
+            answer = "-" if millimetres is None else str(millimetres)
+            self.script.answer(f"distance sensor {identifier} ", answer, replace=True)
+
+        return DistanceSensorSubject(
+            backend=backend, identifiers=[0], place_object=place_object, traffic=self.printed,
+        )
+
+
+async def test_the_console_asks_again_until_the_answer_is_a_distance() -> None:
+    script = ConsoleScript()
+    board = GlowBoard("GLOW1", GlowConsoleBackend("GLOW1", script.console_class()))
+    for answer in ("far", "-5", "250"):
+        script.answer("Distance for distance sensor 0", answer)
+    assert await board.distance_sensors[0].distance() == 0.25
+    assert len(script.prompts) == 3
+    assert any("Unable to construct" in line for line in script.printed)
 
 
 async def test_the_live_view_shows_the_new_component_by_the_naming_rule(
