@@ -3,6 +3,13 @@
 Each component (an :class:`~j5aio.components.led.LED`, a :class:`~j5aio.components.motor.Motor`, a
 :class:`~j5aio.components.gpio_pin.GPIOPin` ...) checks what the user asks for and then awaits its
 interface, which a backend implements.
+
+A part that none of these fits gets a new kind of component, made on the same public
+bases: :class:`~j5aio.components.component.Interface` for its interface,
+:class:`~j5aio.components.identified.IdentifiedComponent` for a component its board
+numbers, :class:`~j5aio.components.component.DerivedComponent` for one built from other
+components. :doc:`/new-component` works one through, from its interface to its
+conformance suite.
 """
 
 from typing import TYPE_CHECKING
