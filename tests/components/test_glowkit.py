@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib
+import inspect
 import re
 import sys
 import uuid
@@ -13,8 +14,9 @@ from typing import Any
 import pytest
 
 from j5aio import sync, syncgen
+from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
 from j5aio.backends.hardware.transports import SimulatorStream
-from j5aio.components import DistanceSensor
+from j5aio.components import DistanceSensor, DistanceSensorInterface
 from j5aio.testing import RecordingStream
 from j5aio.testing.conformance import DistanceSensorInterfaceConformance, DistanceSensorSubject
 from j5aio.testing.console import ConsoleScript
@@ -26,7 +28,7 @@ from .glowkit.backend import GlowBackend
 from .glowkit.boards import GlowBoard
 from .glowkit.conformance import LightSensorInterfaceConformance, LightSensorSubject
 from .glowkit.console import GlowConsoleBackend
-from .glowkit.light_sensor import LightSensor
+from .glowkit.light_sensor import LightSensor, LightSensorInterface
 from .glowkit.simulator import GlowSimulator
 
 
@@ -137,6 +139,36 @@ class TestGlowDistanceSensor(Connected, DistanceSensorInterfaceConformance):
             place_object=place_object,
             traffic=lambda: self.stream.sent,
         )
+
+
+def test_a_backend_without_the_new_interface_is_refused_when_its_class_is_made() -> None:
+    with pytest.raises(TypeError, match=re.escape(
+        "backend Forgetful cannot drive GlowBoard: it does not implement "
+        "LightSensorInterface (for LightSensor)",
+    )):
+        class Forgetful(SerialHardwareBackend[GlowBoard], DistanceSensorInterface):
+            board = GlowBoard
+
+            async def _handshake(self, *, time_scale: float) -> None:
+                return None
+
+            async def get_distance_sensor_mm(self, identifier: int) -> float | None:
+                return None
+
+    class Half(SerialHardwareBackend[GlowBoard], LightSensorInterface, DistanceSensorInterface):
+        board = GlowBoard
+
+        async def _handshake(self, *, time_scale: float) -> None:
+            return None
+
+        async def get_light_sensor_lux(self, identifier: int) -> float:
+            return 0.0
+
+        async def get_distance_sensor_mm(self, identifier: int) -> float | None:
+            return None
+
+    assert inspect.isabstract(Half)
+    assert sorted(Half.__abstractmethods__) == ["get_light_sensor_gain", "set_light_sensor_gain"]
 
 
 class ConsoleGlow:
