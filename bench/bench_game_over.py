@@ -1,4 +1,4 @@
-"""Issue 10: how soon the motors are braked after a match ends, whatever the program does.
+"""How soon the motors are braked after a match ends, whatever the program does.
 
 Each trial starts a child Python on the simulated kit in COMP mode with a short match.
 The child starts at once, sets a motor going and then tries hard to survive game over:
@@ -17,7 +17,7 @@ the record before the process ends. Run::
 
     python bench/bench_game_over.py [--trials 20]
 
-Goal (issue 10): braked within 50 ms of the match's end, exit status 0, in every trial.
+Goal: braked within 50 ms of the match's end, exit status 0, in every trial.
 """
 
 from __future__ import annotations

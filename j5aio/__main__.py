@@ -444,7 +444,7 @@ def _run(args: argparse.Namespace) -> int:
             view.close()
 
 
-# -- run: match settings, the start and the run log (issue 10) ------------------------------
+# -- run: match settings, the start and the run log -----------------------------------------
 
 
 def _add_match_arguments(run: argparse.ArgumentParser) -> None:
