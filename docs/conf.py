@@ -92,7 +92,7 @@ nitpick_ignore = [
     ("py:obj", "j5aio.backends.hardware.transports.readers.T_co"),
     ("py:obj", "j5aio.boards.board_group.BoardT"),
     ("py:obj", "j5aio.kit.BoardT"),
-    ("py:obj", "j5aio.components._identified.InterfaceT"),
+    ("py:obj", "j5aio.components.identified.InterfaceT"),
     ("py:obj", "j5aio.components.power_output.K"),
     ("py:obj", "j5aio.numbered.P_co"),
     ("py:obj", "j5aio.numbered.T_co"),

@@ -3,6 +3,13 @@
 Each component (an :class:`~j5aio.components.led.LED`, a :class:`~j5aio.components.motor.Motor`, a
 :class:`~j5aio.components.gpio_pin.GPIOPin` ...) checks what the user asks for and then awaits its
 interface, which a backend implements.
+
+A part that none of these fits gets a new kind of component, made on the same public
+bases: :class:`~j5aio.components.component.Interface` for its interface,
+:class:`~j5aio.components.identified.IdentifiedComponent` for a component its board
+numbers, :class:`~j5aio.components.component.DerivedComponent` for one built from other
+components. :doc:`/new-component` works one through, from its interface to its
+conformance suite.
 """
 
 from typing import TYPE_CHECKING
@@ -14,6 +21,11 @@ if TYPE_CHECKING:
     from j5aio.components.button import Button, ButtonInterface
     from j5aio.components.component import Component, DerivedComponent, Interface
     from j5aio.components.derived.ultrasound import UltrasoundInterface, UltrasoundSensor
+    from j5aio.components.distance_sensor import (
+        DistanceSensor,
+        DistanceSensorInterface,
+        Rangefinder,
+    )
     from j5aio.components.fan import Fan, FanInterface
     from j5aio.components.flag import Flag, FlagInterface
     from j5aio.components.flashing_led import FlashingLED, FlashingLEDInterface, LEDMode
@@ -24,6 +36,7 @@ if TYPE_CHECKING:
         GPIOPinMode,
         PinMode,
     )
+    from j5aio.components.identified import IdentifiedComponent, checked_backend
     from j5aio.components.led import LED, LEDInterface
     from j5aio.components.marker_camera import MarkerCamera, MarkerCameraInterface
     from j5aio.components.monitored_motor import MonitoredMotor, MonitoredMotorInterface
@@ -61,6 +74,8 @@ __all__ = [
     "ButtonInterface",
     "Component",
     "DerivedComponent",
+    "DistanceSensor",
+    "DistanceSensorInterface",
     "Duration",
     "Fan",
     "FanInterface",
@@ -72,6 +87,7 @@ __all__ = [
     "GPIOPin",
     "GPIOPinInterface",
     "GPIOPinMode",
+    "IdentifiedComponent",
     "Interface",
     "LEDInterface",
     "LEDMode",
@@ -100,6 +116,7 @@ __all__ = [
     "RGBChannel",
     "RGBColour",
     "RGBLEDInterface",
+    "Rangefinder",
     "Servo",
     "ServoInterface",
     "ServoPosition",
@@ -114,6 +131,7 @@ __all__ = [
     "VoltageSensor",
     "VoltageSensorInterface",
     "check_motor_state",
+    "checked_backend",
 ]
 
 if not TYPE_CHECKING:  # the names are imported above for type checkers
@@ -124,6 +142,11 @@ if not TYPE_CHECKING:  # the names are imported above for type checkers
             "j5aio.components.button": ["Button", "ButtonInterface"],
             "j5aio.components.component": ["Component", "DerivedComponent", "Interface"],
             "j5aio.components.derived.ultrasound": ["UltrasoundInterface", "UltrasoundSensor"],
+            "j5aio.components.distance_sensor": [
+                "DistanceSensor",
+                "DistanceSensorInterface",
+                "Rangefinder",
+            ],
             "j5aio.components.fan": ["Fan", "FanInterface"],
             "j5aio.components.flag": ["Flag", "FlagInterface"],
             "j5aio.components.flashing_led": ["FlashingLED", "FlashingLEDInterface", "LEDMode"],
@@ -134,6 +157,7 @@ if not TYPE_CHECKING:  # the names are imported above for type checkers
                 "GPIOPinMode",
                 "PinMode",
             ],
+            "j5aio.components.identified": ["IdentifiedComponent", "checked_backend"],
             "j5aio.components.led": ["LED", "LEDInterface"],
             "j5aio.components.marker_camera": ["MarkerCamera", "MarkerCameraInterface"],
             "j5aio.components.monitored_motor": ["MonitoredMotor", "MonitoredMotorInterface"],

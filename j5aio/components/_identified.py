@@ -1,54 +1,10 @@
-"""The shared base of the components that a board numbers: an identifier and a backend."""
+"""The old, private home of :mod:`j5aio.components.identified`, kept so that old imports work.
 
-from __future__ import annotations
+Import :class:`~j5aio.components.identified.IdentifiedComponent` and
+:func:`~j5aio.components.identified.checked_backend` from
+:mod:`j5aio.components.identified` (or :mod:`j5aio.components`) instead.
+"""
 
-from typing import TYPE_CHECKING, Any, Generic, TypeVar
-
-from j5aio.components.component import Component, Interface
-
-if TYPE_CHECKING:
-    from j5aio.backends.backend import Backend
+from j5aio.components.identified import IdentifiedComponent, checked_backend
 
 __all__ = ["IdentifiedComponent", "checked_backend"]
-
-InterfaceT = TypeVar("InterfaceT", bound=Interface)
-
-
-class IdentifiedComponent(Component, Generic[InterfaceT]):
-    """A component known by a number on its board, driven through one backend.
-
-    A board passes its backend as it is (typed as any :class:`~j5aio.backends.backend.Backend`,
-    with no ``cast``): that the backend implements the component's interface is checked
-    when the backend class is made (see :class:`~j5aio.backends.backend.BackendMeta`) and
-    again here.
-
-    :param identifier: the number of the component on its board.
-    :param backend: the backend that implements this component's interface.
-    :raises TypeError: ``backend`` does not implement
-        :meth:`~j5aio.components.component.Component.interface_class`.
-    """
-
-    __slots__ = ("_backend", "_identifier")
-
-    def __init__(self, identifier: int, backend: InterfaceT | Backend) -> None:
-        self._identifier = identifier
-        self._backend: InterfaceT = checked_backend(type(self), backend)
-
-    @property
-    def identifier(self) -> int:
-        """The number that tells this component apart from its siblings on a board."""
-        return self._identifier
-
-
-def checked_backend(component: type[Component], backend: object) -> Any:
-    """Return ``backend`` if it implements ``component``'s interface.
-
-    :raises TypeError: it does not; the message names both.
-    """
-    interface = component.interface_class()
-    if not isinstance(backend, interface):
-        raise TypeError(
-            f"{component.__name__} needs a backend that implements {interface.__name__}, "
-            f"but {type(backend).__name__} does not",
-        )
-    return backend

@@ -8,8 +8,8 @@ from typing import ClassVar
 import anyio
 
 from j5aio.components._checks import check_timeout
-from j5aio.components._identified import IdentifiedComponent
 from j5aio.components.component import Interface
+from j5aio.components.identified import IdentifiedComponent
 
 __all__ = ["Button", "ButtonInterface"]
 

@@ -8,8 +8,8 @@ from enum import IntEnum
 from typing import TYPE_CHECKING, ClassVar, TypeGuard
 
 from j5aio.components._checks import check_bool, check_number, describe
-from j5aio.components._identified import IdentifiedComponent
 from j5aio.components.component import DerivedComponent, Interface
+from j5aio.components.identified import IdentifiedComponent
 from j5aio.errors import BadGPIOPinModeError, NotSupportedByComponentError
 
 if TYPE_CHECKING:

@@ -5,8 +5,8 @@ from __future__ import annotations
 from abc import abstractmethod
 
 from j5aio.components._checks import check_bool
-from j5aio.components._identified import IdentifiedComponent
 from j5aio.components.component import Interface
+from j5aio.components.identified import IdentifiedComponent
 
 __all__ = ["LED", "LEDInterface"]
 

@@ -16,8 +16,8 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from j5aio.components._identified import IdentifiedComponent
 from j5aio.components.component import Interface
+from j5aio.components.identified import IdentifiedComponent
 from j5aio.vision.sizes import MarkerSizes
 
 if TYPE_CHECKING:

@@ -6,8 +6,8 @@ from abc import abstractmethod
 from enum import Enum
 
 from j5aio.components._checks import check_number
-from j5aio.components._identified import IdentifiedComponent
 from j5aio.components.component import Interface
+from j5aio.components.identified import IdentifiedComponent
 
 __all__ = ["Motor", "MotorInterface", "MotorSpecialState", "MotorState", "check_motor_state"]
 

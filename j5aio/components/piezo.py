@@ -11,8 +11,8 @@ from typing import ClassVar
 import anyio
 
 from j5aio.components._checks import describe
-from j5aio.components._identified import IdentifiedComponent
 from j5aio.components.component import Interface
+from j5aio.components.identified import IdentifiedComponent
 
 __all__ = ["Duration", "Note", "Piezo", "PiezoInterface", "Pitch"]
 

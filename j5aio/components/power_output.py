@@ -7,8 +7,8 @@ from collections.abc import Iterator, Mapping
 from typing import Generic, TypeVar
 
 from j5aio.components._checks import check_bool
-from j5aio.components._identified import IdentifiedComponent
 from j5aio.components.component import Interface
+from j5aio.components.identified import IdentifiedComponent
 
 __all__ = ["PowerOutput", "PowerOutputGroup", "PowerOutputInterface"]
 

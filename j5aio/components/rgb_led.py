@@ -6,8 +6,8 @@ from abc import abstractmethod
 from enum import IntEnum
 
 from j5aio.components._checks import check_number, describe
-from j5aio.components._identified import IdentifiedComponent
 from j5aio.components.component import Interface
+from j5aio.components.identified import IdentifiedComponent
 
 __all__ = ["RGBLED", "RGBChannel", "RGBColour", "RGBLEDInterface"]
 

@@ -33,15 +33,16 @@ import j5aio.boards.sr.v4.power_board_fw4 as _boards_sr_v4_power_board_fw4
 import j5aio.boards.sr.v4.ruggeduino as _boards_sr_v4_ruggeduino
 import j5aio.boards.sr.v4.servo_board as _boards_sr_v4_servo_board
 import j5aio.boards.sr.v4.servo_board_fw4 as _boards_sr_v4_servo_board_fw4
-import j5aio.components._identified as _components_identified
 import j5aio.components.battery_sensor as _components_battery_sensor
 import j5aio.components.button as _components_button
 import j5aio.components.component as _components_component
 import j5aio.components.derived.ultrasound as _components_derived_ultrasound
+import j5aio.components.distance_sensor as _components_distance_sensor
 import j5aio.components.fan as _components_fan
 import j5aio.components.flag as _components_flag
 import j5aio.components.flashing_led as _components_flashing_led
 import j5aio.components.gpio_pin as _components_gpio_pin
+import j5aio.components.identified as _components_identified
 import j5aio.components.led as _components_led
 import j5aio.components.marker_camera as _components_marker_camera
 import j5aio.components.monitored_motor as _components_monitored_motor
@@ -118,6 +119,7 @@ __all__ = [
     "Colour",
     "Component",
     "DerivedComponent",
+    "DistanceSensor",
     "Environment",
     "Fan",
     "Flag",
@@ -140,6 +142,7 @@ __all__ = [
     "PowerOutputGroup",
     "ProtectedPowerOutput",
     "PulseServo",
+    "Rangefinder",
     "Ruggeduino",
     "SBArduino2024Board",
     "SBArduinoBoard",
@@ -2026,6 +2029,35 @@ class DerivedComponent(Component):
         return self._core.identifier
 
 
+class Rangefinder(Component):
+    """Anything that measures how far away the nearest object is.
+
+    A subclass implements :meth:`distance_mm`; :meth:`distance` gives the same reading in
+    metres. Neither takes an argument, so a program can take any rangefinder, whatever its
+    board, and read it the same way.
+    """
+
+    __slots__ = ()
+
+    _core: _components_distance_sensor.Rangefinder
+
+    def distance_mm(self) -> float | None:
+        """Measure the distance to the nearest object, in millimetres.
+
+        :returns: the distance, or ``None`` when there is no reading (nothing in range).
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.distance_mm)
+
+    def distance(self) -> float | None:
+        """Measure the distance to the nearest object, in metres.
+
+        :returns: the distance, or ``None`` when there is no reading (nothing in range).
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.distance)
+
+
 class AllDigitalUno(ArduinoUno):
     """An Uno whose pins 2 to 19 are all digital, with ultrasound on any pair of them.
 
@@ -2326,6 +2358,14 @@ class ServoBoardFw4(ServoBoard):
 class IdentifiedComponent(Component, Generic[InterfaceT]):
     """A component known by a number on its board, driven through one backend.
 
+    A subclass names its interface as the type argument
+    (``IdentifiedComponent[ThingInterface]``), sets ``__slots__ = ()`` (so that a misspelt
+    attribute is an error), returns the interface from the classmethod
+    :meth:`~j5aio.components.component.Component.interface_class`, and writes one
+    coroutine per thing a program may do, each checking its arguments and then awaiting
+    ``self._backend.<interface method>(self._identifier, ...)``. ``_backend`` (typed as
+    the interface) and ``_identifier`` are set here; :attr:`identifier` is public.
+
     A board passes its backend as it is (typed as any :class:`~j5aio.backends.backend.Backend`,
     with no ``cast``): that the backend implements the component's interface is checked
     when the backend class is made (see :class:`~j5aio.backends.backend.BackendMeta`) and
@@ -2340,60 +2380,6 @@ class IdentifiedComponent(Component, Generic[InterfaceT]):
     __slots__ = ()
 
     _core: _components_identified.IdentifiedComponent[Any]
-
-
-class UltrasoundSensor(DerivedComponent):
-    """An ultrasound distance sensor, such as an HC-SR04, wired to two GPIO pins.
-
-    The sensor sends a burst of sound when its trigger pin is pulsed and raises its echo
-    pin until the sound's echo comes back; the time taken gives the distance to the
-    nearest object.
-
-    :param gpio_trigger: the pin wired to the sensor's trigger.
-    :param gpio_echo: the pin wired to the sensor's echo.
-    :param backend: the backend that times the echo.
-    :param distance_mode: allow :meth:`distance`; with ``False`` only :meth:`pulse`
-        may be used.
-    :raises NotSupportedByComponentError: a pin does not list ``UltrasoundSensor``
-        among its firmware modes.
-    """
-
-    __slots__ = ()
-
-    _core: _components_derived_ultrasound.UltrasoundSensor
-
-    def __init__(
-        self,
-        gpio_trigger: GPIOPin,
-        gpio_echo: GPIOPin,
-        backend: _components_derived_ultrasound.UltrasoundInterface | _backends_backend.Backend,
-        *,
-        distance_mode: bool = True,
-    ) -> None:
-        _adopt_into(self, _components_derived_ultrasound.UltrasoundSensor(_unwrap(gpio_trigger), _unwrap(gpio_echo), backend, distance_mode=distance_mode))
-
-    @classmethod
-    def interface_class(cls) -> type[_components_derived_ultrasound.UltrasoundInterface]:
-        """The interface a backend implements for these sensors: :class:`UltrasoundInterface`."""
-        return _components_derived_ultrasound.UltrasoundSensor.interface_class()
-
-    def pulse(self) -> timedelta | None:
-        """Send a pulse and return how long its echo took, or ``None`` if none came back.
-
-        :raises CommunicationError: the board did not answer, or answered wrongly.
-        """
-        return _call(self._core.pulse)
-
-    def distance(self) -> float | None:
-        """Send a pulse and return the distance to the nearest object, in metres.
-
-        Returns ``None`` if no echo came back (nothing in range).
-
-        :raises NotSupportedByComponentError: the sensor was made with
-            ``distance_mode=False``; use :meth:`pulse` instead.
-        :raises CommunicationError: the board did not answer, or answered wrongly.
-        """
-        return _call(self._core.distance)
 
 
 class SBArduino2024Board(AllDigitalUno):
@@ -2505,6 +2491,74 @@ class Button(IdentifiedComponent[_components_button.ButtonInterface]):
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         _call(self._core.wait_until_pressed, timeout)
+
+
+class UltrasoundSensor(DerivedComponent, Rangefinder):
+    """An ultrasound distance sensor, such as an HC-SR04, wired to two GPIO pins.
+
+    The sensor sends a burst of sound when its trigger pin is pulsed and raises its echo
+    pin until the sound's echo comes back; the time taken gives the distance to the
+    nearest object. It is a :class:`~j5aio.components.distance_sensor.Rangefinder`, read
+    like every distance sensor: :meth:`distance` in metres, :meth:`distance_mm` in
+    millimetres.
+
+    :param gpio_trigger: the pin wired to the sensor's trigger.
+    :param gpio_echo: the pin wired to the sensor's echo.
+    :param backend: the backend that times the echo.
+    :param distance_mode: allow :meth:`distance`; with ``False`` only :meth:`pulse`
+        may be used.
+    :raises NotSupportedByComponentError: a pin does not list ``UltrasoundSensor``
+        among its firmware modes.
+    """
+
+    __slots__ = ()
+
+    _core: _components_derived_ultrasound.UltrasoundSensor
+
+    def __init__(
+        self,
+        gpio_trigger: GPIOPin,
+        gpio_echo: GPIOPin,
+        backend: _components_derived_ultrasound.UltrasoundInterface | _backends_backend.Backend,
+        *,
+        distance_mode: bool = True,
+    ) -> None:
+        _adopt_into(self, _components_derived_ultrasound.UltrasoundSensor(_unwrap(gpio_trigger), _unwrap(gpio_echo), backend, distance_mode=distance_mode))
+
+    @classmethod
+    def interface_class(cls) -> type[_components_derived_ultrasound.UltrasoundInterface]:
+        """The interface a backend implements for these sensors: :class:`UltrasoundInterface`."""
+        return _components_derived_ultrasound.UltrasoundSensor.interface_class()
+
+    def pulse(self) -> timedelta | None:
+        """Send a pulse and return how long its echo took, or ``None`` if none came back.
+
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.pulse)
+
+    def distance(self) -> float | None:
+        """Send a pulse and return the distance to the nearest object, in metres.
+
+        Returns ``None`` if no echo came back (nothing in range).
+
+        :raises NotSupportedByComponentError: the sensor was made with
+            ``distance_mode=False``; use :meth:`pulse` instead.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.distance)
+
+    def distance_mm(self) -> float | None:
+        """Send a pulse and return the distance to the nearest object, in millimetres.
+
+        The same reading as :meth:`distance`, a thousand times larger; ``None`` if no
+        echo came back (nothing in range).
+
+        :raises NotSupportedByComponentError: the sensor was made with
+            ``distance_mode=False``; use :meth:`pulse` instead.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.distance_mm)
 
 
 class Fan(IdentifiedComponent[_components_fan.FanInterface]):
@@ -3259,6 +3313,35 @@ class SRArduinoBoard(AllDigitalUno, Ruggeduino):
         return _boards_sr_v4_arduino.SRArduinoBoard.supported_components()
 
 
+class DistanceSensor(IdentifiedComponent[_components_distance_sensor.DistanceSensorInterface], Rangefinder):
+    """A distance sensor that a board numbers and reads with one command.
+
+    A board lists them as ``distance_sensors``; each reads in millimetres
+    (:meth:`distance_mm`) and in metres (:meth:`~Rangefinder.distance`), ``None`` when
+    nothing is in range.
+
+    :param identifier: the number of the sensor on its board.
+    :param backend: the backend that reads the sensor.
+    """
+
+    __slots__ = ()
+
+    _core: _components_distance_sensor.DistanceSensor
+
+    @classmethod
+    def interface_class(cls) -> type[_components_distance_sensor.DistanceSensorInterface]:
+        """The interface a backend implements: :class:`DistanceSensorInterface`."""
+        return _components_distance_sensor.DistanceSensor.interface_class()
+
+    def distance_mm(self) -> float | None:
+        """Measure the distance to the nearest object, in millimetres.
+
+        :returns: the distance, or ``None`` when nothing is in range.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        return _call(self._core.distance_mm)
+
+
 class FlashingLED(LED):
     """An LED that can be off, on, or flashing without the program's help.
 
@@ -3467,6 +3550,7 @@ _register(_boards_sr_v4_power_board.PowerBoard, PowerBoard)
 _register(_boards_sr_v4_power_board_fw4.PowerBoardOutputGroup, PowerBoardOutputGroup)
 _register(_boards_sr_v4_servo_board.ServoBoard, ServoBoard)
 _register(_components_component.DerivedComponent, DerivedComponent)
+_register(_components_distance_sensor.Rangefinder, Rangefinder)
 _register(_boards_arduino_all_digital.AllDigitalUno, AllDigitalUno)
 _register(_boards_sb_arduino.SBArduinoBoard, SBArduinoBoard)
 _register(_boards_sr_v4_motor_board_fw4.MotorBoardFw4, MotorBoardFw4)
@@ -3474,11 +3558,11 @@ _register(_boards_sr_v4_power_board_fw4.PowerBoardFw4, PowerBoardFw4)
 _register(_boards_sr_v4_ruggeduino.Ruggeduino, Ruggeduino)
 _register(_boards_sr_v4_servo_board_fw4.ServoBoardFw4, ServoBoardFw4)
 _register(_components_identified.IdentifiedComponent, IdentifiedComponent)
-_register(_components_derived_ultrasound.UltrasoundSensor, UltrasoundSensor)
 _register(_boards_sb_arduino_2024.SBArduino2024Board, SBArduino2024Board)
 _register(_boards_sb_servo_board.SBServoBoard, SBServoBoard)
 _register(_components_battery_sensor.BatterySensor, BatterySensor)
 _register(_components_button.Button, Button)
+_register(_components_derived_ultrasound.UltrasoundSensor, UltrasoundSensor)
 _register(_components_fan.Fan, Fan)
 _register(_components_flag.Flag, Flag)
 _register(_components_gpio_pin.GPIOPin, GPIOPin)
@@ -3494,6 +3578,7 @@ _register(_components_supply_sensor.SupplySensor, SupplySensor)
 _register(_components_temperature_sensor.TemperatureSensor, TemperatureSensor)
 _register(_components_voltage_sensor.VoltageSensor, VoltageSensor)
 _register(_boards_sr_v4_arduino.SRArduinoBoard, SRArduinoBoard)
+_register(_components_distance_sensor.DistanceSensor, DistanceSensor)
 _register(_components_flashing_led.FlashingLED, FlashingLED)
 _register(_components_monitored_motor.MonitoredMotor, MonitoredMotor)
 _register(_components_protected_power_output.ProtectedPowerOutput, ProtectedPowerOutput)

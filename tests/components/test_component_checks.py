@@ -56,7 +56,7 @@ def test_every_component_names_an_exported_interface() -> None:
         "PowerOutput", "Servo", "StringCommandComponent", "UltrasoundSensor",
         "PulseServo", "SupplySensor", "Flag", "FlashingLED",
         "ProtectedPowerOutput", "MonitoredMotor", "TemperatureSensor",
-        "VoltageSensor", "Fan",
+        "VoltageSensor", "Fan", "DistanceSensor",
     }
     for component in concrete:
         interface = component.interface_class()

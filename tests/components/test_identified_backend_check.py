@@ -26,3 +26,14 @@ def test_a_backend_without_the_interface_is_refused_by_name() -> None:
     message = "Motor needs a backend that implements MotorInterface, but JustLEDs does not"
     with pytest.raises(TypeError, match=message):
         Motor(0, JustLEDs())  # type: ignore[arg-type]
+
+
+def test_the_base_class_is_public_and_its_old_private_home_still_imports() -> None:
+    import j5aio.components
+    from j5aio.components import _identified, identified
+
+    assert j5aio.components.IdentifiedComponent is identified.IdentifiedComponent
+    assert j5aio.components.checked_backend is identified.checked_backend
+    assert _identified.IdentifiedComponent is identified.IdentifiedComponent
+    assert _identified.checked_backend is identified.checked_backend
+    assert issubclass(LED, identified.IdentifiedComponent)

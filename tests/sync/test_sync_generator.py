@@ -172,7 +172,7 @@ from typing import ClassVar
 
 from j5aio.backends.backend import Backend
 from j5aio.boards.board import Board
-from j5aio.components._identified import IdentifiedComponent
+from j5aio.components.identified import IdentifiedComponent
 from j5aio.components.component import Component, Interface
 from j5aio.components.led import LED
 

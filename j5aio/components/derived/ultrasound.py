@@ -6,9 +6,10 @@ from abc import abstractmethod
 from datetime import timedelta
 from typing import TYPE_CHECKING
 
-from j5aio.components._identified import checked_backend
 from j5aio.components.component import DerivedComponent, Interface
+from j5aio.components.distance_sensor import Rangefinder
 from j5aio.components.gpio_pin import GPIOPin
+from j5aio.components.identified import checked_backend
 from j5aio.errors import NotSupportedByComponentError
 
 if TYPE_CHECKING:
@@ -35,12 +36,14 @@ class UltrasoundInterface(Interface):
         raise NotImplementedError
 
 
-class UltrasoundSensor(DerivedComponent):
+class UltrasoundSensor(DerivedComponent, Rangefinder):
     """An ultrasound distance sensor, such as an HC-SR04, wired to two GPIO pins.
 
     The sensor sends a burst of sound when its trigger pin is pulsed and raises its echo
     pin until the sound's echo comes back; the time taken gives the distance to the
-    nearest object.
+    nearest object. It is a :class:`~j5aio.components.distance_sensor.Rangefinder`, read
+    like every distance sensor: :meth:`distance` in metres, :meth:`distance_mm` in
+    millimetres.
 
     :param gpio_trigger: the pin wired to the sensor's trigger.
     :param gpio_echo: the pin wired to the sensor's echo.
@@ -113,3 +116,17 @@ class UltrasoundSensor(DerivedComponent):
         return await self._backend.get_ultrasound_distance(
             self._gpio_trigger.identifier, self._gpio_echo.identifier,
         )
+
+    async def distance_mm(self) -> float | None:
+        """Send a pulse and return the distance to the nearest object, in millimetres.
+
+        The same reading as :meth:`distance`, a thousand times larger; ``None`` if no
+        echo came back (nothing in range).
+
+        :raises NotSupportedByComponentError: the sensor was made with
+            ``distance_mode=False``; use :meth:`pulse` instead.
+        :raises CommunicationError: the board did not answer, or answered wrongly.
+        """
+        metres = await self.distance()
+        # Rounded to a nanometre: undoes the float error of the backend's division by 1000.
+        return None if metres is None else round(metres * 1000, 6)

@@ -32,6 +32,9 @@ lists all of these skips at the end of the run. A green run with such skips has 
 checked everything: a scaling or rounding bug, for one, is caught only through
 ``observe``.
 
+To write the suite of an interface of your own, start from
+:mod:`j5aio.testing.conformance.base`.
+
 Capabilities are declared on the subject, not assumed: a motor board without BRAKE or
 COAST gives ``MotorSubject(special_states=())`` and must refuse them with
 :class:`~j5aio.errors.NotSupportedByHardwareError`; ``power_step`` sets how exactly
@@ -41,6 +44,7 @@ powers are checked.
 from ._base import InterfaceConformance, Subject
 from .battery_sensor import BatterySensorInterfaceConformance, BatterySensorSubject
 from .button import ButtonInterfaceConformance, ButtonSubject
+from .distance_sensor import DistanceSensorInterfaceConformance, DistanceSensorSubject
 from .flag import FlagInterfaceConformance, FlagSubject
 from .flashing_led import FlashingLEDInterfaceConformance, FlashingLEDSubject
 from .gpio_pin import GPIOPinInterfaceConformance, GPIOPinSubject, pin_modes
@@ -61,6 +65,8 @@ __all__ = [
     "BatterySensorSubject",
     "ButtonInterfaceConformance",
     "ButtonSubject",
+    "DistanceSensorInterfaceConformance",
+    "DistanceSensorSubject",
     "FlagInterfaceConformance",
     "FlagSubject",
     "FlashingLEDInterfaceConformance",
