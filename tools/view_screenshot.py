@@ -1,10 +1,10 @@
 """Take the live view's screenshot for the docs, in a real browser (Debian's chromium).
 
-    python tools/view_screenshot.py              # writes docs/images/live-view-sr2019.png
+    python tools/view_screenshot.py              # the sr2019 kit: docs/images/live-view-sr2019.png
     python tools/view_screenshot.py --kit sr2023 # writes docs/images/live-view-sr2023.png
     python tools/view_screenshot.py --arena      # writes docs/images/live-view-arena.png
 
-It runs ``python -m j5aio demo --view`` (the default kit, or ``--kit``), opens the printed
+It runs ``python -m j5aio demo --view`` (on the sr2019 kit, or ``--kit``), opens the printed
 address in headless chromium driven by selenium and chromedriver, waits until the robot
 has been driving for a few seconds, and saves the page (with ``--arena``, only the drawing
 of the simulated arena, larger). The browser tests load this file
@@ -159,14 +159,14 @@ def main() -> int:
     """Take the docs' screenshot (or say why not); return the exit status."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=None, help="where to save the PNG")
-    parser.add_argument("--kit", default=None, help="the simulated kit (default: the default)")
+    parser.add_argument("--kit", default="sr2019", help="the simulated kit (default: sr2019)")
     parser.add_argument(
         "--arena", action="store_true", help="only the drawing of the simulated arena"
     )
     args = parser.parse_args()
     if args.out is None:
         name = "arena" if args.arena else args.kit
-        args.out = SCREENSHOT.with_name(f"live-view-{name}.png") if name else SCREENSHOT
+        args.out = SCREENSHOT.with_name(f"live-view-{name}.png")
     reason = missing_browser()
     if reason is not None:
         print(f"cannot take the screenshot: {reason}", file=sys.stderr)
