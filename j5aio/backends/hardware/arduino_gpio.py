@@ -140,7 +140,7 @@ class ArduinoGPIOBackend(UnoLEDAndLimits, UltrasoundInterface, SerialHardwareBac
     # -- helpers for subclasses ---------------------------------------------------------
 
     async def _handshake(self, *, time_scale: float) -> None:
-        self._firmware_version = await self.identify_firmware(self._link, time_scale=time_scale)
+        self.firmware_version = await self.identify_firmware(self._link, time_scale=time_scale)
 
     async def _send_mode(
         self, pin: int, mode: GPIOPinMode, *, then: Callable[[], None] | None = None,
@@ -202,7 +202,7 @@ class ArduinoGPIOBackend(UnoLEDAndLimits, UltrasoundInterface, SerialHardwareBac
             return value
 
         try:
-            return await self._exchange(request, _LINE, then=finish)
+            return await self.exchange(request, _LINE, then=finish)
         except CommunicationTimeoutError as exc:
             raise CommunicationTimeoutError(f"{self.board.name} did not answer: {exc}") from exc
 
@@ -223,7 +223,7 @@ class ArduinoGPIOBackend(UnoLEDAndLimits, UltrasoundInterface, SerialHardwareBac
         level = self.CODEC.encode_digital_write(identifier, self._pins.state(identifier).level)
         mode = self.CODEC.encode_mode(identifier, wire_mode(pin_mode))
         try:
-            await self._exchange(
+            await self.exchange(
                 level + mode, _TWO_LINES, then=self._both_done((level, mode), remember),
             )
         except CommunicationTimeoutError as exc:

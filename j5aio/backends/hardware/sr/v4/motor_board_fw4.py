@@ -88,12 +88,12 @@ class SRV4MotorBoardFw4HardwareBackend(
         if not codec.is_supported_version(identity.version):
             raise UnsupportedFirmwareError(self.board.name, identity.version, _SUPPORTED)
         self.asset_tag = identity.asset_tag
-        self._firmware_version = identity.version
+        self.firmware_version = identity.version
 
     async def _refuse_firmware_3(self) -> None:
         """Ask a silent board for firmware 3's version; refuse it if it answers."""
         try:
-            line = await self._exchange(fw3.RESYNC_AND_VERSION_QUERY, read_line(max_length=64))
+            line = await self.exchange(fw3.RESYNC_AND_VERSION_QUERY, read_line(max_length=64))
         except CommunicationTimeoutError:
             return
         version = fw3.parse_version_reply(line)

@@ -23,7 +23,7 @@ from j5aio.components.button import ButtonInterface
 from j5aio.components.led import LEDInterface
 from j5aio.components.piezo import PiezoInterface
 from j5aio.components.power_output import PowerOutputInterface
-from j5aio.errors import BoardDisconnectionError, UnsupportedFirmwareError
+from j5aio.errors import UnsupportedFirmwareError
 
 __all__ = ["SRV4PowerBoardHardwareBackend"]
 
@@ -81,7 +81,7 @@ class SRV4PowerBoardHardwareBackend(
         version = str(codec.parse_u32(await self._read_command(codec.FIRMWARE_VERSION)))
         if version not in codec.SUPPORTED_VERSIONS:
             raise UnsupportedFirmwareError(self.board.name, version, codec.SUPPORTED_VERSIONS)
-        self._firmware_version = version
+        self.firmware_version = version
 
     async def _read_command(self, command: codec.ReadCommand) -> bytes:
         return await self._read(command.index, command.length)
@@ -159,17 +159,13 @@ class SRV4PowerBoardHardwareBackend(
 
     async def _poll_button(self, report: Callable[[], None], *, fresh: bool) -> None:
         # The button is a level, not a latch: ``fresh`` has nothing to forget.
-        try:
-            await self._guarded(
-                lambda: self._link.poll_control_read(
-                    codec.BUTTON.index, codec.BUTTON.length, _button_held,
-                    interval=self.BUTTON_POLL_INTERVAL, then=lambda _reply: report(),
-                ),
-                idempotent=True,
-            )
-        except BoardDisconnectionError:
-            self._forget()
-            raise
+        await self._guarded(
+            lambda: self._link.poll_control_read(
+                codec.BUTTON.index, codec.BUTTON.length, _button_held,
+                interval=self.BUTTON_POLL_INTERVAL, then=lambda _reply: report(),
+            ),
+            idempotent=True,
+        )
 
     # -- battery ------------------------------------------------------------------------
 

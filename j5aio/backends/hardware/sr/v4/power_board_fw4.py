@@ -81,7 +81,7 @@ class SRV4PowerBoardFw4HardwareBackend(
         if not codec.is_supported_version(identity.version):
             raise UnsupportedFirmwareError(self.board.name, identity.version, _SUPPORTED)
         self.identity = identity
-        self._firmware_version = identity.version
+        self.firmware_version = identity.version
         await self._act(codec.RESET)
 
     def _check_single_component(self, identifier: int, what: str) -> None:
