@@ -150,10 +150,10 @@ class SRV4MotorBoardFw4HardwareBackend(
 
     async def get_motor_fault(self, identifier: int) -> bool:
         """Read whether a motor's driver reports a fault (``*STATUS?``)."""
-        codec.encode_get(identifier)  # raises ValueError for a bad motor
+        codec.check_motor(identifier)
         return (await self._status()).faults[identifier]
 
     async def get_voltage_sensor_voltage(self, identifier: int) -> float:
         """Read the board's input voltage, in volts (``*STATUS?``)."""
-        self._check_single(identifier, "voltage sensor", self.board.name)
+        self._check_single(identifier, "voltage sensor")
         return (await self._status()).input_mv / 1000

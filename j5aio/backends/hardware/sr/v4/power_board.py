@@ -86,14 +86,10 @@ class SRV4PowerBoardHardwareBackend(
     async def _read_command(self, command: codec.ReadCommand) -> bytes:
         return await self._read(command.index, command.length)
 
-    def _check_single(self, identifier: int, what: str) -> None:
-        if identifier != 0:
-            raise ValueError(f"{self.board.name} has only {what} 0, not {identifier!r}")
-
     # -- power outputs ------------------------------------------------------------------
 
     def _check_output(self, identifier: int) -> None:
-        codec.output_current_read(identifier)  # raises ValueError for a bad output
+        codec.check_output(identifier)
 
     async def get_power_output_enabled(self, identifier: int) -> bool:
         """Return whether an output was last switched on (the board cannot report it)."""
@@ -183,7 +179,7 @@ class SRV4PowerBoardHardwareBackend(
 
     async def get_led_state(self, identifier: int) -> bool:
         """Return the state last written to an LED (the board cannot report it)."""
-        codec.led_write_index(identifier)
+        codec.check_led(identifier)
         return self._leds[identifier]
 
     async def set_led_state(self, identifier: int, state: bool) -> None:

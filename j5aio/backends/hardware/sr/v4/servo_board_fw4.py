@@ -113,7 +113,7 @@ class _ServoBoardFw4Backend(
         codec.check_ack(self.board.name, request, await self._query(request))
 
     def _check_servo(self, identifier: int) -> None:
-        codec.encode_get(self.firmware, identifier)  # TypeError / ValueError for a bad one
+        codec.check_servo(self.firmware, identifier)
 
     # -- servos --------------------------------------------------------------------------
 

@@ -76,8 +76,3 @@ class SRTextBackend(SerialHardwareBackend):
                 then()
 
         await self.exchange(command, _REPLY, then=acknowledged, idempotent=idempotent)
-
-    @staticmethod
-    def _check_single(identifier: int, what: str, board: str) -> None:
-        if identifier != 0:
-            raise ValueError(f"{board} has only {what} 0, not {identifier!r}")
