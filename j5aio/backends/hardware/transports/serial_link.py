@@ -40,11 +40,12 @@ mark the link dirty.
 and ``asyncio.wait_for``) breaks through anyio shields. So, once the lock is held, the
 exchange runs to completion (:func:`~.completion.run_to_completion`) in a task that no
 caller's cancellation reaches; the caller waits for it either way and is cancelled
-afterwards. For an exchange that task is made only when needed (a task for every
-exchange would cost tens of microseconds): the exchange runs in the caller's task, and
+afterwards. That task is made only when needed (a task for every call would cost tens
+of microseconds): an exchange or a send runs in the caller's task, and
 if ``Task.cancel`` tears it after its request has gone, a task of its own reads the reply
 to its end, by the same deadline, while the caller waits. (A stream sends all of a
-request or, cancelled, none of it, so a request torn before it went needs no reply.) An
+request or, cancelled, none of it, so a request torn before it went needs no reply, and
+a send has nothing left to do once its bytes have gone.) An
 exchange is therefore never torn half way, whoever cancels. A ``then`` callback given to
 :meth:`~SerialLink.exchange` or :meth:`~SerialLink.send` runs as soon as the board has
 answered (or the bytes have gone), even for a cancelled caller: that is where a backend
@@ -302,8 +303,9 @@ class SerialLink(AsyncResource):
     ) -> None:
         """Send ``data`` with no reply expected (for example a motor speed command).
 
-        Serialised with the exchanges, and run to completion like them: a cancelled
-        caller never leaves a command half sent.
+        Serialised with the exchanges, and run to completion like them, in the caller's
+        task: a cancelled caller never leaves a command half sent (a stream sends all of
+        it or, torn by ``Task.cancel``, none of it; then ``then`` does not run).
 
         :param then: called once the bytes have gone, even if the caller has been
             cancelled meanwhile (to update what a backend remembers).
@@ -313,7 +315,8 @@ class SerialLink(AsyncResource):
         seconds = self._timeout(timeout)
         data = bytes(data)
         async with self._lock:
-            await run_to_completion(lambda: self._send_locked(data, seconds, then))
+            with anyio.CancelScope(shield=True):
+                await self._send_locked(data, seconds, then)
 
     async def _send_locked(
         self, data: bytes, seconds: float, then: Callable[[], None] | None
