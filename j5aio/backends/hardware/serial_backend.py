@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import logging
 from abc import abstractmethod
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Awaitable, Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import ClassVar, TypeVar, cast, overload
 
@@ -510,13 +510,10 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         :raises BoardDisconnectionError: the port has gone (it is looked for again).
         """
 
-        async def call() -> object:
-            if then is None:
-                return await self._link.exchange(
-                    request, reader, timeout=timeout, when_dirty=when_dirty
-                )
-            return await self._link.exchange(
-                request, reader, timeout=timeout, then=then, when_dirty=when_dirty
+        def call() -> Awaitable[object]:  # the link is looked up anew for a retry
+            return self._link.exchange(
+                request, reader, timeout=timeout, then=then,  # type: ignore[arg-type]
+                when_dirty=when_dirty,
             )
 
         return await self._guarded(call, idempotent=idempotent)

@@ -599,8 +599,9 @@ class SerialLink(AsyncResource):
             await self._write(request)
             progress.deadline, progress.seconds = deadline, seconds
             reply = await self._read_reply(reader, request)
+            # Nothing awaits from here to the end of the scope, so its deadline cannot
+            # fire any more; leaving the scope drops it.
             finished = True
-            scope.deadline = math.inf
             self._after_reply(request, reader)
             return reply
         finally:
