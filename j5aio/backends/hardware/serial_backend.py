@@ -98,10 +98,15 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
       version by setting :attr:`firmware_version`;
     * the interface coroutines, which talk to the board with :meth:`exchange` (a request
       and its reply, read by a :class:`~j5aio.backends.hardware.transports.readers.ReplyReader`)
-      and :meth:`send` (a command with no reply). Both serialise access to the port,
-      time out after :attr:`DEFAULT_TIMEOUT` and raise
-      :class:`~j5aio.errors.CommunicationError` subclasses naming the port; a vanished
-      port is forgotten, so that rediscovery opens it afresh.
+      and :meth:`send` (a command with no reply), the one way in for built-in and
+      plugin backends alike. Both serialise access to the port, time out after
+      :attr:`DEFAULT_TIMEOUT` and raise :class:`~j5aio.errors.CommunicationError`
+      subclasses naming the port; a vanished port is forgotten, so that rediscovery
+      opens it afresh. Their ``then=`` callback is where a backend updates what it
+      remembers of the board: it runs once the board has the command, even for a
+      cancelled caller;
+    * optionally ``_link_ready``, to name the probe that puts the link back in step
+      after a timeout.
 
     :param link: the link to the board's port; the backend owns and closes it.
     :param port: the port's path or URL.

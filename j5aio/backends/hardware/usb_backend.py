@@ -81,7 +81,7 @@ class USBHardwareBackend(Reconnecting, Backend):
     def firmware_version(self) -> str | None:
         """The firmware version the board reported during the handshake.
 
-        :meth:`_handshake` sets it (``self.firmware_version = "4"``); ``None`` until then.
+        ``_handshake`` sets it (``self.firmware_version = "4"``); ``None`` until then.
         """
         return self._firmware_version
 
