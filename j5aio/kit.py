@@ -247,7 +247,9 @@ class KitRobot(BaseRobot):
         }
         filled = [f"{name} ({len(group)})" for name, group in named.items() if group]
         elsewhere = f"boards were found in {', '.join(filled)}" if filled else "no board was found"
-        power = " ".join(self._power_messages)
+        power = " ".join(
+            message if message.endswith(".") else f"{message}." for message in self._power_messages
+        )
         for name, group in named.items():
             if not group:
                 group.empty_hint = f"{name} is empty; {elsewhere}." + (f" {power}" if power else "")
