@@ -425,6 +425,7 @@ class SerialLink(AsyncResource):
                     # the caller waits for before being cancelled; before that, nothing
                     # was sent (a stream sends all or, cancelled, nothing).
                     if progress.deadline is not None and not scope.cancel_called:
+                        scope.deadline = math.inf  # the task that finishes it keeps time
                         await self._finish_torn(request, reader, progress, then)
                     raise
                 return reply if then is None else then(reply)
