@@ -2,8 +2,9 @@
 
 - ``list``: the boards plugged into this computer, and every kind of board looked for;
 - ``demo [--kit NAME]``: an example robot on the simulated kit, showing what the boards do;
-- ``run [--sim [--kit NAME]] program.py``: a robot program, on the hardware or the
-  simulated kit;
+- ``run [--sim [--kit NAME]] [--api sr-robot3|sbot] program.py``: a robot program, on the
+  hardware or the simulated kit (``--api``: a program written for a competition's own
+  API, :mod:`j5aio.compat`);
 - ``simulate NAME --pty``: a simulated board on a pseudo-terminal, for any program to open;
 - ``sync-gen MODULE -o FILE [--check]``: the typed sync facade of a kit's own boards.
 
@@ -28,6 +29,7 @@ from typing import TYPE_CHECKING, Any, Final
 
 from j5aio import syncgen
 from j5aio.board_kinds import get_kit, kits, simulator_entries
+from j5aio.compat.imports import API_NAMES
 from j5aio.environments import ENVIRONMENT_NAMES, ENVIRONMENT_VARIABLE
 from j5aio.simulator.kit import KIT_VARIABLE
 from j5aio.simulator.kit_file import KIT_FILE_VARIABLE
@@ -36,7 +38,10 @@ from j5aio.simulator.pin_options import apply_pin_options, parse_analog, parse_d
 if TYPE_CHECKING:
     from j5aio.view import LiveView
 
-__all__ = ["SIMULATOR_NAMES", "build_parser", "invoked_as", "main"]
+__all__ = ["API_CHOICES", "SIMULATOR_NAMES", "build_parser", "invoked_as", "main"]
+
+#: The competitions' APIs ``run --api`` offers (see :mod:`j5aio.compat.imports`).
+API_CHOICES: Final = tuple(API_NAMES)
 
 _EPILOG: Final = """\
 examples:
@@ -45,6 +50,8 @@ examples:
   python -m j5aio run --sim --kit sr2019 robot.py   ... on a named simulated kit
   python -m j5aio run robot.py                run it on the boards plugged in
   python -m j5aio run --sim --view robot.py   ... and watch its boards in the browser
+  python -m j5aio run --api sr-robot3 --sim --kit sr2023 robot.py
+                                              run an sr-robot3 program unchanged
   python -m j5aio run --sim --zone 2 --mode comp --duration 20 --start-after 1 robot.py
                                               simulate a 20 s match starting from zone 2
   python -m j5aio list                        which boards are plugged in?
@@ -130,6 +137,14 @@ def build_parser() -> argparse.ArgumentParser:
         help="choose the environment by name",
     )
     _add_kit_option(run, " (implies --sim)")
+    run.add_argument(
+        "--api",
+        choices=API_CHOICES,
+        default=None,
+        help="run a program written for a competition's own API: with sr-robot3, "
+        "'import sr.robot3' gives j5aio's sr-robot3 (j5aio.compat.sr_robot3); with sbot, "
+        "'import sbot' gives j5aio's sbot (j5aio.compat.sbot)",
+    )
     _add_match_arguments(run)
     run.add_argument("program", help="the program to run, e.g. robot.py")
     run.add_argument(
@@ -411,14 +426,20 @@ def _run(args: argparse.Namespace) -> int:
         os.environ[ENVIRONMENT_VARIABLE] = args.environment
     sys.argv = [str(program), *args.arguments]
     sys.path.insert(0, str(program.resolve().parent))
+    from j5aio.compat import imports
     from j5aio.tracebacks import run_program
 
+    finder = imports.install(args.api) if args.api else None
+    if finder is None:
+        imports.install_hint()
     try:
         with _match(args, program) as ready:
             if not ready:
                 return 2
             return run_program(program)
     finally:
+        if finder is not None:
+            imports.uninstall(finder)
         if view is not None:
             view.close()
 

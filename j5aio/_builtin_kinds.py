@@ -6,9 +6,7 @@ entry in :func:`entries` (and a new kit with one :class:`~j5aio.board_kinds.KitD
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
-from j5aio.board_kinds import (
+from j5aio._kind_types import (
     DEFAULT_KIT,
     BoardKind,
     KitDefinition,
@@ -29,35 +27,22 @@ from j5aio.boards.sr.v4 import (
     SRArduinoBoard,
 )
 
-if TYPE_CHECKING:
-    from j5aio.simulator.kch import KCHSimulator
-    from j5aio.simulator.sr_motor_fw4 import SRMotorBoardFw4Simulator
-    from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
-
 __all__ = ["entries"]
 
 
-def _sim(path: str) -> SimulatorClass:
+def _sim(path: str, *, serial_keyword: str | None = None, **keywords: object) -> SimulatorClass:
     """A simulator class of :mod:`j5aio.simulator`, by its path there (imported on first use)."""
-    return SimulatorClass(f"j5aio.simulator.{path}")
+    return SimulatorClass(f"j5aio.simulator.{path}", serial_keyword=serial_keyword, **keywords)
 
 
-def _sb_motor_fw4(serial_number: str) -> SRMotorBoardFw4Simulator:
-    from j5aio.simulator.sr_motor_fw4 import SRMotorBoardFw4Simulator
-
-    return SRMotorBoardFw4Simulator(serial_number, version="4.5.0")
-
-
-def _sr_arduino_fw2(serial_number: str) -> SRRuggeduinoSimulator:
-    from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
-
-    return SRRuggeduinoSimulator(serial_number, firmware_version=2)
+def _simulated(name: str) -> str:
+    """The import path of a simulated backend of :mod:`j5aio.simulator.sim_backends`."""
+    return f"j5aio.simulator.sim_backends:{name}"
 
 
-def _kch(serial_number: str) -> KCHSimulator:
-    from j5aio.simulator.kch import KCHSimulator
-
-    return KCHSimulator(serial_number=serial_number)
+def _simulated_2023(name: str) -> str:
+    """The import path of a simulated backend of :mod:`j5aio.simulator.sim_backends_2023`."""
+    return f"j5aio.simulator.sim_backends_2023:{name}"
 
 
 def entries() -> list[BoardKind | KitDefinition]:
@@ -77,10 +62,12 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR v4 power board, firmware 3 (USB)",
             hardware="j5aio.backends.hardware.sr.v4.power_board:SRV4PowerBoardHardwareBackend",
             console="j5aio.backends.console.sr.v4:SRV4PowerBoardConsoleBackend",
+            simulated=_simulated("SRV4PowerBoardSimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sr-power", _sim("sr_power_fw3:SRPowerBoardFw3Simulator"),
                     "SR v4 power board, firmware 3 (USB control transfers)", "SIMPB",
+                    transport="usb",
                 ),
             ),
         ),
@@ -90,10 +77,12 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR v4 motor board, firmware 3 (serial, 1 Mbaud)",
             hardware="j5aio.backends.hardware.sr.v4.motor_board:SRV4MotorBoardHardwareBackend",
             console="j5aio.backends.console.sr.v4:SRV4MotorBoardConsoleBackend",
+            simulated=_simulated("SRV4MotorBoardSimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sr-motor", _sim("sr_motor_fw3:SRMotorBoardFw3Simulator"),
                     "SR v4 motor board, firmware 3 (1 Mbaud)", "SIMMB",
+                    transport="serial",
                 ),
             ),
             # Its probe (a resync byte and a version query at 1 Mbaud) is quick, and
@@ -106,10 +95,12 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR v4 servo board, firmware 2 (USB)",
             hardware="j5aio.backends.hardware.sr.v4.servo_board:SRV4ServoBoardHardwareBackend",
             console="j5aio.backends.console.sr.v4:SRV4ServoBoardConsoleBackend",
+            simulated=_simulated("SRV4ServoBoardSimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sr-servo", _sim("sr_servo_fw2:SRServoBoardFw2Simulator"),
                     "SR v4 servo board, firmware 2 (USB control transfers)", "SIMSB",
+                    transport="usb",
                 ),
             ),
         ),
@@ -119,10 +110,12 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SourceBots Arduino, 2019 firmware (serial, 115200 baud)",
             hardware="j5aio.backends.hardware.sb.arduino:SBArduinoHardwareBackend",
             console="j5aio.backends.console.sb.arduino:SBArduinoConsoleBackend",
+            simulated=_simulated("SBArduinoSimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sb-arduino", _sim("sb_arduino_2019:SBArduinoSimulator"),
                     "SourceBots Arduino, 2019 firmware (115200 baud)", "SIMSBA",
+                    transport="serial",
                 ),
             ),
             identify_order=50,
@@ -133,10 +126,12 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR Ruggeduino, firmware 1 (serial, 115200 baud)",
             hardware="j5aio.backends.hardware.sr.v4.ruggeduino:SRV4RuggeduinoHardwareBackend",
             console="j5aio.backends.console.sr.v4:SRV4RuggeduinoConsoleBackend",
+            simulated=_simulated("SRV4RuggeduinoSimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sr-ruggeduino", _sim("sr_ruggeduino_fw1:SRRuggeduinoSimulator"),
                     "SR Ruggeduino, firmware 1 (115200 baud)", "SIMRD",
+                    transport="serial",
                 ),
             ),
             identify_order=60,
@@ -147,10 +142,12 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR v4 power board, firmware 4.4 (CDC serial)",
             hardware="j5aio.backends.hardware.sr.v4.power_board_fw4:SRV4PowerBoardFw4HardwareBackend",
             console="j5aio.backends.console.sr.v4:SRV4PowerBoardFw4ConsoleBackend",
+            simulated=_simulated_2023("SRV4PowerBoardFw4SimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sr-power-fw4", _sim("sr_power_fw4:SRPowerBoardFw4Simulator"),
                     "SR v4 power board, firmware 4.4 (CDC serial)", "SIMPB",
+                    transport="serial",
                 ),
             ),
             identify_order=20,
@@ -161,14 +158,18 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR v4 motor board, firmware 4.4 / 4.5 (serial, 115200 baud)",
             hardware="j5aio.backends.hardware.sr.v4.motor_board_fw4:SRV4MotorBoardFw4HardwareBackend",
             console="j5aio.backends.console.sr.v4:SRV4MotorBoardFw4ConsoleBackend",
+            simulated=_simulated_2023("SRV4MotorBoardFw4SimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sr-motor-fw4", _sim("sr_motor_fw4:SRMotorBoardFw4Simulator"),
                     "SR v4 motor board, firmware 4.4 (115200 baud)", "SIMMB",
+                    transport="serial",
                 ),
                 SimulatorEntry(
-                    "sb-motor-fw4", _sb_motor_fw4,
+                    "sb-motor-fw4",
+                    _sim("sr_motor_fw4:SRMotorBoardFw4Simulator", version="4.5.0"),
                     "SR v4 motor board, SourceBots firmware 4.5 (115200 baud)", "SIMMB",
+                    transport="serial",
                 ),
             ),
             # Its probe (a NUL, then *IDN? at 115200 baud) is harmless to a firmware 3
@@ -181,10 +182,12 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR v4 servo board, firmware 4.3 (CDC serial, 12 servos)",
             hardware="j5aio.backends.hardware.sr.v4.servo_board_fw4:SRV4ServoBoardFw4HardwareBackend",
             console="j5aio.backends.console.sr.v4:SRV4ServoBoardFw4ConsoleBackend",
+            simulated=_simulated_2023("SRV4ServoBoardFw4SimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sr-servo-fw4", _sim("sr_servo_fw4:SRServoBoardFw4Simulator"),
                     "SR v4 servo board, firmware 4.3 (CDC serial, 12 servos)", "SIMSB",
+                    transport="serial",
                 ),
             ),
             identify_order=30,
@@ -195,10 +198,12 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR v4 servo board, SourceBots firmware 4.4 (CDC serial, 8 servos)",
             hardware="j5aio.backends.hardware.sr.v4.servo_board_fw4:SBServoBoardHardwareBackend",
             console="j5aio.backends.console.sr.v4:SBServoBoardConsoleBackend",
+            simulated=_simulated_2023("SBServoBoardSimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sb-servo-fw4", _sim("sr_servo_fw4:SBServoBoardFw4Simulator"),
                     "SR v4 servo board, SourceBots firmware 4.4 (8 servos)", "SIMSB",
+                    transport="serial",
                 ),
             ),
             identify_order=31,
@@ -209,10 +214,13 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SR Arduino, firmware 2 (serial, 115200 baud)",
             hardware="j5aio.backends.hardware.sr.v4.arduino:SRArduinoHardwareBackend",
             console="j5aio.backends.console.sr.v4:SRArduinoConsoleBackend",
+            simulated=_simulated_2023("SRArduinoSimulatedBackend"),
             simulators=(
                 SimulatorEntry(
-                    "sr-arduino-fw2", _sr_arduino_fw2,
+                    "sr-arduino-fw2",
+                    _sim("sr_ruggeduino_fw1:SRRuggeduinoSimulator", firmware_version=2),
                     "SR Arduino, firmware 2 (115200 baud)", "SIMSRA",
+                    transport="serial",
                 ),
             ),
             identify_order=55,
@@ -223,10 +231,12 @@ def entries() -> list[BoardKind | KitDefinition]:
             description="SourceBots Arduino, sb2024 firmware 2.0 (serial, 115200 baud)",
             hardware="j5aio.backends.hardware.sb.arduino_2024:SBArduino2024HardwareBackend",
             console="j5aio.backends.console.sb.arduino_2024:SBArduino2024ConsoleBackend",
+            simulated=_simulated_2023("SBArduino2024SimulatedBackend"),
             simulators=(
                 SimulatorEntry(
                     "sb-arduino-2024", _sim("sb_arduino_2024:SBArduino2024Simulator"),
                     "SourceBots Arduino, sb2024 firmware 2.0 (115200 baud)", "SIMSBA",
+                    transport="serial",
                 ),
             ),
             # First of the Arduinos: every other Arduino firmware answers its probe
@@ -243,8 +253,9 @@ def entries() -> list[BoardKind | KitDefinition]:
             console="j5aio.backends.console.sr.kch:KCHConsoleBackend",
             simulators=(
                 SimulatorEntry(
-                    "kch", _kch,
+                    "kch", _sim("kch:KCHSimulator", serial_keyword="serial_number"),
                     "SR KCH (mock GPIO pins)", "SIMKCH",
+                    transport="other",
                 ),
             ),
             simulated="j5aio.simulator.kch:KCHSimulatedBackend",

@@ -22,8 +22,9 @@ on, waits for the boards to boot, and then looks for them (see :mod:`j5aio.kit_p
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from types import TracebackType
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, TypeVar
 
 import anyio
 
@@ -32,6 +33,7 @@ from j5aio.backends.console.backend import ConsoleBackend
 from j5aio.backends.environment import Environment
 from j5aio.boards.arduino.all_digital import AllDigitalUno
 from j5aio.boards.arduino.uno import ArduinoUno
+from j5aio.boards.board import Board
 from j5aio.boards.board_group import BoardGroup
 from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduinoBoard
@@ -43,6 +45,8 @@ from j5aio.robot import BaseRobot
 
 if TYPE_CHECKING:
     from j5aio.view import LiveView
+
+BoardT = TypeVar("BoardT", bound=Board)
 
 __all__ = ["KitRobot"]
 
@@ -81,6 +85,11 @@ class KitRobot(BaseRobot):
     output to switch on.
 
     :param environment: where to find the boards; the default environment if omitted.
+    :param boards: more boards to hold, a plugin's say, as ``{"bees": BeeBoard}``: each
+        group of that board class is found with the kit's own (after the power-up) and
+        held as the attribute of that name (``robot.bees``), and by
+        :meth:`~j5aio.kit.KitRobot.board_group` (``robot.board_group(BeeBoard)``,
+        typed), and is made safe at the end with the others.
     :param view: serve the live view of the boards while the robot runs (see
         :mod:`j5aio.view`; needs the ``view`` extra). ``None`` (the default) follows
         ``J5AIO_VIEW``. A view already running (``python -m j5aio run --view`` starts
@@ -94,8 +103,10 @@ class KitRobot(BaseRobot):
         default, ``False``, returns at once and :meth:`~j5aio.robot.BaseRobot.wait_start`
         waits later.
     :raises TypeError: ``environment`` is not an Environment, ``power_on`` is not
-        one of those, or ``wait_for_start`` is not a bool.
-    :raises ValueError: ``power_on`` names an output that does not exist, or L2.
+        one of those, ``wait_for_start`` is not a bool, or ``boards`` is not a mapping of
+        names to board classes.
+    :raises ValueError: ``power_on`` names an output that does not exist, or L2; a name
+        in ``boards`` is not an identifier, or is one of the robot's own attributes.
     """
 
     #: Seconds to wait for the boards to boot once their outputs are on (hardware; a
@@ -116,6 +127,7 @@ class KitRobot(BaseRobot):
         self,
         *,
         environment: Environment | None = None,
+        boards: Mapping[str, type[Board]] | None = None,
         view: bool | None = None,
         power_on: kit_power.PowerOnChoice = True,
         wait_for_start: bool = False,
@@ -128,9 +140,11 @@ class KitRobot(BaseRobot):
             )
         try:
             self._power_on = kit_power.check_power_on(power_on)
+            self._more_boards = _check_more_boards(boards)
         except (TypeError, ValueError):
             self.release_lock()
             raise
+        self._held: dict[type[Board], BoardGroup[Any]] = {}
         super().__init__(wait_for_start=wait_for_start)
         self._environment = environment
         self._chosen_by_default = environment is None
@@ -172,6 +186,10 @@ class KitRobot(BaseRobot):
             self.cameras = BoardGroup(CameraBoard, FileCameraBackend)
         self.camera = self.cameras[0].camera if self.cameras else None
         self.kch = await self._find_kch(environment)
+        for name, board in self._more_boards.items():
+            group = await environment.get_board_group(board)
+            self._held[board] = group
+            setattr(self, name, group)
         groups = (
             self.power_boards,
             self.motor_boards,
@@ -235,6 +253,21 @@ class KitRobot(BaseRobot):
             for message in messages:
                 view.state.add_log_line("power", message)
 
+    def board_group(self, board: type[BoardT]) -> BoardGroup[BoardT]:
+        """Return the group of ``board`` that ``boards=`` asked the robot to hold.
+
+        :raises KeyError: ``boards`` did not name that board class (or the robot is not
+            set up yet).
+        """
+        try:
+            return self._held[board]
+        except KeyError:
+            held = ", ".join(held.__name__ for held in self._held) or "none"
+            raise KeyError(
+                f"the robot holds no group of {getattr(board, '__name__', board)!r}: give it "
+                f"in KitRobot(boards={{...}}); it holds: {held}"
+            ) from None
+
     def _explain_empty_groups(self) -> None:
         """Make indexing an empty group say which groups have boards (and why it may be empty)."""
         named: dict[str, BoardGroup[Any]] = {
@@ -244,6 +277,7 @@ class KitRobot(BaseRobot):
             "robot.arduinos": self.arduinos,
             "robot.ruggeduinos": self.ruggeduinos,
             "robot.cameras": self.cameras,
+            **{f"robot.{name}": self._held[board] for name, board in self._more_boards.items()},
         }
         filled = [f"{name} ({len(group)})" for name, group in named.items() if group]
         elsewhere = f"boards were found in {', '.join(filled)}" if filled else "no board was found"
@@ -295,3 +329,29 @@ class KitRobot(BaseRobot):
             if self._view is not None:
                 self._view.close()
                 self._view = None
+
+
+def _check_more_boards(boards: object) -> dict[str, type[Board]]:
+    """The ``boards=`` of :class:`KitRobot`, checked: names that are free, and board classes."""
+    if boards is None:
+        return {}
+    if not isinstance(boards, Mapping):
+        raise TypeError(
+            "boards must map attribute names to board classes, such as "
+            f"{{'bees': BeeBoard}}, not {type(boards).__name__}"
+        )
+    checked: dict[str, type[Board]] = {}
+    for name, board in boards.items():
+        if not isinstance(name, str) or not name.isidentifier() or name.startswith("_"):
+            raise ValueError(
+                f"boards: {name!r} cannot name a group: give an identifier not starting "
+                "with '_', such as 'bees'"
+            )
+        if hasattr(KitRobot, name) or name in KitRobot.__annotations__:
+            raise ValueError(
+                f"boards: {name!r} is already the robot's own (robot.{name}): choose another name"
+            )
+        if not (isinstance(board, type) and issubclass(board, Board)):
+            raise TypeError(f"boards: {name!r} must name a Board subclass, not {board!r}")
+        checked[name] = board
+    return checked

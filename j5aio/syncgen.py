@@ -514,8 +514,11 @@ class _Renderer:
         """Whether a parameter of type ``tp`` may be given a wrapper class to unwrap."""
         if isinstance(tp, types.UnionType) or typing.get_origin(tp) is typing.Union:
             return any(self.takes_wrapper_class(a) for a in typing.get_args(tp))
-        if typing.get_origin(tp) is not type:
+        origin = typing.get_origin(tp)
+        if origin is None:
             return False
+        if origin is not type:  # a container (a mapping to board classes, say)
+            return any(self.takes_wrapper_class(a) for a in typing.get_args(tp))
         (arg,) = typing.get_args(tp)
         return self.is_wrapped_class(arg) or self.wrapped_typevar(arg)
 

@@ -18,11 +18,13 @@ import os
 import runpy
 import sys
 import traceback
+from collections.abc import Callable
 from pathlib import Path
 from typing import Final, TextIO
 
 __all__ = [
     "FULL_TRACEBACK_VARIABLE",
+    "add_hint",
     "format_trimmed",
     "is_ours",
     "run_program",
@@ -155,6 +157,28 @@ def format_trimmed(error: BaseException) -> str:
     return text
 
 
+#: Functions that may give one more line under an uncaught error (see :func:`add_hint`).
+_hints: list[Callable[[BaseException], str | None]] = []
+
+
+def add_hint(hint: Callable[[BaseException], str | None]) -> None:
+    """Print ``hint(error)``, unless it is ``None``, under a program's uncaught ``error``.
+
+    For advice that only the command line knows (``run --api`` names it for a program
+    that imports a competition's package that is not installed).
+    """
+    if hint not in _hints:
+        _hints.append(hint)
+
+
+def _with_hints(text: str, error: BaseException) -> str:
+    for hint in _hints:
+        line = hint(error)
+        if line:
+            text += f"{line}\n"
+    return text
+
+
 def _want_full() -> bool:
     return os.environ.get(FULL_TRACEBACK_VARIABLE, "").strip() not in ("", "0")
 
@@ -169,9 +193,9 @@ def run_program(program: Path, *, stderr: TextIO | None = None) -> int:
     except Exception as error:
         out = stderr if stderr is not None else sys.stderr
         if _want_full():
-            print(_with_suggestion("".join(traceback.format_exception(error)), error),
-                  end="", file=out)
+            text = _with_suggestion("".join(traceback.format_exception(error)), error)
         else:
-            print(format_trimmed(error), end="", file=out)
+            text = format_trimmed(error)
+        print(_with_hints(text, error), end="", file=out)
         return 1
     return 0

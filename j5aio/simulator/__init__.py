@@ -97,10 +97,17 @@ class SerialSimulatorFactory(Protocol):
 
 
 def _unwrap(factory: object) -> object:
-    """A factory as given, or the class a :class:`~j5aio.board_kinds.SimulatorClass` names."""
+    """A factory as given, or the class a :class:`~j5aio.board_kinds.SimulatorClass` names.
+
+    (One that makes its class with more arguments stays as it is.)
+    """
     from j5aio.board_kinds import SimulatorClass
 
-    return factory.resolve() if isinstance(factory, SimulatorClass) else factory
+    if isinstance(factory, SimulatorClass) and factory.serial_keyword is None and not (
+        factory.keywords
+    ):
+        return factory.resolve()
+    return factory
 
 
 class _SerialSimulators(Mapping[str, SerialSimulatorFactory]):

@@ -10,23 +10,26 @@ as a port named ``sim://<kit name>/<serial number>``, a USB board as a
 
 from __future__ import annotations
 
+import warnings
 from typing import TYPE_CHECKING, Any
 
 from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.transports.discovery import PortInfo
 from j5aio.backends.hardware.transports.memory import SimulatorStream
+from j5aio.board_kinds import BoardKind, board_kinds
 
 from .base import SerialBoardSimulator, UsbBoardSimulator
-from .kit import SimulatedKit
+from .kit import SimulatedKit, current_kit
 from .usb_support import no_device_error
 
 if TYPE_CHECKING:
     from j5aio.backends.hardware.transports.stream import ByteStream
-    from j5aio.board_kinds import BoardKind
 
 __all__ = [
     "MINIMUM_TIMEOUT_SCALE",
     "SimulatedUSBDevice",
+    "UnmatchedSimulatorWarning",
+    "kind_options",
     "kit_discovery_options",
     "port_name",
 ]
@@ -193,3 +196,58 @@ def _of_kind(
     kit: SimulatedKit, simulator: SerialBoardSimulator | UsbBoardSimulator, kind: BoardKind | None
 ) -> bool:
     return kind is None or kit.kind_of(simulator) is kind
+
+
+def _kind_of(backend: type) -> BoardKind:
+    """The registered kind naming ``backend`` (or a class it derives from) as ``simulated``."""
+    for cls in backend.__mro__:
+        reference = f"{cls.__module__}:{cls.__qualname__}"
+        for kind in board_kinds():
+            if kind.backend_reference("simulated") == reference:
+                return kind
+    raise LookupError(
+        f"{backend.__qualname__} is the simulated backend of no registered board kind: "
+        "name it as one's simulated= backend"
+    )
+
+
+def kind_options(backend: type) -> DiscoveryOptions:
+    """Discovery options finding the current kit's boards of ``backend``'s kind, and no others.
+
+    A serial backend finds a port by its USB IDs, on a robot as in the simulated kit: if
+    a simulator of the kind in the kit reports IDs that the backend's ``USB_IDS`` do not
+    hold (none set, say), the backend would find none of its boards, so a
+    :class:`UnmatchedSimulatorWarning` says so.
+
+    :param backend: a simulated backend, named by a registered kind as its ``simulated``
+        backend (or a subclass of one).
+    :raises LookupError: no registered kind names it.
+    """
+    kit = current_kit()
+    kind = _kind_of(backend)
+    _check_usb_ids(kit, kind, backend)
+    return kit_discovery_options(kit, kind=kind)
+
+
+class UnmatchedSimulatorWarning(UserWarning):
+    """A simulator of the kit is not found by its kind's backend: their USB IDs differ."""
+
+
+def _check_usb_ids(kit: SimulatedKit, kind: BoardKind, backend: type) -> None:
+    ids = getattr(backend, "USB_IDS", None)
+    if ids is None:  # (not a serial backend)
+        return
+    for simulator in kit.serial_simulators():
+        if kit.kind_of(simulator) is not kind or (simulator.usb_vid, simulator.usb_pid) in ids:
+            continue
+        given = ", ".join(f"{vid:04X}:{pid:04X}" for vid, pid in sorted(ids)) or "none"
+        warnings.warn(
+            f"board kind {kind.name!r}: its backend {backend.__qualname__} finds ports by "
+            f"USB_IDS ({given}), and its simulator {simulator.serial_number} reports "
+            f"{simulator.usb_vid:04X}:{simulator.usb_pid:04X}, so no board of the kind is "
+            "found, on the simulated kit as on a robot: set the hardware backend's USB_IDS "
+            "to the (vendor, product) IDs of the board's USB-serial adapter",
+            UnmatchedSimulatorWarning,
+            stacklevel=3,
+        )
+        return

@@ -23,24 +23,23 @@ So a program run on the simulated kit sends the same bytes as on a robot::
 
 Unplugged simulators (``simulator.unplug()``) are not found, as on a real bus.
 
-Each kind's backend is imported the first time a board of its class is asked for while
-the current kit has simulators of that kind; a kind the kit has none of gives no boards
-without being imported or asked (a group made then keeps finding none, even once
+Each kind names its simulated backend (``simulated=`` of
+:class:`~j5aio.board_kinds.BoardKind`), imported the first time a board of its class is
+asked for while the current kit has simulators of that kind; a kind the kit has none of
+gives no boards without being imported or asked (a group made then keeps finding none, even once
 :func:`~j5aio.simulator.kit.use_kit` has changed the kit: ask the environment again).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any, cast
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 from j5aio.backends.environment import Environment
 from j5aio.board_kinds import BoardKind, board_kinds
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
-    from j5aio.backends.hardware.options import DiscoveryOptions
-    from j5aio.boards.board import Board
 
     from .discovery import (
         MINIMUM_TIMEOUT_SCALE,
@@ -93,87 +92,19 @@ _EXPORTS: dict[str, str] = {
     ),
 }
 
-_SIM_BACKENDS = "j5aio.simulator.sim_backends"
-
-#: The simulated backends of j5aio's own board kinds, by their hardware backend's import
-#: path (no module is imported until a board of the kind is wanted).
-_NAMED_SIMULATED_BACKENDS: dict[str, str] = {
-    "j5aio.backends.hardware.sr.v4.power_board:SRV4PowerBoardHardwareBackend":
-        "SRV4PowerBoardSimulatedBackend",
-    "j5aio.backends.hardware.sr.v4.motor_board:SRV4MotorBoardHardwareBackend":
-        "SRV4MotorBoardSimulatedBackend",
-    "j5aio.backends.hardware.sr.v4.servo_board:SRV4ServoBoardHardwareBackend":
-        "SRV4ServoBoardSimulatedBackend",
-    "j5aio.backends.hardware.sb.arduino:SBArduinoHardwareBackend": "SBArduinoSimulatedBackend",
-    "j5aio.backends.hardware.sr.v4.ruggeduino:SRV4RuggeduinoHardwareBackend":
-        "SRV4RuggeduinoSimulatedBackend",
-}
-
-#: The simulated backends made so far for kinds without a named one, by hardware backend.
-_DERIVED: dict[type[Backend], type[Backend]] = {}
-
-
 def _has_simulated_backend(kind: BoardKind) -> bool:
-    """Whether ``kind`` has a simulated backend, importing nothing."""
-    if kind.backend_reference("simulated") is not None:
-        return True
-    return kind.backend_reference("hardware") is not None and bool(kind.simulators)
+    """Whether ``kind`` names a simulated backend, importing nothing."""
+    return kind.backend_reference("simulated") is not None
 
 
 def simulated_backend(kind: BoardKind) -> type[Backend] | None:
     """Return the backend that finds ``kind``'s boards in the current simulated kit.
 
-    That is the kind's own ``simulated`` backend (:class:`~j5aio.board_kinds.BoardKind`) if it
-    has one, else a subclass of its hardware backend whose ``discover`` looks at the
-    boards of :func:`~j5aio.simulator.kit.current_kit` made from the kind's simulators
-    (the hardware backend's ``discover`` must take ``options``, as the serial and USB
-    hardware backends' do). ``None`` for a kind with no simulator or no backend.
-    Only the modules of that backend are imported.
+    That is the backend the kind names as ``simulated`` (:class:`~j5aio.board_kinds.BoardKind`;
+    j5aio's serial and USB boards' are in :mod:`j5aio.simulator.sim_backends`), or
+    ``None`` for a kind that names none. Only the modules of that backend are imported.
     """
-    if not _has_simulated_backend(kind):
-        return None
-    if kind.backend_reference("simulated") is not None:
-        return kind.simulated
-    named = _NAMED_SIMULATED_BACKENDS.get(kind.backend_reference("hardware") or "")
-    if named is not None:
-        import importlib
-
-        backend: type[Backend] = getattr(importlib.import_module(_SIM_BACKENDS), named)
-        return backend
-    hardware = kind.hardware
-    assert hardware is not None
-    derived = _DERIVED.get(hardware)
-    if derived is None:
-        derived = _derive(kind, hardware)
-        _DERIVED[hardware] = derived
-    return derived
-
-
-def _derive(kind: BoardKind, hardware: type[Backend]) -> type[Backend]:
-    from j5aio.backends.backend import BackendMeta
-
-    from .discovery import kit_discovery_options
-    from .kit import current_kit
-
-    async def discover(
-        cls: type[Backend], *, options: DiscoveryOptions | None = None
-    ) -> Sequence[Board]:
-        parent: Any = super(derived, cls)  # a hardware backend: discover takes options
-        found: Sequence[Board] = await parent.discover(
-            options=options or kit_discovery_options(current_kit(), kind=kind)
-        )
-        return found
-
-    derived = cast("type[Backend]", BackendMeta(
-        f"{hardware.__name__}Simulated",
-        (hardware,),
-        {
-            "__doc__": f"{hardware.__name__}, finding the simulated kit's {kind.description}.",
-            "__module__": hardware.__module__,
-            "discover": classmethod(discover),
-        },
-    ))
-    return derived
+    return kind.simulated
 
 
 def _loader(kind: BoardKind) -> Callable[[], type[Backend]]:

@@ -1,11 +1,21 @@
-"""The simulated backends of j5aio's own serial and USB boards.
+"""The simulated backends of the SR v4 boards of firmware 3 (and 2) and the 2019 Arduinos.
 
 Each is the board's hardware backend whose ``discover`` looks at the boards of
-:func:`~j5aio.simulator.kit.current_kit` (see :mod:`j5aio.simulator.discovery`), and
-nothing else: from there on every call runs the hardware backend's own code (its polls
-included) over a simulated transport, as on a robot. The simulated environment
-(:mod:`j5aio.simulator.environment`) imports this module the first time it needs one of
-them.
+:func:`~j5aio.simulator.kit.current_kit` made from its kind's simulators (see
+:mod:`j5aio.simulator.discovery`), and nothing else: from there on every call runs the
+hardware backend's own code (its polls included) over a simulated transport, as on a
+robot. Each board kind names its simulated backend (``simulated=`` of
+:class:`~j5aio.board_kinds.BoardKind`); the simulated environment imports this module the
+first time it needs one of them. The later boards' are in
+:mod:`j5aio.simulator.sim_backends_2023`.
+
+A plugin's simulated backend is written the same way, with
+:func:`~j5aio.simulator.discovery.kind_options`::
+
+    class BeeSimulatedBackend(BeeBackend):
+        @classmethod
+        async def discover(cls, *, options=None):
+            return await super().discover(options=options or kind_options(cls))
 """
 
 from __future__ import annotations
@@ -19,18 +29,10 @@ from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBack
 from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
 from j5aio.boards.board import Board
-from j5aio.boards.sb.arduino import SBArduinoBoard
-from j5aio.boards.sr.v4.ruggeduino import Ruggeduino
+from j5aio.boards.sb import SBArduinoBoard
+from j5aio.boards.sr.v4 import Ruggeduino
 
-from .discovery import kit_discovery_options
-from .kit import current_kit
-from .sb_arduino_2019 import SBArduinoSimulator
-from .sr_motor_fw3 import SRMotorBoardFw3Simulator
-from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
-
-_RUGGEDUINO_HARDWARE = (
-    f"{SRV4RuggeduinoHardwareBackend.__module__}:{SRV4RuggeduinoHardwareBackend.__qualname__}"
-)
+from .discovery import kind_options
 
 __all__ = [
     "SBArduinoSimulatedBackend",
@@ -42,64 +44,45 @@ __all__ = [
 
 
 class SRV4PowerBoardSimulatedBackend(SRV4PowerBoardHardwareBackend):
-    """The SR v4 power board hardware backend, finding the simulated kit's power boards."""
+    """The SR v4 power board (firmware 3) hardware backend, on the simulated kit."""
 
     @classmethod
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
-        """Find the power boards of the current simulated kit (or where ``options`` say)."""
-        return await super().discover(options=options or kit_discovery_options(current_kit()))
-
-
-class SRV4ServoBoardSimulatedBackend(SRV4ServoBoardHardwareBackend):
-    """The SR v4 servo board hardware backend, finding the simulated kit's servo boards."""
-
-    @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
-        """Find the servo boards of the current simulated kit (or where ``options`` say)."""
-        return await super().discover(options=options or kit_discovery_options(current_kit()))
+        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
+        return await super().discover(options=options or kind_options(cls))
 
 
 class SRV4MotorBoardSimulatedBackend(SRV4MotorBoardHardwareBackend):
-    """The SR v4 motor board hardware backend, finding the simulated kit's motor boards."""
+    """The SR v4 motor board (firmware 3) hardware backend, on the simulated kit."""
 
     @classmethod
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
-        """Find the motor boards of the current simulated kit (or where ``options`` say)."""
-        return await super().discover(
-            options=options or kit_discovery_options(current_kit(), SRMotorBoardFw3Simulator)
-        )
+        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
+        return await super().discover(options=options or kind_options(cls))
+
+
+class SRV4ServoBoardSimulatedBackend(SRV4ServoBoardHardwareBackend):
+    """The SR v4 servo board (firmware 2) hardware backend, on the simulated kit."""
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
+        return await super().discover(options=options or kind_options(cls))
 
 
 class SBArduinoSimulatedBackend(SBArduinoHardwareBackend):
-    """The SourceBots Arduino hardware backend, finding the simulated kit's Arduinos."""
+    """The SourceBots Arduino (2019 firmware) hardware backend, on the simulated kit."""
 
     @classmethod
-    async def discover(
-        cls, *, options: DiscoveryOptions | None = None,
-    ) -> Sequence[SBArduinoBoard]:
-        """Find the SourceBots Arduinos of the current simulated kit (or where ``options`` say)."""
-        return await super().discover(
-            options=options or kit_discovery_options(current_kit(), SBArduinoSimulator)
-        )
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[SBArduinoBoard]:
+        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
+        return await super().discover(options=options or kind_options(cls))
 
 
 class SRV4RuggeduinoSimulatedBackend(SRV4RuggeduinoHardwareBackend):
-    """The Ruggeduino hardware backend, finding the simulated kit's Ruggeduinos."""
+    """The Ruggeduino (firmware 1) hardware backend, on the simulated kit."""
 
     @classmethod
-    async def discover(
-        cls, *, options: DiscoveryOptions | None = None,
-    ) -> Sequence[Ruggeduino]:
-        """Find the Ruggeduinos of the current simulated kit (or where ``options`` say).
-
-        Only the simulators standing in for a firmware 1 Ruggeduino: the SR Arduino's
-        simulator (firmware 2) is the same class, and is found by its own kind.
-        """
-        from j5aio.board_kinds import board_kinds
-
-        hardware = _RUGGEDUINO_HARDWARE
-        kind = next((k for k in board_kinds() if k.backend_reference("hardware") == hardware), None)
-        return await super().discover(
-            options=options
-            or kit_discovery_options(current_kit(), SRRuggeduinoSimulator, kind=kind)
-        )
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Ruggeduino]:
+        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
+        return await super().discover(options=options or kind_options(cls))

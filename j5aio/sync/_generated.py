@@ -1433,6 +1433,11 @@ class KitRobot(BaseRobot):
     output to switch on.
 
     :param environment: where to find the boards; the default environment if omitted.
+    :param boards: more boards to hold, a plugin's say, as ``{"bees": BeeBoard}``: each
+        group of that board class is found with the kit's own (after the power-up) and
+        held as the attribute of that name (``robot.bees``), and by
+        :meth:`~j5aio.kit.KitRobot.board_group` (``robot.board_group(BeeBoard)``,
+        typed), and is made safe at the end with the others.
     :param view: serve the live view of the boards while the robot runs (see
         :mod:`j5aio.view`; needs the ``view`` extra). ``None`` (the default) follows
         ``J5AIO_VIEW``. A view already running (``python -m j5aio run --view`` starts
@@ -1446,8 +1451,10 @@ class KitRobot(BaseRobot):
         default, ``False``, returns at once and :meth:`~j5aio.robot.BaseRobot.wait_start`
         waits later.
     :raises TypeError: ``environment`` is not an Environment, ``power_on`` is not
-        one of those, or ``wait_for_start`` is not a bool.
-    :raises ValueError: ``power_on`` names an output that does not exist, or L2.
+        one of those, ``wait_for_start`` is not a bool, or ``boards`` is not a mapping of
+        names to board classes.
+    :raises ValueError: ``power_on`` names an output that does not exist, or L2; a name
+        in ``boards`` is not an identifier, or is one of the robot's own attributes.
     """
 
     __slots__ = ()
@@ -1458,12 +1465,13 @@ class KitRobot(BaseRobot):
         cls,
         *args: Any,
         environment: Environment | None = None,
+        boards: Mapping[str, type[_boards_board.Board]] | None = None,
         view: bool | None = None,
         power_on: bool | Iterable[int | str | Enum] | None = True,
         wait_for_start: bool = False,
         **kwargs: Any,
     ) -> Self:
-        robot = _adopt(cls, _kit.KitRobot(environment=_unwrap(environment), view=view, power_on=power_on, wait_for_start=wait_for_start))
+        robot = _adopt(cls, _kit.KitRobot(environment=_unwrap(environment), boards=_unwrap(boards), view=view, power_on=power_on, wait_for_start=wait_for_start))
         try:
             _call(robot._core.setup)
             _call(robot._core.after_setup)
@@ -1488,6 +1496,118 @@ class KitRobot(BaseRobot):
             on the simulated kit instead.
         """
         _call(self._core.setup)
+
+    @overload
+    def board_group(self, board: type[SyncBoardT]) -> BoardGroup[SyncBoardT]:
+        ...
+
+    @overload
+    def board_group(
+        self,
+        board: type[_boards_sr_v4_arduino.SRArduinoBoard],
+    ) -> BoardGroup[SRArduinoBoard]:
+        ...
+
+    @overload
+    def board_group(
+        self,
+        board: type[_boards_sb_arduino_2024.SBArduino2024Board],
+    ) -> BoardGroup[SBArduino2024Board]:
+        ...
+
+    @overload
+    def board_group(
+        self,
+        board: type[_boards_sb_servo_board.SBServoBoard],
+    ) -> BoardGroup[SBServoBoard]:
+        ...
+
+    @overload
+    def board_group(
+        self,
+        board: type[_boards_arduino_all_digital.AllDigitalUno],
+    ) -> BoardGroup[AllDigitalUno]:
+        ...
+
+    @overload
+    def board_group(
+        self,
+        board: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
+    ) -> BoardGroup[MotorBoardFw4]:
+        ...
+
+    @overload
+    def board_group(
+        self,
+        board: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
+    ) -> BoardGroup[PowerBoardFw4]:
+        ...
+
+    @overload
+    def board_group(
+        self,
+        board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
+    ) -> BoardGroup[Ruggeduino]:
+        ...
+
+    @overload
+    def board_group(
+        self,
+        board: type[_boards_sb_arduino.SBArduinoBoard],
+    ) -> BoardGroup[SBArduinoBoard]:
+        ...
+
+    @overload
+    def board_group(
+        self,
+        board: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
+    ) -> BoardGroup[ServoBoardFw4]:
+        ...
+
+    @overload
+    def board_group(self, board: type[_boards_arduino_uno.ArduinoUno]) -> BoardGroup[ArduinoUno]:
+        ...
+
+    @overload
+    def board_group(self, board: type[_boards_camera.CameraBoard]) -> BoardGroup[CameraBoard]:
+        ...
+
+    @overload
+    def board_group(self, board: type[_boards_sr_kch.KCHBoard]) -> BoardGroup[KCHBoard]:
+        ...
+
+    @overload
+    def board_group(
+        self,
+        board: type[_boards_sr_v4_motor_board.MotorBoard],
+    ) -> BoardGroup[MotorBoard]:
+        ...
+
+    @overload
+    def board_group(
+        self,
+        board: type[_boards_sr_v4_power_board.PowerBoard],
+    ) -> BoardGroup[PowerBoard]:
+        ...
+
+    @overload
+    def board_group(
+        self,
+        board: type[_boards_sr_v4_servo_board.ServoBoard],
+    ) -> BoardGroup[ServoBoard]:
+        ...
+
+    @overload
+    def board_group(self, board: type[_boards_board.Board]) -> BoardGroup[Board]:
+        ...
+
+    def board_group(self, board: type[_boards_board.Board | Board]) -> BoardGroup[Board]:
+        """Return the group of ``board`` that ``boards=`` asked the robot to hold.
+
+        :raises KeyError: ``boards`` did not name that board class (or the robot is not
+            set up yet).
+        """
+        return cast("BoardGroup[Board]", _wrap(self._core.board_group(_unwrap(board))))
 
     @property
     def power_board(self) -> PowerBoard:
@@ -1865,8 +1985,22 @@ class ServoBoard(Board):
         """The component classes on a Servo Board."""
         return _boards_sr_v4_servo_board.ServoBoard.supported_components()
 
+    @property
+    def unpower_when_safe(self) -> bool:
+        """Whether :meth:`make_safe` switches every servo off (``False`` unless set).
+
+        By default the servos are left where they are, the safest choice for most
+        mechanisms; sr-robot3 and sbot switch them off when the program ends, and their
+        APIs on j5aio (:mod:`j5aio.compat`) set this to do the same.
+        """
+        return self._core.unpower_when_safe
+
+    @unpower_when_safe.setter
+    def unpower_when_safe(self, value: bool) -> None:
+        self._core.unpower_when_safe = value
+
     def make_safe(self) -> None:
-        """Do nothing: leaving the servos where they are is the safest choice."""
+        """Leave the servos where they are, or switch them off if :attr:`unpower_when_safe`."""
         _call(self._core.make_safe)
 
 
@@ -2456,7 +2590,7 @@ class GPIOPin(IdentifiedComponent[_components_gpio_pin.GPIOPinInterface]):
         hardware_modes: Set[_components_gpio_pin.GPIOPinMode] = frozenset({_components_gpio_pin.GPIOPinMode.DIGITAL_OUTPUT}),
         firmware_modes: Set[type[_components_component.DerivedComponent]] = frozenset(),
     ) -> None:
-        _adopt_into(self, _components_gpio_pin.GPIOPin(identifier, backend, initial_mode=_unwrap(initial_mode), hardware_modes=hardware_modes, firmware_modes=firmware_modes))
+        _adopt_into(self, _components_gpio_pin.GPIOPin(identifier, backend, initial_mode=_unwrap(initial_mode), hardware_modes=hardware_modes, firmware_modes=_unwrap(firmware_modes)))
 
     @property
     def mode(

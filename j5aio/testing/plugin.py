@@ -6,11 +6,17 @@ available in every test suite, sync tests and async tests alike:
 ``j5aio_sim_kit``
     A fresh simulated kit with every board found and set up
     (an :class:`~j5aio.testing.simkit.OpenSimulatedKit`); the boards are closed and
-    unregistered afterwards. Choose the boards with the ``j5aio_kit`` marker, whose
-    keyword arguments are those of :class:`~j5aio.simulator.kit.KitConfig`::
+    unregistered afterwards. Choose the boards with the ``j5aio_kit`` marker: a
+    registered kit by name (a plugin's own kit too) or a
+    :class:`~j5aio.board_kinds.KitDefinition`, or the keyword arguments of
+    :class:`~j5aio.simulator.kit.KitConfig`::
 
         @pytest.mark.j5aio_kit(motor_boards=1, power_boards=0)
         async def test_drive(j5aio_sim_kit):
+            ...
+
+        @pytest.mark.j5aio_kit("bee")
+        async def test_bee(j5aio_sim_kit):
             ...
 
 ``j5aio_pty_simulator``
@@ -41,7 +47,7 @@ from __future__ import annotations
 import re
 import sys
 from collections.abc import AsyncIterator, Iterable, Iterator, Mapping
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import pytest
 
@@ -53,6 +59,8 @@ except ImportError:  # the plugin must load anyway: only the async fixture needs
 if TYPE_CHECKING:
     from j5aio.backends.hardware.transports.memory import SerialSimulatorLike
     from j5aio.backends.hardware.transports.stream import ByteStream
+    from j5aio.board_kinds import KitDefinition
+    from j5aio.simulator.kit import KitConfig
     from j5aio.simulator.serve import PtyServer
     from j5aio.testing.simkit import OpenSimulatedKit
     from j5aio.testing.transports import Fault, FaultyStream
@@ -75,8 +83,9 @@ def pytest_configure(config: pytest.Config) -> None:
     """Register the plugin's marker."""
     config.addinivalue_line(
         "markers",
-        f"{KIT_MARKER}(**counts): the boards of the j5aio_sim_kit fixture's kit, as the "
-        "keyword arguments of j5aio.simulator.kit.KitConfig",
+        f"{KIT_MARKER}(kit=None, **counts): the j5aio_sim_kit fixture's kit: a registered "
+        "kit's name (a plugin's too) or a KitDefinition, or its boards as the keyword "
+        "arguments of j5aio.simulator.kit.KitConfig",
     )
 
 
@@ -132,13 +141,40 @@ NEEDS_PYTEST_ASYNCIO = (
 
 async def _sim_kit(request: pytest.FixtureRequest) -> AsyncIterator[OpenSimulatedKit]:
     """A fresh simulated kit, its boards set up; closed and unregistered afterwards."""
-    from j5aio.simulator.kit import KitConfig
     from j5aio.testing.simkit import open_simulated_kit
 
     marker = request.node.get_closest_marker(KIT_MARKER)
-    config = KitConfig(**marker.kwargs) if marker is not None else None
-    async with open_simulated_kit(config) as sim:
+    kit: KitConfig | KitDefinition | str | None = None
+    if marker is not None:
+        kit = _marked_kit(marker.args, marker.kwargs)
+    async with open_simulated_kit(kit) as sim:
         yield sim
+
+
+def _marked_kit(args: tuple[object, ...], counts: Mapping[str, object]) -> Any:
+    """The kit a ``j5aio_kit`` marker chooses: a named kit, a definition, or board counts.
+
+    :raises TypeError: the marker gives more than one kit, a kit together with counts,
+        or something else than a kit's name, a KitDefinition or a KitConfig.
+    """
+    from j5aio.board_kinds import KitDefinition
+    from j5aio.simulator.kit import KitConfig
+
+    if not args:
+        return KitConfig(**counts)  # type: ignore[arg-type]  # (KitConfig checks them)
+    if len(args) > 1 or counts:
+        raise TypeError(
+            f"the {KIT_MARKER} marker takes one kit (a name, a KitDefinition or a KitConfig) "
+            f"or KitConfig's keyword arguments, not both: it was given {args!r} and "
+            f"{dict(counts)!r}"
+        )
+    kit = args[0]
+    if not isinstance(kit, str | KitDefinition | KitConfig):
+        raise TypeError(
+            f"the {KIT_MARKER} marker's kit is a kit's name (such as 'sr2019' or a "
+            f"plugin's), a KitDefinition or a KitConfig, not {kit!r}"
+        )
+    return kit
 
 
 def _sim_kit_unavailable() -> None:

@@ -25,6 +25,7 @@ from j5aio.boards.board import Board
 from j5aio.boards.board_group import BoardGroup
 
 if TYPE_CHECKING:
+    from j5aio.board_kinds import KitDefinition
     from j5aio.simulator.kit import KitConfig, SimulatedKit
 
 __all__ = ["OpenSimulatedKit", "open_simulated_kit", "simulated_environment"]
@@ -74,13 +75,14 @@ class OpenSimulatedKit:
 
 @asynccontextmanager
 async def open_simulated_kit(
-    config: KitConfig | None = None,
+    config: KitConfig | KitDefinition | str | None = None,
     *,
     environment: Environment | None = None,
 ) -> AsyncIterator[OpenSimulatedKit]:
     """Use a fresh simulated kit, with every board found and set up, then close them all.
 
-    :param config: the boards of the kit; the default kit if omitted.
+    :param config: the kit: its boards (a configuration), a registered kit or its name;
+        the default kit if omitted.
     :param environment: the environment to find the boards through; the simulated
         environment if omitted.
     """

@@ -82,7 +82,10 @@ def test_a_registered_kind_joins_the_simulators_and_the_kits_it_names(gen9: Boar
 def test_names_already_taken_are_refused() -> None:
     clash = BoardKind(
         "test-clash", MotorBoard, "x",
-        simulators=(SimulatorEntry("sr-motor", SRMotorBoardFw3Simulator, "x", "SIMX"),),
+        simulators=(SimulatorEntry(
+            "sr-motor", SRMotorBoardFw3Simulator, "x", "SIMX", transport="serial"
+        ),),
+        simulated=SRV4MotorBoardHardwareBackend,
     )
     with pytest.raises(ValueError, match="simulator called 'sr-motor' is already registered"):
         register(clash)
@@ -112,10 +115,31 @@ def test_a_kit_needing_a_missing_simulator_says_so() -> None:
             "drives MotorBoard, not PowerBoard",
         ),
         (lambda: BoardKind("k", MotorBoard, "x", simulators=("s",)), "must be SimulatorEntry"),  # type: ignore[arg-type]
-        (lambda: SimulatorEntry("s", 3, "x", "P"), "must be callable"),  # type: ignore[arg-type]
-        (lambda: SimulatorEntry("s", SRMotorBoardFw3Simulator, "x", "P", {"k": -1}), "0 or more"),
+        (lambda: SimulatorEntry("s", 3, "x", "P", transport="serial"), "must be callable"),  # type: ignore[arg-type]
+        (
+            lambda: SimulatorEntry(
+                "s", SRMotorBoardFw3Simulator, "x", "P", {"k": -1}, transport="serial"
+            ),
+            "0 or more",
+        ),
         (lambda: KitDefinition("k", "x", {"sr-motor": 1.5}), "give a whole number"),  # type: ignore[dict-item]
-        (lambda: SimulatorEntry("", SRMotorBoardFw3Simulator, "x", "P"), "non-empty string"),
+        (
+            lambda: SimulatorEntry("", SRMotorBoardFw3Simulator, "x", "P", transport="serial"),
+            "non-empty string",
+        ),
+        (
+            lambda: SimulatorEntry("s", SRMotorBoardFw3Simulator, "x", "P", transport="pipe"),  # type: ignore[arg-type]
+            "its transport is one of 'serial', 'usb', 'other', not 'pipe'",
+        ),
+        (
+            lambda: BoardKind(
+                "k", MotorBoard, "x", hardware=SRV4MotorBoardHardwareBackend,
+                simulators=(
+                    SimulatorEntry("s", SRMotorBoardFw3Simulator, "x", "P", transport="serial"),
+                ),
+            ),
+            "has simulators but names no simulated backend",
+        ),
     ],
 )
 def test_entries_check_what_they_are_given(make: Any, message: str) -> None:
@@ -144,9 +168,9 @@ def test_a_simulator_class_named_by_path_is_imported_on_first_use(
     path = "j5aio.simulator.sr_motor_fw3:SRMotorBoardFw3Simulator"
     monkeypatch.delitem(sys.modules, "j5aio.simulator.sr_motor_fw3")
     factory = SimulatorClass(path)
-    entry = SimulatorEntry("m", factory, "a motor board", "SIMM")
+    entry = SimulatorEntry("m", factory, "a motor board", "SIMM", transport="serial")
     assert "j5aio.simulator.sr_motor_fw3" not in sys.modules
-    assert entry.is_serial  # from the class: nothing is made
+    assert entry.is_serial  # declared: nothing is imported or made
     made = factory("SIMM0")
     assert type(made).__name__ == "SRMotorBoardFw3Simulator"
     assert made.serial_number == "SIMM0"  # type: ignore[attr-defined]
@@ -288,7 +312,12 @@ def test_loading_a_plugin_imports_none_of_the_backends_it_names_by_path(
         (
             BoardKind(
                 "test-dup", MotorBoard, "x",
-                simulators=(SimulatorEntry("sr-motor", SRMotorBoardFw3Simulator, "x", "P"),),
+                simulators=(
+                    SimulatorEntry(
+                        "sr-motor", SRMotorBoardFw3Simulator, "x", "P", transport="serial"
+                    ),
+                ),
+                simulated=SRV4MotorBoardHardwareBackend,
             ),
             "simulator called 'sr-motor' is already registered",
         ),

@@ -15,7 +15,7 @@ from j5aio.simulator.kit import KitConfig, SimulatedKit, current_kit, use_kit
 from j5aio.simulator.sr_motor_fw3 import SRMotorBoardFw3Simulator
 from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 
-from .kind_fakes import GEN9, Gen9HardwareBackend, MotorBoardGen9
+from .kind_fakes import GEN9, Gen9HardwareBackend, Gen9SimulatedBackend, MotorBoardGen9
 
 
 @pytest.fixture(autouse=True)
@@ -89,14 +89,12 @@ def test_j5aio_kit_chooses_the_first_current_kit(monkeypatch: pytest.MonkeyPatch
 
 
 @pytest.mark.usefixtures("_close_boards")
-async def test_a_registered_kind_gets_a_simulated_backend_finding_its_own_boards() -> None:
+async def test_a_registered_kind_s_simulated_backend_finds_its_own_boards() -> None:
     register(GEN9)
     try:
         backend = simulated_backend(GEN9)
-        assert backend is not None
+        assert backend is Gen9SimulatedBackend  # the one the kind names, not one made
         assert issubclass(backend, Gen9HardwareBackend)
-        assert backend.__name__ == "Gen9HardwareBackendSimulated"
-        assert simulated_backend(GEN9) is backend
         kit = use_kit(KitDefinition("x", "x", {"sr-motor": 1, "test-motor-gen9": 2}))
         boards = await backend.discover()
         for board in boards:
@@ -114,8 +112,7 @@ async def test_a_registered_kind_gets_a_simulated_backend_finding_its_own_boards
 def test_a_kind_without_simulators_has_no_simulated_backend() -> None:
     from dataclasses import replace
 
-    assert simulated_backend(replace(GEN9, simulators=())) is None
-    assert simulated_backend(replace(GEN9, hardware=None)) is None
+    assert simulated_backend(replace(GEN9, simulators=(), simulated=None)) is None
     own = replace(GEN9, simulated=Gen9HardwareBackend)
     assert simulated_backend(own) is Gen9HardwareBackend
     assert issubclass(MotorBoardGen9, MotorBoard)
@@ -139,7 +136,11 @@ def test_a_simulator_of_another_shape_is_in_the_kit_but_not_served_on_a_pty() ->
         name="test-hat",
         hardware=None,
         simulated=Gen9HardwareBackend,
-        simulators=(SimulatorEntry("test-hat", lambda serial: HatSimulator(serial), "hat", "HAT"),),
+        simulators=(
+            SimulatorEntry(
+                "test-hat", lambda serial: HatSimulator(serial), "hat", "HAT", transport="other"
+            ),
+        ),
     )
     register(hat)
     try:
@@ -152,3 +153,35 @@ def test_a_simulator_of_another_shape_is_in_the_kit_but_not_served_on_a_pty() ->
         assert len(kit) == 1  # the boards reached by USB or a serial port
     finally:
         unregister(hat.name)
+
+
+@pytest.mark.usefixtures("_close_boards")
+async def test_a_backend_whose_usb_ids_miss_its_simulators_says_so() -> None:
+    from j5aio.simulator.discovery import UnmatchedSimulatorWarning
+
+    class NoUsbIds(Gen9SimulatedBackend):
+        """A backend whose author forgot the USB IDs."""
+
+        USB_IDS = frozenset()
+
+    register(GEN9)
+    try:
+        use_kit(KitDefinition("x", "x", {"test-motor-gen9": 1}))
+        with pytest.warns(
+            UnmatchedSimulatorWarning,
+            match=r"'test-motor-gen9'.*USB_IDS \(none\).*SIMG90 reports [0-9A-F]{4}:[0-9A-F]{4}",
+        ):
+            assert await NoUsbIds.discover() == []
+        boards = await Gen9SimulatedBackend.discover()  # with its IDs: found, and no warning
+        for board in boards:
+            await board.setup()
+        assert [board.serial_number for board in boards] == ["SIMG90"]
+    finally:
+        unregister(GEN9.name)
+
+
+def test_a_backend_no_kind_names_cannot_find_a_kind_s_boards() -> None:
+    from j5aio.simulator.discovery import kind_options
+
+    with pytest.raises(LookupError, match="Gen9HardwareBackend is the simulated backend of no"):
+        kind_options(Gen9HardwareBackend)

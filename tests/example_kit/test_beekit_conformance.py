@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import pytest
 from beekit.backend import BeeBackend
 from beekit.console import BeeConsoleBackend
@@ -25,11 +27,12 @@ class BeeSuite:
     """Connects a backend to a fresh simulator, recording what it sends."""
 
     backend_class: type[BeeBackend] = BeeBackend
+    simulator_class: type[BeeSimulator] = BeeSimulator
     simulator: BeeSimulator
     stream: RecordingStream
 
     async def connect(self) -> BeeBackend:
-        self.simulator = BeeSimulator()
+        self.simulator = self.simulator_class()
         self.stream = RecordingStream(SimulatorStream(self.simulator, time_scale=0))
         board = await self.backend_class.from_stream(
             self.stream, port="sim", serial_number="B1", time_scale=0,
@@ -45,14 +48,14 @@ class TestBeeMotors(BeeSuite, MotorInterfaceConformance):
         backend = await self.connect()
 
         async def observe(identifier: int) -> MotorState:
-            return self.simulator.motor_steps[identifier] / 100
+            return self.simulator.motor_steps[identifier] / self.simulator.MOTOR_STEPS
 
         return MotorSubject(
             backend=backend,
             identifiers=[0, 1],
             observe=observe,
             special_states=(),  # no BRAKE, no COAST: the suite checks they are refused
-            power_step=1 / 100,
+            power_step=1 / self.backend_class.MOTOR_STEPS,
             traffic=lambda: self.stream.sent,
         )
 
@@ -85,7 +88,11 @@ class TestBeeButton(BeeSuite, ButtonInterfaceConformance):
 
 
 class BeeConsoleSuite:
-    """Makes a console backend whose prompts a :class:`ConsoleScript` answers."""
+    """Makes a console backend whose prompts a :class:`ConsoleScript` answers.
+
+    The console is its board: what it printed is what it did (``observe``), and the
+    lines it printed are what it sent (``traffic``).
+    """
 
     script: ConsoleScript
 
@@ -93,18 +100,38 @@ class BeeConsoleSuite:
         self.script = ConsoleScript()
         return BeeConsoleBackend("SERIAL", self.script.console_class())
 
+    def last_printed(self, pattern: str) -> re.Match[str]:
+        """The last line printed that matches ``pattern``."""
+        for line in reversed(self.script.printed):
+            found = re.search(pattern, line)
+            if found:
+                return found
+        raise AssertionError(f"the console printed no line like {pattern!r}")
+
+    def printed(self) -> bytes:
+        return "\n".join(self.script.printed).encode()
+
 
 class TestBeeConsoleMotors(BeeConsoleSuite, MotorInterfaceConformance):
     async def make_backend(self) -> MotorSubject:
+        async def observe(identifier: int) -> MotorState:
+            return float(self.last_printed(rf"Motor {identifier} power set to (\S+)")[1])
+
         return MotorSubject(
             backend=self.console_backend(), identifiers=[0, 1], special_states=(),
-            power_step=1 / 100,
+            power_step=1 / BeeBackend.MOTOR_STEPS, observe=observe, traffic=self.printed,
         )
 
 
 class TestBeeConsoleLED(BeeConsoleSuite, LEDInterfaceConformance):
     async def make_backend(self) -> LEDSubject:
-        return LEDSubject(backend=self.console_backend(), identifiers=[0])
+        async def observe(identifier: int) -> bool:
+            return self.last_printed(r"LED (on|off)")[1] == "on"
+
+        return LEDSubject(
+            backend=self.console_backend(), identifiers=[0], observe=observe,
+            traffic=self.printed,
+        )
 
 
 class TestBeeConsoleButton(BeeConsoleSuite, ButtonInterfaceConformance):
@@ -119,6 +146,7 @@ class TestBeeConsoleButton(BeeConsoleSuite, ButtonInterfaceConformance):
 
         return ButtonSubject(
             backend=backend, identifiers=[0], set_pressed=set_pressed, press=press,
+            traffic=self.printed,
         )
 
 
@@ -127,20 +155,48 @@ class TruncatingBeeBackend(BeeBackend):
 
     async def set_motor_state(self, identifier: int, power: MotorState) -> None:
         assert isinstance(power, float)
-        await self.exchange(b"M%d %d\n" % (identifier, int(power * 100)), read_line())
+        await self.exchange(b"M%d %d\n" % (identifier, int(power * self.MOTOR_STEPS)), read_line())
         self._powers[identifier] = power  # and it reports what it was asked, not what it did
 
 
-class TruncatingBeeMotors(TestBeeMotors):  # not named Test...: pytest does not collect it
-    backend_class = TruncatingBeeBackend
+def suite_at(steps: int, backend: type[BeeBackend]) -> TestBeeMotors:
+    """The motor suite on ``backend`` and a board, both of ``steps`` steps each way."""
+
+    class Simulator(BeeSimulator):
+        MOTOR_STEPS = steps
+
+    class Backend(backend):  # type: ignore[valid-type, misc]
+        MOTOR_STEPS = steps
+
+    class Suite(TestBeeMotors):  # made here: pytest does not collect it
+        backend_class = Backend
+        simulator_class = Simulator
+
+    return Suite()
 
 
-async def test_the_motor_suite_catches_a_truncating_backend() -> None:
-    suite = TruncatingBeeMotors()
+RESOLUTIONS = [100, 125, 127, 255]
+
+
+@pytest.mark.parametrize("steps", RESOLUTIONS)
+async def test_the_motor_suite_catches_a_truncating_backend(steps: int) -> None:
+    suite = suite_at(steps, TruncatingBeeBackend)
     subject = await suite.make_backend()
     try:
-        await suite.test_every_identifier(subject)  # exact powers: the bug does not show
-        with pytest.raises(AssertionError, match=r"set to 0\.667 but the board shows 0\.66"):
+        if steps == 100:  # every exact power is a whole number of steps: the bug hides
+            await suite.test_every_identifier(subject)
+        with pytest.raises(AssertionError, match="rounded rather than truncated"):
             await suite.test_the_board_shows_each_power(subject)
+    finally:
+        await subject.aclose()
+
+
+@pytest.mark.parametrize("steps", RESOLUTIONS)
+async def test_the_rounding_backend_passes_at_every_resolution(steps: int) -> None:
+    suite = suite_at(steps, BeeBackend)
+    subject = await suite.make_backend()
+    try:
+        await suite.test_the_board_shows_each_power(subject)
+        await suite.test_every_identifier(subject)
     finally:
         await subject.aclose()

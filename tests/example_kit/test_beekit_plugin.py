@@ -63,8 +63,14 @@ async def _close_boards() -> AsyncIterator[None]:
 
 
 def python_m_j5aio(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
-    """Run ``python -m j5aio`` as a student would, without this run's J5AIO_ settings."""
-    environment = {k: v for k, v in os.environ.items() if not k.startswith("J5AIO_")}
+    """Run ``python -m j5aio`` as a student would, without this run's J5AIO_ settings.
+
+    (Only its robot lock port is kept, so that the program runs beside another robot.)
+    """
+    environment = {
+        k: v for k, v in os.environ.items()
+        if not k.startswith("J5AIO_") or k == "J5AIO_LOCK_PORT"
+    }
     return subprocess.run(
         [sys.executable, "-m", "j5aio", *args],
         capture_output=True, text=True, timeout=60, env=environment, check=False, cwd=cwd,
@@ -137,6 +143,51 @@ def test_run_sim_finds_the_bee_board_in_its_kit(tmp_path: Path) -> None:
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="pseudo-terminals exist on POSIX only")
+async def test_attach_identifies_a_board_that_answers_in_one_quick_round(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from j5aio.backends.hardware import identify
+
+    async def full_round(*args: object, **kwargs: object) -> Board:
+        raise AssertionError("every kind was tried in turn, with its full waits")
+
+    monkeypatch.setattr(identify, "_identify", full_round)
+    simulator = BeeSimulator("BEE1")
+    with serve_on_pty(simulator) as server:  # (at full time scale: the board answers)
+        board = await attach(server.path)
+        assert isinstance(board, BeeBoard)
+        assert board.firmware_version == "2.1"
+        await board.close()
+
+
+async def test_attach_asks_each_kind_in_turn_when_no_quick_answer_comes(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from j5aio.backends.hardware import identify
+
+    monkeypatch.setattr(identify, "QUICK_BUDGET", 0.0)  # too short for any board
+    with serve_on_pty(BeeSimulator("BEE1"), time_scale=0) as server:
+        board = await attach(server.path, time_scale=0.05)
+        assert isinstance(board, BeeBoard)
+        await board.close()
+
+
+async def test_attach_asks_each_kind_in_turn_when_the_quick_answer_misleads(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from j5aio.backends.hardware import identify
+    from j5aio.backends.hardware.sb.arduino_2024 import SBArduino2024HardwareBackend
+
+    async def misled(*args: object, **kwargs: object) -> type[SBArduino2024HardwareBackend]:
+        return SBArduino2024HardwareBackend  # which will not recognise a Bee Board
+
+    monkeypatch.setattr(identify, "_answering_kind", misled)
+    with serve_on_pty(BeeSimulator("BEE1"), time_scale=0) as server:
+        board = await attach(server.path, time_scale=0.05)
+        assert isinstance(board, BeeBoard)
+        await board.close()
+
+
 async def test_attach_identifies_a_bee_board_after_j5aios_own_boards() -> None:
     simulator = BeeSimulator("BEE1")
     with serve_on_pty(simulator, time_scale=0) as server:
@@ -148,3 +199,68 @@ async def test_attach_identifies_a_bee_board_after_j5aios_own_boards() -> None:
         await board.led.set_state(True)
         assert await board.led.get_state() is True
         await board.close()
+
+
+# --- a plugin's boards held by KitRobot like its own ------------------------------------
+
+
+@pytest.mark.usefixtures("fresh_kit")
+async def test_kit_robot_holds_a_plugin_s_boards_like_its_own() -> None:
+    from j5aio.boards.sr.v4 import PowerBoard
+    from j5aio.kit import KitRobot
+    from j5aio.simulator.kit import use_kit
+
+    kit = use_kit("bee", time_scale=0)
+    async with KitRobot(environment=SIMULATED_ENVIRONMENT, boards={"bees": BeeBoard}) as robot:
+        bees = robot.board_group(BeeBoard)
+        assert vars(robot)["bees"] is bees  # robot.bees, for students
+        assert [bee.serial_number for bee in bees] == ["SIMBEE0"]
+        await bees[0].motors[0].set_power(0.5)
+        assert kit.simulators("bee")[0].motor_steps[0] == 50  # type: ignore[attr-defined]
+        assert robot.power_board.serial_number == "SIMPB0"
+        with pytest.raises(KeyError, match=r"no group of 'PowerBoard'.*it holds: BeeBoard"):
+            robot.board_group(PowerBoard)
+
+
+@pytest.mark.parametrize(
+    ("boards", "error", "message"),
+    [
+        ({"motor_boards": BeeBoard}, ValueError, "'motor_boards' is already the robot's own"),
+        ({"board_group": BeeBoard}, ValueError, "already the robot's own"),
+        ({"2bees": BeeBoard}, ValueError, "give an identifier"),
+        ({"_bees": BeeBoard}, ValueError, "not starting with '_'"),
+        ({"bees": BeeBackend}, TypeError, "'bees' must name a Board subclass"),
+        ([BeeBoard], TypeError, "must map attribute names to board classes"),
+    ],
+)
+def test_kit_robot_refuses_boards_it_cannot_hold(
+    boards: object, error: type[Exception], message: str
+) -> None:
+    from j5aio.kit import KitRobot
+
+    with pytest.raises(error, match=message):
+        KitRobot(environment=SIMULATED_ENVIRONMENT, boards=boards)  # type: ignore[arg-type]
+
+
+def test_the_sync_kit_robot_takes_the_kit_s_wrapper_class() -> None:
+    program = textwrap.dedent("""
+        import os
+        os.environ["J5AIO_LOCK_PORT"] = "0"
+        import beekit.sync
+        from j5aio.simulator.kit import use_kit
+        from j5aio.sync import KitRobot, get_environment
+
+        use_kit("bee", time_scale=0)
+        robot = KitRobot(environment=get_environment("sim"), boards={"bees": beekit.sync.BeeBoard})
+        bees = robot.board_group(beekit.sync.BeeBoard)
+        assert type(bees[0]) is beekit.sync.BeeBoard, type(bees[0])
+        bees[0].led.state = True
+        print("held", bees[0].serial_number, bees[0].led.state)
+    """)
+    environment = {k: v for k, v in os.environ.items() if not k.startswith("J5AIO_")}
+    result = subprocess.run(
+        [sys.executable, "-c", program], capture_output=True, text=True, timeout=60,
+        env=environment, check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "held SIMBEE0 True"

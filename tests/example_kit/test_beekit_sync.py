@@ -18,6 +18,7 @@ from beekit.simulator import BeeSimulator
 from mypy import api
 
 from j5aio import sync, syncgen
+from j5aio.simulator.kit import current_kit, use_kit
 from j5aio.testing.plugin import PtySimulatorFactory
 
 KIT_ROOT = Path(__file__).resolve().parent
@@ -25,16 +26,43 @@ REPO_ROOT = KIT_ROOT.parents[1]
 SYNC_MODULE = KIT_ROOT / "beekit" / "sync.py"
 
 
-def test_a_student_program_drives_the_board(j5aio_pty_simulator: PtySimulatorFactory) -> None:
-    simulator = BeeSimulator()
+def test_a_student_program_drives_the_board_on_the_simulated_kit(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setenv("J5AIO_ENV", "sim")  # as ``run --sim`` sets it
+    previous = current_kit()
+    kit = use_kit("bee")
+    simulator = kit.simulators("bee")[0]
+    assert isinstance(simulator, BeeSimulator)
     simulator.button_held = True  # the student has pressed the button already
-    bee = main([j5aio_pty_simulator(simulator)])
-    assert isinstance(bee, beekit.sync.BeeBoard)
-    assert isinstance(bee.motors[0], sync.Motor)
-    assert bee.motors[0].power == 0.5
-    assert simulator.led is True
-    assert simulator.motor_steps == [50, 50]
-    bee.close()
+    try:
+        bee = main()  # the environment J5AIO_ENV chooses: the program names no backend
+        try:
+            assert isinstance(bee, beekit.sync.BeeBoard)
+            assert isinstance(bee.motors[0], sync.Motor)
+            assert bee.motors[0].power == 0.5
+            assert simulator.led is True
+            assert simulator.motor_steps == [50, 50]
+        finally:
+            bee.close()
+    finally:
+        use_kit(previous)
+
+
+def test_a_student_program_runs_on_the_console() -> None:
+    environment = {
+        **{k: v for k, v in os.environ.items() if not k.startswith("J5AIO_")},
+        "J5AIO_ENV": "console",
+        "PYTHONPATH": os.pathsep.join([str(REPO_ROOT), str(KIT_ROOT)]),
+    }
+    result = subprocess.run(
+        [sys.executable, str(KIT_ROOT / "bee_robot.py")], input="\n", capture_output=True,
+        text=True, timeout=60, env=environment, check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "LED on" in result.stdout
+    assert "Hit return to press the button" in result.stdout
+    assert "Motor 1 power set to 0.5" in result.stdout
 
 
 def test_the_core_board_class_gives_the_kits_wrapper_too(

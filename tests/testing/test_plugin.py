@@ -18,6 +18,7 @@ from j5aio.boards.board import Board
 from j5aio.boards.sb.arduino import SBArduinoBoard
 from j5aio.boards.sr.v4.motor_board import MotorBoard
 from j5aio.boards.sr.v4.power_board import PowerBoard
+from j5aio.boards.sr.v4.ruggeduino import Ruggeduino
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.components.motor import MotorSpecialState
 from j5aio.errors import BoardDisconnectionError
@@ -57,6 +58,30 @@ async def test_sim_kit_marker_chooses_the_boards(j5aio_sim_kit: OpenSimulatedKit
     assert len(j5aio_sim_kit.kit) == 1
     assert len(j5aio_sim_kit.group(MotorBoard)) == 1
     assert len(j5aio_sim_kit.group(PowerBoard)) == 0
+
+
+@pytest.mark.j5aio_kit("sr2019")
+async def test_sim_kit_marker_takes_a_kit_by_name(j5aio_sim_kit: OpenSimulatedKit) -> None:
+    definition = j5aio_sim_kit.kit.definition
+    assert definition is not None and definition.name == "sr2019"
+    assert len(j5aio_sim_kit.group(Ruggeduino)) == 1
+
+
+@pytest.mark.parametrize(
+    ("args", "counts", "message"),
+    [
+        (("sr2019", "sb2019"), {}, "takes one kit"),
+        (("sr2019",), {"motor_boards": 1}, "not both"),
+        ((3,), {}, "a kit's name .* not 3"),
+    ],
+)
+def test_sim_kit_marker_refuses_what_is_not_one_kit(
+    args: tuple[object, ...], counts: dict[str, object], message: str
+) -> None:
+    from j5aio.testing.plugin import _marked_kit
+
+    with pytest.raises(TypeError, match=message):
+        _marked_kit(args, counts)
 
 
 def test_sim_kit_from_a_sync_test(j5aio_sim_kit: OpenSimulatedKit) -> None:
@@ -273,7 +298,7 @@ def test_plugin_is_registered_by_entry_point(pytester: pytest.Pytester) -> None:
                     "j5aio_clean_boards"):
         assert f"{fixture} -- " in listed
     markers = pytester.runpytest_subprocess("--markers").stdout.str()
-    assert "@pytest.mark.j5aio_kit(**counts)" in markers
+    assert "@pytest.mark.j5aio_kit(kit=None, **counts)" in markers
 
 
 # Found first on the path, this stands in for pytest-asyncio and fails to import, as

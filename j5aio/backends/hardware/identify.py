@@ -32,10 +32,17 @@ from j5aio.backends.hardware.transports.discovery import (
     list_serial_ports,
     match_ports,
 )
+from j5aio.backends.hardware.transports.lent import LentStream
 from j5aio.boards.board import Board
 from j5aio.errors import CommunicationError, UnsupportedFirmwareError
 
-__all__ = ["REOPEN_DELAY", "attach", "discover_serial_boards", "serial_backends"]
+__all__ = [
+    "QUICK_BUDGET",
+    "QUICK_SCALE",
+    "REOPEN_DELAY",     "attach",
+    "discover_serial_boards",
+    "serial_backends",
+]
 
 _log = logging.getLogger(__name__)
 
@@ -43,6 +50,16 @@ _log = logging.getLogger(__name__)
 #: that the board (or a simulator serving a pseudo-terminal) sees the port close, and the
 #: reopening resets it as a fresh open does.
 REOPEN_DELAY = 0.1
+
+#: Multiplies every kind's identification waits in the first round of :func:`attach`,
+#: which asks every kind over one opening of the port per baud rate: enough for a board
+#: that answers at once, not for one still booting (the full round then finds it).
+QUICK_SCALE = 0.05
+
+#: Seconds each kind has, in that first round, to recognise a board that answers at once
+#: (multiplied by the time scale); a kind that takes longer is asked again in the full
+#: round.
+QUICK_BUDGET = 0.05
 
 
 def serial_backends() -> tuple[type[SerialHardwareBackend], ...]:
@@ -109,13 +126,63 @@ async def _identify(
     )
 
 
+async def _answering_kind(
+    port: str,
+    backends: Sequence[type[SerialHardwareBackend]],
+    opener: StreamOpener | None,
+    time_scale: float,
+) -> type[SerialHardwareBackend] | None:
+    """The first of ``backends`` whose handshake the board on ``port`` answers at once.
+
+    The port is opened once for each baud rate, and every kind at that rate runs its
+    handshake in turn over the open port, with its waits shortened by
+    :data:`QUICK_SCALE` and its time capped by :data:`QUICK_BUDGET`; each handshake
+    begins by ending whatever the kinds before it left half-sent. ``None`` if no kind is
+    answered so (a board still booting, one whose firmware a kind cannot drive, or a port
+    that will not open: the full round decides).
+    """
+    by_rate: dict[int, list[type[SerialHardwareBackend]]] = {}
+    for backend in backends:
+        by_rate.setdefault(backend.BAUDRATE, []).append(backend)
+    for index, kinds in enumerate(by_rate.values()):
+        if index:
+            await anyio.sleep(REOPEN_DELAY)
+        try:
+            stream = await kinds[0]._open_stream(port, opener)
+        except CommunicationError:
+            return None
+        try:
+            for backend in kinds:
+                board: Board | None = None
+                with anyio.move_on_after(QUICK_BUDGET * time_scale):
+                    try:
+                        board = await backend.from_stream(
+                            LentStream(stream),
+                            port=port,
+                            serial_number=port,
+                            time_scale=time_scale * backend.IDENTIFY_TIME_SCALE * QUICK_SCALE,
+                        )
+                    except CommunicationError as error:
+                        _log.debug("%s on %s: no quick answer: %s", backend.__name__, port, error)
+                if board is not None:
+                    await board.close()
+                    return backend
+        finally:
+            with anyio.CancelScope(shield=True):
+                await stream.aclose()
+    return None
+
+
 async def attach(
     port: str, *, time_scale: float = 1.0, opener: StreamOpener | None = None
 ) -> Board:
     """Identify the serial board on ``port`` and return it, set up and ready.
 
-    Each registered serial board kind is tried in its ``identify_order``, each opening
-    the port afresh at its own baud rate, until one recognises the board. The board's
+    First every registered serial board kind asks at once, in its ``identify_order``,
+    over one opening of the port per baud rate, with short waits: the first kind the
+    board answers opens it. If none is answered so (a board still booting, say), each
+    kind is tried again in turn, opening the port afresh at its own baud rate with its
+    full identification waits, until one recognises the board. The board's
     ``firmware_version`` is what it reported. A port already held by a board gives back
     that board.
 
@@ -133,6 +200,15 @@ async def attach(
         found = await anyio.to_thread.run_sync(find_port, port)
         serial_number = found.serial_number if found and found.serial_number else port
         candidates = _candidates(found, backends)
+        answering = await _answering_kind(port, candidates, opener, time_scale)
+        if answering is not None:
+            await anyio.sleep(REOPEN_DELAY)
+            board = await answering.identify(
+                port, serial_number=serial_number, opener=opener, time_scale=time_scale
+            )
+            if board is not None:
+                return board
+            await anyio.sleep(REOPEN_DELAY)
         return await _identify(port, serial_number, candidates, opener, time_scale)
 
     board = await registry.claim(port, SerialHardwareBackend, connect)

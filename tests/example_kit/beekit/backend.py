@@ -37,6 +37,9 @@ class BeeBackend(SerialHardwareBackend[BeeBoard], MotorInterface, LEDInterface, 
     ``from_stream(stream, ...)``; this class adds the handshake and the interfaces.
     """
 
+    #: Motor steps each way, as the firmware counts them (a power of 1).
+    MOTOR_STEPS: ClassVar[int] = MOTOR_STEPS
+
     board = BeeBoard
 
     BAUDRATE: ClassVar[int] = 57_600
@@ -96,9 +99,9 @@ class BeeBackend(SerialHardwareBackend[BeeBoard], MotorInterface, LEDInterface, 
             raise NotSupportedByHardwareError(
                 f"the Bee Board's motors cannot {power.name}: set a power (0 stops a motor)",
             )
-        steps = round(power * MOTOR_STEPS)
+        steps = round(power * self.MOTOR_STEPS)
         await self._ask_ok(b"M%d %d" % (identifier, steps))
-        self._powers[identifier] = steps / MOTOR_STEPS
+        self._powers[identifier] = steps / self.MOTOR_STEPS
 
     # -- the LED ------------------------------------------------------------------------
 

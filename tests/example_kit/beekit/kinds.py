@@ -21,9 +21,11 @@ def entries() -> list[BoardKind | KitDefinition]:
             # program uses a Bee Board, not by every j5aio program that loads the plugins.
             hardware="beekit.backend:BeeBackend",
             console="beekit.console:BeeConsoleBackend",
+            simulated="beekit.sim_backend:BeeSimulatedBackend",
             simulators=(
                 SimulatorEntry(
-                    "bee", SimulatorClass("beekit.simulator:BeeSimulator"), "Bee Board", "SIMBEE"
+                    "bee", SimulatorClass("beekit.simulator:BeeSimulator"), "Bee Board", "SIMBEE",
+                    transport="serial",
                 ),
             ),
             # Identify serial ports as a Bee Board only after j5aio's own boards.

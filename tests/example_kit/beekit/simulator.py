@@ -18,6 +18,8 @@ class BeeSimulator(SerialBoardSimulator):
     """
 
     baudrate: ClassVar[int] = 57_600
+    #: Motor steps each way (a power of 1).
+    MOTOR_STEPS: ClassVar[int] = 100
     boot_delay: ClassVar[float] = 0.0
     resets_on_open: ClassVar[bool] = False
     powered_by_usb: ClassVar[bool] = True
@@ -63,7 +65,7 @@ class BeeSimulator(SerialBoardSimulator):
                 steps = int(line[3:])
             except ValueError:
                 return b"ERR bad steps " + line[3:]
-            if not -100 <= steps <= 100:
+            if not -self.MOTOR_STEPS <= steps <= self.MOTOR_STEPS:
                 return b"ERR steps out of range " + line[3:]
             self.motor_steps[int(line[1:2])] = steps
             return b"OK"

@@ -29,6 +29,7 @@ class ServoBoard(Board):
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
+        self._unpower_when_safe = False
         self._servos = NumberedComponents(
             (self._make_servo(i, backend) for i in range(self.SERVO_COUNT)),
             owner=self, kind="servo",
@@ -48,5 +49,24 @@ class ServoBoard(Board):
         """The component classes on a Servo Board."""
         return {Servo}
 
+    @property
+    def unpower_when_safe(self) -> bool:
+        """Whether :meth:`make_safe` switches every servo off (``False`` unless set).
+
+        By default the servos are left where they are, the safest choice for most
+        mechanisms; sr-robot3 and sbot switch them off when the program ends, and their
+        APIs on j5aio (:mod:`j5aio.compat`) set this to do the same.
+        """
+        return self._unpower_when_safe
+
+    @unpower_when_safe.setter
+    def unpower_when_safe(self, value: bool) -> None:
+        if not isinstance(value, bool):
+            raise TypeError(f"unpower_when_safe must be True or False, not {value!r}")
+        self._unpower_when_safe = value
+
     async def make_safe(self) -> None:
-        """Do nothing: leaving the servos where they are is the safest choice."""
+        """Leave the servos where they are, or switch them off if :attr:`unpower_when_safe`."""
+        if self._unpower_when_safe:
+            for servo in self._servos:
+                await servo.set_position(None)

@@ -1,0 +1,1 @@
+"""sbot's internal modules that programs reach: :mod:`j5aio.compat.sbot.internal.exceptions`."""
