@@ -308,7 +308,9 @@ class SerialLink(AsyncResource):
 
         Serialised with the exchanges, and run to completion like them, in the caller's
         task: a cancelled caller never leaves a command half sent (a stream sends all of
-        it or, torn by ``Task.cancel``, none of it; then ``then`` does not run).
+        it or, torn by ``Task.cancel``, none of it; then ``then`` does not run). It yields
+        to the event loop once the bytes have gone, where a cancellation that came
+        meanwhile is raised.
 
         :param then: called once the bytes have gone, even if the caller has been
             cancelled meanwhile (to update what a backend remembers).
@@ -323,6 +325,9 @@ class SerialLink(AsyncResource):
                 await self._send_locked(data, seconds, then)
         finally:
             self._lock.release()
+        # Writing does not wait, so yield here: like every call to the board, a send is a
+        # checkpoint, and a loop of sends leaves the event loop (signals, other tasks) room.
+        await anyio.lowlevel.checkpoint()
 
     async def _send_locked(
         self, data: bytes, seconds: float, then: Callable[[], None] | None

@@ -584,6 +584,24 @@ async def test_a_send_cancelled_by_anyio_part_way_still_goes_and_runs_then(
     assert await board.receive() == b"go\n"
 
 
+async def test_a_send_yields_to_the_event_loop(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    # A loop of sends (no replies to wait for) must leave other tasks and signal
+    # handlers room to run.
+    host, _board = peer_pair
+    link = SerialLink(host)
+    ran: list[str] = []
+
+    async def other_task() -> None:
+        ran.append("other task")
+
+    async with anyio.create_task_group() as tg:
+        tg.start_soon(other_task)
+        await link.send(b"go\n")
+        assert ran == ["other task"]
+
+
 async def test_a_send_torn_by_task_cancel_before_its_bytes_went_sends_nothing(
     peer_pair: tuple[MemoryStream, MemoryStream],
 ) -> None:
