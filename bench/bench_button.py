@@ -1,6 +1,6 @@
 """Start-button reaction and CPU while waiting: j5aio (async and sync) beside j5 0.12.
 
-Issue 12's row: press -> code resumes, on a simulated SR v4 power board (firmware 3,
+What it measures: press -> code resumes, on a simulated SR v4 power board (firmware 3,
 j5aio's simulator), over random presses, and the process's CPU while it waits.
 
 Each *side* runs in a child process of its own, so that CPU figures are the side's alone:
@@ -43,7 +43,7 @@ median over rounds (p50 and p95 are taken within each round). Run::
     python bench/bench_button.py [--presses 50] [--rounds 3] [--idle 3] [--no-peer]
                                  [--intervals MS,MS,...] [--sides async,polling,...]
 
-Goals (issue 12): p50 <= 10 ms and p95 <= 20 ms, at the same time as CPU <= 1 % while
+Goals: p50 <= 10 ms and p95 <= 20 ms, at the same time as CPU <= 1 % while
 waiting, for async and sync (and, for the hardware path, ``polling``); an idle poll
 <= 60 us of CPU.
 """
@@ -174,7 +174,7 @@ def _kit() -> Any:
 
     kit = use_kit(KitConfig(power_boards=1, motor_boards=0, servo_boards=0, sb_arduinos=0))
     # No camera: its simulated world moves on 100 times a second, which is not the button's
-    # cost (about 2 % CPU on its own on the machine of issue 12).
+    # cost (about 2 % CPU on its own on the machine it was measured on).
     kit.camera = None
     return kit
 

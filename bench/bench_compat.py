@@ -35,7 +35,7 @@ Run::
     PYTHONPATH=$PWD python bench/bench_compat.py [--calls 2000] [--rounds 7] [--batch 50]
         [--api sr-robot3|sbot]
 
-Goal (issue 20): compat / sync <= 1.0 (within the noise of a shared machine: a few %).
+Goal: compat / sync <= 1.0 (within the noise of a shared machine: a few %).
 """
 
 from __future__ import annotations

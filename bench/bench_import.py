@@ -15,7 +15,7 @@ Rounds are interleaved and shuffled; the table shows medians and the ratio to j5
 
     python bench/bench_import.py [--rounds 15]
 
-Goals (issue 12): ``import j5aio`` and ``import j5aio.sync`` take at most 1.0x
+Goals: ``import j5aio`` and ``import j5aio.sync`` take at most 1.0x
 ``import j5`` in the same run.
 """
 

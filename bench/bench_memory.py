@@ -18,7 +18,7 @@ Run (Linux and macOS)::
 
     python bench/bench_memory.py [--rounds 7]
 
-Goal (issue 12): at most 20 MiB peak for the sync program on the simulated kit.
+Goal: at most 20 MiB peak for the sync program on the simulated kit.
 """
 
 from __future__ import annotations

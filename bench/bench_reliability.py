@@ -1,18 +1,17 @@
-"""Reliability figures (issue 9): every hardware backend against its simulator.
+"""Reliability figures: every hardware backend against its simulator.
 
-R1  random cancellations, through anyio (``move_on_after``) and through asyncio itself
+Random cancellations, through anyio (``move_on_after``) and through asyncio itself
     (``Task.cancel``, ``asyncio.timeout``): wrong answers and caches that disagree with
     the simulated board, per backend. Goal: 0 and 0.
-R2  signal trials: busy sync and async programs on the simulated kit stopped by SIGINT
-    or SIGTERM; time from the signal to every motor braked, from the simulators' own
-    state-change times (``bench_signals.py``). Goal: 100 of 100 within 50 ms.
-R3  unplug and replug: the same board object answers again (time from the board's
-    return to its first answer; goal <= 1 s plus boot time), nothing stale, no duplicate
-    object, make_safe works. In memory (every backend, the simulated kit) and over a real
+Signals: busy sync and async programs on the simulated kit stopped by SIGINT or SIGTERM;
+    time from the signal to every motor braked, from the simulators' own state-change
+    times (``bench_signals.py``). Goal: 100 of 100 within 50 ms.
+Unplug and replug: the same board object answers again (time from the board's return to
+    its first answer; goal <= 1 s plus boot time), nothing stale, no duplicate object,
+    make_safe works. In memory (every backend, the simulated kit) and over a real
     pseudo-terminal whose simulator hangs up when unplugged (SB Arduino, by --link).
-R4  bad values given to components: refused calls that still reached the wire. Goal: 0.
-R5  requests answered with random bytes: exceptions other than CommunicationError.
-    Goal: 0.
+Bad values given to components: refused calls that still reached the wire. Goal: 0.
+Requests answered with random bytes: exceptions other than CommunicationError. Goal: 0.
 
 Run: ``python bench/bench_reliability.py [--trials N] [--replugs N]``
 """
@@ -21,9 +20,14 @@ from __future__ import annotations
 
 import argparse
 import statistics
+import sys
 import tempfile
 import time
 from pathlib import Path
+
+# The trials' rig is a white-box part of the test suite (tests/testing/reliability_rig.py):
+# the repository's root must be importable.
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import anyio
 import bench_signals  # type: ignore[import-not-found]  # beside this script
@@ -34,7 +38,7 @@ from j5aio.boards.sb.arduino import SBArduinoBoard
 from j5aio.errors import BoardDisconnectionError
 from j5aio.simulator import SBArduinoSimulator
 from j5aio.simulator.serve import serve_on_pty
-from j5aio.testing.reliability import (
+from tests.testing.reliability_rig import (
     BACKEND_NAMES,
     CancellationStyle,
     bad_value_trials,
@@ -50,8 +54,8 @@ def _ms(values: list[float]) -> str:
     return f"median {statistics.median(values) * 1000:7.1f} ms, max {max(values) * 1000:7.1f} ms"
 
 
-async def r1(trials: int) -> None:
-    print(f"R1  random cancellations ({trials} trials per backend and style)")
+async def cancellations(trials: int) -> None:
+    print(f"random cancellations ({trials} trials per backend and style)")
     print(f"    {'backend':<11}{'style':<9}{'cancelled':>10}{'wrong':>7}{'stale':>7}{'errors':>8}")
     for name in BACKEND_NAMES:
         styles: tuple[CancellationStyle, ...] = ("anyio", "asyncio")
@@ -63,13 +67,13 @@ async def r1(trials: int) -> None:
             )
 
 
-def r2(trials: int) -> None:
-    print(f"R2  signal trials ({trials} per kind of program, SIGINT and SIGTERM alternating)")
+def signals(trials: int) -> None:
+    print(f"signal trials ({trials} per kind of program, SIGINT and SIGTERM alternating)")
     bench_signals.report(bench_signals.run_trials(trials))
 
 
-async def r3(replugs: int) -> None:
-    print(f"R3  unplug and replug ({replugs} times per backend, simulated kit, in memory)")
+async def unplug_and_replug(replugs: int) -> None:
+    print(f"unplug and replug ({replugs} times per backend, simulated kit, in memory)")
     for name in BACKEND_NAMES:
         report = await replug_trials(name, replugs, seed=2)
         print(
@@ -84,7 +88,7 @@ async def r3(replugs: int) -> None:
 
 
 async def _pty_replugs(replugs: int) -> list[float]:
-    sim = SBArduinoSimulator("PTY-R3")
+    sim = SBArduinoSimulator("PTY-REPLUG")
     back: list[float] = []
     with tempfile.TemporaryDirectory() as folder:
         link = Path(folder) / "arduino"
@@ -117,8 +121,8 @@ async def _pty_replugs(replugs: int) -> list[float]:
     return back
 
 
-async def r4(trials: int) -> None:
-    print(f"R4  bad values ({trials} per backend)")
+async def bad_values(trials: int) -> None:
+    print(f"bad values ({trials} per backend)")
     for name in BACKEND_NAMES:
         report = await bad_value_trials(name, trials, seed=3)
         print(
@@ -127,8 +131,8 @@ async def r4(trials: int) -> None:
         )
 
 
-async def r5(trials: int) -> None:
-    print(f"R5  fuzzed replies ({trials} per backend)")
+async def fuzzed_replies(trials: int) -> None:
+    print(f"fuzzed replies ({trials} per backend)")
     for name in BACKEND_NAMES:
         report = await fuzzed_reply_trials(name, trials, seed=4)
         print(
@@ -139,17 +143,19 @@ async def r5(trials: int) -> None:
 
 async def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--trials", type=int, default=2000, help="R1, R4 and R5 trials")
-    parser.add_argument("--replugs", type=int, default=20, help="R3 replugs per backend")
     parser.add_argument(
-        "--signal-trials", type=int, default=100, help="R2 trials per kind of program"
+        "--trials", type=int, default=2000, help="cancellation, bad-value and fuzzed-reply trials"
+    )
+    parser.add_argument("--replugs", type=int, default=20, help="replugs per backend")
+    parser.add_argument(
+        "--signal-trials", type=int, default=100, help="signal trials per kind of program"
     )
     args = parser.parse_args()
-    await r1(args.trials)
-    r2(args.signal_trials)
-    await r3(args.replugs)
-    await r4(args.trials)
-    await r5(args.trials)
+    await cancellations(args.trials)
+    signals(args.signal_trials)
+    await unplug_and_replug(args.replugs)
+    await bad_values(args.trials)
+    await fuzzed_replies(args.trials)
 
 
 if __name__ == "__main__":

@@ -1,4 +1,4 @@
-"""R2 (issue 9): how soon the motors are braked after a signal stops a busy program.
+"""How soon the motors are braked after a signal stops a busy program.
 
 Each trial starts a child Python on the simulated kit that drives a motor in a busy loop
 (``motor.power = 0.5`` through the sync facade, or ``await motor.set_power(0.5)`` in an
@@ -10,7 +10,7 @@ Run::
 
     python bench/bench_signals.py [--trials 100]
 
-Goal (issue 9, item 4): braked within 50 ms of the signal in 100 of 100 trials.
+Goal: braked within 50 ms of the signal in 100 of 100 trials.
 """
 
 from __future__ import annotations

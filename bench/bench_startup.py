@@ -17,7 +17,7 @@ Rounds are interleaved and shuffled; the table shows medians and the ratio to j5
 
     python bench/bench_startup.py [--rounds 15] [--kit NAME]
 
-Goal (issue 12): at most 80 ms to a ready robot on the simulated kit, async and sync.
+Goal: at most 80 ms to a ready robot on the simulated kit, async and sync.
 """
 
 from __future__ import annotations

@@ -12,7 +12,7 @@ Measures, in one run, the median time of:
 
 for a no-op coroutine, for a console backend call (``motor.get_power()`` on the SR v4
 motor board's console backend, which answers from memory without printing), and for
-issue 12's case: ``motor.power = 0.5`` on a simulated SR motor board (the hardware backend
+the case measured: ``motor.power = 0.5`` on a simulated SR motor board (the hardware backend
 and its codec over an in-memory simulator stream), against ``await motor.set_power(0.5)``.
 The rounds of the ways are interleaved so that machine noise hits them alike.
 
@@ -23,7 +23,7 @@ process (as a terminal does) and sent to another thread of the program. Run::
 
     python bench/bench_sync_facade.py [--calls 10000] [--rounds 5] [--interrupts 10]
 
-Goals (issue 12): at most 20 µs overhead per facade call over a direct await, median and
+Goals: at most 20 µs overhead per facade call over a direct await, median and
 mean, for the simulated ``motor.power = 0.5``; no periodic wake-up while waiting, and a
 Ctrl-C that stops a waiting call within 50 ms. The hand-off floors move a lot with the
 load on the host of this virtual machine, so read the facade's figure against the floors

@@ -198,7 +198,7 @@ def spread(values: list[float]) -> str:
     return f"{p50 * 1000:5.2f}/{p95 * 1000:5.2f}/{ordered[-1] * 1000:5.2f}"
 
 
-#: The longest the event loop may be kept busy by see() (the issue's goal), seconds.
+#: The longest the event loop may be kept busy by see() (the goal), seconds.
 STALL_GOAL = 0.002
 
 

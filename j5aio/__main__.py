@@ -419,6 +419,14 @@ def _run(args: argparse.Namespace) -> int:
         # file's wiring still names the output to switch on for a board without power.
         args.environment = args.environment or "sim"
         os.environ[KIT_FILE_VARIABLE] = args.kit_file
+    if _is_supervised_match(args):
+        from j5aio.competition.supervisor import supervise
+
+        # A timed match: the program runs in a child, its game over watched from here.
+        return supervise(
+            [sys.executable, "-m", "j5aio", *args.command_line],
+            environment=args.environment or os.environ.get(ENVIRONMENT_VARIABLE),
+        )
     go_on, view = _start_view_option(args)
     if not go_on:
         return 2
@@ -427,8 +435,10 @@ def _run(args: argparse.Namespace) -> int:
     sys.argv = [str(program), *args.arguments]
     sys.path.insert(0, str(program.resolve().parent))
     from j5aio.compat import imports
+    from j5aio.safety import install
     from j5aio.tracebacks import run_program
 
+    install()  # the exit hook, excepthook and signal handlers, before the program runs
     finder = imports.install(args.api) if args.api else None
     if finder is None:
         imports.install_hint()
@@ -444,7 +454,7 @@ def _run(args: argparse.Namespace) -> int:
             view.close()
 
 
-# -- run: match settings, the start and the run log (issue 10) ------------------------------
+# -- run: match settings, the start and the run log -----------------------------------------
 
 
 def _add_match_arguments(run: argparse.ArgumentParser) -> None:
@@ -502,6 +512,30 @@ _start_after = _in_range("a number of seconds", " s", 0, 3600, low_included=True
 _positive_scale = _in_range("a number", "", 0, 1000, low_included=False)
 
 
+def _is_supervised_match(args: argparse.Namespace) -> bool:
+    """Whether to run the program under the match supervisor (a timed match, on POSIX).
+
+    Not in the supervised program itself, nor where the metadata is unusable (the program
+    reports that), nor on Windows (no process groups to end), nor where
+    :data:`~j5aio.competition.supervisor.NO_SUPERVISOR_VARIABLE` asks for none.
+    """
+    from j5aio.competition import supervisor
+    from j5aio.competition.metadata import MetadataError, load_metadata, parse_metadata
+
+    if supervisor.adopt() or sys.platform == "win32":
+        return False
+    if os.environ.get(supervisor.NO_SUPERVISOR_VARIABLE, "").strip() == "1":
+        return False  # a test harness that looks into the simulated kit in its process
+    try:
+        if any(x is not None for x in (args.arena, args.zone, args.mode, args.duration)):
+            metadata = parse_metadata(_metadata_fields(args))
+        else:
+            metadata = load_metadata()
+    except MetadataError:
+        return False
+    return metadata.is_competition and metadata.duration is not None
+
+
 @contextlib.contextmanager
 def _match(args: argparse.Namespace, program: Path) -> Iterator[bool]:
     """Set up the match's metadata, time scale, start and run log around the program."""
@@ -552,6 +586,9 @@ def _match(args: argparse.Namespace, program: Path) -> Iterator[bool]:
                 stack.callback(log.close)
                 log.write_header(program.resolve(), metadata)
                 print(f"j5aio: logging this run to {log.path}", file=sys.stderr)
+                from j5aio.competition.supervisor import report_log
+
+                report_log(log.path)  # the supervisor's game over goes in the log too
                 stack.enter_context(teeing(log))
         yield True
 
@@ -631,6 +668,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     parser = build_parser()
     args = parser.parse_args(argv)
+    args.command_line = list(sys.argv[1:] if argv is None else argv)  # for a supervised run
     handler: Callable[[argparse.Namespace], int] | None = getattr(args, "handler", None)
     if handler is None:
         parser.print_help()

@@ -9,6 +9,7 @@ The hierarchy::
     J5AIOError
     ├── CommunicationError                  talking to a board failed
     │   ├── BoardDisconnectionError         the board (or its port) went away
+    │   │   └── GameOverError               the match is over: no board can be opened
     │   ├── CommunicationTimeoutError       the board did not answer in time
     │   ├── USBCommunicationError           a USB transfer failed (carries the pyusb error)
     │   ├── DeviceMissingSerialNumberError  a board without a serial number was found
@@ -30,6 +31,7 @@ __all__ = [
     "CommunicationError",
     "CommunicationTimeoutError",
     "DeviceMissingSerialNumberError",
+    "GameOverError",
     "J5AIOError",
     "NotSupportedByComponentError",
     "NotSupportedByHardwareError",
@@ -57,6 +59,13 @@ class BoardDisconnectionError(CommunicationError):
     """The board, or the port it was reached through, has gone away.
 
     Check the USB cable and the board's power, then run the program again.
+    """
+
+
+class GameOverError(BoardDisconnectionError):
+    """The match is over: no board can be opened or driven any more.
+
+    Raised when a program asks for boards after game over; the process is ending.
     """
 
 

@@ -186,11 +186,18 @@ def _want_full() -> bool:
 def run_program(program: Path, *, stderr: TextIO | None = None) -> int:
     """Run ``program`` as ``__main__``; on an exception print a trimmed traceback, return 1.
 
+    An exception after the match has ended (a board closed at game over) is no error:
+    the match timer ends the process with status 0, and this waits for it.
+
     ``SystemExit`` and ``KeyboardInterrupt`` pass through unchanged.
     """
     try:
         runpy.run_path(str(program), run_name="__main__")
     except Exception as error:
+        from j5aio.safety.registry import wait_for_game_over
+
+        if wait_for_game_over():
+            return 0  # the match ended under the program: game over ends the process
         out = stderr if stderr is not None else sys.stderr
         if _want_full():
             text = _with_suggestion("".join(traceback.format_exception(error)), error)

@@ -1,4 +1,4 @@
-"""A bounded run of bench/bench_signals.py (R2): busy programs stopped by a signal brake."""
+"""A bounded run of bench/bench_signals.py: busy programs stopped by a signal brake."""
 
 from __future__ import annotations
 

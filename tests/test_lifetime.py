@@ -73,7 +73,7 @@ async def drive():
 """
 
 ENDINGS: dict[str, str] = {
-    # The issue's script: the loop finishes; the state is looked at right after it too.
+    # A beginner's script: the loop finishes; the state is looked at right after it too.
     "loop end": """
 anyio.run(drive)
 kit = current_kit()

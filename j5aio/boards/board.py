@@ -6,10 +6,7 @@ import logging
 from abc import ABC, abstractmethod
 from typing import TYPE_CHECKING, ClassVar
 
-import anyio
-
-from j5aio import lifetime
-from j5aio.backends.safe_state_pass import safe_state_pass
+from j5aio.safety import orderly, registry
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -23,11 +20,12 @@ LOGGER = logging.getLogger(__name__)
 class Board(ABC):
     """A physical board: a set of components driven through one backend.
 
-    Every board that has been set up is kept in :attr:`BOARDS` until it is closed, so
-    that :meth:`make_all_safe` can reach all of them when a program stops. Every board
-    made at all is also known to the safety net (:mod:`j5aio.lifetime`) until it is
-    closed, which makes it safe through its backend's
-    :meth:`~j5aio.backends.backend.Backend.make_safe_now` however the program ends.
+    Every board made is in the safety registry (:mod:`j5aio.safety.registry`) until it
+    is closed, which makes it safe through its backend's
+    :meth:`~j5aio.backends.backend.Backend.make_safe_now` however the program ends; every
+    board that has been set up is also in :attr:`BOARDS`, so that :meth:`make_all_safe`
+    can reach all of them when a program stops. Making a board installs nothing in the
+    process (the entry points install the process hooks: :mod:`j5aio.safety.hooks`).
 
     :param serial_number: the board's serial number, as the backend found it.
     :param backend: the backend that drives this board.
@@ -36,8 +34,8 @@ class Board(ABC):
     #: A human-friendly name for this kind of board.
     name: ClassVar[str] = "Board"
 
-    #: Every board that is set up and not yet closed.
-    BOARDS: ClassVar[set[Board]] = set()
+    #: Every board that is set up and not yet closed (the registry's set of them).
+    BOARDS: ClassVar[set[Board]] = registry.SET_UP
 
     #: Whether this board is made safe after every other one: a board that powers the
     #: others (the power board) must not cut their power before they stopped.
@@ -48,7 +46,7 @@ class Board(ABC):
         self._backend = backend
         self._is_set_up = False
         self._is_closed = False
-        lifetime.track(self)
+        registry.track(self)
 
     @property
     def serial_number(self) -> str:
@@ -98,7 +96,7 @@ class Board(ABC):
             return
         self._is_closed = True
         Board.BOARDS.discard(self)
-        lifetime.untrack(self)
+        registry.untrack(self)
         await self._backend.close()
 
     def close_now(self) -> None:
@@ -107,7 +105,7 @@ class Board(ABC):
             return
         self._is_closed = True
         Board.BOARDS.discard(self)
-        lifetime.untrack(self)
+        registry.untrack(self)
         # A stand-in backend that is not a Backend (a test's) may have nothing to close.
         close_now = getattr(self._backend, "close_now", None)
         if close_now is not None:
@@ -122,27 +120,7 @@ class Board(ABC):
 
         :returns: the errors raised by boards that could not be made safe.
         """
-        failures: list[BaseException] = []
-
-        async def make_one_safe(board: Board) -> None:
-            try:
-                await board.make_safe()
-            except Exception as exc:
-                LOGGER.error("Could not make %s safe: %s", board, exc)
-                failures.append(exc)
-            else:
-                lifetime.mark_settled(board)
-
-        # Within the pass, a lost board that has come back is looked for once more,
-        # whatever its reconnection rate limit, so that it is stopped too.
-        boards = list(Board.BOARDS)
-        with safe_state_pass():
-            for last in (False, True):  # the boards that power the others last
-                async with anyio.create_task_group() as group:
-                    for board in boards:
-                        if board.MAKE_SAFE_LAST is last:
-                            group.start_soon(make_one_safe, board)
-        return failures
+        return await orderly.make_all_safe()
 
     def __str__(self) -> str:
         return f"{self.name} - {self.serial_number}"

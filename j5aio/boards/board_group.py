@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 from j5aio.boards.board import Board
 from j5aio.errors import CommunicationError
+from j5aio.safety import hooks as safety_hooks
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
@@ -102,6 +103,7 @@ class BoardGroup(Generic[BoardT]):
 
         :raises CommunicationError: two boards report the same serial number.
         """
+        safety_hooks.install()  # a program's way to its boards: it gets the safety hooks
         found: list[tuple[Board, type[Backend]]] = []
         for backend in self._backend_classes:
             found.extend((board, backend) for board in await backend.discover())

@@ -8,12 +8,21 @@ When the match ends it
 1. asks the robot's event loop to cancel the robot's work (a well-behaved program
    unwinds in order);
 2. makes every open board safe and closes its port at once, through the boards' own
-   links, with the library's one safety net (:func:`j5aio.lifetime.make_all_safe_now`):
+   links, with the library's one rescue (:func:`j5aio.safety.rescue.make_all_safe_now`):
    from the loop if it answers within :data:`LOOP_WAIT` seconds, else from this thread;
    closing the ports means nothing the program still sends reaches a board;
-3. logs ``Game over``, runs the :func:`add_game_over_hook` hooks, flushes the output
-   and, after :data:`GRACE` seconds for the program to end by itself, ends the process
-   with status 0 (``os._exit``: no user code can hold it back).
+3. logs ``Game over``, runs the :func:`add_game_over_hook` hooks and, after
+   :data:`GRACE` seconds, goes over the boards once more, flushes the output and ends the
+   process with status 0 (``os._exit``: no user code can hold it back).
+
+From the moment game over begins, no board can be opened any more (opening one raises
+:class:`~j5aio.errors.GameOverError`), so a program cannot drive again in the grace; and
+a program that ends meanwhile, by an exception from a board closed under it or by
+reaching its end, waits for game over to end the process, so it ends with "Game over"
+and status 0 (:func:`j5aio.safety.registry.wait_for_game_over`). Nothing in the program
+can stop the timer. What a program in the same interpreter can still hold back (C code that keeps
+the GIL, a huge switch interval, a forked child) is ended by the match supervisor of
+``j5aio run``, outside the program's interpreter.
 """
 
 from __future__ import annotations
@@ -27,7 +36,7 @@ import time
 from collections.abc import Callable
 from typing import Final, TextIO
 
-from j5aio import lifetime
+from j5aio.safety import registry, rescue
 
 __all__ = ["GRACE", "LOOP_WAIT", "MatchTimer", "add_game_over_hook"]
 
@@ -110,14 +119,20 @@ class MatchTimer:
             raise RuntimeError("the match timer was started already")
         self._ends_at = time.monotonic() + self._duration
         self._thread.start()
+        from j5aio.competition import supervisor
+
+        supervisor.report_start(self._ends_at)  # game over from outside, if supervised
         LOGGER.info("The match has started: it ends in %g s.", self._duration)
 
-    def stop(self) -> None:
-        """Stop the timer without game over (the program ended before the match did)."""
+    def _disarm(self) -> None:
+        """Stop the watchdog without game over (for tests of the library only).
+
+        A program has no way to stop the match: game over always comes.
+        """
         self._stopped.set()
 
     def join(self, timeout: float | None = None) -> None:
-        """Wait for the watchdog thread to finish (after :meth:`stop` or game over)."""
+        """Wait for the watchdog thread to finish (after game over)."""
         if self._thread.is_alive():
             self._thread.join(timeout)
 
@@ -138,31 +153,44 @@ class MatchTimer:
         """End the match now (see the module's documentation for what happens)."""
         self.ended_at = time.monotonic()
         sys.setswitchinterval(_SWITCH_INTERVAL)
+        registry.begin_game_over()  # from now on no board can be opened
         if self._cancel is not None:
             try:
                 self._cancel()
             except Exception as exc:  # the loop closed meanwhile: nothing to cancel
                 LOGGER.debug("Could not cancel the robot's work: %r", exc)
-        for board in lifetime.open_boards():
-            lifetime.mark_settled(board)  # the end of a match is no program's mistake
-        # A board whose port fails to close stops the pass it is in (it is forgotten
-        # first), so the boards after it get another pass.
-        for _ in range(_PASSES):
-            try:
-                lifetime.make_all_safe_now("the match ended", close=True, loop_wait=LOOP_WAIT)
-            except Exception as exc:
-                LOGGER.error("Making the boards safe at game over failed: %r", exc)
-            if not lifetime.open_boards():
-                break
+        for board in registry.open_boards():
+            registry.mark_settled(board)  # the end of a match is no program's mistake
+        _make_safe_and_close()
+        from j5aio.competition import supervisor
+
+        supervisor.report_safe()
         LOGGER.warning("Game over: the match has ended and every board is safe.")
         for hook in list(_hooks):
             try:
                 hook()
             except Exception as exc:
                 LOGGER.error("A game-over hook failed: %r", exc)
-        self._stopped.wait(self._grace)
+        time.sleep(self._grace)
+        _make_safe_and_close()  # a board opened before game over began, driven meanwhile
         _flush()
-        self._end_process(0)
+        try:
+            self._end_process(0)
+        finally:
+            registry.end_game_over()
+
+
+def _make_safe_and_close() -> None:
+    """Make every open board safe and close its port, in up to :data:`_PASSES` passes."""
+    # A board whose port fails to close stops the pass it is in (it is forgotten first),
+    # so the boards after it get another pass.
+    for _ in range(_PASSES):
+        try:
+            rescue.make_all_safe_now("the match ended", close=True, loop_wait=LOOP_WAIT)
+        except Exception as exc:
+            LOGGER.error("Making the boards safe at game over failed: %r", exc)
+        if not registry.open_boards():
+            break
 
 
 def _flush() -> None:

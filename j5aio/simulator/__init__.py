@@ -1,6 +1,7 @@
 """Board simulators that speak each board's wire protocol, byte for byte.
 
-Each simulator is written from the protocol description alone (``protocols.md``), so that
+Each simulator is written from the protocol description alone (the protocol pages of
+:doc:`/internals/index`), so that
 it checks the host code rather than mirroring it. They are synchronous state machines with
 no clock; transports wrap them.
 

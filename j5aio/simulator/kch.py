@@ -1,6 +1,7 @@
 """The simulated KCH: gpiozero's mock pins standing in for the Raspberry Pi's GPIO.
 
-The KCH has no firmware and no wire protocol: it is LEDs on GPIO pins (protocols.md §6).
+The KCH has no firmware and no wire protocol: it is LEDs on GPIO pins
+(:doc:`/internals/kch`).
 Its simulator is therefore a set of mock pins, not a byte stream. The simulated KCH board
 is the real :class:`~j5aio.backends.hardware.sr.kch.KCHHardwareBackend` driving these pins
 through gpiozero's ``MockFactory``, so what a program does to the LEDs goes through the

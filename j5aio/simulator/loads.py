@@ -15,7 +15,8 @@ kit (the kit's motors, a 3-cell LiPo battery), not measured on any one robot:
   :data:`BATTERY_INTERNAL_RESISTANCE`: under a load of ``I`` amps it reads
   ``idle - I x BATTERY_INTERNAL_RESISTANCE`` volts.
 
-The power board's limits are the real board's (protocols.md §11): 20 A on H0 and H1,
+The power board's limits are the real board's
+(:doc:`/internals/kit-wiring-and-service`): 20 A on H0 and H1,
 10 A on L0 to L3, 2 A on the 5 V rail and 30 A for the whole board.
 """
 

@@ -1,4 +1,6 @@
-r"""Simulator of the SourceBots Arduino with the 2019 line-protocol firmware (protocols.md §5A).
+r"""Simulator of the SourceBots Arduino with the 2019 line-protocol firmware.
+
+The protocol is described in :doc:`/internals/sb-arduino`.
 
 Two firmware versions: ``2019.6.0`` drives a PCA9685 servo shield with ``S``;
 ``2019.8.0`` answers every ``S`` with ``- Error: not implemented``.

@@ -1,4 +1,6 @@
-r"""Simulator of the SourceBots Arduino with the sb2024 firmware, ``2.0`` (protocols.md §5B).
+r"""Simulator of the SourceBots Arduino with the sb2024 firmware, ``2.0``.
+
+The protocol is described in :doc:`/internals/sb-arduino`.
 
 Input: bytes are collected up to ``\n``; nothing else is special, so a ``\r`` stays in
 the line and spoils its last field. The line is split at every ``:`` and matched

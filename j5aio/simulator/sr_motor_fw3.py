@@ -1,6 +1,6 @@
 r"""Simulator of the SR Motor Board v4 running firmware 3 (binary protocol, 1 Mbaud).
 
-Protocol (protocols.md §2A). The firmware feeds each received byte to a three-state
+Protocol (:doc:`/internals/sr-motor-board`). The firmware feeds each received byte to a three-state
 machine:
 
 - idle: ``0x00`` no-op (resynchronises), ``0x01`` replies ``MCV4B:3\n``, ``0x02`` / ``0x03``

@@ -1,6 +1,6 @@
 r"""Simulator of the SR Motor Board v4 running firmware 4.4 / 4.5 (text protocol, 115 200 baud).
 
-Protocol (protocols.md §2B). The board is a UART behind an FTDI FT232R. Each
+Protocol (:doc:`/internals/sr-motor-board`). The board is a UART behind an FTDI FT232R. Each
 ``\n``-terminated ASCII line is one command (every ``\r`` is dropped; 63 bytes without
 ``\n`` discard the buffer) and gets one reply line: ``ACK``, data or ``NACK:<reason>``.
 

@@ -1,6 +1,6 @@
 """Simulator of the SR Power Board v4 running firmware 3 (USB control transfers).
 
-Protocol (protocols.md §1A): every request is ``bRequest`` 64, standard type, device
+Protocol (:doc:`/internals/sr-power-board`): every request is ``bRequest`` 64, standard type, device
 recipient; the command is in ``wIndex``.
 
 Reads (``bmRequestType`` 0x80), all little-endian ``uint32``:

@@ -1,6 +1,7 @@
 r"""Simulator of the SR Power Board v4 running firmware 4.4 (USB CDC serial, text).
 
-Protocol (protocols.md §1B). The board is a CDC serial port (baud rate ignored). Each
+Protocol (:doc:`/internals/sr-power-board`). The board is a CDC serial port (baud rate
+ignored). Each
 ``\n``-terminated ASCII line is one command; a ``\r`` cuts the line there; 63 bytes
 without ``\n`` discard the buffer. Every line gets exactly one reply line: ``ACK``, data,
 or ``NACK:<reason>``. The replies produced from one USB packet (one

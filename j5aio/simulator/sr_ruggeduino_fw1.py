@@ -1,4 +1,6 @@
-r"""Simulator of the SR Ruggeduino single-character firmware, versions 1 and 2 (protocols.md §4).
+r"""Simulator of the SR Ruggeduino single-character firmware, versions 1 and 2.
+
+The protocol is described in :doc:`/internals/sr-arduino`.
 
 The host sends a command letter followed by its pin letters, with no terminator; pin ``n``
 is the byte ``'a' + n``. The firmware takes one command byte at a time, waits (blocking)

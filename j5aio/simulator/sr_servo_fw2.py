@@ -1,6 +1,6 @@
 """Simulator of the SR Servo Board v4 running firmware 2 (USB control transfers).
 
-Protocol (protocols.md §3A), ``bRequest`` 64, standard type, device recipient:
+Protocol (:doc:`/internals/sr-servo-board`), ``bRequest`` 64, standard type, device recipient:
 
 - read wIndex 9, wLength >= 4: the firmware version, ``uint32`` 2. Any other read stalls.
 - write wIndex 0-11: servo n's position, wValue as a signed 16-bit number (0xFF9C is -100),

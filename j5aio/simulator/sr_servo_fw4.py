@@ -1,4 +1,6 @@
-r"""Simulators of the SR Servo Board v4 with the serial text firmware (protocols.md §3B).
+r"""Simulators of the SR Servo Board v4 with the serial text firmware.
+
+The protocol is described in :doc:`/internals/sr-servo-board`.
 
 Two firmwares share the protocol:
 

@@ -790,11 +790,12 @@ class PositionTracker(_SyncWrapper):
 class Board(_SyncWrapper):
     """A physical board: a set of components driven through one backend.
 
-    Every board that has been set up is kept in :attr:`BOARDS` until it is closed, so
-    that :meth:`make_all_safe` can reach all of them when a program stops. Every board
-    made at all is also known to the safety net (:mod:`j5aio.lifetime`) until it is
-    closed, which makes it safe through its backend's
-    :meth:`~j5aio.backends.backend.Backend.make_safe_now` however the program ends.
+    Every board made is in the safety registry (:mod:`j5aio.safety.registry`) until it
+    is closed, which makes it safe through its backend's
+    :meth:`~j5aio.backends.backend.Backend.make_safe_now` however the program ends; every
+    board that has been set up is also in :attr:`BOARDS`, so that :meth:`make_all_safe`
+    can reach all of them when a program stops. Making a board installs nothing in the
+    process (the entry points install the process hooks: :mod:`j5aio.safety.hooks`).
 
     :param serial_number: the board's serial number, as the backend found it.
     :param backend: the backend that drives this board.

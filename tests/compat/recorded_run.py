@@ -40,6 +40,9 @@ def main() -> None:
     report_path, separator, *arguments = sys.argv[1:]
     assert separator == "--", "usage: recorded_run.py REPORT.json -- run ..."
     os.environ.setdefault("J5AIO_ENV", "sim")
+    # The recording is of this process's simulated kit: the program must run here, not
+    # in a child of the match supervisor.
+    os.environ["J5AIO_NO_SUPERVISOR"] = "1"
     from j5aio.simulator.kit import current_kit
 
     setup = os.environ.get("COMPAT_SETUP")

@@ -108,7 +108,7 @@ async def test_wait_start_after_the_watcher_saw_the_start_returns_at_once(
         assert robot.started
         await robot.wait_start(timeout=0)  # started already: no wait at all
         assert robot.match_timer is not None
-        robot.match_timer.stop()
+        robot.match_timer._disarm()
         with pytest.raises(RuntimeError, match="wait_start runs once"):
             await robot.wait_start()
 
@@ -133,7 +133,7 @@ async def test_wait_start_waits_for_the_watcher_and_a_timeout_leaves_it_watching
             await robot.wait_start(timeout=30)
         assert robot.started and robot.zone == 2
         assert robot.match_timer is not None
-        robot.match_timer.stop()
+        robot.match_timer._disarm()
 
 
 async def test_in_dev_mode_nothing_is_watched() -> None:
@@ -167,7 +167,7 @@ async def test_the_service_can_make_it_a_match_before_the_start(
         trigger_start("remote start")
         await robot.wait_start(timeout=30)
         assert robot.match_timer is not None
-        robot.match_timer.stop()
+        robot.match_timer._disarm()
         live(zone=0, mode="DEV")  # after the start: the robot's metadata is fixed
         assert (robot.zone, robot.mode) == (3, Mode.COMP)
 
@@ -216,7 +216,7 @@ async def test_a_failed_watch_is_raised_by_wait_start_then_waited_again(
         await robot.wait_start(timeout=5)  # waits by itself this time
         assert robot.started and calls == [None, 5]
         assert robot.match_timer is not None
-        robot.match_timer.stop()
+        robot.match_timer._disarm()
 
 
 async def test_a_bad_service_update_is_logged(
@@ -323,7 +323,7 @@ def test_a_sync_robot_in_a_match_is_watched_too(
             time.sleep(0.01)
         assert robot.started
         assert robot.match_timer is not None
-        robot.match_timer.stop()
+        robot.match_timer._disarm()
         robot.wait_start(timeout=0)  # started already: returns at once
     finally:
         robot.release_lock()

@@ -2,11 +2,16 @@
 
 from __future__ import annotations
 
+import io
+import json
 import logging
+import os
+import subprocess
 import sys
 import threading
 import time
 from collections.abc import AsyncIterator
+from pathlib import Path
 
 import anyio
 import pytest
@@ -16,10 +21,12 @@ from j5aio.boards.board import Board
 from j5aio.boards.sr.v4 import MotorBoard
 from j5aio.competition import timer as timer_module
 from j5aio.competition.timer import MatchTimer, add_game_over_hook
+from j5aio.errors import GameOverError
 from j5aio.simulator import kit as kit_module
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kit import KitConfig, use_kit
 from j5aio.simulator.sr_motor_fw3 import MotorMode
+from j5aio.tracebacks import run_program
 
 
 @pytest.fixture(autouse=True)
@@ -52,7 +59,7 @@ def test_stop_before_the_end_is_no_game_over() -> None:
     assert remaining is not None and 29 < remaining <= 30
     with pytest.raises(RuntimeError, match="started already"):
         timer.start()
-    timer.stop()
+    timer._disarm()
     timer.join(5)
     assert ended == [] and timer.ended_at is None
 
@@ -161,3 +168,78 @@ async def test_cancelling_an_awaiting_robot_body() -> None:
     assert scope.cancelled_caught
     await anyio.to_thread.run_sync(timer.join, 5)
     assert codes == [0]
+
+
+def test_a_program_cannot_stop_the_match() -> None:
+    assert not hasattr(MatchTimer, "stop")  # game over always comes
+
+
+async def test_after_game_over_no_board_can_be_opened_to_drive_again() -> None:
+    kit = use_kit(KitConfig(0, 1, 0, 0, 0))
+    board = (await SIMULATED_ENVIRONMENT.get_board_group(MotorBoard)).singular()
+    await board.motors[0].set_power(0.5)
+    codes: list[int] = []
+    timer = MatchTimer(0.01, end_process=codes.append, grace=0)
+    timer.start()
+    await anyio.to_thread.run_sync(timer.join, 5)
+    assert codes == [0] and lifetime.game_over_begun()
+    assert kit.motor_boards[0].motors[0].mode is MotorMode.BRAKE
+    with pytest.raises(GameOverError, match="cannot be opened after game over"):
+        await SIMULATED_ENVIRONMENT.get_board_group(MotorBoard)
+    assert kit.motor_boards[0].motors[0].mode is MotorMode.BRAKE
+    assert not lifetime.open_boards()
+
+
+async def test_a_program_ending_in_game_over_waits_for_it(tmp_path: Path) -> None:
+    program = tmp_path / "program.py"
+    program.write_text("raise RuntimeError('the board has been closed')\n")
+    lifetime.begin_game_over()
+    lifetime.end_game_over()  # as if the timer had ended the process
+    err = io.StringIO()
+    assert run_program(program, stderr=err) == 0
+    assert err.getvalue() == ""  # no traceback: the match ended, the program did not fail
+
+
+_DRIVING_AT_THE_END = """
+import anyio
+from j5aio.competition import trigger_start
+from j5aio.kit import KitRobot
+
+
+async def main():
+    async with KitRobot() as robot:
+        trigger_start()
+        await robot.wait_start()
+        motor = robot.motor_boards[0].motors[0]
+        while True:
+            try:
+                await motor.set_power(0.5)
+            except anyio.get_cancelled_exc_class():
+                pass  # keeps driving: the next set_power meets a closed board
+            await anyio.sleep(0)
+
+
+anyio.run(main)
+"""
+
+def test_a_program_driving_at_the_end_ends_with_game_over_and_status_0(tmp_path: Path) -> None:
+    metadata = tmp_path / "metadata.json"
+    metadata.write_text(
+        json.dumps({"arena": "A", "zone": 1, "mode": "COMP", "duration": 0.5,
+                    "marker_offset": 0})
+    )
+    env = dict(os.environ)
+    env.update(
+        J5AIO_ENV="sim",
+        J5AIO_METADATA=str(metadata),
+        J5AIO_START_FILE=str(tmp_path / "start"),
+        J5AIO_MEDIA_ROOTS=str(tmp_path / "media"),
+        PYTHONPATH=os.pathsep.join([str(Path(__file__).parents[2]), env.get("PYTHONPATH", "")]),
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", _DRIVING_AT_THE_END],
+        capture_output=True, text=True, env=env, timeout=60, check=False,
+    )
+    assert done.returncode == 0, done.stderr
+    assert "Game over" in done.stderr
+    assert "Traceback" not in done.stderr

@@ -17,7 +17,8 @@ import anyio.to_thread
 import pytest
 
 from j5aio import lifetime
-from j5aio.errors import CommunicationError
+from j5aio.errors import CommunicationError, GameOverError
+from j5aio.safety import hooks, registry, rescue
 
 from .conftest import LampBackend, LampBoard
 
@@ -48,10 +49,10 @@ class NetLampBackend(LampBackend):
 @pytest.fixture(autouse=True)
 def _only_these_boards(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
     """Let the net see only the boards a test makes."""
-    monkeypatch.setattr(lifetime, "_open", {})
-    monkeypatch.setattr(lifetime, "_settled", set())
-    monkeypatch.setattr(lifetime, "_failures", 0)
-    monkeypatch.setattr(lifetime, "_terminating", False)
+    monkeypatch.setattr(registry, "_open", {})
+    monkeypatch.setattr(registry, "_settled", set())
+    monkeypatch.setattr(rescue, "_failures", 0)
+    monkeypatch.setattr(hooks, "_terminating", False)
     # The real excepthook ignores further Ctrl-C once the program is ending: give the
     # rest of the test run its Ctrl-C back.
     handler = signal.getsignal(signal.SIGINT)
@@ -181,8 +182,8 @@ def test_the_end_of_a_loop_rescues_and_closes_its_boards(caplog: pytest.LogCaptu
 
 def test_finishing_runs_the_exit_steps_then_the_net_once(monkeypatch: pytest.MonkeyPatch) -> None:
     steps: list[str] = []
-    monkeypatch.setattr(lifetime, "_exit_steps", [])
-    monkeypatch.setattr(lifetime, "_finished", False)
+    monkeypatch.setattr(hooks, "_exit_steps", [])
+    monkeypatch.setattr(hooks, "_finished", False)
     _, backend = lamp()
 
     def step() -> None:
@@ -195,8 +196,8 @@ def test_finishing_runs_the_exit_steps_then_the_net_once(monkeypatch: pytest.Mon
     lifetime.add_exit_step(step)
     lifetime.add_exit_step(step)  # once only
     lifetime.add_exit_step(broken)
-    lifetime._at_exit()
-    lifetime._at_exit()
+    hooks._at_exit()
+    hooks._at_exit()
     assert steps == ["step"]
     assert backend.closed_now
 
@@ -207,25 +208,25 @@ def test_ctrl_c_ending_the_program_prints_one_line(
     # (the autouse fixture gives the suite its Ctrl-C back afterwards)
     reasons: list[str] = []
     previous: list[type[BaseException]] = []
-    monkeypatch.setattr(lifetime, "_finish", reasons.append)
-    monkeypatch.setattr(lifetime, "_previous_excepthook", lambda k, v, t: previous.append(k))
+    monkeypatch.setattr(hooks, "_finish", reasons.append)
+    monkeypatch.setattr(hooks, "_previous_excepthook", lambda k, v, t: previous.append(k))
     monkeypatch.delattr(sys, "ps1", raising=False)
-    lifetime._excepthook(KeyboardInterrupt, KeyboardInterrupt(), None)
+    hooks._excepthook(KeyboardInterrupt, KeyboardInterrupt(), None)
     assert capsys.readouterr().err == "Stopped (Ctrl-C); every board was made safe.\n"
     # the program is ending: a further Ctrl-C must not tear its exit hooks
-    assert signal.getsignal(signal.SIGINT) is lifetime._ignore_interrupt
-    lifetime._excepthook(RuntimeError, RuntimeError("bug"), None)
+    assert signal.getsignal(signal.SIGINT) is hooks._ignore_interrupt
+    hooks._excepthook(RuntimeError, RuntimeError("bug"), None)
     assert previous == [RuntimeError]
     assert reasons[:2] == [
         "the program was stopped with Ctrl-C",
         "the program stopped on an unhandled RuntimeError",
     ]
-    monkeypatch.setattr(lifetime, "_failures", 1)
-    lifetime._excepthook(KeyboardInterrupt, KeyboardInterrupt(), None)
+    monkeypatch.setattr(rescue, "_failures", 1)
+    hooks._excepthook(KeyboardInterrupt, KeyboardInterrupt(), None)
     assert "some boards could not be made safe" in capsys.readouterr().err
     logging.getLogger("j5aio").setLevel(logging.DEBUG)
     try:
-        lifetime._excepthook(KeyboardInterrupt, KeyboardInterrupt(), None)
+        hooks._excepthook(KeyboardInterrupt, KeyboardInterrupt(), None)
     finally:
         logging.getLogger("j5aio").setLevel(logging.NOTSET)
     assert previous == [RuntimeError, KeyboardInterrupt]  # the full traceback, when debugging
@@ -233,22 +234,22 @@ def test_ctrl_c_ending_the_program_prints_one_line(
 
 def test_an_interactive_session_is_not_stopped(monkeypatch: pytest.MonkeyPatch) -> None:
     reasons: list[str] = []
-    monkeypatch.setattr(lifetime, "_finish", reasons.append)
-    monkeypatch.setattr(lifetime, "_previous_excepthook", lambda k, v, t: None)
+    monkeypatch.setattr(hooks, "_finish", reasons.append)
+    monkeypatch.setattr(hooks, "_previous_excepthook", lambda k, v, t: None)
     monkeypatch.setattr(sys, "ps1", ">>> ", raising=False)
-    lifetime._excepthook(KeyboardInterrupt, KeyboardInterrupt(), None)
+    hooks._excepthook(KeyboardInterrupt, KeyboardInterrupt(), None)
     assert reasons == []
 
 
 def test_ctrl_c_is_ignored_while_stopping() -> None:
     before = signal.getsignal(signal.SIGINT)
-    term = signal.signal(signal.SIGTERM, lifetime._on_terminate)
+    term = signal.signal(signal.SIGTERM, hooks._on_terminate)
     try:
         with lifetime.quiet_interrupts():
             signal.raise_signal(signal.SIGINT)  # would raise KeyboardInterrupt otherwise
             signal.raise_signal(signal.SIGTERM)  # would raise SystemExit otherwise
         assert signal.getsignal(signal.SIGINT) is before
-        assert signal.getsignal(signal.SIGTERM) is lifetime._on_terminate
+        assert signal.getsignal(signal.SIGTERM) is hooks._on_terminate
     finally:
         signal.signal(signal.SIGTERM, term)
 
@@ -266,7 +267,7 @@ def test_ctrl_c_is_ignored_while_stopping() -> None:
 
 def test_a_terminating_signal_exits_unless_a_robot_asked_for_it() -> None:
     with pytest.raises(SystemExit) as stopped:
-        lifetime._on_terminate(signal.SIGTERM, None)
+        hooks._on_terminate(signal.SIGTERM, None)
     assert stopped.value.code == 128 + signal.SIGTERM
 
     got: list[int] = []
@@ -276,7 +277,7 @@ def test_a_terminating_signal_exits_unless_a_robot_asked_for_it() -> None:
         closed = asyncio.new_event_loop()
         closed.close()
         remove_closed = lifetime.on_terminate(closed, got.append)
-        lifetime._on_terminate(signal.SIGHUP, None)  # the closed loop is passed over
+        hooks._on_terminate(signal.SIGHUP, None)  # the closed loop is passed over
         await asyncio.sleep(0.01)
         remove_closed()
         remove()
@@ -290,7 +291,7 @@ def test_a_terminating_signal_stops_a_running_loop_between_callbacks() -> None:
     steps: list[str] = []
 
     async def main() -> None:
-        lifetime._on_terminate(signal.SIGTERM, None)  # as if it arrived mid-step
+        hooks._on_terminate(signal.SIGTERM, None)  # as if it arrived mid-step
         steps.append("the step finished")  # nothing was torn
         await asyncio.sleep(5)
         steps.append("never")
@@ -302,10 +303,10 @@ def test_a_terminating_signal_stops_a_running_loop_between_callbacks() -> None:
 
 
 def test_a_second_terminating_signal_raises_at_once(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(lifetime, "_terminating", True)
+    monkeypatch.setattr(hooks, "_terminating", True)
 
     async def main() -> None:
-        lifetime._on_terminate(signal.SIGHUP, None)
+        hooks._on_terminate(signal.SIGHUP, None)
 
     with pytest.raises(SystemExit) as stopped:
         asyncio.run(main())
@@ -337,4 +338,59 @@ def test_a_board_whose_backend_is_no_backend_is_passed_over(
     assert [board.serial_number for board in rescued] == ["GOOD"]
     assert good.states[0] is False
     assert "STANDIN" not in caplog.text
-    assert lifetime._failures == 0
+    assert rescue._failures == 0
+
+
+def test_a_program_ending_during_game_over_waits_for_it_without_a_traceback(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    previous: list[type[BaseException]] = []
+    reasons: list[str] = []
+    monkeypatch.setattr(hooks, "_previous_excepthook", lambda k, v, t: previous.append(k))
+    monkeypatch.setattr(hooks, "_finish", reasons.append)
+    assert not lifetime.wait_for_game_over()  # no match has ended: nothing to wait for
+    waited: list[float] = []
+    monkeypatch.setattr(registry._game_over_done, "wait", waited.append)
+    lifetime.begin_game_over()
+    assert lifetime.game_over_begun()
+    hooks._excepthook(RuntimeError, RuntimeError("the board has been closed"), None)
+    assert previous == [] and reasons == [] and capsys.readouterr().err == ""
+    assert waited == [lifetime.GAME_OVER_WAIT]
+
+
+def test_the_exit_hook_during_game_over_waits_for_it_first(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setattr(hooks, "_exit_steps", [])
+    monkeypatch.setattr(hooks, "_finished", False)
+    order: list[str] = []
+    monkeypatch.setattr(registry._game_over_done, "wait", lambda t: order.append("waited"))
+    lifetime.add_exit_step(lambda: order.append("step"))
+    lifetime.begin_game_over()
+    hooks._at_exit()
+    assert order == ["waited", "step"]
+
+
+def test_a_board_made_after_game_over_is_refused_and_its_port_closed() -> None:
+    lifetime.begin_game_over()
+    backend = NetLampBackend()
+    with pytest.raises(GameOverError, match="after game over"):
+        LampBoard("L", backend)
+    assert backend.closed_now and lifetime.open_boards() == []
+
+
+async def test_making_a_board_installs_no_process_hooks_a_group_does(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from j5aio.boards.board_group import BoardGroup
+
+    from .conftest import LampBackend
+
+    installs: list[str] = []
+    monkeypatch.setattr(hooks, "install", lambda: installs.append("install"))
+    board, _ = lamp()
+    assert board in lifetime.open_boards() and installs == []  # a test's board: nothing
+    group = await BoardGroup.get_board_group(LampBoard, LampBackend)
+    assert installs == ["install"]  # a program's way to its boards installs the hooks
+    for found in group:
+        await found.close()

@@ -156,8 +156,12 @@ def start_running_robot(*, measured: bool = True) -> subprocess.Popen[str]:
 def test_signal_makes_boards_safe_and_stops(signum: int) -> None:
     proc = start_running_robot()
     started = time.monotonic()
-    proc.send_signal(signum)
-    out, err = proc.communicate(timeout=10)
+    try:
+        proc.send_signal(signum)
+        out, err = proc.communicate(timeout=10)
+    finally:
+        proc.kill()  # a robot program left running would keep the robot lock
+        proc.wait()
     assert time.monotonic() - started < 5
     assert "safe [1, 1]" in out
     if signum == signal.SIGINT:
@@ -177,9 +181,13 @@ def test_ctrl_c_twice_prints_one_line() -> None:
     # tests/test_lifetime.py checks on simulated boards.)
     proc = start_running_robot(measured=False)
     assert proc.stdout is not None
-    proc.send_signal(signal.SIGINT)
-    assert proc.stdout.readline() == "safe [1, 1]\n"
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=10)
+    try:
+        proc.send_signal(signal.SIGINT)
+        assert proc.stdout.readline() == "safe [1, 1]\n"
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=10)
+    finally:
+        proc.kill()  # a robot program left running would keep the robot lock
+        proc.wait()
     assert "Traceback" not in err
     assert "Exception ignored" not in err

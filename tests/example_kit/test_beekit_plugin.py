@@ -257,7 +257,11 @@ def test_the_sync_kit_robot_takes_the_kit_s_wrapper_class() -> None:
         bees[0].led.state = True
         print("held", bees[0].serial_number, bees[0].led.state)
     """)
-    environment = {k: v for k, v in os.environ.items() if not k.startswith("J5AIO_")}
+    # this run's own robot lock port is kept, so that the robot runs beside another one
+    environment = {
+        k: v for k, v in os.environ.items()
+        if not k.startswith("J5AIO_") or k == "J5AIO_LOCK_PORT"
+    }
     result = subprocess.run(
         [sys.executable, "-c", program], capture_output=True, text=True, timeout=60,
         env=environment, check=False,

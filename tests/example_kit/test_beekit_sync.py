@@ -26,6 +26,9 @@ REPO_ROOT = KIT_ROOT.parents[1]
 SYNC_MODULE = KIT_ROOT / "beekit" / "sync.py"
 
 
+WORKER = os.environ.get("PYTEST_XDIST_WORKER", "main")
+
+
 def test_a_student_program_drives_the_board_on_the_simulated_kit(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
@@ -51,7 +54,11 @@ def test_a_student_program_drives_the_board_on_the_simulated_kit(
 
 def test_a_student_program_runs_on_the_console() -> None:
     environment = {
-        **{k: v for k, v in os.environ.items() if not k.startswith("J5AIO_")},
+        # this run's own robot lock port is kept, so that the program runs beside a robot
+        **{
+            k: v for k, v in os.environ.items()
+            if not k.startswith("J5AIO_") or k == "J5AIO_LOCK_PORT"
+        },
         "J5AIO_ENV": "console",
         "PYTHONPATH": os.pathsep.join([str(REPO_ROOT), str(KIT_ROOT)]),
     }
@@ -111,7 +118,8 @@ def test_the_generated_module_is_typed(tmp_path: Path) -> None:
             "--strict",
             "--no-error-summary",
             "--cache-dir",
-            str(Path(tempfile.gettempdir()) / "j5aio-beekit-mypy-cache"),
+            # one cache per pytest-xdist worker: two mypy runs never share one
+            str(Path(tempfile.gettempdir()) / f"j5aio-beekit-mypy-cache-{WORKER}"),
             "--config-file",
             str(REPO_ROOT / "pyproject.toml"),
             *map(str, files.values()),

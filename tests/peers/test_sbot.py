@@ -1,6 +1,7 @@
 """sbot (SourceBots' own library, from PyPI) drives j5aio's sb2024 simulators.
 
-What it sees must be what protocols.md says the boards do (§1B, §2B, §3B, §5B, §7).
+What it sees must be what the internals docs say the boards do (docs/internals/: the power,
+motor and servo boards, the SourceBots Arduino, and how sbot drives a serial board).
 """
 
 from __future__ import annotations

@@ -1,6 +1,7 @@
 """sr-robot3 (Student Robotics' own library, from PyPI) drives j5aio's sr2023 simulators.
 
-What it sees must be what protocols.md says the boards do (§1B, §2B, §3B, §4, §7).
+What it sees must be what the internals docs say the boards do (docs/internals/: the power,
+motor and servo boards, the SR Arduino, and how sr-robot3 drives a serial board).
 """
 
 from __future__ import annotations

@@ -1,4 +1,5 @@
-"""The SR motor board fw 4.4 / 4.5 simulator, byte for byte against protocols.md §2B."""
+"""The SR motor board fw 4.4 / 4.5 simulator, byte for byte against
+the motor board's page of the internals docs (docs/internals/sr-motor-board.rst)."""
 
 import pytest
 

@@ -1,4 +1,5 @@
-"""The SR power board fw 4.4 simulator, byte for byte against protocols.md §1B."""
+"""The SR power board fw 4.4 simulator, byte for byte against
+the power board's page of the internals docs (docs/internals/sr-power-board.rst)."""
 
 import pytest
 

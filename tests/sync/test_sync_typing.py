@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import tempfile
 import textwrap
 import uuid
@@ -67,7 +68,9 @@ def mypy_report(tmp_path_factory: pytest.TempPathFactory) -> dict[str, list[str]
         path = folder / f"{name}_{uuid.uuid4().hex}.py"
         path.write_text(textwrap.dedent(source), encoding="utf-8")
         files[name] = path
-    cache = Path(tempfile.gettempdir()) / "j5aio-sync-typing-mypy-cache"
+    # one cache per pytest-xdist worker: two mypy runs never share one
+    worker = os.environ.get("PYTEST_XDIST_WORKER", "main")
+    cache = Path(tempfile.gettempdir()) / f"j5aio-sync-typing-mypy-cache-{worker}"
     stdout, stderr, _status = api.run(
         [
             "--strict",

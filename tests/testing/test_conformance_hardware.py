@@ -316,7 +316,8 @@ class TestMotorBoard(FromEitherSource, MotorInterfaceConformance):
                 return MotorSpecialState.BRAKE
             if output.mode is MotorMode.COAST:
                 return MotorSpecialState.COAST
-            # The signed duty the board drives, which is the power set (issue 15).
+            # The signed duty the board drives, which is the power set (j5's bytes saturated
+            # from 0.8).
             return output.power
 
         return MotorSubject(

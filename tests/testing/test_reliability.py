@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from j5aio.testing.reliability import (
+from tests.testing.reliability_rig import (
     BACKEND_NAMES,
     bad_value_trials,
     cancellation_trials,

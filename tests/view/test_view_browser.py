@@ -45,7 +45,7 @@ TOOL = _load_tool()
 REASON = TOOL.missing_browser()
 pytestmark = pytest.mark.skipif(REASON is not None, reason=f"no browser to test in: {REASON}")
 
-#: How soon the page must show a change the program made (issue 13), as the median of
+#: How soon the page must show a change the program made, as the median of
 #: several changes: one stall of a loaded machine running a browser must not fail the test.
 SHOW_WITHIN = 0.2
 #: How long a change may take at all before the page is taken not to show it.

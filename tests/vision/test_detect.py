@@ -91,7 +91,7 @@ def accuracy_errors(
 
 @pytest.mark.parametrize("distance", DISTANCES)
 def test_accuracy_on_rendered_150mm_markers_from_half_a_metre_to_five(distance: float) -> None:
-    # Every pose of the grid at this distance must meet every bound (the check):
+    # Every pose of the grid at this distance must meet every bound:
     # distance within 3 %, bearing within 1.5 deg, orientation within 5 deg, no false id.
     failures = []
     for orientation in ORIENTATIONS:

@@ -35,6 +35,7 @@ from j5aio.backends.hardware.transports.discovery import (
 from j5aio.backends.hardware.transports.lent import LentStream
 from j5aio.boards.board import Board
 from j5aio.errors import CommunicationError, UnsupportedFirmwareError
+from j5aio.safety import hooks as safety_hooks
 
 __all__ = [
     "QUICK_BUDGET",
@@ -194,6 +195,7 @@ async def attach(
     :raises CommunicationError: no kind recognised the board; the message lists what
         was tried.
     """
+    safety_hooks.install()  # a program's way to a board: it gets the safety hooks
     backends = serial_backends()
 
     async def connect() -> Board:

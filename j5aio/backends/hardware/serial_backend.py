@@ -10,8 +10,8 @@ A serial backend can be made three ways, all ending in the same handshake:
   already open. This is the seam the simulated environment uses: it hands over a
   :class:`~j5aio.backends.hardware.transports.memory.SimulatorStream`.
 
-Ports are claimed in :mod:`.registry`, so a port that a live backend holds is never
-opened twice. Every failure is a :class:`~j5aio.errors.CommunicationError`.
+Ports are claimed in :mod:`~j5aio.backends.hardware.registry`, so a port that a live
+backend holds is never opened twice. Every failure is a :class:`~j5aio.errors.CommunicationError`.
 
 A board found by discovery or attached by port is looked for again when it vanishes
 (see :mod:`.reconnect`): by its USB serial number for a discovered board (its port
@@ -51,6 +51,7 @@ from j5aio.errors import (
     DeviceMissingSerialNumberError,
     UnsupportedFirmwareError,
 )
+from j5aio.safety import hooks as safety_hooks
 
 __all__ = ["SerialHardwareBackend", "scaled"]
 
@@ -210,6 +211,7 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         :raises CommunicationError: the port could not be opened, or the board did not
             answer as it should.
         """
+        safety_hooks.install()  # a program's way to a board: it gets the safety hooks
 
         async def connect() -> BoardT:
             found = await anyio.to_thread.run_sync(find_port, port)

@@ -5,7 +5,7 @@
 with a simulated device) reads the serial number, runs the handshake and returns the
 board. Each device is driven through one :class:`~.transports.usb_link.USBLink`, whose
 worker thread runs its transfers in order. A device a live backend holds is never
-opened twice (see :mod:`.registry`).
+opened twice (see :mod:`~j5aio.backends.hardware.registry`).
 
 A board that vanishes (errno 19) is looked for again by vendor, product and serial
 number (see :mod:`.reconnect`); a replugged device gets a new bus address, so its key in

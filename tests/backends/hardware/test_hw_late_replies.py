@@ -1,4 +1,4 @@
-"""Late replies are never taken as the answer to a later request (issue 9, defect 1)."""
+"""Late replies are never taken as the answer to a later request."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Issue 15: on the firmware 3 motor board, the duty driven is the power given."""
+"""On the firmware 3 motor board, the duty driven is the power given."""
 
 import pytest
 

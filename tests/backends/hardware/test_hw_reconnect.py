@@ -34,8 +34,8 @@ from j5aio.simulator import (
 )
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kit import KitConfig, use_kit
-from j5aio.testing.reliability import BACKEND_NAMES, replug_trials
 from j5aio.testing.transports import FaultyStream
+from tests.testing.reliability_rig import BACKEND_NAMES, replug_trials
 
 QUICK = ReconnectPolicy(interval=0.0)
 

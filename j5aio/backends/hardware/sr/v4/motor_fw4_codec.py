@@ -3,7 +3,7 @@ r"""The SR v4 motor board's text protocol, firmware 4.4 / 4.5: pure encode and p
 The board is a UART at 115 200 baud behind an FTDI FT232R (``0403:6001``, as firmware 3,
 which speaks a binary protocol at 1 Mbaud instead). Each command is one ASCII line ending
 ``\n`` and gets one reply line: ``ACK``, the data asked for, or ``NACK:<reason>``
-(protocols.md §2B).
+(:doc:`/internals/sr-motor-board`).
 
 A motor is set with ``MOT:<n>:SET:<v>``, ``v`` from -1000 to 1000: the PWM duty is
 ``|v| / 1000``, forwards for ``v > 0``; ``v = 0`` *brakes* (driver enabled, both low).

@@ -2,7 +2,8 @@ r"""The SR v4 power board's serial text protocol, firmware 4.4: pure encode and 
 
 The board is a USB CDC serial port (VID:PID ``1BDA:0010``, as firmware 3, which is a
 control-transfer device instead). Each command is one ASCII line ending ``\n`` and gets
-one reply line: ``ACK``, the data asked for, or ``NACK:<reason>`` (protocols.md §1B).
+one reply line: ``ACK``, the data asked for, or ``NACK:<reason>``
+(:doc:`/internals/sr-power-board`).
 
 Outputs are numbered 0 to 6: H0, H1, L0, L1, L2, L3 and the 5 V regulator. L2 (4) powers
 the brain and the firmware refuses to switch it, so :func:`encode_output_set` refuses it

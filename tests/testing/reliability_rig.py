@@ -1,16 +1,20 @@
-"""Stress trials of the hardware backends against their simulators (issue 9's checks).
+"""Stress trials of the hardware backends against their simulators: a white-box test rig.
+
+It is not part of j5aio's API: a rig reads the backends' private state (their caches) and
+knows only the boards it was written for. The test suite and ``bench/bench_reliability.py``
+import it from here.
 
 Each *rig* connects one real hardware backend to a simulator of its board and knows how
 to compare what the backend remembers (its caches) with what the simulated board really
 does. The trials built on rigs are run at full size by ``bench/bench_reliability.py``
 and at a bounded size by the test suite:
 
-* :func:`cancellation_trials` (R1): random operations, each cancelled at a random moment
+* :func:`cancellation_trials`: random operations, each cancelled at a random moment
   through anyio (``move_on_after``) or asyncio itself (``Task.cancel``,
   ``asyncio.timeout``); counts wrong answers and caches that disagree with the board.
-* :func:`bad_value_trials` (R4): random bad values given to the components; counts the
+* :func:`bad_value_trials`: random bad values given to the components; counts the
   bytes that reached the wire.
-* :func:`fuzzed_reply_trials` (R5): requests answered with random bytes; counts
+* :func:`fuzzed_reply_trials`: requests answered with random bytes; counts
   exceptions that are not :class:`~j5aio.errors.CommunicationError` (or a subclass).
 """
 
@@ -426,7 +430,7 @@ async def open_rig(
         await rig.board.close()
 
 
-# -- R1: random cancellation ----------------------------------------------------------------
+# -- random cancellation --------------------------------------------------------------------
 
 
 async def _cancel_natively(operation: Operation, delay: float, rng: random.Random) -> bool:
@@ -517,7 +521,7 @@ def summarise(reports: Sequence[TrialReport]) -> dict[str, int]:
 
 
 
-# -- R3: unplug and replug ------------------------------------------------------------------
+# -- unplug and replug ----------------------------------------------------------------------
 
 
 @dataclass
@@ -632,7 +636,7 @@ async def _replug_once(rig: Rig, rng: random.Random, report: ReplugReport, name:
         report.details.append(f"make_safe: {exc!r}")
 
 
-# -- R4: bad values -------------------------------------------------------------------------
+# -- bad values -----------------------------------------------------------------------------
 
 #: Values no component may accept for a power, position, level, duration or pitch.
 BAD_VALUES: tuple[object, ...] = (
@@ -734,7 +738,7 @@ async def bad_value_trials(name: str, trials: int, *, seed: int = 0) -> BadValue
     return report
 
 
-# -- R5: fuzzed replies ---------------------------------------------------------------------
+# -- fuzzed replies -------------------------------------------------------------------------
 
 
 @dataclass
