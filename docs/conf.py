@@ -74,6 +74,7 @@ nitpick_ignore = [
     ("py:class", "j5aio.backends.console.console.T"),
     ("py:class", "j5aio.backends.environment.BoardT"),
     ("py:class", "j5aio.backends.hardware.serial_backend.T"),
+    ("py:class", "j5aio.backends.hardware.serial_backend.U"),
     ("py:class", "j5aio.backends.hardware.transports.completion.T"),
     ("py:class", "j5aio.backends.hardware.transports.readers.T_co"),
     ("py:class", "j5aio.backends.hardware.transports.serial_link.T"),

@@ -213,3 +213,11 @@ class Backend(Generic[BoardT], metaclass=BackendMeta):
 
     async def close(self) -> None:
         """Release whatever the backend holds (a port, a USB handle). Does nothing here."""
+
+    def _check_single(self, identifier: int, what: str) -> None:
+        """Refuse any ``identifier`` but 0 for a component the board has only one of.
+
+        :raises ValueError: naming the board, the component and the identifier given.
+        """
+        if identifier != 0:
+            raise ValueError(f"{self.board.name} has only {what} 0, not {identifier!r}")

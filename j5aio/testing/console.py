@@ -3,7 +3,8 @@
 A console backend asks its user for readings through a
 :class:`~j5aio.backends.console.console.Console`. In a test, :class:`ConsoleScript` plays that
 user: queue the answers, hand :meth:`ConsoleScript.console_class` to the backend, and read
-back what it printed::
+back what it printed (:attr:`ConsoleScript.printed`) and asked
+(:attr:`ConsoleScript.prompts`)::
 
     script = ConsoleScript()
     backend = SRV4PowerBoardConsoleBackend("SERIAL", console_class=script.console_class())
@@ -14,6 +15,12 @@ back what it printed::
 A prompt with no matching answer waits until one is queued (so a test can answer a
 prompt that is already showing, such as "press the start button"), and is cancellable
 like any other wait.
+
+In a conformance suite (:mod:`j5aio.testing.conformance`) the script gives a console
+backend's subject its hooks: ``traffic=script.traffic`` (a refused call prints and asks
+nothing); an ``observe`` hook that reads the state the backend last printed from
+:attr:`ConsoleScript.printed`; and ``set_...`` hooks that queue the answer to the prompt
+the backend will show (``script.answer("Battery voltage", "12.5", replace=True)``).
 """
 
 from __future__ import annotations
@@ -76,6 +83,16 @@ class ConsoleScript:
     def show(self, line: str) -> None:
         """Keep a line the console printed."""
         self.printed.append(line)
+
+    def traffic(self) -> bytes:
+        """Return every line printed and every prompt shown so far, as bytes.
+
+        This is a console backend's ``traffic`` hook for a conformance subject
+        (``Subject(..., traffic=script.traffic)``): a console backend "sends" by printing
+        and asking, so the suite can check that a refused call does neither. (Printed
+        lines come first, then prompts: what matters is that the bytes grow with each.)
+        """
+        return "".join(f"{line}\n" for line in (*self.printed, *self.prompts)).encode()
 
     def console_class(self) -> type[Console]:
         """A :class:`.Console` class whose consoles print to and ask this script."""

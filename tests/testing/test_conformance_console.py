@@ -19,6 +19,7 @@ from j5aio.backends.console.sr.v4 import (
 )
 from j5aio.boards.arduino.uno import ArduinoUno
 from j5aio.boards.sr.v4.power_board import PowerOutputPosition
+from j5aio.components.motor import MotorSpecialState, MotorState
 from j5aio.testing.conformance import (
     BatterySensorInterfaceConformance,
     BatterySensorSubject,
@@ -80,7 +81,8 @@ class ConsoleSuite:
 
 class TestPowerBoardConsoleLEDs(ConsoleSuite, LEDInterfaceConformance):
     async def make_backend(self) -> LEDSubject:
-        return LEDSubject(backend=self.power_board(), identifiers=[0, 1])
+        backend = self.power_board()
+        return LEDSubject(backend=backend, identifiers=[0, 1], traffic=self.script.traffic)
 
 
 class TestPowerBoardConsoleButton(ConsoleSuite, ButtonInterfaceConformance):
@@ -126,10 +128,12 @@ class TestPowerBoardConsoleOutputs(ConsoleSuite, PowerOutputInterfaceConformance
         async def set_current(identifier: int, amps: float) -> None:
             self.script.answer(f"Current for power output {identifier}", str(amps), replace=True)
 
+        backend = self.power_board()
         return PowerOutputSubject(
-            backend=self.power_board(),
+            backend=backend,
             identifiers=range(len(PowerOutputPosition)),
             set_current=set_current,
+            traffic=self.script.traffic,
         )
 
 
@@ -138,9 +142,23 @@ class TestPowerBoardConsoleOutputs(ConsoleSuite, PowerOutputInterfaceConformance
 
 class TestMotorBoardConsole(ConsoleSuite, MotorInterfaceConformance):
     async def make_backend(self) -> MotorSubject:
-        self.script = ConsoleScript()
-        backend = SRV4MotorBoardConsoleBackend("SERIAL", self.script.console_class())
-        return MotorSubject(backend=backend, identifiers=[0, 1])
+        script = self.script = ConsoleScript()
+        backend = SRV4MotorBoardConsoleBackend("SERIAL", script.console_class())
+
+        async def observe(identifier: int) -> MotorState:
+            # What the console last printed for the motor: "...: Setting motor 0 to 0.5."
+            for line in reversed(script.printed):
+                found = re.search(rf": Setting motor {identifier} to (\S+)\.$", line)
+                if found:
+                    shown = found[1]
+                    if shown in MotorSpecialState.__members__:
+                        return MotorSpecialState[shown]
+                    return float(shown)
+            return MotorSpecialState.BRAKE  # nothing printed yet: as the board starts
+
+        return MotorSubject(
+            backend=backend, identifiers=[0, 1], observe=observe, traffic=script.traffic,
+        )
 
 
 class TestServoBoardConsole(ConsoleSuite, ServoInterfaceConformance):

@@ -357,13 +357,16 @@ async def test_motor_suite_catches_lost_states() -> None:
 
 
 class HundredStepMotors(MotorInterface):
-    """Motors a board drives in ±100 steps; ``encode`` turns a power into a step."""
+    """Motors a board drives in ±``steps`` steps (100 by default), rounded or truncated."""
 
-    def __init__(self, *, brake_and_coast: bool = True, truncate: bool = False) -> None:
+    def __init__(
+        self, *, brake_and_coast: bool = True, truncate: bool = False, steps: int = 100
+    ) -> None:
         self.reported: dict[int, MotorState] = {0: 0.0, 1: 0.0}
         self.board_steps: dict[int, int] = {0: 0, 1: 0}
         self.brake_and_coast = brake_and_coast
         self.truncate = truncate
+        self.steps = steps
 
     async def get_motor_state(self, identifier: int) -> MotorState:
         check(identifier, 2)
@@ -376,7 +379,7 @@ class HundredStepMotors(MotorInterface):
                 raise NotSupportedByHardwareError(f"this board has no {power.name}")
             self.reported[identifier] = power
             return
-        steps = power * 100
+        steps = power * self.steps
         self.board_steps[identifier] = int(steps) if self.truncate else round(steps)
         self.reported[identifier] = power
 
@@ -384,7 +387,7 @@ class HundredStepMotors(MotorInterface):
         state = self.reported[identifier]
         if isinstance(state, MotorSpecialState):
             return state
-        return self.board_steps[identifier] / 100
+        return self.board_steps[identifier] / self.steps
 
 
 async def run_whole_suite(suite: Any, subject: Subject) -> list[str]:
@@ -438,6 +441,22 @@ async def test_motor_suite_catches_a_truncating_backend_through_observe() -> Non
         "test_every_hook_is_given",
         "test_undeclared_special_states_are_refused",
     ]
+
+
+@pytest.mark.parametrize("steps", [100, 125, 127, 255, 1000])
+async def test_motor_suite_catches_truncation_on_boards_of_every_common_step(steps: int) -> None:
+    # Even at thousandths: int() where round() was meant shows on a 1000-step board.
+    backend = HundredStepMotors(truncate=True, steps=steps)
+    subject = MotorSubject(
+        backend=backend, identifiers=[0, 1], observe=backend.observe, power_step=1 / steps,
+    )
+    with pytest.raises(AssertionError, match=r"is the power scaled, and rounded"):
+        await run(MotorInterfaceConformance, "test_the_board_shows_each_power", subject)
+    rounding = HundredStepMotors(steps=steps)
+    subject = MotorSubject(
+        backend=rounding, identifiers=[0, 1], observe=rounding.observe, power_step=1 / steps,
+    )
+    await run(MotorInterfaceConformance, "test_the_board_shows_each_power", subject)
 
 
 async def test_motor_suite_without_observe_says_what_it_could_not_check() -> None:

@@ -88,3 +88,19 @@ async def test_answers_are_plain_text(answer: str) -> None:
     backend = SRV4PowerBoardConsoleBackend("SERIAL", script.console_class())
     script.answer("Start button state", answer)
     assert await backend.get_button_state(0) is (answer != "false")
+
+
+async def test_traffic_grows_with_every_line_printed_and_prompt_shown() -> None:
+    script = ConsoleScript()
+    backend = SRV4PowerBoardConsoleBackend("SERIAL", script.console_class())
+    assert script.traffic() == b""
+    await backend.set_led_state(0, True)
+    printed = script.traffic()
+    assert printed.endswith(b"\n") and b"SERIAL" in printed
+    script.answer("Battery voltage", "12.5")
+    await backend.get_battery_sensor_voltage(0)
+    assert script.traffic().startswith(printed)
+    assert script.traffic().endswith(b"Battery voltage [volts]: \n")
+    with pytest.raises(ValueError):
+        await backend.set_led_state(7, True)  # refused: nothing printed or asked
+    assert script.traffic() == printed + b"PowerBoard(SERIAL): Battery voltage [volts]: \n"

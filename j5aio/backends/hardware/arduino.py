@@ -108,13 +108,11 @@ class ArduinoHardwareBackend(UnoLEDAndLimits, SerialHardwareBackend[BoardT]):
 
     def _remember_pin(self, identifier: int, mode: GPIOPinMode, level: bool) -> None:
         """Store what the board was just told about a digital pin."""
-        state = self._pins.digital(identifier)
-        state.mode = mode
-        state.level = level
+        self._pins.record(identifier, mode=mode, level=level)
 
     def reset_board_state(self) -> None:
-        """Forget what was remembered: after a reset the pins are inputs, driven low."""
-        self._pins = ArduinoPins(self.board.name)
+        """Forget what was remembered: the pins are as after power-on (see the pin rules)."""
+        self._pins.reset()
 
     @abstractmethod
     async def _read_digital(self, identifier: int) -> bool:

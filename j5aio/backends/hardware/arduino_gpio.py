@@ -3,7 +3,7 @@
 Pins 2 to 19 take the digital modes, A0 to A5 are analogue inputs too, pin 13 is the LED,
 and an ultrasound sensor can sit on any two pins. Subclasses give their firmware's codec
 (:class:`PinCodec`) and how the board is identified; this class applies the pin rules of
-:mod:`.arduino_pin_table` and keeps the cache right:
+:mod:`~j5aio.backends.hardware.arduino_pins` and keeps the cache right:
 
 * a call is checked before anything is sent (bad input sends nothing);
 * the cache changes only after the board has answered, so a call that fails or is
@@ -21,7 +21,7 @@ from typing import ClassVar, Protocol, TypeVar
 
 from j5aio.backends.backend import BoardT
 from j5aio.backends.hardware.arduino import ARDUINO_USB_IDS, UnoLEDAndLimits
-from j5aio.backends.hardware.arduino_pin_table import PinTable, wire_mode
+from j5aio.backends.hardware.arduino_pins import ArduinoPins, wire_mode
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
 from j5aio.backends.hardware.transports.readers import read_line, read_lines
 from j5aio.backends.hardware.transports.serial_link import SerialLink
@@ -106,10 +106,10 @@ class ArduinoGPIOBackend(UnoLEDAndLimits, UltrasoundInterface, SerialHardwareBac
 
     def __init__(self, link: SerialLink, *, port: str) -> None:
         super().__init__(link, port=port)
-        self._pins = PinTable(self.board.name)
+        self._pins = ArduinoPins(self.board.name, analogue_mode_required=True)
 
     @property
-    def pins(self) -> PinTable:
+    def pins(self) -> ArduinoPins:
         """What the backend remembers of the pins: its only cached board state."""
         return self._pins
 
@@ -140,7 +140,7 @@ class ArduinoGPIOBackend(UnoLEDAndLimits, UltrasoundInterface, SerialHardwareBac
     # -- helpers for subclasses ---------------------------------------------------------
 
     async def _handshake(self, *, time_scale: float) -> None:
-        self._firmware_version = await self.identify_firmware(self._link, time_scale=time_scale)
+        self.firmware_version = await self.identify_firmware(self._link, time_scale=time_scale)
 
     async def _send_mode(
         self, pin: int, mode: GPIOPinMode, *, then: Callable[[], None] | None = None,
@@ -202,7 +202,7 @@ class ArduinoGPIOBackend(UnoLEDAndLimits, UltrasoundInterface, SerialHardwareBac
             return value
 
         try:
-            return await self._exchange(request, _LINE, then=finish)
+            return await self.exchange(request, _LINE, then=finish)
         except CommunicationTimeoutError as exc:
             raise CommunicationTimeoutError(f"{self.board.name} did not answer: {exc}") from exc
 
@@ -223,7 +223,7 @@ class ArduinoGPIOBackend(UnoLEDAndLimits, UltrasoundInterface, SerialHardwareBac
         level = self.CODEC.encode_digital_write(identifier, self._pins.state(identifier).level)
         mode = self.CODEC.encode_mode(identifier, wire_mode(pin_mode))
         try:
-            await self._exchange(
+            await self.exchange(
                 level + mode, _TWO_LINES, then=self._both_done((level, mode), remember),
             )
         except CommunicationTimeoutError as exc:
@@ -253,14 +253,14 @@ class ArduinoGPIOBackend(UnoLEDAndLimits, UltrasoundInterface, SerialHardwareBac
 
     async def write_gpio_pin_digital_state(self, identifier: int, state: bool) -> None:
         """Drive an output pin high or low."""
-        self._pins.check_output(identifier, "write to it")
+        self._pins.output(identifier, "write to it")
         await self._send_level(
             identifier, state, then=lambda: self._pins.record(identifier, level=state),
         )
 
     async def get_gpio_pin_digital_state(self, identifier: int) -> bool:
         """Return the level last written to an output pin."""
-        return self._pins.check_output(identifier, "read back its last written level").level
+        return self._pins.output(identifier, "read back its last written level").level
 
     async def read_gpio_pin_digital_state(self, identifier: int) -> bool:
         """Read the level of an input pin."""

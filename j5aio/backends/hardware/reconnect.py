@@ -167,24 +167,42 @@ class Reconnecting:
             _log.warning("%r: the board has vanished; j5aio will look for it again", self)
         self._lost = True
 
+    def _forget(self) -> None:
+        """Let go of the vanished board's link; called when a guarded call finally fails.
+
+        The default only marks the board lost. A subclass closes its link here, and
+        frees its port when the board will not be looked for again.
+        """
+        self._mark_lost()
+
     async def _guarded(self, call: Callable[[], Awaitable[T]], *, idempotent: bool) -> T:
         """Run one board call under the reconnection policy.
+
+        Every call to the board goes through here. A lost board is looked for first; a
+        call that fails because the board vanished is retried once if ``idempotent``
+        and the policy allow; when it fails for good, :meth:`_forget` lets go of the
+        link and the :class:`~j5aio.errors.BoardDisconnectionError` is raised.
 
         :param call: does the call on the current link (it must look the link up
             when it runs, since a reconnection replaces it).
         :param idempotent: whether doing the call twice is the same as once.
         """
-        await self._check_connected()
         try:
+            if self._lost or self._closed_for_good:
+                await self._check_connected()
+            try:
+                return await call()
+            except BoardDisconnectionError:
+                self._mark_lost()
+                policy = self.reconnect_policy
+                if not (idempotent and policy.enabled and policy.retry_idempotent):
+                    raise
+                if not await self._wait_for_return(policy.retry_wait):
+                    raise
             return await call()
         except BoardDisconnectionError:
-            self._mark_lost()
-            policy = self.reconnect_policy
-            if not (idempotent and policy.enabled and policy.retry_idempotent):
-                raise
-            if not await self._wait_for_return(policy.retry_wait):
-                raise
-        return await call()
+            self._forget()
+            raise
 
     async def _check_connected(self) -> None:
         if self._closed_for_good:

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import logging
 from abc import abstractmethod
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Awaitable, Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import ClassVar, TypeVar, cast, overload
 
@@ -99,10 +99,15 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
       version by setting :attr:`firmware_version`;
     * the interface coroutines, which talk to the board with :meth:`exchange` (a request
       and its reply, read by a :class:`~j5aio.backends.hardware.transports.readers.ReplyReader`)
-      and :meth:`send` (a command with no reply). Both serialise access to the port,
-      time out after :attr:`DEFAULT_TIMEOUT` and raise
-      :class:`~j5aio.errors.CommunicationError` subclasses naming the port; a vanished
-      port is forgotten, so that rediscovery opens it afresh.
+      and :meth:`send` (a command with no reply), the one way in for built-in and
+      plugin backends alike. Both serialise access to the port, time out after
+      :attr:`DEFAULT_TIMEOUT` and raise :class:`~j5aio.errors.CommunicationError`
+      subclasses naming the port; a vanished port is forgotten, so that rediscovery
+      opens it afresh. Their ``then=`` callback is where a backend updates what it
+      remembers of the board: it runs once the board has the command, even for a
+      cancelled caller;
+    * optionally ``_link_ready``, to name the probe that puts the link back in step
+      after a timeout.
 
     :param link: the link to the board's port; the backend owns and closes it.
     :param port: the port's path or URL.
@@ -445,7 +450,7 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
 
     @abstractmethod
     async def _handshake(self, *, time_scale: float) -> None:
-        """Check the board and its firmware version; set ``_firmware_version``."""
+        """Check the board and its firmware version; set :attr:`firmware_version`."""
 
     def _link_ready(self) -> None:
         """Configure the link once the handshake has passed (a hook; nothing here).
@@ -458,34 +463,8 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
 
     # -- talking to the board -----------------------------------------------------------
 
-    async def exchange(
-        self,
-        request: bytes,
-        reader: ReplyReader[T],
-        timeout: float | None = None,
-        *,
-        idempotent: bool = True,
-    ) -> T:
-        """Send ``request`` and return the reply that ``reader`` reads.
-
-        :param timeout: seconds to wait for the reply; :attr:`DEFAULT_TIMEOUT` by default.
-        :raises CommunicationError: no reply in time, or a reply ``reader`` refuses.
-        :param idempotent: whether the request may be sent again after the board vanished
-            and came back (see :mod:`.reconnect`); ``False`` for one that must not repeat.
-        :raises BoardDisconnectionError: the port has gone (it is looked for again).
-        """
-        return await self._exchange(request, reader, timeout, idempotent=idempotent)
-
-    async def send(self, data: bytes, *, idempotent: bool = True) -> None:
-        """Send ``data``, a command the board does not answer.
-
-        :param idempotent: as for :meth:`exchange`.
-        :raises BoardDisconnectionError: the port has gone (it is looked for again).
-        """
-        await self._send(data, idempotent=idempotent)
-
     @overload
-    async def _exchange(
+    async def exchange(
         self,
         request: bytes,
         reader: ReplyReader[T],
@@ -496,7 +475,7 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
     ) -> T: ...
 
     @overload
-    async def _exchange(
+    async def exchange(
         self,
         request: bytes,
         reader: ReplyReader[T],
@@ -507,7 +486,7 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         when_dirty: Callable[[], tuple[bytes, ReplyReader[T]]] | None = None,
     ) -> U: ...
 
-    async def _exchange(
+    async def exchange(
         self,
         request: bytes,
         reader: ReplyReader[T],
@@ -517,41 +496,49 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         idempotent: bool = True,
         when_dirty: Callable[[], tuple[bytes, ReplyReader[T]]] | None = None,
     ) -> object:
-        """Send ``request`` and return the reply (or ``then(reply)``); see the link.
+        """Send ``request`` and return the reply that ``reader`` reads (or ``then(reply)``).
 
-        ``then`` runs once the reply has arrived, even for a cancelled caller: update
-        caches there. ``idempotent`` says whether the request may be sent again after
-        the board vanished and came back (see :mod:`.reconnect`). ``when_dirty`` gives
-        the tagged request and its correlating reader, used instead only while a late
-        reply may be on its way (see :meth:`.SerialLink.exchange`).
+        Runs to completion once started, whoever cancels the caller (see
+        :class:`~j5aio.backends.hardware.transports.serial_link.SerialLink`), so a reply
+        is always read by the request that asked for it.
+
+        :param timeout: seconds to wait for the reply; :attr:`DEFAULT_TIMEOUT` by default.
+        :param then: called with the reply as soon as it has arrived, even if the caller
+            has been cancelled meanwhile; its result is returned instead of the reply.
+            Parse the reply and update what the backend remembers of the board here, so
+            that the cache changes when, and only when, the board has been told.
+        :param idempotent: whether the request may be sent again after the board vanished
+            and came back (see :mod:`.reconnect`); ``False`` for one that must not repeat.
+        :param when_dirty: for a firmware that can tag a request so that its reply names
+            it: returns the tagged request and a correlating reader, used instead only
+            while a late reply may be on its way (see
+            :meth:`.SerialLink.exchange`).
+        :raises CommunicationError: no reply in time, or a reply ``reader`` refuses.
+        :raises BoardDisconnectionError: the port has gone (it is looked for again).
         """
 
-        async def call() -> object:
-            if then is None:
-                return await self._link.exchange(
-                    request, reader, timeout=timeout, when_dirty=when_dirty
-                )
-            return await self._link.exchange(
-                request, reader, timeout=timeout, then=then, when_dirty=when_dirty
+        def call() -> Awaitable[object]:  # the link is looked up anew for a retry
+            return self._link.exchange(
+                request, reader, timeout=timeout, then=then,  # type: ignore[arg-type]
+                when_dirty=when_dirty,
             )
 
-        try:
-            return await self._guarded(call, idempotent=idempotent)
-        except BoardDisconnectionError:
-            self._forget()
-            raise
+        return await self._guarded(call, idempotent=idempotent)
 
-    async def _send(
+    async def send(
         self, data: bytes, *, then: Callable[[], None] | None = None, idempotent: bool = True
     ) -> None:
-        """Send ``data`` expecting no reply; ``then`` runs once it has gone (see the link)."""
-        try:
-            await self._guarded(
-                lambda: self._link.send(data, then=then), idempotent=idempotent
-            )
-        except BoardDisconnectionError:
-            self._forget()
-            raise
+        """Send ``data``, a command the board does not answer.
+
+        Runs to completion once started, as :meth:`exchange` does.
+
+        :param then: called once the bytes have gone, even if the caller has been
+            cancelled meanwhile (update what the backend remembers here).
+        :param idempotent: as for :meth:`exchange`.
+        :raises ~j5aio.errors.CommunicationTimeoutError: the bytes could not be sent in time.
+        :raises BoardDisconnectionError: the port has gone (it is looked for again).
+        """
+        await self._guarded(lambda: self._link.send(data, then=then), idempotent=idempotent)
 
     def _forget(self) -> None:
         """Close the link at once; free the port only if the board will not be looked for."""

@@ -79,8 +79,15 @@ class USBHardwareBackend(Reconnecting, Backend):
 
     @property
     def firmware_version(self) -> str | None:
-        """The firmware version the board reported during the handshake."""
+        """The firmware version the board reported during the handshake.
+
+        ``_handshake`` sets it (``self.firmware_version = "4"``); ``None`` until then.
+        """
         return self._firmware_version
+
+    @firmware_version.setter
+    def firmware_version(self, version: str | None) -> None:
+        self._firmware_version = version
 
     @classmethod
     async def from_usb_device(cls, device: USBDeviceLike) -> Board:
@@ -175,7 +182,7 @@ class USBHardwareBackend(Reconnecting, Backend):
 
     @abstractmethod
     async def _handshake(self) -> None:
-        """Check the firmware version (set ``_firmware_version``) and initialise."""
+        """Check the firmware version (set :attr:`firmware_version`) and initialise."""
 
     async def _reopen(self) -> None:
         """Find the device again by vendor, product and serial number; handshake anew."""
@@ -221,14 +228,10 @@ class USBHardwareBackend(Reconnecting, Backend):
         idempotent: bool = True,
     ) -> bytes:
         """Read ``length`` bytes from command ``index``, under the reconnection policy."""
-        try:
-            return await self._guarded(
-                lambda: self._link.control_read(index, length, errors=errors),
-                idempotent=idempotent,
-            )
-        except BoardDisconnectionError:
-            self._forget()
-            raise
+        return await self._guarded(
+            lambda: self._link.control_read(index, length, errors=errors),
+            idempotent=idempotent,
+        )
 
     async def _write(
         self,
@@ -247,16 +250,13 @@ class USBHardwareBackend(Reconnecting, Backend):
         :param idempotent: whether the write may be repeated after the board vanished
             and came back (a piezo note may not).
         """
-        try:
-            await self._guarded(
-                lambda: self._link.control_write(index, value, data, errors=errors, then=then),
-                idempotent=idempotent,
-            )
-        except BoardDisconnectionError:
-            self._forget()
-            raise
+        await self._guarded(
+            lambda: self._link.control_write(index, value, data, errors=errors, then=then),
+            idempotent=idempotent,
+        )
 
     def _forget(self) -> None:
+        """Free the device unless the board will be looked for again."""
         self._mark_lost()
         if not self.reconnect_policy.enabled or not self._found_by_discovery:
             registry.release(self._key, self)

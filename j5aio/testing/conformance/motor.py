@@ -55,8 +55,9 @@ class MotorInterfaceConformance(InterfaceConformance[MotorSubject]):
     """What every implementation of :class:`~j5aio.components.motor.MotorInterface` must do.
 
     * the power last set is read back, and shown by the board (with the ``observe``
-      hook), to within half a power step: inexact powers such as 0.333 and -0.667 tell a
-      rounding backend from a truncating one;
+      hook), to within half a power step: inexact powers such as 0.3987 and -0.4777 tell
+      a rounding backend from a truncating one, on boards of 100, 125, 127, 255 and 1000
+      steps each way;
     * the special states the subject declares (BRAKE and COAST by default) are read back
       as themselves; the others are refused with
       :class:`~j5aio.errors.NotSupportedByHardwareError`, sending nothing;
@@ -69,10 +70,12 @@ class MotorInterfaceConformance(InterfaceConformance[MotorSubject]):
     power_tolerance: ClassVar[float] = 0.005 + 1e-9
 
     #: The powers the round-trip test sets, in order. The inexact ones fall between the
-    #: steps of common boards (100, 125, 127 or 255 steps each way), so that a truncated
-    #: step lands more than half a step away from the power set.
+    #: steps of common boards. The last two fall between 0.6 and 0.9 of a step on a board
+    #: of 100, 125, 127, 255 or 1000 steps each way (a thousandth, say, is not enough: it
+    #: lands on a step of the 1000-step boards), so that a truncated power lands more
+    #: than half a step from the power set, and a rounded one less than half a step.
     powers: ClassVar[tuple[float, ...]] = (
-        1.0, 0.5, 0.25, 0.0, -0.25, -0.5, -1.0, 0.333, -0.333, 0.667, -0.667,
+        1.0, 0.5, 0.25, 0.0, -0.25, -0.5, -1.0, 0.333, -0.333, 0.667, -0.667, 0.3987, -0.4777,
     )
 
     def tolerance(self, subject: MotorSubject) -> float:

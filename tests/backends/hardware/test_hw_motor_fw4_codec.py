@@ -92,3 +92,10 @@ def test_identify_probe_starts_with_the_fw3_resync_byte() -> None:
     assert codec.IDENTIFY_PROBE == b"\x00\n*IDN?\n"
     # no byte after the resync is a firmware 3 command (0x01 to 0x04)
     assert not set(codec.IDENTIFY_PROBE[1:]) & {1, 2, 3, 4}
+
+
+def test_the_motor_check_names_what_is_allowed() -> None:
+    codec.check_motor(0)
+    codec.check_motor(1)
+    with pytest.raises(ValueError, match="motors 0 and 1, not 2"):
+        codec.check_motor(2)

@@ -56,3 +56,15 @@ def test_piezo_limits() -> None:
         codec.encode_piezo_note(timedelta(seconds=1), 65536)
     with pytest.raises(ValueError, match="positive"):
         codec.encode_piezo_note(timedelta(seconds=-1), 440)
+
+
+def test_the_index_checks_name_what_is_allowed() -> None:
+    for output in range(codec.OUTPUT_COUNT):
+        codec.check_output(output)
+    for bad in (-1, codec.OUTPUT_COUNT):
+        with pytest.raises(ValueError, match="outputs 0 to 5"):
+            codec.check_output(bad)
+    codec.check_led(0)
+    codec.check_led(1)
+    with pytest.raises(ValueError, match=r"LEDs 0 \(run\) and 1 \(error\), not 2"):
+        codec.check_led(2)

@@ -170,3 +170,10 @@ def test_nack_names_board_command_and_reason() -> None:
 
 def test_command_line() -> None:
     assert command_line("A", 1, "B?") == b"A:1:B?\n"
+
+
+def test_the_output_check_names_what_is_allowed() -> None:
+    for output in range(codec.OUTPUT_COUNT):
+        codec.check_output(output)
+    with pytest.raises(ValueError, match="outputs 0 to 6"):
+        codec.check_output(codec.OUTPUT_COUNT)

@@ -12,7 +12,7 @@ import pytest
 
 from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.options import DiscoveryOptions
-from j5aio.backends.hardware.reconnect import ReconnectPolicy
+from j5aio.backends.hardware.reconnect import Reconnecting, ReconnectPolicy
 from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
 from j5aio.backends.hardware.sb.arduino_2024 import SBArduino2024HardwareBackend
 from j5aio.backends.hardware.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4HardwareBackend
@@ -520,3 +520,29 @@ async def test_a_call_cut_short_by_closing_the_board_is_not_a_vanished_board(
     assert len(failures) == 1
     assert "vanished" not in caplog.text
     assert not backend.is_connected
+
+
+class _Vanishing(Reconnecting):
+    """The smallest reconnecting backend: its board never comes back."""
+
+    RECONNECT_POLICY = ReconnectPolicy(interval=3600)
+
+    async def _reopen(self) -> None:
+        raise BoardDisconnectionError("not back")
+
+
+async def test_a_guarded_call_that_fails_for_good_forgets_the_board_by_default() -> None:
+    backend = _Vanishing()
+    calls: list[str] = []
+
+    async def vanish() -> None:
+        calls.append("call")
+        raise BoardDisconnectionError("gone")
+
+    with pytest.raises(BoardDisconnectionError, match="gone"):
+        await backend._guarded(vanish, idempotent=True)
+    assert calls == ["call"]  # not back at once: no retry
+    assert not backend.is_connected
+    with pytest.raises(BoardDisconnectionError, match="the board is disconnected"):
+        await backend._guarded(vanish, idempotent=True)
+    assert calls == ["call"]  # a lost board is not called

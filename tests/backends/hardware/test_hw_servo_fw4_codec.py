@@ -132,3 +132,12 @@ def test_position_scaling_follows_sr_robot3() -> None:
     assert codec.position_for_pulse(1000, limits) == -1.0
     assert codec.position_for_pulse(2500, limits) == 1.0
     assert codec.position_for_pulse(500, limits) == -1.0
+
+
+def test_the_servo_check_names_what_is_allowed() -> None:
+    firmware = next(iter(codec.FIRMWARES.values()))
+    codec.check_servo(firmware, firmware.servo_count - 1)
+    with pytest.raises(ValueError, match=f"servos 0 to {firmware.servo_count - 1}"):
+        codec.check_servo(firmware, firmware.servo_count)
+    with pytest.raises(TypeError, match="must be an int"):
+        codec.check_servo(firmware, True)

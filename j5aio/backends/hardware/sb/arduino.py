@@ -90,7 +90,7 @@ class SBArduinoHardwareBackend(
             ) from None
         version = codec.parse_version_line(version_line)
         codec.check_version(version)
-        self._firmware_version = version
+        self.firmware_version = version
 
     def _next_request_id(self) -> int:
         self._request_id = self._request_id % codec.MAX_REQUEST_ID + 1
@@ -122,7 +122,7 @@ class SBArduinoHardwareBackend(
                 then(reply)
             return reply
 
-        return await self._exchange(
+        return await self.exchange(
             request, codec.REPLY, timeout, then=parse, when_dirty=tagged
         )
 

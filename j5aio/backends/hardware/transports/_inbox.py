@@ -9,9 +9,9 @@ they are returned.
 
 from __future__ import annotations
 
+import asyncio
 import copy
 
-import anyio
 import anyio.lowlevel
 
 from j5aio.errors import CommunicationError
@@ -32,7 +32,9 @@ class Inbox:
     def __init__(self) -> None:
         self._buffer = bytearray()
         self._error: CommunicationError | None = None
-        self._wakeup: anyio.Event | None = None
+        # The reader's wake-up: a bare future of the running loop, the cheapest thing
+        # to wait on (an anyio cancellation reaches it as it reaches any await).
+        self._wakeup: asyncio.Future[None] | None = None
 
     @property
     def ended(self) -> bool:
@@ -70,13 +72,15 @@ class Inbox:
             if self._error is not None:
                 await anyio.lowlevel.checkpoint()
                 raise fresh_copy(self._error)
-            if self._wakeup is None or self._wakeup.is_set():
-                self._wakeup = anyio.Event()
-            await self._wakeup.wait()
+            self._wakeup = asyncio.get_running_loop().create_future()
+            try:
+                await self._wakeup
+            finally:
+                self._wakeup = None
         data = bytes(self._buffer[:max_bytes])
         del self._buffer[:max_bytes]
         return data
 
     def _wake(self) -> None:
-        if self._wakeup is not None:
-            self._wakeup.set()
+        if self._wakeup is not None and not self._wakeup.done():
+            self._wakeup.set_result(None)

@@ -185,10 +185,14 @@ class SimulatorStream(ByteStream):
     async def send(self, data: bytes) -> None:
         """Hand ``data`` to the simulator and queue its response.
 
+        As on a real port, a cancelled caller sends nothing, and otherwise the bytes go
+        at once, with no turn of the event loop first (the caller yields while it waits
+        for the reply).
+
         :raises BoardDisconnectionError: the simulated board is disconnected, or the
             stream is closed.
         """
-        await anyio.lowlevel.checkpoint()
+        await anyio.lowlevel.checkpoint_if_cancelled()
         self._check_usable()
         response = self._simulator.receive(data)
         self._queue_output(response, after=self._wire_time(data))

@@ -40,11 +40,12 @@ mark the link dirty.
 and ``asyncio.wait_for``) breaks through anyio shields. So, once the lock is held, the
 exchange runs to completion (:func:`~.completion.run_to_completion`) in a task that no
 caller's cancellation reaches; the caller waits for it either way and is cancelled
-afterwards. For an exchange that task is made only when needed (a task for every
-exchange would cost tens of microseconds): the exchange runs in the caller's task, and
+afterwards. That task is made only when needed (a task for every call would cost tens
+of microseconds): an exchange or a send runs in the caller's task, and
 if ``Task.cancel`` tears it after its request has gone, a task of its own reads the reply
 to its end, by the same deadline, while the caller waits. (A stream sends all of a
-request or, cancelled, none of it, so a request torn before it went needs no reply.) An
+request or, cancelled, none of it, so a request torn before it went needs no reply, and
+a send has nothing left to do once its bytes have gone.) An
 exchange is therefore never torn half way, whoever cancels. A ``then`` callback given to
 :meth:`~SerialLink.exchange` or :meth:`~SerialLink.send` runs as soon as the board has
 answered (or the bytes have gone), even for a cancelled caller: that is where a backend
@@ -107,6 +108,7 @@ from collections.abc import Callable
 from typing import Any, TypeVar, overload
 
 import anyio
+import anyio.lowlevel
 from anyio.abc import AsyncResource
 
 from j5aio.errors import (
@@ -205,8 +207,10 @@ class SerialLink(AsyncResource):
         self._chunk_size = chunk_size
         # Uncontended, the lock is taken without yielding to the event loop: every
         # exchange waits for its reply anyway, and a yield before the request goes out
-        # would only delay it (by a whole turn of the loop on a busy machine).
-        self._lock = anyio.Lock(fast_acquire=True)
+        # would only delay it (by a whole turn of the loop on a busy machine). asyncio's
+        # lock is FIFO and is the cheapest there is; a caller already cancelled is
+        # stopped before it by :meth:`_acquire`.
+        self._lock = asyncio.Lock()
         self._buffer = bytearray()
         self._dirty = False
         self._closed = False
@@ -302,8 +306,11 @@ class SerialLink(AsyncResource):
     ) -> None:
         """Send ``data`` with no reply expected (for example a motor speed command).
 
-        Serialised with the exchanges, and run to completion like them: a cancelled
-        caller never leaves a command half sent.
+        Serialised with the exchanges, and run to completion like them, in the caller's
+        task: a cancelled caller never leaves a command half sent (a stream sends all of
+        it or, torn by ``Task.cancel``, none of it; then ``then`` does not run). It yields
+        to the event loop once the bytes have gone, where a cancellation that came
+        meanwhile is raised.
 
         :param then: called once the bytes have gone, even if the caller has been
             cancelled meanwhile (to update what a backend remembers).
@@ -312,8 +319,15 @@ class SerialLink(AsyncResource):
         """
         seconds = self._timeout(timeout)
         data = bytes(data)
-        async with self._lock:
-            await run_to_completion(lambda: self._send_locked(data, seconds, then))
+        await self._acquire()
+        try:
+            with anyio.CancelScope(shield=True):
+                await self._send_locked(data, seconds, then)
+        finally:
+            self._lock.release()
+        # Writing does not wait, so yield here: like every call to the board, a send is a
+        # checkpoint, and a loop of sends leaves the event loop (signals, other tasks) room.
+        await anyio.lowlevel.checkpoint()
 
     async def _send_locked(
         self, data: bytes, seconds: float, then: Callable[[], None] | None
@@ -397,23 +411,37 @@ class SerialLink(AsyncResource):
         seconds = self._timeout(timeout)
         request = bytes(request)
         progress = _Progress()
-        async with self._lock:
+        await self._acquire()
+        try:
             if when_dirty is not None and (self._dirty or self._owes()):
                 request, reader = when_dirty()
                 request = bytes(request)
-            with anyio.CancelScope(shield=True):
+            # One scope both shields the exchange and, once its request goes out, times
+            # it out (its deadline is set then: see _exchange_locked).
+            with anyio.CancelScope(shield=True) as scope:
                 try:
-                    reply = await self._exchange_locked(request, reader, seconds, progress)
+                    reply = await self._exchange_locked(
+                        request, reader, seconds, progress, scope
+                    )
                 except asyncio.CancelledError:
-                    # Task.cancel broke through the shield. Once the request has gone,
+                    # Task.cancel broke through the shield (unless this is the scope's
+                    # own deadline, which the scope catches). Once the request has gone,
                     # its reply is read (and ``then`` run) in a task of its own, which
                     # the caller waits for before being cancelled; before that, nothing
                     # was sent (a stream sends all or, cancelled, nothing).
-                    if progress.deadline is not None:
+                    if progress.deadline is not None and not scope.cancel_called:
+                        scope.deadline = math.inf  # the task that finishes it keeps time
                         await self._finish_torn(request, reader, progress, then)
                     raise
-                result = reply if then is None else then(reply)
-        return result
+                return reply if then is None else then(reply)
+            raise self._timed_out(request, reader, seconds)
+        finally:
+            self._lock.release()
+
+    async def _acquire(self) -> None:
+        """Take the link's lock; a caller already cancelled (by anyio) takes nothing."""
+        await anyio.lowlevel.checkpoint_if_cancelled()
+        await self._lock.acquire()
 
     async def _finish_torn(
         self,
@@ -441,7 +469,8 @@ class SerialLink(AsyncResource):
         :raises CommunicationTimeoutError: nothing complete arrived in time.
         """
         seconds = self._timeout(timeout)
-        async with self._lock:
+        await self._acquire()
+        try:
             self._check_open()
             with anyio.move_on_after(seconds):
                 return await self._read_reply(reader, b"")
@@ -449,6 +478,8 @@ class SerialLink(AsyncResource):
                 f"{self._name}: nothing matching {reader.describe()} arrived within "
                 f"{seconds} s (received so far: {_preview(self._buffer)})"
             )
+        finally:
+            self._lock.release()
 
     async def read_line(self, *, timeout: float | None = None, terminator: bytes = b"\n") -> bytes:
         """Read one line without sending anything; see :meth:`read` and :func:`.read_line`."""
@@ -469,11 +500,14 @@ class SerialLink(AsyncResource):
         bound = self._drain_limit if limit is None else limit
         _check_duration("quiet_time", quiet)
         _check_duration("limit", bound)
-        async with self._lock:
+        await self._acquire()
+        try:
             self._check_open()
             discarded = await self._drain_locked(quiet, bound)
             self._owed = 0
             return discarded
+        finally:
+            self._lock.release()
 
     def send_now(self, data: bytes, *, timeout: float | None = None) -> None:
         """Send ``data`` at once, synchronously, bypassing the lock (the safe state at exit).
@@ -529,13 +563,29 @@ class SerialLink(AsyncResource):
             return self._default_timeout
         return _check_duration("timeout", timeout)
 
+    @staticmethod
+    def _loop_time() -> float:
+        """The event loop's clock, which anyio's deadlines use (read without sniffio)."""
+        return asyncio.get_running_loop().time()
+
     def _check_open(self) -> None:
         if self._closed:
             raise BoardDisconnectionError(f"{self._name}: the link is closed")
 
     async def _exchange_locked(
-        self, request: bytes, reader: ReplyReader[T], seconds: float, progress: _Progress
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        seconds: float,
+        progress: _Progress,
+        scope: anyio.CancelScope,
     ) -> T:
+        """Clean the line if need be, then send ``request`` and read its reply.
+
+        ``scope`` shields the exchange; its deadline is set to ``seconds`` from when the
+        request goes out, so that it cancels the read (and the caller raises the
+        timeout) if the reply is late.
+        """
         self._check_open()
         if not reader.correlates and self._resync_line is not None and self._owes():
             return await self._bracketed_locked(request, reader, seconds, progress)
@@ -551,15 +601,15 @@ class SerialLink(AsyncResource):
                 _log.debug("%s: discarding stale input %s", self._name, _preview(self._buffer))
                 self._settle(self._buffer.count(b"\n"))
                 self._buffer.clear()
-            with anyio.move_on_after(seconds):
-                deadline = anyio.current_time() + seconds
-                await self._write(request)
-                progress.deadline, progress.seconds = deadline, seconds
-                reply = await self._read_reply(reader, request)
-                finished = True
-                self._after_reply(request, reader)
-                return reply
-            raise self._timed_out(request, reader, seconds)
+            deadline = scope.deadline = self._loop_time() + seconds
+            await self._write(request)
+            progress.deadline, progress.seconds = deadline, seconds
+            reply = await self._read_reply(reader, request)
+            # Nothing awaits from here to the end of the scope, so its deadline cannot
+            # fire any more; leaving the scope drops it.
+            finished = True
+            self._after_reply(request, reader)
+            return reply
         finally:
             if not finished:
                 self._dirty = True

@@ -556,6 +556,81 @@ async def test_then_runs_after_a_send_and_its_errors_reach_the_caller(
         await link.exchange(b"", read_line(), timeout=1, then=refuse)
 
 
+async def test_a_send_cancelled_by_anyio_part_way_still_goes_and_runs_then(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    # The caller is cancelled while its send waits for a dirty link's probe answer: the
+    # send goes on to the end, and the cancellation takes effect afterwards.
+    host, board = peer_pair
+    link = SerialLink(host, drain_limit=5)
+    link.set_resync(b"?", b"!")
+    link.mark_dirty()
+    sent: list[str] = []
+
+    async def answer_then_cancel(scope: anyio.CancelScope) -> None:
+        assert await board.receive() == b"?"
+        scope.cancel()
+        await anyio.sleep(0.01)
+        await board.send(b"!")
+
+    async with anyio.create_task_group() as tg:
+        with anyio.CancelScope() as scope:
+            tg.start_soon(answer_then_cancel, scope)
+            await link.send(b"go\n", then=lambda: sent.append("done"))
+            assert sent == ["done"]
+            await anyio.lowlevel.checkpoint()  # the cancellation, held back, lands here
+    assert scope.cancelled_caught
+    assert sent == ["done"]
+    assert await board.receive() == b"go\n"
+
+
+async def test_a_send_yields_to_the_event_loop(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    # A loop of sends (no replies to wait for) must leave other tasks and signal
+    # handlers room to run.
+    host, _board = peer_pair
+    link = SerialLink(host)
+    ran: list[str] = []
+
+    async def other_task() -> None:
+        ran.append("other task")
+
+    async with anyio.create_task_group() as tg:
+        tg.start_soon(other_task)
+        await link.send(b"go\n")
+        assert ran == ["other task"]
+
+
+async def test_a_send_torn_by_task_cancel_before_its_bytes_went_sends_nothing(
+    peer_pair: tuple[MemoryStream, MemoryStream],
+) -> None:
+    # The probe of a dirty link is never answered: Task.cancel tears the send while it
+    # waits, before the command went. Nothing of it is sent, ``then`` does not run, and
+    # the link stays dirty for the next caller.
+    host, board = peer_pair
+    link = SerialLink(host, drain_limit=5)
+    link.set_resync(b"?", b"!")
+    link.mark_dirty()
+    sent: list[str] = []
+    with pytest.raises(TimeoutError):
+        async with asyncio.timeout(0.01):
+            await link.send(b"go\n", then=lambda: sent.append("done"))
+    assert sent == []
+    assert link.is_dirty
+    assert await board.receive() == b"?"
+
+    async def answer_the_probe() -> None:
+        assert await board.receive() == b"?"
+        await board.send(b"!")
+
+    async with anyio.create_task_group() as tg:
+        tg.start_soon(answer_the_probe)
+        await link.send(b"go\n", then=lambda: sent.append("done"))
+    assert sent == ["done"]
+    assert await board.receive() == b"go\n"
+
+
 @dataclass
 class StressResult:
     """What a cancellation stress run observed."""
@@ -739,8 +814,11 @@ async def test_a_line_probe_discards_whole_lines_up_to_its_fresh_answer(
         await board.send(b"LATE\n")
         link.mark_dirty()
         await link.send(b"x\n")
-        assert peer.lines[-2:] == [b"echo n2", b"x"]
         assert not link.is_dirty
+        with anyio.fail_after(5):  # send returns once the bytes have gone; the peer reads later
+            while peer.lines[-1:] != [b"x"]:
+                await anyio.lowlevel.checkpoint()
+        assert peer.lines[-2:] == [b"echo n2", b"x"]
         tg.cancel_scope.cancel()
 
 

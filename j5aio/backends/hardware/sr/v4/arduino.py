@@ -90,7 +90,7 @@ class SRArduinoHardwareBackend(
 
     async def _handshake(self, *, time_scale: float) -> None:
         self._version = await self._read_version(self._link, time_scale, None)
-        self._firmware_version = self._version.version
+        self.firmware_version = self._version.version
 
     def _link_ready(self) -> None:
         # Late replies: nothing in a reply names its request, so after a timeout the

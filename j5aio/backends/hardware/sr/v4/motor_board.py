@@ -57,11 +57,11 @@ class SRV4MotorBoardHardwareBackend(MotorInterface, SerialHardwareBackend):
         self._states = [MotorSpecialState.BRAKE] * codec.MOTOR_COUNT
 
     async def _handshake(self, *, time_scale: float) -> None:
-        line = await self._exchange(codec.RESYNC_AND_VERSION_QUERY, _VERSION_LINE)
+        line = await self.exchange(codec.RESYNC_AND_VERSION_QUERY, _VERSION_LINE)
         version = codec.parse_version_reply(line)
         if version not in codec.SUPPORTED_VERSIONS:
             raise UnsupportedFirmwareError(self.board.name, version, codec.SUPPORTED_VERSIONS)
-        self._firmware_version = version
+        self.firmware_version = version
         self._link.set_resync(codec.RESYNC_AND_VERSION_QUERY, codec.encode_version_reply(version))
         for motor in range(codec.MOTOR_COUNT):
             await self.set_motor_state(motor, MotorSpecialState.BRAKE)
@@ -83,7 +83,7 @@ class SRV4MotorBoardHardwareBackend(MotorInterface, SerialHardwareBackend):
         def remember() -> None:
             self._states[identifier] = power
 
-        await self._send(command, then=remember)
+        await self.send(command, then=remember)
 
     def make_safe_now(self, timeout: float) -> bool:
         """Brake both motors at once, synchronously (the safety net; see :class:`.Backend`).

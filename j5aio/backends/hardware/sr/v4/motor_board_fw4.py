@@ -88,12 +88,12 @@ class SRV4MotorBoardFw4HardwareBackend(
         if not codec.is_supported_version(identity.version):
             raise UnsupportedFirmwareError(self.board.name, identity.version, _SUPPORTED)
         self.asset_tag = identity.asset_tag
-        self._firmware_version = identity.version
+        self.firmware_version = identity.version
 
     async def _refuse_firmware_3(self) -> None:
         """Ask a silent board for firmware 3's version; refuse it if it answers."""
         try:
-            line = await self._exchange(fw3.RESYNC_AND_VERSION_QUERY, read_line(max_length=64))
+            line = await self.exchange(fw3.RESYNC_AND_VERSION_QUERY, read_line(max_length=64))
         except CommunicationTimeoutError:
             return
         version = fw3.parse_version_reply(line)
@@ -150,10 +150,10 @@ class SRV4MotorBoardFw4HardwareBackend(
 
     async def get_motor_fault(self, identifier: int) -> bool:
         """Read whether a motor's driver reports a fault (``*STATUS?``)."""
-        codec.encode_get(identifier)  # raises ValueError for a bad motor
+        codec.check_motor(identifier)
         return (await self._status()).faults[identifier]
 
     async def get_voltage_sensor_voltage(self, identifier: int) -> float:
         """Read the board's input voltage, in volts (``*STATUS?``)."""
-        self._check_single(identifier, "voltage sensor", self.board.name)
+        self._check_single(identifier, "voltage sensor")
         return (await self._status()).input_mv / 1000

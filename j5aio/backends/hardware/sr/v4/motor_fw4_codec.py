@@ -46,6 +46,7 @@ __all__ = [
     "SUPPORTED_VERSIONS",
     "MotorReading",
     "MotorStatus",
+    "check_motor",
     "decode_reading",
     "encode_current",
     "encode_get",
@@ -114,7 +115,11 @@ def parse_identity_reply(board: str, reply: bytes) -> Identity:
     return parse_identity(board, reply, BOARD_TYPE)
 
 
-def _check_motor(motor: int) -> None:
+def check_motor(motor: int) -> None:
+    """Refuse a number that is not one of the motor board's motors.
+
+    :raises ValueError: naming the motors there are.
+    """
     if motor not in range(MOTOR_COUNT):
         raise ValueError(f"the motor board has motors 0 and 1, not {motor!r}")
 
@@ -142,7 +147,7 @@ def encode_set(motor: int, state: MotorState) -> bytes:
     :raises TypeError: ``state`` is neither a number nor a
         :class:`~j5aio.components.motor.MotorSpecialState`.
     """
-    _check_motor(motor)
+    check_motor(motor)
     if state is MotorSpecialState.COAST:
         return command_line("MOT", motor, "DISABLE")
     if state is MotorSpecialState.BRAKE:
@@ -155,7 +160,7 @@ def encode_get(motor: int) -> bytes:
 
     :raises ValueError: no such motor.
     """
-    _check_motor(motor)
+    check_motor(motor)
     return command_line("MOT", motor, "GET?")
 
 
@@ -164,7 +169,7 @@ def encode_current(motor: int) -> bytes:
 
     :raises ValueError: no such motor.
     """
-    _check_motor(motor)
+    check_motor(motor)
     return command_line("MOT", motor, "I?")
 
 

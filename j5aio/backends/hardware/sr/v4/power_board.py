@@ -23,7 +23,7 @@ from j5aio.components.button import ButtonInterface
 from j5aio.components.led import LEDInterface
 from j5aio.components.piezo import PiezoInterface
 from j5aio.components.power_output import PowerOutputInterface
-from j5aio.errors import BoardDisconnectionError, UnsupportedFirmwareError
+from j5aio.errors import UnsupportedFirmwareError
 
 __all__ = ["SRV4PowerBoardHardwareBackend"]
 
@@ -81,19 +81,15 @@ class SRV4PowerBoardHardwareBackend(
         version = str(codec.parse_u32(await self._read_command(codec.FIRMWARE_VERSION)))
         if version not in codec.SUPPORTED_VERSIONS:
             raise UnsupportedFirmwareError(self.board.name, version, codec.SUPPORTED_VERSIONS)
-        self._firmware_version = version
+        self.firmware_version = version
 
     async def _read_command(self, command: codec.ReadCommand) -> bytes:
         return await self._read(command.index, command.length)
 
-    def _check_single(self, identifier: int, what: str) -> None:
-        if identifier != 0:
-            raise ValueError(f"{self.board.name} has only {what} 0, not {identifier!r}")
-
     # -- power outputs ------------------------------------------------------------------
 
     def _check_output(self, identifier: int) -> None:
-        codec.output_current_read(identifier)  # raises ValueError for a bad output
+        codec.check_output(identifier)
 
     async def get_power_output_enabled(self, identifier: int) -> bool:
         """Return whether an output was last switched on (the board cannot report it)."""
@@ -159,17 +155,13 @@ class SRV4PowerBoardHardwareBackend(
 
     async def _poll_button(self, report: Callable[[], None], *, fresh: bool) -> None:
         # The button is a level, not a latch: ``fresh`` has nothing to forget.
-        try:
-            await self._guarded(
-                lambda: self._link.poll_control_read(
-                    codec.BUTTON.index, codec.BUTTON.length, _button_held,
-                    interval=self.BUTTON_POLL_INTERVAL, then=lambda _reply: report(),
-                ),
-                idempotent=True,
-            )
-        except BoardDisconnectionError:
-            self._forget()
-            raise
+        await self._guarded(
+            lambda: self._link.poll_control_read(
+                codec.BUTTON.index, codec.BUTTON.length, _button_held,
+                interval=self.BUTTON_POLL_INTERVAL, then=lambda _reply: report(),
+            ),
+            idempotent=True,
+        )
 
     # -- battery ------------------------------------------------------------------------
 
@@ -187,7 +179,7 @@ class SRV4PowerBoardHardwareBackend(
 
     async def get_led_state(self, identifier: int) -> bool:
         """Return the state last written to an LED (the board cannot report it)."""
-        codec.led_write_index(identifier)
+        codec.check_led(identifier)
         return self._leds[identifier]
 
     async def set_led_state(self, identifier: int, state: bool) -> None:

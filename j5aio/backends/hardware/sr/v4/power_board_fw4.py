@@ -81,11 +81,8 @@ class SRV4PowerBoardFw4HardwareBackend(
         if not codec.is_supported_version(identity.version):
             raise UnsupportedFirmwareError(self.board.name, identity.version, _SUPPORTED)
         self.identity = identity
-        self._firmware_version = identity.version
+        self.firmware_version = identity.version
         await self._act(codec.RESET)
-
-    def _check_single_component(self, identifier: int, what: str) -> None:
-        self._check_single(identifier, what, self.board.name)
 
     async def _status(self) -> codec.PowerStatus:
         return codec.parse_status(self.board.name, await self._query(codec.STATUS))
@@ -128,7 +125,7 @@ class SRV4PowerBoardFw4HardwareBackend(
 
     async def get_power_output_overcurrent(self, identifier: int) -> bool:
         """Read whether an output is latched off by its over-current trip (``*STATUS?``)."""
-        codec.encode_output_get(identifier)  # raises ValueError for a bad output
+        codec.check_output(identifier)
         return (await self._status()).overcurrent[identifier]
 
     # -- piezo --------------------------------------------------------------------------
@@ -138,7 +135,7 @@ class SRV4PowerBoardFw4HardwareBackend(
 
         :raises NotSupportedByHardwareError: outside 8-10000 Hz, or under 1 ms.
         """
-        self._check_single_component(identifier, "piezo")
+        self._check_single(identifier, "piezo")
         # Not sent again after a reconnection: a note that already played must not repeat.
         await self._act(codec.encode_note(duration, pitch), idempotent=False)
 
@@ -146,7 +143,7 @@ class SRV4PowerBoardFw4HardwareBackend(
 
     async def get_button_state(self, identifier: int) -> bool:
         """Return whether a start button was pressed since the last read (the board latches)."""
-        self._check_single_component(identifier, "start button")
+        self._check_single(identifier, "start button")
         return codec.parse_button(self.board.name, await self._query(codec.BUTTON)).pressed
 
     async def wait_until_button_pressed(self, identifier: int) -> None:
@@ -157,7 +154,7 @@ class SRV4PowerBoardFw4HardwareBackend(
         the latch is read once and forgotten, then read every 15 ms. The board latches
         presses, so none is lost between reads.
         """
-        self._check_single_component(identifier, "start button")
+        self._check_single(identifier, "start button")
         await self._presses.wait()
 
     async def _poll_button(self, report: Callable[[], None], *, fresh: bool) -> None:
@@ -178,13 +175,13 @@ class SRV4PowerBoardFw4HardwareBackend(
 
     async def get_battery_sensor_voltage(self, identifier: int) -> float:
         """Read the battery voltage, in volts."""
-        self._check_single_component(identifier, "battery sensor")
+        self._check_single(identifier, "battery sensor")
         reply = await self._query(codec.BATTERY_VOLTAGE)
         return codec.parse_current_ma(self.board.name, codec.BATTERY_VOLTAGE, reply) / 1000
 
     async def get_battery_sensor_current(self, identifier: int) -> float:
         """Read the battery current, in amperes (negative while it charges)."""
-        self._check_single_component(identifier, "battery sensor")
+        self._check_single(identifier, "battery sensor")
         reply = await self._query(codec.BATTERY_CURRENT)
         milliamps = codec.parse_current_ma(
             self.board.name, codec.BATTERY_CURRENT, reply, signed=True,
@@ -214,15 +211,15 @@ class SRV4PowerBoardFw4HardwareBackend(
 
     async def get_temperature(self, identifier: int) -> float:
         """Read the board's temperature, in °C (``*STATUS?``)."""
-        self._check_single_component(identifier, "temperature sensor")
+        self._check_single(identifier, "temperature sensor")
         return float((await self._status()).temperature)
 
     async def get_fan_running(self, identifier: int) -> bool:
         """Read whether the fan runs (``*STATUS?``)."""
-        self._check_single_component(identifier, "fan")
+        self._check_single(identifier, "fan")
         return (await self._status()).fan
 
     async def get_voltage_sensor_voltage(self, identifier: int) -> float:
         """Read the 5 V regulator's voltage, in volts (``*STATUS?``)."""
-        self._check_single_component(identifier, "voltage sensor")
+        self._check_single(identifier, "voltage sensor")
         return (await self._status()).regulator_mv / 1000

@@ -32,6 +32,8 @@ __all__ = [
     "VID",
     "BatteryReading",
     "ReadCommand",
+    "check_led",
+    "check_output",
     "encode_piezo_note",
     "led_write_index",
     "output_current_read",
@@ -96,14 +98,31 @@ class BatteryReading:
         return self.voltage_mv / 1000
 
 
+def check_output(output: int) -> None:
+    """Refuse a number that is not one of the power board's outputs (0 to 5).
+
+    :raises ValueError: naming the outputs there are.
+    """
+    if output not in range(OUTPUT_COUNT):
+        raise ValueError(f"the power board has outputs 0 to 5, not {output!r}")
+
+
 def output_current_read(output: int) -> ReadCommand:
     """Return the read request for the current of ``output`` (0 to 5), in mA.
 
     :raises ValueError: no such output.
     """
-    if output not in range(OUTPUT_COUNT):
-        raise ValueError(f"the power board has outputs 0 to 5, not {output!r}")
+    check_output(output)
     return ReadCommand(output, 4)
+
+
+def check_led(led: int) -> None:
+    """Refuse a number that is not one of the power board's LEDs (0 is RUN, 1 is ERROR).
+
+    :raises ValueError: naming the LEDs there are.
+    """
+    if led not in (0, 1):
+        raise ValueError(f"the power board has LEDs 0 (run) and 1 (error), not {led!r}")
 
 
 def led_write_index(led: int) -> int:
@@ -111,11 +130,8 @@ def led_write_index(led: int) -> int:
 
     :raises ValueError: no such LED.
     """
-    if led == 0:
-        return RUN_LED_WRITE
-    if led == 1:
-        return ERROR_LED_WRITE
-    raise ValueError(f"the power board has LEDs 0 (run) and 1 (error), not {led!r}")
+    check_led(led)
+    return RUN_LED_WRITE if led == 0 else ERROR_LED_WRITE
 
 
 def parse_u32(data: bytes) -> int:

@@ -54,6 +54,7 @@ __all__ = [
     "VID",
     "ButtonLatches",
     "PowerStatus",
+    "check_output",
     "encode_led_get",
     "encode_led_set",
     "encode_note",
@@ -149,7 +150,11 @@ def parse_identity_reply(board: str, reply: bytes) -> Identity:
     return parse_identity(board, reply, BOARD_TYPE)
 
 
-def _check_output(output: int) -> None:
+def check_output(output: int) -> None:
+    """Refuse a number that is not one of the power board's outputs.
+
+    :raises ValueError: naming the outputs there are.
+    """
     if output not in range(OUTPUT_COUNT):
         raise ValueError(
             f"the power board has outputs 0 to 6 (H0, H1, L0, L1, L2, L3, 5 V), not {output!r}",
@@ -162,7 +167,7 @@ def encode_output_set(output: int, enabled: bool) -> bytes:
     :raises ValueError: no such output.
     :raises NotSupportedByHardwareError: ``output`` is L2, the brain's output.
     """
-    _check_output(output)
+    check_output(output)
     if output == BRAIN_OUTPUT:
         raise NotSupportedByHardwareError(
             "output L2 (4) powers the robot's brain: the power board does not let it be "
@@ -176,7 +181,7 @@ def encode_output_get(output: int) -> bytes:
 
     :raises ValueError: no such output.
     """
-    _check_output(output)
+    check_output(output)
     return command_line("OUT", output, "GET?")
 
 
@@ -185,7 +190,7 @@ def encode_output_current(output: int) -> bytes:
 
     :raises ValueError: no such output.
     """
-    _check_output(output)
+    check_output(output)
     return command_line("OUT", output, "I?")
 
 

@@ -75,7 +75,7 @@ class SRV4RuggeduinoHardwareBackend(
         retried = False
         for _ in range(self.VERSION_ATTEMPTS):
             try:
-                raw = await self._exchange(codec.VERSION_QUERY, _LINE_WITH_END, timeout=wait)
+                raw = await self.exchange(codec.VERSION_QUERY, _LINE_WITH_END, timeout=wait)
             except CommunicationTimeoutError:
                 retried = True
                 continue
@@ -94,7 +94,7 @@ class SRV4RuggeduinoHardwareBackend(
                 self.board.name, version.version, codec.SUPPORTED_VERSIONS
             )
         self._version = version
-        self._firmware_version = version.version.strip()
+        self.firmware_version = version.version.strip()
         if retried:
             # A 'v' that timed out while the board booted may still be answered, by the
             # very line the probe below waits for: let it pass first.
@@ -107,13 +107,13 @@ class SRV4RuggeduinoHardwareBackend(
         :param then: called once the reply has arrived, even for a cancelled caller.
         """
         if then is None:
-            return await self._exchange(command, _LINE)
+            return await self.exchange(command, _LINE)
 
         def done(line: bytes) -> bytes:
             then()
             return line
 
-        return await self._exchange(command, _LINE, then=done)
+        return await self.exchange(command, _LINE, then=done)
 
     async def _apply_pin(
         self, identifier: int, wanted: DigitalPinState, *, mode_changed: bool

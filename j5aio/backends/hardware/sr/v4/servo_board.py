@@ -52,7 +52,7 @@ class SRV4ServoBoardHardwareBackend(ServoInterface, USBHardwareBackend):
         version = str(codec.parse_u32(reply))
         if version not in codec.SUPPORTED_VERSIONS:
             raise UnsupportedFirmwareError(self.board.name, version, codec.SUPPORTED_VERSIONS)
-        self._firmware_version = version
+        self.firmware_version = version
         await self._write(codec.INIT_WRITE, 0, errors=_HANDSHAKE_ERRORS)
         for servo in range(codec.SERVO_COUNT):
             await self.set_servo_position(servo, 0.0)

@@ -78,7 +78,7 @@ class _ServoBoardFw4Backend(
         identity = codec.parse_identity(self.board.name, reply)
         firmware = codec.firmware_for(self.board.name, identity.version, self.SUPPORTED_VERSIONS)
         self._firmware = firmware
-        self._firmware_version = identity.version
+        self.firmware_version = identity.version
         self._asset_tag = identity.asset_tag
         # The limits are the user's: a handshake run again (the board came back) keeps them.
         if len(self._limits) != firmware.servo_count:
@@ -107,13 +107,13 @@ class _ServoBoardFw4Backend(
         return tuple(self._limits)
 
     async def _query(self, request: bytes) -> bytes:
-        return await self._exchange(request, _REPLY)
+        return await self.exchange(request, _REPLY)
 
     async def _act(self, request: bytes) -> None:
         codec.check_ack(self.board.name, request, await self._query(request))
 
     def _check_servo(self, identifier: int) -> None:
-        codec.encode_get(self.firmware, identifier)  # TypeError / ValueError for a bad one
+        codec.check_servo(self.firmware, identifier)
 
     # -- servos --------------------------------------------------------------------------
 

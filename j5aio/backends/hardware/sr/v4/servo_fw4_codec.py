@@ -53,6 +53,7 @@ __all__ = [
     "Identity",
     "Status",
     "check_ack",
+    "check_servo",
     "encode_disable",
     "encode_get",
     "encode_set",
@@ -210,7 +211,12 @@ def firmware_for(board: str, version: str, supported: tuple[str, ...] | None = N
     return FIRMWARES[version]
 
 
-def _check_servo(firmware: Firmware, servo: int) -> None:
+def check_servo(firmware: Firmware, servo: int) -> None:
+    """Refuse a servo number that ``firmware`` does not drive.
+
+    :raises TypeError: ``servo`` is not an int.
+    :raises ValueError: naming the servos there are.
+    """
     if isinstance(servo, bool) or not isinstance(servo, int):
         raise TypeError(f"a servo number must be an int, not {servo!r}")
     if servo not in range(firmware.servo_count):
@@ -226,7 +232,7 @@ def encode_set(firmware: Firmware, servo: int, pulse_us: int) -> bytes:
     :raises TypeError: ``servo`` or ``pulse_us`` is not an int.
     :raises ValueError: no such servo, or the pulse is outside the firmware's range.
     """
-    _check_servo(firmware, servo)
+    check_servo(firmware, servo)
     if isinstance(pulse_us, bool) or not isinstance(pulse_us, int):
         raise TypeError(f"a pulse width must be an int of µs, not {pulse_us!r}")
     if not firmware.min_pulse <= pulse_us <= firmware.max_pulse:
@@ -242,7 +248,7 @@ def encode_get(firmware: Firmware, servo: int) -> bytes:
 
     :raises ValueError: no such servo.
     """
-    _check_servo(firmware, servo)
+    check_servo(firmware, servo)
     return f"SERVO:{servo}:GET?\n".encode("ascii")
 
 
@@ -251,7 +257,7 @@ def encode_disable(firmware: Firmware, servo: int) -> bytes:
 
     :raises ValueError: no such servo.
     """
-    _check_servo(firmware, servo)
+    check_servo(firmware, servo)
     return f"SERVO:{servo}:DISABLE\n".encode("ascii")
 
 

@@ -40,7 +40,7 @@ class SRTextBackend(SerialHardwareBackend):
 
     async def _query(self, command: bytes) -> bytes:
         """Send ``command`` and return its reply line (a NACK raises :class:`NackError`)."""
-        reply = await self._exchange(command, _REPLY)
+        reply = await self.exchange(command, _REPLY)
         return check_not_nack(self.board.name, command, reply)
 
     async def _query_then(self, command: bytes, then: Callable[[bytes], T]) -> T:
@@ -53,7 +53,7 @@ class SRTextBackend(SerialHardwareBackend):
         def checked(reply: bytes) -> T:
             return then(check_not_nack(self.board.name, command, reply))
 
-        return await self._exchange(command, _REPLY, then=checked)
+        return await self.exchange(command, _REPLY, then=checked)
 
     async def _act(
         self,
@@ -75,9 +75,4 @@ class SRTextBackend(SerialHardwareBackend):
             if then is not None:
                 then()
 
-        await self._exchange(command, _REPLY, then=acknowledged, idempotent=idempotent)
-
-    @staticmethod
-    def _check_single(identifier: int, what: str, board: str) -> None:
-        if identifier != 0:
-            raise ValueError(f"{board} has only {what} 0, not {identifier!r}")
+        await self.exchange(command, _REPLY, then=acknowledged, idempotent=idempotent)
