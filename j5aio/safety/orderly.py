@@ -3,23 +3,34 @@
 A robot on its way out and the sync facade's shutdown use this first
 (:func:`make_all_safe_uncancellably`); each board made safe here is settled in the
 registry, so that the rescue, which runs after it anyway, sends again silently.
+
+:func:`make_all_safe_uncancellably` runs the pass through
+:meth:`Board.make_all_safe <j5aio.boards.board.Board.make_all_safe>`, so that a kit that
+replaces that method is obeyed. This module sits below the boards and does not import
+them: the Board class hands it that call when it is defined (:func:`run_pass_through`).
 """
 
 from __future__ import annotations
 
 import asyncio
 import logging
+from collections.abc import Awaitable, Callable
 from typing import TYPE_CHECKING
 
 import anyio
 
-from j5aio.backends.safe_state_pass import safe_state_pass
 from j5aio.safety import registry
+from j5aio.safety.safe_state_pass import safe_state_pass
 
 if TYPE_CHECKING:
     from j5aio.boards.board import Board
 
-__all__ = ["SAFE_STATE_TIMEOUT", "make_all_safe", "make_all_safe_uncancellably"]
+__all__ = [
+    "SAFE_STATE_TIMEOUT",
+    "make_all_safe",
+    "make_all_safe_uncancellably",
+    "run_pass_through",
+]
 
 LOGGER = logging.getLogger("j5aio.safety")
 #: Where a board's failure in the orderly pass is logged (the name teams' settings know).
@@ -60,6 +71,25 @@ async def make_all_safe() -> list[BaseException]:
     return failures
 
 
+#: The call that runs the whole pass for :func:`make_all_safe_uncancellably`:
+#: :func:`make_all_safe` until the Board class hands over its own (see the module's help).
+_whole_pass: Callable[[], Awaitable[list[BaseException]]] = make_all_safe
+
+
+def run_pass_through(whole_pass: Callable[[], Awaitable[list[BaseException]]]) -> None:
+    """Make :func:`make_all_safe_uncancellably` run the pass by calling ``whole_pass()``.
+
+    :mod:`j5aio.boards.board` calls it once, with a function that calls
+    :meth:`Board.make_all_safe <j5aio.boards.board.Board.make_all_safe>` as it is then.
+
+    :raises TypeError: ``whole_pass`` is not callable.
+    """
+    global _whole_pass
+    if not callable(whole_pass):
+        raise TypeError(f"the safe-state pass must be a callable, not {whole_pass!r}")
+    _whole_pass = whole_pass
+
+
 async def make_all_safe_uncancellably(timeout: float = SAFE_STATE_TIMEOUT) -> None:
     """Make every board safe, finishing even if the caller is cancelled meanwhile.
 
@@ -72,9 +102,7 @@ async def make_all_safe_uncancellably(timeout: float = SAFE_STATE_TIMEOUT) -> No
     :param timeout: give up waiting after this many seconds (a board that hangs must not
         keep a stopping program alive).
     """
-    from j5aio.boards.board import Board  # its make_all_safe: a kit may override it
-
-    task = asyncio.ensure_future(asyncio.wait_for(Board.make_all_safe(), timeout))
+    task = asyncio.ensure_future(asyncio.wait_for(_whole_pass(), timeout))
     cancelled = False
     while not task.done():
         try:

@@ -9,6 +9,11 @@ rescue then sends its safe state again without a log line.
 
 Game over seals the registry (:func:`begin_game_over`): from then on a board cannot be
 opened, so a program cannot drive again before the process ends.
+
+A board opened while an event loop runs is made safe when that loop ends: the rescue
+asks to be told of each such loop (:func:`on_board_in_loop`) when it is imported, which
+importing :mod:`j5aio.safety` (and so any of its modules) does first. The registry
+imports nothing of the rescue, which reads it.
 """
 
 from __future__ import annotations
@@ -16,6 +21,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import threading
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Final
 
 from j5aio.errors import GameOverError
@@ -30,6 +36,7 @@ __all__ = [
     "end_game_over",
     "game_over_begun",
     "mark_settled",
+    "on_board_in_loop",
     "open_boards",
     "track",
     "untrack",
@@ -50,9 +57,26 @@ SET_UP: Final[set[Board]] = set()
 _game_over = threading.Event()
 #: Set when game over has finished (the process is ending).
 _game_over_done = threading.Event()
+#: Told of the event loop each board is opened in (see :func:`on_board_in_loop`).
+_loop_watchers: list[Callable[[asyncio.AbstractEventLoop], None]] = []
 
 
 # -- which boards are open ---------------------------------------------------------------
+
+
+def on_board_in_loop(watcher: Callable[[asyncio.AbstractEventLoop], None]) -> None:
+    """Call ``watcher(loop)`` each time a board is opened while ``loop`` runs, in that loop.
+
+    The rescue (:func:`j5aio.safety.rescue.watch`) is told this way, so that it makes a
+    loop's boards safe when the loop ends. A watcher given twice is called once.
+
+    :raises TypeError: ``watcher`` is not callable.
+    """
+    if not callable(watcher):
+        raise TypeError(f"a loop watcher must be a callable, not {watcher!r}")
+    with _lock:
+        if watcher not in _loop_watchers:
+            _loop_watchers.append(watcher)
 
 
 def track(board: Board) -> None:
@@ -83,9 +107,10 @@ def track(board: Board) -> None:
             "is ending with every board safe)"
         )
     if loop is not None:
-        from j5aio.safety import rescue
-
-        rescue.watch(loop)
+        with _lock:
+            watchers = list(_loop_watchers)
+        for watcher in watchers:
+            watcher(loop)
 
 
 def untrack(board: Board) -> None:

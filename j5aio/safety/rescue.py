@@ -188,3 +188,8 @@ async def _watch_loop(loop: asyncio.AbstractEventLoop) -> None:
         with registry._lock:
             _watchers.pop(id(loop), None)
         make_all_safe_now("its event loop finished", close=True, loop=loop)
+
+
+# Every board opened while a loop runs is made safe when that loop ends: the registry
+# tells this module of the loop (it does not import the rescue, which reads it).
+registry.on_board_in_loop(watch)

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, Generic, Self, TypeVar, cast, o
 
 import j5aio.backends.environment as _backends_environment
 import j5aio.boards.arduino.all_digital as _boards_arduino_all_digital
+import j5aio.boards.arduino.ultrasound as _boards_arduino_ultrasound
 import j5aio.boards.arduino.uno as _boards_arduino_uno
 import j5aio.boards.board as _boards_board
 import j5aio.boards.board_group as _boards_board_group
@@ -452,10 +453,10 @@ class UltrasoundSensors(_SyncWrapper):
 
     __slots__ = ()
 
-    _core: _boards_sb_arduino.UltrasoundSensors
+    _core: _boards_arduino_ultrasound.UltrasoundSensors
 
     def __init__(self, board: ArduinoUno) -> None:
-        _adopt_into(self, _boards_sb_arduino.UltrasoundSensors(_unwrap(board)))
+        _adopt_into(self, _boards_arduino_ultrasound.UltrasoundSensors(_unwrap(board)))
 
     def __getitem__(self, pins: tuple[int, int]) -> UltrasoundSensor:
         """Return an ultrasound sensor on the pin pair ``(trigger, echo)``.
@@ -3533,7 +3534,7 @@ def get_default_environment() -> Environment:
 
 
 _register(_backends_environment.Environment, Environment)
-_register(_boards_sb_arduino.UltrasoundSensors, UltrasoundSensors)
+_register(_boards_arduino_ultrasound.UltrasoundSensors, UltrasoundSensors)
 _register(_boards_sr_kch.Colour, Colour)
 _register(_robot.BaseRobot, BaseRobot)
 _register(_vision_track.PositionTracker, PositionTracker)

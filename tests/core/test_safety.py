@@ -52,3 +52,41 @@ async def test_unexpected_failure_is_logged(
     with caplog.at_level(logging.ERROR):
         await make_all_safe_uncancellably()
     assert "registry broken" in caplog.text
+
+
+def test_the_orderly_path_and_the_registry_refuse_a_hook_that_is_not_callable() -> None:
+    from j5aio.safety import orderly, registry
+
+    with pytest.raises(TypeError, match="the safe-state pass must be a callable"):
+        orderly.run_pass_through(None)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="a loop watcher must be a callable"):
+        registry.on_board_in_loop(42)  # type: ignore[arg-type]
+
+
+async def test_a_board_opened_in_a_loop_is_told_to_each_watcher_once() -> None:
+    from j5aio.safety import registry, rescue
+
+    seen: list[asyncio.AbstractEventLoop] = []
+    registry.on_board_in_loop(seen.append)
+    registry.on_board_in_loop(seen.append)  # given twice: called once
+    try:
+        board = LampBoard("watched", LampBackend())
+        assert seen == [asyncio.get_running_loop()]
+        assert id(asyncio.get_running_loop()) in rescue._watchers  # the rescue watches it
+        board.close_now()
+    finally:
+        registry._loop_watchers.remove(seen.append)
+
+
+async def test_the_uncancellable_pass_runs_through_board_make_all_safe(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    calls: list[str] = []
+
+    async def replaced() -> list[BaseException]:
+        calls.append("kit's own")
+        return []
+
+    monkeypatch.setattr(Board, "make_all_safe", staticmethod(replaced))
+    await make_all_safe_uncancellably()
+    assert calls == ["kit's own"]

@@ -10,7 +10,7 @@ Every hardware backend (serial and USB) is a :class:`Reconnecting` backend:
   at the same port path for a board attached by port), at most once every
   ``ReconnectPolicy.interval`` seconds; a call made when it is not back fails at
   once with :class:`~j5aio.errors.BoardDisconnectionError`. While every board is being
-  made safe (:mod:`j5aio.backends.safe_state_pass`), a lost board is looked for once
+  made safe (:mod:`j5aio.safety.safe_state_pass`), a lost board is looked for once
   more whatever the interval, so that a board back by then is stopped too. There is
   no background task: the next call after the board is back finds it (so it answers
   again within ``interval`` of being back, plus its own boot time).
@@ -39,8 +39,8 @@ from typing import ClassVar, TypeVar
 
 import anyio
 
-from j5aio.backends.safe_state_pass import claim_attempt
 from j5aio.errors import BoardDisconnectionError
+from j5aio.safety.safe_state_pass import claim_attempt
 
 __all__ = ["ReconnectPolicy", "Reconnecting"]
 

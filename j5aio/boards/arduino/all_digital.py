@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, ClassVar
 
+from j5aio.boards.arduino.ultrasound import UltrasoundSensors
 from j5aio.boards.arduino.uno import ArduinoUno
 from j5aio.components.derived.ultrasound import UltrasoundSensor
 from j5aio.components.gpio_pin import GPIOPin, GPIOPinMode
@@ -11,7 +12,6 @@ from j5aio.components.led import LED
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
-    from j5aio.boards.sb.arduino import UltrasoundSensors
     from j5aio.components.component import Component
     from j5aio.components.gpio_pin import FirmwareMode
 
@@ -39,9 +39,6 @@ class AllDigitalUno(ArduinoUno):
     ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[FirmwareMode]] = DIGITAL_PIN_FIRMWARE_MODES
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
-        # Imported here: the SourceBots package imports this module for its sb2024 board.
-        from j5aio.boards.sb.arduino import UltrasoundSensors
-
         super().__init__(serial_number, backend)
         self._ultrasound_sensors = UltrasoundSensors(self)
 
