@@ -21,7 +21,9 @@ from collections.abc import Iterable, Mapping
 from enum import Enum
 from typing import Final
 
+from j5aio import power_hints
 from j5aio.boards.sr.v4.power_board import PowerBoard
+from j5aio.power_hints import power_hint
 from j5aio.power_outputs import BRAIN_OUTPUT, OUTPUT_NAMES, output_name, output_number
 
 __all__ = [
@@ -127,20 +129,6 @@ def power_up_message(outputs: Iterable[int], wait: float) -> str:
     return (
         f"Switched on outputs {names} to power the kit's boards (L2 powers the brain); "
         f"waiting {wait:g} s for them to boot"
-    )
-
-
-def power_hint(output: int | None) -> str:
-    """What to do about a board without power, naming ``output`` if it is known."""
-    if output is None:
-        return (
-            "Switch on the power board output that feeds its 12 V input (KitRobot switches "
-            "on every output but L2 unless power_on says otherwise), and check the cable"
-        )
-    name = output_name(output)
-    return (
-        f"Switch on power board output {name}, which feeds it (KitRobot(power_on=...) "
-        f"or robot.power_board.outputs[{output}].is_enabled = True)"
     )
 
 
@@ -297,3 +285,7 @@ def _is_hardware(environment: object) -> bool:
 
     name = getattr(environment, "name", None)
     return name is not None and name == hardware_environment().name
+
+
+# Backends name the output feeding a silent board (j5aio.power_hints) from this wiring.
+power_hints.use_wiring(output_feeding)

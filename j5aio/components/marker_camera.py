@@ -16,9 +16,9 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from j5aio.components._marker_sizes import MarkerSizes
 from j5aio.components.component import Interface
 from j5aio.components.identified import IdentifiedComponent
-from j5aio.vision.sizes import MarkerSizes
 
 if TYPE_CHECKING:
     from j5aio.vision.calibration import CameraCalibration

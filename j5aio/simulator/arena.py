@@ -124,36 +124,34 @@ class Arena:
         """A square arena like SR's: ``markers_per_wall`` markers evenly along each wall.
 
         Ids go anticlockwise from 0, starting at the west end of the south wall; four
-        tokens (ids 100-103, 80 mm markers) stand around the middle.
+        tokens (ids 100-103, 80 mm markers) stand around the middle. The walls are those
+        of :meth:`ArenaMap.standard <j5aio.vision.arena_map.ArenaMap.standard>`, the map a
+        robot locates itself by.
         """
-        markers = []
-        spacing = size / (markers_per_wall + 1)
-        # (start corner, direction along the wall, facing into the arena) per wall
-        walls = (
-            ((0.0, 0.0), (1.0, 0.0), math.pi / 2),
-            ((size, 0.0), (0.0, 1.0), math.pi),
-            ((size, size), (-1.0, 0.0), -math.pi / 2),
-            ((0.0, size), (0.0, -1.0), 0.0),
+        layout = ArenaMap.standard(
+            size=size,
+            markers_per_wall=markers_per_wall,
+            marker_size=marker_size,
+            marker_height=marker_height,
         )
-        for w, ((x0, y0), (dx, dy), facing) in enumerate(walls):
-            for i in range(markers_per_wall):
-                along = spacing * (i + 1)
-                markers.append(
-                    ArenaMarker(
-                        w * markers_per_wall + i,
-                        marker_size,
-                        x0 + dx * along,
-                        y0 + dy * along,
-                        marker_height,
-                        facing,
-                    )
-                )
+        markers = tuple(
+            ArenaMarker(m.id, m.size, m.x, m.y, m.z, m.facing) for m in layout.markers
+        )
         middle = size / 2
+        headings = (math.pi / 4, 3 * math.pi / 4, -3 * math.pi / 4, -math.pi / 4)
         tokens = tuple(
-            Token(100 + k, middle + 700 * math.cos(a), middle + 700 * math.sin(a), heading=a)
-            for k, a in enumerate((math.pi / 4, 3 * math.pi / 4, -3 * math.pi / 4, -math.pi / 4))
+            Token(
+                marker_id,
+                middle + 700 * math.cos(a),
+                middle + 700 * math.sin(a),
+                marker_size=marker_size_of_token,
+                heading=a,
+            )
+            for (marker_id, marker_size_of_token), a in zip(
+                sorted(layout.token_sizes.items()), headings, strict=True
+            )
         )
-        return cls(size, size, 500.0, tuple(markers), tokens)
+        return cls(size, size, 500.0, markers, tokens)
 
     def all_markers(self) -> Iterator[ArenaMarker]:
         """Every marker: the walls', then each token's four."""

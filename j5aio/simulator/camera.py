@@ -16,12 +16,11 @@ import copy
 import functools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar
 
 from j5aio.backends.camera.frames import FrameCameraBackend
 from j5aio.boards.camera import CameraBoard
-from j5aio.vision.calibration import CameraCalibration
 from j5aio.vision.geometry import (
     Matrix3,
     Vector3,
@@ -29,8 +28,10 @@ from j5aio.vision.geometry import (
     position_from_translation,
 )
 from j5aio.vision.markers import Orientation, Position
-from j5aio.vision.render import NEAR_PLANE, Lighting, MarkerItem, QuadItem, render
+from j5aio.vision.render import NEAR_PLANE, MarkerItem, QuadItem, render
 
+from . import _camera_model
+from ._camera_model import SimulatedCamera
 from .arena import ArenaMarker, SimulatedWorld
 from .kit import SimulatedKit, current_kit
 
@@ -54,7 +55,7 @@ __all__ = [
 #: The simulated camera's default: an ideal (distortion-free) Logitech C270 at 1280x720,
 #: where it crops the middle of its 1280x960 sensor (so the focal length of its
 #: 1280x960 calibration, 1387.5 px: a 55° diagonal field of view, as Logitech states).
-DEFAULT_CALIBRATION = CameraCalibration(1387.5, 1387.5, 639.5, 359.5, (), (1280, 720))
+DEFAULT_CALIBRATION = _camera_model.DEFAULT_CALIBRATION
 
 #: How often the world is moved on while a simulated camera exists, seconds.
 TICK = 0.01
@@ -62,28 +63,6 @@ TICK = 0.01
 _FLOOR = (90, 110, 120)
 _WALL = (225, 225, 215)
 _TOKEN = (60, 160, 230)
-
-
-@dataclass(frozen=True)
-class SimulatedCamera:
-    """The camera on the simulated robot.
-
-    :param calibration: its pinhole model (also its resolution, if no ``resolution``).
-    :param resolution: ``(width, height)`` of its pictures; the calibration is scaled.
-    :param lighting: brightness, blur and noise of its pictures.
-    """
-
-    calibration: CameraCalibration = DEFAULT_CALIBRATION
-    resolution: tuple[int, int] | None = None
-    lighting: Lighting | None = field(default=None)
-
-    def model(self) -> tuple[CameraCalibration, tuple[int, int]]:
-        """The calibration and resolution its pictures have."""
-        calibration = self.calibration
-        if self.resolution is not None and self.resolution != calibration.resolution:
-            calibration = calibration.scaled_to(*self.resolution)
-        resolution = calibration.resolution or self.resolution or (1280, 720)
-        return calibration, resolution
 
 
 def _basis(world: SimulatedWorld) -> tuple[Vector3, Vector3, Vector3, Vector3]:

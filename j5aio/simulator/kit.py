@@ -43,7 +43,7 @@ from .sr_servo_fw2 import SRServoBoardFw2Simulator
 from .wiring import KitWiring, PowerBoardSimulator, PowerFed, default_outputs
 
 if TYPE_CHECKING:
-    from .camera import SimulatedCamera
+    from ._camera_model import SimulatedCamera
 
 __all__ = [
     "KIT_VARIABLE",
@@ -418,7 +418,7 @@ class SimulatedKit:
 
 
 def _default_camera() -> SimulatedCamera:
-    from .camera import SimulatedCamera
+    from ._camera_model import SimulatedCamera
 
     return SimulatedCamera()
 

@@ -51,6 +51,10 @@ __all__ = ["ArenaMap", "ArenaMapError", "WallMarker"]
 
 _FINITE = 1e12
 
+#: The ids of the standard arena's four tokens, and the size of their markers (mm).
+_STANDARD_TOKEN_IDS = range(100, 104)
+_STANDARD_TOKEN_MARKER_SIZE = 80.0
+
 
 class ArenaMapError(ValueError):
     """An arena description (a file or a dictionary) that cannot be used; says what is wrong."""
@@ -192,21 +196,41 @@ class ArenaMap:
         marker_size: float = 150.0,
         marker_height: float = 250.0,
     ) -> ArenaMap:
-        """The map of the simulated kit's default arena (a square, like Student Robotics').
+        """The map of a square arena like Student Robotics' (the simulated kit's default).
 
-        ``markers_per_wall`` markers stand evenly along each wall, with ids anticlockwise
-        from 0 at the west end of the south wall; the four tokens have ids 100 to 103.
-        It is :meth:`j5aio.simulator.arena.Arena.standard`'s arena, as a map.
+        ``markers_per_wall`` markers stand evenly along each wall, facing into the arena,
+        with ids anticlockwise from 0 at the west end of the south wall; the four tokens
+        have ids 100 to 103, with 80 mm markers. The simulated arena
+        (:meth:`j5aio.simulator.arena.Arena.standard`) is made from this map.
         """
-        from j5aio.simulator.arena import Arena
-
-        arena = Arena.standard(
-            size=size,
-            markers_per_wall=markers_per_wall,
-            marker_size=marker_size,
-            marker_height=marker_height,
+        markers = []
+        spacing = size / (markers_per_wall + 1)
+        # (start corner, direction along the wall, facing into the arena) per wall
+        walls = (
+            ((0.0, 0.0), (1.0, 0.0), math.pi / 2),
+            ((size, 0.0), (0.0, 1.0), math.pi),
+            ((size, size), (-1.0, 0.0), -math.pi / 2),
+            ((0.0, size), (0.0, -1.0), 0.0),
         )
-        return arena.arena_map()
+        for w, ((x0, y0), (dx, dy), facing) in enumerate(walls):
+            for i in range(markers_per_wall):
+                along = spacing * (i + 1)
+                markers.append(
+                    WallMarker(
+                        w * markers_per_wall + i,
+                        x0 + dx * along,
+                        y0 + dy * along,
+                        facing,
+                        marker_size,
+                        marker_height,
+                    )
+                )
+        return cls(
+            tuple(markers),
+            width=size,
+            length=size,
+            token_sizes=dict.fromkeys(_STANDARD_TOKEN_IDS, _STANDARD_TOKEN_MARKER_SIZE),
+        )
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> ArenaMap:

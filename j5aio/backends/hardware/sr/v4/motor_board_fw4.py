@@ -18,6 +18,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import ClassVar
 
+from j5aio import power_hints
 from j5aio.backends.hardware.sr.v4 import motor_fw3_codec as fw3
 from j5aio.backends.hardware.sr.v4 import motor_fw4_codec as codec
 from j5aio.backends.hardware.sr.v4.motor_identify import probe_fw4_identity
@@ -119,9 +120,7 @@ class SRV4MotorBoardFw4HardwareBackend(
 
     def _perhaps_unpowered(self, error: CommunicationTimeoutError) -> CommunicationTimeoutError:
         """The timeout, saying what a silent motor board usually means: no 12 V."""
-        from j5aio.kit_power import output_feeding, power_hint
-
-        hint = power_hint(output_feeding(self.asset_tag or ""))
+        hint = power_hints.power_hint(power_hints.output_feeding(self.asset_tag or ""))
         return CommunicationTimeoutError(
             f"{error}. A motor board that stops answering has usually lost its 12 V "
             f"input, which powers its controller. {hint}"
