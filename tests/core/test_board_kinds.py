@@ -9,6 +9,7 @@ from typing import Any
 import pytest
 
 from j5aio import _entry_points, board_kinds
+from j5aio.backends import _kinds
 from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
 from j5aio.board_kinds import (
     BoardKind,
@@ -206,7 +207,7 @@ def test_a_backends_import_path_is_known_without_importing_it() -> None:
 
 
 def test_the_builtin_kinds_name_their_backends_by_path_and_they_resolve() -> None:
-    from j5aio import _builtin_kinds
+    from j5aio.backends import _builtin_kinds
 
     kinds = [k for k in _builtin_kinds.entries() if isinstance(k, BoardKind)]
     assert any(isinstance(vars(k)["_console"], str) for k in kinds)
@@ -269,7 +270,7 @@ def fresh_registry(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[FakeEntryPo
         return plugins
 
     monkeypatch.setattr(_entry_points, "find", find)
-    monkeypatch.setattr(board_kinds, "_registry", board_kinds._Registry())
+    monkeypatch.setattr(_kinds, "_registry", _kinds._Registry())
     yield plugins
 
 

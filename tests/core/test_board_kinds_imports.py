@@ -12,8 +12,9 @@ ROOT = Path(__file__).resolve().parents[2]
 #: The modules of the registry and of what it names, kept out of every import cycle.
 ACYCLIC = (
     "j5aio.board_kinds",
-    "j5aio._kind_types",
-    "j5aio._builtin_kinds",
+    "j5aio.backends._kinds",
+    "j5aio.backends._kind_types",
+    "j5aio.backends._builtin_kinds",
     "j5aio.import_paths",
     "j5aio.simulator.environment",
     "j5aio.simulator.sim_backends",

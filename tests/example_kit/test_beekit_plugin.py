@@ -146,12 +146,12 @@ def test_run_sim_finds_the_bee_board_in_its_kit(tmp_path: Path) -> None:
 async def test_attach_identifies_a_board_that_answers_in_one_quick_round(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    from j5aio.backends.hardware import identify
+    from j5aio.backends.hardware import port_search
 
     async def full_round(*args: object, **kwargs: object) -> Board:
         raise AssertionError("every kind was tried in turn, with its full waits")
 
-    monkeypatch.setattr(identify, "_identify", full_round)
+    monkeypatch.setattr(port_search, "identify_on_port", full_round)
     simulator = BeeSimulator("BEE1")
     with serve_on_pty(simulator) as server:  # (at full time scale: the board answers)
         board = await attach(server.path)

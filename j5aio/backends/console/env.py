@@ -8,8 +8,8 @@ first generation's.
 
 from __future__ import annotations
 
+from j5aio.backends._kinds import board_kinds
 from j5aio.backends.environment import Environment
-from j5aio.board_kinds import board_kinds
 
 __all__ = ["CONSOLE_ENVIRONMENT"]
 

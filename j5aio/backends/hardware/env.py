@@ -10,8 +10,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from j5aio.backends._kinds import BoardKind, board_kinds
 from j5aio.backends.environment import Environment
-from j5aio.board_kinds import BoardKind, board_kinds
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend

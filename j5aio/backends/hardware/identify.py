@@ -17,40 +17,31 @@ another with a full boot wait each.
 from __future__ import annotations
 
 import logging
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Sequence
 
 import anyio
 import anyio.to_thread
 
-from j5aio.backends.hardware import registry
+from j5aio.backends.hardware import port_search, registry
 from j5aio.backends.hardware.options import DiscoveryOptions, StreamOpener
+from j5aio.backends.hardware.port_search import REOPEN_DELAY
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
-from j5aio.backends.hardware.transports.discovery import (
-    ComPortLike,
-    PortInfo,
-    find_port,
-    list_serial_ports,
-    match_ports,
-)
+from j5aio.backends.hardware.transports.discovery import PortInfo, find_port
 from j5aio.backends.hardware.transports.lent import LentStream
 from j5aio.boards.board import Board
-from j5aio.errors import CommunicationError, UnsupportedFirmwareError
+from j5aio.errors import CommunicationError
 from j5aio.safety import hooks as safety_hooks
 
 __all__ = [
     "QUICK_BUDGET",
     "QUICK_SCALE",
-    "REOPEN_DELAY",     "attach",
+    "REOPEN_DELAY",
+    "attach",
     "discover_serial_boards",
     "serial_backends",
 ]
 
 _log = logging.getLogger(__name__)
-
-#: Seconds between one kind's probe closing the port and the next kind's opening it, so
-#: that the board (or a simulator serving a pseudo-terminal) sees the port close, and the
-#: reopening resets it as a fresh open does.
-REOPEN_DELAY = 0.1
 
 #: Multiplies every kind's identification waits in the first round of :func:`attach`,
 #: which asks every kind over one opening of the port per baud rate: enough for a board
@@ -63,18 +54,6 @@ QUICK_SCALE = 0.05
 QUICK_BUDGET = 0.05
 
 
-def serial_backends() -> tuple[type[SerialHardwareBackend], ...]:
-    """The registered serial hardware backends, in the order identification tries them."""
-    from j5aio.board_kinds import board_kinds
-
-    found = [
-        (kind.identify_order, kind.hardware)
-        for kind in board_kinds()
-        if isinstance(kind.hardware, type) and issubclass(kind.hardware, SerialHardwareBackend)
-    ]
-    return tuple(backend for _, backend in sorted(found, key=lambda item: item[0]))
-
-
 def _candidates(
     port: PortInfo | None, backends: Sequence[type[SerialHardwareBackend]]
 ) -> tuple[type[SerialHardwareBackend], ...]:
@@ -83,48 +62,6 @@ def _candidates(
         return tuple(backends)
     matching = tuple(backend for backend in backends if (port.vid, port.pid) in backend.USB_IDS)
     return matching or tuple(backends)
-
-
-async def _identify(
-    port: str,
-    serial_number: str,
-    backends: Sequence[type[SerialHardwareBackend]],
-    opener: StreamOpener | None,
-    time_scale: float,
-    *,
-    port_source: Callable[[], Iterable[ComPortLike]] | None = None,
-) -> Board:
-    """Try each backend on ``port`` in turn; return the first board that answers as its kind.
-
-    A board found through ``port_source`` (discovery) is looked for again by its serial
-    number if it vanishes; one asked for by its port (``port_source`` None), at that port.
-    """
-    unsupported: list[UnsupportedFirmwareError] = []
-    for index, backend in enumerate(backends):
-        if index:
-            await anyio.sleep(REOPEN_DELAY)
-        try:
-            board = await backend.identify(
-                port,
-                serial_number=serial_number,
-                opener=opener,
-                time_scale=time_scale,
-                port_source=port_source,
-                by_port=port_source is None,
-            )
-        except UnsupportedFirmwareError as error:
-            _log.info("%s on %s: %s", backend.__name__, port, error)
-            unsupported.append(error)
-            continue
-        if board is not None:
-            return board
-    if unsupported:
-        raise unsupported[0]
-    tried = ", ".join(f"{backend.board.name} ({backend.__name__})" for backend in backends)
-    raise CommunicationError(
-        f"no supported board answered on {port}; tried: {tried}. Is it plugged in and "
-        "powered, and does it run its usual firmware?"
-    )
 
 
 async def _answering_kind(
@@ -211,7 +148,9 @@ async def attach(
             if board is not None:
                 return board
             await anyio.sleep(REOPEN_DELAY)
-        return await _identify(port, serial_number, candidates, opener, time_scale)
+        return await port_search.identify_on_port(
+            port, serial_number, candidates, opener, time_scale
+        )
 
     board = await registry.claim(port, SerialHardwareBackend, connect)
     try:
@@ -221,6 +160,11 @@ async def attach(
             await board.close()
         raise
     return board
+
+
+def serial_backends() -> tuple[type[SerialHardwareBackend], ...]:
+    """The registered serial hardware backends, in the order identification tries them."""
+    return port_search.registered_backends(SerialHardwareBackend)
 
 
 async def discover_serial_boards(
@@ -234,6 +178,8 @@ async def discover_serial_boards(
     that matches several (the Arduinos share their USB IDs) is identified among them in
     their ``identify_order``. Ports are looked at concurrently. Boards already held are
     given back; ports held by something else are skipped. The boards are not set up.
+    It is :func:`~j5aio.backends.hardware.port_search.search_ports` for every serial
+    backend.
 
     :param options: stand-in port lists and openers, a time scale, and whether a failing
         board is skipped (logged) rather than raised.
@@ -242,58 +188,8 @@ async def discover_serial_boards(
     :raises CommunicationError: a board could not be identified or failed its handshake
         (unless ``options.skip_failures``).
     """
-    options = options or DiscoveryOptions()
-    backends = serial_backends() if backends is None else backends
-    ports = await anyio.to_thread.run_sync(list_serial_ports, options.port_source)
-    wanted: dict[str, tuple[PortInfo, list[type[SerialHardwareBackend]]]] = {}
-    for backend in backends:
-        matched = match_ports(
-            ports, set(backend.USB_IDS), backend.USB_MANUFACTURER, backend.USB_PRODUCT
-        )
-        for port in matched:
-            if backend.has_serial_number(port):
-                wanted.setdefault(port.device, (port, []))[1].append(backend)
-    results: dict[str, Board | Exception] = {}
-
-    async def connect_one(port: PortInfo, kinds: list[type[SerialHardwareBackend]]) -> None:
-        serial_number = port.serial_number or port.device
-        source = options.port_source
-
-        async def connect() -> Board:
-            if len(kinds) == 1:
-                return await kinds[0].open_port(
-                    port.device,
-                    serial_number,
-                    options.opener,
-                    options.time_scale,
-                    port_source=source,
-                )
-            return await _identify(
-                port.device,
-                serial_number,
-                kinds,
-                options.opener,
-                options.time_scale,
-                port_source=source,
-            )
-
-        claimant = kinds[0] if len(kinds) == 1 else SerialHardwareBackend
-        try:
-            # A board that vanished and is listed again (perhaps on another path) is
-            # brought back as the same Board, not opened as a new one.
-            for kind in kinds:
-                known = kind._lost_board(serial_number, options)
-                if known is not None:
-                    await kind._found_again(known)
-                    results[port.device] = known
-                    return
-            results[port.device] = await registry.claim(port.device, claimant, connect)
-        except registry.PortInUseError as exc:
-            _log.info("Skipping %s: %s", port.device, exc)
-        except Exception as exc:
-            results[port.device] = exc
-
-    async with anyio.create_task_group() as group:
-        for port, kinds in wanted.values():
-            group.start_soon(connect_one, port, kinds)
-    return SerialHardwareBackend.collect(results, skip_failures=options.skip_failures)
+    return await port_search.search_ports(
+        SerialHardwareBackend,
+        options=options,
+        backends=serial_backends() if backends is None else backends,
+    )

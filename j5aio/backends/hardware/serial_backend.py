@@ -227,7 +227,7 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
 
         When other registered kinds of board use the same USB IDs (the Arduinos), each
         such port is identified once among them instead
-        (:func:`~j5aio.backends.hardware.identify.discover_serial_boards`): this backend's
+        (:func:`~j5aio.backends.hardware.port_search.search_ports`): this backend's
         boards are returned, and the others' stay held for their own discovery to give
         back without opening the port again. Boards are opened concurrently. A port this
         backend already holds gives back its board; a port held by another kind of
@@ -238,12 +238,12 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         :raises DeviceMissingSerialNumberError: a matching port has no serial number.
         :raises CommunicationError: a board failed its handshake (unless skipped).
         """
-        from j5aio.backends.hardware.identify import discover_serial_boards
+        from j5aio.backends.hardware.port_search import search_ports
 
         options = options or DiscoveryOptions()
         sharing = cls._kinds_sharing_ports() if options.identify_shared_ports else ()
         backends = sharing if len(sharing) > 1 else (cls,)
-        found = await discover_serial_boards(options=options, backends=backends)
+        found = await search_ports(SerialHardwareBackend, options=options, backends=backends)
         # Boards of the other kinds stay held, for their own discovery to give back.
         return [cast(BoardT, board) for board in found if isinstance(board.backend, cls)]
 
@@ -302,9 +302,9 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
 
         Empty when no registered kind is this backend or one of its bases.
         """
-        from j5aio.backends.hardware.identify import serial_backends
+        from j5aio.backends.hardware.port_search import registered_backends
 
-        registered = serial_backends()
+        registered = registered_backends(SerialHardwareBackend)
         if not any(issubclass(cls, backend) for backend in registered):
             return ()
         return tuple(

@@ -1,8 +1,8 @@
 """The definitions the board kind registry holds: board kinds, their simulators and named kits.
 
 Every name here is public in :mod:`j5aio.board_kinds`, and documented there; this module
-holds them so that j5aio's own kinds (``j5aio._builtin_kinds``) can be written without
-importing the registry that loads them.
+holds them so that j5aio's own kinds (``j5aio.backends._builtin_kinds``) can be written
+without importing the registry that loads them.
 """
 
 from __future__ import annotations

@@ -6,7 +6,7 @@ entry in :func:`entries` (and a new kit with one :class:`~j5aio.board_kinds.KitD
 
 from __future__ import annotations
 
-from j5aio._kind_types import (
+from j5aio.backends._kind_types import (
     DEFAULT_KIT,
     BoardKind,
     KitDefinition,
