@@ -6,12 +6,15 @@ it lives here, below both. Its names are documented, and imported, as
 :mod:`j5aio.simulator.camera`'s.
 """
 
-# (No postponed annotations: the class is documented as j5aio.simulator.camera's, and its
-# annotations must name their classes without that module's namespace.)
+from __future__ import annotations
+
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from j5aio.vision.calibration import CameraCalibration
-from j5aio.vision.render import Lighting
+
+if TYPE_CHECKING:  # (the renderer is imported only when a picture is drawn)
+    from j5aio.vision.render import Lighting
 
 __all__ = ["DEFAULT_CALIBRATION", "SimulatedCamera"]
 
@@ -29,8 +32,6 @@ class SimulatedCamera:
     :param lighting: brightness, blur and noise of its pictures.
     """
 
-    __module__ = "j5aio.simulator.camera"  # where it is documented, and imported from
-
     calibration: CameraCalibration = DEFAULT_CALIBRATION
     resolution: tuple[int, int] | None = None
     lighting: Lighting | None = field(default=None)
@@ -42,3 +43,8 @@ class SimulatedCamera:
             calibration = calibration.scaled_to(*self.resolution)
         resolution = calibration.resolution or self.resolution or (1280, 720)
         return calibration, resolution
+
+
+# Documented, and imported, as j5aio.simulator.camera's (set once the dataclass is made:
+# making it reads the module its __module__ names, which may not be imported yet).
+SimulatedCamera.__module__ = "j5aio.simulator.camera"

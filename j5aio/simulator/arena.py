@@ -128,6 +128,9 @@ class Arena:
         of :meth:`ArenaMap.standard <j5aio.vision.arena_map.ArenaMap.standard>`, the map a
         robot locates itself by.
         """
+        # The simulated arena is made from the map (imported where it is needed).
+        from j5aio.vision.arena_map import ArenaMap
+
         layout = ArenaMap.standard(
             size=size,
             markers_per_wall=markers_per_wall,

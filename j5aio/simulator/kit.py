@@ -43,7 +43,7 @@ from .sr_servo_fw2 import SRServoBoardFw2Simulator
 from .wiring import KitWiring, PowerBoardSimulator, PowerFed, default_outputs
 
 if TYPE_CHECKING:
-    from ._camera_model import SimulatedCamera
+    from .camera import SimulatedCamera
 
 __all__ = [
     "KIT_VARIABLE",
