@@ -90,3 +90,24 @@ async def test_the_uncancellable_pass_runs_through_board_make_all_safe(
     monkeypatch.setattr(Board, "make_all_safe", staticmethod(replaced))
     await make_all_safe_uncancellably()
     assert calls == ["kit's own"]
+
+
+def test_importing_the_registry_alone_sets_the_rescue_watching() -> None:
+    # The registry does not import the rescue; the safety package does, before any of
+    # its modules, so that no board opened in a loop goes unwatched.
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    program = (
+        "import sys\n"
+        "from j5aio.safety import registry\n"
+        "print('j5aio.safety.rescue' in sys.modules, len(registry._loop_watchers))\n"
+    )
+    root = Path(__file__).resolve().parents[2]
+    result = subprocess.run(
+        [sys.executable, "-c", program], capture_output=True, text=True, cwd=root,
+        timeout=60, check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == ["True", "1"]
