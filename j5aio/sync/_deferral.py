@@ -1,0 +1,121 @@
+"""Signals that arrive while the main thread runs the facade's event loop itself.
+
+Python runs a signal's handler in the main thread, between two bytecodes. When the main
+thread is inside a blocking call of the facade it is running the event loop's own code
+(:mod:`j5aio.sync._driven`), and a handler that raises there (``KeyboardInterrupt`` on
+Ctrl-C, ``SystemExit`` from the safety net's SIGTERM handler) would tear asyncio or j5aio
+half way through a step. So, for SIGINT, SIGTERM and SIGHUP, the handler the program has
+(whichever it is: Python's, the safety net's, the program's own) is wrapped
+(:class:`DeferringHandler`, installed with the public :func:`signal.signal`):
+
+* outside a driven call the wrapper calls the handler at once, exactly as without it;
+* inside one it only records the signal and asks the loop to stop (``stop`` is given by
+  the loop's owner; asyncio documents ``call_soon_threadsafe`` as safe to use from a
+  signal handler, and its self-pipe wakes a loop that waits in its selector). The caller,
+  back outside the loop, then runs the handler (:meth:`SignalDeferral.run_pending`): if
+  it raises, the call is cancelled through its anyio cancel scope and the exception
+  surfaces from the call, as it did when the caller waited on a lock.
+
+A handler installed later (by the program, or by the safety net) is wrapped at the next
+call (:meth:`SignalDeferral.install`); the wrapper names what it wraps in ``__wrapped__``.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+import threading
+from collections.abc import Callable
+from types import FrameType
+from typing import Any, Final
+
+__all__ = ["DEFERRED_SIGNALS", "DeferringHandler", "SignalDeferral"]
+
+#: The signals whose handlers are deferred while the main thread drives the loop.
+DEFERRED_SIGNALS: Final = tuple(
+    getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name)
+)
+
+Handler = Callable[[int, FrameType | None], Any]
+
+
+class DeferringHandler:
+    """A signal handler that defers ``handler`` while its :class:`SignalDeferral` is active."""
+
+    __slots__ = ("__wrapped__", "deferral")
+
+    def __init__(self, deferral: SignalDeferral, handler: Handler) -> None:
+        self.deferral = deferral
+        self.__wrapped__ = handler
+
+    def __call__(self, signum: int, frame: FrameType | None) -> Any:
+        """Run the handler now, or record it for the caller to run when the loop stops."""
+        deferral = self.deferral
+        if deferral.active:
+            deferral.pending.append((self.__wrapped__, signum, frame))
+            deferral.stop()
+            return None
+        return self.__wrapped__(signum, frame)
+
+    def __repr__(self) -> str:
+        return f"<deferred while the sync facade drives its loop: {self.__wrapped__!r}>"
+
+
+class SignalDeferral:
+    """The main thread's deferred signals, for one driven event loop.
+
+    :param stop: stops the loop the main thread drives; called from a signal handler, so
+        it must be safe there (``loop.call_soon_threadsafe(loop.stop)`` is).
+    """
+
+    def __init__(self, stop: Callable[[], None]) -> None:
+        self.stop = stop
+        #: Whether the main thread is inside a driven call (set by the main thread only).
+        self.active = False
+        #: The handlers whose signals came while active, with their arguments, in order.
+        self.pending: list[tuple[Handler, int, FrameType | None]] = []
+        self._installed: dict[int, DeferringHandler] = {}
+
+    def install(self) -> None:
+        """Wrap each deferred signal's Python handler, unless it is wrapped already.
+
+        Cheap when nothing changed (one :func:`signal.getsignal` a signal); called from the
+        main thread at each driven call. ``SIG_DFL`` and ``SIG_IGN`` are left alone: the
+        operating system acts on them without running Python code.
+        """
+        installed = self._installed
+        for signum in DEFERRED_SIGNALS:
+            current = signal.getsignal(signum)
+            if current is installed.get(signum) or not callable(current):
+                continue
+            if isinstance(current, DeferringHandler):  # another loop's: wrap what it wraps
+                current = current.__wrapped__
+            wrapper = DeferringHandler(self, current)
+            with contextlib.suppress(ValueError, OSError):
+                signal.signal(signum, wrapper)
+                installed[signum] = wrapper
+
+    def uninstall(self) -> None:
+        """Put back the handlers this deferral wrapped, where they are still its wrappers."""
+        if threading.current_thread() is not threading.main_thread():
+            return
+        for signum, wrapper in self._installed.items():
+            with contextlib.suppress(ValueError, OSError):
+                if signal.getsignal(signum) is wrapper:
+                    signal.signal(signum, wrapper.__wrapped__)
+        self._installed.clear()
+
+    def run_pending(self) -> None:
+        """Run the handlers of the signals recorded so far, in order (main thread).
+
+        The first handler that raises ends the run; the signals after it are dropped, as
+        Python would never have run their handlers either.
+        """
+        pending = self.pending
+        try:
+            while pending:
+                handler, signum, frame = pending.pop(0)
+                handler(signum, frame)
+        except BaseException:
+            pending.clear()
+            raise
