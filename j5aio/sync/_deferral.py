@@ -29,7 +29,14 @@ from collections.abc import Callable
 from types import FrameType
 from typing import Any, Final
 
-__all__ = ["DEFERRED_SIGNALS", "DeferringHandler", "SignalDeferral"]
+__all__ = ["DEFERRED_SIGNALS", "DeferringHandler", "SignalDeferral", "current_handler"]
+
+try:
+    # CPython's own getsignal, as the public one calls it but without turning the result
+    # into an enum member: 12 ns instead of 1.5 us, for a check made at every call.
+    from _signal import getsignal as current_handler
+except ImportError:  # pragma: no cover - another interpreter: the public one (tested)
+    current_handler = signal.getsignal
 
 #: The signals whose handlers are deferred while the main thread drives the loop.
 DEFERRED_SIGNALS: Final = tuple(
@@ -85,7 +92,7 @@ class SignalDeferral:
         """
         installed = self._installed
         for signum in DEFERRED_SIGNALS:
-            current = signal.getsignal(signum)
+            current = current_handler(signum)
             if current is installed.get(signum) or not callable(current):
                 continue
             if isinstance(current, DeferringHandler):  # another loop's: wrap what it wraps

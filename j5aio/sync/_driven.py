@@ -98,6 +98,8 @@ class DrivenLoop:
         self._owner: int | None = None
         self._left_at = time.monotonic()
         self._keeper_sleeps = False
+        #: How many calls have ended: the keeper tells a long call from many short ones.
+        self._calls = 0
         self._stop_asked = False
         self._closing = False
         self._main_ident = threading.main_thread().ident
@@ -288,6 +290,7 @@ class DrivenLoop:
         with self._mutex:
             self._owner = None
             self._left_at = time.monotonic()
+            self._calls += 1
             if self._keeper_sleeps or self._queue or self._current is not None or self._closing:
                 self._turns.notify_all()
         if main:
@@ -341,6 +344,7 @@ class DrivenLoop:
         keep_signals_for_the_main_thread()
         me = threading.get_ident()
         turns = self._turns
+        seen = -1
         while True:
             with self._mutex:
                 while True:
@@ -353,7 +357,13 @@ class DrivenLoop:
                         if idle <= 0:
                             break
                         turns.wait(idle)
+                    elif self._calls != seen:
+                        # Calls come and go: look again after the grace, waking nobody.
+                        seen = self._calls
+                        turns.wait(self.grace)
                     else:
+                        # One call has lasted a whole grace (a wait for a button, say):
+                        # sleep with no time limit; its caller wakes the keeper at its end.
                         self._keeper_sleeps = True
                         turns.wait()
                         self._keeper_sleeps = False
