@@ -421,6 +421,9 @@ class DrivenLoop:
         if self._owner == me:
             last.close()
             raise RuntimeError(NESTED_CALL)
+        if self.loop.is_closed():  # closed before: nothing left to do
+            last.close()
+            return None
         deadline = time.monotonic() + timeout
         with self._mutex:
             self._closing = True
