@@ -94,13 +94,15 @@ class SignalDeferral:
         #: The handlers whose signals came while active, with their arguments, in order.
         self.pending: list[tuple[Handler, int, FrameType | None]] = []
         self._installed: dict[int, DeferringHandler] = {}
+        #: Each deferred signal with the handler it had when last checked: a caller checks
+        #: them (with :func:`current_handler`) and calls :meth:`install` if one changed.
+        self.seen: tuple[tuple[int, Any], ...] = tuple((s, None) for s in DEFERRED_SIGNALS)
 
     def install(self) -> None:
         """Wrap each deferred signal's Python handler, unless it is wrapped already.
 
-        Cheap when nothing changed (one :func:`signal.getsignal` a signal); called from the
-        main thread at each driven call. ``SIG_DFL`` and ``SIG_IGN`` are left alone: the
-        operating system acts on them without running Python code.
+        Called from the main thread when :attr:`seen` is out of date. ``SIG_DFL`` and
+        ``SIG_IGN`` are left alone: the operating system acts on them without Python.
         """
         installed = self._installed
         for signum in DEFERRED_SIGNALS:
@@ -113,6 +115,7 @@ class SignalDeferral:
             with contextlib.suppress(ValueError, OSError):
                 signal.signal(signum, wrapper)
                 installed[signum] = wrapper
+        self.seen = tuple((signum, current_handler(signum)) for signum in DEFERRED_SIGNALS)
 
     def uninstall(self) -> None:
         """Put back the handlers this deferral wrapped, where they are still its wrappers."""
@@ -123,6 +126,7 @@ class SignalDeferral:
                 if signal.getsignal(signum) is wrapper:
                     signal.signal(signum, wrapper.__wrapped__)
         self._installed.clear()
+        self.seen = tuple((signum, None) for signum in DEFERRED_SIGNALS)
 
     def run_pending(self) -> None:
         """Run the handlers of the signals recorded so far, in order (main thread).

@@ -50,7 +50,7 @@ from j5aio.sync._calls import (
     release,
     stopped_error,
 )
-from j5aio.sync._deferral import SignalDeferral
+from j5aio.sync._deferral import SignalDeferral, current_handler
 from j5aio.sync._signals import keep_signals_for_the_main_thread
 
 __all__ = ["GRACE", "NESTED_CALL", "DrivenLoop"]
@@ -89,6 +89,8 @@ class DrivenLoop:
         self._queue: deque[Call] = deque()
         self._current: Call | None = None
         self._driven: Call | None = None
+        #: The finished call object of the last call run by its own caller, to use again.
+        self._spare: Call | None = None
         self._scope: anyio.CancelScope | None = None
         self._waiter: asyncio.Future[None] | None = None
         self._stopping = False
@@ -113,43 +115,45 @@ class DrivenLoop:
     # -- the worker (in whichever thread drives the loop) ---------------------------------
 
     async def _main(self) -> None:
-        # The loop's root task: anyio ties its worker threads to it, so they live as long.
+        """Run the queued calls in turn, each in the current cancel scope, until stopped.
+
+        The loop's root task: anyio ties its worker threads to it, so they live as long.
+        A scope that has cancelled a call is replaced; the next call gets a fresh one.
+        """
+        queue = self._queue
         while not self._stopping:
             with anyio.CancelScope() as scope:
                 self._scope = scope
-                await self._serve(scope)
-        while self._queue:
-            self._queue.popleft().withdraw(_STOPPING)
-
-    async def _serve(self, scope: anyio.CancelScope) -> None:
-        """Run the queued calls in turn until the loop stops or ``scope`` cancels one."""
-        queue = self._queue
-        while not scope.cancel_called and not self._stopping:
-            if not queue:
-                self._waiter = waiter = self.loop.create_future()
-                try:
-                    await waiter
-                finally:
-                    self._waiter = None
-                continue
-            request = queue.popleft()
-            self._current = request
-            request.state = RUNNING
-            try:
-                request.result = await request.coro
-            except BaseException as exc:
-                if scope.cancel_called and isinstance(exc, anyio.get_cancelled_exc_class()):
-                    request.error = RuntimeError(_STOPPING)
-                    raise  # to the scope, which ends here; the next call gets a new one
-                request.error = exc
-            finally:
-                self._current = None
-                request.state = DONE
-                if request is self._driven:
-                    self._driven = None
-                    self.loop.stop()  # the caller driving the loop has its result
-                else:
-                    release(request.done)
+                while not scope.cancel_called and not self._stopping:
+                    if not queue:
+                        self._waiter = waiter = self.loop.create_future()
+                        try:
+                            await waiter
+                        finally:
+                            self._waiter = None
+                        continue
+                    request = queue.popleft()
+                    self._current = request
+                    request.state = RUNNING
+                    try:
+                        request.result = await request.coro
+                    except BaseException as exc:
+                        if scope.cancel_called and isinstance(
+                            exc, anyio.get_cancelled_exc_class()
+                        ):
+                            request.error = RuntimeError(_STOPPING)
+                            raise  # to the scope, which ends here
+                        request.error = exc
+                    finally:
+                        self._current = None
+                        request.state = DONE
+                        if request is self._driven:
+                            self._driven = None
+                            self.loop.stop()  # the caller driving the loop has its result
+                        else:
+                            release(request.done)
+        while queue:
+            queue.popleft().withdraw(_STOPPING)
 
     def _wake(self) -> None:
         waiter = self._waiter
@@ -206,7 +210,10 @@ class DrivenLoop:
         main = me == self._main_ident
         deferral = self.deferral
         if main:
-            deferral.install()
+            for signum, handler in deferral.seen:  # (a program may install its own later)
+                if current_handler(signum) is not handler:
+                    deferral.install()
+                    break
             deferral.active = True
         try:
             with self._mutex:
@@ -216,23 +223,27 @@ class DrivenLoop:
         except BaseException:  # pragma: no cover - signals are deferred here
             coro.close()
             raise
-        if taken:
-            return self._drive(coro, main, wait)
-        return self._run_slowly(coro, me, main, wait)
-
-    def _drive(
-        self, coro: Coroutine[Any, Any, Any], main: bool, wait: Callable[[DrivenLoop, Call], Any]
-    ) -> Any:
-        """Run the loop in this thread until ``coro`` is done (this thread owns the loop)."""
+        if not taken:
+            taken, result = self._take_slowly(coro, me, main, wait)
+            if not taken:
+                return result
+        # This thread owns the loop: run it until the worker has run the call.
         loop = self.loop
-        deferral = self.deferral
-        request = Call(coro, _NOBODY_WAITS)
+        request = self._spare
+        if request is None:
+            request = Call(coro, _NOBODY_WAITS)
+        else:  # the call object of the last call this way, finished: used again
+            self._spare = None
+            request.coro = coro
+            request.state = QUEUED
         elsewhere = False
         try:
             try:
                 self._driven = request
                 self._queue.append(request)
-                self._wake()
+                waiter = self._waiter
+                if waiter is not None and not waiter.done():
+                    waiter.set_result(None)  # the worker's turn, as soon as the loop runs
                 while request.state != DONE:
                     try:
                         loop.run_forever()
@@ -258,14 +269,15 @@ class DrivenLoop:
             return wait(self, request)
         if main and deferral.pending:  # a signal that came as the call ended
             deferral.run_pending()
-        error = request.error
+        result, error = request.result, request.error
+        request.result = request.error = None
+        self._spare = request
         if error is not None:
-            request.error = None
             try:
                 raise error
             finally:
                 del error
-        return request.result
+        return result
 
     def _abandon(self, request: Call) -> None:
         """Cancel this thread's call and drive the loop until it stops, within the grace."""
@@ -296,14 +308,18 @@ class DrivenLoop:
         if main:
             self.deferral.active = False
 
-    def _run_slowly(
+    def _take_slowly(
         self,
         coro: Coroutine[Any, Any, Any],
         me: int,
         main: bool,
         wait: Callable[[DrivenLoop, Call], Any],
-    ) -> Any:
-        """The loop was not idle: take it from the keeper, or queue for another caller."""
+    ) -> tuple[bool, Any]:
+        """The loop was not idle: take it from the keeper, or queue for another caller.
+
+        :returns: ``(True, None)`` once this thread owns the loop, or ``(False, result)``
+            when another thread's turn ran the call.
+        """
         request: Call | None = None
         try:
             with self._mutex:
@@ -313,7 +329,7 @@ class DrivenLoop:
                     owner = self._owner
                     if owner is None:
                         self._owner = me
-                        break
+                        return True, None
                     if owner != self.thread.ident:  # another caller: queue for it
                         request = Call(coro, new_done_lock())
                         self._queue.append(request)
@@ -327,14 +343,12 @@ class DrivenLoop:
                 self.deferral.active = False
             coro.close()
             raise
-        if request is None:
-            return self._drive(coro, main, wait)
         if main:
             self.deferral.active = False
             self.deferral.run_pending()  # (a signal that came meanwhile raises here)
         with contextlib.suppress(RuntimeError):
             self.loop.call_soon_threadsafe(self._wake)
-        return wait(self, request)
+        return False, wait(self, request)
 
     # -- the keeper thread -----------------------------------------------------------------
 
