@@ -89,6 +89,8 @@ class DrivenLoop:
         self._queue: deque[Call] = deque()
         self._current: Call | None = None
         self._driven: Call | None = None
+        #: The threads seen calling from inside an event loop of their own, with that loop.
+        self._in_other_loops: dict[int, asyncio.AbstractEventLoop] = {}
         #: The finished call object of the last call run by its own caller, to use again.
         self._spare: Call | None = None
         self._scope: anyio.CancelScope | None = None
@@ -215,6 +217,10 @@ class DrivenLoop:
                     deferral.install()
                     break
             deferral.active = True
+        if self._in_other_loops and self._runs_another_loop(me):
+            if main:
+                deferral.active = False
+            return self._queue_for_the_keeper(coro, wait)
         try:
             with self._mutex:
                 taken = self._owner is None and not self._closing
@@ -250,7 +256,9 @@ class DrivenLoop:
                     except RuntimeError:
                         if request.state != QUEUED or loop.is_closed():
                             raise
-                        # This thread runs another event loop: the keeper runs the call.
+                        # This thread runs another event loop: the keeper runs the call
+                        # (and this thread's next ones, as long as that loop runs).
+                        self._in_other_loops[me] = asyncio.get_running_loop()
                         self._driven = None
                         request.done = new_done_lock()
                         elsewhere = True
@@ -307,6 +315,32 @@ class DrivenLoop:
                 self._turns.notify_all()
         if main:
             self.deferral.active = False
+
+    def _runs_another_loop(self, me: int) -> bool:
+        """Whether thread ``me`` is inside an event loop of its own (seen at a past call)."""
+        other = self._in_other_loops.get(me)
+        if other is None:
+            return False
+        if other.is_running():  # (and so in this thread: it was, and this thread is busy)
+            return True
+        del self._in_other_loops[me]
+        return False
+
+    def _queue_for_the_keeper(
+        self, coro: Coroutine[Any, Any, Any], wait: Callable[[DrivenLoop, Call], Any]
+    ) -> Any:
+        """Queue a call for whoever drives the loop (the keeper, if nobody), and wait."""
+        with self._mutex:
+            if self._closing:
+                coro.close()
+                raise stopped_error()
+            request = Call(coro, new_done_lock())
+            self._queue.append(request)
+            if self._owner is None:
+                self._turns.notify_all()  # the keeper takes the loop at once
+        with contextlib.suppress(RuntimeError):
+            self.loop.call_soon_threadsafe(self._wake)
+        return wait(self, request)
 
     def _take_slowly(
         self,

@@ -246,15 +246,26 @@ def test_a_handler_the_program_installs_later_runs_outside_the_loop(portal: Driv
 def test_a_call_from_a_thread_running_another_loop_is_run_by_the_keeper(
     portal: DrivenLoop,
 ) -> None:
-    results: list[int] = []
+    results: list[object] = []
+
+    async def where() -> threading.Thread:
+        return threading.current_thread()
 
     async def other_program() -> None:
-        results.append(call(add, 20, 22))  # blocks this loop, as a blocking call does
+        # Blocking calls block this loop, as they always did; the keeper runs them.
+        results.append(call(add, 20, 22))
+        results.append(call(where) is portal.thread)
+        results.append(call(add, 1, 1))  # (known now to run a loop: queued at once)
 
-    thread = threading.Thread(target=asyncio.run, args=(other_program(),))
+    def program() -> None:
+        asyncio.run(other_program())
+        results.append(call(where) is threading.current_thread())  # its loop ended: drives
+
+    thread = threading.Thread(target=program)
     thread.start()
     thread.join(LIVENESS)
-    assert results == [42]
+    assert results == [42, True, 2, True]
+    assert portal._in_other_loops == {}
 
 
 def test_exit_while_the_keeper_drives_makes_the_boards_safe(
