@@ -371,7 +371,12 @@ class DrivenLoop:
                     if not self._stop_asked:
                         self._stop_asked = True
                         _stop_soon(self.loop)
+                    if main:  # Ctrl-C interrupts the wait, as any lock wait
+                        self.deferral.active = False
+                        self.deferral.run_pending()
                     self._turns.wait()
+                    if main:
+                        self.deferral.active = True
         except BaseException:
             if main:
                 self.deferral.active = False

@@ -467,3 +467,37 @@ def test_the_hand_off_portal_keeps_its_promises_through_call() -> None:
         call(recorded(events, started))
     sender.join()
     assert events == ["started", "cancelled"]
+
+
+def test_ctrl_c_while_waiting_for_a_busy_keeper_to_give_the_loop_back(
+    portal: DrivenLoop,
+) -> None:
+    entered = threading.Event()
+    gate = threading.Event()
+
+    def blocks_the_keeper() -> None:
+        entered.set()
+        gate.wait(LIVENESS)  # loop code that blocks (a bug of the program's, say)
+
+    async def schedule() -> None:
+        asyncio.get_running_loop().call_later(0.05, blocks_the_keeper)
+
+    call(schedule)
+    assert entered.wait(LIVENESS)
+    asked = threading.Event()
+
+    def when_asked() -> None:
+        wait_until(lambda: portal._stop_asked)
+        asked.set()
+
+    watcher = threading.Thread(target=when_asked)
+    watcher.start()
+    sender = signal_main_when(asked, signal.SIGINT)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            call(add, 1, 1)  # waits for the keeper, which cannot stop yet
+    finally:
+        gate.set()
+    watcher.join()
+    sender.join()
+    assert call(add, 2, 2) == 4
