@@ -329,7 +329,12 @@ class DrivenLoop:
     def _queue_for_the_keeper(
         self, coro: Coroutine[Any, Any, Any], wait: Callable[[DrivenLoop, Call], Any]
     ) -> Any:
-        """Queue a call for whoever drives the loop (the keeper, if nobody), and wait."""
+        """Queue a call for whoever drives the loop (the keeper, if nobody), and wait.
+
+        The driver runs it when the calls before it are done; a caller that drives hands
+        the loop to the keeper when its own call ends, so the call never waits for the
+        grace.
+        """
         with self._mutex:
             if self._closing:
                 coro.close()
@@ -354,7 +359,6 @@ class DrivenLoop:
         :returns: ``(True, None)`` once this thread owns the loop, or ``(False, result)``
             when another thread's turn ran the call.
         """
-        request: Call | None = None
         try:
             with self._mutex:
                 while True:
@@ -364,9 +368,7 @@ class DrivenLoop:
                     if owner is None:
                         self._owner = me
                         return True, None
-                    if owner != self.thread.ident:  # another caller: queue for it
-                        request = Call(coro, new_done_lock())
-                        self._queue.append(request)
+                    if owner != self.thread.ident:  # another caller: queue for its turn
                         break
                     if not self._stop_asked:
                         self._stop_asked = True
@@ -384,10 +386,12 @@ class DrivenLoop:
             raise
         if main:
             self.deferral.active = False
-            self.deferral.run_pending()  # (a signal that came meanwhile raises here)
-        with contextlib.suppress(RuntimeError):
-            self.loop.call_soon_threadsafe(self._wake)
-        return False, wait(self, request)
+            try:
+                self.deferral.run_pending()  # (a signal that came meanwhile raises here)
+            except BaseException:
+                coro.close()
+                raise
+        return False, self._queue_for_the_keeper(coro, wait)
 
     # -- the keeper thread -----------------------------------------------------------------
 
