@@ -147,7 +147,8 @@ def quiet_interrupts() -> Iterator[None]:
     for signum in _STOPPING_SIGNALS:
         with contextlib.suppress(ValueError, OSError):
             handler = signal.getsignal(signum)
-            if signum == signal.SIGINT or handler is _on_terminate:
+            # (the sync facade may wrap ours: see j5aio.sync._deferral)
+            if signum == signal.SIGINT or getattr(handler, "__wrapped__", handler) is _on_terminate:
                 previous[signum] = signal.signal(signum, _ignore_interrupt)
     try:
         yield

@@ -6,7 +6,19 @@ import threading
 from collections.abc import Coroutine
 from typing import Any, Final
 
-__all__ = ["DONE", "QUEUED", "RUNNING", "Call", "new_done_lock", "release", "stopped_error"]
+__all__ = [
+    "CANCEL_GRACE",
+    "DONE",
+    "QUEUED",
+    "RUNNING",
+    "Call",
+    "new_done_lock",
+    "release",
+    "stopped_error",
+]
+
+#: How long an interrupted caller waits for its coroutine's cancellation to land.
+CANCEL_GRACE: Final = 2.0
 
 #: The call waits in the portal's queue.
 QUEUED: Final = 0

@@ -1,32 +1,40 @@
-"""The portal behind the sync facade: one event-loop thread per process.
+"""The portal behind the sync facade: the event loop every blocking call runs in.
 
-Every blocking call of the facade hands a coroutine to :func:`call`, which runs it in a
-background thread that owns an asyncio event loop (:mod:`j5aio.sync._loop_thread`), and
-waits for its result. The parts, one job each:
+Every blocking call of the facade hands a coroutine to :func:`call`, which runs it in the
+facade's one event loop and returns its result. Where it can (POSIX), the calling thread
+runs the loop itself (:mod:`j5aio.sync._driven`): no other thread is woken for a call, and
+a keeper thread runs the loop only while the program is away from calls. Elsewhere (or
+when :data:`CALLER_DRIVES` is turned off) a loop thread runs every call for its callers
+(:mod:`j5aio.sync._loop_thread`). The parts, one job each:
 
 * :mod:`j5aio.sync._calls`: one call, its state and the lock its caller waits on;
-* :mod:`j5aio.sync._selectors`: the loop's selector, with hooks around each wait and a
-  cheaper sleep while it watches no file;
-* :mod:`j5aio.sync._loop_thread`: the thread, its loop and the worker that runs calls;
+* :mod:`j5aio.sync._driven`: the loop driven by its callers, its worker and its keeper;
+* :mod:`j5aio.sync._deferral`: signals for a main thread that is running the loop;
+* :mod:`j5aio.sync._selectors`: the loop thread's selector, with hooks around each wait
+  and a cheaper sleep while it watches no file;
+* :mod:`j5aio.sync._loop_thread`: the hand-off portal's thread, its loop and its worker;
 * :mod:`j5aio.sync._signals`: signals reach a main thread that waits on a lock;
-* this module: :func:`call` (submit, wait, cancel on interruption) and :func:`shutdown`.
+* this module: :func:`call` (run, or submit and wait, cancel on interruption) and
+  :func:`shutdown`.
 
 Three things matter more than anything else here:
 
-* **Cancellation.** If the waiting thread is interrupted (Ctrl-C, SIGTERM turned into
+* **Cancellation.** If the caller is interrupted (Ctrl-C, SIGTERM turned into
   ``SystemExit``, any ``BaseException``), the coroutine is cancelled through an anyio
   cancel scope (so shielded transport exchanges stay whole) and the caller waits briefly
-  for the cancellation to land before re-raising, so that a motor command cannot complete
-  after the program has moved on. A call withdrawn before it started never runs. An
-  interrupt that lands just after the call finished finds it finished and does not wait.
-* **Exit.** The loop thread is a daemon. :func:`shutdown` is an exit step of the safety
-  net (:mod:`j5aio.lifetime`): when the program ends, every board is made safe and its
-  port closed through the loop, the loop stops, and the net then catches any board that
-  was left. A beginner who never closes anything still gets a prompt exit.
-* **Speed and rest.** A call costs two thread wake-ups (see
-  :mod:`j5aio.sync._loop_thread`). While the caller waits it blocks on a lock with no
-  time limit: an idle program (a beginner's ``wait_until_pressed``) costs no CPU at all,
-  in the caller's thread or in the loop's, and signals still interrupt the wait at once
+  for the cancellation to land before re-raising (at most :data:`CANCEL_GRACE`), so that
+  a motor command cannot complete after the program has moved on. A call withdrawn before
+  it started never runs. An interrupt that lands just after the call finished finds it
+  finished and does not wait. A main thread that runs the loop gets its signals at the
+  call's boundary, never inside the loop (:mod:`j5aio.sync._deferral`).
+* **Exit.** :func:`shutdown` is an exit step of the safety net (:mod:`j5aio.lifetime`):
+  when the program ends, every board is made safe and its port closed through the loop,
+  whoever was running it, the loop stops, and the net then catches any board that was
+  left. A beginner who never closes anything still gets a prompt exit.
+* **Speed and rest.** A call run by its caller costs no thread wake-up at all. While a
+  call waits (a beginner's ``wait_until_pressed``) its thread sleeps in the loop's
+  selector, or on a lock with no time limit when another thread runs the loop: an idle
+  program costs no CPU, and signals still interrupt the wait at once
   (:mod:`j5aio.sync._signals`). On Windows, where a lock wait cannot be interrupted, the
   caller waits in slices of :data:`WAIT_SLICE`.
 """
@@ -45,11 +53,13 @@ import anyio
 from j5aio import lifetime
 from j5aio.boards.board import Board
 from j5aio.safety import make_all_safe_uncancellably
-from j5aio.sync._calls import DONE, Call, new_done_lock
+from j5aio.sync._calls import CANCEL_GRACE, DONE, Call, new_done_lock
+from j5aio.sync._driven import NESTED_CALL, DrivenLoop
 from j5aio.sync._loop_thread import LoopThread
 from j5aio.sync._signals import INTERRUPTIBLE_WAIT, start_signal_watch
 
 __all__ = [
+    "CALLER_DRIVES",
     "CANCEL_GRACE",
     "SHUTDOWN_TIMEOUT",
     "WAIT_SLICE",
@@ -63,15 +73,16 @@ LOGGER = logging.getLogger(__name__)
 P = ParamSpec("P")
 T = TypeVar("T")
 
+#: Whether the calling thread runs the loop itself (:mod:`j5aio.sync._driven`): where a
+#: blocked main thread is interrupted by signals (POSIX). Otherwise a loop thread runs it.
+CALLER_DRIVES: Final = INTERRUPTIBLE_WAIT
 #: On Windows, how long one wait for a result lasts before checking for Ctrl-C again.
 WAIT_SLICE: Final = 0.05
-#: How long an interrupted caller waits for its coroutine's cancellation to land.
-CANCEL_GRACE: Final = 2.0
 #: How long making boards safe in order, and closing them, may each take at exit.
 SHUTDOWN_TIMEOUT: Final = 0.5
 
 _lock = threading.Lock()
-_portal: LoopThread | None = None
+_portal: DrivenLoop | LoopThread | None = None
 
 
 def _wake_waiting_callers() -> None:
@@ -81,7 +92,7 @@ def _wake_waiting_callers() -> None:
         portal.wake_callers()
 
 
-def _get_portal() -> LoopThread:
+def _get_portal() -> DrivenLoop | LoopThread:
     global _portal
     if _portal is not None:
         return _portal
@@ -90,31 +101,34 @@ def _get_portal() -> LoopThread:
             lifetime.install()
             lifetime.add_exit_step(shutdown)
             start_signal_watch(_wake_waiting_callers)
-            _portal = LoopThread()
+            _portal = DrivenLoop() if CALLER_DRIVES else LoopThread()
         return _portal
 
 
 def get_loop() -> asyncio.AbstractEventLoop:
-    """Return the portal's event loop, starting its thread if needed."""
+    """Return the portal's event loop, making it (and starting its thread) if needed."""
     return _get_portal().loop
 
 
 def call(fn: Callable[P, Awaitable[T]], /, *args: P.args, **kwargs: P.kwargs) -> T:
     """Run ``fn(*args, **kwargs)`` in the portal's loop and return its result.
 
-    If the calling thread is interrupted while waiting, the coroutine is cancelled and the
+    If the calling thread is interrupted meanwhile, the coroutine is cancelled and the
     interruption is re-raised once the cancellation has landed (or after
     ``CANCEL_GRACE`` seconds).
 
-    :raises RuntimeError: called from inside the portal's own loop (use ``await`` there),
-        or the program is exiting and the portal has stopped.
+    :raises RuntimeError: called from async code running in the portal's own loop (use
+        ``await`` there), or the program is exiting and the portal has stopped.
     """
     portal = _portal if _portal is not None else _get_portal()
+    if type(portal) is DrivenLoop:
+        coro = fn(*args, **kwargs)
+        if not asyncio.iscoroutine(coro):
+            raise TypeError(f"{fn!r} did not return a coroutine")
+        return portal.run(coro, _wait)  # type: ignore[no-any-return]
+    assert isinstance(portal, LoopThread)
     if threading.get_ident() == portal.thread.ident:
-        raise RuntimeError(
-            "a blocking j5aio.sync call was made from async code running in the sync "
-            "portal's loop; await the async API (j5aio) there instead",
-        )
+        raise RuntimeError(NESTED_CALL)
     coro = fn(*args, **kwargs)
     if not asyncio.iscoroutine(coro):
         raise TypeError(f"{fn!r} did not return a coroutine")
@@ -129,7 +143,7 @@ def call(fn: Callable[P, Awaitable[T]], /, *args: P.args, **kwargs: P.kwargs) ->
 _per_thread = threading.local()
 
 
-def _wait(portal: LoopThread, request: Call) -> Any:
+def _wait(portal: DrivenLoop | LoopThread, request: Call) -> Any:
     done = request.done
     try:
         if INTERRUPTIBLE_WAIT:
@@ -194,15 +208,20 @@ async def _make_safe_and_close() -> None:
 
 
 def shutdown() -> None:
-    """Make every board safe, close every board's port, then stop the loop thread.
+    """Make every board safe, close every board's port, then stop the loop (and its thread).
 
     Runs by itself when the program ends (an exit step of :mod:`j5aio.lifetime`); calling
-    it earlier is allowed, after which the next blocking call starts a new loop thread.
+    it earlier is allowed, after which the next blocking call makes a new loop.
     """
     global _portal
     with _lock:
         portal, _portal = _portal, None
-    if portal is None or not portal.thread.is_alive():
+    if portal is None:
+        return
+    if isinstance(portal, DrivenLoop):
+        _close_driven(portal)
+        return
+    if not portal.thread.is_alive():
         return
     current = portal.current
     if current is not None:
@@ -215,3 +234,14 @@ def shutdown() -> None:
             LOGGER.error("Could not make the boards safe: %r", request.error)
     finally:
         portal.stop(SHUTDOWN_TIMEOUT)
+
+
+def _close_driven(portal: DrivenLoop) -> None:
+    """Shut the caller-driven loop down, whoever is running it now."""
+    try:
+        error = portal.close(_make_safe_and_close(), 3 * SHUTDOWN_TIMEOUT)
+    except TimeoutError:
+        LOGGER.error("Boards were not made safe within %.1f s.", 3 * SHUTDOWN_TIMEOUT)
+    else:
+        if error is not None:
+            LOGGER.error("Could not make the boards safe: %r", error)

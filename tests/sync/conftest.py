@@ -21,3 +21,26 @@ def ctrl_c_raises() -> Iterator[None]:
         yield
     finally:
         signal.signal(signal.SIGINT, previous)
+
+
+@pytest.fixture
+def handoff_portal(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
+    """The facade on the hand-off portal (a loop thread), as where callers cannot drive."""
+    from j5aio.sync import _runtime
+
+    _runtime.shutdown()
+    monkeypatch.setattr(_runtime, "CALLER_DRIVES", False)
+    yield
+    _runtime.shutdown()
+
+
+@pytest.fixture(params=["caller drives", "hand-off"])
+def either_portal(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> Iterator[str]:
+    """The facade on each kind of portal in turn: the loop its callers drive, the loop thread."""
+    from j5aio.sync import _runtime
+
+    _runtime.shutdown()
+    if request.param == "hand-off":
+        monkeypatch.setattr(_runtime, "CALLER_DRIVES", False)
+    yield request.param
+    _runtime.shutdown()

@@ -128,6 +128,7 @@ async def add(a: int, b: int) -> int:
     return a + b
 
 
+@pytest.mark.usefixtures("handoff_portal")
 def test_the_portal_loop_parks_when_it_watches_no_file() -> None:
     loop = get_loop()
     assert isinstance(loop, _selectors.ParkingLoop)
@@ -135,6 +136,7 @@ def test_the_portal_loop_parks_when_it_watches_no_file() -> None:
     assert len(loop.parking.get_map()) == loop.parking.own_files
 
 
+@pytest.mark.usefixtures("handoff_portal")
 def test_calls_are_served_while_the_portal_loop_watches_a_file() -> None:
     watched, peer = socket.socketpair()
     watched.setblocking(False)
@@ -164,6 +166,7 @@ def test_calls_are_served_while_the_portal_loop_watches_a_file() -> None:
         peer.close()
 
 
+@pytest.mark.usefixtures("either_portal")
 def test_results_from_worker_threads_wake_the_parked_loop() -> None:
     # anyio hands a worker thread's result back with call_soon_threadsafe.
     thread, out = in_thread(
@@ -173,6 +176,7 @@ def test_results_from_worker_threads_wake_the_parked_loop() -> None:
     assert out == [[None] * 20]
 
 
+@pytest.mark.usefixtures("either_portal")
 def test_many_threads_calling_at_once_all_get_their_own_results() -> None:
     def caller(base: int) -> list[int]:
         return [call(add, base, n) for n in range(200)]

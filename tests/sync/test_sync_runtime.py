@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import asyncio
 import functools
 import inspect
 import signal
@@ -43,6 +44,17 @@ def test_call_returns_the_coroutines_result() -> None:
     assert call(add, 1, 2, c=3) == 6
 
 
+def test_call_runs_in_the_calling_thread_which_drives_the_loop() -> None:
+    async def where() -> tuple[threading.Thread, asyncio.AbstractEventLoop]:
+        return threading.current_thread(), asyncio.get_running_loop()
+
+    thread, loop = call(where)
+    assert thread is threading.current_thread()
+    assert loop is get_loop()
+    assert not loop.is_running()  # between calls, nobody (or the keeper, later) runs it
+
+
+@pytest.mark.usefixtures("handoff_portal")
 def test_call_runs_in_the_portal_thread() -> None:
     async def where() -> threading.Thread:
         return threading.current_thread()
