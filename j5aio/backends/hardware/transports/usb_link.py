@@ -210,6 +210,7 @@ class _PollJob(_Job[T]):
     """A read repeated on the worker thread until ``found`` says its result is the one.
 
     ``finish`` hands the read that was found (or the failure) to the loop, ``then`` first.
+    ``interval`` is checked, and multiplied by ``factor`` (at most to the longest).
     """
 
     def __init__(
@@ -220,7 +221,13 @@ class _PollJob(_Job[T]):
         loop: asyncio.AbstractEventLoop,
         future: asyncio.Future[Any],
         then: Callable[[T], object] | None,
+        factor: int,
     ) -> None:
+        if not 0 < interval <= MAX_POLL_INTERVAL:
+            raise ValueError(
+                "interval must be a positive number of seconds up to "
+                f"{MAX_POLL_INTERVAL:g}, not {interval!r}"
+            )
         # The fields of a job that a poll uses (it is never started or withdrawn as a job
         # is), set here rather than through ``_Job.__init__``: a wait for a button starts
         # a poll, and this is on its path.
@@ -229,7 +236,7 @@ class _PollJob(_Job[T]):
         self.future = future
         self.then = then
         self.found = found
-        self.interval = interval
+        self.interval = min(interval * factor, MAX_POLL_INTERVAL)
         #: When the next read is due (``time.monotonic``); the first read runs at once.
         self.due = 0.0
         #: Set by the caller when it stops waiting; read by the thread (a plain flag: the
@@ -330,6 +337,7 @@ class USBLink(AsyncResource):
         self._stop_ringing: Callable[[], None] | None = (
             add_doorbell(self._ring) if callable(add_doorbell) else None
         )
+        self._interval_factor = 1 if self._stop_ringing is None else RUNG_INTERVAL_FACTOR
         self._thread = threading.Thread(
             target=self._run, name=f"j5aio USB {board_name}", daemon=True
         )
@@ -464,7 +472,9 @@ class USBLink(AsyncResource):
         # What :meth:`poll_until` does, inline: this is the start button's path.
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
-        job = self._submit(_PollJob(transfer, found, self._interval(interval), loop, future, then))
+        job = self._submit(
+            _PollJob(transfer, found, interval, loop, future, then, self._interval_factor)
+        )
         try:
             succeeded, value = await future
         finally:
@@ -529,7 +539,8 @@ class USBLink(AsyncResource):
         :param work: one read (a transfer), run on the worker thread.
         :param found: called on the worker thread with each result; ``True`` ends the poll.
         :param interval: seconds from the start of one read to the start of the next
-            (at most :data:`MAX_POLL_INTERVAL`).
+            (at most :data:`MAX_POLL_INTERVAL`); :data:`RUNG_INTERVAL_FACTOR` times that
+            on a device that rings the link's doorbell, which reads at once when rung.
         :param description: what ``work`` does, for error messages.
         :param errors: messages for specific errnos.
         :param then: called on the event loop with the accepted result, even if the caller
@@ -540,24 +551,15 @@ class USBLink(AsyncResource):
         """
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
-        job = self._submit(_PollJob(work, found, self._interval(interval), loop, future, then))
+        job = self._submit(
+            _PollJob(work, found, interval, loop, future, then, self._interval_factor)
+        )
         try:
             succeeded, value = await future
         finally:
             job.withdrawn = True
         result: T = self._poll_result(succeeded, value, description, errors)
         return result
-
-    def _interval(self, interval: float) -> float:
-        """Check a poll's ``interval``; return the one it runs at on this device."""
-        if not 0 < interval <= MAX_POLL_INTERVAL:
-            raise ValueError(
-                "interval must be a positive number of seconds up to "
-                f"{MAX_POLL_INTERVAL:g}, not {interval!r}"
-            )
-        if self._stop_ringing is not None:
-            return min(interval * RUNG_INTERVAL_FACTOR, MAX_POLL_INTERVAL)
-        return interval
 
     def _poll_result(
         self, succeeded: bool, value: Any, description: str, errors: Mapping[int, str] | None
@@ -716,6 +718,7 @@ class USBLink(AsyncResource):
                 self._polls.append(job)  # due at once: its first read runs next
                 self._poll_due = 0.0
                 self._rung = False  # that read sees any change rung for before it
+                continue  # (alone, in ``_poll_alone``; else after the next job)
             elif job.start():
                 try:
                     outcome: tuple[bool, Any] = (True, job.work())
