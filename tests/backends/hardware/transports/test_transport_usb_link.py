@@ -722,3 +722,56 @@ async def test_a_ring_with_no_poll_reads_nothing() -> None:
     )
     assert _reads_of(device, 8) == 1
     await usb_link.aclose()
+
+
+async def test_poll_until_runs_any_read_until_found(device: StandInDevice, link: USBLink) -> None:
+    results = iter(range(10))
+    taken: list[int] = []
+    value = await link.poll_until(
+        lambda: next(results), lambda n: n == 3, interval=0.001, description="counting",
+        then=taken.append,
+    )
+    assert value == 3
+    assert taken == [3]
+    with pytest.raises(USBCommunicationError, match="counting failed") as info:
+        await link.poll_until(
+            lambda: 1 // 0, bool, interval=0.001, description="counting",
+        )
+    assert isinstance(info.value.usb_error, ZeroDivisionError)
+    device.errors[8] = usb.core.USBError("No such device", -4, errno.ENODEV)
+    with pytest.raises(USBDisconnectionError, match="pulled out"):
+        await link.poll_until(
+            lambda: device.ctrl_transfer(0x80, 64, 0, 8, 4), bool, interval=0.001,
+            description="x", errors={errno.ENODEV: "pulled out"},
+        )
+
+
+async def test_a_read_failing_while_two_polls_run_fails_its_own_caller_only(
+    device: StandInDevice, link: USBLink
+) -> None:
+    async def fail_at_the_third_read() -> None:
+        reads = 0
+
+        def work() -> int:
+            nonlocal reads
+            reads += 1
+            if reads == 3:
+                raise usb.core.USBError("Pipe error", -9, errno.EPIPE)
+            return reads
+
+        with pytest.raises(USBCommunicationError, match="second poll failed"):
+            await link.poll_until(work, lambda _n: False, interval=0.001,
+                                  description="second poll")
+
+    with anyio.fail_after(30):
+        async with anyio.create_task_group() as group:
+            group.start_soon(
+                functools.partial(
+                    link.poll_control_read, 8, 4, lambda _r: _reads_of(device, 8) >= 20,
+                    interval=0.001,
+                )
+            )
+            while not _reads_of(device, 8):  # noqa: ASYNC110 - the worker thread's state
+                await anyio.sleep(0.001)
+            await fail_at_the_third_read()  # beside the first poll, which goes on
+    assert _reads_of(device, 8) == 20
