@@ -7,15 +7,17 @@ Each *side* runs in a child process of its own, so that CPU figures are the side
 
 * ``async``: ``await robot.power_board.start_button.wait_until_pressed()`` on a
   :class:`~j5aio.kit.KitRobot` of the simulated kit (the hardware backend over the
-  simulated USB device);
+  simulated USB device, whose press rings the USB link's doorbell: the poll reads the
+  button at once, through the protocol, and otherwise every 50 intervals);
 * ``sync``: the same through the sync facade, ``robot.power_board.start_button
   .wait_until_pressed()``;
 * ``wait_start``: :func:`j5aio.competition.start.wait_for_start` (what
   ``robot.wait_start()`` runs: the button, the start file, the trigger, the run LED
   flashing), async;
-* ``polling``: as ``async`` (the simulated backend, being the hardware backend, polls
-  the simulator over the link as it polls a real board: every ``BUTTON_POLL_INTERVAL``,
-  on the USB link's worker thread), with the poll's own figures: those a real fw 3 power
+* ``polling``: as ``async`` with the simulator's doorbell taken away, so that the
+  backend polls the simulator over the link as it polls a real board (every
+  ``BUTTON_POLL_INTERVAL``, on the USB link's worker thread), with the poll's own
+  figures: those a real fw 3 power
   board gets, bar the USB transfer's own time (here the simulator's, standing in for
   pyusb's). ``--intervals 10,15,20`` runs one such side
   per interval (``polling@10ms``...), to choose the interval; without it, the backend's
@@ -192,6 +194,11 @@ def child_async(
 
     if mode == "polling" and interval is not None:
         SRV4PowerBoardHardwareBackend.BUTTON_POLL_INTERVAL = interval
+    if mode == "polling":
+        # A real board rings no doorbell: its poll reads every interval.
+        from j5aio.simulator.sr_usb import SRUsbBoardSimulator
+
+        SRUsbBoardSimulator.add_doorbell = None  # type: ignore[assignment,method-assign]
     poll_interval = SRV4PowerBoardHardwareBackend.BUTTON_POLL_INTERVAL
 
     from j5aio.competition.start import wait_for_start

@@ -89,27 +89,28 @@ class PressWatch:
                     if self._changed is None:
                         self._changed = anyio.Event()
                     await self._changed.wait()
-                else:
-                    await self._lead()
+                    continue
+                # Lead: run the poll stream in this task. (Written out here rather than
+                # in a method of its own: this is the path of every wait for a button.)
+                self._leading = True
+                fresh, self._fresh = self._fresh, False
+                try:
+                    with anyio.CancelScope() as self._scope:
+                        await self._stream(self._report, fresh=fresh)
+                except Exception as exc:
+                    self._error = exc
+                    self._failures += 1
+                finally:
+                    self._scope = None
+                    self._leading = False
+                    changed, self._changed = self._changed, None
+                    if changed is not None:
+                        changed.set()  # the others: a press, a failure, or one to lead
         finally:
             self._waiters -= 1
             if not self._waiters:
                 self._fresh = True
                 self._changed = None  # never kept for a later event loop
-
-    async def _lead(self) -> None:
-        self._leading = True
-        fresh, self._fresh = self._fresh, False
-        try:
-            with anyio.CancelScope() as self._scope:
-                await self._stream(self._report, fresh=fresh)
-        except Exception as exc:
-            self._error = exc
-            self._failures += 1
-        finally:
-            self._scope = None
-            self._leading = False
-            self._wake()
 
     def _report(self) -> None:
         self._presses += 1
@@ -117,9 +118,6 @@ class PressWatch:
             # The stream running now has nothing left to look for (the report may be its
             # own, or come late from the stream of a leader that was cancelled).
             self._scope.cancel()
-        self._wake()
-
-    def _wake(self) -> None:
-        if self._changed is not None:
-            self._changed.set()
-            self._changed = None
+        changed, self._changed = self._changed, None
+        if changed is not None:
+            changed.set()

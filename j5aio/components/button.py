@@ -70,6 +70,9 @@ class Button(IdentifiedComponent[ButtonInterface]):
         :raises ValueError: ``timeout`` is negative or NaN.
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
+        if timeout is None:  # no deadline to keep: the backend's wait is the whole of it
+            await self._backend.wait_until_button_pressed(self._identifier)
+            return
         limit = check_timeout(timeout)
         with anyio.move_on_after(limit) as scope:
             await self._backend.wait_until_button_pressed(self._identifier)

@@ -232,6 +232,7 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
             self._external_button = held
         else:
             self._internal_button = held
+        self.ring_doorbells()  # a host waiting for a press reads the button now
 
     @property
     def start_button_pressed(self) -> bool:

@@ -5,11 +5,19 @@ the *device* recipient and answer only ``bRequest == 64``; the command is in ``w
 parameter in ``wValue``, and bit 7 of ``bmRequestType`` gives the direction. Anything else
 is stalled. Data stages go through one 128-byte control buffer, which keeps what the last
 transfer left in it.
+
+A host's poll may be told when to read: :meth:`SRUsbBoardSimulator.add_doorbell` (the
+:class:`~j5aio.backends.hardware.transports.usb_link.RingingDevice` of the USB link) rings
+whenever a board changes what a poll waits for (:meth:`SRUsbBoardSimulator.ring_doorbells`:
+the power board's start buttons) and when its cable is pulled, so that the poll reads
+at once, through the protocol, rather than at its next interval.
 """
 
 from __future__ import annotations
 
+import contextlib
 from abc import abstractmethod
+from collections.abc import Callable
 
 from .base import UsbBoardSimulator
 from .usb_support import CONTROL_BUFFER_SIZE, UsbStall
@@ -30,6 +38,31 @@ class SRUsbBoardSimulator(UsbBoardSimulator):
     ) -> None:
         super().__init__(serial_number, manufacturer=manufacturer, product=product)
         self._control_buffer = bytearray(CONTROL_BUFFER_SIZE)
+        self._doorbells: list[Callable[[], None]] = []
+
+    def add_doorbell(self, ring: Callable[[], None]) -> Callable[[], None]:
+        """Call ``ring()`` whenever a host's poll should read again; return what stops it.
+
+        It rings (in the thread that made the change) when the board changes something a
+        host polls for (see :meth:`ring_doorbells`) and when the board is unplugged.
+        """
+        self._doorbells.append(ring)
+
+        def stop() -> None:
+            with contextlib.suppress(ValueError):
+                self._doorbells.remove(ring)
+
+        return stop
+
+    def ring_doorbells(self) -> None:
+        """Tell every host polling the board that what it polls for may have changed."""
+        for ring in tuple(self._doorbells):
+            ring()
+
+    def unplug(self) -> None:
+        """Pull the USB cable out: every transfer now fails; a polling host reads at once."""
+        super().unplug()
+        self.ring_doorbells()
 
     @staticmethod
     def _check_request(request_type: int, request: int) -> None:

@@ -10,6 +10,7 @@ import pytest
 from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.env import HARDWARE_ENVIRONMENT
 from j5aio.backends.hardware.listing import find_boards
+from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
 from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduinoBoard
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
@@ -182,7 +183,11 @@ def test_usb_stand_in_shows_the_simulator_and_its_place_in_the_kit() -> None:
     assert port_name(kit, kit.motor_boards[1]) == f"sim://{kit.name}/SIMMB1"
 
 
-async def test_the_start_button_is_polled_over_the_link_as_on_a_robot() -> None:
+async def test_the_start_button_is_polled_over_the_link_as_on_a_robot(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # Read often (the simulator's doorbell makes the reads in between 50 times rarer).
+    monkeypatch.setattr(SRV4PowerBoardHardwareBackend, "BUTTON_POLL_INTERVAL", 0.001)
     kit = use_kit(KitConfig(motor_boards=0, servo_boards=0, sb_arduinos=0))
     simulator = kit.power_boards[0]
     reads = 0
@@ -206,4 +211,38 @@ async def test_the_start_button_is_polled_over_the_link_as_on_a_robot() -> None:
         group.start_soon(press_after_two_polls)
         await board.start_button.wait_until_pressed()
     assert reads >= 3  # read again and again until a read saw the button down
+    simulator.release_start()
+
+
+async def test_a_press_wakes_the_poll_before_its_interval(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # A poll every hour: only the simulator's doorbell can end this wait, through the
+    # poll's own read of the button (the protocol), not around it.
+    monkeypatch.setattr(SRV4PowerBoardHardwareBackend, "BUTTON_POLL_INTERVAL", 3600.0)
+    kit = use_kit(KitConfig(motor_boards=0, servo_boards=0, sb_arduinos=0))
+    simulator = kit.power_boards[0]
+    events: list[str] = []
+    original = simulator._read
+
+    def noting(command: int, length: int) -> bytes:
+        reply = original(command, length)
+        if command == 8:  # the button
+            events.append(f"read {int.from_bytes(reply, 'little')}")
+        return reply
+
+    simulator._read = noting  # type: ignore[method-assign]
+    board = (await SIMULATED_ENVIRONMENT.get_board_group(PowerBoard)).singular()
+
+    async def press_after_the_first_read() -> None:
+        while not events:  # noqa: ASYNC110 - the hardware backend's poll, on the USB thread
+            await anyio.sleep(0.001)
+        events.append("press")
+        await anyio.to_thread.run_sync(simulator.press_start)
+
+    with anyio.fail_after(30):
+        async with anyio.create_task_group() as group:
+            group.start_soon(press_after_the_first_read)
+            await board.start_button.wait_until_pressed()
+    assert events == ["read 0", "press", "read 1"]
     simulator.release_start()

@@ -143,6 +143,26 @@ def test_external_start_button(board: SRPowerBoardFw3Simulator) -> None:
     assert read_u32(board, BUTTON) == 0
 
 
+def test_a_button_change_or_a_pulled_cable_rings_the_doorbells(
+    board: SRPowerBoardFw3Simulator,
+) -> None:
+    rings: list[tuple[str, bool]] = []
+    stop = board.add_doorbell(lambda: rings.append(("first", board.start_button_pressed)))
+    board.add_doorbell(lambda: rings.append(("second", board.start_button_pressed)))
+    board.press_start()
+    board.release_start(external=True)
+    write(board, 0, 1)  # the host's own transfers ring nothing
+    read_u32(board, BUTTON)
+    # Each ring comes after the change, so a read it causes sees the change.
+    assert rings == [("first", True), ("second", True), ("first", True), ("second", True)]
+    stop()
+    stop()  # stopping twice is harmless
+    rings.clear()
+    board.release_start()
+    board.unplug()
+    assert rings == [("second", False), ("second", False)]
+
+
 def test_5v_rail_returns_whatever_the_buffer_holds(board: SRPowerBoardFw3Simulator) -> None:
     assert read(board, RAIL_5V, 4) == bytes(4)
     read(board, VERSION, 4)

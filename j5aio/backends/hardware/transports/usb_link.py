@@ -25,6 +25,14 @@ that finds nothing allocates no more than its transfer does (measured in
 ``bench/bench_button.py``: on a loaded, virtualised machine the code run after a 15 ms
 sleep finds its caches cold, so every object an idle poll touches costs microseconds).
 
+A device may ring that doorbell itself (a board simulator does; a pyusb device cannot):
+one with an ``add_doorbell(ring)`` method (see :class:`RingingDevice`) calls ``ring()``
+whenever what a host polls it for may have changed (its button pressed, its cable
+pulled). The link's polls then read at once when rung, and otherwise only every
+:data:`RUNG_INTERVAL_FACTOR` intervals: a press still travels through the poll's own read
+and check, soon after it happens, at a fraction of the cost. Without that method (a real
+board) a poll reads every interval, as asked.
+
 Errors: a pyusb error becomes :class:`~j5aio.errors.USBCommunicationError` naming the
 board, with the pyusb exception kept as ``usb_error``. errno 19 (``ENODEV``: unplugged)
 becomes :class:`USBDisconnectionError`, which is also a
@@ -64,7 +72,9 @@ __all__ = [
     "CONTROL_REQUEST",
     "MAX_POLL_INTERVAL",
     "READ_REQUEST_TYPE",
+    "RUNG_INTERVAL_FACTOR",
     "WRITE_REQUEST_TYPE",
+    "RingingDevice",
     "USBDeviceLike",
     "USBDisconnectionError",
     "USBLink",
@@ -83,6 +93,12 @@ CONTROL_REQUEST = 64
 #: The longest poll interval, in seconds (a day: far beyond any use, and well within what
 #: a thread's timed wait accepts).
 MAX_POLL_INTERVAL = 86_400.0
+
+#: How many times longer a poll waits between reads of a device that rings the link's
+#: doorbell when it changes (see the module's notes): the reads in between only check that
+#: the device is still there, so they can be rare (once in 0.75 s for the power board's
+#: 15 ms button poll).
+RUNG_INTERVAL_FACTOR = 50
 
 T = TypeVar("T")
 _JobT = TypeVar("_JobT", bound="_Job[Any]")
@@ -124,6 +140,19 @@ class USBDeviceLike(Protocol):
         timeout: int | None = None,
     ) -> Any:
         """Run a control transfer: return the data read, or the number of bytes written."""
+        ...
+
+
+class RingingDevice(Protocol):
+    """A device (a simulator) that tells the link when what it polls for may have changed."""
+
+    def add_doorbell(self, ring: Callable[[], None]) -> Callable[[], None]:
+        """Call ``ring()``, from any thread, whenever a polled read may answer differently.
+
+        That is at every change made outside the host's own transfers that a poll may be
+        waiting for (a button pressed or released, the cable pulled). Returns the function
+        that stops the calls.
+        """
         ...
 
 
@@ -181,6 +210,7 @@ class _PollJob(_Job[T]):
     """A read repeated on the worker thread until ``found`` says its result is the one.
 
     ``finish`` hands the read that was found (or the failure) to the loop, ``then`` first.
+    ``interval`` is checked, and multiplied by ``factor`` (at most to the longest).
     """
 
     def __init__(
@@ -191,10 +221,22 @@ class _PollJob(_Job[T]):
         loop: asyncio.AbstractEventLoop,
         future: asyncio.Future[Any],
         then: Callable[[T], object] | None,
+        factor: int,
     ) -> None:
-        super().__init__(work, loop, future, then)
+        if not 0 < interval <= MAX_POLL_INTERVAL:
+            raise ValueError(
+                "interval must be a positive number of seconds up to "
+                f"{MAX_POLL_INTERVAL:g}, not {interval!r}"
+            )
+        # The fields of a job that a poll uses (it is never started or withdrawn as a job
+        # is), set here rather than through ``_Job.__init__``: a wait for a button starts
+        # a poll, and this is on its path.
+        self.work = work
+        self.loop = loop
+        self.future = future
+        self.then = then
         self.found = found
-        self.interval = interval
+        self.interval = min(interval * factor, MAX_POLL_INTERVAL)
         #: When the next read is due (``time.monotonic``); the first read runs at once.
         self.due = 0.0
         #: Set by the caller when it stops waiting; read by the thread (a plain flag: the
@@ -286,7 +328,16 @@ class USBLink(AsyncResource):
         # touches these).
         self._polls: list[_PollJob[Any]] = []
         self._poll_due = 0.0
+        # Set (under ``_state_lock``) by a device that rings the doorbell; cleared by the
+        # thread before the read it causes.
+        self._rung = False
         self._wire = wire_logger(f"usb:{board_name}")
+        # A simulator's doorbell (see the module's notes); a pyusb device has none.
+        add_doorbell = getattr(device, "add_doorbell", None)
+        self._stop_ringing: Callable[[], None] | None = (
+            add_doorbell(self._ring) if callable(add_doorbell) else None
+        )
+        self._interval_factor = 1 if self._stop_ringing is None else RUNG_INTERVAL_FACTOR
         self._thread = threading.Thread(
             target=self._run, name=f"j5aio USB {board_name}", daemon=True
         )
@@ -311,6 +362,11 @@ class USBLink(AsyncResource):
     def thread(self) -> threading.Thread:
         """The worker thread (exposed so that tests can check it has stopped)."""
         return self._thread
+
+    @property
+    def rung(self) -> bool:
+        """Whether the device rings the link's doorbell (see :class:`RingingDevice`)."""
+        return self._stop_ringing is not None
 
     # -- transfers -----------------------------------------------------------------------
 
@@ -413,9 +469,17 @@ class USBLink(AsyncResource):
                 )
             return data
 
-        reply = await self.poll_until(
-            transfer, found, interval=interval, description=description, then=then
+        # What :meth:`poll_until` does, inline: this is the start button's path.
+        loop = asyncio.get_running_loop()
+        future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
+        job = self._submit(
+            _PollJob(transfer, found, interval, loop, future, then, self._interval_factor)
         )
+        try:
+            succeeded, value = await future
+        finally:
+            job.withdrawn = True
+        reply: bytes = self._poll_result(succeeded, value, description, None)
         log_wire(self._wire, f"<- wIndex={w_index} wValue={w_value}", reply)
         return reply
 
@@ -475,7 +539,8 @@ class USBLink(AsyncResource):
         :param work: one read (a transfer), run on the worker thread.
         :param found: called on the worker thread with each result; ``True`` ends the poll.
         :param interval: seconds from the start of one read to the start of the next
-            (at most :data:`MAX_POLL_INTERVAL`).
+            (at most :data:`MAX_POLL_INTERVAL`); :data:`RUNG_INTERVAL_FACTOR` times that
+            on a device that rings the link's doorbell, which reads at once when rung.
         :param description: what ``work`` does, for error messages.
         :param errors: messages for specific errnos.
         :param then: called on the event loop with the accepted result, even if the caller
@@ -484,34 +549,47 @@ class USBLink(AsyncResource):
             :data:`MAX_POLL_INTERVAL`.
         :raises USBCommunicationError: a read failed (or a subclass, as :meth:`call`).
         """
-        if not 0 < interval <= MAX_POLL_INTERVAL:
-            raise ValueError(
-                "interval must be a positive number of seconds up to "
-                f"{MAX_POLL_INTERVAL:g}, not {interval!r}"
-            )
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
-        job = self._submit(_PollJob(work, found, interval, loop, future, then))
+        job = self._submit(
+            _PollJob(work, found, interval, loop, future, then, self._interval_factor)
+        )
         try:
             succeeded, value = await future
         finally:
             job.withdrawn = True
+        result: T = self._poll_result(succeeded, value, description, errors)
+        return result
+
+    def _poll_result(
+        self, succeeded: bool, value: Any, description: str, errors: Mapping[int, str] | None
+    ) -> Any:
+        """The reply a poll found; else raise its error, translated."""
         if isinstance(value, UnexpectedReplyError):
             raise value
         if isinstance(value, _LinkClosed):
             raise USBDisconnectionError(
                 f"{self._board_name}: the USB link was closed while {description}"
             )
-        result: T = self._result(succeeded, value, description, errors)
-        return result
+        return self._result(succeeded, value, description, errors)
 
     def _submit(self, job: _JobT) -> _JobT:
         """Queue ``job`` for the worker thread, unless the link is closed."""
         with self._state_lock:
             if self._closed:
                 raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
-            self._queue(job)
+            # What ``_queue`` does, inline (a job on every transfer's path).
+            self._jobs.append(job)
+            if self._doorbell.locked():
+                self._doorbell.release()
         return job
+
+    def _ring(self) -> None:
+        """The device's doorbell: what a poll reads may have changed (any thread)."""
+        with self._state_lock:
+            self._rung = True
+            if self._doorbell.locked():
+                self._doorbell.release()
 
     def _queue(self, job: _Job[Any] | _NowJob | None) -> None:
         """Queue ``job`` (``None``: stop) and ring the doorbell; hold ``_state_lock``.
@@ -626,9 +704,12 @@ class USBLink(AsyncResource):
                     self._poll_alone(polls[0])
                     continue
                 wait = self._poll_due - monotonic()
+                rung = False
                 if wait > 0 and doorbell.acquire(True, wait):
-                    continue  # a job came (or a ring left over from one already run)
-                self._run_due_polls()
+                    if not self._rung:
+                        continue  # a job came (or a ring left over from one already run)
+                    rung, self._rung = True, False  # before the reads: a later ring reads again
+                self._run_due_polls(every=rung)
                 continue
             job = jobs.popleft()
             if job is None:
@@ -636,6 +717,8 @@ class USBLink(AsyncResource):
             if isinstance(job, _PollJob):
                 self._polls.append(job)  # due at once: its first read runs next
                 self._poll_due = 0.0
+                self._rung = False  # that read sees any change rung for before it
+                continue  # (alone, in ``_poll_alone``; else after the next job)
             elif job.start():
                 try:
                     outcome: tuple[bool, Any] = (True, job.work())
@@ -648,6 +731,8 @@ class USBLink(AsyncResource):
             if not poll.withdrawn:
                 poll.finish((False, _LinkClosed()))
         self._polls.clear()
+        if self._stop_ringing is not None:
+            self._stop_ringing()
         self._release_device()
         with self._state_lock:
             self._stopped = True
@@ -669,14 +754,19 @@ class USBLink(AsyncResource):
             while not jobs:
                 wait = due - monotonic()
                 if wait > 0 and doorbell.acquire(True, wait):
-                    continue  # a job came (or a ring left over from one already run)
+                    if not self._rung:
+                        continue  # a job came (or a ring left over from one already run)
+                    # The device rang: read now, before the read that is due (whose time
+                    # stays). Cleared before the read: a ring after it reads again.
+                    self._rung = False
+                else:
+                    now = monotonic()
+                    due += interval  # a steady rate, unless the thread fell behind
+                    if due <= now:
+                        due = now + interval
                 if poll.withdrawn:
                     self._polls.clear()
                     return
-                now = monotonic()
-                due += interval  # a steady rate, unless the thread fell behind
-                if due <= now:
-                    due = now + interval
                 try:
                     value = work()
                     if not found(value):
@@ -690,8 +780,8 @@ class USBLink(AsyncResource):
         finally:
             poll.due = self._poll_due = due
 
-    def _run_due_polls(self) -> None:
-        """Run the polls that are due; note when the next one is."""
+    def _run_due_polls(self, *, every: bool = False) -> None:
+        """Run the polls that are due (``every``: all of them); note when the next is due."""
         now = time.monotonic()
         polls = self._polls
         next_due = math.inf
@@ -707,20 +797,21 @@ class USBLink(AsyncResource):
                 if due <= now:
                     due = now + poll.interval
                 poll.due = due
-                try:
-                    value = poll.work()
-                    if not poll.found(value):
-                        if due < next_due:
-                            next_due = due
-                        continue
-                    outcome: tuple[bool, Any] = (True, value)
-                except BaseException as exc:  # the thread must survive, and the caller hear
-                    outcome = (False, exc)
-                polls.remove(poll)
-                poll.finish(outcome)
+            elif not every:
+                if due < next_due:
+                    next_due = due
                 continue
-            if due < next_due:
-                next_due = due
+            try:
+                value = poll.work()
+                if not poll.found(value):
+                    if due < next_due:
+                        next_due = due
+                    continue
+                outcome: tuple[bool, Any] = (True, value)
+            except BaseException as exc:  # the thread must survive, and the caller hear
+                outcome = (False, exc)
+            polls.remove(poll)
+            poll.finish(outcome)
         self._poll_due = next_due
 
     def _release_device(self) -> None:

@@ -5,11 +5,12 @@ from __future__ import annotations
 import array
 import asyncio
 import errno
+import functools
 import random
 import struct
 import threading
 import time
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
 from typing import Any
 
 import anyio
@@ -21,7 +22,7 @@ from j5aio.backends.hardware.transports import (
     USBLink,
     USBTransferTimeoutError,
 )
-from j5aio.backends.hardware.transports.usb_link import MAX_POLL_INTERVAL
+from j5aio.backends.hardware.transports.usb_link import MAX_POLL_INTERVAL, RUNG_INTERVAL_FACTOR
 from j5aio.errors import (
     BoardDisconnectionError,
     CommunicationError,
@@ -588,3 +589,189 @@ async def test_a_read_failing_after_idle_reads_reaches_the_caller(
         await link.poll_control_read(8, 4, found, interval=0.001)
     assert _reads_of(device, 8) == 4
     assert not link._polls
+
+
+class RingingStandIn(StandInDevice):
+    """A stand-in with a doorbell, as a board simulator has (see ``RingingDevice``)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.doorbells: list[Callable[[], None]] = []
+        self.value = 0  # what reads of wIndex 8 answer
+
+    def add_doorbell(self, ring: Callable[[], None]) -> Callable[[], None]:
+        self.doorbells.append(ring)
+        return lambda: self.doorbells.remove(ring)
+
+    def change(self, value: int) -> None:
+        """Change what a poll reads, and ring, as a simulator's button does."""
+        self.value = value
+        for ring in self.doorbells:
+            ring()
+
+    def ctrl_transfer(self, *args: Any, **kwargs: Any) -> Any:
+        value = self.value  # the board is read as the transfer starts
+        reply = super().ctrl_transfer(*args, **kwargs)
+        if args[0] & 0x80 and args[3] == 8:
+            return array.array("B", struct.pack("<I", value))
+        return reply
+
+
+def _found_value(reply: bytes) -> bool:
+    return reply != bytes(4)
+
+
+def test_a_pyusb_device_has_no_doorbell(device: StandInDevice) -> None:
+    usb_link = USBLink(device, board_name="Power Board SRABC1")
+    try:
+        assert not usb_link.rung
+        assert usb_link._interval_factor == 1  # a real board is read every interval
+    finally:
+        usb_link.close_now()
+
+
+async def test_a_ring_reads_at_once_and_the_reads_in_between_are_rare() -> None:
+    device = RingingStandIn()
+    usb_link = USBLink(device, board_name="Power Board SRABC1")
+    assert usb_link.rung
+    assert usb_link._interval_factor == RUNG_INTERVAL_FACTOR
+    reads: list[int] = []
+
+    def found(reply: bytes) -> bool:
+        reads.append(int.from_bytes(reply, "little"))
+        return _found_value(reply)
+
+    async def press_after_the_first_read() -> None:
+        while not reads:  # noqa: ASYNC110 - the worker thread's state, no event
+            await anyio.sleep(0.001)
+        device.change(1)  # from the event loop's thread
+        await anyio.sleep(0.001)
+
+    # An hour between reads (50 hours, rung): only the doorbell can end this wait.
+    with anyio.fail_after(30):
+        async with anyio.create_task_group() as group:
+            group.start_soon(press_after_the_first_read)
+            reply = await usb_link.poll_control_read(8, 4, found, interval=3600)
+    assert reply == struct.pack("<I", 1)
+    assert reads == [0, 1]  # the first read, then the one the ring asked for
+    await usb_link.aclose()
+    assert device.doorbells == []  # a closed link is rung no more
+
+
+async def test_a_ring_from_another_thread_during_a_read_is_not_lost() -> None:
+    # The button is pressed while the poll's read runs (after the board was read): the
+    # ring is kept, and the read after it sees the press.
+    device = RingingStandIn()
+    usb_link = USBLink(device, board_name="Power Board SRABC1")
+    device.gate = threading.Event()
+
+    def press_mid_read() -> None:
+        device.started.wait(5)
+        device.change(1)
+        device.gate.set()  # type: ignore[union-attr]
+
+    presser = threading.Thread(target=press_mid_read)
+    presser.start()
+    with anyio.fail_after(30):
+        reply = await usb_link.poll_control_read(8, 4, _found_value, interval=3600)
+    presser.join()
+    assert reply == struct.pack("<I", 1)
+    assert _reads_of(device, 8) == 2
+    await usb_link.aclose()
+
+
+async def test_a_ring_reads_every_poll_of_the_link_at_once() -> None:
+    device = RingingStandIn()
+    usb_link = USBLink(device, board_name="Power Board SRABC1")
+    seen: dict[int, list[int]] = {8: [], 7: []}
+
+    def watcher(index: int) -> Callable[[bytes], bool]:
+        def found(reply: bytes) -> bool:
+            seen[index].append(device.value)
+            return device.value == 2
+
+        return found
+
+    async def ring_once_both_read() -> None:
+        while not (seen[8] and seen[7]):  # noqa: ASYNC110 - the worker thread's state
+            await anyio.sleep(0.001)
+        device.change(2)
+
+    with anyio.fail_after(30):
+        async with anyio.create_task_group() as group:
+            for index in (8, 7):
+                group.start_soon(
+                    functools.partial(
+                        usb_link.poll_control_read, index, 4, watcher(index), interval=3600
+                    )
+                )
+            group.start_soon(ring_once_both_read)
+    assert seen == {8: [0, 2], 7: [0, 2]}
+    await usb_link.aclose()
+
+
+async def test_a_ring_with_no_poll_reads_nothing() -> None:
+    device = RingingStandIn()
+    usb_link = USBLink(device, board_name="Power Board SRABC1")
+    device.change(1)
+    assert await usb_link.control_read(9, 4) == struct.pack("<I", 9)  # the thread serves
+    assert _reads_of(device, 8) == 0
+    # A poll started later reads once, at once, and the ring before it is not read again.
+    assert await usb_link.poll_control_read(8, 4, _found_value, interval=3600) == struct.pack(
+        "<I", 1
+    )
+    assert _reads_of(device, 8) == 1
+    await usb_link.aclose()
+
+
+async def test_poll_until_runs_any_read_until_found(device: StandInDevice, link: USBLink) -> None:
+    results = iter(range(10))
+    taken: list[int] = []
+    value = await link.poll_until(
+        lambda: next(results), lambda n: n == 3, interval=0.001, description="counting",
+        then=taken.append,
+    )
+    assert value == 3
+    assert taken == [3]
+    with pytest.raises(USBCommunicationError, match="counting failed") as info:
+        await link.poll_until(
+            lambda: 1 // 0, bool, interval=0.001, description="counting",
+        )
+    assert isinstance(info.value.usb_error, ZeroDivisionError)
+    device.errors[8] = usb.core.USBError("No such device", -4, errno.ENODEV)
+    with pytest.raises(USBDisconnectionError, match="pulled out"):
+        await link.poll_until(
+            lambda: device.ctrl_transfer(0x80, 64, 0, 8, 4), bool, interval=0.001,
+            description="x", errors={errno.ENODEV: "pulled out"},
+        )
+
+
+async def test_a_read_failing_while_two_polls_run_fails_its_own_caller_only(
+    device: StandInDevice, link: USBLink
+) -> None:
+    async def fail_at_the_third_read() -> None:
+        reads = 0
+
+        def work() -> int:
+            nonlocal reads
+            reads += 1
+            if reads == 3:
+                raise usb.core.USBError("Pipe error", -9, errno.EPIPE)
+            return reads
+
+        with pytest.raises(USBCommunicationError, match="second poll failed"):
+            await link.poll_until(work, lambda _n: False, interval=0.001,
+                                  description="second poll")
+
+    with anyio.fail_after(30):
+        async with anyio.create_task_group() as group:
+            group.start_soon(
+                functools.partial(
+                    link.poll_control_read, 8, 4, lambda _r: _reads_of(device, 8) >= 20,
+                    interval=0.001,
+                )
+            )
+            while not _reads_of(device, 8):  # noqa: ASYNC110 - the worker thread's state
+                await anyio.sleep(0.001)
+            await fail_at_the_third_read()  # beside the first poll, which goes on
+    assert _reads_of(device, 8) == 20
