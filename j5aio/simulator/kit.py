@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import itertools
 import os
+import sys
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING, Final
@@ -36,14 +37,14 @@ from .base import SerialBoardSimulator, UsbBoardSimulator
 from .clock import Clock, drive, kit_clock
 from .sb_arduino_2019 import SBArduinoSimulator
 from .sr_motor_fw3 import SRMotorBoardFw3Simulator
-from .sr_motor_fw4 import SRMotorBoardFw4Simulator
 from .sr_power_fw3 import SRPowerBoardFw3Simulator
-from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from .sr_servo_fw2 import SRServoBoardFw2Simulator
 from .wiring import KitWiring, PowerBoardSimulator, PowerFed, default_outputs
 
 if TYPE_CHECKING:
     from .camera import SimulatedCamera
+    from .sr_motor_fw4 import SRMotorBoardFw4Simulator
+    from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 
 __all__ = [
     "KIT_VARIABLE",
@@ -365,11 +366,17 @@ class SimulatedKit:
         Each has ``motors[i].power``, the signed duty the board drives: the simulated world
         moves the robot by these (:func:`j5aio.simulator.camera.update_world`).
         """
-        boards = (
-            sim
+        # (firmware 4's module is looked up, not imported: a kit has boards of it only
+        # once the kit's factory has loaded it)
+        fw4 = sys.modules.get("j5aio.simulator.sr_motor_fw4")
+        kinds: tuple[type, ...] = (SRMotorBoardFw3Simulator,)
+        if fw4 is not None:
+            kinds += (fw4.SRMotorBoardFw4Simulator,)
+        boards: list[SRMotorBoardFw3Simulator | SRMotorBoardFw4Simulator] = [
+            sim  # type: ignore[misc]
             for sim in self._all()
-            if isinstance(sim, SRMotorBoardFw3Simulator | SRMotorBoardFw4Simulator)
-        )
+            if isinstance(sim, kinds)
+        ]
         return tuple(sorted(boards, key=lambda sim: sim.serial_number))
 
     @property
@@ -385,6 +392,8 @@ class SimulatedKit:
     @property
     def ruggeduinos(self) -> tuple[SRRuggeduinoSimulator, ...]:
         """The simulated Ruggeduinos."""
+        from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
+
         return tuple(sim for sim in self._all() if isinstance(sim, SRRuggeduinoSimulator))
 
     def serial_simulators(self) -> tuple[SerialBoardSimulator, ...]:
