@@ -36,6 +36,7 @@ ASYNC_ROBOT = (
 NOT_NEEDED = {
     "usb": "pyusb: the simulated power and servo boards are not on a USB bus",
     "tomllib": "no kit file is given",
+    "j5aio.simulator.kit_file": "no kit file is given",
     "j5aio.view": "no live view is asked for",
     "j5aio.backends.console": "no board is on the console",
     "j5aio.vision.render": "the camera draws nothing until it is looked through",

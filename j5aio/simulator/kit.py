@@ -62,6 +62,10 @@ MAX_BOARDS_OF_A_KIND: Final = 99
 #: The environment variable that names the kit of the simulated environment.
 KIT_VARIABLE: Final = "J5AIO_KIT"
 
+# The kit file's variable (:data:`j5aio.simulator.kit_file.KIT_FILE_VARIABLE`), read here
+# so that a program without a kit file does not import the kit file's reader.
+_KIT_FILE_VARIABLE: Final = "J5AIO_KIT_FILE"
+
 BoardSimulator = object
 """A simulator of one board: usually a :class:`~j5aio.simulator.base.SerialBoardSimulator`
 or a :class:`~j5aio.simulator.base.UsbBoardSimulator`, but a board reached otherwise (a
@@ -496,11 +500,12 @@ def current_kit() -> SimulatedKit:
         kit file cannot be used (the message says why).
     """
     if _current is None:
-        from .kit_file import KIT_FILE_VARIABLE, kit_file_from_environment, time_scale_of
+        if os.environ.get(_KIT_FILE_VARIABLE, "").strip():
+            from .kit_file import KIT_FILE_VARIABLE, kit_file_from_environment, time_scale_of
 
-        from_file = kit_file_from_environment()
-        if from_file is not None:
-            scale = time_scale_of(os.environ[KIT_FILE_VARIABLE].strip())
-            return use_kit(from_file, time_scale=scale, wired=True)
+            from_file = kit_file_from_environment()
+            if from_file is not None:
+                scale = time_scale_of(os.environ[KIT_FILE_VARIABLE].strip())
+                return use_kit(from_file, time_scale=scale, wired=True)
         return use_kit(kit_from_environment(), wired=True)
     return _current
