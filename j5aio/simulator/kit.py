@@ -27,7 +27,7 @@ import os
 import sys
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, fields
-from typing import TYPE_CHECKING, Final
+from typing import TYPE_CHECKING, Final, cast
 
 from j5aio.board_kinds import DEFAULT_KIT, BoardKind, KitDefinition, get_kit, simulator_entries
 from j5aio.power_outputs import output_number
@@ -376,11 +376,10 @@ class SimulatedKit:
         kinds: tuple[type, ...] = (SRMotorBoardFw3Simulator,)
         if fw4 is not None:
             kinds += (fw4.SRMotorBoardFw4Simulator,)
-        boards: list[SRMotorBoardFw3Simulator | SRMotorBoardFw4Simulator] = [
-            sim  # type: ignore[misc]
-            for sim in self._all()
-            if isinstance(sim, kinds)
-        ]
+        boards = cast(
+            "list[SRMotorBoardFw3Simulator | SRMotorBoardFw4Simulator]",
+            [sim for sim in self._all() if isinstance(sim, kinds)],
+        )
         return tuple(sorted(boards, key=lambda sim: sim.serial_number))
 
     @property
