@@ -18,7 +18,12 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 
-REPORT = "import json, sys\nprint('MODULES', json.dumps(sorted(sys.modules)))\n"
+REPORT = (
+    "import sys\n"
+    "_loaded = sorted(sys.modules)\n"
+    "import json\n"
+    "print('MODULES', json.dumps(_loaded))\n"
+)
 
 BARE = "import anyio\n\nasync def main() -> None:\n    pass\n\nanyio.run(main)\n" + REPORT
 
@@ -36,6 +41,7 @@ ASYNC_ROBOT = (
 NOT_NEEDED = {
     "usb": "pyusb: the simulated power and servo boards are not on a USB bus",
     "tomllib": "no kit file is given",
+    "json": "no calibration file or other JSON is read",
     "j5aio.simulator.kit_file": "no kit file is given",
     "j5aio.view": "no live view is asked for",
     "j5aio.backends.console": "no board is on the console",
