@@ -17,7 +17,10 @@ Rounds are interleaved and shuffled; the table shows medians and the ratio to j5
 
     python bench/bench_startup.py [--rounds 15] [--kit NAME]
 
-Goal: at most 80 ms to a ready robot on the simulated kit, async and sync.
+Goal: a ready robot on the simulated kit, async and sync, at most 20 ms after the floor
+(the median of ``anyio.run`` on an empty coroutine in the same run). The sync case's
+figure above the async one is the sync runtime's share (its event loop thread, the
+portal, the facade's wrappers).
 """
 
 from __future__ import annotations
@@ -39,7 +42,8 @@ from _children import (  # type: ignore[import-not-found]
     run_interleaved,
 )
 
-GOAL_MS = 80.0
+#: The most a ready robot may take above the floor (anyio.run, no j5aio), ms.
+GOAL_ABOVE_FLOOR_MS = 20.0
 MARKER = "READY"
 
 ASYNC_PROGRAM = f"""\
@@ -119,14 +123,20 @@ def main() -> int:
     run_interleaved(cases, options.rounds, time_to_ready)
     print(f"process start -> robot ready, {options.rounds} interleaved rounds")
     print_table("time to a ready robot", cases, "ms", reference=j5, scale=1000)
-    print(f"\ngoal (<= {GOAL_MS:.0f} ms on the simulated kit):")
+    limit = floor.median * 1000 + GOAL_ABOVE_FLOOR_MS
+    print(
+        f"\ngoal (<= the floor + {GOAL_ABOVE_FLOOR_MS:.0f} ms = {limit:.1f} ms on the "
+        "simulated kit):"
+    )
     for case in cases[:2]:
         ms = case.median * 1000
         above = (case.median - floor.median) * 1000
         print(
-            f"  {case.name:<27} {ms:7.1f} ms  {'met' if ms <= GOAL_MS else 'NOT met'}"
-            f"  (j5aio's own share, above the floor: {above:.1f} ms)"
+            f"  {case.name:<27} {ms:7.1f} ms  floor + {above:5.1f} ms  "
+            f"{'met' if ms <= limit else 'NOT met'}"
         )
+    sync_share = (cases[1].median - cases[0].median) * 1000
+    print(f"  the sync runtime's share (sync - async): {sync_share:.1f} ms")
     return 0
 
 

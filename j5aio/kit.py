@@ -22,6 +22,8 @@ on, waits for the boards to boot, and then looks for them (see :mod:`j5aio.kit_p
 
 from __future__ import annotations
 
+import os
+import sys
 from collections.abc import Mapping
 from types import TracebackType
 from typing import TYPE_CHECKING, Any, ClassVar, TypeVar
@@ -29,7 +31,6 @@ from typing import TYPE_CHECKING, Any, ClassVar, TypeVar
 import anyio
 
 from j5aio import kit_power
-from j5aio.backends.console.backend import ConsoleBackend
 from j5aio.backends.environment import Environment
 from j5aio.boards.arduino.all_digital import AllDigitalUno
 from j5aio.boards.arduino.uno import ArduinoUno
@@ -210,8 +211,11 @@ class KitRobot(BaseRobot):
             await power_board.outputs[number].set_is_enabled(True)
         if outputs:
             wait = kit_power.boot_wait(self.environment, self.POWER_UP_WAIT)
+            # The console kit says what it does. (Its module is looked up, not imported:
+            # a board can only be on a console backend once that module is loaded.)
+            console = sys.modules.get("j5aio.backends.console.backend")
             backend = power_board.backend
-            if isinstance(backend, ConsoleBackend):  # the console kit says what it does
+            if console is not None and isinstance(backend, console.ConsoleBackend):
                 await backend.console.info(kit_power.power_up_message(outputs, wait))
             await anyio.sleep(wait)
 
@@ -311,6 +315,8 @@ class KitRobot(BaseRobot):
     # --- the live view (j5aio.view): started in setup, stopped on the way out ---
 
     def _start_view(self) -> None:
+        if self._view_wanted is False or not (self._view_wanted or os.environ.get("J5AIO_VIEW")):
+            return  # (no view asked for, J5AIO_VIEW unset: its module is not even imported)
         from j5aio.view import current_view, start_view, view_requested
 
         wanted = self._view_wanted if self._view_wanted is not None else view_requested()

@@ -21,10 +21,13 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
-from j5aio.vision.arena_map import ArenaMap, WallMarker
-from j5aio.vision.locate import CameraMount
 from j5aio.vision.sizes import MarkerSizes
+
+if TYPE_CHECKING:  # (imported where used: a kit that never locates itself needs neither)
+    from j5aio.vision.arena_map import ArenaMap
+    from j5aio.vision.locate import CameraMount
 
 __all__ = [
     "Arena",
@@ -168,6 +171,8 @@ class Arena:
 
     def arena_map(self) -> ArenaMap:
         """The map a robot locates itself by: the wall markers and the tokens' ids."""
+        from j5aio.vision.arena_map import ArenaMap, WallMarker
+
         return ArenaMap(
             tuple(WallMarker(m.marker_id, m.x, m.y, m.facing, m.size, m.z) for m in self.markers),
             width=self.width,
@@ -298,6 +303,8 @@ class SimulatedWorld:
 
     def camera_mount(self) -> CameraMount:
         """Where the camera is on the robot, as :func:`~j5aio.vision.locate.locate` takes it."""
+        from j5aio.vision.locate import CameraMount
+
         return CameraMount(
             forward=self.camera_forward,
             left=self.camera_left,

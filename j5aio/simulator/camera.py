@@ -21,14 +21,6 @@ from typing import TYPE_CHECKING, ClassVar
 
 from j5aio.backends.camera.frames import FrameCameraBackend
 from j5aio.boards.camera import CameraBoard
-from j5aio.vision.geometry import (
-    Matrix3,
-    Vector3,
-    orientation_from_rotation,
-    position_from_translation,
-)
-from j5aio.vision.markers import Orientation, Position
-from j5aio.vision.render import NEAR_PLANE, MarkerItem, QuadItem, render
 
 from . import _camera_model
 from ._camera_model import SimulatedCamera
@@ -40,7 +32,13 @@ if TYPE_CHECKING:
 
     from j5aio.backends.hardware.options import DiscoveryOptions
     from j5aio.boards.board import Board
+    from j5aio.vision.geometry import Matrix3, Vector3
     from j5aio.vision.image import Image
+    from j5aio.vision.markers import Orientation, Position
+    from j5aio.vision.render import MarkerItem, QuadItem
+
+# The geometry and the renderer are imported by the functions that draw or measure a
+# view: finding the camera (every robot on the simulated kit does) needs neither.
 
 __all__ = [
     "DEFAULT_CALIBRATION",
@@ -87,6 +85,8 @@ def _to_camera(world: SimulatedWorld) -> Callable[[Vector3, bool], Vector3]:
 
 
 def _marker_item(marker: ArenaMarker, convert: Callable[[Vector3, bool], Vector3]) -> MarkerItem:
+    from j5aio.vision.render import MarkerItem
+
     nx, ny = math.cos(marker.facing), math.sin(marker.facing)
     axes = (convert((-ny, nx, 0.0), False), convert((0.0, 0.0, -1.0), False),
             convert((-nx, -ny, 0.0), False))
@@ -106,6 +106,8 @@ def _depth(points: Sequence[Vector3]) -> float:
 
 def scene(world: SimulatedWorld) -> list[QuadItem | MarkerItem]:
     """Everything the camera could see, in camera coordinates, far things first."""
+    from j5aio.vision.render import QuadItem
+
     convert = _to_camera(world)
     arena = world.arena
     w, length, h = arena.width, arena.length, arena.wall_height
@@ -162,6 +164,9 @@ def visible_markers(world: SimulatedWorld, camera: SimulatedCamera) -> list[Visi
 
     Markers hidden behind tokens are included: the renderer does not hide them either.
     """
+    from j5aio.vision.geometry import orientation_from_rotation, position_from_translation
+    from j5aio.vision.render import NEAR_PLANE
+
     calibration, (width, height) = camera.model()
     convert = _to_camera(world)
     found = []
@@ -187,6 +192,8 @@ def visible_markers(world: SimulatedWorld, camera: SimulatedCamera) -> list[Visi
 
 def render_view(world: SimulatedWorld, camera: SimulatedCamera) -> Image:
     """Render what the camera sees from the robot's pose now (needs the vision extra)."""
+    from j5aio.vision.render import render
+
     calibration, resolution = camera.model()
     return render(calibration, resolution, scene(world), lighting=camera.lighting)
 

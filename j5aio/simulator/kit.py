@@ -24,9 +24,10 @@ from __future__ import annotations
 
 import itertools
 import os
+import sys
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, fields
-from typing import TYPE_CHECKING, Final
+from typing import TYPE_CHECKING, Final, cast
 
 from j5aio.board_kinds import DEFAULT_KIT, BoardKind, KitDefinition, get_kit, simulator_entries
 from j5aio.power_outputs import output_number
@@ -36,14 +37,14 @@ from .base import SerialBoardSimulator, UsbBoardSimulator
 from .clock import Clock, drive, kit_clock
 from .sb_arduino_2019 import SBArduinoSimulator
 from .sr_motor_fw3 import SRMotorBoardFw3Simulator
-from .sr_motor_fw4 import SRMotorBoardFw4Simulator
 from .sr_power_fw3 import SRPowerBoardFw3Simulator
-from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from .sr_servo_fw2 import SRServoBoardFw2Simulator
 from .wiring import KitWiring, PowerBoardSimulator, PowerFed, default_outputs
 
 if TYPE_CHECKING:
     from .camera import SimulatedCamera
+    from .sr_motor_fw4 import SRMotorBoardFw4Simulator
+    from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 
 __all__ = [
     "KIT_VARIABLE",
@@ -60,6 +61,10 @@ MAX_BOARDS_OF_A_KIND: Final = 99
 
 #: The environment variable that names the kit of the simulated environment.
 KIT_VARIABLE: Final = "J5AIO_KIT"
+
+# The kit file's variable (:data:`j5aio.simulator.kit_file.KIT_FILE_VARIABLE`), read here
+# so that a program without a kit file does not import the kit file's reader.
+_KIT_FILE_VARIABLE: Final = "J5AIO_KIT_FILE"
 
 BoardSimulator = object
 """A simulator of one board: usually a :class:`~j5aio.simulator.base.SerialBoardSimulator`
@@ -365,10 +370,15 @@ class SimulatedKit:
         Each has ``motors[i].power``, the signed duty the board drives: the simulated world
         moves the robot by these (:func:`j5aio.simulator.camera.update_world`).
         """
-        boards = (
-            sim
-            for sim in self._all()
-            if isinstance(sim, SRMotorBoardFw3Simulator | SRMotorBoardFw4Simulator)
+        # (firmware 4's module is looked up, not imported: a kit has boards of it only
+        # once the kit's factory has loaded it)
+        fw4 = sys.modules.get("j5aio.simulator.sr_motor_fw4")
+        kinds: tuple[type, ...] = (SRMotorBoardFw3Simulator,)
+        if fw4 is not None:
+            kinds += (fw4.SRMotorBoardFw4Simulator,)
+        boards = cast(
+            "list[SRMotorBoardFw3Simulator | SRMotorBoardFw4Simulator]",
+            [sim for sim in self._all() if isinstance(sim, kinds)],
         )
         return tuple(sorted(boards, key=lambda sim: sim.serial_number))
 
@@ -385,6 +395,8 @@ class SimulatedKit:
     @property
     def ruggeduinos(self) -> tuple[SRRuggeduinoSimulator, ...]:
         """The simulated Ruggeduinos."""
+        from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
+
         return tuple(sim for sim in self._all() if isinstance(sim, SRRuggeduinoSimulator))
 
     def serial_simulators(self) -> tuple[SerialBoardSimulator, ...]:
@@ -487,11 +499,12 @@ def current_kit() -> SimulatedKit:
         kit file cannot be used (the message says why).
     """
     if _current is None:
-        from .kit_file import KIT_FILE_VARIABLE, kit_file_from_environment, time_scale_of
+        if os.environ.get(_KIT_FILE_VARIABLE, "").strip():
+            from .kit_file import KIT_FILE_VARIABLE, kit_file_from_environment, time_scale_of
 
-        from_file = kit_file_from_environment()
-        if from_file is not None:
-            scale = time_scale_of(os.environ[KIT_FILE_VARIABLE].strip())
-            return use_kit(from_file, time_scale=scale, wired=True)
+            from_file = kit_file_from_environment()
+            if from_file is not None:
+                scale = time_scale_of(os.environ[KIT_FILE_VARIABLE].strip())
+                return use_kit(from_file, time_scale=scale, wired=True)
         return use_kit(kit_from_environment(), wired=True)
     return _current

@@ -39,7 +39,6 @@ output to switch on when a board has no power.
 from __future__ import annotations
 
 import os
-import tomllib
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, Final
@@ -68,6 +67,8 @@ def load_kit_file(path: str | os.PathLike[str]) -> KitDefinition:
     :raises ValueError: it is not TOML, or says something a kit file cannot; the
         message names the file and what is allowed.
     """
+    import tomllib  # (here: a program without a kit file never parses TOML)
+
     file = Path(path)
     try:
         data = tomllib.loads(file.read_text(encoding="utf-8"))
@@ -81,6 +82,8 @@ def load_kit_file(path: str | os.PathLike[str]) -> KitDefinition:
 
 def time_scale_of(path: str | os.PathLike[str]) -> float | None:
     """The ``time_scale`` the kit file at ``path`` gives, or ``None`` if it gives none."""
+    import tomllib
+
     data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
     value = data.get("time_scale")
     if value is None:

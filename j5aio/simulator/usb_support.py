@@ -11,9 +11,10 @@ import array
 import errno
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from typing import TypeAlias
+from typing import TYPE_CHECKING, TypeAlias
 
-import usb.core
+if TYPE_CHECKING:  # (pyusb is imported when an error is made: a kit's start makes none)
+    import usb.core
 
 __all__ = [
     "CONTROL_BUFFER_SIZE",
@@ -41,11 +42,15 @@ _LIBUSB_ERROR_PIPE = -9
 
 def pipe_error() -> usb.core.USBError:
     """Return the error pyusb raises when the device stalls a control request."""
+    import usb.core
+
     return usb.core.USBError("Pipe error", _LIBUSB_ERROR_PIPE, errno.EPIPE)
 
 
 def no_device_error() -> usb.core.USBError:
     """Return the error pyusb raises when the device has gone away."""
+    import usb.core
+
     return usb.core.USBError(
         "No such device (it may have been disconnected)", _LIBUSB_ERROR_NO_DEVICE, errno.ENODEV
     )
@@ -53,6 +58,8 @@ def no_device_error() -> usb.core.USBError:
 
 def timeout_error() -> usb.core.USBTimeoutError:
     """Return the error pyusb raises when a control transfer is not completed in time."""
+    import usb.core
+
     return usb.core.USBTimeoutError("Operation timed out", _LIBUSB_ERROR_TIMEOUT, errno.ETIMEDOUT)
 
 

@@ -11,7 +11,6 @@ other comes from a file (:meth:`CameraCalibration.from_file`): an OpenCV calibra
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 from dataclasses import dataclass, field
@@ -119,6 +118,8 @@ class CameraCalibration:
 
     @classmethod
     def _from_json(cls, text: str) -> CameraCalibration:
+        import json  # (here: the simulated camera, made at every start, reads no file)
+
         data = json.loads(text)
         resolution = data.get("resolution")
         return cls(
@@ -164,6 +165,8 @@ class CameraCalibration:
         }
         if self.resolution is not None:
             data["resolution"] = list(self.resolution)
+        import json
+
         return json.dumps(data, indent=2)
 
 

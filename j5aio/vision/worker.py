@@ -9,8 +9,10 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
-from typing import ParamSpec, TypeVar
+from typing import TYPE_CHECKING, ParamSpec, TypeVar
+
+if TYPE_CHECKING:
+    from concurrent.futures import ThreadPoolExecutor
 
 __all__ = ["CameraWorker"]
 
@@ -21,11 +23,15 @@ P = ParamSpec("P")
 class CameraWorker:
     """A single dedicated thread that runs one camera's blocking calls in order.
 
+    The thread's pool is made by the first job: a camera that is never looked through
+    (every robot on the simulated kit has one) costs no pool and no thread.
+
     :param name: names the thread, e.g. ``"camera /dev/video0"``.
     """
 
     def __init__(self, name: str) -> None:
-        self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"j5aio {name}")
+        self._name = name
+        self._executor: ThreadPoolExecutor | None = None
         self._closed = False
 
     @property
@@ -40,10 +46,17 @@ class CameraWorker:
         """
         if self._closed:
             raise RuntimeError("this camera is closed")
+        if self._executor is None:
+            from concurrent.futures import ThreadPoolExecutor
+
+            self._executor = ThreadPoolExecutor(
+                max_workers=1, thread_name_prefix=f"j5aio {self._name}"
+            )
         future = self._executor.submit(function, *args, **kwargs)
         return await asyncio.wrap_future(future)
 
     def close(self) -> None:
         """Stop the thread once the running job ends; queued jobs are dropped."""
         self._closed = True
-        self._executor.shutdown(wait=False, cancel_futures=True)
+        if self._executor is not None:
+            self._executor.shutdown(wait=False, cancel_futures=True)

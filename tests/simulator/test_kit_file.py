@@ -216,3 +216,10 @@ def test_demo_kit_file_runs_the_demo_on_the_teams_robot(robot_file: Path, tmp_pa
     assert result.returncode == 0, result.stderr
     assert "The kit: 'robot'" in result.stdout
     assert "SR0AB12 [" in result.stdout
+
+
+def test_the_kit_looks_for_a_kit_file_by_the_same_variable() -> None:
+    # (the kit reads the variable itself, so as not to import this reader without a file)
+    from j5aio.simulator import kit
+
+    assert kit._KIT_FILE_VARIABLE == KIT_FILE_VARIABLE

@@ -145,3 +145,13 @@ async def test_the_world_moves_by_the_motor_boards_of_every_generation(kit_name:
         await motors[1].set_power(0)
     moved = math.dist((kit.world.pose.x, kit.world.pose.y), (2875.0, 1000.0))
     assert moved > 0.4 * kit.world.drive.max_speed
+
+
+def test_the_drive_motor_boards_are_those_of_either_firmware() -> None:
+    from j5aio.simulator.sr_motor_fw4 import SRMotorBoardFw4Simulator
+
+    fw4_kit = SimulatedKit("sr2023")
+    assert [type(board) for board in fw4_kit.drive_motor_boards] == [SRMotorBoardFw4Simulator]
+    fw3_kit = SimulatedKit(KitConfig(motor_boards=2))
+    assert [board.serial_number for board in fw3_kit.drive_motor_boards] == ["SIMMB0", "SIMMB1"]
+    assert all(isinstance(b, SRMotorBoardFw3Simulator) for b in fw3_kit.drive_motor_boards)

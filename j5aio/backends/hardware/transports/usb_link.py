@@ -50,13 +50,12 @@ import enum
 import errno
 import logging
 import math
+import sys
 import threading
 import time
 from collections.abc import Callable, Mapping
 from typing import Any, Generic, Protocol, TypeVar
 
-import usb.core
-import usb.util
 from anyio.abc import AsyncResource
 
 from j5aio.errors import (
@@ -815,7 +814,12 @@ class USBLink(AsyncResource):
         self._poll_due = next_due
 
     def _release_device(self) -> None:
-        if isinstance(self._device, usb.core.Device):
+        # pyusb is looked up, not imported: a real device can only come from it once loaded
+        # (a simulated kit's stand-ins never load it).
+        core = sys.modules.get("usb.core")
+        if core is not None and isinstance(self._device, core.Device):
+            import usb.util
+
             try:
                 usb.util.dispose_resources(self._device)
             except Exception as exc:  # pragma: no cover - depends on libusb
@@ -835,7 +839,9 @@ class USBLink(AsyncResource):
                 "Check its USB cable and power, then run the program again.",
                 exc,
             )
-        if isinstance(exc, usb.core.USBTimeoutError) or code == errno.ETIMEDOUT:
+        core = sys.modules.get("usb.core")  # (loaded wherever a pyusb error was raised)
+        timed_out = core is not None and isinstance(exc, core.USBTimeoutError)
+        if timed_out or code == errno.ETIMEDOUT:
             return USBTransferTimeoutError(
                 f"{self._board_name}: {custom}"
                 if custom

@@ -185,3 +185,12 @@ def test_trace_level_is_registered() -> None:
 def test_wire_logger_names_one_logger_per_port() -> None:
     assert wire_logger("/dev/ttyACM0").name == "j5aio.wire./dev/ttyACM0"
     assert wire_logger("socket://127.0.0.1:9000").name == "j5aio.wire.socket://127_0_0_1:9000"
+
+
+def test_find_usb_devices_lets_other_errors_through() -> None:
+    # A finder's own failure (not pyusb's) is not dressed up as a USB error.
+    def finder(*, find_all: bool, idVendor: int, idProduct: int) -> Any:  # noqa: N803
+        raise LookupError("the finder's own fault")
+
+    with pytest.raises(LookupError, match="the finder's own fault"):
+        find_usb_devices(0x1BDA, 0x0010, finder=finder)

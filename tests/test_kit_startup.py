@@ -1,0 +1,108 @@
+"""What a robot on the simulated kit loads at start-up: nothing it does not use.
+
+Each program runs in a fresh interpreter, so that what it imported is its own; the
+modules a bare ``anyio.run`` loads (the interpreter's site packages, say) are left out
+of the comparison.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import socket
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+REPORT = (
+    "import sys\n"
+    "_loaded = sorted(sys.modules)\n"
+    "import json\n"
+    "print('MODULES', json.dumps(_loaded))\n"
+)
+
+BARE = "import anyio\n\nasync def main() -> None:\n    pass\n\nanyio.run(main)\n" + REPORT
+
+ASYNC_ROBOT = (
+    "import anyio\n"
+    "from j5aio.kit import KitRobot\n\n"
+    "async def main() -> None:\n"
+    "    async with KitRobot() as robot:\n"
+    "        await robot.motor_boards[0].motors[0].set_power(0.5)\n"
+    "        print('BOARDS', len(robot.motor_boards), len(robot.cameras), flush=True)\n\n"
+    "anyio.run(main)\n" + REPORT
+)
+
+#: Modules a robot on the default simulated kit has no use for, each with why.
+NOT_NEEDED = {
+    "usb": "pyusb: the simulated power and servo boards are not on a USB bus",
+    "tomllib": "no kit file is given",
+    "json": "no calibration file or other JSON is read",
+    "j5aio.simulator.kit_file": "no kit file is given",
+    "j5aio.view": "no live view is asked for",
+    "j5aio.backends.console": "no board is on the console",
+    "j5aio.vision.render": "the camera draws nothing until it is looked through",
+    "j5aio.vision.locate": "nothing asks where the robot is",
+    "j5aio.vision.geometry": "nothing is measured in the arena",
+    "concurrent.futures.thread": "the camera's worker thread waits for a first look",
+    "j5aio.simulator.sr_motor_fw4": "the default kit has no firmware-4 motor board",
+    "j5aio.simulator.sr_ruggeduino_fw1": "the default kit has no Ruggeduino",
+}
+
+
+def _free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port: int = probe.getsockname()[1]
+        return port
+
+
+def _modules_of(program: str) -> tuple[set[str], str]:
+    """The modules loaded at the end of ``program``, run on the default simulated kit."""
+    env = {
+        key: value
+        for key, value in os.environ.items()
+        if key not in {"J5AIO_VIEW", "J5AIO_KIT", "J5AIO_KIT_FILE", "J5AIO_ENV"}
+    }
+    env.update(
+        J5AIO_ENV="sim",
+        J5AIO_LOCK_PORT=str(_free_port()),
+        PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])),
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", program], env=env, capture_output=True, text=True,
+        timeout=120, check=False,
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    line = next(line for line in done.stdout.splitlines() if line.startswith("MODULES "))
+    return set(json.loads(line.removeprefix("MODULES "))), done.stdout
+
+
+def _loaded(modules: set[str], name: str) -> bool:
+    return any(module == name or module.startswith(f"{name}.") for module in modules)
+
+
+@pytest.fixture(scope="module")
+def bare_modules() -> set[str]:
+    return _modules_of(BARE)[0]
+
+
+def test_a_robot_on_the_simulated_kit_imports_only_what_it_uses(bare_modules: set[str]) -> None:
+    modules, output = _modules_of(ASYNC_ROBOT)
+    assert "BOARDS 2 1" in output  # the default kit's motor boards and its camera
+    loaded = {
+        name: why
+        for name, why in NOT_NEEDED.items()
+        if _loaded(modules - bare_modules, name)
+    }
+    assert loaded == {}
+
+
+def test_the_bare_program_is_a_fair_baseline(bare_modules: set[str]) -> None:
+    # (the comparison above would pass vacuously if the baseline had loaded j5aio)
+    assert not _loaded(bare_modules, "j5aio")
+    assert _loaded(bare_modules, "anyio")
