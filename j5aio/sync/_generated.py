@@ -60,13 +60,13 @@ import j5aio.components.temperature_sensor as _components_temperature_sensor
 import j5aio.components.voltage_sensor as _components_voltage_sensor
 import j5aio.kit as _kit
 import j5aio.robot as _robot
-import j5aio.vision.track as _vision_track
 from j5aio._lazy import lazy_modules as _lazy_modules
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt as _adopt
 from j5aio.sync.wrapping import adopt_into as _adopt_into
 from j5aio.sync.wrapping import call as _call
 from j5aio.sync.wrapping import register as _register
+from j5aio.sync.wrapping import register_later as _register_later
 from j5aio.sync.wrapping import unwrap as _unwrap
 from j5aio.sync.wrapping import wrap as _wrap
 from j5aio.sync.wrapping import wrap_kept as _wrap_kept
@@ -84,6 +84,7 @@ if TYPE_CHECKING:
     import j5aio.vision.locate as _vision_locate
     import j5aio.vision.markers as _vision_markers
     import j5aio.vision.sizes as _vision_sizes
+    import j5aio.vision.track as _vision_track
     CONSOLE_ENVIRONMENT: Environment
     """The sync face of ``j5aio.backends.console.env.CONSOLE_ENVIRONMENT``."""
     HARDWARE_ENVIRONMENT: Environment
@@ -102,6 +103,7 @@ else:
         "_vision_locate": "j5aio.vision.locate",
         "_vision_markers": "j5aio.vision.markers",
         "_vision_sizes": "j5aio.vision.sizes",
+        "_vision_track": "j5aio.vision.track",
     })
 
 __all__ = [
@@ -3537,7 +3539,7 @@ _register(_backends_environment.Environment, Environment)
 _register(_boards_arduino_ultrasound.UltrasoundSensors, UltrasoundSensors)
 _register(_boards_sr_kch.Colour, Colour)
 _register(_robot.BaseRobot, BaseRobot)
-_register(_vision_track.PositionTracker, PositionTracker)
+_register_later("j5aio.vision.track", "PositionTracker", PositionTracker)
 _register(_boards_board.Board, Board)
 _register(_boards_board_group.BoardGroup, BoardGroup)
 _register(_components_component.Component, Component)

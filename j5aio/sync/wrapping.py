@@ -16,6 +16,8 @@ its output, kept stable for generated modules of other packages.
 
 from __future__ import annotations
 
+import importlib
+import sys
 import weakref
 from collections import deque
 from collections.abc import Iterator, Mapping, Sequence, Set
@@ -34,6 +36,7 @@ __all__ = [
     "call",
     "core_class_of",
     "register",
+    "register_later",
     "registered",
     "unwrap",
     "wrap",
@@ -48,6 +51,9 @@ V = TypeVar("V")
 _WRAPPER_CLASSES: dict[type, type[SyncWrapper] | None] = {}
 #: wrapper class -> core class, for the registered wrapper classes only.
 _CORE_CLASSES: dict[type, type] = {}
+#: wrapper class -> (module, class name) of a core class registered by name, whose module
+#: has not been imported yet (see :func:`register_later`).
+_PENDING: dict[type, tuple[str, str]] = {}
 #: id(core object) -> its wrapper. The wrapper keeps its core object (and so the id) alive,
 #: and the entry goes when the wrapper does, so an id is never looked up for a new object.
 _WRAPPERS: weakref.WeakValueDictionary[int, SyncWrapper] = weakref.WeakValueDictionary()
@@ -120,8 +126,43 @@ def register(core_class: type, wrapper_class: type[SyncWrapper]) -> None:
     _CORE_CLASSES[wrapper_class] = core_class
 
 
+def register_later(module: str, name: str, wrapper_class: type[SyncWrapper]) -> None:
+    """Use ``wrapper_class`` for the core class ``name`` of ``module``, without importing it.
+
+    The class is registered (as by :func:`register`) once its module has been imported:
+    until then no object of it can exist, so no wrapper of one is asked for. A wrapper
+    module registers this way the classes of features a program may never use (the
+    vision package's tracker), so that importing it does not import them.
+    Asking for the core class of ``wrapper_class`` (:func:`core_class_of`, or
+    :func:`unwrap` of the class) imports the module.
+    """
+    _PENDING[wrapper_class] = (module, name)
+
+
+def _register_pending(*, importing: bool = False) -> None:
+    """Register the classes of :func:`register_later` whose modules are imported.
+
+    :param importing: import the modules of the others first.
+    """
+    for wrapper_class, (module, name) in list(_PENDING.items()):
+        loaded = importlib.import_module(module) if importing else sys.modules.get(module)
+        # (a module still being imported may not have defined the class yet)
+        core_class = getattr(loaded, name, None)
+        if importing and not isinstance(core_class, type):
+            raise TypeError(
+                f"{module}.{name}, registered for {wrapper_class.__name__}, is not a class"
+            )
+        if isinstance(core_class, type) and _PENDING.pop(wrapper_class, None) is not None:
+            register(core_class, wrapper_class)
+
+
 def registered() -> dict[type, type[SyncWrapper]]:
-    """Return every registered core class with its wrapper class (a copy)."""
+    """Return every registered core class with its wrapper class (a copy).
+
+    The classes registered with :func:`register_later` are among them: their modules are
+    imported.
+    """
+    _register_pending(importing=True)
     return {
         core: wrapper
         for wrapper, core in _CORE_CLASSES.items()
@@ -131,6 +172,8 @@ def registered() -> dict[type, type[SyncWrapper]]:
 
 def core_class_of(cls: type) -> type | None:
     """Return the core class that wrapper class ``cls`` (or its nearest wrapped base) wraps."""
+    if _PENDING and any(klass in _PENDING for klass in cls.__mro__):
+        _register_pending(importing=True)
     for klass in cls.__mro__:
         core = _CORE_CLASSES.get(klass)
         if core is not None:
@@ -156,6 +199,10 @@ def _wrapper_class_of(cls: type) -> type[SyncWrapper] | None:
         return _WRAPPER_CLASSES[cls]
     except KeyError:
         pass
+    if _PENDING:  # (a class registered by name whose module is imported now, perhaps)
+        _register_pending()
+        if cls in _WRAPPER_CLASSES:
+            return _WRAPPER_CLASSES[cls]
     found: type[SyncWrapper] | None = None
     for base in cls.__mro__[1:]:
         found = _WRAPPER_CLASSES.get(base)

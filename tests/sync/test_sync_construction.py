@@ -18,7 +18,7 @@ from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.components.motor import MotorSpecialState, MotorState
 from j5aio.components.piezo import Note
 from j5aio.sync import _generated as sync
-from j5aio.sync import _runtime
+from j5aio.sync import _runtime, wrapping
 from j5aio.sync._runtime import call
 from j5aio.sync.wrapping import _WRAPPER_CLASSES, wrap
 
@@ -30,6 +30,7 @@ def power_of(motor: sync.Motor) -> MotorState:
 
 
 def registered() -> list[tuple[type, type]]:
+    wrapping.registered()  # (registers the classes registered by name, too)
     return [(core, wrapper) for core, wrapper in _WRAPPER_CLASSES.items() if wrapper is not None]
 
 

@@ -64,6 +64,7 @@ def core_class_of(wrapper_class: type[SyncWrapper]) -> type:
 def _wrapping_registry() -> dict[type, Any]:
     from j5aio.sync import wrapping as _wrapping
 
+    _wrapping.registered()  # (registers the classes registered by name, too)
     return {k: v for k, v in _wrapping._WRAPPER_CLASSES.items() if v is not None}
 
 

@@ -3,7 +3,12 @@
 from __future__ import annotations
 
 import gc
+import subprocess
+import sys
 from collections.abc import Iterator, Mapping, Sequence
+from pathlib import Path
+
+import pytest
 
 from j5aio.numbered import NumberedComponents, Pins
 from j5aio.sync import wrapping as _wrapping
@@ -13,6 +18,7 @@ from j5aio.sync.wrapping import (
     WrappedSequence,
     adopt,
     register,
+    register_later,
     unwrap,
     wrap,
     wrap_kept,
@@ -249,3 +255,85 @@ def test_a_late_registration_wins_over_what_was_found_for_a_subclass() -> None:
     finally:
         del _wrapping._WRAPPER_CLASSES[LateBoard]
         del _wrapping._CORE_CLASSES[LateWrapper]
+
+
+def test_a_class_registered_by_name_is_wrapped_once_its_module_is_imported(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    (tmp_path / "late_feature_for_wrapping.py").write_text("class Tracker:\n    pass\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+
+    class TrackerWrapper(SyncWrapper):
+        __slots__ = ()
+
+    register_later("late_feature_for_wrapping", "Tracker", TrackerWrapper)
+    assert "late_feature_for_wrapping" not in sys.modules  # registering imported nothing
+    try:
+        import late_feature_for_wrapping  # type: ignore[import-not-found]
+
+        tracker = late_feature_for_wrapping.Tracker()
+        wrapper = wrap(tracker)
+        assert type(wrapper) is TrackerWrapper
+        assert unwrap(wrapper) is tracker
+        assert unwrap(TrackerWrapper) is late_feature_for_wrapping.Tracker
+    finally:
+        _wrapping._PENDING.pop(TrackerWrapper, None)
+        _wrapping._WRAPPER_CLASSES.pop(late_feature_for_wrapping.Tracker, None)
+        _wrapping._CORE_CLASSES.pop(TrackerWrapper, None)
+        sys.modules.pop("late_feature_for_wrapping", None)
+
+
+def test_asking_for_the_core_class_of_a_wrapper_registered_by_name_imports_it(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    (tmp_path / "late_feature_for_unwrap.py").write_text("class Tracker:\n    pass\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+
+    class TrackerWrapper(SyncWrapper):
+        __slots__ = ()
+
+    class MyTrackerWrapper(TrackerWrapper):
+        __slots__ = ()
+
+    register_later("late_feature_for_unwrap", "Tracker", TrackerWrapper)
+    try:
+        core = _wrapping.core_class_of(MyTrackerWrapper)
+        assert core is sys.modules["late_feature_for_unwrap"].Tracker
+        assert _wrapping.registered()[core] is TrackerWrapper
+    finally:
+        _wrapping._PENDING.pop(TrackerWrapper, None)
+        module = sys.modules.pop("late_feature_for_unwrap", None)
+        if module is not None:
+            _wrapping._WRAPPER_CLASSES.pop(module.Tracker, None)
+        _wrapping._CORE_CLASSES.pop(TrackerWrapper, None)
+
+
+def test_a_name_registered_for_a_wrapper_that_is_not_a_class_is_refused(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    (tmp_path / "late_feature_not_a_class.py").write_text("Tracker = 3\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+
+    class TrackerWrapper(SyncWrapper):
+        __slots__ = ()
+
+    register_later("late_feature_not_a_class", "Tracker", TrackerWrapper)
+    try:
+        with pytest.raises(TypeError, match=r"late_feature_not_a_class\.Tracker"):
+            _wrapping.registered()
+    finally:
+        _wrapping._PENDING.pop(TrackerWrapper, None)
+        sys.modules.pop("late_feature_not_a_class", None)
+
+
+def test_the_facade_does_not_import_the_vision_tracker() -> None:
+    code = (
+        "import sys\n"
+        "from j5aio.sync import KitRobot, wrapping\n"
+        "assert 'j5aio.vision.track' not in sys.modules, 'imported'\n"
+        "from j5aio.sync import PositionTracker\n"
+        "from j5aio.sync.wrapping import unwrap\n"
+        "from j5aio.vision.track import PositionTracker as Core\n"
+        "assert unwrap(PositionTracker) is Core\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True, timeout=120)
