@@ -49,6 +49,7 @@ from j5aio.backends import _kind_types, _kinds
 from j5aio.backends._kinds import (
     DEFAULT_KIT,
     BackendField,
+    BoardField,
     BoardKind,
     BoardPluginWarning,
     KitDefinition,
@@ -67,6 +68,7 @@ __all__ = [
     "DEFAULT_KIT",
     "ENTRY_POINT_GROUP",
     "BackendField",
+    "BoardField",
     "BoardKind",
     "BoardPluginWarning",
     "KitDefinition",

@@ -20,6 +20,7 @@ from j5aio.power_outputs import BRAIN_OUTPUT, output_number
 __all__ = [
     "DEFAULT_KIT",
     "BackendField",
+    "BoardField",
     "BoardKind",
     "KitDefinition",
     "SimulatorClass",
@@ -206,6 +207,34 @@ class BackendField:
         vars(kind)[self._slot] = value
 
 
+class BoardField:
+    """The ``board`` attribute of :class:`BoardKind`.
+
+    It is given a :class:`~j5aio.boards.board.Board` subclass or the class's import path
+    (``"package.module:ClassName"``); read, it gives the class, importing and checking it
+    the first time. It has no default.
+    """
+
+    def __get__(self, kind: BoardKind | None, owner: type) -> type[Board]:
+        if kind is None:  # (no default: the dataclass asks, and learns there is none)
+            raise AttributeError("board")
+        value: type[Board] | str = vars(kind)["_board"]
+        if isinstance(value, str):
+            board = import_class(value, f"board kind {kind.name!r}: its board")
+            _check_board(kind.name, board)
+            vars(kind)["_board"] = board
+            return cast("type[Board]", board)
+        return value
+
+    def __set__(self, kind: BoardKind, value: type[Board] | str) -> None:
+        vars(kind)["_board"] = value
+
+
+def _check_board(kind: str, board: object) -> None:
+    if not (isinstance(board, type) and issubclass(board, Board)):
+        raise TypeError(f"board kind {kind!r}: board must be a Board subclass")
+
+
 @dataclass(frozen=True)
 class BoardKind:
     """One generation of one board, and everything that drives or stands in for it.
@@ -218,7 +247,9 @@ class BoardKind:
 
     :param name: a unique name, e.g. ``"sr-v4-motor-fw3"``.
     :param board: the board class programs ask for (a subclass of the family's class for
-        a new generation of a board family, or the family's class itself).
+        a new generation of a board family, or the family's class itself), or its import
+        path, ``"package.module:ClassName"``: the module is then imported the first time
+        the attribute is read, and the class checked then.
     :param description: what it is, for people.
     :param hardware: the hardware backend whose ``discover(options=...)`` finds it (a
         :class:`~j5aio.backends.hardware.serial_backend.SerialHardwareBackend` or
@@ -238,8 +269,9 @@ class BoardKind:
     """
 
     name: str
-    board: type[Board]
-    description: str
+    # (no default, though mypy sees one: the descriptor says there is none)
+    board: BoardField = BoardField()
+    description: str  # type: ignore[misc]
     hardware: BackendField = BackendField()
     console: BackendField = BackendField()
     simulators: tuple[SimulatorEntry, ...] = ()
@@ -249,8 +281,11 @@ class BoardKind:
 
     def __post_init__(self) -> None:
         _check_name("board kind", self.name)
-        if not (isinstance(self.board, type) and issubclass(self.board, Board)):
-            raise TypeError(f"board kind {self.name!r}: board must be a Board subclass")
+        board = vars(self)["_board"]
+        if isinstance(board, str):
+            check_import_path(board, f"board kind {self.name!r}: its board")
+        else:
+            _check_board(self.name, board)
         for role in _BACKEND_ROLES:
             backend = vars(self)[f"_{role}"]
             if isinstance(backend, str):
@@ -282,6 +317,14 @@ class BoardKind:
         if value is None or isinstance(value, str):
             return value
         return f"{value.__module__}:{value.__qualname__}"
+
+    def board_reference(self) -> str:
+        """The import path of the board class, ``"package.module:ClassName"``.
+
+        It imports nothing (see :meth:`backend_reference`).
+        """
+        value: type[Board] | str = vars(self)["_board"]
+        return value if isinstance(value, str) else f"{value.__module__}:{value.__qualname__}"
 
     def _check_backend(self, role: str, backend: object) -> None:
         if backend is None:

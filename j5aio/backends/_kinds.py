@@ -20,6 +20,7 @@ from j5aio.backends._kind_types import (
     _BACKEND_ROLES,
     DEFAULT_KIT,
     BackendField,
+    BoardField,
     BoardKind,
     KitDefinition,
     SimulatorClass,
@@ -30,6 +31,7 @@ __all__ = [
     "DEFAULT_KIT",
     "ENTRY_POINT_GROUP",
     "BackendField",
+    "BoardField",
     "BoardKind",
     "BoardPluginWarning",
     "KitDefinition",
@@ -177,8 +179,8 @@ def _with_package(item: BoardKind | KitDefinition, package: str) -> BoardKind | 
         return item
     if isinstance(item, KitDefinition):
         return replace(item, package=package)
-    # (the backends as given: reading them would import those named by path)
-    given = {role: vars(item)[f"_{role}"] for role in _BACKEND_ROLES}
+    # (the board and backends as given: reading them would import those named by path)
+    given = {role: vars(item)[f"_{role}"] for role in (*_BACKEND_ROLES, "board")}
     return replace(item, package=package, **given)
 
 
@@ -187,7 +189,8 @@ _registry = _Registry()
 # The definitions are documented as j5aio.board_kinds's, where programs and plugins find
 # them (that module is the registry's public face).
 for _public in (
-    BackendField, BoardKind, BoardPluginWarning, KitDefinition, SimulatorClass, SimulatorEntry,
+    BackendField, BoardField, BoardKind, BoardPluginWarning, KitDefinition, SimulatorClass,
+    SimulatorEntry,
 ):
     _public.__module__ = "j5aio.board_kinds"
 del _public

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import warnings
 from collections.abc import Iterator
 from typing import Any
@@ -194,6 +195,60 @@ def test_a_simulator_class_path_naming_no_class_fails_when_used() -> None:
         SimulatorClass("no.such.module:Simulator").resolve()
 
 
+MOTOR_BOARD = "j5aio.boards.sr.v4.motor_board:MotorBoard"
+
+
+def test_a_board_given_by_import_path_is_imported_when_first_read() -> None:
+    kind = BoardKind("k", MOTOR_BOARD, "x", hardware=MOTOR_FW3)
+    assert vars(kind)["_board"] == MOTOR_BOARD  # not imported yet
+    assert kind.board_reference() == MOTOR_BOARD
+    assert kind.board is MotorBoard
+    assert vars(kind)["_board"] is MotorBoard  # once only
+    assert kind.hardware is SRV4MotorBoardHardwareBackend  # checked against the board
+    assert kind == BoardKind("k", MotorBoard, "x", hardware=SRV4MotorBoardHardwareBackend)
+    assert BoardKind("k", MotorBoard, "x").board_reference() == MOTOR_BOARD  # a class: its path
+
+
+def test_a_board_kind_has_no_default_board() -> None:
+    with pytest.raises(TypeError, match="board"):
+        BoardKind("k")  # type: ignore[call-arg]
+    assert [field.name for field in dataclasses.fields(BoardKind)][:3] == [
+        "name", "board", "description",
+    ]
+
+
+@pytest.mark.parametrize(
+    ("reference", "error", "message"),
+    [
+        ("no.such.module:Board", ImportError, "no"),
+        ("j5aio.boards.sr.v4.motor_board:NoSuchBoard", AttributeError, "NoSuch"),
+        (MOTOR_FW3, TypeError, "board must be a Board subclass"),
+    ],
+)
+def test_a_bad_board_import_path_fails_when_read(
+    reference: str, error: type[Exception], message: str,
+) -> None:
+    kind = BoardKind("k", reference, "x")
+    with pytest.raises(error, match=message):
+        kind.board  # noqa: B018
+
+
+def test_a_board_import_path_must_name_a_module_and_a_class() -> None:
+    with pytest.raises(ValueError, match=r"'package\.module:ClassName'"):
+        BoardKind("k", "no_colon", "x")
+    with pytest.raises(TypeError, match="board must be a Board subclass"):
+        BoardKind("k", int, "x")  # type: ignore[arg-type]
+
+
+def test_a_backend_named_by_path_is_checked_against_a_board_named_by_path() -> None:
+    kind = BoardKind(
+        "k", MOTOR_BOARD, "x",
+        hardware="j5aio.backends.hardware.sr.v4.power_board:SRV4PowerBoardHardwareBackend",
+    )
+    with pytest.raises(TypeError, match="drives PowerBoard, not MotorBoard"):
+        kind.hardware  # noqa: B018
+
+
 def test_a_backends_import_path_is_known_without_importing_it() -> None:
     kind = BoardKind("k", MotorBoard, "x", hardware=MOTOR_FW3, console=None)
     assert kind.backend_reference("hardware") == MOTOR_FW3
@@ -291,7 +346,7 @@ def test_loading_a_plugin_imports_none_of_the_backends_it_names_by_path(
     fresh_registry: list[FakeEntryPoint],
 ) -> None:
     lazy = BoardKind(
-        "test-lazy", MotorBoard, "x",
+        "test-lazy", "no_such_plugin.boards:Board", "x",
         hardware="no_such_plugin.backend:Backend", console="no_such_plugin.console:Console",
     )
     fresh_registry.append(FakeEntryPoint("lazy", [lazy]))
@@ -300,8 +355,11 @@ def test_loading_a_plugin_imports_none_of_the_backends_it_names_by_path(
         kind = {kind.name: kind for kind in board_kinds.board_kinds()}["test-lazy"]
     assert kind.package == "j5aio-fake-plugin"
     assert kind.backend_reference("hardware") == "no_such_plugin.backend:Backend"
+    assert kind.board_reference() == "no_such_plugin.boards:Board"
     with pytest.raises(ImportError, match="no_such_plugin"):
         _ = kind.hardware
+    with pytest.raises(ImportError, match="no_such_plugin"):
+        _ = kind.board
 
 
 @pytest.mark.parametrize(
