@@ -66,7 +66,9 @@ def _from_importlib_metadata(group: str) -> list[PluginEntryPoint]:
 
 
 def _normalized(name: str) -> str:
-    return re.sub(r"[-_.]+", "_", name).lower()
+    if "." in name or "-" in name or "__" in name:
+        return re.sub(r"[-_.]+", "_", name).lower()
+    return name.lower()  # (most folders' names are normalized already)
 
 
 def _scan(group: str) -> list[PluginEntryPoint] | None:
@@ -95,7 +97,7 @@ def _scan(group: str) -> list[PluginEntryPoint] | None:
             if key in seen:
                 continue
             seen.add(key)
-            found += _read(os.path.join(folder, name), group)
+            found += _read(f"{folder}{os.sep}{name}", group)
     return found
 
 
@@ -106,8 +108,10 @@ def _path_finder() -> object:
 
 
 def _read(distribution: str, group: str) -> list[PluginEntryPoint]:
-    text = _text(os.path.join(distribution, "entry_points.txt"))
-    if not text:
+    path = f"{distribution}{os.sep}entry_points.txt"
+    # (most distributions have none: asking is cheaper than failing to open it)
+    text = _text(path) if os.access(path, os.R_OK) else None
+    if not text or f"[{group}]".replace(" ", "") not in text.replace(" ", ""):
         return []
     found: list[tuple[str, str]] = []
     section = None
