@@ -153,9 +153,10 @@ def _listdir_failing_for(folder: Path) -> Callable[[str], list[str]]:
 def test_dotted_folder_names_and_distributions_without_the_group_are_read_as_importlib_does(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    distribution(tmp_path, "spaced.kit-1.0", "[test.group]\nsp = plugin_for_test:entries\n")
-    distribution(tmp_path, "spaced_kit-0.5", "[test.group]\nhidden = plugin_for_test:entries\n")
-    distribution(tmp_path, "other-1.0", "[console_scripts]\nx = y:z\n")
+    group = "[test.group]\n"
+    distribution(tmp_path, "spaced.kit-1.0", f"{group}sp = plugin_for_test:entries\n", "spaced.kit")
+    distribution(tmp_path, "spaced_kit-0.5", f"{group}old = plugin_for_test:e\n", "spaced_kit")
+    distribution(tmp_path, "other-1.0", "[console_scripts]\nx = y:z\n", "other")
     (tmp_path / "bare-1.0.dist-info").mkdir()  # no entry_points.txt at all
     monkeypatch.setattr(sys, "path", [str(tmp_path)])
     found = as_tuples(find("test.group"))
