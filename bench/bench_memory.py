@@ -28,6 +28,7 @@ the sync runtime's event loop thread costs before any board.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -113,14 +114,30 @@ motor.power = 0
 """ + REPORT
 
 
+def _other_checkout(env: dict[str, str], checkout: str) -> dict[str, str]:
+    """``env`` with another checkout of j5aio first on the path (``--compare``)."""
+    return {**env, "PYTHONPATH": os.pathsep.join([checkout, env["PYTHONPATH"]])}
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounds", type=int, default=7, help="runs of each case (default 7)")
+    parser.add_argument(
+        "--compare", metavar="CHECKOUT", default="",
+        help="another checkout of j5aio (before a change, say): its async and sync cases "
+        "run in the same interleaved rounds",
+    )
     options = parser.parse_args()
 
     sim = j5aio_env(J5AIO_ENV="sim")
     sync = Case("j5aio sync, simulated kit", [sys.executable, "-c", SYNC_PROGRAM], sim)
     cases = [sync, Case("j5aio async, simulated kit", [sys.executable, "-c", ASYNC_PROGRAM], sim)]
+    if options.compare:
+        cases += [
+            Case(f"{case.name} ({options.compare})", case.argv,
+                 _other_checkout(case.env, options.compare))
+            for case in list(cases)
+        ]
     floor = Case("floor: import asyncio", [sys.executable, "-c", FLOOR_PROGRAM], j5aio_env())
     portal = Case("portal, no j5aio", [sys.executable, "-c", PORTAL_PROGRAM], j5aio_env())
     cases += [floor, portal]

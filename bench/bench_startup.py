@@ -26,6 +26,7 @@ portal, the facade's wrappers).
 from __future__ import annotations
 
 import argparse
+import os
 import subprocess
 import sys
 import time
@@ -102,10 +103,20 @@ def time_to_ready(case: Case) -> float:
     return elapsed
 
 
+def _other_checkout(env: dict[str, str], checkout: str) -> dict[str, str]:
+    """``env`` with another checkout of j5aio first on the path (``--compare``)."""
+    return {**env, "PYTHONPATH": os.pathsep.join([checkout, env["PYTHONPATH"]])}
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounds", type=int, default=15, help="runs of each case (default 15)")
     parser.add_argument("--kit", default="", help="the simulated kit (J5AIO_KIT; default kit)")
+    parser.add_argument(
+        "--compare", metavar="CHECKOUT", default="",
+        help="another checkout of j5aio (before a change, say): its async and sync cases "
+        "run in the same interleaved rounds",
+    )
     options = parser.parse_args()
 
     sim = {"J5AIO_ENV": "sim", **({"J5AIO_KIT": options.kit} if options.kit else {})}
@@ -113,6 +124,12 @@ def main() -> int:
         Case("j5aio async, simulated kit", [sys.executable, "-c", ASYNC_PROGRAM], j5aio_env(**sim)),
         Case("j5aio sync, simulated kit", [sys.executable, "-c", SYNC_PROGRAM], j5aio_env(**sim)),
     ]
+    if options.compare:
+        cases += [
+            Case(f"{case.name} ({options.compare})", case.argv,
+                 _other_checkout(case.env, options.compare))
+            for case in list(cases)
+        ]
     floor = Case("floor: anyio.run, no j5aio", [sys.executable, "-c", FLOOR_PROGRAM], j5aio_env())
     cases.append(floor)
     peer = j5_python()
