@@ -20,9 +20,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
-from dataclasses import FrozenInstanceError, dataclass, field
-from typing import TYPE_CHECKING, ClassVar, TypeVar
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, ClassVar
 
+from j5aio.vision._records import record, set_fields
 from j5aio.vision.sizes import MarkerSizes
 
 if TYPE_CHECKING:  # (imported where used: a kit that never locates itself needs neither)
@@ -39,68 +40,7 @@ __all__ = [
 ]
 
 
-_R = TypeVar("_R")
-
-
-def _record(cls: type[_R]) -> type[_R]:
-    """Make ``cls`` (with ``__slots__`` and ``_fields``) a small immutable record.
-
-    It is equal, hashed and shown by its fields, like a frozen dataclass; assigning or
-    deleting raises :class:`dataclasses.FrozenInstanceError`. The arena's records are
-    written so because making a dataclass costs a robot's start-up (about a third of a
-    millisecond each) and these are made on every start of the simulated kit.
-    """
-    fields: tuple[str, ...] = vars(cls)["_fields"]
-
-    def values(self: object) -> tuple[object, ...]:
-        return tuple(getattr(self, name) for name in fields)
-
-    def equal(self: object, other: object) -> object:  # (bool, or NotImplemented)
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        return values(self) == values(other)
-
-    def hashed(self: object) -> int:
-        return hash(values(self))
-
-    def shown(self: object) -> str:
-        listed = ", ".join(f"{name}={getattr(self, name)!r}" for name in fields)
-        return f"{type(self).__qualname__}({listed})"
-
-    def refuse_set(self: object, name: str, value: object) -> None:
-        raise FrozenInstanceError(f"cannot assign to field {name!r}")
-
-    def refuse_delete(self: object, name: str) -> None:
-        raise FrozenInstanceError(f"cannot delete field {name!r}")
-
-    def copied(self: _R) -> _R:
-        return self
-
-    def deep_copied(self: _R, memo: object) -> _R:
-        return self
-
-    def pickled(self: object) -> tuple[type, tuple[object, ...]]:
-        return (type(self), values(self))
-
-    methods = {
-        "__eq__": equal, "__hash__": hashed, "__repr__": shown, "__setattr__": refuse_set,
-        "__delattr__": refuse_delete, "__copy__": copied, "__deepcopy__": deep_copied,
-        "__reduce__": pickled,
-    }
-    for name, method in methods.items():
-        method.__name__ = name
-        method.__qualname__ = f"{cls.__qualname__}.{name}"
-        setattr(cls, name, method)
-    return cls
-
-
-def _set(record: object, **values: object) -> None:
-    """Set a record's fields (in its ``__init__``: a record refuses assignment after)."""
-    for name, value in values.items():
-        object.__setattr__(record, name, value)
-
-
-@_record
+@record
 class ArenaMarker:
     """A marker fixed in the arena.
 
@@ -126,10 +66,10 @@ class ArenaMarker:
     def __init__(
         self, marker_id: int, size: float, x: float, y: float, z: float, facing: float,
     ) -> None:
-        _set(self, marker_id=marker_id, size=size, x=x, y=y, z=z, facing=facing)
+        set_fields(self, marker_id=marker_id, size=size, x=x, y=y, z=z, facing=facing)
 
 
-@_record
+@record
 class Token:
     """A cube on the floor with the same marker on each of its four sides.
 
@@ -160,7 +100,7 @@ class Token:
         marker_size: float = 80.0,
         heading: float = 0.0,
     ) -> None:
-        _set(self,
+        set_fields(self,
             marker_id=marker_id, x=x, y=y, side=side, marker_size=marker_size, heading=heading,
         )
 
@@ -266,7 +206,7 @@ class Arena:
         )
 
 
-@_record
+@record
 class Pose:
     """Where the robot is: x, y (mm) of its centre and its heading (radians, from east)."""
 
@@ -278,10 +218,10 @@ class Pose:
     heading: float
 
     def __init__(self, x: float, y: float, heading: float) -> None:
-        _set(self, x=x, y=y, heading=heading)
+        set_fields(self, x=x, y=y, heading=heading)
 
 
-@_record
+@record
 class DifferentialDrive:
     """Which motors drive the wheels, and how fast the robot goes.
 
@@ -309,7 +249,7 @@ class DifferentialDrive:
         track_width: float = 300.0,
         radius: float = 200.0,
     ) -> None:
-        _set(self,
+        set_fields(self,
             left=left, right=right, max_speed=max_speed, track_width=track_width, radius=radius,
         )
         for name in ("max_speed", "track_width", "radius"):

@@ -42,9 +42,10 @@ import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 from j5aio.components._checks import check_number, describe
+from j5aio.vision._records import record, set_fields
 from j5aio.vision.sizes import FAMILY_SIZE, MarkerSizes
 
 __all__ = ["ArenaMap", "ArenaMapError", "WallMarker"]
@@ -78,7 +79,7 @@ def _marker_id(value: object, name: str) -> int:
     return value
 
 
-@dataclass(frozen=True)
+@record
 class WallMarker:
     """A marker fixed on a wall of the arena.
 
@@ -93,21 +94,27 @@ class WallMarker:
     :raises ValueError: an id outside AprilTag 36h11, a size not above 0, a value not finite.
     """
 
+    __slots__ = ("facing", "id", "size", "x", "y", "z")
+    _fields: ClassVar[tuple[str, ...]] = ("id", "x", "y", "facing", "size", "z")
+
     id: int
     x: float
     y: float
     facing: float
-    size: float = 150.0
-    z: float = 250.0
+    size: float
+    z: float
 
-    def __post_init__(self) -> None:
-        _marker_id(self.id, "a wall marker's id")
-        name = f"wall marker {self.id}'s"
-        for attribute in ("x", "y", "facing", "z"):
-            object.__setattr__(
-                self, attribute, _number(getattr(self, attribute), f"{name} {attribute}")
-            )
-        object.__setattr__(self, "size", _number(self.size, f"{name} size", positive=True))
+    def __init__(
+        self, id: int, x: float, y: float, facing: float, size: float = 150.0, z: float = 250.0,
+    ) -> None:
+        _marker_id(id, "a wall marker's id")
+        name = f"wall marker {id}'s"
+        x, y, facing, z = (
+            _number(value, f"{name} {attribute}")
+            for attribute, value in (("x", x), ("y", y), ("facing", facing), ("z", z))
+        )
+        size = _number(size, f"{name} size", positive=True)
+        set_fields(self, id=id, x=x, y=y, facing=facing, size=size, z=z)
 
 
 @dataclass(frozen=True)
