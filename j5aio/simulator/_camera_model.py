@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, ClassVar
 
-from j5aio.vision._records import record, set_fields
+from j5aio._records import record, set_fields
 from j5aio.vision.calibration import CameraCalibration
 
 if TYPE_CHECKING:  # (the renderer is imported only when a picture is drawn)

@@ -23,7 +23,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, ClassVar
 
-from j5aio.vision._records import record, set_fields
+from j5aio._records import record, set_fields
 from j5aio.vision.sizes import MarkerSizes
 
 if TYPE_CHECKING:  # (imported where used: a kit that never locates itself needs neither)

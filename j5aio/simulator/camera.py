@@ -18,9 +18,9 @@ import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, ClassVar
 
+from j5aio._records import record, set_fields
 from j5aio.backends.camera.frames import FrameCameraBackend
 from j5aio.boards.camera import CameraBoard
-from j5aio.vision._records import record, set_fields
 
 from . import _camera_model
 from ._camera_model import SimulatedCamera

@@ -44,8 +44,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, ClassVar
 
+from j5aio._records import record, set_fields
 from j5aio.components._checks import check_number, describe
-from j5aio.vision._records import record, set_fields
 from j5aio.vision.sizes import FAMILY_SIZE, MarkerSizes
 
 __all__ = ["ArenaMap", "ArenaMapError", "WallMarker"]

@@ -16,8 +16,8 @@ import sys
 from pathlib import Path
 from typing import ClassVar, Final
 
+from j5aio._records import record, set_fields
 from j5aio.components._checks import check_number
-from j5aio.vision._records import record, set_fields
 
 __all__ = ["KNOWN_CALIBRATIONS", "CameraCalibration", "known_calibration"]
 

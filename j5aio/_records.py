@@ -1,8 +1,8 @@
 """Small immutable records made without a dataclass's cost at start-up.
 
 Making a dataclass generates and compiles its methods: about a third of a millisecond
-each, paid by every program that imports it. The records a robot on the simulated kit
-makes at every start (the arena's markers and poses, the camera's calibration) are
+each, paid by every program that imports it. The records a robot imports at every start
+(the simulated arena's markers and poses, the camera's calibration) are
 written as plain classes with ``__slots__`` and decorated with :func:`record`, which gives
 them a frozen dataclass's equality, hash, repr, copying, pickling and immutability from
 functions written once here.
@@ -24,11 +24,15 @@ _R = TypeVar("_R")
 def record(cls: type[_R]) -> type[_R]:
     """Make ``cls`` (with ``__slots__`` and ``_fields``) a small immutable record.
 
+    ``_fields`` names the fields in order; an optional ``_shown_fields`` names those its
+    repr shows (all of them if it is not given: leave out a password, say).
+
     It is equal, hashed and shown by its fields, like a frozen dataclass; assigning or
     deleting raises :class:`dataclasses.FrozenInstanceError`. ``__init__`` sets the
     fields with :func:`set_fields`.
     """
     fields: tuple[str, ...] = vars(cls)["_fields"]
+    shown_fields: tuple[str, ...] = vars(cls).get("_shown_fields", fields)
 
     def values(self: object) -> tuple[object, ...]:
         return tuple(getattr(self, name) for name in fields)
@@ -42,7 +46,7 @@ def record(cls: type[_R]) -> type[_R]:
         return hash(values(self))
 
     def shown(self: object) -> str:
-        listed = ", ".join(f"{name}={getattr(self, name)!r}" for name in fields)
+        listed = ", ".join(f"{name}={getattr(self, name)!r}" for name in shown_fields)
         return f"{type(self).__qualname__}({listed})"
 
     def refuse_set(self: object, name: str, value: object) -> None:
