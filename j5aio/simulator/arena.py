@@ -123,7 +123,7 @@ class Token:
         return out
 
 
-@dataclass(frozen=True)
+@record
 class Arena:
     """A rectangular arena with markers on its walls and tokens on its floor.
 
@@ -134,11 +134,27 @@ class Arena:
     :param tokens: the tokens.
     """
 
-    width: float = 5750.0
-    length: float = 5750.0
-    wall_height: float = 500.0
-    markers: tuple[ArenaMarker, ...] = ()
-    tokens: tuple[Token, ...] = ()
+    __slots__ = ("length", "markers", "tokens", "wall_height", "width")
+    _fields: ClassVar[tuple[str, ...]] = ("width", "length", "wall_height", "markers", "tokens")
+
+    width: float
+    length: float
+    wall_height: float
+    markers: tuple[ArenaMarker, ...]
+    tokens: tuple[Token, ...]
+
+    def __init__(
+        self,
+        width: float = 5750.0,
+        length: float = 5750.0,
+        wall_height: float = 500.0,
+        markers: tuple[ArenaMarker, ...] = (),
+        tokens: tuple[Token, ...] = (),
+    ) -> None:
+        set_fields(
+            self, width=width, length=length, wall_height=wall_height, markers=markers,
+            tokens=tokens,
+        )
 
     @classmethod
     def standard(

@@ -10,9 +10,16 @@ from typing import Any
 
 import pytest
 
-from j5aio.simulator.arena import ArenaMarker, DifferentialDrive, Pose, Token
+from j5aio.simulator.arena import Arena, ArenaMarker, DifferentialDrive, Pose, Token
 
 RECORDS: list[tuple[Any, Any, Any, str]] = [
+    (
+        Arena(markers=(ArenaMarker(3, 150.0, 1.0, 2.0, 250.0, 0.0),)),
+        Arena(5750.0, 5750.0, 500.0, (ArenaMarker(3, 150.0, 1.0, 2.0, 250.0, 0.0),), ()),
+        Arena(),
+        "Arena(width=5750.0, length=5750.0, wall_height=500.0, markers=(ArenaMarker(marker_id=3, "
+        "size=150.0, x=1.0, y=2.0, z=250.0, facing=0.0),), tokens=())",
+    ),
     (
         Pose(1.0, 2.0, 0.5), Pose(1.0, 2.0, 0.5), Pose(1.0, 2.0, 0.25),
         "Pose(x=1.0, y=2.0, heading=0.5)",
