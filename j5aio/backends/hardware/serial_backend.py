@@ -525,6 +525,38 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
 
         return await self._guarded(call, idempotent=idempotent)
 
+    async def command(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        timeout: float | None = None,
+        *,
+        then: Callable[[T], object] | None = None,
+        idempotent: bool = True,
+        when_dirty: Callable[[], tuple[bytes, ReplyReader[T]]] | None = None,
+    ) -> None:
+        """Send ``request``, a command whose reply only acknowledges it; check the reply.
+
+        As :meth:`exchange`, but nothing of the reply is returned: ``reader`` and
+        ``then`` check it (``then`` raises if the board refused, and updates what the
+        backend remembers). Inside
+        :func:`~j5aio.backends.acknowledgements.acknowledge_later` it may return as
+        soon as the command is written; the reply is then checked before the board's
+        next request (see :meth:`.SerialLink.command`).
+
+        :raises CommunicationError: no reply in time, or a reply ``then`` refuses.
+        :raises ~j5aio.errors.EarlierCommandError: the board's previous command, whose
+            acknowledgement was read now, had failed (this one was not sent).
+        :raises BoardDisconnectionError: the port has gone (it is looked for again).
+        """
+
+        def call() -> Awaitable[None]:  # the link is looked up anew for a retry
+            return self._link.command(
+                request, reader, timeout=timeout, then=then, when_dirty=when_dirty
+            )
+
+        await self._guarded(call, idempotent=idempotent)
+
     async def send(
         self, data: bytes, *, then: Callable[[], None] | None = None, idempotent: bool = True
     ) -> None:

@@ -64,6 +64,9 @@ class SRTextBackend(SerialHardwareBackend):
     ) -> None:
         """Send an action ``command`` and check that the board acknowledges it.
 
+        Inside :func:`~j5aio.backends.acknowledgements.acknowledge_later` it returns once
+        the command is written; the acknowledgement is checked before the next request.
+
         :param then: runs once the board has acknowledged ``command`` (even for a
             cancelled caller): where a backend updates what it remembers of the board.
         :param idempotent: ``False`` for a command that must not be sent again after
@@ -75,4 +78,4 @@ class SRTextBackend(SerialHardwareBackend):
             if then is not None:
                 then()
 
-        await self.exchange(command, _REPLY, then=acknowledged, idempotent=idempotent)
+        await self.command(command, _REPLY, then=acknowledged, idempotent=idempotent)
