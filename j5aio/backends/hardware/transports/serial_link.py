@@ -821,6 +821,11 @@ class SerialLink(AsyncResource):
         finished = False
         # The late lines come first: they get the time a resynchronisation would.
         seconds += self._drain_limit
+        if self._buffer:
+            # Whole lines here were owed (or noise); a part line is noise (a reply whose
+            # line ending was lost) or the start of a late line, whose end still counts.
+            self._settle(self._buffer.count(b"\n"))
+            self._buffer.clear()
         try:
             with anyio.move_on_after(seconds):
                 deadline = anyio.current_time() + seconds
