@@ -48,6 +48,7 @@ from j5aio.simulator import (
 )
 from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from j5aio.testing.transports import FaultyStream, RecordingStream
+from tests.testing.reliability_rig import cancellation_trials
 
 TIMEOUT = 0.05
 
@@ -525,3 +526,29 @@ async def test_every_way_to_the_link_confirms_first(call: str) -> None:
                 await link.drain()
     assert link.acknowledgement_owed is None
     await board.close()
+
+
+async def test_confirm_reads_what_is_owed_now() -> None:
+    case, board, faulty, _ = await _connect("motor-fw4")
+    link: SerialLink = board.backend.link
+    await link.confirm()  # nothing owed: nothing happens
+    with acknowledge_later():
+        await case.act(board.backend)
+        await link.confirm()
+        assert link.acknowledgement_owed is None and case.remembered(board.backend)
+        faulty.drop_next_reply()
+        await case.act(board.backend)
+        with pytest.raises(EarlierCommandError, match="MOT:0:SET:500"):
+            await link.confirm()
+    await board.close()
+
+
+@pytest.mark.parametrize("style", ["anyio", "asyncio"])
+@pytest.mark.parametrize("name", ["sb-arduino", "ruggeduino"])
+async def test_random_cancellations_leave_no_wrong_answer_or_stale_cache(
+    name: str, style: str
+) -> None:
+    with acknowledge_later():
+        report = await cancellation_trials(name, style, 80, seed=11)  # type: ignore[arg-type]
+    assert report.trials == 80
+    assert (report.wrong_answers, report.mismatches, report.errors) == (0, 0, 0), report.details

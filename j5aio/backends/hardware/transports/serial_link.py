@@ -500,6 +500,24 @@ class SerialLink(AsyncResource):
         # As a send: a checkpoint, where a cancellation that came meanwhile is raised.
         await anyio.lowlevel.checkpoint()
 
+    async def confirm(self) -> None:
+        """Read and check the acknowledgement still owed to the last :meth:`command` now.
+
+        Does nothing when none is owed. The link's next request does this anyway; call
+        it to learn of a failure at a moment of your choosing.
+
+        :raises EarlierCommandError: the command had failed.
+        :raises BoardDisconnectionError: the port has gone.
+        """
+        if self._unconfirmed is None:
+            return
+        await self._acquire()
+        try:
+            if self._unconfirmed is not None:
+                await self._confirm_locked()
+        finally:
+            self._lock.release()
+
     async def _write_unconfirmed(
         self,
         request: bytes,
