@@ -523,7 +523,15 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
                 when_dirty=when_dirty,
             )
 
-        return await self._guarded(call, idempotent=idempotent)
+        if self._lost or self._closed_for_good:
+            return await self._guarded(call, idempotent=idempotent)
+        try:  # the board is there: the call goes straight to the link
+            return await self._link.exchange(
+                request, reader, timeout=timeout, then=then,  # type: ignore[arg-type]
+                when_dirty=when_dirty,
+            )
+        except BoardDisconnectionError as error:
+            return await self._retry_after(error, call, idempotent=idempotent)
 
     async def command(
         self,
@@ -555,7 +563,15 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
                 request, reader, timeout=timeout, then=then, when_dirty=when_dirty
             )
 
-        await self._guarded(call, idempotent=idempotent)
+        if self._lost or self._closed_for_good:
+            await self._guarded(call, idempotent=idempotent)
+            return
+        try:  # the board is there: the call goes straight to the link
+            await self._link.command(
+                request, reader, timeout=timeout, then=then, when_dirty=when_dirty
+            )
+        except BoardDisconnectionError as error:
+            await self._retry_after(error, call, idempotent=idempotent)
 
     async def send(
         self, data: bytes, *, then: Callable[[], None] | None = None, idempotent: bool = True
@@ -570,7 +586,16 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         :raises ~j5aio.errors.CommunicationTimeoutError: the bytes could not be sent in time.
         :raises BoardDisconnectionError: the port has gone (it is looked for again).
         """
-        await self._guarded(lambda: self._link.send(data, then=then), idempotent=idempotent)
+        def call() -> Awaitable[None]:  # the link is looked up anew for a retry
+            return self._link.send(data, then=then)
+
+        if self._lost or self._closed_for_good:
+            await self._guarded(call, idempotent=idempotent)
+            return
+        try:  # the board is there: the call goes straight to the link
+            await self._link.send(data, then=then)
+        except BoardDisconnectionError as error:
+            await self._retry_after(error, call, idempotent=idempotent)
 
     def _forget(self) -> None:
         """Close the link at once; free the port only if the board will not be looked for."""
