@@ -552,3 +552,52 @@ async def test_random_cancellations_leave_no_wrong_answer_or_stale_cache(
         report = await cancellation_trials(name, style, 80, seed=11)  # type: ignore[arg-type]
     assert report.trials == 80
     assert (report.wrong_answers, report.mismatches, report.errors) == (0, 0, 0), report.details
+
+
+async def test_stale_input_before_a_command_is_discarded() -> None:
+    case, board, _, _ = await _connect("motor-fw4")
+    link: SerialLink = board.backend.link
+    with acknowledge_later():
+        link._buffer += b"left over by a read\n"
+        await case.act(board.backend)
+        assert link.buffered == b""
+        assert await case.ask(board.backend) == case.expected
+    await board.close()
+
+
+async def test_a_drain_after_a_good_acknowledgement_drains() -> None:
+    case, board, _, _ = await _connect("motor-fw4")
+    link: SerialLink = board.backend.link
+    with acknowledge_later():
+        await case.act(board.backend)
+        assert await link.drain(0.005) == 0
+    assert link.acknowledgement_owed is None and case.remembered(board.backend)
+    await board.close()
+
+
+async def test_waiting_for_an_acknowledgement_that_never_comes_times_out() -> None:
+    # Outside acknowledge_later(), each generation's own timeout message is kept.
+    _, board, faulty, _ = await _connect("sb2024")
+    faulty.drop_next_reply()
+    with pytest.raises(CommunicationTimeoutError, match="did not answer"):
+        await board.backend.write_gpio_pin_digital_state(4, True)
+    await board.close()
+    _, board, faulty, _ = await _connect("motor-fw4")
+    faulty.drop_next_reply()
+    with pytest.raises(CommunicationTimeoutError, match="12 V"):
+        await board.backend.set_motor_state(0, 0.5)
+    faulty.drop_next_reply()
+    with pytest.raises(CommunicationTimeoutError, match="12 V"):
+        await board.backend._query_then(b"*STATUS?\n", bytes)
+    await board.close()
+
+
+async def test_a_command_to_a_vanished_port_is_a_disconnection() -> None:
+    case, board, faulty, _ = await _connect("motor-fw4")
+    faulty.disconnect()
+    with pytest.raises(BoardDisconnectionError):
+        await case.act(board.backend)
+    assert not board.backend.is_connected
+    with pytest.raises(BoardDisconnectionError):
+        await case.act(board.backend)  # lost (and given as a stream: not looked for)
+    await board.close()
