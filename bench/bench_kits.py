@@ -221,13 +221,19 @@ class J5aioSyncLoop:
         self.servo.servos[0].position = power
         self.arduino.pins[3].digital_read()
 
-    def batch(self, iterations: int) -> list[float]:
+    def batch(self, iterations: int, *, ack_later: bool = False) -> list[float]:
+        """Time ``iterations`` loops, inside ``acknowledge_later(ack_later)``."""
         times = []
-        for index in range(iterations):
-            start = time.perf_counter()
-            self.iteration(index)
-            times.append(time.perf_counter() - start)
+        with acknowledge_later(ack_later):
+            for index in range(iterations):
+                start = time.perf_counter()
+                self.iteration(index)
+                times.append(time.perf_counter() - start)
         return times
+
+    def acknowledgements_owed(self) -> bool:
+        """Whether any board's acknowledgement is still to be read (they were confirmed later)."""
+        return any(core.backend.link.acknowledgement_owed is not None for core in self.cores)
 
     def close(self) -> None:
         from j5aio.sync import wrapping
@@ -276,6 +282,9 @@ class Figures:
         self.ours_sync: list[list[float]] = []
         self.ours_in_turn: list[list[float]] = []
         self.ours_ack_later: list[list[float]] = []
+        self.ours_sync_ack_later: list[list[float]] = []
+        #: Whether the sync facade carried acknowledge_later() into its event loop.
+        self.sync_carried_ack_later = False
         self.theirs: list[list[float]] = []
 
     @staticmethod
@@ -324,6 +333,8 @@ async def run(iterations: int, repeats: int) -> Figures:
                 figures.theirs.append(theirs.batch(iterations))
             figures.ours.append(await ours.batch(iterations))
             figures.ours_sync.append(ours_sync.batch(iterations))
+            figures.ours_sync_ack_later.append(ours_sync.batch(iterations, ack_later=True))
+            figures.sync_carried_ack_later |= ours_sync.acknowledgements_owed()
             figures.ours_in_turn.append(await ours.batch(iterations, in_turn=True))
             figures.ours_ack_later.append(
                 await ours.batch(iterations, in_turn=True, ack_later=True)
@@ -359,6 +370,14 @@ def main(argv: list[str] | None = None) -> None:
     print(f"  j5aio (4 boards at once)       {ours50:8.2f}   {ours95:8.2f} ms")
     sync50, sync95 = figures.p50_p95_ms(figures.ours_sync)
     print(f"  j5aio sync (one after another) {sync50:8.2f}   {sync95:8.2f} ms")
+    synclater50, synclater95 = figures.p50_p95_ms(figures.ours_sync_ack_later)
+    carried = (
+        "ACKs confirmed later" if figures.sync_carried_ack_later
+        else "the facade does not carry the switch into its loop: ACKs awaited"
+    )
+    print(
+        f"  sync inside acknowledge_later  {synclater50:8.2f}   {synclater95:8.2f} ms   ({carried})"
+    )
     turn50, turn95 = figures.p50_p95_ms(figures.ours_in_turn)
     print(f"  j5aio async, awaited in turn   {turn50:8.2f}   {turn95:8.2f} ms"
           "   (the sync loop's requests with no thread hand-off)")
@@ -380,6 +399,7 @@ def main(argv: list[str] | None = None) -> None:
     for label, batches, p95 in (
         ("async in turn", figures.ours_in_turn, turn95),
         ("in turn, ACKs later", figures.ours_ack_later, later95),
+        ("sync inside acknowledge_later", figures.ours_sync_ack_later, synclater95),
     ):
         print(
             f"  {label}: j5aio / sr-robot3 median over neighbouring batches "
