@@ -16,7 +16,7 @@ command; the next request is then not sent. What a backend remembers of the boar
 (its ``then=`` callbacks) changes when the acknowledgement is read, as it always does.
 
 It is off by default: ``await motor.set_power(0.5)`` completes on the board's
-acknowledgement. The switch is a :class:`contextvars.ContextVar`, so it holds in the
+acknowledgement. The switch is a ``contextvars.ContextVar``, so it holds in the
 context that sets it and in the tasks started from it, and nowhere else::
 
     with acknowledge_later():
