@@ -20,6 +20,7 @@ import anyio
 import pytest
 
 from j5aio.backends import acknowledge_later, acknowledging_later
+from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
 from j5aio.backends.hardware.sb.arduino_2024 import SBArduino2024HardwareBackend
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
@@ -48,6 +49,7 @@ from j5aio.simulator import (
 )
 from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from j5aio.testing.transports import FaultyStream, RecordingStream
+from tests.backends.hardware.test_hw_reconnect import QUICK, usb_port
 from tests.testing.reliability_rig import cancellation_trials
 
 TIMEOUT = 0.05
@@ -600,4 +602,35 @@ async def test_a_command_to_a_vanished_port_is_a_disconnection() -> None:
     assert not board.backend.is_connected
     with pytest.raises(BoardDisconnectionError):
         await case.act(board.backend)  # lost (and given as a stream: not looked for)
+    await board.close()
+
+
+async def test_a_board_that_comes_back_owes_nothing_from_before() -> None:
+    sim = SRMotorBoardFw4Simulator("srM1")
+    ports = [usb_port("/dev/ttyUSB0", "srM1", 0x0403, 0x6001,
+                      manufacturer="Student Robotics", product="MCV4B")]
+
+    async def opener(port: str, baudrate: int) -> Any:
+        return SimulatorStream(sim, time_scale=0)
+
+    options = DiscoveryOptions(port_source=lambda: ports, opener=opener, time_scale=0.01)
+    (board,) = await SRV4MotorBoardFw4HardwareBackend.discover(options=options)
+    backend = board.backend
+    assert isinstance(backend, SRV4MotorBoardFw4HardwareBackend)
+    backend.reconnect_policy = QUICK
+    await board.setup()
+    with acknowledge_later():
+        await backend.set_motor_state(0, 0.5)
+        assert backend.link.acknowledgement_owed is not None
+        sim.unplug()
+        with pytest.raises(BoardDisconnectionError, match="earlier command"):
+            await backend.get_motor_state(1)
+        assert not backend.is_connected
+        sim.plug()
+        await backend.set_motor_state(1, 0.25)  # found again, on a new link
+        assert backend.reconnections == 1
+        assert backend.last_sent == [None, None]  # forgotten; 0.25 not confirmed yet
+        assert await backend.get_motor_state(1) == 0.25
+    assert backend.last_sent == [None, 0.25]
+    assert sim.motors[1].value == 250
     await board.close()
