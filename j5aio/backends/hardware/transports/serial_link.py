@@ -486,7 +486,7 @@ class SerialLink(AsyncResource):
         try:
             if self._unconfirmed is not None:
                 await self._confirm_locked()
-            if not acknowledging_later() or self._dirty or self._owes():
+            if not acknowledging_later() or self._dirty or (self._owed and self._owes()):
                 await self._exchange_held(request, reader, seconds, then, when_dirty)
                 return
             with anyio.CancelScope(shield=True) as scope:
