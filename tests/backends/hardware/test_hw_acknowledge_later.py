@@ -634,3 +634,27 @@ async def test_a_board_that_comes_back_owes_nothing_from_before() -> None:
     assert backend.last_sent == [None, 0.25]
     assert sim.motors[1].value == 250
     await board.close()
+
+
+def test_a_loop_run_in_the_callers_thread_takes_the_switch_from_its_context() -> None:
+    # How a sync facade turns it on: the task run_until_complete makes copies the
+    # caller's context, so the switch set around the call holds inside it.
+    loop = asyncio.new_event_loop()
+    try:
+        board = loop.run_until_complete(
+            QuickMotor.from_stream(
+                SimulatorStream(SRMotorBoardFw4Simulator("srM5"), time_scale=0),
+                port="sim", serial_number="srM5",
+            )
+        )
+        backend = board.backend
+        assert isinstance(backend, QuickMotor)
+        with acknowledge_later():
+            loop.run_until_complete(backend.set_motor_state(0, 0.5))
+        assert backend.link.acknowledgement_owed == b"MOT:0:SET:500\n"
+        loop.run_until_complete(backend.set_motor_state(1, 0.5))  # switch off: waits
+        assert backend.link.acknowledgement_owed is None
+        assert backend.last_sent == [0.5, 0.5]
+        loop.run_until_complete(board.close())
+    finally:
+        loop.close()
