@@ -87,6 +87,20 @@ strongest rule its firmware allows:
 3. *Otherwise,* input is discarded until the line has been quiet for ``quiet_time``.
    This is a guess about timing, and only as good as the guess.
 
+**Acknowledgements confirmed later.** A command whose reply only acknowledges it goes
+through :meth:`~SerialLink.command`. Inside
+:func:`~j5aio.backends.acknowledgements.acknowledge_later`, on a link in step, it returns
+once its bytes are written and the link remembers the one acknowledgement it is owed:
+the link's next request (exchange, send, command, read, drain, :meth:`~SerialLink.confirm`)
+first reads and checks it, by the command's own deadline and shielded like an exchange,
+so that each board still has one request outstanding and the rules above hold
+unchanged. A failure found then is logged and raised as
+:class:`~j5aio.errors.EarlierCommandError` instead of sending the next request (except
+while the boards are being made safe, whose safe state is sent regardless).
+:meth:`~SerialLink.aclose` reads what is owed; :meth:`~SerialLink.close_now` and
+:meth:`~SerialLink.send_now` cannot wait, so they log that it went unchecked (after
+:meth:`~SerialLink.send_now` the link is dirty, and resynchronises past the reply).
+
 **Errors.** A timeout raises :class:`~j5aio.errors.CommunicationTimeoutError` naming the
 port and what was sent; a vanished port raises
 :class:`~j5aio.errors.BoardDisconnectionError`; a reply a reader cannot parse raises
