@@ -602,18 +602,52 @@ class SerialLink(AsyncResource):
         then: Callable[[T], object] | None,
         when_dirty: Callable[[], tuple[bytes, ReplyReader[T]]] | None,
     ) -> object:
-        """The body of :meth:`exchange`, with the lock held."""
-        progress = _Progress()
+        """The body of :meth:`exchange`, with the lock held.
+
+        Cleans the line if need be, then sends ``request`` and reads its reply. One
+        scope both shields the exchange and times it out: its deadline is set to
+        ``seconds`` from when the request goes out, so that it cancels the read (and
+        this raises the timeout) if the reply is late.
+        """
         if when_dirty is not None and (self._dirty or self._owes()):
             request, reader = when_dirty()
             request = bytes(request)
-        # One scope both shields the exchange and, once its request goes out, times
-        # it out (its deadline is set then: see _exchange_locked).
+        progress = _Progress()
         with anyio.CancelScope(shield=True) as scope:
             try:
-                reply = await self._exchange_locked(
-                    request, reader, seconds, progress, scope
-                )
+                self._check_open()
+                correlates = reader.correlates
+                if not correlates and self._resync_line is not None and self._owes():
+                    reply = await self._bracketed_locked(request, reader, seconds, progress)
+                else:
+                    finished = False
+                    try:
+                        if correlates:
+                            pass  # foreign replies, late or left over, are recognised
+                        elif self._dirty and self._can_resync:
+                            await self._resync_locked()
+                        elif self._dirty:
+                            await self._drain_locked(self._quiet_time, self._drain_limit)
+                        if self._buffer and not correlates:
+                            _log.debug(
+                                "%s: discarding stale input %s",
+                                self._name, _preview(self._buffer),
+                            )
+                            self._settle(self._buffer.count(b"\n"))
+                            self._buffer.clear()
+                        deadline = scope.deadline = self._loop_time() + seconds
+                        await self._write(request)
+                        progress.deadline, progress.seconds = deadline, seconds
+                        reply = await self._read_reply(reader, request)
+                        # Nothing awaits from here to the end of the scope, so its
+                        # deadline cannot fire any more; leaving the scope drops it.
+                        finished = True
+                        self._after_reply(request, reader)
+                    finally:
+                        if not finished:
+                            self._dirty = True
+                            if progress.deadline is not None:
+                                self._owe(_lines_of(reader))
             except asyncio.CancelledError:
                 # Task.cancel broke through the shield (unless this is the scope's
                 # own deadline, which the scope catches). Once the request has gone,
@@ -789,50 +823,6 @@ class SerialLink(AsyncResource):
     def _check_open(self) -> None:
         if self._closed:
             raise BoardDisconnectionError(f"{self._name}: the link is closed")
-
-    async def _exchange_locked(
-        self,
-        request: bytes,
-        reader: ReplyReader[T],
-        seconds: float,
-        progress: _Progress,
-        scope: anyio.CancelScope,
-    ) -> T:
-        """Clean the line if need be, then send ``request`` and read its reply.
-
-        ``scope`` shields the exchange; its deadline is set to ``seconds`` from when the
-        request goes out, so that it cancels the read (and the caller raises the
-        timeout) if the reply is late.
-        """
-        self._check_open()
-        if not reader.correlates and self._resync_line is not None and self._owes():
-            return await self._bracketed_locked(request, reader, seconds, progress)
-        finished = False
-        try:
-            if reader.correlates:
-                pass  # foreign replies, late or left over, are recognised and skipped
-            elif self._dirty and self._can_resync:
-                await self._resync_locked()
-            elif self._dirty:
-                await self._drain_locked(self._quiet_time, self._drain_limit)
-            if self._buffer and not reader.correlates:
-                _log.debug("%s: discarding stale input %s", self._name, _preview(self._buffer))
-                self._settle(self._buffer.count(b"\n"))
-                self._buffer.clear()
-            deadline = scope.deadline = self._loop_time() + seconds
-            await self._write(request)
-            progress.deadline, progress.seconds = deadline, seconds
-            reply = await self._read_reply(reader, request)
-            # Nothing awaits from here to the end of the scope, so its deadline cannot
-            # fire any more; leaving the scope drops it.
-            finished = True
-            self._after_reply(request, reader)
-            return reply
-        finally:
-            if not finished:
-                self._dirty = True
-                if progress.deadline is not None:
-                    self._owe(_lines_of(reader))
 
     async def _bracketed_locked(
         self, request: bytes, reader: ReplyReader[T], seconds: float, progress: _Progress
