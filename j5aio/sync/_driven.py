@@ -39,6 +39,7 @@ from typing import Any, Final
 
 import anyio
 
+from j5aio.backends.acknowledgements import acknowledge_later
 from j5aio.safety.hooks import quiet_interrupts
 from j5aio.sync._calls import (
     CANCEL_GRACE,
@@ -122,6 +123,15 @@ class DrivenLoop:
         The loop's root task: anyio ties its worker threads to it, so they live as long.
         A scope that has cancelled a call is replaced; the next call gets a fresh one.
         """
+        # The facade's calls confirm acknowledgements later: a student's command returns
+        # once its bytes are written, and the board's reply is checked before its next
+        # request (j5aio.backends.acknowledgements). The switch is set in this task's
+        # context, which every call run here shares.
+        with acknowledge_later():
+            await self._serve_calls()
+
+    async def _serve_calls(self) -> None:
+        """Run the queued calls (the body of :meth:`_main`)."""
         queue = self._queue
         while not self._stopping:
             with anyio.CancelScope() as scope:
