@@ -34,7 +34,7 @@ from collections import deque
 from typing import ClassVar, Final, NamedTuple
 
 from .clock import BoardTime, Clock
-from .loads import BATTERY_INTERNAL_RESISTANCE
+from .loads import SuppliedLoads
 from .sr_usb import SRUsbBoardSimulator
 from .usb_support import UsbStall
 
@@ -78,7 +78,7 @@ class PiezoNote(NamedTuple):
         return min(self.frequency, _MAX_FREQUENCY)
 
 
-class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
+class SRPowerBoardFw3Simulator(SuppliedLoads, SRUsbBoardSimulator):
     """An SR Power Board v4 with firmware 3, seen through pyusb.
 
     The board starts powered up, enumerated (RUN LED on, ERROR LED off), with all outputs
@@ -109,7 +109,7 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         self.battery_voltage = battery_voltage
         self.battery_current = battery_current
         self._output_ma = [0] * self.OUTPUT_COUNT
-        self._supplied_ma = [0] * self.OUTPUT_COUNT
+        self._start_loads()
         self._internal_button = False
         self._external_button = False
         self._outputs = [False] * self.OUTPUT_COUNT
@@ -280,30 +280,8 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         self._check_output(output)
         return self._reported_output_current(output) / 1000
 
-    def set_supplied_current(self, output: int, amps: float) -> None:
-        """Set what the boards fed by ``output`` draw through it (a kit's wiring does).
-
-        While the output is on, it adds to the output's current and the battery's, and
-        pulls the battery voltage down (:data:`.loads.BATTERY_INTERNAL_RESISTANCE`).
-        """
-        self._check_output(output)
-        self._supplied_ma[output] = round(amps * 1000)
-
-    @property
-    def load_current(self) -> float:
-        """The amps the boards fed by the outputs that are on draw, in all."""
-        return sum(
-            ma for ma, on in zip(self._supplied_ma, self._outputs, strict=True) if on
-        ) / 1000
-
-    @property
-    def loaded_voltage(self) -> float:
-        """The battery voltage under the outputs' load, in volts (what the board reads)."""
-        return max(0.0, self.battery_voltage - self.load_current * BATTERY_INTERNAL_RESISTANCE)
-
     def _reported_output_current(self, output: int) -> int:
-        supplied = self._supplied_ma[output] if self._outputs[output] else 0
-        return self._output_ma[output] + supplied
+        return self._output_ma[output] + self._supplied_now_ma(output)
 
     def advance_piezo(self, milliseconds: int) -> list[PiezoNote]:
         """Let ``milliseconds`` pass beside the clock; return the notes that finished.
@@ -343,10 +321,6 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         self._piezo_ms = self._time.milliseconds()
         self._notes.clear()
         self._note_elapsed_ms = 0
-
-    def _check_output(self, output: int) -> None:
-        if not 0 <= output < self.OUTPUT_COUNT:
-            raise IndexError(f"output {output} does not exist (0-{self.OUTPUT_COUNT - 1})")
 
     # --- what the firmware reports ---
 

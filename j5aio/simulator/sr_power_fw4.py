@@ -31,7 +31,7 @@ from typing import ClassVar, Final
 
 from .base import SerialBoardSimulator
 from .clock import BoardTime, Clock
-from .loads import BATTERY_INTERNAL_RESISTANCE
+from .loads import SuppliedLoads
 from .sr_text_line import BoundedLineInput
 
 __all__ = ["BuzzerNote", "SRPowerBoardFw4Simulator"]
@@ -68,7 +68,7 @@ def _leading_number(text: str) -> int | None:
     return int(digits) if digits else None
 
 
-class SRPowerBoardFw4Simulator(SerialBoardSimulator):
+class SRPowerBoardFw4Simulator(SuppliedLoads, SerialBoardSimulator):
     """An SR Power Board v4 with firmware 4.4, a USB CDC serial port.
 
     :param serial_number: the asset tag (it is also the USB serial number).
@@ -98,7 +98,7 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         self._outputs = [False] * _OUTPUT_COUNT
         self._latches = [False] * _OUTPUT_COUNT
         self._output_ma = [0] * _OUTPUT_COUNT
-        self._supplied_ma = [0] * _OUTPUT_COUNT
+        self._start_loads()
         self._battery_mv = round(battery_voltage * 1000)
         self._battery_ma = 0
         self._temperature = 25
@@ -181,26 +181,6 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         self._latches[output] = True
         self._outputs[output] = False
         self._tell_listeners()
-
-    def set_supplied_current(self, output: int, amps: float) -> None:
-        """Set what the boards fed by ``output`` draw through it (a kit's wiring does).
-
-        While the output is on, it adds to the output's current and the battery's, and
-        pulls the battery voltage down (:data:`.loads.BATTERY_INTERNAL_RESISTANCE`).
-        """
-        self._supplied_ma[output] = round(amps * 1000)
-
-    @property
-    def load_current(self) -> float:
-        """The amps the boards fed by the outputs that are on draw, in all."""
-        return sum(
-            ma for ma, on in zip(self._supplied_ma, self._outputs, strict=True) if on
-        ) / 1000
-
-    @property
-    def loaded_voltage(self) -> float:
-        """The battery voltage under the outputs' load, in volts (what ``BATT:V?`` reads)."""
-        return max(0.0, self.battery_voltage - self.load_current * BATTERY_INTERNAL_RESISTANCE)
 
     def use_clock(self, clock: Clock) -> None:
         """Run the firmware's timers on ``clock`` from now on (a kit gives its own)."""
