@@ -32,7 +32,7 @@ __all__ = [
     "OUTPUT_CURRENT_LIMITS",
     "SERVO_BOARD_IDLE_CURRENT",
     "SERVO_HOLDING_CURRENT",
-    "SuppliedLoads",
+    "PowerBoardLoads",
 ]
 
 #: Amps a motor driven at full power draws.
@@ -51,24 +51,49 @@ OUTPUT_CURRENT_LIMITS: Final = (20.0, 20.0, 10.0, 10.0, 10.0, 10.0, 2.0)
 BOARD_CURRENT_LIMIT: Final = 30.0
 
 
-class SuppliedLoads:
-    """The load model of a simulated power board (a mixin of firmware 3's and 4's).
+class PowerBoardLoads:
+    """A simulated power board's battery and load model (a mixin of firmware 3's and 4's).
 
     What the boards fed by each output draw (a kit's wiring sets it) loads the battery
     while that output is on, and the battery's voltage sags under it behind
     :data:`BATTERY_INTERNAL_RESISTANCE`. The board keeps its outputs' states in
-    ``_outputs`` and its battery's idle voltage in ``battery_voltage``.
+    ``_outputs``, and calls ``_start_loads`` when it is made.
     """
 
     #: Number of the board's outputs.
     OUTPUT_COUNT: ClassVar[int]
-    #: The battery's idle voltage, in volts.
-    battery_voltage: float
     _outputs: list[bool]
 
-    def _start_loads(self) -> None:
-        """Start with nothing drawn through any output."""
+    def _start_loads(self, battery_voltage: float) -> None:
+        """Start with a battery of ``battery_voltage`` volts and nothing drawn from it."""
+        self._battery_mv = 0
+        self._battery_ma = 0
+        self.battery_voltage = battery_voltage
         self._supplied_ma = [0] * self.OUTPUT_COUNT
+
+    @property
+    def battery_voltage(self) -> float:
+        """The battery's idle voltage, in volts (stored in mV)."""
+        return self._battery_mv / 1000
+
+    @battery_voltage.setter
+    def battery_voltage(self, volts: float) -> None:
+        if volts < 0:
+            raise ValueError("battery voltage cannot be negative")
+        self._battery_mv = round(volts * 1000)
+
+    @property
+    def battery_current(self) -> float:
+        """The battery current besides the outputs' loads, in amps (stored in mA).
+
+        It is negative while the battery charges; the outputs' loads add to it in what
+        the board reports.
+        """
+        return self._battery_ma / 1000
+
+    @battery_current.setter
+    def battery_current(self, amps: float) -> None:
+        self._battery_ma = round(amps * 1000)
 
     def set_supplied_current(self, output: int, amps: float) -> None:
         """Set what the boards fed by ``output`` draw through it (a kit's wiring does).

@@ -34,7 +34,7 @@ from collections import deque
 from typing import ClassVar, Final, NamedTuple
 
 from .clock import BoardTime, Clock
-from .loads import SuppliedLoads
+from .loads import PowerBoardLoads
 from .sr_usb import SRUsbBoardSimulator
 from .usb_support import UsbStall
 
@@ -78,7 +78,7 @@ class PiezoNote(NamedTuple):
         return min(self.frequency, _MAX_FREQUENCY)
 
 
-class SRPowerBoardFw3Simulator(SuppliedLoads, SRUsbBoardSimulator):
+class SRPowerBoardFw3Simulator(PowerBoardLoads, SRUsbBoardSimulator):
     """An SR Power Board v4 with firmware 3, seen through pyusb.
 
     The board starts powered up, enumerated (RUN LED on, ERROR LED off), with all outputs
@@ -104,12 +104,9 @@ class SRPowerBoardFw3Simulator(SuppliedLoads, SRUsbBoardSimulator):
         battery_current: float = 0.0,
     ) -> None:
         super().__init__(serial_number, manufacturer="Student Robotics", product="Power board v4")
-        self._battery_mv = 0
-        self._battery_ma = 0
-        self.battery_voltage = battery_voltage
+        self._start_loads(battery_voltage)
         self.battery_current = battery_current
         self._output_ma = [0] * self.OUTPUT_COUNT
-        self._start_loads()
         self._internal_button = False
         self._external_button = False
         self._outputs = [False] * self.OUTPUT_COUNT
@@ -239,29 +236,9 @@ class SRPowerBoardFw3Simulator(SuppliedLoads, SRUsbBoardSimulator):
         return self._internal_button or self._external_button
 
     @property
-    def battery_voltage(self) -> float:
-        """The battery voltage in volts (stored in mV)."""
-        return self._battery_mv / 1000
-
-    @battery_voltage.setter
-    def battery_voltage(self, volts: float) -> None:
-        if volts < 0:
-            raise ValueError("battery voltage cannot be negative")
-        self._battery_mv = round(volts * 1000)
-
-    @property
     def battery_voltage_mv(self) -> int:
         """The battery voltage in mV."""
         return self._battery_mv
-
-    @property
-    def battery_current(self) -> float:
-        """The true battery current in amps (stored in mA)."""
-        return self._battery_ma / 1000
-
-    @battery_current.setter
-    def battery_current(self, amps: float) -> None:
-        self._battery_ma = round(amps * 1000)
 
     @property
     def battery_current_ma(self) -> int:

@@ -31,7 +31,7 @@ from typing import ClassVar, Final
 
 from .base import SerialBoardSimulator
 from .clock import BoardTime, Clock
-from .loads import SuppliedLoads
+from .loads import PowerBoardLoads
 from .sr_text_line import BoundedLineInput
 
 __all__ = ["BuzzerNote", "SRPowerBoardFw4Simulator"]
@@ -68,7 +68,7 @@ def _leading_number(text: str) -> int | None:
     return int(digits) if digits else None
 
 
-class SRPowerBoardFw4Simulator(SuppliedLoads, SerialBoardSimulator):
+class SRPowerBoardFw4Simulator(PowerBoardLoads, SerialBoardSimulator):
     """An SR Power Board v4 with firmware 4.4, a USB CDC serial port.
 
     :param serial_number: the asset tag (it is also the USB serial number).
@@ -98,9 +98,7 @@ class SRPowerBoardFw4Simulator(SuppliedLoads, SerialBoardSimulator):
         self._outputs = [False] * _OUTPUT_COUNT
         self._latches = [False] * _OUTPUT_COUNT
         self._output_ma = [0] * _OUTPUT_COUNT
-        self._start_loads()
-        self._battery_mv = round(battery_voltage * 1000)
-        self._battery_ma = 0
+        self._start_loads(battery_voltage)
         self._temperature = 25
         self._fan_forced = False
         self._regulator_mv = 5000
@@ -135,24 +133,6 @@ class SRPowerBoardFw4Simulator(SuppliedLoads, SerialBoardSimulator):
         """Press and release a start button; the board remembers the press until read."""
         self.press_start(external=external)
         self.release_start(external=external)
-
-    @property
-    def battery_voltage(self) -> float:
-        """The battery voltage, in volts."""
-        return self._battery_mv / 1000
-
-    @battery_voltage.setter
-    def battery_voltage(self, volts: float) -> None:
-        self._battery_mv = round(volts * 1000)
-
-    @property
-    def battery_current(self) -> float:
-        """The battery current, in amps (negative while charging)."""
-        return self._battery_ma / 1000
-
-    @battery_current.setter
-    def battery_current(self, amps: float) -> None:
-        self._battery_ma = round(amps * 1000)
 
     @property
     def temperature(self) -> int:
