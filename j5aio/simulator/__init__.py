@@ -52,11 +52,11 @@ if TYPE_CHECKING:
     from j5aio.simulator.sb_arduino_2019 import SBArduinoFirmware as SBArduinoFirmware
     from j5aio.simulator.sb_arduino_2019 import SBArduinoSimulator as SBArduinoSimulator
     from j5aio.simulator.sb_arduino_2024 import SBArduino2024Simulator as SBArduino2024Simulator
+    from j5aio.simulator.sr_motor import MotorDrive as MotorDrive
     from j5aio.simulator.sr_motor_fw3 import MotorMode as MotorMode
     from j5aio.simulator.sr_motor_fw3 import MotorOutput as MotorOutput
     from j5aio.simulator.sr_motor_fw3 import SRMotorBoardFw3Simulator as SRMotorBoardFw3Simulator
     from j5aio.simulator.sr_motor_fw4 import MotorChannel as MotorChannel
-    from j5aio.simulator.sr_motor_fw4 import MotorDrive as MotorDrive
     from j5aio.simulator.sr_motor_fw4 import SRMotorBoardFw4Simulator as SRMotorBoardFw4Simulator
     from j5aio.simulator.sr_power_fw3 import PiezoNote as PiezoNote
     from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator as SRPowerBoardFw3Simulator
@@ -137,16 +137,13 @@ if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is 
             ],
             "j5aio.simulator.sb_arduino_2019": ["SBArduinoFirmware", "SBArduinoSimulator"],
             "j5aio.simulator.sb_arduino_2024": ["SBArduino2024Simulator"],
+            "j5aio.simulator.sr_motor": ["MotorDrive"],
             "j5aio.simulator.sr_motor_fw3": [
                 "MotorMode",
                 "MotorOutput",
                 "SRMotorBoardFw3Simulator",
             ],
-            "j5aio.simulator.sr_motor_fw4": [
-                "MotorChannel",
-                "MotorDrive",
-                "SRMotorBoardFw4Simulator",
-            ],
+            "j5aio.simulator.sr_motor_fw4": ["MotorChannel", "SRMotorBoardFw4Simulator"],
             "j5aio.simulator.sr_power_fw3": ["PiezoNote", "SRPowerBoardFw3Simulator"],
             "j5aio.simulator.sr_power_fw4": ["BuzzerNote", "SRPowerBoardFw4Simulator"],
             "j5aio.simulator.sr_ruggeduino_fw1": ["SRRuggeduinoSimulator"],

@@ -9,12 +9,26 @@ A board that reset into its bootloader stops answering until it is rebooted.
 
 from __future__ import annotations
 
+import enum
 from abc import ABC, abstractmethod
 from typing import ClassVar
 
 from .base import SerialBoardSimulator
 
-__all__ = ["SRMotorBoardSimulator"]
+__all__ = ["MotorDrive", "SRMotorBoardSimulator"]
+
+
+class MotorDrive(enum.Enum):
+    """What a motor driver is doing (the same on both firmwares)."""
+
+    COAST = "coast"
+    """Driver disabled: the outputs float."""
+    BRAKE = "brake"
+    """Driver enabled with both half-bridges low."""
+    FORWARD = "forward"
+    """Driving forwards with some duty."""
+    REVERSE = "reverse"
+    """Driving in reverse with some duty."""
 
 
 class SRMotorBoardSimulator(SerialBoardSimulator, ABC):

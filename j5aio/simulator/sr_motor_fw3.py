@@ -26,7 +26,7 @@ from dataclasses import dataclass
 from typing import ClassVar, Final
 
 from .loads import MOTOR_BOARD_IDLE_CURRENT, MOTOR_FULL_POWER_CURRENT
-from .sr_motor import SRMotorBoardSimulator
+from .sr_motor import MotorDrive, SRMotorBoardSimulator
 
 __all__ = ["MotorMode", "MotorOutput", "SRMotorBoardFw3Simulator"]
 
@@ -48,17 +48,8 @@ _VERSION_REPLY: Final = b"MCV4B:3\n"
 _BOOTLOADER_REPLY: Final = b"Entering bootloader\n"
 
 
-class MotorMode(enum.Enum):
-    """What a motor driver is doing."""
-
-    COAST = "coast"
-    """Driver disabled: the outputs float."""
-    BRAKE = "brake"
-    """Driver enabled with both half-bridges low."""
-    FORWARD = "forward"
-    """Driving forwards with some duty."""
-    REVERSE = "reverse"
-    """Driving in reverse with some duty."""
+#: What a motor driver is doing: firmware 3's name for :class:`.sr_motor.MotorDrive`.
+MotorMode = MotorDrive
 
 
 @dataclass(frozen=True)

@@ -22,34 +22,20 @@ The firmware answers a firmware 3 resync byte (``0x00``) as part of a line, so t
 
 from __future__ import annotations
 
-import enum
 from dataclasses import dataclass
 from typing import ClassVar, Final
 
 from .loads import MOTOR_BOARD_IDLE_CURRENT, MOTOR_FULL_POWER_CURRENT
-from .sr_motor import SRMotorBoardSimulator
+from .sr_motor import MotorDrive, SRMotorBoardSimulator
 from .sr_text_line import BoundedLineInput
 
-__all__ = ["MotorChannel", "MotorDrive", "SRMotorBoardFw4Simulator"]
+__all__ = ["MotorChannel", "SRMotorBoardFw4Simulator"]
 
 _LINE_LIMIT: Final = 63
 _MOTOR_COUNT: Final = 2
 _FULL_SCALE: Final = 1000
 _BLUE_LED_ABOVE_MA: Final = 5000
 _BOOTLOADER_REPLY: Final = b"ACK\n\n\n"
-
-
-class MotorDrive(enum.Enum):
-    """What a motor driver is doing."""
-
-    COAST = "coast"
-    """Driver disabled: the outputs float."""
-    BRAKE = "brake"
-    """Driver enabled at 0: both half-bridges low."""
-    FORWARD = "forward"
-    """Driving forwards."""
-    REVERSE = "reverse"
-    """Driving in reverse."""
 
 
 @dataclass(frozen=True)
