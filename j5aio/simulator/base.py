@@ -37,7 +37,7 @@ __all__ = ["PluggedBoard", "SerialBoardSimulator", "SimulatorUnpluggedError", "U
 class SimulatorUnpluggedError(OSError):
     """The host talked to a simulated serial board while it was unplugged.
 
-    Transports are expected to check :attr:`SerialBoardSimulator.connected` and raise their
+    Transports are expected to check :attr:`PluggedBoard.connected` and raise their
     own disconnection error first; this is the simulator's safety net.
     """
 

@@ -34,8 +34,8 @@ class MotorDrive(enum.Enum):
 class SRMotorBoardSimulator(SerialBoardSimulator, ABC):
     """An SR Motor Board v4: its USB-serial adapter and its 12 V input.
 
-    A firmware's simulator implements :meth:`_stop_controller`, besides what every
-    serial board implements.
+    A firmware's simulator implements ``_stop_controller`` (what losing power does to
+    it), besides what every serial board implements.
 
     :param serial_number: the FTDI serial number, which is also the asset tag.
     """

@@ -15,7 +15,7 @@ start (and come back from a reset) coasting, with the driver disabled.
 
 Power: only the USB-serial adapter is powered from USB. The controller sits on the
 isolated side, fed by the board's 12 V input (a power board output): while
-:attr:`~SRMotorBoardFw3Simulator.powered` is false its port is there but nothing answers
+:attr:`~.sr_motor.SRMotorBoardSimulator.powered` is false its port is there but nothing answers
 and no motor is driven; when power comes the controller boots.
 """
 

@@ -12,7 +12,7 @@ also clears the faults and the filtered currents. There is no watchdog: unpluggi
 USB cable changes nothing. ``*SYS:BOOTLOADER`` answers, then the board goes silent.
 
 Power: only the FTDI adapter is powered from USB. The controller is fed by the board's
-12 V input (a power board output): while :attr:`~SRMotorBoardFw4Simulator.powered` is
+12 V input (a power board output): while :attr:`~.sr_motor.SRMotorBoardSimulator.powered` is
 false its port is there but nothing answers and no motor is driven; when power comes
 the controller boots.
 
