@@ -27,11 +27,10 @@ from typing import ClassVar, Final
 
 from .loads import MOTOR_BOARD_IDLE_CURRENT, MOTOR_FULL_POWER_CURRENT
 from .sr_motor import MotorDrive, SRMotorBoardSimulator
-from .sr_text_line import BoundedLineInput
+from .sr_text_line import LINE_LIMIT, BoundedLineInput
 
 __all__ = ["MotorChannel", "SRMotorBoardFw4Simulator"]
 
-_LINE_LIMIT: Final = 63
 _MOTOR_COUNT: Final = 2
 _FULL_SCALE: Final = 1000
 _BLUE_LED_ABOVE_MA: Final = 5000
@@ -82,7 +81,7 @@ class SRMotorBoardFw4Simulator(SRMotorBoardSimulator):
     ) -> None:
         super().__init__(serial_number)
         self.version = version
-        self._input = BoundedLineInput(_LINE_LIMIT, ignore=b"\r")
+        self._input = BoundedLineInput(LINE_LIMIT, ignore=b"\r")
         self._motors = [MotorChannel()] * _MOTOR_COUNT
         self._faults = [False] * _MOTOR_COUNT
         self._load_ma = [0] * _MOTOR_COUNT

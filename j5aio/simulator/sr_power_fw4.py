@@ -32,12 +32,10 @@ from typing import ClassVar, Final
 from .base import SerialBoardSimulator
 from .clock import BoardTime, Clock
 from .loads import PowerBoardLoads
-from .sr_text_line import BoundedLineInput
+from .sr_text_line import LINE_LIMIT, BoundedLineInput, answer_lines
 
 __all__ = ["BuzzerNote", "SRPowerBoardFw4Simulator"]
 
-_LINE_LIMIT: Final = 63
-_REPLY_BUFFER: Final = 64
 _OUTPUT_COUNT: Final = 7
 _BRAIN: Final = 4
 _MAX_FREQUENCY: Final = 10_000
@@ -94,7 +92,7 @@ class SRPowerBoardFw4Simulator(PowerBoardLoads, SerialBoardSimulator):
             product="Power Board v4",
         )
         self.version = version
-        self._input = BoundedLineInput(_LINE_LIMIT)
+        self._input = BoundedLineInput(LINE_LIMIT)
         self._outputs = [False] * _OUTPUT_COUNT
         self._latches = [False] * _OUTPUT_COUNT
         self._output_ma = [0] * _OUTPUT_COUNT
@@ -273,11 +271,11 @@ class SRPowerBoardFw4Simulator(PowerBoardLoads, SerialBoardSimulator):
         self._leds[1] = "0"
 
     def _process(self, data: bytes) -> bytes:
-        replies = bytearray()
-        for line in self._input.feed(data):
-            command = line.split(b"\r", 1)[0].decode("ascii", errors="replace")
-            replies += self._execute(command).encode("ascii", errors="replace") + b"\n"
-        return bytes(replies[:_REPLY_BUFFER])
+        return answer_lines(self._input, data, self._run)
+
+    def _run(self, line: bytes) -> bytes:
+        command = line.decode("ascii", errors="replace")
+        return self._execute(command).encode("ascii", errors="replace")
 
     def _start_note(self, frequency: int, duration_ms: int) -> None:
         now = self._time.milliseconds()
