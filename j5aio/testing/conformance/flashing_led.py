@@ -69,7 +69,7 @@ class FlashingLEDInterfaceConformance(LEDInterfaceConformance):
     ) -> None:
         """An LED the board does not have is refused by the mode calls."""
         backend = subject.backend
-        await self.assert_refused(subject, backend.get_led_mode, "get_led_mode")
+        await self.assert_refused(subject, backend.get_led_mode)
         await self.assert_refused(
             subject, lambda i: backend.set_led_mode(i, LEDMode.FLASH), "set_led_mode",
         )

@@ -61,7 +61,7 @@ class LEDInterfaceConformance(InterfaceConformance[LEDSubject]):
     async def test_out_of_range_identifier_raises(self, subject: LEDSubject) -> None:
         """An LED the board does not have is refused, for reading and for writing."""
         backend = subject.backend
-        await self.assert_refused(subject, backend.get_led_state, "get_led_state")
+        await self.assert_refused(subject, backend.get_led_state)
         await self.assert_refused(
             subject, lambda i: backend.set_led_state(i, True), "set_led_state",
         )

@@ -161,7 +161,7 @@ class MotorInterfaceConformance(InterfaceConformance[MotorSubject]):
     async def test_out_of_range_identifier_raises(self, subject: MotorSubject) -> None:
         """A motor the board does not have is refused, for reading and for writing."""
         backend = subject.backend
-        await self.assert_refused(subject, backend.get_motor_state, "get_motor_state")
+        await self.assert_refused(subject, backend.get_motor_state)
         await self.assert_refused(
             subject, lambda i: backend.set_motor_state(i, 0.5), "set_motor_state",
         )

@@ -90,14 +90,10 @@ class PowerOutputInterfaceConformance(InterfaceConformance[PowerOutputSubject]):
     async def test_out_of_range_identifier_raises(self, subject: PowerOutputSubject) -> None:
         """An output the board does not have is refused, for every call."""
         backend = subject.backend
-        await self.assert_refused(
-            subject, backend.get_power_output_enabled, "get_power_output_enabled",
-        )
+        await self.assert_refused(subject, backend.get_power_output_enabled)
         await self.assert_refused(
             subject,
             lambda i: backend.set_power_output_enabled(i, True),
             "set_power_output_enabled",
         )
-        await self.assert_refused(
-            subject, backend.get_power_output_current, "get_power_output_current",
-        )
+        await self.assert_refused(subject, backend.get_power_output_current)

@@ -101,7 +101,7 @@ class ServoInterfaceConformance(InterfaceConformance[ServoSubject]):
     async def test_out_of_range_identifier_raises(self, subject: ServoSubject) -> None:
         """A servo the board does not have is refused, for reading and for writing."""
         backend = subject.backend
-        await self.assert_refused(subject, backend.get_servo_position, "get_servo_position")
+        await self.assert_refused(subject, backend.get_servo_position)
         await self.assert_refused(
             subject, lambda i: backend.set_servo_position(i, 0.5), "set_servo_position",
         )
