@@ -77,6 +77,7 @@ class Subject:
 
 
 SubjectT = TypeVar("SubjectT", bound=Subject)
+ValueT = TypeVar("ValueT")
 
 
 #: Every skip reason for a missing hook contains this, so that reports can find them.
@@ -152,6 +153,27 @@ class InterfaceConformance(abc.ABC, Generic[SubjectT]):
                 f"the backend did not finish within call_timeout ({self.call_timeout} s): "
                 "a call hangs, or waits for an input the subject's hooks never gave",
             )
+
+    async def assert_read_back(
+        self,
+        told: str,
+        identifier: int,
+        read: Callable[[int], Awaitable[ValueT]],
+        observe: Callable[[int], Awaitable[ValueT]] | None,
+        matches: Callable[[ValueT], bool],
+    ) -> None:
+        """Check that ``identifier`` reads back what was done, and that the board shows it.
+
+        What the board shows is looked at only when the subject gives ``observe``.
+
+        :param told: what was done, for the failure messages: ``"LED 0 was set to True"``.
+        :param matches: whether a value read or shown is the one that was set.
+        """
+        got = await read(identifier)
+        assert matches(got), f"{told} but reads back {got!r}"
+        if observe is not None:
+            seen = await observe(identifier)
+            assert matches(seen), f"{told} but the board shows {seen!r}"
 
     async def assert_each_alone(
         self,

@@ -37,11 +37,10 @@ class FlashingLEDInterfaceConformance(LEDInterfaceConformance):
     async def _check_mode(
         self, subject: FlashingLEDSubject, identifier: int, mode: LEDMode,
     ) -> None:
-        got = await subject.backend.get_led_mode(identifier)
-        assert got is mode, f"LED {identifier} was set to {mode} but reads back {got!r}"
-        if subject.observe_mode is not None:
-            seen = await subject.observe_mode(identifier)
-            assert seen is mode, f"LED {identifier} was set to {mode} but the board shows {seen}"
+        await self.assert_read_back(
+            f"LED {identifier} was set to {mode}", identifier,
+            subject.backend.get_led_mode, subject.observe_mode, lambda value: value is mode,
+        )
 
     async def test_mode_round_trips(self, subject: FlashingLEDSubject) -> None:
         """Each mode set on each LED is read back."""
