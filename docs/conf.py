@@ -86,6 +86,7 @@ nitpick_ignore = [
     ("py:class", "j5aio.sync._runtime.T"),
     ("py:class", "j5aio.sync.wrapping.W"),
     ("py:class", "j5aio.testing.conformance._base.SubjectT"),
+    ("py:class", "j5aio.testing.conformance._base.ValueT"),
     ("py:class", "j5aio.testing.simkit.BoardT"),
     ("py:class", "j5aio.view.ticker.ReadingT"),
     ("py:class", "j5aio.vision.worker.T"),
