@@ -49,8 +49,10 @@ nitpick_ignore = [
     ("py:class", "os.PathLike"),
     ("py:class", "pathlib.Path"),
     ("py:class", "random.Random"),
+    ("py:class", "tempfile.TemporaryDirectory"),
     ("py:class", "threading.Thread"),
     ("py:func", "time.monotonic"),
+    ("py:func", "time.perf_counter"),
     # Third-party libraries: anyio, pytest (the plugin's hooks), pyserial, pyusb.
     ("py:class", "_pytest.config.Config"),
     ("py:class", "_pytest.terminal.TerminalReporter"),
