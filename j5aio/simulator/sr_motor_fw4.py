@@ -29,7 +29,7 @@ from .loads import MOTOR_BOARD_IDLE_CURRENT, MOTOR_FULL_POWER_CURRENT
 from .sr_motor import MotorDrive, SRMotorBoardSimulator
 from .sr_text_line import LINE_LIMIT, BoundedLineInput
 
-__all__ = ["MotorChannel", "SRMotorBoardFw4Simulator"]
+__all__ = ["MotorChannel", "MotorDrive", "SRMotorBoardFw4Simulator"]
 
 _MOTOR_COUNT: Final = 2
 _FULL_SCALE: Final = 1000
