@@ -28,7 +28,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "example_
 import anyio
 from beekit.simulator import BeeSimulator
 
-from j5aio.backends.hardware import identify
+from j5aio.backends.hardware import identify, port_search
 from j5aio.simulator.serve import serve_on_pty
 from j5aio.simulator.sr_motor_fw4 import SRMotorBoardFw4Simulator
 from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
@@ -53,7 +53,7 @@ async def time_old(make: Callable[[], object]) -> float:
     with serve_on_pty(make()) as server:  # type: ignore[arg-type]
         backends = identify.serial_backends()
         start = time.perf_counter()
-        board = await identify._identify(server.path, server.path, backends, None, 1.0)
+        board = await port_search.identify_on_port(server.path, server.path, backends, None, 1.0)
         elapsed = time.perf_counter() - start
         await board.close()
     return elapsed

@@ -149,18 +149,15 @@ async def over_the_broker(rounds: int, restarts: int) -> None:
     try:
         import aiomqtt  # noqa: F401 - only to say what is missing
 
-        try:
-            from bench._mosquitto import Mosquitto
-        except ImportError:  # run as a script without the checkout on the path
-            from _mosquitto import Mosquitto  # type: ignore[import-not-found,no-redef]
-        broker = Mosquitto()
+        from j5aio.testing.mosquitto import start_broker
+
+        broker, folder = start_broker()
     except (ImportError, RuntimeError) as exc:
         print(f"Over the broker: skipped ({exc}; needs j5aio[robot] and mosquitto)")
         return
     from j5aio.competition.start import clear_trigger
     from j5aio.service import RobotService, ServiceConfig
 
-    broker.start()
     config = ServiceConfig(host="127.0.0.1", port=broker.port, topic_prefix="astoria")
     try:
         async with RobotService(config) as service:
@@ -172,7 +169,8 @@ async def over_the_broker(rounds: int, restarts: int) -> None:
             if restarts:
                 await broker_restarts(broker, service, restarts)
     finally:
-        broker.close()
+        broker.stop()
+        folder.cleanup()
 
 
 async def starts_over_the_broker(port: int, rounds: int) -> None:
@@ -223,7 +221,7 @@ async def broker_restarts(broker: Any, service: Any, restarts: int) -> None:
     reconnected: list[float] = []
     working: list[float] = []
     for _ in range(restarts):
-        broker.kill()
+        broker.stop()
         with anyio.fail_after(10):
             while service.connected:  # noqa: ASYNC110 - the client notices on its own
                 await anyio.sleep(0.001)

@@ -49,8 +49,10 @@ nitpick_ignore = [
     ("py:class", "os.PathLike"),
     ("py:class", "pathlib.Path"),
     ("py:class", "random.Random"),
+    ("py:class", "tempfile.TemporaryDirectory"),
     ("py:class", "threading.Thread"),
     ("py:func", "time.monotonic"),
+    ("py:func", "time.perf_counter"),
     # Third-party libraries: anyio, pytest (the plugin's hooks), pyserial, pyusb.
     ("py:class", "_pytest.config.Config"),
     ("py:class", "_pytest.terminal.TerminalReporter"),
@@ -86,6 +88,7 @@ nitpick_ignore = [
     ("py:class", "j5aio.sync._runtime.T"),
     ("py:class", "j5aio.sync.wrapping.W"),
     ("py:class", "j5aio.testing.conformance._base.SubjectT"),
+    ("py:class", "j5aio.testing.conformance._base.ValueT"),
     ("py:class", "j5aio.testing.simkit.BoardT"),
     ("py:class", "j5aio.view.ticker.ReadingT"),
     ("py:class", "j5aio.vision.worker.T"),

@@ -9,38 +9,21 @@ from typing import TYPE_CHECKING
 from j5aio._lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from j5aio.backends.backend import Backend
-    from j5aio.backends.environment import Environment
-    from j5aio.boards.board import Board
-    from j5aio.boards.board_group import BoardGroup
-    from j5aio.errors import (
-        BadGPIOPinModeError,
-        BoardDisconnectionError,
-        CommunicationError,
-        NotSupportedByComponentError,
-        NotSupportedByHardwareError,
-        UnableToObtainLock,
-    )
-    from j5aio.robot import BaseRobot
+    from j5aio.backends.backend import Backend as Backend
+    from j5aio.backends.environment import Environment as Environment
+    from j5aio.boards.board import Board as Board
+    from j5aio.boards.board_group import BoardGroup as BoardGroup
+    from j5aio.errors import BadGPIOPinModeError as BadGPIOPinModeError
+    from j5aio.errors import BoardDisconnectionError as BoardDisconnectionError
+    from j5aio.errors import CommunicationError as CommunicationError
+    from j5aio.errors import NotSupportedByComponentError as NotSupportedByComponentError
+    from j5aio.errors import NotSupportedByHardwareError as NotSupportedByHardwareError
+    from j5aio.errors import UnableToObtainLock as UnableToObtainLock
+    from j5aio.robot import BaseRobot as BaseRobot
 
 __version__ = "0.1.0"
 
-__all__ = [
-    "Backend",
-    "BadGPIOPinModeError",
-    "BaseRobot",
-    "Board",
-    "BoardDisconnectionError",
-    "BoardGroup",
-    "CommunicationError",
-    "Environment",
-    "NotSupportedByComponentError",
-    "NotSupportedByHardwareError",
-    "UnableToObtainLock",
-    "__version__",
-]
-
-if not TYPE_CHECKING:  # the names are imported above for type checkers
+if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
     __getattr__, __dir__ = lazy_exports(
         __name__,
         {
@@ -58,4 +41,5 @@ if not TYPE_CHECKING:  # the names are imported above for type checkers
             ],
             "j5aio.robot": ["BaseRobot"],
         },
+        own=("__version__",),
     )

@@ -2,20 +2,22 @@
 
 ``import j5aio`` and ``import j5aio.sync`` stay light this way: a package's
 ``__init__`` lists what it exports and where each name lives, and the module holding a
-name is imported the first time the name is looked up. Type checkers see the same names
-through the package's ``if TYPE_CHECKING:`` imports::
+name is imported the first time the name is looked up. That table is the package's one
+list of its exports: its ``__all__`` is made from it. Type checkers see the same names
+through the package's ``if TYPE_CHECKING:`` imports, each in the ``name as name`` form
+that re-exports it::
 
     from typing import TYPE_CHECKING
 
     from j5aio._lazy import lazy_exports
 
     if TYPE_CHECKING:
-        from j5aio.boards.board import Board
-
-    __all__ = ["Board"]
+        from j5aio.boards.board import Board as Board
 
     if not TYPE_CHECKING:
         __getattr__, __dir__ = lazy_exports(__name__, {"j5aio.boards.board": ["Board"]})
+
+(A package may still assign its own ``__all__``; the table's is then never looked up.)
 
 A name that is not exported but is a submodule of the package (``j5aio.vision.markers``
 looked up as an attribute of ``j5aio.vision``) is imported as that submodule, as it
@@ -26,21 +28,26 @@ from __future__ import annotations
 
 import importlib
 import sys
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Collection, Iterable, Mapping
 from typing import Any
 
 __all__ = ["LazyModule", "lazy_exports", "lazy_modules"]
 
 
 def lazy_exports(
-    package: str, exports: Mapping[str, Iterable[str]],
+    package: str, exports: Mapping[str, Iterable[str]], *, own: Collection[str] = (),
 ) -> tuple[Callable[[str], Any], Callable[[], list[str]]]:
     """Return a module ``__getattr__`` and ``__dir__`` for ``package``'s lazy exports.
+
+    The table is the one list of what the package exports: a package that does not
+    assign ``__all__`` itself gets, on first look-up (a star import looks it up), the
+    table's names and ``own``, sorted.
 
     :param package: the package's ``__name__``.
     :param exports: module name -> the names the package exports from it. A name may be
         given as ``"name:attribute"`` when the package exports the module's ``attribute``
         under another name.
+    :param own: names the package defines itself that its ``__all__`` lists too.
     :raises ValueError: a name is exported from two modules.
     """
     where: dict[str, tuple[str, str]] = {}
@@ -57,6 +64,8 @@ def lazy_exports(
         if found is not None:
             module, attribute = found
             value = getattr(importlib.import_module(module), attribute)
+        elif name == "__all__":
+            value = sorted({*where, *own})
         elif name.startswith("__"):
             raise AttributeError(f"module {package!r} has no attribute {name!r}")
         else:

@@ -41,8 +41,9 @@ from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kch import KCHSimulator
 from j5aio.simulator.kit import SimulatedKit, kit_from_environment, use_kit
 from j5aio.simulator.kit_file import kit_file_from_environment
+from j5aio.simulator.sr_motor import MotorDrive
 from j5aio.simulator.sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
-from j5aio.simulator.sr_motor_fw4 import MotorChannel, MotorDrive, SRMotorBoardFw4Simulator
+from j5aio.simulator.sr_motor_fw4 import MotorChannel, SRMotorBoardFw4Simulator
 from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
 from j5aio.simulator.sr_power_fw4 import SRPowerBoardFw4Simulator
 from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator

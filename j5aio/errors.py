@@ -11,6 +11,7 @@ The hierarchy::
     │   ├── BoardDisconnectionError         the board (or its port) went away
     │   │   └── GameOverError               the match is over: no board can be opened
     │   ├── CommunicationTimeoutError       the board did not answer in time
+    │   ├── EarlierCommandError             a command acknowledged later had failed
     │   ├── USBCommunicationError           a USB transfer failed (carries the pyusb error)
     │   ├── DeviceMissingSerialNumberError  a board without a serial number was found
     │   ├── UnexpectedReplyError            the board answered something we cannot parse
@@ -31,6 +32,7 @@ __all__ = [
     "CommunicationError",
     "CommunicationTimeoutError",
     "DeviceMissingSerialNumberError",
+    "EarlierCommandError",
     "GameOverError",
     "J5AIOError",
     "NotSupportedByComponentError",
@@ -71,6 +73,23 @@ class GameOverError(BoardDisconnectionError):
 
 class CommunicationTimeoutError(CommunicationError):
     """The board did not answer within the time allowed."""
+
+
+class EarlierCommandError(CommunicationError):
+    """A command that was sent earlier, and returned before its acknowledgement, failed.
+
+    Raised only while acknowledgements are confirmed later (see
+    :func:`j5aio.backends.acknowledgements.acknowledge_later`): the board refused the
+    earlier command, or did not acknowledge it in time, and this was found when its
+    acknowledgement was read, before the board's next request (which was not sent).
+
+    :param message: what failed, naming the earlier command.
+    :param command: the bytes of the earlier command.
+    """
+
+    def __init__(self, message: str, command: bytes) -> None:
+        super().__init__(message)
+        self.command = command
 
 
 class USBCommunicationError(CommunicationError):

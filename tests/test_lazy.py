@@ -256,3 +256,39 @@ def test_a_lazy_module_becomes_the_module_on_first_use() -> None:
     namespace["_json"] = other
     assert stand_in.loads("2") == 2
     assert namespace["_json"] is other
+
+
+def test_all_is_made_from_the_table_and_the_packages_own_names() -> None:
+    name = "j5aio_lazy_test_all"
+    package = type(sys)(name)
+    vars(package)["__getattr__"], vars(package)["__dir__"] = lazy_exports(
+        name, {"os.path": ["join", "joined:join"], "json": ["dumps"]}, own=("VERSION",),
+    )
+    vars(package)["VERSION"] = "1"
+    sys.modules[name] = package
+    try:
+        assert package.__all__ == ["VERSION", "dumps", "join", "joined"]
+        assert "__all__" in vars(package)  # made once
+        star: dict[str, Any] = {}
+        exec(f"from {name} import *", star)
+        assert star["joined"] is os.path.join
+        assert star["VERSION"] == "1"
+    finally:
+        del sys.modules[name]
+
+
+def test_a_package_that_lists_its_own_all_keeps_it() -> None:
+    name = "j5aio_lazy_test_own_all"
+    package = type(sys)(name)
+    vars(package)["__getattr__"], vars(package)["__dir__"] = lazy_exports(
+        name, {"json": ["dumps", "loads"]},
+    )
+    vars(package)["__all__"] = ["dumps"]
+    sys.modules[name] = package
+    try:
+        star: dict[str, Any] = {}
+        exec(f"from {name} import *", star)
+        assert "dumps" in star
+        assert "loads" not in star
+    finally:
+        del sys.modules[name]

@@ -2,9 +2,13 @@
 
 A new board of j5aio's is added here with one :class:`~j5aio.board_kinds.BoardKind`
 entry in :func:`entries` (and a new kit with one :class:`~j5aio.board_kinds.KitDefinition`).
+A board whose backends are named after one stem (``<stem>HardwareBackend`` and so on)
+is entered with ``_kind``, and its simulators with ``_simulator``.
 """
 
 from __future__ import annotations
+
+from typing import TYPE_CHECKING
 
 from j5aio.backends._kind_types import (
     DEFAULT_KIT,
@@ -12,6 +16,7 @@ from j5aio.backends._kind_types import (
     KitDefinition,
     SimulatorClass,
     SimulatorEntry,
+    SimulatorTransport,
 )
 from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduino2024Board, SBArduinoBoard, SBServoBoard
@@ -27,6 +32,9 @@ from j5aio.boards.sr.v4 import (
     SRArduinoBoard,
 )
 
+if TYPE_CHECKING:
+    from j5aio.boards.board import Board
+
 __all__ = ["entries"]
 
 
@@ -35,14 +43,47 @@ def _sim(path: str, *, serial_keyword: str | None = None, **keywords: object) ->
     return SimulatorClass(f"j5aio.simulator.{path}", serial_keyword=serial_keyword, **keywords)
 
 
-def _simulated(name: str) -> str:
-    """The import path of a simulated backend of :mod:`j5aio.simulator.sim_backends`."""
-    return f"j5aio.simulator.sim_backends:{name}"
+def _simulator(
+    name: str,
+    path: str,
+    description: str,
+    serial_prefix: str,
+    transport: SimulatorTransport,
+    *,
+    serial_keyword: str | None = None,
+    **keywords: object,
+) -> SimulatorEntry:
+    """A simulator entry whose factory is a class of :mod:`j5aio.simulator` (see :func:`_sim`)."""
+    factory = _sim(path, serial_keyword=serial_keyword, **keywords)
+    return SimulatorEntry(name, factory, description, serial_prefix, transport=transport)
 
 
-def _simulated_2023(name: str) -> str:
-    """The import path of a simulated backend of :mod:`j5aio.simulator.sim_backends_2023`."""
-    return f"j5aio.simulator.sim_backends_2023:{name}"
+def _kind(
+    name: str,
+    board: type[Board],
+    description: str,
+    stem: str,
+    modules: tuple[str, str, str],
+    *simulators: SimulatorEntry,
+    identify_order: int = BoardKind.identify_order,
+) -> BoardKind:
+    """A board kind whose three backends are named after one stem.
+
+    They are ``<stem>HardwareBackend``, ``<stem>ConsoleBackend`` and
+    ``<stem>SimulatedBackend``, in the modules ``modules`` names below
+    ``j5aio.backends.hardware``, ``j5aio.backends.console`` and ``j5aio.simulator``.
+    """
+    hardware, console, simulated = modules
+    return BoardKind(
+        name=name,
+        board=board,
+        description=description,
+        hardware=f"j5aio.backends.hardware.{hardware}:{stem}HardwareBackend",
+        console=f"j5aio.backends.console.{console}:{stem}ConsoleBackend",
+        simulated=f"j5aio.simulator.{simulated}:{stem}SimulatedBackend",
+        simulators=simulators,
+        identify_order=identify_order,
+    )
 
 
 def entries() -> list[BoardKind | KitDefinition]:
@@ -56,188 +97,115 @@ def entries() -> list[BoardKind | KitDefinition]:
     they answer.
     """
     return [
-        BoardKind(
-            name="sr-v4-power-fw3",
-            board=PowerBoard,
-            description="SR v4 power board, firmware 3 (USB)",
-            hardware="j5aio.backends.hardware.sr.v4.power_board:SRV4PowerBoardHardwareBackend",
-            console="j5aio.backends.console.sr.v4:SRV4PowerBoardConsoleBackend",
-            simulated=_simulated("SRV4PowerBoardSimulatedBackend"),
-            simulators=(
-                SimulatorEntry(
-                    "sr-power", _sim("sr_power_fw3:SRPowerBoardFw3Simulator"),
-                    "SR v4 power board, firmware 3 (USB control transfers)", "SIMPB",
-                    transport="usb",
-                ),
+        _kind(
+            "sr-v4-power-fw3", PowerBoard, "SR v4 power board, firmware 3 (USB)",
+            "SRV4PowerBoard", ("sr.v4.power_board", "sr.v4", "sim_backends"),
+            _simulator(
+                "sr-power", "sr_power_fw3:SRPowerBoardFw3Simulator",
+                "SR v4 power board, firmware 3 (USB control transfers)", "SIMPB", "usb",
             ),
         ),
-        BoardKind(
-            name="sr-v4-motor-fw3",
-            board=MotorBoard,
-            description="SR v4 motor board, firmware 3 (serial, 1 Mbaud)",
-            hardware="j5aio.backends.hardware.sr.v4.motor_board:SRV4MotorBoardHardwareBackend",
-            console="j5aio.backends.console.sr.v4:SRV4MotorBoardConsoleBackend",
-            simulated=_simulated("SRV4MotorBoardSimulatedBackend"),
-            simulators=(
-                SimulatorEntry(
-                    "sr-motor", _sim("sr_motor_fw3:SRMotorBoardFw3Simulator"),
-                    "SR v4 motor board, firmware 3 (1 Mbaud)", "SIMMB",
-                    transport="serial",
-                ),
+        _kind(
+            "sr-v4-motor-fw3", MotorBoard, "SR v4 motor board, firmware 3 (serial, 1 Mbaud)",
+            "SRV4MotorBoard", ("sr.v4.motor_board", "sr.v4", "sim_backends"),
+            _simulator(
+                "sr-motor", "sr_motor_fw3:SRMotorBoardFw3Simulator",
+                "SR v4 motor board, firmware 3 (1 Mbaud)", "SIMMB", "serial",
             ),
             # Its probe (a resync byte and a version query at 1 Mbaud) is quick, and
             # nothing sent at 115200 baud can reach it as a motor command first.
             identify_order=10,
         ),
-        BoardKind(
-            name="sr-v4-servo-fw2",
-            board=ServoBoard,
-            description="SR v4 servo board, firmware 2 (USB)",
-            hardware="j5aio.backends.hardware.sr.v4.servo_board:SRV4ServoBoardHardwareBackend",
-            console="j5aio.backends.console.sr.v4:SRV4ServoBoardConsoleBackend",
-            simulated=_simulated("SRV4ServoBoardSimulatedBackend"),
-            simulators=(
-                SimulatorEntry(
-                    "sr-servo", _sim("sr_servo_fw2:SRServoBoardFw2Simulator"),
-                    "SR v4 servo board, firmware 2 (USB control transfers)", "SIMSB",
-                    transport="usb",
-                ),
+        _kind(
+            "sr-v4-servo-fw2", ServoBoard, "SR v4 servo board, firmware 2 (USB)",
+            "SRV4ServoBoard", ("sr.v4.servo_board", "sr.v4", "sim_backends"),
+            _simulator(
+                "sr-servo", "sr_servo_fw2:SRServoBoardFw2Simulator",
+                "SR v4 servo board, firmware 2 (USB control transfers)", "SIMSB", "usb",
             ),
         ),
-        BoardKind(
-            name="sb-arduino-2019",
-            board=SBArduinoBoard,
-            description="SourceBots Arduino, 2019 firmware (serial, 115200 baud)",
-            hardware="j5aio.backends.hardware.sb.arduino:SBArduinoHardwareBackend",
-            console="j5aio.backends.console.sb.arduino:SBArduinoConsoleBackend",
-            simulated=_simulated("SBArduinoSimulatedBackend"),
-            simulators=(
-                SimulatorEntry(
-                    "sb-arduino", _sim("sb_arduino_2019:SBArduinoSimulator"),
-                    "SourceBots Arduino, 2019 firmware (115200 baud)", "SIMSBA",
-                    transport="serial",
-                ),
+        _kind(
+            "sb-arduino-2019", SBArduinoBoard,
+            "SourceBots Arduino, 2019 firmware (serial, 115200 baud)",
+            "SBArduino", ("sb.arduino", "sb.arduino", "sim_backends"),
+            _simulator(
+                "sb-arduino", "sb_arduino_2019:SBArduinoSimulator",
+                "SourceBots Arduino, 2019 firmware (115200 baud)", "SIMSBA", "serial",
             ),
             identify_order=50,
         ),
-        BoardKind(
-            name="sr-ruggeduino-fw1",
-            board=Ruggeduino,
-            description="SR Ruggeduino, firmware 1 (serial, 115200 baud)",
-            hardware="j5aio.backends.hardware.sr.v4.ruggeduino:SRV4RuggeduinoHardwareBackend",
-            console="j5aio.backends.console.sr.v4:SRV4RuggeduinoConsoleBackend",
-            simulated=_simulated("SRV4RuggeduinoSimulatedBackend"),
-            simulators=(
-                SimulatorEntry(
-                    "sr-ruggeduino", _sim("sr_ruggeduino_fw1:SRRuggeduinoSimulator"),
-                    "SR Ruggeduino, firmware 1 (115200 baud)", "SIMRD",
-                    transport="serial",
-                ),
+        _kind(
+            "sr-ruggeduino-fw1", Ruggeduino, "SR Ruggeduino, firmware 1 (serial, 115200 baud)",
+            "SRV4Ruggeduino", ("sr.v4.ruggeduino", "sr.v4", "sim_backends"),
+            _simulator(
+                "sr-ruggeduino", "sr_ruggeduino_fw1:SRRuggeduinoSimulator",
+                "SR Ruggeduino, firmware 1 (115200 baud)", "SIMRD", "serial",
             ),
             identify_order=60,
         ),
-        BoardKind(
-            name="sr-v4-power-fw4",
-            board=PowerBoardFw4,
-            description="SR v4 power board, firmware 4.4 (CDC serial)",
-            hardware="j5aio.backends.hardware.sr.v4.power_board_fw4:SRV4PowerBoardFw4HardwareBackend",
-            console="j5aio.backends.console.sr.v4:SRV4PowerBoardFw4ConsoleBackend",
-            simulated=_simulated_2023("SRV4PowerBoardFw4SimulatedBackend"),
-            simulators=(
-                SimulatorEntry(
-                    "sr-power-fw4", _sim("sr_power_fw4:SRPowerBoardFw4Simulator"),
-                    "SR v4 power board, firmware 4.4 (CDC serial)", "SIMPB",
-                    transport="serial",
-                ),
+        _kind(
+            "sr-v4-power-fw4", PowerBoardFw4, "SR v4 power board, firmware 4.4 (CDC serial)",
+            "SRV4PowerBoardFw4", ("sr.v4.power_board_fw4", "sr.v4", "sim_backends_2023"),
+            _simulator(
+                "sr-power-fw4", "sr_power_fw4:SRPowerBoardFw4Simulator",
+                "SR v4 power board, firmware 4.4 (CDC serial)", "SIMPB", "serial",
             ),
             identify_order=20,
         ),
-        BoardKind(
-            name="sr-v4-motor-fw4",
-            board=MotorBoardFw4,
-            description="SR v4 motor board, firmware 4.4 / 4.5 (serial, 115200 baud)",
-            hardware="j5aio.backends.hardware.sr.v4.motor_board_fw4:SRV4MotorBoardFw4HardwareBackend",
-            console="j5aio.backends.console.sr.v4:SRV4MotorBoardFw4ConsoleBackend",
-            simulated=_simulated_2023("SRV4MotorBoardFw4SimulatedBackend"),
-            simulators=(
-                SimulatorEntry(
-                    "sr-motor-fw4", _sim("sr_motor_fw4:SRMotorBoardFw4Simulator"),
-                    "SR v4 motor board, firmware 4.4 (115200 baud)", "SIMMB",
-                    transport="serial",
-                ),
-                SimulatorEntry(
-                    "sb-motor-fw4",
-                    _sim("sr_motor_fw4:SRMotorBoardFw4Simulator", version="4.5.0"),
-                    "SR v4 motor board, SourceBots firmware 4.5 (115200 baud)", "SIMMB",
-                    transport="serial",
-                ),
+        _kind(
+            "sr-v4-motor-fw4", MotorBoardFw4,
+            "SR v4 motor board, firmware 4.4 / 4.5 (serial, 115200 baud)",
+            "SRV4MotorBoardFw4", ("sr.v4.motor_board_fw4", "sr.v4", "sim_backends_2023"),
+            _simulator(
+                "sr-motor-fw4", "sr_motor_fw4:SRMotorBoardFw4Simulator",
+                "SR v4 motor board, firmware 4.4 (115200 baud)", "SIMMB", "serial",
+            ),
+            _simulator(
+                "sb-motor-fw4", "sr_motor_fw4:SRMotorBoardFw4Simulator",
+                "SR v4 motor board, SourceBots firmware 4.5 (115200 baud)", "SIMMB", "serial",
+                version="4.5.0",
             ),
             # Its probe (a NUL, then *IDN? at 115200 baud) is harmless to a firmware 3
             # board, which takes the NUL as a resync and ignores the rest.
             identify_order=12,
         ),
-        BoardKind(
-            name="sr-v4-servo-fw4",
-            board=ServoBoardFw4,
-            description="SR v4 servo board, firmware 4.3 (CDC serial, 12 servos)",
-            hardware="j5aio.backends.hardware.sr.v4.servo_board_fw4:SRV4ServoBoardFw4HardwareBackend",
-            console="j5aio.backends.console.sr.v4:SRV4ServoBoardFw4ConsoleBackend",
-            simulated=_simulated_2023("SRV4ServoBoardFw4SimulatedBackend"),
-            simulators=(
-                SimulatorEntry(
-                    "sr-servo-fw4", _sim("sr_servo_fw4:SRServoBoardFw4Simulator"),
-                    "SR v4 servo board, firmware 4.3 (CDC serial, 12 servos)", "SIMSB",
-                    transport="serial",
-                ),
+        _kind(
+            "sr-v4-servo-fw4", ServoBoardFw4,
+            "SR v4 servo board, firmware 4.3 (CDC serial, 12 servos)",
+            "SRV4ServoBoardFw4", ("sr.v4.servo_board_fw4", "sr.v4", "sim_backends_2023"),
+            _simulator(
+                "sr-servo-fw4", "sr_servo_fw4:SRServoBoardFw4Simulator",
+                "SR v4 servo board, firmware 4.3 (CDC serial, 12 servos)", "SIMSB", "serial",
             ),
             identify_order=30,
         ),
-        BoardKind(
-            name="sb-servo-fw4",
-            board=SBServoBoard,
-            description="SR v4 servo board, SourceBots firmware 4.4 (CDC serial, 8 servos)",
-            hardware="j5aio.backends.hardware.sr.v4.servo_board_fw4:SBServoBoardHardwareBackend",
-            console="j5aio.backends.console.sr.v4:SBServoBoardConsoleBackend",
-            simulated=_simulated_2023("SBServoBoardSimulatedBackend"),
-            simulators=(
-                SimulatorEntry(
-                    "sb-servo-fw4", _sim("sr_servo_fw4:SBServoBoardFw4Simulator"),
-                    "SR v4 servo board, SourceBots firmware 4.4 (8 servos)", "SIMSB",
-                    transport="serial",
-                ),
+        _kind(
+            "sb-servo-fw4", SBServoBoard,
+            "SR v4 servo board, SourceBots firmware 4.4 (CDC serial, 8 servos)",
+            "SBServoBoard", ("sr.v4.servo_board_fw4", "sr.v4", "sim_backends_2023"),
+            _simulator(
+                "sb-servo-fw4", "sr_servo_fw4:SBServoBoardFw4Simulator",
+                "SR v4 servo board, SourceBots firmware 4.4 (8 servos)", "SIMSB", "serial",
             ),
             identify_order=31,
         ),
-        BoardKind(
-            name="sr-arduino-fw2",
-            board=SRArduinoBoard,
-            description="SR Arduino, firmware 2 (serial, 115200 baud)",
-            hardware="j5aio.backends.hardware.sr.v4.arduino:SRArduinoHardwareBackend",
-            console="j5aio.backends.console.sr.v4:SRArduinoConsoleBackend",
-            simulated=_simulated_2023("SRArduinoSimulatedBackend"),
-            simulators=(
-                SimulatorEntry(
-                    "sr-arduino-fw2",
-                    _sim("sr_ruggeduino_fw1:SRRuggeduinoSimulator", firmware_version=2),
-                    "SR Arduino, firmware 2 (115200 baud)", "SIMSRA",
-                    transport="serial",
-                ),
+        _kind(
+            "sr-arduino-fw2", SRArduinoBoard, "SR Arduino, firmware 2 (serial, 115200 baud)",
+            "SRArduino", ("sr.v4.arduino", "sr.v4", "sim_backends_2023"),
+            _simulator(
+                "sr-arduino-fw2", "sr_ruggeduino_fw1:SRRuggeduinoSimulator",
+                "SR Arduino, firmware 2 (115200 baud)", "SIMSRA", "serial",
+                firmware_version=2,
             ),
             identify_order=55,
         ),
-        BoardKind(
-            name="sb-arduino-2024",
-            board=SBArduino2024Board,
-            description="SourceBots Arduino, sb2024 firmware 2.0 (serial, 115200 baud)",
-            hardware="j5aio.backends.hardware.sb.arduino_2024:SBArduino2024HardwareBackend",
-            console="j5aio.backends.console.sb.arduino_2024:SBArduino2024ConsoleBackend",
-            simulated=_simulated_2023("SBArduino2024SimulatedBackend"),
-            simulators=(
-                SimulatorEntry(
-                    "sb-arduino-2024", _sim("sb_arduino_2024:SBArduino2024Simulator"),
-                    "SourceBots Arduino, sb2024 firmware 2.0 (115200 baud)", "SIMSBA",
-                    transport="serial",
-                ),
+        _kind(
+            "sb-arduino-2024", SBArduino2024Board,
+            "SourceBots Arduino, sb2024 firmware 2.0 (serial, 115200 baud)",
+            "SBArduino2024", ("sb.arduino_2024", "sb.arduino_2024", "sim_backends_2023"),
+            _simulator(
+                "sb-arduino-2024", "sb_arduino_2024:SBArduino2024Simulator",
+                "SourceBots Arduino, sb2024 firmware 2.0 (115200 baud)", "SIMSBA", "serial",
             ),
             # First of the Arduinos: every other Arduino firmware answers its probe
             # (``*IDN?`` and a line end) at once, with a boot banner, an error or an empty
@@ -245,20 +213,13 @@ def entries() -> list[BoardKind | KitDefinition]:
             # probes (waiting for a banner; ``v`` with no line end) to time out.
             identify_order=45,
         ),
-        BoardKind(
-            name="sr-kch",
-            board=KCHBoard,
-            description="SR KCH, the Raspberry Pi HAT (GPIO: user and start LEDs)",
-            hardware="j5aio.backends.hardware.sr.kch:KCHHardwareBackend",
-            console="j5aio.backends.console.sr.kch:KCHConsoleBackend",
-            simulators=(
-                SimulatorEntry(
-                    "kch", _sim("kch:KCHSimulator", serial_keyword="serial_number"),
-                    "SR KCH (mock GPIO pins)", "SIMKCH",
-                    transport="other",
-                ),
+        _kind(
+            "sr-kch", KCHBoard, "SR KCH, the Raspberry Pi HAT (GPIO: user and start LEDs)",
+            "KCH", ("sr.kch", "sr.kch", "kch"),
+            _simulator(
+                "kch", "kch:KCHSimulator", "SR KCH (mock GPIO pins)", "SIMKCH", "other",
+                serial_keyword="serial_number",
             ),
-            simulated="j5aio.simulator.kch:KCHSimulatedBackend",
         ),
         BoardKind(
             name="camera",

@@ -98,6 +98,11 @@ def _logged(
 
     @functools.wraps(method)
     async def logged_method(*args: Any, **kwargs: Any) -> Any:
+        backend = args[0]
+        if backend.owes_acknowledgement():
+            # An earlier command's reply is still to be read (it was confirmed later): read
+            # it first, so that what the backend remembers of its board is up to date.
+            await backend.confirm_acknowledgement()
         try:
             result = await method(*args, **kwargs)
         except Exception as error:
@@ -204,6 +209,22 @@ class Backend(Generic[BoardT], metaclass=BackendMeta):
             sends nothing, which suits backends with no actuators (consoles, sensors).
         """
         return False
+
+    def owes_acknowledgement(self) -> bool:
+        """Whether a command's acknowledgement is still to be read from the board.
+
+        Only where commands are confirmed later
+        (:func:`~j5aio.backends.acknowledgements.acknowledge_later`); ``False`` here.
+        Every interface method of a backend reads it (with
+        :meth:`confirm_acknowledgement`) before it runs.
+        """
+        return False
+
+    async def confirm_acknowledgement(self) -> None:
+        """Read and check the acknowledgement still owed, if any (nothing to do here).
+
+        :raises ~j5aio.errors.EarlierCommandError: the earlier command had failed.
+        """
 
     def close_now(self) -> None:
         """Release the backend's port synchronously (at exit); does nothing here.

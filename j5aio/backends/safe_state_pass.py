@@ -8,6 +8,6 @@ here too.
 
 from __future__ import annotations
 
-from j5aio.safety.safe_state_pass import claim_attempt, safe_state_pass
+from j5aio.safety.safe_state_pass import claim_attempt, making_safe, safe_state_pass
 
-__all__ = ["claim_attempt", "safe_state_pass"]
+__all__ = ["claim_attempt", "making_safe", "safe_state_pass"]

@@ -5,12 +5,10 @@ from typing import TYPE_CHECKING
 from j5aio._lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from j5aio.boards.board import Board
-    from j5aio.boards.board_group import BoardGroup
+    from j5aio.boards.board import Board as Board
+    from j5aio.boards.board_group import BoardGroup as BoardGroup
 
-__all__ = ["Board", "BoardGroup"]
-
-if not TYPE_CHECKING:  # the names are imported above for type checkers
+if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
     __getattr__, __dir__ = lazy_exports(
         __name__,
         {

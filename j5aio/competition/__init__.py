@@ -22,24 +22,17 @@ from typing import TYPE_CHECKING
 from j5aio._lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from j5aio.competition.clock import MatchClock
-    from j5aio.competition.metadata import Metadata, MetadataError, Mode, load_metadata
-    from j5aio.competition.start import start_file, trigger_start
-    from j5aio.competition.timer import MatchTimer, add_game_over_hook
+    from j5aio.competition.clock import MatchClock as MatchClock
+    from j5aio.competition.metadata import Metadata as Metadata
+    from j5aio.competition.metadata import MetadataError as MetadataError
+    from j5aio.competition.metadata import Mode as Mode
+    from j5aio.competition.metadata import load_metadata as load_metadata
+    from j5aio.competition.start import start_file as start_file
+    from j5aio.competition.start import trigger_start as trigger_start
+    from j5aio.competition.timer import MatchTimer as MatchTimer
+    from j5aio.competition.timer import add_game_over_hook as add_game_over_hook
 
-__all__ = [
-    "MatchClock",
-    "MatchTimer",
-    "Metadata",
-    "MetadataError",
-    "Mode",
-    "add_game_over_hook",
-    "load_metadata",
-    "start_file",
-    "trigger_start",
-]
-
-if not TYPE_CHECKING:  # the names are imported above for type checkers
+if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
     __getattr__, __dir__ = lazy_exports(
         __name__,
         {

@@ -213,6 +213,24 @@ DEV_DEFAULTS: Final = Metadata()
 _FIELDS: Final = ("arena", "zone", "mode", "duration", "marker_offset")
 
 
+def _json_object(data: object, where: str, example: str) -> Mapping[str, object]:
+    """``data`` as the JSON object a metadata file must hold (``example`` shows one)."""
+    if not isinstance(data, dict):
+        raise MetadataError(
+            f"{where}: must hold a JSON object like {example}, not a {type(data).__name__}"
+        )
+    return data
+
+
+def _mode(fields: Mapping[str, object], where: str, *, any_case: bool) -> Mode:
+    """The ``mode`` field: ``"COMP"`` or ``"DEV"`` (in any case, if ``any_case``); DEV if absent."""
+    given = fields.get("mode", Mode.DEV.value)
+    text = given.upper() if any_case and isinstance(given, str) else given
+    if text not in (Mode.COMP.value, Mode.DEV.value):
+        raise MetadataError(f"{where}: field 'mode' must be \"COMP\" or \"DEV\", not {given!r}")
+    return Mode(text)
+
+
 def parse_metadata(data: object, source: Path | None = None) -> Metadata:
     """Check the decoded JSON ``data`` of a metadata file and make a :class:`Metadata`.
 
@@ -226,19 +244,8 @@ def parse_metadata(data: object, source: Path | None = None) -> Metadata:
     :raises MetadataError: naming the file, the field and what is allowed.
     """
     where = str(source) if source is not None else "metadata"
-    if not isinstance(data, dict):
-        raise MetadataError(
-            f"{where}: must hold a JSON object like "
-            '{"arena": "A", "zone": 0, "mode": "DEV"}, '
-            f"not a {type(data).__name__}"
-        )
-    fields: Mapping[str, object] = data
-    mode_text = fields.get("mode", Mode.DEV.value)
-    if not isinstance(mode_text, str) or mode_text.upper() not in Mode.__members__:
-        raise MetadataError(
-            f"{where}: field 'mode' must be \"COMP\" or \"DEV\", not {mode_text!r}"
-        )
-    mode = Mode(mode_text.upper())
+    fields = _json_object(data, where, '{"arena": "A", "zone": 0, "mode": "DEV"}')
+    mode = _mode(fields, where, any_case=True)
     if mode is Mode.COMP:
         missing = [name for name in _FIELDS if name not in fields]
         if missing:
@@ -341,19 +348,10 @@ def parse_astoria_metadata(data: object, source: str | Path | None = None) -> Me
     :raises MetadataError: naming the source, the field and what is allowed.
     """
     where = str(source) if source is not None else "astoria metadata"
-    if not isinstance(data, dict):
-        raise MetadataError(
-            f"{where}: must hold a JSON object like "
-            '{"arena": "A", "zone": 0, "mode": "COMP", "game_timeout": 150}, '
-            f"not a {type(data).__name__}"
-        )
-    fields: Mapping[str, object] = data
-    mode_text = fields.get("mode", Mode.DEV.value)
-    if mode_text not in (Mode.COMP.value, Mode.DEV.value):
-        raise MetadataError(
-            f"{where}: field 'mode' must be \"COMP\" or \"DEV\", not {mode_text!r}"
-        )
-    mode = Mode(mode_text)
+    fields = _json_object(
+        data, where, '{"arena": "A", "zone": 0, "mode": "COMP", "game_timeout": 150}'
+    )
+    mode = _mode(fields, where, any_case=False)
     unknown = sorted(
         str(key)
         for key in fields
@@ -428,12 +426,7 @@ def parse_sbot_metadata(data: object, source: str | Path | None = None) -> Metad
     :raises MetadataError: naming the source, the field and what is allowed.
     """
     where = str(source) if source is not None else "sbot metadata"
-    if not isinstance(data, dict):
-        raise MetadataError(
-            f'{where}: must hold a JSON object like {{"zone": 0, "is_competition": true}}, '
-            f"not a {type(data).__name__}"
-        )
-    fields: Mapping[str, object] = data
+    fields = _json_object(data, where, '{"zone": 0, "is_competition": true}')
     missing = [name for name in _SBOT_FIELDS if name not in fields]
     if missing:
         raise MetadataError(

@@ -52,20 +52,20 @@ def usercode_path() -> Path | None:
 
 def set_metadata(value: Metadata | None) -> None:
     """Record the service's metadata (``None``: forget it), then tell the listeners."""
-    global _metadata
-    with _lock:
-        changed = value != _metadata
-        _metadata = value
-    if changed:
-        _notify()
+    _record("_metadata", value)
 
 
 def set_usercode_path(value: Path | None) -> None:
     """Record where the team's USB stick is (``None``: forget it), then tell the listeners."""
-    global _usercode_path
+    _record("_usercode_path", value)
+
+
+def _record(name: str, value: object) -> None:
+    """Set this module's global ``name`` to ``value``; tell the listeners if it changed."""
+    state = globals()
     with _lock:
-        changed = value != _usercode_path
-        _usercode_path = value
+        changed = value != state[name]
+        state[name] = value
     if changed:
         _notify()
 

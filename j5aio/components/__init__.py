@@ -17,124 +17,80 @@ from typing import TYPE_CHECKING
 from j5aio._lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from j5aio.components.battery_sensor import BatterySensor, BatterySensorInterface
-    from j5aio.components.button import Button, ButtonInterface
-    from j5aio.components.component import Component, DerivedComponent, Interface
-    from j5aio.components.derived.ultrasound import UltrasoundInterface, UltrasoundSensor
-    from j5aio.components.distance_sensor import (
-        DistanceSensor,
-        DistanceSensorInterface,
-        Rangefinder,
-    )
-    from j5aio.components.fan import Fan, FanInterface
-    from j5aio.components.flag import Flag, FlagInterface
-    from j5aio.components.flashing_led import FlashingLED, FlashingLEDInterface, LEDMode
-    from j5aio.components.gpio_pin import (
-        FirmwareMode,
-        GPIOPin,
-        GPIOPinInterface,
-        GPIOPinMode,
-        PinMode,
-    )
-    from j5aio.components.identified import IdentifiedComponent, checked_backend
-    from j5aio.components.led import LED, LEDInterface
-    from j5aio.components.marker_camera import MarkerCamera, MarkerCameraInterface
-    from j5aio.components.monitored_motor import MonitoredMotor, MonitoredMotorInterface
-    from j5aio.components.motor import (
-        Motor,
-        MotorInterface,
-        MotorSpecialState,
-        MotorState,
-        check_motor_state,
-    )
-    from j5aio.components.piezo import Duration, Note, Piezo, PiezoInterface, Pitch
-    from j5aio.components.power_output import PowerOutput, PowerOutputGroup, PowerOutputInterface
+    from j5aio.components.battery_sensor import BatterySensor as BatterySensor
+    from j5aio.components.battery_sensor import BatterySensorInterface as BatterySensorInterface
+    from j5aio.components.button import Button as Button
+    from j5aio.components.button import ButtonInterface as ButtonInterface
+    from j5aio.components.component import Component as Component
+    from j5aio.components.component import DerivedComponent as DerivedComponent
+    from j5aio.components.component import Interface as Interface
+    from j5aio.components.derived.ultrasound import UltrasoundInterface as UltrasoundInterface
+    from j5aio.components.derived.ultrasound import UltrasoundSensor as UltrasoundSensor
+    from j5aio.components.distance_sensor import DistanceSensor as DistanceSensor
+    from j5aio.components.distance_sensor import DistanceSensorInterface as DistanceSensorInterface
+    from j5aio.components.distance_sensor import Rangefinder as Rangefinder
+    from j5aio.components.fan import Fan as Fan
+    from j5aio.components.fan import FanInterface as FanInterface
+    from j5aio.components.flag import Flag as Flag
+    from j5aio.components.flag import FlagInterface as FlagInterface
+    from j5aio.components.flashing_led import FlashingLED as FlashingLED
+    from j5aio.components.flashing_led import FlashingLEDInterface as FlashingLEDInterface
+    from j5aio.components.flashing_led import LEDMode as LEDMode
+    from j5aio.components.gpio_pin import FirmwareMode as FirmwareMode
+    from j5aio.components.gpio_pin import GPIOPin as GPIOPin
+    from j5aio.components.gpio_pin import GPIOPinInterface as GPIOPinInterface
+    from j5aio.components.gpio_pin import GPIOPinMode as GPIOPinMode
+    from j5aio.components.gpio_pin import PinMode as PinMode
+    from j5aio.components.identified import IdentifiedComponent as IdentifiedComponent
+    from j5aio.components.identified import checked_backend as checked_backend
+    from j5aio.components.led import LED as LED
+    from j5aio.components.led import LEDInterface as LEDInterface
+    from j5aio.components.marker_camera import MarkerCamera as MarkerCamera
+    from j5aio.components.marker_camera import MarkerCameraInterface as MarkerCameraInterface
+    from j5aio.components.monitored_motor import MonitoredMotor as MonitoredMotor
+    from j5aio.components.monitored_motor import MonitoredMotorInterface as MonitoredMotorInterface
+    from j5aio.components.motor import Motor as Motor
+    from j5aio.components.motor import MotorInterface as MotorInterface
+    from j5aio.components.motor import MotorSpecialState as MotorSpecialState
+    from j5aio.components.motor import MotorState as MotorState
+    from j5aio.components.motor import check_motor_state as check_motor_state
+    from j5aio.components.piezo import Duration as Duration
+    from j5aio.components.piezo import Note as Note
+    from j5aio.components.piezo import Piezo as Piezo
+    from j5aio.components.piezo import PiezoInterface as PiezoInterface
+    from j5aio.components.piezo import Pitch as Pitch
+    from j5aio.components.power_output import PowerOutput as PowerOutput
+    from j5aio.components.power_output import PowerOutputGroup as PowerOutputGroup
+    from j5aio.components.power_output import PowerOutputInterface as PowerOutputInterface
+    from j5aio.components.protected_power_output import ProtectedPowerOutput as ProtectedPowerOutput
     from j5aio.components.protected_power_output import (
-        ProtectedPowerOutput,
-        ProtectedPowerOutputInterface,
+        ProtectedPowerOutputInterface as ProtectedPowerOutputInterface,
     )
-    from j5aio.components.pulse_servo import PulseLimits, PulseServo, PulseServoInterface
-    from j5aio.components.rgb_led import RGBLED, RGBChannel, RGBColour, RGBLEDInterface
-    from j5aio.components.servo import Servo, ServoInterface, ServoPosition
+    from j5aio.components.pulse_servo import PulseLimits as PulseLimits
+    from j5aio.components.pulse_servo import PulseServo as PulseServo
+    from j5aio.components.pulse_servo import PulseServoInterface as PulseServoInterface
+    from j5aio.components.rgb_led import RGBLED as RGBLED
+    from j5aio.components.rgb_led import RGBChannel as RGBChannel
+    from j5aio.components.rgb_led import RGBColour as RGBColour
+    from j5aio.components.rgb_led import RGBLEDInterface as RGBLEDInterface
+    from j5aio.components.servo import Servo as Servo
+    from j5aio.components.servo import ServoInterface as ServoInterface
+    from j5aio.components.servo import ServoPosition as ServoPosition
+    from j5aio.components.string_command import StringCommandComponent as StringCommandComponent
     from j5aio.components.string_command import (
-        StringCommandComponent,
-        StringCommandComponentInterface,
+        StringCommandComponentInterface as StringCommandComponentInterface,
     )
-    from j5aio.components.supply_sensor import SupplySensor, SupplySensorInterface
-    from j5aio.components.temperature_sensor import TemperatureSensor, TemperatureSensorInterface
-    from j5aio.components.voltage_sensor import VoltageSensor, VoltageSensorInterface
-    from j5aio.errors import NotSupportedByComponentError
+    from j5aio.components.supply_sensor import SupplySensor as SupplySensor
+    from j5aio.components.supply_sensor import SupplySensorInterface as SupplySensorInterface
+    from j5aio.components.temperature_sensor import TemperatureSensor as TemperatureSensor
+    from j5aio.components.temperature_sensor import (
+        TemperatureSensorInterface as TemperatureSensorInterface,
+    )
+    from j5aio.components.voltage_sensor import VoltageSensor as VoltageSensor
+    from j5aio.components.voltage_sensor import VoltageSensorInterface as VoltageSensorInterface
+    from j5aio.errors import NotSupportedByComponentError as NotSupportedByComponentError
 
-__all__ = [
-    "LED",
-    "RGBLED",
-    "BatterySensor",
-    "BatterySensorInterface",
-    "Button",
-    "ButtonInterface",
-    "Component",
-    "DerivedComponent",
-    "DistanceSensor",
-    "DistanceSensorInterface",
-    "Duration",
-    "Fan",
-    "FanInterface",
-    "FirmwareMode",
-    "Flag",
-    "FlagInterface",
-    "FlashingLED",
-    "FlashingLEDInterface",
-    "GPIOPin",
-    "GPIOPinInterface",
-    "GPIOPinMode",
-    "IdentifiedComponent",
-    "Interface",
-    "LEDInterface",
-    "LEDMode",
-    "MarkerCamera",
-    "MarkerCameraInterface",
-    "MonitoredMotor",
-    "MonitoredMotorInterface",
-    "Motor",
-    "MotorInterface",
-    "MotorSpecialState",
-    "MotorState",
-    "NotSupportedByComponentError",
-    "Note",
-    "Piezo",
-    "PiezoInterface",
-    "PinMode",
-    "Pitch",
-    "PowerOutput",
-    "PowerOutputGroup",
-    "PowerOutputInterface",
-    "ProtectedPowerOutput",
-    "ProtectedPowerOutputInterface",
-    "PulseLimits",
-    "PulseServo",
-    "PulseServoInterface",
-    "RGBChannel",
-    "RGBColour",
-    "RGBLEDInterface",
-    "Rangefinder",
-    "Servo",
-    "ServoInterface",
-    "ServoPosition",
-    "StringCommandComponent",
-    "StringCommandComponentInterface",
-    "SupplySensor",
-    "SupplySensorInterface",
-    "TemperatureSensor",
-    "TemperatureSensorInterface",
-    "UltrasoundInterface",
-    "UltrasoundSensor",
-    "VoltageSensor",
-    "VoltageSensorInterface",
-    "check_motor_state",
-    "checked_backend",
-]
-
-if not TYPE_CHECKING:  # the names are imported above for type checkers
+if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
     __getattr__, __dir__ = lazy_exports(
         __name__,
         {

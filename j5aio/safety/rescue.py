@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import sys
 import threading
 import time
 from typing import TYPE_CHECKING, Final
@@ -181,13 +182,23 @@ def watch(loop: asyncio.AbstractEventLoop) -> None:
 
 
 async def _watch_loop(loop: asyncio.AbstractEventLoop) -> None:
-    """Wait for the end of the loop (its runner cancels this task), then rescue its boards."""
+    """Wait for the end of the loop (its runner cancels this task), then rescue its boards.
+
+    A loop that is never ended (a program stopped while it ran) leaves this task to be
+    closed by the garbage collector as the interpreter shuts down, after the exit hook
+    has made every board safe: then there is nothing left to do, and the module's globals
+    may already be gone, so what the rescue needs is held from the start.
+    """
+    watchers, lock, rescue, finalizing = _watchers, registry._lock, make_all_safe_now, (
+        sys.is_finalizing
+    )
     try:
         await loop.create_future()
     finally:
-        with registry._lock:
-            _watchers.pop(id(loop), None)
-        make_all_safe_now("its event loop finished", close=True, loop=loop)
+        if not finalizing():
+            with lock:
+                watchers.pop(id(loop), None)
+            rescue("its event loop finished", close=True, loop=loop)
 
 
 # Every board opened while a loop runs is made safe when that loop ends: the registry

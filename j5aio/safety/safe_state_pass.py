@@ -16,7 +16,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 
-__all__ = ["claim_attempt", "safe_state_pass"]
+__all__ = ["claim_attempt", "making_safe", "safe_state_pass"]
 
 # The ids of the backends that have had their try in the pass running in this context
 # (tasks started within it share the set); None outside a pass.
@@ -43,3 +43,8 @@ def claim_attempt(backend: object) -> bool:
         return False
     tried.add(id(backend))
     return True
+
+
+def making_safe() -> bool:
+    """Whether the code running now is within a :func:`safe_state_pass`."""
+    return _tried.get() is not None

@@ -22,24 +22,17 @@ from typing import TYPE_CHECKING
 from j5aio._lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from j5aio.service._extra import INSTALL_HINT, ServiceNotInstalledError
-    from j5aio.service.auto import start_service
-    from j5aio.service.config import ServiceConfig, ServiceConfigError, find_config
-    from j5aio.service.service import RobotService, current_service, publish_frame
+    from j5aio.service._extra import INSTALL_HINT as INSTALL_HINT
+    from j5aio.service._extra import ServiceNotInstalledError as ServiceNotInstalledError
+    from j5aio.service.auto import start_service as start_service
+    from j5aio.service.config import ServiceConfig as ServiceConfig
+    from j5aio.service.config import ServiceConfigError as ServiceConfigError
+    from j5aio.service.config import find_config as find_config
+    from j5aio.service.service import RobotService as RobotService
+    from j5aio.service.service import current_service as current_service
+    from j5aio.service.service import publish_frame as publish_frame
 
-__all__ = [
-    "INSTALL_HINT",
-    "RobotService",
-    "ServiceConfig",
-    "ServiceConfigError",
-    "ServiceNotInstalledError",
-    "current_service",
-    "find_config",
-    "publish_frame",
-    "start_service",
-]
-
-if not TYPE_CHECKING:  # the names are imported above for type checkers
+if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
     __getattr__, __dir__ = lazy_exports(
         __name__,
         {

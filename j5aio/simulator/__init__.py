@@ -41,52 +41,31 @@ from typing import TYPE_CHECKING, Final, Protocol
 from j5aio._lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from j5aio.simulator.arduino_base import ARDUINO_UNO_R3, ArduinoBoardSimulator, UsbIdentity
-    from j5aio.simulator.arduino_pins import ArduinoUnoPins, PinMode
-    from j5aio.simulator.base import (
-        SerialBoardSimulator,
-        SimulatorUnpluggedError,
-        UsbBoardSimulator,
-    )
-    from j5aio.simulator.sb_arduino_2019 import SBArduinoFirmware, SBArduinoSimulator
-    from j5aio.simulator.sb_arduino_2024 import SBArduino2024Simulator
-    from j5aio.simulator.sr_motor_fw3 import MotorMode, MotorOutput, SRMotorBoardFw3Simulator
-    from j5aio.simulator.sr_motor_fw4 import MotorChannel, MotorDrive, SRMotorBoardFw4Simulator
-    from j5aio.simulator.sr_power_fw3 import PiezoNote, SRPowerBoardFw3Simulator
-    from j5aio.simulator.sr_power_fw4 import BuzzerNote, SRPowerBoardFw4Simulator
-    from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
-    from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator
-    from j5aio.simulator.sr_servo_fw4 import SBServoBoardFw4Simulator, SRServoBoardFw4Simulator
-
-__all__ = [
-    "ARDUINO_UNO_R3",
-    "SERIAL_SIMULATORS",
-    "ArduinoBoardSimulator",
-    "ArduinoUnoPins",
-    "BuzzerNote",
-    "MotorChannel",
-    "MotorDrive",
-    "MotorMode",
-    "MotorOutput",
-    "PiezoNote",
-    "PinMode",
-    "SBArduino2024Simulator",
-    "SBArduinoFirmware",
-    "SBArduinoSimulator",
-    "SBServoBoardFw4Simulator",
-    "SRMotorBoardFw3Simulator",
-    "SRMotorBoardFw4Simulator",
-    "SRPowerBoardFw3Simulator",
-    "SRPowerBoardFw4Simulator",
-    "SRRuggeduinoSimulator",
-    "SRServoBoardFw2Simulator",
-    "SRServoBoardFw4Simulator",
-    "SerialBoardSimulator",
-    "SerialSimulatorFactory",
-    "SimulatorUnpluggedError",
-    "UsbBoardSimulator",
-    "UsbIdentity",
-]
+    from j5aio.simulator.arduino_base import ARDUINO_UNO_R3 as ARDUINO_UNO_R3
+    from j5aio.simulator.arduino_base import ArduinoBoardSimulator as ArduinoBoardSimulator
+    from j5aio.simulator.arduino_base import UsbIdentity as UsbIdentity
+    from j5aio.simulator.arduino_pins import ArduinoUnoPins as ArduinoUnoPins
+    from j5aio.simulator.arduino_pins import PinMode as PinMode
+    from j5aio.simulator.base import SerialBoardSimulator as SerialBoardSimulator
+    from j5aio.simulator.base import SimulatorUnpluggedError as SimulatorUnpluggedError
+    from j5aio.simulator.base import UsbBoardSimulator as UsbBoardSimulator
+    from j5aio.simulator.sb_arduino_2019 import SBArduinoFirmware as SBArduinoFirmware
+    from j5aio.simulator.sb_arduino_2019 import SBArduinoSimulator as SBArduinoSimulator
+    from j5aio.simulator.sb_arduino_2024 import SBArduino2024Simulator as SBArduino2024Simulator
+    from j5aio.simulator.sr_motor import MotorDrive as MotorDrive
+    from j5aio.simulator.sr_motor_fw3 import MotorMode as MotorMode
+    from j5aio.simulator.sr_motor_fw3 import MotorOutput as MotorOutput
+    from j5aio.simulator.sr_motor_fw3 import SRMotorBoardFw3Simulator as SRMotorBoardFw3Simulator
+    from j5aio.simulator.sr_motor_fw4 import MotorChannel as MotorChannel
+    from j5aio.simulator.sr_motor_fw4 import SRMotorBoardFw4Simulator as SRMotorBoardFw4Simulator
+    from j5aio.simulator.sr_power_fw3 import PiezoNote as PiezoNote
+    from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator as SRPowerBoardFw3Simulator
+    from j5aio.simulator.sr_power_fw4 import BuzzerNote as BuzzerNote
+    from j5aio.simulator.sr_power_fw4 import SRPowerBoardFw4Simulator as SRPowerBoardFw4Simulator
+    from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator as SRRuggeduinoSimulator
+    from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator as SRServoBoardFw2Simulator
+    from j5aio.simulator.sr_servo_fw4 import SBServoBoardFw4Simulator as SBServoBoardFw4Simulator
+    from j5aio.simulator.sr_servo_fw4 import SRServoBoardFw4Simulator as SRServoBoardFw4Simulator
 
 
 class SerialSimulatorFactory(Protocol):
@@ -141,7 +120,7 @@ class _SerialSimulators(Mapping[str, SerialSimulatorFactory]):
 #: plugins' simulators are here too.
 SERIAL_SIMULATORS: Final[Mapping[str, SerialSimulatorFactory]] = _SerialSimulators()
 
-if not TYPE_CHECKING:  # the names are imported above for type checkers
+if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
     __getattr__, __dir__ = lazy_exports(
         __name__,
         {
@@ -158,16 +137,13 @@ if not TYPE_CHECKING:  # the names are imported above for type checkers
             ],
             "j5aio.simulator.sb_arduino_2019": ["SBArduinoFirmware", "SBArduinoSimulator"],
             "j5aio.simulator.sb_arduino_2024": ["SBArduino2024Simulator"],
+            "j5aio.simulator.sr_motor": ["MotorDrive"],
             "j5aio.simulator.sr_motor_fw3": [
                 "MotorMode",
                 "MotorOutput",
                 "SRMotorBoardFw3Simulator",
             ],
-            "j5aio.simulator.sr_motor_fw4": [
-                "MotorChannel",
-                "MotorDrive",
-                "SRMotorBoardFw4Simulator",
-            ],
+            "j5aio.simulator.sr_motor_fw4": ["MotorChannel", "SRMotorBoardFw4Simulator"],
             "j5aio.simulator.sr_power_fw3": ["PiezoNote", "SRPowerBoardFw3Simulator"],
             "j5aio.simulator.sr_power_fw4": ["BuzzerNote", "SRPowerBoardFw4Simulator"],
             "j5aio.simulator.sr_ruggeduino_fw1": ["SRRuggeduinoSimulator"],
@@ -177,4 +153,5 @@ if not TYPE_CHECKING:  # the names are imported above for type checkers
                 "SRServoBoardFw4Simulator",
             ],
         },
+        own=("SERIAL_SIMULATORS", "SerialSimulatorFactory"),
     )

@@ -31,13 +31,13 @@ from .usb_support import (
     pipe_error,
 )
 
-__all__ = ["SerialBoardSimulator", "SimulatorUnpluggedError", "UsbBoardSimulator"]
+__all__ = ["PluggedBoard", "SerialBoardSimulator", "SimulatorUnpluggedError", "UsbBoardSimulator"]
 
 
 class SimulatorUnpluggedError(OSError):
     """The host talked to a simulated serial board while it was unplugged.
 
-    Transports are expected to check :attr:`SerialBoardSimulator.connected` and raise their
+    Transports are expected to check :attr:`PluggedBoard.connected` and raise their
     own disconnection error first; this is the simulator's safety net.
     """
 
@@ -45,7 +45,59 @@ class SimulatorUnpluggedError(OSError):
         super().__init__(errno.ENODEV, "the simulated board is unplugged")
 
 
-class SerialBoardSimulator(ABC):
+class PluggedBoard:
+    """What every simulated board has: a USB cable to pull out, and listeners to tell.
+
+    :class:`SerialBoardSimulator` and :class:`UsbBoardSimulator` build on it.
+    """
+
+    def __init__(self) -> None:
+        self._connected = True
+        self._connection = 0
+        self._listeners: list[Callable[[], None]] = []
+
+    def listen(self, listener: Callable[[], None]) -> Callable[[], None]:
+        """Call ``listener`` each time the board may have changed state.
+
+        That is after the board took what the host sent (bytes, or a host-to-device
+        transfer), after it rebooted, and whenever the simulator says so, in the thread
+        that did it. Returns the function that stops the calls.
+        """
+        self._listeners.append(listener)
+
+        def stop() -> None:
+            with contextlib.suppress(ValueError):
+                self._listeners.remove(listener)
+
+        return stop
+
+    def _tell_listeners(self) -> None:
+        for listener in tuple(self._listeners):
+            listener()
+
+    @property
+    def connected(self) -> bool:
+        """Whether the board is plugged in."""
+        return self._connected
+
+    @property
+    def connection(self) -> int:
+        """A number that changes each time the board is unplugged.
+
+        A port or device opened before an unplug is dead for good, as a real one is after
+        its cable came out: transports compare this number with the one they saw at
+        opening.
+        """
+        return self._connection
+
+    def unplug(self) -> None:
+        """Pull the USB cable out: the host's exchanges with the board now fail."""
+        if self._connected:
+            self._connection += 1
+        self._connected = False
+
+
+class SerialBoardSimulator(PluggedBoard, ABC):
     """A board that talks to the host over a serial port.
 
     Subclasses set the class attributes describing the real board and implement
@@ -81,41 +133,7 @@ class SerialBoardSimulator(ABC):
         self.manufacturer = manufacturer
         #: The USB product string that port discovery shows.
         self.product = product
-        self._connected = True
-        self._connection = 0
-        self._listeners: list[Callable[[], None]] = []
-
-    def listen(self, listener: Callable[[], None]) -> Callable[[], None]:
-        """Call ``listener`` each time the board may have changed state.
-
-        That is after it processed bytes from the host and after it rebooted, in the
-        thread that fed it. Returns the function that stops the calls.
-        """
-        self._listeners.append(listener)
-
-        def stop() -> None:
-            with contextlib.suppress(ValueError):
-                self._listeners.remove(listener)
-
-        return stop
-
-    def _tell_listeners(self) -> None:
-        for listener in tuple(self._listeners):
-            listener()
-
-    @property
-    def connected(self) -> bool:
-        """Whether the board is plugged in."""
-        return self._connected
-
-    @property
-    def connection(self) -> int:
-        """A number that changes each time the board is unplugged.
-
-        A port opened before an unplug is dead for good, as a real one is after its
-        cable came out: transports compare this number with the one they saw at opening.
-        """
-        return self._connection
+        super().__init__()
 
     def open(self) -> bytes:
         """Tell the board the host opened its port; return what the board prints at boot.
@@ -142,12 +160,6 @@ class SerialBoardSimulator(ABC):
             self._tell_listeners()
         return booted
 
-    def unplug(self) -> None:
-        """Pull the USB cable out."""
-        if self._connected:
-            self._connection += 1
-        self._connected = False
-
     def plug(self) -> None:
         """Plug the USB cable back in; a USB-powered board boots (with nobody listening)."""
         if not self._connected and self.powered_by_usb:
@@ -167,7 +179,7 @@ class SerialBoardSimulator(ABC):
         """Run the firmware on received bytes; return what it emits."""
 
 
-class UsbBoardSimulator(ABC):
+class UsbBoardSimulator(PluggedBoard, ABC):
     """A board driven by USB control transfers, shaped like a pyusb ``usb.core.Device``.
 
     Subclasses set the descriptor class attributes and implement :meth:`_control_in` and
@@ -188,28 +200,8 @@ class UsbBoardSimulator(ABC):
         self._manufacturer = manufacturer
         self._product = product
         self._strings_read: set[str] = set()
-        self._connected = True
-        self._connection = 0
         self._configuration = SimulatedConfiguration(1, self.interface_descriptors)
-        self._listeners: list[Callable[[], None]] = []
-
-    def listen(self, listener: Callable[[], None]) -> Callable[[], None]:
-        """Call ``listener`` each time the board may have changed state.
-
-        That is after each host-to-device transfer (in the thread that made it) and
-        whenever the simulator says so. Returns the function that stops the calls.
-        """
-        self._listeners.append(listener)
-
-        def stop() -> None:
-            with contextlib.suppress(ValueError):
-                self._listeners.remove(listener)
-
-        return stop
-
-    def _tell_listeners(self) -> None:
-        for listener in tuple(self._listeners):
-            listener()
+        super().__init__()
 
     # --- descriptor strings: read from the device once, then cached, as pyusb does ---
 
@@ -259,22 +251,6 @@ class UsbBoardSimulator(ABC):
         return self.configurations()[index]
 
     # --- plugging ---
-
-    @property
-    def connected(self) -> bool:
-        """Whether the board is plugged in."""
-        return self._connected
-
-    @property
-    def connection(self) -> int:
-        """A number that changes each time the board is unplugged (see the serial one)."""
-        return self._connection
-
-    def unplug(self) -> None:
-        """Pull the USB cable out: every transfer now fails with ENODEV."""
-        if self._connected:
-            self._connection += 1
-        self._connected = False
 
     def plug(self) -> None:
         """Plug the USB cable back in."""

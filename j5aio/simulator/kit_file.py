@@ -60,6 +60,18 @@ _TOP_KEYS: Final = frozenset({"based_on", "time_scale", "description", "board"})
 _BOARD_KEYS: Final = frozenset({"simulator", "serial", "output"})
 
 
+def _refuse_unknown(
+    table: Mapping[str, object], known: frozenset[str], where: str, holder: str,
+) -> None:
+    """Refuse a setting of ``table`` that is not ``known``, naming those ``holder`` has."""
+    unknown = sorted(set(table) - known)
+    if unknown:
+        raise ValueError(
+            f"{where}unknown setting {', '.join(unknown)}; {holder} has "
+            f"{', '.join(sorted(known))}"
+        )
+
+
 def load_kit_file(path: str | os.PathLike[str]) -> KitDefinition:
     """Read the kit file at ``path`` (see the module) and return its kit.
 
@@ -100,12 +112,7 @@ def parse_kit(data: Mapping[str, Any], *, name: str = "kit-file") -> KitDefiniti
     :param name: the kit's name.
     :raises ValueError: the contents say something a kit file cannot.
     """
-    unknown = sorted(set(data) - _TOP_KEYS)
-    if unknown:
-        raise ValueError(
-            f"unknown setting {', '.join(unknown)}; a kit file has "
-            f"{', '.join(sorted(_TOP_KEYS))}"
-        )
+    _refuse_unknown(data, _TOP_KEYS, "", "a kit file")
     based_on = data.get("based_on")
     boards: dict[str, int] = {}
     wiring: dict[str, tuple[int | str, ...]] = {}
@@ -124,12 +131,7 @@ def parse_kit(data: Mapping[str, Any], *, name: str = "kit-file") -> KitDefiniti
     entries = simulator_entries()
     given: dict[str, list[dict[str, Any]]] = {}
     for number, board in enumerate(listed, start=1):
-        extra = sorted(set(board) - _BOARD_KEYS)
-        if extra:
-            raise ValueError(
-                f"board {number}: unknown setting {', '.join(extra)}; a board has "
-                f"{', '.join(sorted(_BOARD_KEYS))}"
-            )
+        _refuse_unknown(board, _BOARD_KEYS, f"board {number}: ", "a board")
         simulator = board.get("simulator")
         if simulator not in entries:
             raise ValueError(

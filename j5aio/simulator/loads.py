@@ -22,7 +22,7 @@ The power board's limits are the real board's
 
 from __future__ import annotations
 
-from typing import Final
+from typing import ClassVar, Final
 
 __all__ = [
     "BATTERY_INTERNAL_RESISTANCE",
@@ -32,6 +32,7 @@ __all__ = [
     "OUTPUT_CURRENT_LIMITS",
     "SERVO_BOARD_IDLE_CURRENT",
     "SERVO_HOLDING_CURRENT",
+    "PowerBoardLoads",
 ]
 
 #: Amps a motor driven at full power draws.
@@ -48,3 +49,77 @@ BATTERY_INTERNAL_RESISTANCE: Final = 0.05
 OUTPUT_CURRENT_LIMITS: Final = (20.0, 20.0, 10.0, 10.0, 10.0, 10.0, 2.0)
 #: The whole power board's over-current limit, in amps.
 BOARD_CURRENT_LIMIT: Final = 30.0
+
+
+class PowerBoardLoads:
+    """A simulated power board's battery and load model (a mixin of firmware 3's and 4's).
+
+    What the boards fed by each output draw (a kit's wiring sets it) loads the battery
+    while that output is on, and the battery's voltage sags under it behind
+    :data:`BATTERY_INTERNAL_RESISTANCE`. The board keeps its outputs' states in
+    ``_outputs``, and calls ``_start_loads`` when it is made.
+    """
+
+    #: Number of the board's outputs.
+    OUTPUT_COUNT: ClassVar[int]
+    _outputs: list[bool]
+
+    def _start_loads(self, battery_voltage: float) -> None:
+        """Start with a battery of ``battery_voltage`` volts and nothing drawn from it."""
+        self._battery_mv = 0
+        self._battery_ma = 0
+        self.battery_voltage = battery_voltage
+        self._supplied_ma = [0] * self.OUTPUT_COUNT
+
+    @property
+    def battery_voltage(self) -> float:
+        """The battery's idle voltage, in volts (stored in mV)."""
+        return self._battery_mv / 1000
+
+    @battery_voltage.setter
+    def battery_voltage(self, volts: float) -> None:
+        if volts < 0:
+            raise ValueError("battery voltage cannot be negative")
+        self._battery_mv = round(volts * 1000)
+
+    @property
+    def battery_current(self) -> float:
+        """The battery current besides the outputs' loads, in amps (stored in mA).
+
+        It is negative while the battery charges; the outputs' loads add to it in what
+        the board reports.
+        """
+        return self._battery_ma / 1000
+
+    @battery_current.setter
+    def battery_current(self, amps: float) -> None:
+        self._battery_ma = round(amps * 1000)
+
+    def set_supplied_current(self, output: int, amps: float) -> None:
+        """Set what the boards fed by ``output`` draw through it (a kit's wiring does).
+
+        While the output is on, it adds to the output's current and the battery's, and
+        pulls the battery voltage down (:data:`BATTERY_INTERNAL_RESISTANCE`).
+
+        :raises IndexError: the board has no output ``output``.
+        """
+        self._check_output(output)
+        self._supplied_ma[output] = round(amps * 1000)
+
+    def _supplied_now_ma(self, output: int) -> int:
+        """The mA the boards fed by ``output`` draw through it now (none while it is off)."""
+        return self._supplied_ma[output] if self._outputs[output] else 0
+
+    @property
+    def load_current(self) -> float:
+        """The amps the boards fed by the outputs that are on draw, in all."""
+        return sum(map(self._supplied_now_ma, range(self.OUTPUT_COUNT))) / 1000
+
+    @property
+    def loaded_voltage(self) -> float:
+        """The battery voltage under the outputs' load, in volts (what the board reads)."""
+        return max(0.0, self.battery_voltage - self.load_current * BATTERY_INTERNAL_RESISTANCE)
+
+    def _check_output(self, output: int) -> None:
+        if not 0 <= output < self.OUTPUT_COUNT:
+            raise IndexError(f"output {output} does not exist (0-{self.OUTPUT_COUNT - 1})")

@@ -15,7 +15,7 @@ start (and come back from a reset) coasting, with the driver disabled.
 
 Power: only the USB-serial adapter is powered from USB. The controller sits on the
 isolated side, fed by the board's 12 V input (a power board output): while
-:attr:`~SRMotorBoardFw3Simulator.powered` is false its port is there but nothing answers
+:attr:`~.sr_motor.SRMotorBoardSimulator.powered` is false its port is there but nothing answers
 and no motor is driven; when power comes the controller boots.
 """
 
@@ -25,8 +25,8 @@ import enum
 from dataclasses import dataclass
 from typing import ClassVar, Final
 
-from .base import SerialBoardSimulator
 from .loads import MOTOR_BOARD_IDLE_CURRENT, MOTOR_FULL_POWER_CURRENT
+from .sr_motor import MotorDrive, SRMotorBoardSimulator
 
 __all__ = ["MotorMode", "MotorOutput", "SRMotorBoardFw3Simulator"]
 
@@ -48,17 +48,8 @@ _VERSION_REPLY: Final = b"MCV4B:3\n"
 _BOOTLOADER_REPLY: Final = b"Entering bootloader\n"
 
 
-class MotorMode(enum.Enum):
-    """What a motor driver is doing."""
-
-    COAST = "coast"
-    """Driver disabled: the outputs float."""
-    BRAKE = "brake"
-    """Driver enabled with both half-bridges low."""
-    FORWARD = "forward"
-    """Driving forwards with some duty."""
-    REVERSE = "reverse"
-    """Driving in reverse with some duty."""
+#: What a motor driver is doing: firmware 3's name for :class:`.sr_motor.MotorDrive`.
+MotorMode = MotorDrive
 
 
 @dataclass(frozen=True)
@@ -97,56 +88,26 @@ class _Parser(enum.Enum):
     SPEED1 = enum.auto()
 
 
-class SRMotorBoardFw3Simulator(SerialBoardSimulator):
+class SRMotorBoardFw3Simulator(SRMotorBoardSimulator):
     """An SR Motor Board v4 with firmware 3 behind its FTDI FT232R USB-serial adapter."""
 
     baudrate: ClassVar[int] = 1_000_000
-    boot_delay: ClassVar[float] = 0.0
-    resets_on_open: ClassVar[bool] = False
-    powered_by_usb: ClassVar[bool] = False
     #: The firmware version this board reports.
     version: ClassVar[int] = 3
-    #: Number of motor outputs.
-    MOTOR_COUNT: ClassVar[int] = 2
 
     def __init__(self, serial_number: str) -> None:
-        super().__init__(
-            serial_number,
-            usb_vid=0x0403,
-            usb_pid=0x6001,
-            manufacturer="Student Robotics",
-            product="MCV4B",
-        )
+        super().__init__(serial_number)
         self._motors = [COAST] * self.MOTOR_COUNT
         self._parser = _Parser.IDLE
-        self._in_bootloader = False
-        self._powered = True
         self._motor_currents: list[float | None] = [None] * self.MOTOR_COUNT
         self._boot()
 
-    @property
-    def powered(self) -> bool:
-        """Whether the board's 12 V input is on (it starts on: a kit's wiring switches it).
-
-        Switching it off stops the controller: nothing answers, a motor that was driven
-        coasts to a stop and a braked one stays stopped (its mode still says so).
-        Switching it on boots the controller (the motors coast).
-        """
-        return self._powered
-
-    @powered.setter
-    def powered(self, on: bool) -> None:
-        if on and not self._powered:
-            self._powered = True
-            self.reset()
-        elif not on and self._powered:
-            self._powered = False
-            self._parser = _Parser.IDLE
-            self._motors = [
-                COAST if output.mode in (MotorMode.FORWARD, MotorMode.REVERSE) else output
-                for output in self._motors
-            ]
-            self._tell_listeners()
+    def _stop_controller(self) -> None:
+        self._parser = _Parser.IDLE
+        self._motors = [
+            COAST if output.mode in (MotorMode.FORWARD, MotorMode.REVERSE) else output
+            for output in self._motors
+        ]
 
     def set_motor_current(self, motor: int, amps: float | None) -> None:
         """Make ``motor`` draw ``amps`` while it is driven (``None``: the load model's figure)."""
@@ -166,11 +127,6 @@ class SRMotorBoardFw3Simulator(SerialBoardSimulator):
     def motors(self) -> tuple[MotorOutput, ...]:
         """The state of each motor output."""
         return tuple(self._motors)
-
-    @property
-    def in_bootloader(self) -> bool:
-        """Whether the board has reset into the ROM bootloader (and stopped listening)."""
-        return self._in_bootloader
 
     @property
     def awaiting_speed(self) -> int | None:

@@ -12,7 +12,7 @@ also clears the faults and the filtered currents. There is no watchdog: unpluggi
 USB cable changes nothing. ``*SYS:BOOTLOADER`` answers, then the board goes silent.
 
 Power: only the FTDI adapter is powered from USB. The controller is fed by the board's
-12 V input (a power board output): while :attr:`~SRMotorBoardFw4Simulator.powered` is
+12 V input (a power board output): while :attr:`~.sr_motor.SRMotorBoardSimulator.powered` is
 false its port is there but nothing answers and no motor is driven; when power comes
 the controller boots.
 
@@ -22,34 +22,19 @@ The firmware answers a firmware 3 resync byte (``0x00``) as part of a line, so t
 
 from __future__ import annotations
 
-import enum
 from dataclasses import dataclass
 from typing import ClassVar, Final
 
-from .base import SerialBoardSimulator
 from .loads import MOTOR_BOARD_IDLE_CURRENT, MOTOR_FULL_POWER_CURRENT
-from .sr_text_line import BoundedLineInput
+from .sr_motor import MotorDrive, SRMotorBoardSimulator
+from .sr_text_line import LINE_LIMIT, BoundedLineInput
 
 __all__ = ["MotorChannel", "MotorDrive", "SRMotorBoardFw4Simulator"]
 
-_LINE_LIMIT: Final = 63
 _MOTOR_COUNT: Final = 2
 _FULL_SCALE: Final = 1000
 _BLUE_LED_ABOVE_MA: Final = 5000
 _BOOTLOADER_REPLY: Final = b"ACK\n\n\n"
-
-
-class MotorDrive(enum.Enum):
-    """What a motor driver is doing."""
-
-    COAST = "coast"
-    """Driver disabled: the outputs float."""
-    BRAKE = "brake"
-    """Driver enabled at 0: both half-bridges low."""
-    FORWARD = "forward"
-    """Driving forwards."""
-    REVERSE = "reverse"
-    """Driving in reverse."""
 
 
 @dataclass(frozen=True)
@@ -80,7 +65,7 @@ class MotorChannel:
         return -self.duty if self.value < 0 else self.duty
 
 
-class SRMotorBoardFw4Simulator(SerialBoardSimulator):
+class SRMotorBoardFw4Simulator(SRMotorBoardSimulator):
     """An SR Motor Board v4 with firmware 4.4 (SR) or 4.5 (SourceBots).
 
     :param serial_number: the FTDI serial number, which is also the asset tag.
@@ -89,56 +74,25 @@ class SRMotorBoardFw4Simulator(SerialBoardSimulator):
     """
 
     baudrate: ClassVar[int] = 115_200
-    boot_delay: ClassVar[float] = 0.0
-    resets_on_open: ClassVar[bool] = False
-    powered_by_usb: ClassVar[bool] = False
-    #: Number of motor outputs.
     MOTOR_COUNT: ClassVar[int] = _MOTOR_COUNT
 
     def __init__(
         self, serial_number: str, *, version: str = "4.4.1", input_voltage: float = 12.0,
     ) -> None:
-        super().__init__(
-            serial_number,
-            usb_vid=0x0403,
-            usb_pid=0x6001,
-            manufacturer="Student Robotics",
-            product="MCV4B",
-        )
+        super().__init__(serial_number)
         self.version = version
-        self._input = BoundedLineInput(_LINE_LIMIT, ignore=b"\r")
+        self._input = BoundedLineInput(LINE_LIMIT, ignore=b"\r")
         self._motors = [MotorChannel()] * _MOTOR_COUNT
         self._faults = [False] * _MOTOR_COUNT
         self._load_ma = [0] * _MOTOR_COUNT
         self._input_mv = round(input_voltage * 1000)
-        self._in_bootloader = False
-        self._powered = True
         self._boot()
 
     # --- outside control ---
 
-    @property
-    def powered(self) -> bool:
-        """Whether the board's 12 V input is on (it starts on: a kit's wiring switches it).
-
-        Switching it off stops the controller: nothing answers, a motor that was driven
-        coasts to a stop and a braked one stays stopped (its drive still says so).
-        Switching it on boots the controller (the motors coast).
-        """
-        return self._powered
-
-    @powered.setter
-    def powered(self, on: bool) -> None:
-        if on and not self._powered:
-            self._powered = True
-            self.reset()
-        elif not on and self._powered:
-            self._powered = False
-            self._input.reset()
-            self._motors = [
-                MotorChannel() if channel.value else channel for channel in self._motors
-            ]
-            self._tell_listeners()
+    def _stop_controller(self) -> None:
+        self._input.reset()
+        self._motors = [MotorChannel() if channel.value else channel for channel in self._motors]
 
     def supply_current(self) -> float:
         """The amps the board draws from its 12 V input now (see :mod:`.loads`).
@@ -189,11 +143,6 @@ class SRMotorBoardFw4Simulator(SerialBoardSimulator):
     def current_leds(self) -> tuple[bool, ...]:
         """The blue LED of each motor, lit above 5 A."""
         return tuple(self._current_ma(motor) > _BLUE_LED_ABOVE_MA for motor in range(_MOTOR_COUNT))
-
-    @property
-    def in_bootloader(self) -> bool:
-        """Whether the board has reset into its bootloader (and stopped answering)."""
-        return self._in_bootloader
 
     def _current_ma(self, motor: int) -> int:
         return self._load_ma[motor] if self._motors[motor].enabled else 0

@@ -34,7 +34,7 @@ from collections import deque
 from typing import ClassVar, Final, NamedTuple
 
 from .clock import BoardTime, Clock
-from .loads import BATTERY_INTERNAL_RESISTANCE
+from .loads import PowerBoardLoads
 from .sr_usb import SRUsbBoardSimulator
 from .usb_support import UsbStall
 
@@ -78,7 +78,7 @@ class PiezoNote(NamedTuple):
         return min(self.frequency, _MAX_FREQUENCY)
 
 
-class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
+class SRPowerBoardFw3Simulator(PowerBoardLoads, SRUsbBoardSimulator):
     """An SR Power Board v4 with firmware 3, seen through pyusb.
 
     The board starts powered up, enumerated (RUN LED on, ERROR LED off), with all outputs
@@ -104,12 +104,9 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         battery_current: float = 0.0,
     ) -> None:
         super().__init__(serial_number, manufacturer="Student Robotics", product="Power board v4")
-        self._battery_mv = 0
-        self._battery_ma = 0
-        self.battery_voltage = battery_voltage
+        self._start_loads(battery_voltage)
         self.battery_current = battery_current
         self._output_ma = [0] * self.OUTPUT_COUNT
-        self._supplied_ma = [0] * self.OUTPUT_COUNT
         self._internal_button = False
         self._external_button = False
         self._outputs = [False] * self.OUTPUT_COUNT
@@ -240,29 +237,9 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         return self._internal_button or self._external_button
 
     @property
-    def battery_voltage(self) -> float:
-        """The battery voltage in volts (stored in mV)."""
-        return self._battery_mv / 1000
-
-    @battery_voltage.setter
-    def battery_voltage(self, volts: float) -> None:
-        if volts < 0:
-            raise ValueError("battery voltage cannot be negative")
-        self._battery_mv = round(volts * 1000)
-
-    @property
     def battery_voltage_mv(self) -> int:
         """The battery voltage in mV."""
         return self._battery_mv
-
-    @property
-    def battery_current(self) -> float:
-        """The true battery current in amps (stored in mA)."""
-        return self._battery_ma / 1000
-
-    @battery_current.setter
-    def battery_current(self, amps: float) -> None:
-        self._battery_ma = round(amps * 1000)
 
     @property
     def battery_current_ma(self) -> int:
@@ -281,30 +258,8 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         self._check_output(output)
         return self._reported_output_current(output) / 1000
 
-    def set_supplied_current(self, output: int, amps: float) -> None:
-        """Set what the boards fed by ``output`` draw through it (a kit's wiring does).
-
-        While the output is on, it adds to the output's current and the battery's, and
-        pulls the battery voltage down (:data:`.loads.BATTERY_INTERNAL_RESISTANCE`).
-        """
-        self._check_output(output)
-        self._supplied_ma[output] = round(amps * 1000)
-
-    @property
-    def load_current(self) -> float:
-        """The amps the boards fed by the outputs that are on draw, in all."""
-        return sum(
-            ma for ma, on in zip(self._supplied_ma, self._outputs, strict=True) if on
-        ) / 1000
-
-    @property
-    def loaded_voltage(self) -> float:
-        """The battery voltage under the outputs' load, in volts (what the board reads)."""
-        return max(0.0, self.battery_voltage - self.load_current * BATTERY_INTERNAL_RESISTANCE)
-
     def _reported_output_current(self, output: int) -> int:
-        supplied = self._supplied_ma[output] if self._outputs[output] else 0
-        return self._output_ma[output] + supplied
+        return self._output_ma[output] + self._supplied_now_ma(output)
 
     def advance_piezo(self, milliseconds: int) -> list[PiezoNote]:
         """Let ``milliseconds`` pass beside the clock; return the notes that finished.
@@ -344,10 +299,6 @@ class SRPowerBoardFw3Simulator(SRUsbBoardSimulator):
         self._piezo_ms = self._time.milliseconds()
         self._notes.clear()
         self._note_elapsed_ms = 0
-
-    def _check_output(self, output: int) -> None:
-        if not 0 <= output < self.OUTPUT_COUNT:
-            raise IndexError(f"output {output} does not exist (0-{self.OUTPUT_COUNT - 1})")
 
     # --- what the firmware reports ---
 

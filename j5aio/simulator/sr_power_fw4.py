@@ -31,13 +31,11 @@ from typing import ClassVar, Final
 
 from .base import SerialBoardSimulator
 from .clock import BoardTime, Clock
-from .loads import BATTERY_INTERNAL_RESISTANCE
-from .sr_text_line import BoundedLineInput
+from .loads import PowerBoardLoads
+from .sr_text_line import LINE_LIMIT, BoundedLineInput, answer_lines
 
 __all__ = ["BuzzerNote", "SRPowerBoardFw4Simulator"]
 
-_LINE_LIMIT: Final = 63
-_REPLY_BUFFER: Final = 64
 _OUTPUT_COUNT: Final = 7
 _BRAIN: Final = 4
 _MAX_FREQUENCY: Final = 10_000
@@ -68,7 +66,7 @@ def _leading_number(text: str) -> int | None:
     return int(digits) if digits else None
 
 
-class SRPowerBoardFw4Simulator(SerialBoardSimulator):
+class SRPowerBoardFw4Simulator(PowerBoardLoads, SerialBoardSimulator):
     """An SR Power Board v4 with firmware 4.4, a USB CDC serial port.
 
     :param serial_number: the asset tag (it is also the USB serial number).
@@ -94,13 +92,11 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
             product="Power Board v4",
         )
         self.version = version
-        self._input = BoundedLineInput(_LINE_LIMIT)
+        self._input = BoundedLineInput(LINE_LIMIT)
         self._outputs = [False] * _OUTPUT_COUNT
         self._latches = [False] * _OUTPUT_COUNT
         self._output_ma = [0] * _OUTPUT_COUNT
-        self._supplied_ma = [0] * _OUTPUT_COUNT
-        self._battery_mv = round(battery_voltage * 1000)
-        self._battery_ma = 0
+        self._start_loads(battery_voltage)
         self._temperature = 25
         self._fan_forced = False
         self._regulator_mv = 5000
@@ -137,24 +133,6 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         self.release_start(external=external)
 
     @property
-    def battery_voltage(self) -> float:
-        """The battery voltage, in volts."""
-        return self._battery_mv / 1000
-
-    @battery_voltage.setter
-    def battery_voltage(self, volts: float) -> None:
-        self._battery_mv = round(volts * 1000)
-
-    @property
-    def battery_current(self) -> float:
-        """The battery current, in amps (negative while charging)."""
-        return self._battery_ma / 1000
-
-    @battery_current.setter
-    def battery_current(self, amps: float) -> None:
-        self._battery_ma = round(amps * 1000)
-
-    @property
     def temperature(self) -> int:
         """The board's temperature, in °C; the fan runs above 40 °C."""
         return self._temperature
@@ -181,26 +159,6 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         self._latches[output] = True
         self._outputs[output] = False
         self._tell_listeners()
-
-    def set_supplied_current(self, output: int, amps: float) -> None:
-        """Set what the boards fed by ``output`` draw through it (a kit's wiring does).
-
-        While the output is on, it adds to the output's current and the battery's, and
-        pulls the battery voltage down (:data:`.loads.BATTERY_INTERNAL_RESISTANCE`).
-        """
-        self._supplied_ma[output] = round(amps * 1000)
-
-    @property
-    def load_current(self) -> float:
-        """The amps the boards fed by the outputs that are on draw, in all."""
-        return sum(
-            ma for ma, on in zip(self._supplied_ma, self._outputs, strict=True) if on
-        ) / 1000
-
-    @property
-    def loaded_voltage(self) -> float:
-        """The battery voltage under the outputs' load, in volts (what ``BATT:V?`` reads)."""
-        return max(0.0, self.battery_voltage - self.load_current * BATTERY_INTERNAL_RESISTANCE)
 
     def use_clock(self, clock: Clock) -> None:
         """Run the firmware's timers on ``clock`` from now on (a kit gives its own)."""
@@ -313,11 +271,11 @@ class SRPowerBoardFw4Simulator(SerialBoardSimulator):
         self._leds[1] = "0"
 
     def _process(self, data: bytes) -> bytes:
-        replies = bytearray()
-        for line in self._input.feed(data):
-            command = line.split(b"\r", 1)[0].decode("ascii", errors="replace")
-            replies += self._execute(command).encode("ascii", errors="replace") + b"\n"
-        return bytes(replies[:_REPLY_BUFFER])
+        return answer_lines(self._input, data, self._run)
+
+    def _run(self, line: bytes) -> bytes:
+        command = line.decode("ascii", errors="replace")
+        return self._execute(command).encode("ascii", errors="replace")
 
     def _start_note(self, frequency: int, duration_ms: int) -> None:
         now = self._time.milliseconds()

@@ -48,11 +48,10 @@ from typing import ClassVar, Final
 
 from .base import SerialBoardSimulator
 from .loads import SERVO_BOARD_IDLE_CURRENT, SERVO_HOLDING_CURRENT
+from .sr_text_line import LINE_LIMIT, BoundedLineInput, answer_lines
 
 __all__ = ["SBServoBoardFw4Simulator", "SRServoBoardFw4Simulator"]
 
-_MAX_LINE: Final = 63
-_REPLY_BUFFER: Final = 64
 _TICK_US: Final = 5
 _MAX_PULSE_US: Final = 4000
 _PHASES: Final = 3
@@ -92,7 +91,7 @@ class SRServoBoardFw4Simulator(SerialBoardSimulator):
             manufacturer="Student Robotics",
             product="Servo Board v4",
         )
-        self._pending = bytearray()
+        self._input = BoundedLineInput(LINE_LIMIT)
         self._ticks: list[int | None] = [None] * self.SERVO_COUNT
         #: The servo rail's current, in mA.
         self.current_ma = 0
@@ -158,22 +157,12 @@ class SRServoBoardFw4Simulator(SerialBoardSimulator):
     # --- firmware ---
 
     def _boot(self) -> bytes:
-        self._pending.clear()
+        self._input.reset()
         self._ticks = [None] * self.SERVO_COUNT
         return b""
 
     def _process(self, data: bytes) -> bytes:
-        replies = bytearray()
-        for byte in data:
-            if byte == 0x0A:
-                line = bytes(self._pending)
-                self._pending.clear()
-                replies += self._run(line.split(b"\r", 1)[0]) + b"\n"
-            else:
-                self._pending.append(byte)
-                if len(self._pending) >= _MAX_LINE:
-                    self._pending.clear()
-        return bytes(replies[:_REPLY_BUFFER])
+        return answer_lines(self._input, data, self._run)
 
     def _run(self, line: bytes) -> bytes:
         fields = line.split(b":")

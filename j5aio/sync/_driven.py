@@ -39,6 +39,7 @@ from typing import Any, Final
 
 import anyio
 
+from j5aio.backends.acknowledgements import acknowledge_later
 from j5aio.safety.hooks import quiet_interrupts
 from j5aio.sync._calls import (
     CANCEL_GRACE,
@@ -122,40 +123,45 @@ class DrivenLoop:
         The loop's root task: anyio ties its worker threads to it, so they live as long.
         A scope that has cancelled a call is replaced; the next call gets a fresh one.
         """
-        queue = self._queue
-        while not self._stopping:
-            with anyio.CancelScope() as scope:
-                self._scope = scope
-                while not scope.cancel_called and not self._stopping:
-                    if not queue:
-                        self._waiter = waiter = self.loop.create_future()
+        # The facade's calls confirm acknowledgements later: a student's command returns
+        # once its bytes are written, and the board's reply is checked before its next
+        # request (j5aio.backends.acknowledgements). The switch is set in this task's
+        # context, which every call run here shares.
+        with acknowledge_later():
+            queue = self._queue
+            while not self._stopping:
+                with anyio.CancelScope() as scope:
+                    self._scope = scope
+                    while not scope.cancel_called and not self._stopping:
+                        if not queue:
+                            self._waiter = waiter = self.loop.create_future()
+                            try:
+                                await waiter
+                            finally:
+                                self._waiter = None
+                            continue
+                        request = queue.popleft()
+                        self._current = request
+                        request.state = RUNNING
                         try:
-                            await waiter
+                            request.result = await request.coro
+                        except BaseException as exc:
+                            if scope.cancel_called and isinstance(
+                                exc, anyio.get_cancelled_exc_class()
+                            ):
+                                request.error = RuntimeError(_STOPPING)
+                                raise  # to the scope, which ends here
+                            request.error = exc
                         finally:
-                            self._waiter = None
-                        continue
-                    request = queue.popleft()
-                    self._current = request
-                    request.state = RUNNING
-                    try:
-                        request.result = await request.coro
-                    except BaseException as exc:
-                        if scope.cancel_called and isinstance(
-                            exc, anyio.get_cancelled_exc_class()
-                        ):
-                            request.error = RuntimeError(_STOPPING)
-                            raise  # to the scope, which ends here
-                        request.error = exc
-                    finally:
-                        self._current = None
-                        request.state = DONE
-                        if request is self._driven:
-                            self._driven = None
-                            self.loop.stop()  # the caller driving the loop has its result
-                        else:
-                            release(request.done)
-        while queue:
-            queue.popleft().withdraw(_STOPPING)
+                            self._current = None
+                            request.state = DONE
+                            if request is self._driven:
+                                self._driven = None
+                                self.loop.stop()  # the caller driving the loop has its result
+                            else:
+                                release(request.done)
+            while queue:
+                queue.popleft().withdraw(_STOPPING)
 
     def _wake(self) -> None:
         waiter = self._waiter

@@ -22,6 +22,7 @@ from typing import Any, TypeVar
 
 import anyio
 
+from j5aio.backends.acknowledgements import acknowledge_later
 from j5aio.sync._calls import DONE, QUEUED, RUNNING, Call, new_done_lock, release, stopped_error
 from j5aio.sync._selectors import CAN_PARK, HookedSelector, ParkingLoop, ParkingSelector
 from j5aio.sync._signals import keep_signals_for_the_main_thread
@@ -104,10 +105,11 @@ class LoopThread:
         # This task is the loop's root task: anyio ties its worker threads to it, so they
         # stop when it returns.
         ready.set()
-        while not self._stopping:
-            with anyio.CancelScope() as scope:
-                self._scope = scope
-                await self._serve(scope)
+        with acknowledge_later():  # as in the caller-driven loop (see j5aio.sync._driven)
+            while not self._stopping:
+                with anyio.CancelScope() as scope:
+                    self._scope = scope
+                    await self._serve(scope)
         self._withdraw_queued()
         self._release_finished()
 

@@ -10,6 +10,8 @@
 * :class:`~j5aio.testing.console.ConsoleScript`: plays the user of a console backend, answering its
   prompts.
 * :func:`~j5aio.testing.simkit.open_simulated_kit`: a fresh simulated kit with its boards set up.
+* :mod:`j5aio.testing.mosquitto`: a real MQTT broker of a test's own, for code that talks
+  to the robot service's broker.
 * :mod:`j5aio.testing.plugin`: the pytest plugin (fixtures ``j5aio_sim_kit``,
   ``j5aio_pty_simulator``, ``j5aio_faulty_stream`` and ``j5aio_clean_boards``), active
   wherever j5aio is installed.

@@ -47,10 +47,59 @@ __all__ = [
     "RecordingStream",
     "ScriptedStream",
     "WireEvent",
+    "WrappingStream",
     "flip_first_byte",
 ]
 
 T = TypeVar("T")
+
+
+class WrappingStream(ByteStream):
+    """A stream that stands in front of another: everything goes on to ``inner``.
+
+    :class:`RecordingStream` and :class:`FaultyStream` are made on it, each changing
+    what it needs of the way through.
+
+    :param inner: the stream to wrap (to a simulator, a memory peer, a real port, ...).
+    """
+
+    def __init__(self, inner: ByteStream) -> None:
+        self._inner = inner
+
+    @property
+    def inner(self) -> ByteStream:
+        """The wrapped stream."""
+        return self._inner
+
+    @property
+    def name(self) -> str:
+        """The wrapped stream's name."""
+        return self._inner.name
+
+    @property
+    def is_closed(self) -> bool:
+        """Whether the wrapped stream is closed."""
+        return self._inner.is_closed
+
+    async def send(self, data: bytes) -> None:
+        """Send through the wrapped stream."""
+        await self._inner.send(data)
+
+    async def receive(self, max_bytes: int = 4096) -> bytes:
+        """Receive from the wrapped stream."""
+        return await self._inner.receive(max_bytes)
+
+    def send_now(self, data: bytes, timeout: float) -> None:
+        """Send through the wrapped stream synchronously."""
+        self._inner.send_now(data, timeout)
+
+    def close_now(self) -> None:
+        """Close the wrapped stream."""
+        self._inner.close_now()
+
+    async def aclose(self) -> None:
+        """Close the wrapped stream."""
+        await self._inner.aclose()
 
 
 # -- recording ---------------------------------------------------------------------------
@@ -68,28 +117,13 @@ class WireEvent:
     time: float
 
 
-class RecordingStream(ByteStream):
+class RecordingStream(WrappingStream):
     """Wraps a stream and records every chunk sent and received, with timestamps."""
 
     def __init__(self, inner: ByteStream) -> None:
-        self._inner = inner
+        super().__init__(inner)
         #: Every chunk, in the order it crossed.
         self.events: list[WireEvent] = []
-
-    @property
-    def inner(self) -> ByteStream:
-        """The wrapped stream."""
-        return self._inner
-
-    @property
-    def name(self) -> str:
-        """The wrapped stream's name."""
-        return self._inner.name
-
-    @property
-    def is_closed(self) -> bool:
-        """Whether the wrapped stream is closed."""
-        return self._inner.is_closed
 
     @property
     def sent(self) -> bytes:
@@ -120,14 +154,6 @@ class RecordingStream(ByteStream):
         """Send through the wrapped stream synchronously, and record ``data``."""
         self._inner.send_now(data, timeout)
         self.events.append(WireEvent("sent", bytes(data), time.monotonic()))
-
-    def close_now(self) -> None:
-        """Close the wrapped stream."""
-        self._inner.close_now()
-
-    async def aclose(self) -> None:
-        """Close the wrapped stream."""
-        await self._inner.aclose()
 
 
 # -- fault injection ---------------------------------------------------------------------
@@ -213,13 +239,15 @@ class Fault:
         return cls(FaultKind.SILENCE)
 
 
-class FaultyStream(ByteStream):
+class FaultyStream(WrappingStream):
     """Wraps a stream and injects faults, on demand or by a schedule.
 
     :param inner: the stream to wrap (to a simulator, a memory peer, a real port, ...).
     :param schedule: faults to inject when a given send happens, keyed by the number of
         the send, counting from 0: ``{3: Fault.drop()}`` drops the reply to the fourth
         request. A DISCONNECT or SILENCE fault applies to the send it is keyed by.
+
+    A synchronous send (:meth:`WrappingStream.send_now`) goes straight on: no fault applies to it.
     """
 
     def __init__(
@@ -228,7 +256,7 @@ class FaultyStream(ByteStream):
         *,
         schedule: Mapping[int, Fault | Iterable[Fault]] | None = None,
     ) -> None:
-        self._inner = inner
+        super().__init__(inner)
         self._schedule: dict[int, list[Fault]] = {}
         for index, faults in (schedule or {}).items():
             self._schedule[index] = [faults] if isinstance(faults, Fault) else list(faults)
@@ -242,21 +270,6 @@ class FaultyStream(ByteStream):
         self._silent = False
         self._disconnected = False
         self._wait_scope: anyio.CancelScope | None = None
-
-    @property
-    def inner(self) -> ByteStream:
-        """The wrapped stream."""
-        return self._inner
-
-    @property
-    def name(self) -> str:
-        """The wrapped stream's name."""
-        return self._inner.name
-
-    @property
-    def is_closed(self) -> bool:
-        """Whether the wrapped stream is closed."""
-        return self._inner.is_closed
 
     @property
     def sends(self) -> int:
@@ -346,10 +359,6 @@ class FaultyStream(ByteStream):
                     chunk = await self._interruptible(self._inner.receive(max_bytes))
                     if chunk is not None and not self._silent:
                         self._process(chunk)
-
-    def send_now(self, data: bytes, timeout: float) -> None:
-        """Send through the wrapped stream synchronously (no fault applies)."""
-        self._inner.send_now(data, timeout)
 
     def close_now(self) -> None:
         """Close the wrapped stream."""

@@ -12,33 +12,24 @@ from typing import TYPE_CHECKING
 from j5aio._lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from j5aio.vision._optional import INSTALL_HINT, VisionNotInstalledError
-    from j5aio.vision.calibration import KNOWN_CALIBRATIONS, CameraCalibration, known_calibration
-    from j5aio.vision.detect import MarkerDetector, detect_marker_ids, detect_markers
-    from j5aio.vision.image import Image
-    from j5aio.vision.markers import Cartesian, Marker, Orientation, PixelCoordinates, Position
-    from j5aio.vision.sizes import MarkerSizes, UnknownMarkerError
+    from j5aio.vision._optional import INSTALL_HINT as INSTALL_HINT
+    from j5aio.vision._optional import VisionNotInstalledError as VisionNotInstalledError
+    from j5aio.vision.calibration import KNOWN_CALIBRATIONS as KNOWN_CALIBRATIONS
+    from j5aio.vision.calibration import CameraCalibration as CameraCalibration
+    from j5aio.vision.calibration import known_calibration as known_calibration
+    from j5aio.vision.detect import MarkerDetector as MarkerDetector
+    from j5aio.vision.detect import detect_marker_ids as detect_marker_ids
+    from j5aio.vision.detect import detect_markers as detect_markers
+    from j5aio.vision.image import Image as Image
+    from j5aio.vision.markers import Cartesian as Cartesian
+    from j5aio.vision.markers import Marker as Marker
+    from j5aio.vision.markers import Orientation as Orientation
+    from j5aio.vision.markers import PixelCoordinates as PixelCoordinates
+    from j5aio.vision.markers import Position as Position
+    from j5aio.vision.sizes import MarkerSizes as MarkerSizes
+    from j5aio.vision.sizes import UnknownMarkerError as UnknownMarkerError
 
-__all__ = [
-    "INSTALL_HINT",
-    "KNOWN_CALIBRATIONS",
-    "CameraCalibration",
-    "Cartesian",
-    "Image",
-    "Marker",
-    "MarkerDetector",
-    "MarkerSizes",
-    "Orientation",
-    "PixelCoordinates",
-    "Position",
-    "UnknownMarkerError",
-    "VisionNotInstalledError",
-    "detect_marker_ids",
-    "detect_markers",
-    "known_calibration",
-]
-
-if not TYPE_CHECKING:  # the names are imported above for type checkers
+if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
     __getattr__, __dir__ = lazy_exports(
         __name__,
         {

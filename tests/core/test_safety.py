@@ -2,11 +2,12 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import sys
 
 import pytest
 
 from j5aio.boards.board import Board
-from j5aio.safety import make_all_safe_uncancellably
+from j5aio.safety import make_all_safe_uncancellably, rescue
 
 from .conftest import LampBackend, LampBoard
 
@@ -111,3 +112,31 @@ def test_importing_the_registry_alone_sets_the_rescue_watching() -> None:
     )
     assert result.returncode == 0, result.stderr
     assert result.stdout.split() == ["True", "1"]
+
+
+def test_a_loop_watcher_closed_as_the_interpreter_shuts_down_does_nothing(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # A program stopped while its loop ran leaves the watcher task to the garbage collector
+    # at shutdown, after the exit hook made every board safe; the module's globals may be
+    # gone by then, so the watcher must touch nothing (a traceback at exit was the symptom).
+    loop = asyncio.new_event_loop()
+    calls: list[str] = []
+    monkeypatch.setattr(rescue, "make_all_safe_now", lambda reason, **_: calls.append(reason))
+    try:
+        shutting_down = [False]
+        monkeypatch.setattr(sys, "is_finalizing", lambda: shutting_down[0])
+        watcher = rescue._watch_loop(loop)
+        watcher.send(None)  # waiting for the loop's end
+        shutting_down[0] = True
+        monkeypatch.setattr(rescue, "_watchers", None)  # as module teardown leaves it
+        watcher.close()
+        assert calls == []
+        monkeypatch.undo()
+        monkeypatch.setattr(rescue, "make_all_safe_now", lambda reason, **_: calls.append(reason))
+        watcher = rescue._watch_loop(loop)
+        watcher.send(None)
+        watcher.close()  # an ordinary end (the runner cancels it): the rescue runs
+        assert calls == ["its event loop finished"]
+    finally:
+        loop.close()

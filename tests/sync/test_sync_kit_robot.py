@@ -147,3 +147,20 @@ def test_j5_calls_the_ruggeduino_command_and_names_get_board_group_arguments(
     )
     assert result.returncode == 0, result.stderr
     assert result.stdout.splitlines() == ["True", "refused by the official firmware"]
+
+
+def test_the_facade_confirms_acknowledgements_later(tmp_path: Path) -> None:
+    # On today's kit a student's motor command returns once written; the board's ACK is
+    # read before that board's next call (here, reading the power back).
+    result = run_program(
+        "from j5aio.sync import KitRobot\n"
+        "robot = KitRobot()\n"
+        "motor = robot.motor_boards[0].motors[0]\n"
+        "motor.power = 0.5\n"
+        "backend = motor._core._backend\n"
+        "print(backend.owes_acknowledgement())\n"
+        "print(motor.power, backend.owes_acknowledgement())\n",
+        tmp_path, J5AIO_ENV="sim", J5AIO_KIT="sr2023",
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split("\n")[:2] == ["True", "0.5 False"]

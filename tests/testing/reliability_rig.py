@@ -111,6 +111,9 @@ class Rig:
         call = getattr(link, "call", None)
         if call is not None:  # a USB link: a no-op job runs after every earlier one
             await call(lambda: None, description="waiting for earlier transfers")
+        confirm = getattr(link, "confirm", None)
+        if confirm is not None:  # a serial link: an acknowledgement may still be owed
+            await confirm()
         await anyio.lowlevel.checkpoint()
 
 

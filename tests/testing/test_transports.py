@@ -22,6 +22,7 @@ from j5aio.testing.transports import (
     RecordingStream,
     ScriptedStream,
     WireEvent,
+    WrappingStream,
     flip_first_byte,
 )
 
@@ -338,3 +339,17 @@ async def test_a_held_reply_is_overtaken_by_later_replies() -> None:
         assert await faulty.receive() == b"first\n"  # once its time has come
     with pytest.raises(ValueError, match="negative"):
         Fault.hold(-1)
+
+
+async def test_a_wrapping_stream_passes_everything_on() -> None:
+    host, board = memory_stream_pair()
+    wrapped = WrappingStream(host)
+    assert wrapped.inner is host
+    assert wrapped.name == host.name
+    await wrapped.send(b"ping\n")
+    assert await board.receive() == b"ping\n"
+    await board.send(b"pong\n")
+    assert await wrapped.receive() == b"pong\n"
+    assert not wrapped.is_closed
+    await wrapped.aclose()
+    assert wrapped.is_closed and host.is_closed

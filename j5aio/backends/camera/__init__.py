@@ -9,13 +9,11 @@ from typing import TYPE_CHECKING
 from j5aio._lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from j5aio.backends.camera.files import FileCameraBackend
-    from j5aio.backends.camera.frames import FrameCameraBackend
-    from j5aio.backends.camera.opencv import OpenCVCameraBackend
+    from j5aio.backends.camera.files import FileCameraBackend as FileCameraBackend
+    from j5aio.backends.camera.frames import FrameCameraBackend as FrameCameraBackend
+    from j5aio.backends.camera.opencv import OpenCVCameraBackend as OpenCVCameraBackend
 
-__all__ = ["FileCameraBackend", "FrameCameraBackend", "OpenCVCameraBackend"]
-
-if not TYPE_CHECKING:  # the names are imported above for type checkers
+if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
     __getattr__, __dir__ = lazy_exports(
         __name__,
         {

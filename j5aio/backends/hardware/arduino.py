@@ -15,6 +15,7 @@ from __future__ import annotations
 from abc import abstractmethod
 from typing import TYPE_CHECKING, ClassVar
 
+from j5aio.backends.acknowledgements import acknowledge_later
 from j5aio.backends.backend import BoardT
 from j5aio.backends.hardware.arduino_pins import LED_PIN, ArduinoPins, DigitalPinState
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
@@ -127,7 +128,10 @@ class ArduinoHardwareBackend(UnoLEDAndLimits, SerialHardwareBackend[BoardT]):
         if self._pins.check_mode(identifier, pin_mode):
             state = self._pins.digital(identifier)
             wanted = DigitalPinState(pin_mode, state.level)
-            await self._apply_pin(identifier, wanted, mode_changed=True)
+            # A mode change waits for the board's acknowledgement (even where commands
+            # are confirmed later): the mode remembered is what the pin's calls check.
+            with acknowledge_later(False):
+                await self._apply_pin(identifier, wanted, mode_changed=True)
 
     async def get_gpio_pin_mode(self, identifier: int) -> GPIOPinMode:
         """Return the mode last set on a pin (the board cannot report it)."""

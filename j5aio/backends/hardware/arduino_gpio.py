@@ -17,13 +17,14 @@ from __future__ import annotations
 from abc import abstractmethod
 from collections.abc import Callable
 from datetime import timedelta
-from typing import ClassVar, Protocol, TypeVar
+from typing import Any, ClassVar, Protocol, TypeVar
 
+from j5aio.backends.acknowledgements import acknowledge_later
 from j5aio.backends.backend import BoardT
 from j5aio.backends.hardware.arduino import ARDUINO_USB_IDS, UnoLEDAndLimits
 from j5aio.backends.hardware.arduino_pins import ArduinoPins, wire_mode
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
-from j5aio.backends.hardware.transports.readers import read_line, read_lines
+from j5aio.backends.hardware.transports.readers import ReplyReader, read_line, read_lines
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.components.derived.ultrasound import UltrasoundInterface
 from j5aio.components.gpio_pin import GPIOPinMode
@@ -149,7 +150,7 @@ class ArduinoGPIOBackend(UnoLEDAndLimits, UltrasoundInterface, SerialHardwareBac
 
         :param then: runs once the board has confirmed it (update the pin table there).
         """
-        await self._ask(self.CODEC.encode_mode(pin, mode), self.CODEC.parse_done, then=then)
+        await self._tell(self.CODEC.encode_mode(pin, mode), _LINE, then=then)
 
     async def _send_level(
         self, pin: int, level: bool, *, then: Callable[[], None] | None = None,
@@ -158,8 +159,7 @@ class ArduinoGPIOBackend(UnoLEDAndLimits, UltrasoundInterface, SerialHardwareBac
 
         :param then: runs once the board has confirmed it (update the pin table there).
         """
-        request = self.CODEC.encode_digital_write(pin, level)
-        await self._ask(request, self.CODEC.parse_done, then=then)
+        await self._tell(self.CODEC.encode_digital_write(pin, level), _LINE, then=then)
 
     async def _query_digital(self, pin: int) -> bool:
         return await self._ask(self.CODEC.encode_digital_read(pin), self.CODEC.parse_digital)
@@ -217,35 +217,56 @@ class ArduinoGPIOBackend(UnoLEDAndLimits, UltrasoundInterface, SerialHardwareBac
         """
         self._pins.check_mode(identifier, pin_mode)
         remember = lambda: self._pins.record(identifier, mode=pin_mode)  # noqa: E731
-        if pin_mode is not GPIOPinMode.DIGITAL_OUTPUT:
-            await self._send_mode(identifier, wire_mode(pin_mode), then=remember)
-            return
-        level = self.CODEC.encode_digital_write(identifier, self._pins.state(identifier).level)
-        mode = self.CODEC.encode_mode(identifier, wire_mode(pin_mode))
-        try:
-            await self.exchange(
-                level + mode, _TWO_LINES, then=self._both_done((level, mode), remember),
+        # A mode change always waits for the board's acknowledgement (even where commands
+        # are confirmed later): the mode remembered is what the pin's other calls check.
+        with acknowledge_later(False):
+            if pin_mode is not GPIOPinMode.DIGITAL_OUTPUT:
+                await self._send_mode(identifier, wire_mode(pin_mode), then=remember)
+                return
+            level = self.CODEC.encode_digital_write(
+                identifier, self._pins.state(identifier).level
             )
-        except CommunicationTimeoutError as exc:
-            raise CommunicationTimeoutError(f"{self.board.name} did not answer: {exc}") from exc
+            mode = self.CODEC.encode_mode(identifier, wire_mode(pin_mode))
+            await self._tell(level + mode, _TWO_LINES, then=remember, requests=(level, mode))
 
-    def _both_done(
-        self, requests: tuple[bytes, bytes], then: Callable[[], None],
-    ) -> Callable[[list[bytes]], None]:
-        """Check the replies to two requests sent together, then run ``then``."""
+    async def _tell(
+        self,
+        request: bytes,
+        reader: ReplyReader[Any],
+        *,
+        then: Callable[[], None] | None,
+        requests: tuple[bytes, ...] | None = None,
+    ) -> None:
+        """Send ``request`` (``requests`` joined, if given) and check each acknowledgement.
 
-        def check(lines: list[bytes]) -> None:
-            for request, line in zip(requests, lines, strict=True):
+        The reply carries no value, so inside
+        :func:`~j5aio.backends.acknowledgements.acknowledge_later` this returns once the
+        bytes are written, and the replies are checked before the board's next request.
+        ``then`` runs once every reply has been checked (update the pin table there).
+
+        :raises UnexpectedReplyError: a reply is not an acknowledgement; the message
+            names the board, its port, the request and the reply.
+        :raises CommunicationTimeoutError: no reply in time; the message names the board.
+        """
+        sent = requests if requests is not None else (request,)
+
+        def check(reply: bytes | list[bytes]) -> None:
+            lines = reply if isinstance(reply, list) else [reply]
+            for each, line in zip(sent, lines, strict=True):
                 try:
                     self.CODEC.parse_done(line)
                 except UnexpectedReplyError as exc:
                     raise UnexpectedReplyError(
                         f"{self.board.name} on {self.port}: bad reply {line!r} to "
-                        f"{request!r}: {exc}",
+                        f"{each!r}: {exc}",
                     ) from exc
-            then()
+            if then is not None:
+                then()
 
-        return check
+        try:
+            await self.command(request, reader, then=check)
+        except CommunicationTimeoutError as exc:
+            raise CommunicationTimeoutError(f"{self.board.name} did not answer: {exc}") from exc
 
     async def get_gpio_pin_mode(self, identifier: int) -> GPIOPinMode:
         """Return the mode last set on a pin."""

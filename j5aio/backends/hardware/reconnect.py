@@ -178,10 +178,11 @@ class Reconnecting:
     async def _guarded(self, call: Callable[[], Awaitable[T]], *, idempotent: bool) -> T:
         """Run one board call under the reconnection policy.
 
-        Every call to the board goes through here. A lost board is looked for first; a
-        call that fails because the board vanished is retried once if ``idempotent``
-        and the policy allow; when it fails for good, :meth:`_forget` lets go of the
-        link and the :class:`~j5aio.errors.BoardDisconnectionError` is raised.
+        Every call to the board goes through here (or through the same steps inline:
+        see :meth:`_retry_after`). A lost board is looked for first; a call that fails
+        because the board vanished is retried once if ``idempotent`` and the policy
+        allow; when it fails for good, :meth:`_forget` lets go of the link and the
+        :class:`~j5aio.errors.BoardDisconnectionError` is raised.
 
         :param call: does the call on the current link (it must look the link up
             when it runs, since a reconnection replaces it).
@@ -190,16 +191,34 @@ class Reconnecting:
         try:
             if self._lost or self._closed_for_good:
                 await self._check_connected()
-            try:
-                return await call()
-            except BoardDisconnectionError:
+            return await call()
+        except BoardDisconnectionError as error:
+            return await self._retry_after(error, call, idempotent=idempotent)
+
+    async def _retry_after(
+        self,
+        error: BoardDisconnectionError,
+        call: Callable[[], Awaitable[T]],
+        *,
+        idempotent: bool,
+    ) -> T:
+        """The rest of :meth:`_guarded` once a call has failed with ``error``.
+
+        A backend's hot path may run a call on a connected board itself, and hand the
+        disconnection it raises to this: the board is marked lost, the call is retried
+        if ``idempotent`` and the policy allow, else (or if the retry fails) the link is
+        let go of and the disconnection raised.
+        """
+        try:
+            if not self._lost and not self._closed_for_good:
                 self._mark_lost()
                 policy = self.reconnect_policy
-                if not (idempotent and policy.enabled and policy.retry_idempotent):
-                    raise
-                if not await self._wait_for_return(policy.retry_wait):
-                    raise
-            return await call()
+                if (
+                    idempotent and policy.enabled and policy.retry_idempotent
+                    and await self._wait_for_return(policy.retry_wait)
+                ):
+                    return await call()
+            raise error
         except BoardDisconnectionError:
             self._forget()
             raise

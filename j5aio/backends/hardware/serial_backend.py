@@ -146,6 +146,19 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         """The link to the board (for tools and tests)."""
         return self._link
 
+    def owes_acknowledgement(self) -> bool:
+        """Whether the link still owes the acknowledgement of a command confirmed later."""
+        return self._link.acknowledgement_owed is not None
+
+    async def confirm_acknowledgement(self) -> None:
+        """Read and check the acknowledgement the link still owes (see :meth:`command`).
+
+        :raises ~j5aio.errors.EarlierCommandError: the earlier command had failed.
+        :raises ~j5aio.errors.BoardDisconnectionError: the port has gone (the board is
+            marked lost, as any call that finds it gone does).
+        """
+        await self._guarded(lambda: self._link.confirm(), idempotent=False)
+
     @property
     def firmware_version(self) -> str | None:
         """The firmware version the board reported during the handshake.
@@ -523,7 +536,55 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
                 when_dirty=when_dirty,
             )
 
-        return await self._guarded(call, idempotent=idempotent)
+        if self._lost or self._closed_for_good:
+            return await self._guarded(call, idempotent=idempotent)
+        try:  # the board is there: the call goes straight to the link
+            return await self._link.exchange(
+                request, reader, timeout=timeout, then=then,  # type: ignore[arg-type]
+                when_dirty=when_dirty,
+            )
+        except BoardDisconnectionError as error:
+            return await self._retry_after(error, call, idempotent=idempotent)
+
+    async def command(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        timeout: float | None = None,
+        *,
+        then: Callable[[T], object] | None = None,
+        idempotent: bool = True,
+        when_dirty: Callable[[], tuple[bytes, ReplyReader[T]]] | None = None,
+    ) -> None:
+        """Send ``request``, a command whose reply only acknowledges it; check the reply.
+
+        As :meth:`exchange`, but nothing of the reply is returned: ``reader`` and
+        ``then`` check it (``then`` raises if the board refused, and updates what the
+        backend remembers). Inside
+        :func:`~j5aio.backends.acknowledgements.acknowledge_later` it may return as
+        soon as the command is written; the reply is then checked before the board's
+        next request (see :meth:`.SerialLink.command`).
+
+        :raises CommunicationError: no reply in time, or a reply ``then`` refuses.
+        :raises ~j5aio.errors.EarlierCommandError: the board's previous command, whose
+            acknowledgement was read now, had failed (this one was not sent).
+        :raises BoardDisconnectionError: the port has gone (it is looked for again).
+        """
+
+        def call() -> Awaitable[None]:  # the link is looked up anew for a retry
+            return self._link.command(
+                request, reader, timeout=timeout, then=then, when_dirty=when_dirty
+            )
+
+        if self._lost or self._closed_for_good:
+            await self._guarded(call, idempotent=idempotent)
+            return
+        try:  # the board is there: the call goes straight to the link
+            await self._link.command(
+                request, reader, timeout=timeout, then=then, when_dirty=when_dirty
+            )
+        except BoardDisconnectionError as error:
+            await self._retry_after(error, call, idempotent=idempotent)
 
     async def send(
         self, data: bytes, *, then: Callable[[], None] | None = None, idempotent: bool = True
@@ -538,7 +599,16 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         :raises ~j5aio.errors.CommunicationTimeoutError: the bytes could not be sent in time.
         :raises BoardDisconnectionError: the port has gone (it is looked for again).
         """
-        await self._guarded(lambda: self._link.send(data, then=then), idempotent=idempotent)
+        def call() -> Awaitable[None]:  # the link is looked up anew for a retry
+            return self._link.send(data, then=then)
+
+        if self._lost or self._closed_for_good:
+            await self._guarded(call, idempotent=idempotent)
+            return
+        try:  # the board is there: the call goes straight to the link
+            await self._link.send(data, then=then)
+        except BoardDisconnectionError as error:
+            await self._retry_after(error, call, idempotent=idempotent)
 
     def _forget(self) -> None:
         """Close the link at once; free the port only if the board will not be looked for."""

@@ -17,7 +17,7 @@ from __future__ import annotations
 import functools
 import logging
 from abc import abstractmethod
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Awaitable, Callable, Mapping, Sequence
 from typing import ClassVar
 
 import anyio
@@ -219,7 +219,7 @@ class USBHardwareBackend(Reconnecting, Backend):
             return
         raise BoardDisconnectionError(f"{self._serial_number} is not on the bus")
 
-    async def _read(
+    async def control_read(
         self,
         index: int,
         length: int,
@@ -227,13 +227,30 @@ class USBHardwareBackend(Reconnecting, Backend):
         *,
         idempotent: bool = True,
     ) -> bytes:
-        """Read ``length`` bytes from command ``index``, under the reconnection policy."""
-        return await self._guarded(
-            lambda: self._link.control_read(index, length, errors=errors),
-            idempotent=idempotent,
-        )
+        """Read ``length`` bytes from command ``index`` (a control transfer in).
 
-    async def _write(
+        The one way in for built-in and plugin USB backends alike, as
+        :meth:`.SerialHardwareBackend.exchange` is for serial ones: transfers run in
+        order on the board's link, under the reconnection policy.
+
+        :param errors: messages for the errnos this command is known to fail with.
+        :param idempotent: whether the read may be repeated after the board vanished
+            and came back.
+        :raises ~j5aio.errors.USBCommunicationError: the transfer failed.
+        :raises BoardDisconnectionError: the device has gone (it is looked for again).
+        """
+
+        def call() -> Awaitable[bytes]:  # the link is looked up anew for a retry
+            return self._link.control_read(index, length, errors=errors)
+
+        if self._lost or self._closed_for_good:
+            return await self._guarded(call, idempotent=idempotent)
+        try:  # the board is there: the call goes straight to the link
+            return await self._link.control_read(index, length, errors=errors)
+        except BoardDisconnectionError as error:
+            return await self._retry_after(error, call, idempotent=idempotent)
+
+    async def control_write(
         self,
         index: int,
         value: int,
@@ -243,17 +260,29 @@ class USBHardwareBackend(Reconnecting, Backend):
         then: Callable[[], None] | None = None,
         idempotent: bool = True,
     ) -> None:
-        """Write command ``index`` with ``value`` and ``data``; forget the device if gone.
+        """Write command ``index`` with ``value`` and ``data`` (a control transfer out).
 
+        As :meth:`control_read`, the one way in for every USB backend.
+
+        :param errors: messages for the errnos this command is known to fail with.
         :param then: called once the board has accepted the write, even for a cancelled
             caller: update caches there.
         :param idempotent: whether the write may be repeated after the board vanished
             and came back (a piezo note may not).
+        :raises ~j5aio.errors.USBCommunicationError: the transfer failed.
+        :raises BoardDisconnectionError: the device has gone (it is looked for again).
         """
-        await self._guarded(
-            lambda: self._link.control_write(index, value, data, errors=errors, then=then),
-            idempotent=idempotent,
-        )
+
+        def call() -> Awaitable[None]:  # the link is looked up anew for a retry
+            return self._link.control_write(index, value, data, errors=errors, then=then)
+
+        if self._lost or self._closed_for_good:
+            await self._guarded(call, idempotent=idempotent)
+            return
+        try:  # the board is there: the call goes straight to the link
+            await self._link.control_write(index, value, data, errors=errors, then=then)
+        except BoardDisconnectionError as error:
+            await self._retry_after(error, call, idempotent=idempotent)
 
     def _forget(self) -> None:
         """Free the device unless the board will be looked for again."""

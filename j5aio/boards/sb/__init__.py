@@ -5,13 +5,12 @@ from typing import TYPE_CHECKING
 from j5aio._lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from j5aio.boards.sb.arduino import SBArduinoBoard, UltrasoundSensors
-    from j5aio.boards.sb.arduino_2024 import SBArduino2024Board
-    from j5aio.boards.sb.servo_board import SBServoBoard
+    from j5aio.boards.sb.arduino import SBArduinoBoard as SBArduinoBoard
+    from j5aio.boards.sb.arduino import UltrasoundSensors as UltrasoundSensors
+    from j5aio.boards.sb.arduino_2024 import SBArduino2024Board as SBArduino2024Board
+    from j5aio.boards.sb.servo_board import SBServoBoard as SBServoBoard
 
-__all__ = ["SBArduino2024Board", "SBArduinoBoard", "SBServoBoard", "UltrasoundSensors"]
-
-if not TYPE_CHECKING:  # the names are imported above for type checkers
+if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
     __getattr__, __dir__ = lazy_exports(
         __name__,
         {

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from enum import IntEnum
-from typing import NamedTuple
+
+from j5aio.compat._shared import status
 
 from ._checks import float_bounds_check, map_to_float, map_to_int
 from ._errors import translate_errors
@@ -21,22 +22,13 @@ class MotorPower(IntEnum):
     COAST = -1024  # outside the range of powers
 
 
-class MotorStatus(NamedTuple):
+class MotorStatus(status.MotorBoardStatus):
     """The status of a motor board: each motor's fault flag and the input voltage."""
 
-    output_faults: tuple[bool, ...]
-    input_voltage: float
-    other: list[str] = []
+    __slots__ = ()
 
-    @classmethod
-    def from_status_response(cls, response: str) -> MotorStatus:
-        """Parse the board's reply to ``*STATUS?``: ``<faults>:<input mV>[:...]``.
-
-        :raises ValueError: the reply is not of that form.
-        """
-        output_fault_str, input_voltage_mv, *other = response.split(":")
-        output_faults = tuple(port == "1" for port in output_fault_str.split(","))
-        return cls(output_faults, float(input_voltage_mv) / 1000, other)
+    # sbot's class has this classmethod itself, so its API surface lists it here.
+    from_status_response = vars(status.MotorBoardStatus)["from_status_response"]
 
 
 @translate_errors

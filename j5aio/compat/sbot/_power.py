@@ -5,6 +5,8 @@ from __future__ import annotations
 from enum import IntEnum
 from typing import TYPE_CHECKING, NamedTuple, cast
 
+from j5aio.compat._shared import status
+
 from ._errors import translate_errors
 from ._kit import KitLink
 
@@ -33,29 +35,13 @@ class BatteryData(NamedTuple):
     current: float
 
 
-class PowerStatus(NamedTuple):
+class PowerStatus(status.PowerBoardStatus):
     """The power board's status: trips, temperature (°C), fan, 5 V regulator (V)."""
 
-    overcurrent: tuple[bool, ...]
-    temperature: int
-    fan_running: bool
-    regulator_voltage: float
-    other: list[str] = []
+    __slots__ = ()
 
-    @classmethod
-    def from_status_response(cls, response: str) -> PowerStatus:
-        """Parse the board's reply to ``*STATUS?``: ``<trips>:<°C>:<fan>:<5 V mV>[:...]``.
-
-        :raises ValueError: the reply is not of that form.
-        """
-        oc_flags, temp, fan_running, raw_voltage, *other = response.split(":")
-        return cls(
-            overcurrent=tuple(flag == "1" for flag in oc_flags.split(",")),
-            temperature=int(temp),
-            fan_running=fan_running == "1",
-            regulator_voltage=float(raw_voltage) / 1000,
-            other=other,
-        )
+    # sbot's class has this classmethod itself, so its API surface lists it here.
+    from_status_response = vars(status.PowerBoardStatus)["from_status_response"]
 
 
 #: The output that powers the brain: always on, not switchable.

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 from collections import defaultdict
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING
+
+from j5aio.compat._shared import status
 
 from ._checks import float_bounds_check, map_to_float, map_to_int
 from ._errors import translate_errors
@@ -34,20 +36,13 @@ START_DUTY_MAX = 1980
 NUM_SERVOS = 8
 
 
-class ServoStatus(NamedTuple):
+class ServoStatus(status.ServoBoardStatus):
     """The servo board's status flags."""
 
-    watchdog_failed: bool
-    power_good: bool
+    __slots__ = ()
 
-    @classmethod
-    def from_status_response(cls, response: str) -> ServoStatus:
-        """Parse the board's reply to ``*STATUS?``: ``<watchdog failed>:<power good>``.
-
-        :raises IndexError: the reply has fewer than two fields.
-        """
-        data = response.split(":")
-        return cls(watchdog_failed=data[0] == "1", power_good=data[1] == "1")
+    # sbot's class has this classmethod itself, so its API surface lists it here.
+    from_status_response = vars(status.ServoBoardStatus)["from_status_response"]
 
 
 @translate_errors

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, NamedTuple
 
+from j5aio.vision import markers as core
 from j5aio.vision.markers import Orientation
 
 if TYPE_CHECKING:
@@ -21,31 +22,26 @@ if TYPE_CHECKING:
 __all__ = ["Coordinates", "Marker", "PixelCoordinates", "PixelCorners", "Position"]
 
 
-class PixelCoordinates(NamedTuple):
+class PixelCoordinates(core.PixelCoordinates):
     """A point on the picture, in pixels from its top-left corner (x right, y down)."""
 
-    x: float
-    y: float
+    __slots__ = ()
 
 
-class Coordinates(NamedTuple):
+class Coordinates(core.Cartesian):
     """A point in space, mm: x straight out of the camera, y to its left, z up."""
 
-    x: float
-    y: float
-    z: float
+    __slots__ = ()
 
 
-class Position(NamedTuple):
+class Position(core.Position):
     """Where a marker is from the camera.
 
     ``distance`` in whole mm; ``horizontal_angle`` in radians, positive to the right;
     ``vertical_angle`` in radians, positive upwards.
     """
 
-    distance: float
-    horizontal_angle: float
-    vertical_angle: float
+    __slots__ = ()
 
 
 PixelCorners = tuple[PixelCoordinates, PixelCoordinates, PixelCoordinates, PixelCoordinates]

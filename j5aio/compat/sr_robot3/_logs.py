@@ -1,37 +1,10 @@
-"""sr-robot3's console logging: ``<logger> - <LEVEL> - <message>`` on stdout, and TRACE."""
+"""sr-robot3's console logging: ``<logger> - <LEVEL> - <message>`` on stdout, and TRACE.
+
+sbot logs the same way: both take it from ``j5aio.compat._shared.logs``.
+"""
 
 from __future__ import annotations
 
-import logging
-import sys
-from typing import Final
+from j5aio.compat._shared.logs import TRACE, add_trace_level, setup_logging
 
 __all__ = ["TRACE", "add_trace_level", "setup_logging"]
-
-#: sr-robot3's level below DEBUG, at which the boards' wire traffic is logged.
-TRACE: Final = 5
-
-
-def add_trace_level() -> None:
-    """Name level 5 ``TRACE`` in log lines."""
-    logging.addLevelName(TRACE, "TRACE")
-
-
-def setup_logging(debug_logging: bool, trace_logging: bool) -> None:
-    """Log to stdout as sr-robot3 does: INFO, or DEBUG / TRACE when asked for.
-
-    A handler is added to the root logger only if it has none yet.
-    """
-    root = logging.getLogger()
-    if not root.handlers:
-        handler = logging.StreamHandler(stream=sys.stdout)
-        handler.setFormatter(logging.Formatter(fmt="%(name)s - %(levelname)s - %(message)s"))
-        root.addHandler(handler)
-    if trace_logging:
-        root.setLevel(TRACE)
-        logging.log(TRACE, "Trace Mode is enabled")
-    elif debug_logging:
-        root.setLevel(logging.DEBUG)
-        logging.debug("Debug Mode is enabled")
-    else:
-        root.setLevel(logging.INFO)

@@ -5,6 +5,11 @@ from __future__ import annotations
 import logging
 import threading
 
+from j5aio.compat._shared.errors import (
+    EarlyMetadataError,
+    MissingMetadataKeyError,
+    WrongBoardTypeError,
+)
 from j5aio.errors import CommunicationError
 
 __all__ = [
@@ -20,27 +25,17 @@ _TIMEOUT_LOGGER = logging.getLogger("sr.robot3.timeout")
 _game_over = threading.Event()
 
 
-class MetadataKeyError(KeyError):
+class MetadataKeyError(MissingMetadataKeyError):
     """A metadata key was asked for that has no value.
 
     :param key: the key that was not found.
     """
 
-    def __init__(self, key: str) -> None:
-        super().__init__(key)
-        self.key = key
 
-    def __str__(self) -> str:
-        return f"Key {self.key!r} not present in metadata"
-
-
-class MetadataNotReadyError(RuntimeError):
+class MetadataNotReadyError(EarlyMetadataError):
     """The zone, arena or mode was asked for before ``wait_start`` (the start) happened."""
 
-    def __str__(self) -> str:
-        return (
-            "Metadata (zone, arena and mode) can only be used after wait_start has been called"
-        )
+    _examples = "zone, arena and mode"
 
 
 class BoardDisconnectionError(IOError):
@@ -52,20 +47,12 @@ class BoardDisconnectionError(IOError):
     """
 
 
-class IncorrectBoardError(IOError):
+class IncorrectBoardError(WrongBoardTypeError):
     """A board answered with another board type than the one expected.
 
     :param board_type: the type the board gave.
     :param expected_type: the type expected.
     """
-
-    def __init__(self, board_type: str, expected_type: str) -> None:
-        super().__init__(board_type, expected_type)
-        self.returned_type = board_type
-        self.expected_type = expected_type
-
-    def __str__(self) -> str:
-        return f"Board returned type {self.returned_type!r}, expected {self.expected_type!r}"
 
 
 def disconnected(error: CommunicationError) -> BoardDisconnectionError | SystemExit:

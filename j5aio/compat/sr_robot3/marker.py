@@ -4,41 +4,36 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, NamedTuple
 
+from j5aio.vision import markers as core
+
 if TYPE_CHECKING:
     from j5aio.vision.markers import Marker as CoreMarker
 
 __all__ = ["Coordinates", "Marker", "Orientation", "PixelCoordinates", "Position"]
 
 
-class PixelCoordinates(NamedTuple):
+class PixelCoordinates(core.PixelCoordinates):
     """A point on the picture, in pixels (x right, y down from the top left)."""
 
-    x: float
-    y: float
+    __slots__ = ()
 
 
-class Coordinates(NamedTuple):
+class Coordinates(core.Cartesian):
     """A point in space: x forwards, y left, z up."""
 
-    x: float
-    y: float
-    z: float
+    __slots__ = ()
 
 
-class Orientation(NamedTuple):
+class Orientation(core.Orientation):
     """Which way a marker faces, radians: all 0 when it faces the camera square on."""
 
-    yaw: float
-    pitch: float
-    roll: float
+    __slots__ = ()
 
 
-class Position(NamedTuple):
+class Position(core.Position):
     """Where a marker is: distance (mm) and the horizontal and vertical angles (radians)."""
 
-    distance: float
-    horizontal_angle: float
-    vertical_angle: float
+    __slots__ = ()
 
 
 PixelCorners = tuple[PixelCoordinates, PixelCoordinates, PixelCoordinates, PixelCoordinates]

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 from enum import IntEnum
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING
 
+from j5aio.compat._shared import status
 from j5aio.compat.sr_robot3.exceptions import disconnected
 from j5aio.compat.sr_robot3.utils import BoardIdentity, float_bounds_check, map_to_int
 from j5aio.components.motor import MotorSpecialState
@@ -29,20 +30,10 @@ class MotorPower(IntEnum):
     COAST = -1024  # (outside the range of powers)
 
 
-class MotorStatus(NamedTuple):
+class MotorStatus(status.MotorBoardStatus):
     """The motor board's status: a fault flag per motor, and its input voltage (V)."""
 
-    output_faults: tuple[bool, ...]
-    input_voltage: float
-    other: list[str] = []
-
-    @classmethod
-    def from_status_response(cls, response: str) -> MotorStatus:
-        """Read the board's answer to ``*STATUS?``: ``<faults>:<mV>[:...]``."""
-        faults, millivolts, *other = response.split(":")
-        return cls(
-            tuple(flag == "1" for flag in faults.split(",")), float(millivolts) / 1000, other,
-        )
+    __slots__ = ()
 
 
 class Motor:

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from datetime import timedelta
 from enum import IntEnum
-from typing import TYPE_CHECKING, Final, NamedTuple
+from typing import TYPE_CHECKING, Final
 
+from j5aio.compat._shared import status
 from j5aio.compat.sr_robot3.exceptions import disconnected
 from j5aio.compat.sr_robot3.utils import BoardIdentity, float_bounds_check
 from j5aio.components.flashing_led import LEDMode
@@ -67,26 +68,10 @@ class Note(IntEnum):
     C8 = 4186
 
 
-class PowerStatus(NamedTuple):
+class PowerStatus(status.PowerBoardStatus):
     """The power board's status: output trips, temperature (°C), fan, 5 V regulator (V)."""
 
-    overcurrent: tuple[bool, ...]
-    temperature: int
-    fan_running: bool
-    regulator_voltage: float
-    other: list[str] = []
-
-    @classmethod
-    def from_status_response(cls, response: str) -> PowerStatus:
-        """Read the board's answer to ``*STATUS?``: ``<trips>:<°C>:<fan>:<mV>[:...]``."""
-        trips, temperature, fan, millivolts, *other = response.split(":")
-        return cls(
-            overcurrent=tuple(flag == "1" for flag in trips.split(",")),
-            temperature=int(temperature),
-            fan_running=fan == "1",
-            regulator_voltage=float(millivolts) / 1000,
-            other=other,
-        )
+    __slots__ = ()
 
 
 class Output:

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Final, NamedTuple
+from typing import TYPE_CHECKING, Final
 
+from j5aio.compat._shared import status
 from j5aio.compat.sr_robot3.exceptions import disconnected
 from j5aio.compat.sr_robot3.utils import BoardIdentity, float_bounds_check
 from j5aio.errors import CommunicationError, NotSupportedByHardwareError
@@ -28,17 +29,10 @@ NUM_SERVOS: Final = 12
 _LIMITS_ERROR = f"Servo pulse limits are ints in µs, in the range {DUTY_MIN} to {DUTY_MAX}"
 
 
-class ServoStatus(NamedTuple):
+class ServoStatus(status.ServoBoardStatus):
     """The servo board's status: whether its watchdog fired, whether its supply is good."""
 
-    watchdog_failed: bool
-    power_good: bool
-
-    @classmethod
-    def from_status_response(cls, response: str) -> ServoStatus:
-        """Read the board's answer to ``*STATUS?``: ``<watchdog>:<power good>``."""
-        fields = response.split(":")
-        return cls(watchdog_failed=fields[0] == "1", power_good=fields[1] == "1")
+    __slots__ = ()
 
 
 class Servo:

@@ -8,11 +8,10 @@ from typing import TYPE_CHECKING
 from j5aio._lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from j5aio.components.derived.ultrasound import UltrasoundInterface, UltrasoundSensor
+    from j5aio.components.derived.ultrasound import UltrasoundInterface as UltrasoundInterface
+    from j5aio.components.derived.ultrasound import UltrasoundSensor as UltrasoundSensor
 
-__all__ = ["UltrasoundInterface", "UltrasoundSensor"]
-
-if not TYPE_CHECKING:  # the names are imported above for type checkers
+if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
     __getattr__, __dir__ = lazy_exports(
         __name__,
         {

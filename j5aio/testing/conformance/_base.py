@@ -77,6 +77,7 @@ class Subject:
 
 
 SubjectT = TypeVar("SubjectT", bound=Subject)
+ValueT = TypeVar("ValueT")
 
 
 #: Every skip reason for a missing hook contains this, so that reports can find them.
@@ -153,10 +154,56 @@ class InterfaceConformance(abc.ABC, Generic[SubjectT]):
                 "a call hangs, or waits for an input the subject's hooks never gave",
             )
 
-    async def assert_refused(
-        self, subject: Subject, call: Callable[[int], Awaitable[Any]], what: str,
+    async def assert_read_back(
+        self,
+        told: str,
+        identifier: int,
+        read: Callable[[int], Awaitable[ValueT]],
+        observe: Callable[[int], Awaitable[ValueT]] | None,
+        matches: Callable[[ValueT], bool],
     ) -> None:
-        """Check that ``call`` refuses every bad identifier, sending nothing to the board."""
+        """Check that ``identifier`` reads back what was done, and that the board shows it.
+
+        What the board shows is looked at only when the subject gives ``observe``.
+
+        :param told: what was done, for the failure messages: ``"LED 0 was set to True"``.
+        :param matches: whether a value read or shown is the one that was set.
+        """
+        got = await read(identifier)
+        assert matches(got), f"{told} but reads back {got!r}"
+        if observe is not None:
+            seen = await observe(identifier)
+            assert matches(seen), f"{told} but the board shows {seen!r}"
+
+    async def assert_each_alone(
+        self,
+        identifiers: Sequence[int],
+        set_state: Callable[[int, bool], Awaitable[Any]],
+        read: Callable[[int], Awaitable[object]],
+        failure: Callable[[int, int, object], str],
+    ) -> None:
+        """Raise each identifier's state on its own: only that identifier may read raised.
+
+        Each is set true, every identifier is read (``True`` for that one, ``False`` for
+        the others, else the test fails with ``failure(raised, read, got)``) and it is set
+        false again.
+        """
+        for identifier in identifiers:
+            await set_state(identifier, True)
+            for other in identifiers:
+                got = await read(other)
+                assert got is (other == identifier), failure(identifier, other, got)
+            await set_state(identifier, False)
+
+    async def assert_refused(
+        self, subject: Subject, call: Callable[[int], Awaitable[Any]], what: str | None = None,
+    ) -> None:
+        """Check that ``call`` refuses every bad identifier, sending nothing to the board.
+
+        :param what: the call's name in the failure messages; by default its
+            ``__name__`` (a backend's method names itself; a ``lambda`` needs one).
+        """
+        what = what if what is not None else getattr(call, "__name__", repr(call))
         allowed = " or ".join(error.__name__ for error in self.bad_identifier_errors)
         for identifier in subject.bad_identifiers():
             before = subject.sent_so_far()

@@ -21,8 +21,9 @@ nothing but the names of this module:
 3. In each test: ``hook = require(subject.hook, "hook")`` for a hook the test cannot do
    without (the test skips, naming it, when it is not given); ``with self.bounded():``
    around the calls to the backend, so that a hang fails the test instead of stopping the
-   run; ``await self.assert_refused(subject, call, "what")`` to check that every
-   identifier the board lacks is refused, with nothing sent to the board.
+   run; ``await self.assert_refused(subject, backend.method)`` to check that every
+   identifier the board lacks is refused, with nothing sent to the board (a ``lambda``
+   that fills in the other arguments is named: ``(subject, call, "what")``).
 4. Class attributes (``ClassVar``) for what a backend author may tune: tolerances, the
    values the tests use. Say in the suite's docstring what it checks; its tests are the
    proof, so test the suite itself against deliberately wrong backends.

@@ -78,9 +78,5 @@ class BatterySensorInterfaceConformance(InterfaceConformance[BatterySensorSubjec
     async def test_out_of_range_identifier_raises(self, subject: BatterySensorSubject) -> None:
         """A sensor the board does not have is refused."""
         backend = subject.backend
-        await self.assert_refused(
-            subject, backend.get_battery_sensor_voltage, "get_battery_sensor_voltage",
-        )
-        await self.assert_refused(
-            subject, backend.get_battery_sensor_current, "get_battery_sensor_current",
-        )
+        await self.assert_refused(subject, backend.get_battery_sensor_voltage)
+        await self.assert_refused(subject, backend.get_battery_sensor_current)

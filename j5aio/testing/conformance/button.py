@@ -153,7 +153,5 @@ class ButtonInterfaceConformance(InterfaceConformance[ButtonSubject]):
     async def test_out_of_range_identifier_raises(self, subject: ButtonSubject) -> None:
         """A button the board does not have is refused, also by the wait (which must not hang)."""
         backend = subject.backend
-        await self.assert_refused(subject, backend.get_button_state, "get_button_state")
-        await self.assert_refused(
-            subject, backend.wait_until_button_pressed, "wait_until_button_pressed",
-        )
+        await self.assert_refused(subject, backend.get_button_state)
+        await self.assert_refused(subject, backend.wait_until_button_pressed)

@@ -102,6 +102,4 @@ class DistanceSensorInterfaceConformance(InterfaceConformance[DistanceSensorSubj
 
     async def test_out_of_range_identifier_raises(self, subject: DistanceSensorSubject) -> None:
         """A sensor the board does not have is refused, sending nothing."""
-        await self.assert_refused(
-            subject, subject.backend.get_distance_sensor_mm, "get_distance_sensor_mm",
-        )
+        await self.assert_refused(subject, subject.backend.get_distance_sensor_mm)

@@ -36,15 +36,13 @@ class FlagInterfaceConformance(InterfaceConformance[FlagSubject]):
         with self.bounded():
             for identifier in subject.identifiers:
                 await set_flag(identifier, False)
-            for identifier in subject.identifiers:
-                await set_flag(identifier, True)
-                for other in subject.identifiers:
-                    got = await subject.backend.get_flag_state(other)
-                    assert got is (other == identifier), (
-                        f"flag {other} reads {got!r} with only flag {identifier} raised"
-                    )
-                await set_flag(identifier, False)
+            await self.assert_each_alone(
+                subject.identifiers, set_flag, subject.backend.get_flag_state,
+                lambda raised, other, got: (
+                    f"flag {other} reads {got!r} with only flag {raised} raised"
+                ),
+            )
 
     async def test_out_of_range_identifier_raises(self, subject: FlagSubject) -> None:
         """A flag the board does not have is refused."""
-        await self.assert_refused(subject, subject.backend.get_flag_state, "get_flag_state")
+        await self.assert_refused(subject, subject.backend.get_flag_state)

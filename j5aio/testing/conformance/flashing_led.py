@@ -37,11 +37,10 @@ class FlashingLEDInterfaceConformance(LEDInterfaceConformance):
     async def _check_mode(
         self, subject: FlashingLEDSubject, identifier: int, mode: LEDMode,
     ) -> None:
-        got = await subject.backend.get_led_mode(identifier)
-        assert got is mode, f"LED {identifier} was set to {mode} but reads back {got!r}"
-        if subject.observe_mode is not None:
-            seen = await subject.observe_mode(identifier)
-            assert seen is mode, f"LED {identifier} was set to {mode} but the board shows {seen}"
+        await self.assert_read_back(
+            f"LED {identifier} was set to {mode}", identifier,
+            subject.backend.get_led_mode, subject.observe_mode, lambda value: value is mode,
+        )
 
     async def test_mode_round_trips(self, subject: FlashingLEDSubject) -> None:
         """Each mode set on each LED is read back."""
@@ -69,7 +68,7 @@ class FlashingLEDInterfaceConformance(LEDInterfaceConformance):
     ) -> None:
         """An LED the board does not have is refused by the mode calls."""
         backend = subject.backend
-        await self.assert_refused(subject, backend.get_led_mode, "get_led_mode")
+        await self.assert_refused(subject, backend.get_led_mode)
         await self.assert_refused(
             subject, lambda i: backend.set_led_mode(i, LEDMode.FLASH), "set_led_mode",
         )

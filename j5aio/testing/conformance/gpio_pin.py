@@ -100,11 +100,11 @@ class GPIOPinInterfaceConformance(InterfaceConformance[GPIOPinSubject]):
                     assert got == mode, f"pin {identifier} was set to {mode!r}, reads {got!r}"
 
     async def _check_output(self, subject: GPIOPinSubject, identifier: int, high: bool) -> None:
-        got = await subject.backend.get_gpio_pin_digital_state(identifier)
-        assert got is high, f"pin {identifier} was written {high} but reads back {got!r}"
-        if subject.observe_output is not None:
-            seen = await subject.observe_output(identifier)
-            assert seen is high, f"pin {identifier} was written {high}, the board drives {seen!r}"
+        await self.assert_read_back(
+            f"pin {identifier} was written {high}", identifier,
+            subject.backend.get_gpio_pin_digital_state, subject.observe_output,
+            lambda value: value is high,
+        )
 
     async def test_digital_write_is_remembered(self, subject: GPIOPinSubject) -> None:
         """The level last written to an output pin is the level reported (and driven)."""
@@ -195,18 +195,12 @@ class GPIOPinInterfaceConformance(InterfaceConformance[GPIOPinSubject]):
             lambda i: backend.set_gpio_pin_mode(i, GPIOPinMode.DIGITAL_OUTPUT),
             "set_gpio_pin_mode",
         )
-        await self.assert_refused(subject, backend.get_gpio_pin_mode, "get_gpio_pin_mode")
+        await self.assert_refused(subject, backend.get_gpio_pin_mode)
         await self.assert_refused(
             subject,
             lambda i: backend.write_gpio_pin_digital_state(i, True),
             "write_gpio_pin_digital_state",
         )
-        await self.assert_refused(
-            subject, backend.get_gpio_pin_digital_state, "get_gpio_pin_digital_state",
-        )
-        await self.assert_refused(
-            subject, backend.read_gpio_pin_digital_state, "read_gpio_pin_digital_state",
-        )
-        await self.assert_refused(
-            subject, backend.read_gpio_pin_analogue_value, "read_gpio_pin_analogue_value",
-        )
+        await self.assert_refused(subject, backend.get_gpio_pin_digital_state)
+        await self.assert_refused(subject, backend.read_gpio_pin_digital_state)
+        await self.assert_refused(subject, backend.read_gpio_pin_analogue_value)

@@ -33,11 +33,10 @@ class LEDInterfaceConformance(InterfaceConformance[LEDSubject]):
     """
 
     async def _check(self, subject: LEDSubject, identifier: int, state: bool) -> None:
-        got = await subject.backend.get_led_state(identifier)
-        assert got is state, f"LED {identifier} was set to {state} but reads back {got!r}"
-        if subject.observe is not None:
-            seen = await subject.observe(identifier)
-            assert seen is state, f"LED {identifier} was set to {state} but the board shows {seen}"
+        await self.assert_read_back(
+            f"LED {identifier} was set to {state}", identifier,
+            subject.backend.get_led_state, subject.observe, lambda value: value is state,
+        )
 
     async def test_set_then_get_round_trips(self, subject: LEDSubject) -> None:
         """Lighting and darkening an LED is read back, also when repeated."""
@@ -61,7 +60,7 @@ class LEDInterfaceConformance(InterfaceConformance[LEDSubject]):
     async def test_out_of_range_identifier_raises(self, subject: LEDSubject) -> None:
         """An LED the board does not have is refused, for reading and for writing."""
         backend = subject.backend
-        await self.assert_refused(subject, backend.get_led_state, "get_led_state")
+        await self.assert_refused(subject, backend.get_led_state)
         await self.assert_refused(
             subject, lambda i: backend.set_led_state(i, True), "set_led_state",
         )

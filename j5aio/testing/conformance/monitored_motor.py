@@ -60,14 +60,13 @@ class MonitoredMotorInterfaceConformance(MotorInterfaceConformance):
         """Each driver's fault is read back on its own motor only."""
         set_fault = require(subject.set_fault, "set_fault")
         with self.bounded():
+            await self.assert_each_alone(
+                subject.identifiers, set_fault, subject.backend.get_motor_fault,
+                lambda faulty, other, got: (
+                    f"only motor {faulty} has a fault, but motor {other} reads {got!r}"
+                ),
+            )
             for identifier in subject.identifiers:
-                await set_fault(identifier, True)
-                for other in subject.identifiers:
-                    got = await subject.backend.get_motor_fault(other)
-                    assert got is (other == identifier), (
-                        f"only motor {identifier} has a fault, but motor {other} reads {got!r}"
-                    )
-                await set_fault(identifier, False)
                 assert await subject.backend.get_motor_fault(identifier) is False
 
     async def test_out_of_range_identifier_raises_for_readings(
@@ -75,5 +74,5 @@ class MonitoredMotorInterfaceConformance(MotorInterfaceConformance):
     ) -> None:
         """A motor the board does not have is refused by the current and fault reads."""
         backend = subject.backend
-        await self.assert_refused(subject, backend.get_motor_current, "get_motor_current")
-        await self.assert_refused(subject, backend.get_motor_fault, "get_motor_fault")
+        await self.assert_refused(subject, backend.get_motor_current)
+        await self.assert_refused(subject, backend.get_motor_fault)

@@ -86,15 +86,11 @@ class MotorInterfaceConformance(InterfaceConformance[MotorSubject]):
 
     async def _check(self, subject: MotorSubject, identifier: int, state: MotorState) -> None:
         tolerance = self.tolerance(subject)
-        got = await subject.backend.get_motor_state(identifier)
-        assert same_state(state, got, tolerance), (
-            f"motor {identifier} was set to {state!r} but reads back {got!r}"
+        await self.assert_read_back(
+            f"motor {identifier} was set to {state!r}", identifier,
+            subject.backend.get_motor_state, subject.observe,
+            lambda value: same_state(state, value, tolerance),
         )
-        if subject.observe is not None:
-            seen = await subject.observe(identifier)
-            assert same_state(state, seen, tolerance), (
-                f"motor {identifier} was set to {state!r} but the board shows {seen!r}"
-            )
 
     async def test_set_then_get_round_trips(self, subject: MotorSubject) -> None:
         """Each power set on a motor is read back (and shown by the board, if observed)."""
@@ -161,7 +157,7 @@ class MotorInterfaceConformance(InterfaceConformance[MotorSubject]):
     async def test_out_of_range_identifier_raises(self, subject: MotorSubject) -> None:
         """A motor the board does not have is refused, for reading and for writing."""
         backend = subject.backend
-        await self.assert_refused(subject, backend.get_motor_state, "get_motor_state")
+        await self.assert_refused(subject, backend.get_motor_state)
         await self.assert_refused(
             subject, lambda i: backend.set_motor_state(i, 0.5), "set_motor_state",
         )

@@ -46,13 +46,11 @@ class PowerOutputInterfaceConformance(InterfaceConformance[PowerOutputSubject]):
     currents: ClassVar[tuple[float, ...]] = (0.0, 0.5, 2.25, 10.0)
 
     async def _check(self, subject: PowerOutputSubject, identifier: int, enabled: bool) -> None:
-        got = await subject.backend.get_power_output_enabled(identifier)
-        assert got is enabled, f"output {identifier} was set to {enabled} but reads {got!r}"
-        if subject.observe is not None:
-            seen = await subject.observe(identifier)
-            assert seen is enabled, (
-                f"output {identifier} was set to {enabled} but the board shows {seen!r}"
-            )
+        await self.assert_read_back(
+            f"output {identifier} was set to {enabled}", identifier,
+            subject.backend.get_power_output_enabled, subject.observe,
+            lambda value: value is enabled,
+        )
 
     async def test_set_then_get_round_trips(self, subject: PowerOutputSubject) -> None:
         """Switching an output on and off is read back, also when repeated."""
@@ -90,14 +88,10 @@ class PowerOutputInterfaceConformance(InterfaceConformance[PowerOutputSubject]):
     async def test_out_of_range_identifier_raises(self, subject: PowerOutputSubject) -> None:
         """An output the board does not have is refused, for every call."""
         backend = subject.backend
-        await self.assert_refused(
-            subject, backend.get_power_output_enabled, "get_power_output_enabled",
-        )
+        await self.assert_refused(subject, backend.get_power_output_enabled)
         await self.assert_refused(
             subject,
             lambda i: backend.set_power_output_enabled(i, True),
             "set_power_output_enabled",
         )
-        await self.assert_refused(
-            subject, backend.get_power_output_current, "get_power_output_current",
-        )
+        await self.assert_refused(subject, backend.get_power_output_current)

@@ -99,12 +99,10 @@ class PulseServoInterfaceConformance(ServoInterfaceConformance):
     ) -> None:
         """A servo the board does not have is refused by the pulse methods too."""
         backend = subject.backend
-        await self.assert_refused(subject, backend.get_servo_pulse_range, "get_servo_pulse_range")
-        await self.assert_refused(
-            subject, backend.get_servo_pulse_limits, "get_servo_pulse_limits",
-        )
+        await self.assert_refused(subject, backend.get_servo_pulse_range)
+        await self.assert_refused(subject, backend.get_servo_pulse_limits)
         await self.assert_refused(
             subject, lambda i: backend.set_servo_pulse_limits(i, (1000, 2000)),
             "set_servo_pulse_limits",
         )
-        await self.assert_refused(subject, backend.get_servo_pulse_width, "get_servo_pulse_width")
+        await self.assert_refused(subject, backend.get_servo_pulse_width)

@@ -55,15 +55,11 @@ class ServoInterfaceConformance(InterfaceConformance[ServoSubject]):
     positions: ClassVar[tuple[float, ...]] = (-1.0, -0.5, 0.0, 0.25, 0.5, 1.0)
 
     async def _check(self, subject: ServoSubject, identifier: int, position: ServoPosition) -> None:
-        got = await subject.backend.get_servo_position(identifier)
-        assert same_position(position, got, self.position_tolerance), (
-            f"servo {identifier} was set to {position!r} but reads back {got!r}"
+        await self.assert_read_back(
+            f"servo {identifier} was set to {position!r}", identifier,
+            subject.backend.get_servo_position, subject.observe,
+            lambda value: same_position(position, value, self.position_tolerance),
         )
-        if subject.observe is not None:
-            seen = await subject.observe(identifier)
-            assert same_position(position, seen, self.position_tolerance), (
-                f"servo {identifier} was set to {position!r} but the board shows {seen!r}"
-            )
 
     async def test_set_then_get_round_trips(self, subject: ServoSubject) -> None:
         """Each position set on a servo is read back."""
@@ -101,7 +97,7 @@ class ServoInterfaceConformance(InterfaceConformance[ServoSubject]):
     async def test_out_of_range_identifier_raises(self, subject: ServoSubject) -> None:
         """A servo the board does not have is refused, for reading and for writing."""
         backend = subject.backend
-        await self.assert_refused(subject, backend.get_servo_position, "get_servo_position")
+        await self.assert_refused(subject, backend.get_servo_position)
         await self.assert_refused(
             subject, lambda i: backend.set_servo_position(i, 0.5), "set_servo_position",
         )

@@ -62,5 +62,5 @@ class SupplySensorInterfaceConformance(InterfaceConformance[SupplySensorSubject]
     async def test_out_of_range_identifier_raises(self, subject: SupplySensorSubject) -> None:
         """A supply the board does not have is refused."""
         backend = subject.backend
-        await self.assert_refused(subject, backend.get_supply_voltage, "get_supply_voltage")
-        await self.assert_refused(subject, backend.get_supply_current, "get_supply_current")
+        await self.assert_refused(subject, backend.get_supply_voltage)
+        await self.assert_refused(subject, backend.get_supply_current)

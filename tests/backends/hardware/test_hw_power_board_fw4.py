@@ -269,13 +269,13 @@ async def test_a_note_is_not_sent_again_after_a_reconnection(
 ) -> None:
     board, backend, _ = await connect(SRPowerBoardFw4Simulator("srABC"))
     seen: list[bool] = []
-    original = backend.exchange
+    original = backend.command
 
-    async def spy(*args: object, **kwargs: object) -> object:
+    async def spy(*args: object, **kwargs: object) -> None:
         seen.append(bool(kwargs.get("idempotent", True)))
-        return await original(*args, **kwargs)  # type: ignore[call-overload]
+        await original(*args, **kwargs)  # type: ignore[arg-type]
 
-    monkeypatch.setattr(backend, "exchange", spy)
+    monkeypatch.setattr(backend, "command", spy)
     await board.piezo.buzz(0.1, Note.A6)
     await board.outputs[PowerBoardOutput.H0].set_is_enabled(True)
     assert seen == [False, True]

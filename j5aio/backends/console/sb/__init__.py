@@ -5,12 +5,12 @@ from typing import TYPE_CHECKING
 from j5aio._lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from j5aio.backends.console.sb.arduino import SBArduinoConsoleBackend
-    from j5aio.backends.console.sb.arduino_2024 import SBArduino2024ConsoleBackend
+    from j5aio.backends.console.sb.arduino import SBArduinoConsoleBackend as SBArduinoConsoleBackend
+    from j5aio.backends.console.sb.arduino_2024 import (
+        SBArduino2024ConsoleBackend as SBArduino2024ConsoleBackend,
+    )
 
-__all__ = ["SBArduino2024ConsoleBackend", "SBArduinoConsoleBackend"]
-
-if not TYPE_CHECKING:  # the names are imported above for type checkers
+if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
     __getattr__, __dir__ = lazy_exports(
         __name__,
         {

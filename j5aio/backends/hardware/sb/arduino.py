@@ -101,11 +101,16 @@ class SBArduinoHardwareBackend(
         request: bytes,
         timeout: float | None = None,
         then: Callable[[codec.Reply], None] | None = None,
+        *,
+        acknowledged_only: bool = False,
     ) -> codec.Reply:
         """Send a request (with a fresh request id) and return the data of its reply.
 
         :param then: called with the reply once the board has accepted the command
             (``+ OK``), even if the caller has been cancelled meanwhile.
+        :param acknowledged_only: the reply carries no value (a pin or servo set): inside
+            :func:`~j5aio.backends.acknowledgements.acknowledge_later` the command returns
+            an empty reply once written, and the reply is checked before the next request.
         """
 
         def tagged() -> tuple[bytes, ReplyReader[list[bytes]]]:
@@ -122,6 +127,9 @@ class SBArduinoHardwareBackend(
                 then(reply)
             return reply
 
+        if acknowledged_only:
+            await self.command(request, codec.REPLY, timeout, then=parse, when_dirty=tagged)
+            return codec.Reply(())
         return await self.exchange(
             request, codec.REPLY, timeout, then=parse, when_dirty=tagged
         )
@@ -132,6 +140,7 @@ class SBArduinoHardwareBackend(
         await self._command(
             codec.encode_pin_state(identifier, wanted.mode, wanted.level),
             then=lambda _: self._remember_pin(identifier, wanted.mode, wanted.level),
+            acknowledged_only=True,
         )
 
     async def _read_digital(self, identifier: int) -> bool:
@@ -161,7 +170,7 @@ class SBArduinoHardwareBackend(
         def remember(_: codec.Reply) -> None:
             self._servos[identifier] = position
 
-        await self._command(request, then=remember)
+        await self._command(request, then=remember, acknowledged_only=True)
 
     # -- ultrasound ---------------------------------------------------------------------
 

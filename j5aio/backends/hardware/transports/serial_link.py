@@ -87,6 +87,20 @@ strongest rule its firmware allows:
 3. *Otherwise,* input is discarded until the line has been quiet for ``quiet_time``.
    This is a guess about timing, and only as good as the guess.
 
+**Acknowledgements confirmed later.** A command whose reply only acknowledges it goes
+through :meth:`~SerialLink.command`. Inside
+:func:`~j5aio.backends.acknowledgements.acknowledge_later`, on a link in step, it returns
+once its bytes are written and the link remembers the one acknowledgement it is owed:
+the link's next request (exchange, send, command, read, drain, :meth:`~SerialLink.confirm`)
+first reads and checks it, by the command's own deadline and shielded like an exchange,
+so that each board still has one request outstanding and the rules above hold
+unchanged. A failure found then is logged and raised as
+:class:`~j5aio.errors.EarlierCommandError` instead of sending the next request (except
+while the boards are being made safe, whose safe state is sent regardless).
+:meth:`~SerialLink.aclose` reads what is owed; :meth:`~SerialLink.close_now` and
+:meth:`~SerialLink.send_now` cannot wait, so they log that it went unchecked (after
+:meth:`~SerialLink.send_now` the link is dirty, and resynchronises past the reply).
+
 **Errors.** A timeout raises :class:`~j5aio.errors.CommunicationTimeoutError` naming the
 port and what was sent; a vanished port raises
 :class:`~j5aio.errors.BoardDisconnectionError`; a reply a reader cannot parse raises
@@ -111,10 +125,13 @@ import anyio
 import anyio.lowlevel
 from anyio.abc import AsyncResource
 
+from j5aio.backends.acknowledgements import acknowledging_later
+from j5aio.backends.safe_state_pass import making_safe
 from j5aio.errors import (
     BoardDisconnectionError,
     CommunicationError,
     CommunicationTimeoutError,
+    EarlierCommandError,
     UnexpectedReplyError,
 )
 
@@ -144,6 +161,26 @@ class _Progress:
         self.replied = False
         self.reply: Any = None
         self.remaining = 0
+
+
+class _OwedAcknowledgement:
+    """A command written whose acknowledgement is still to be read (see ``command``)."""
+
+    __slots__ = ("deadline", "reader", "request", "seconds", "then")
+
+    def __init__(
+        self,
+        request: bytes,
+        reader: ReplyReader[Any],
+        then: Callable[[Any], object] | None,
+        deadline: float,
+        seconds: float,
+    ) -> None:
+        self.request = request
+        self.reader = reader
+        self.then = then
+        self.deadline = deadline
+        self.seconds = seconds
 
 
 T = TypeVar("T")
@@ -221,6 +258,8 @@ class SerialLink(AsyncResource):
         # Reply lines owed by requests that timed out, not yet seen (line protocols).
         self._owed = 0
         self._owed_until = 0.0
+        # A command returned before its acknowledgement was read (see command()).
+        self._unconfirmed: _OwedAcknowledgement | None = None
 
     # -- state ---------------------------------------------------------------------------
 
@@ -243,6 +282,11 @@ class SerialLink(AsyncResource):
     def is_dirty(self) -> bool:
         """Whether the next exchange will first drain input until the line is quiet."""
         return self._dirty
+
+    @property
+    def acknowledgement_owed(self) -> bytes | None:
+        """The command whose acknowledgement is still to be read, if any (see :meth:`command`)."""
+        return None if self._unconfirmed is None else self._unconfirmed.request
 
     @property
     def buffered(self) -> bytes:
@@ -322,6 +366,8 @@ class SerialLink(AsyncResource):
         await self._acquire()
         try:
             with anyio.CancelScope(shield=True):
+                if self._unconfirmed is not None:
+                    await self._confirm_locked()
                 await self._send_locked(data, seconds, then)
         finally:
             self._lock.release()
@@ -410,33 +456,210 @@ class SerialLink(AsyncResource):
         """
         seconds = self._timeout(timeout)
         request = bytes(request)
-        progress = _Progress()
         await self._acquire()
         try:
-            if when_dirty is not None and (self._dirty or self._owes()):
-                request, reader = when_dirty()
-                request = bytes(request)
-            # One scope both shields the exchange and, once its request goes out, times
-            # it out (its deadline is set then: see _exchange_locked).
-            with anyio.CancelScope(shield=True) as scope:
-                try:
-                    reply = await self._exchange_locked(
-                        request, reader, seconds, progress, scope
-                    )
-                except asyncio.CancelledError:
-                    # Task.cancel broke through the shield (unless this is the scope's
-                    # own deadline, which the scope catches). Once the request has gone,
-                    # its reply is read (and ``then`` run) in a task of its own, which
-                    # the caller waits for before being cancelled; before that, nothing
-                    # was sent (a stream sends all or, cancelled, nothing).
-                    if progress.deadline is not None and not scope.cancel_called:
-                        scope.deadline = math.inf  # the task that finishes it keeps time
-                        await self._finish_torn(request, reader, progress, then)
-                    raise
-                return reply if then is None else then(reply)
-            raise self._timed_out(request, reader, seconds)
+            if self._unconfirmed is not None:
+                await self._confirm_locked()
+            return await self._exchange_held(request, reader, seconds, then, when_dirty)
         finally:
             self._lock.release()
+
+    async def command(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        *,
+        timeout: float | None = None,
+        then: Callable[[T], object] | None = None,
+        when_dirty: Callable[[], tuple[bytes, ReplyReader[T]]] | None = None,
+    ) -> None:
+        """Send ``request``, a command whose reply only acknowledges it, and check the reply.
+
+        As :meth:`exchange` (the same arguments), but nothing of the reply is returned:
+        ``reader`` and ``then`` check it (``then`` raises if the board refused). While
+        acknowledgements are confirmed later (inside
+        :func:`~j5aio.backends.acknowledgements.acknowledge_later`) and the link is in
+        step (not dirty, no late reply owed), it returns as soon as ``request`` has been
+        written, and the acknowledgement is read (by the same deadline, ``timeout`` from
+        the write) and ``then`` run before the link's next request, at
+        :meth:`aclose`, or when the board is made safe. A failure found then is logged
+        at once and raised by that next request as
+        :class:`~j5aio.errors.EarlierCommandError` (and that request is not sent,
+        unless the boards are being made safe). Otherwise it waits for the reply, as
+        :meth:`exchange` does.
+
+        :raises CommunicationTimeoutError: the command could not be written in time (or,
+            waiting, no reply came in time).
+        :raises EarlierCommandError: the previous command's acknowledgement, read now,
+            showed that it failed.
+        :raises BoardDisconnectionError: the port has gone or the link is closed.
+        """
+        seconds = self._timeout(timeout)
+        request = bytes(request)
+        await self._acquire()
+        try:
+            if self._unconfirmed is not None:
+                await self._confirm_locked()
+            if not acknowledging_later() or self._dirty or (self._owed and self._owes()):
+                await self._exchange_held(request, reader, seconds, then, when_dirty)
+                return
+            with anyio.CancelScope(shield=True) as scope:
+                await self._write_unconfirmed(request, reader, seconds, then, scope)
+            if scope.cancelled_caught:
+                raise CommunicationTimeoutError(
+                    f"{self._name}: could not send {_preview(request)} within {seconds} s"
+                )
+        finally:
+            self._lock.release()
+        # As a send: a checkpoint, where a cancellation that came meanwhile is raised.
+        await anyio.lowlevel.checkpoint()
+
+    async def confirm(self) -> None:
+        """Read and check the acknowledgement still owed to the last :meth:`command` now.
+
+        Does nothing when none is owed. The link's next request does this anyway; call
+        it to learn of a failure at a moment of your choosing.
+
+        :raises EarlierCommandError: the command had failed.
+        :raises BoardDisconnectionError: the port has gone.
+        """
+        if self._unconfirmed is None:
+            return
+        await self._acquire()
+        try:
+            if self._unconfirmed is not None:
+                await self._confirm_locked()
+        finally:
+            self._lock.release()
+
+    async def _write_unconfirmed(
+        self,
+        request: bytes,
+        reader: ReplyReader[Any],
+        seconds: float,
+        then: Callable[[Any], object] | None,
+        scope: anyio.CancelScope,
+    ) -> None:
+        """Write ``request`` and note that its acknowledgement is owed (lock held)."""
+        self._check_open()
+        if self._buffer:
+            _log.debug("%s: discarding stale input %s", self._name, _preview(self._buffer))
+            self._settle(self._buffer.count(b"\n"))
+            self._buffer.clear()
+        deadline = scope.deadline = self._loop_time() + seconds
+        written = False
+        try:
+            await self._write(request)
+            written = True
+        finally:
+            if not written:
+                self._dirty = True  # a stream sends all or nothing, but be safe
+        self._unconfirmed = _OwedAcknowledgement(request, reader, then, deadline, seconds)
+
+    async def _confirm_locked(self) -> None:
+        """Read and check the acknowledgement owed to the last command (lock held).
+
+        Runs shielded, by the command's own deadline (with a moment's grace for a reply
+        that came in time but is not read yet). A failure is logged, then raised as
+        :class:`~j5aio.errors.EarlierCommandError` (a vanished port as
+        :class:`~j5aio.errors.BoardDisconnectionError`), unless the boards are being made
+        safe: their safe state must still be sent.
+        """
+        owed = self._unconfirmed
+        assert owed is not None
+        self._unconfirmed = None
+        progress = _Progress()
+        progress.deadline = max(owed.deadline, self._loop_time() + self._quiet_time)
+        progress.seconds = owed.seconds
+        shown = _preview(owed.request)
+        try:
+            with anyio.CancelScope(shield=True):
+                reply = await self._finish_reply(owed.request, owed.reader, progress)
+                if owed.then is not None:
+                    owed.then(reply)
+        except BoardDisconnectionError as exc:
+            raise BoardDisconnectionError(
+                f"{exc} (while reading the acknowledgement of the earlier command {shown})"
+            ) from exc
+        except CommunicationError as exc:
+            _log.warning("%s: the earlier command %s failed: %s", self._name, shown, exc)
+            if making_safe():
+                return
+            raise EarlierCommandError(
+                f"{self._name}: the earlier command {shown} failed, not this one (which "
+                f"was not sent): {exc}",
+                owed.request,
+            ) from exc
+        except asyncio.CancelledError:
+            _log.debug("%s: the acknowledgement of %s was not read (cancelled)", self._name, shown)
+            raise
+
+    async def _exchange_held(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        seconds: float,
+        then: Callable[[T], object] | None,
+        when_dirty: Callable[[], tuple[bytes, ReplyReader[T]]] | None,
+    ) -> object:
+        """The body of :meth:`exchange`, with the lock held.
+
+        Cleans the line if need be, then sends ``request`` and reads its reply. One
+        scope both shields the exchange and times it out: its deadline is set to
+        ``seconds`` from when the request goes out, so that it cancels the read (and
+        this raises the timeout) if the reply is late.
+        """
+        if when_dirty is not None and (self._dirty or self._owes()):
+            request, reader = when_dirty()
+            request = bytes(request)
+        progress = _Progress()
+        with anyio.CancelScope(shield=True) as scope:
+            try:
+                self._check_open()
+                correlates = reader.correlates
+                if not correlates and self._resync_line is not None and self._owes():
+                    reply = await self._bracketed_locked(request, reader, seconds, progress)
+                else:
+                    finished = False
+                    try:
+                        if correlates:
+                            pass  # foreign replies, late or left over, are recognised
+                        elif self._dirty and self._can_resync:
+                            await self._resync_locked()
+                        elif self._dirty:
+                            await self._drain_locked(self._quiet_time, self._drain_limit)
+                        if self._buffer and not correlates:
+                            _log.debug(
+                                "%s: discarding stale input %s",
+                                self._name, _preview(self._buffer),
+                            )
+                            self._settle(self._buffer.count(b"\n"))
+                            self._buffer.clear()
+                        deadline = scope.deadline = self._loop_time() + seconds
+                        await self._write(request)
+                        progress.deadline, progress.seconds = deadline, seconds
+                        reply = await self._read_reply(reader, request)
+                        # Nothing awaits from here to the end of the scope, so its
+                        # deadline cannot fire any more; leaving the scope drops it.
+                        finished = True
+                        self._after_reply(request, reader)
+                    finally:
+                        if not finished:
+                            self._dirty = True
+                            if progress.deadline is not None:
+                                self._owe(_lines_of(reader))
+            except asyncio.CancelledError:
+                # Task.cancel broke through the shield (unless this is the scope's
+                # own deadline, which the scope catches). Once the request has gone,
+                # its reply is read (and ``then`` run) in a task of its own, which
+                # the caller waits for before being cancelled; before that, nothing
+                # was sent (a stream sends all or, cancelled, nothing).
+                if progress.deadline is not None and not scope.cancel_called:
+                    scope.deadline = math.inf  # the task that finishes it keeps time
+                    await self._finish_torn(request, reader, progress, then)
+                raise
+            return reply if then is None else then(reply)
+        raise self._timed_out(request, reader, seconds)
 
     async def _acquire(self) -> None:
         """Take the link's lock; a caller already cancelled (by anyio) takes nothing."""
@@ -472,6 +695,8 @@ class SerialLink(AsyncResource):
         await self._acquire()
         try:
             self._check_open()
+            if self._unconfirmed is not None:
+                await self._confirm_locked()
             with anyio.move_on_after(seconds):
                 return await self._read_reply(reader, b"")
             raise CommunicationTimeoutError(
@@ -503,6 +728,8 @@ class SerialLink(AsyncResource):
         await self._acquire()
         try:
             self._check_open()
+            if self._unconfirmed is not None:
+                await self._confirm_locked()
             discarded = await self._drain_locked(quiet, bound)
             self._owed = 0
             return discarded
@@ -526,6 +753,7 @@ class SerialLink(AsyncResource):
         data = bytes(data)
         self._check_open()
         self._dirty = True
+        self._drop_unconfirmed("bytes were sent at once")
         log_wire(self._wire, "->", data)
         try:
             self._stream.send_now(data, seconds)
@@ -543,13 +771,37 @@ class SerialLink(AsyncResource):
 
         Waiting callers get :class:`~j5aio.errors.BoardDisconnectionError`.
         """
+        if not self._closed:
+            self._drop_unconfirmed("the link was closed at once")
         self._closed = True
         self._stream.close_now()
 
+    def _drop_unconfirmed(self, why: str) -> None:
+        """Give up reading the acknowledgement owed, if any (a resync discards it)."""
+        if self._unconfirmed is not None:
+            _log.warning(
+                "%s: the acknowledgement of %s was not checked: %s",
+                self._name, _preview(self._unconfirmed.request), why,
+            )
+            self._unconfirmed = None
+
     async def aclose(self) -> None:
-        """Close the link and its stream, letting queued output go first; idempotent."""
-        self._closed = True
+        """Close the link and its stream, letting queued output go first; idempotent.
+
+        An acknowledgement still owed (see :meth:`command`) is read and checked first; a
+        failure is logged, not raised.
+        """
         with anyio.CancelScope(shield=True):
+            if self._unconfirmed is not None and not self._closed:
+                await self._lock.acquire()
+                try:
+                    if self._unconfirmed is not None:
+                        await self._confirm_locked()
+                except CommunicationError:
+                    pass  # logged as it was read; a board being closed has nothing to tell
+                finally:
+                    self._lock.release()
+            self._closed = True
             await self._stream.aclose()
 
     def __repr__(self) -> str:
@@ -572,50 +824,6 @@ class SerialLink(AsyncResource):
         if self._closed:
             raise BoardDisconnectionError(f"{self._name}: the link is closed")
 
-    async def _exchange_locked(
-        self,
-        request: bytes,
-        reader: ReplyReader[T],
-        seconds: float,
-        progress: _Progress,
-        scope: anyio.CancelScope,
-    ) -> T:
-        """Clean the line if need be, then send ``request`` and read its reply.
-
-        ``scope`` shields the exchange; its deadline is set to ``seconds`` from when the
-        request goes out, so that it cancels the read (and the caller raises the
-        timeout) if the reply is late.
-        """
-        self._check_open()
-        if not reader.correlates and self._resync_line is not None and self._owes():
-            return await self._bracketed_locked(request, reader, seconds, progress)
-        finished = False
-        try:
-            if reader.correlates:
-                pass  # foreign replies, late or left over, are recognised and skipped
-            elif self._dirty and self._can_resync:
-                await self._resync_locked()
-            elif self._dirty:
-                await self._drain_locked(self._quiet_time, self._drain_limit)
-            if self._buffer and not reader.correlates:
-                _log.debug("%s: discarding stale input %s", self._name, _preview(self._buffer))
-                self._settle(self._buffer.count(b"\n"))
-                self._buffer.clear()
-            deadline = scope.deadline = self._loop_time() + seconds
-            await self._write(request)
-            progress.deadline, progress.seconds = deadline, seconds
-            reply = await self._read_reply(reader, request)
-            # Nothing awaits from here to the end of the scope, so its deadline cannot
-            # fire any more; leaving the scope drops it.
-            finished = True
-            self._after_reply(request, reader)
-            return reply
-        finally:
-            if not finished:
-                self._dirty = True
-                if progress.deadline is not None:
-                    self._owe(_lines_of(reader))
-
     async def _bracketed_locked(
         self, request: bytes, reader: ReplyReader[T], seconds: float, progress: _Progress
     ) -> T:
@@ -635,6 +843,11 @@ class SerialLink(AsyncResource):
         finished = False
         # The late lines come first: they get the time a resynchronisation would.
         seconds += self._drain_limit
+        if self._buffer:
+            # Whole lines here were owed (or noise); a part line is noise (a reply whose
+            # line ending was lost) or the start of a late line, whose end still counts.
+            self._settle(self._buffer.count(b"\n"))
+            self._buffer.clear()
         try:
             with anyio.move_on_after(seconds):
                 deadline = anyio.current_time() + seconds

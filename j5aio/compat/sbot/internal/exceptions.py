@@ -10,6 +10,11 @@
 
 from __future__ import annotations
 
+from j5aio.compat._shared.errors import (
+    EarlyMetadataError,
+    MissingMetadataKeyError,
+    WrongBoardTypeError,
+)
 from j5aio.errors import BoardDisconnectionError as _CoreDisconnection
 
 __all__ = [
@@ -20,28 +25,20 @@ __all__ = [
 ]
 
 
-class MetadataKeyError(KeyError):
+class MetadataKeyError(MissingMetadataKeyError):
     """A metadata key has no value.
 
     :param key: the key that was not found.
     """
 
-    def __init__(self, key: str) -> None:
-        super().__init__(key)
-        self.key = key
-
-    def __str__(self) -> str:
-        return f"Key {self.key!r} not present in metadata"
+    # sbot's class defines its own constructor, so its API surface lists one here.
+    __init__ = MissingMetadataKeyError.__init__
 
 
-class MetadataNotReadyError(RuntimeError):
+class MetadataNotReadyError(EarlyMetadataError):
     """The metadata (``comp.zone``, ``comp.is_competition``) was read before the start."""
 
-    def __str__(self) -> str:
-        return (
-            "Metadata (e.g. zone or is_competition) can only be used after"
-            " wait_start has been called"
-        )
+    _examples = "e.g. zone or is_competition"
 
 
 class BoardDisconnectionError(_CoreDisconnection, OSError):
@@ -52,17 +49,12 @@ class BoardDisconnectionError(_CoreDisconnection, OSError):
     """
 
 
-class IncorrectBoardError(OSError):
+class IncorrectBoardError(WrongBoardTypeError):
     """A board answered ``*IDN?`` with another board type than the one expected.
 
     :param board_type: the board type the board gave.
     :param expected_type: the board type expected.
     """
 
-    def __init__(self, board_type: str, expected_type: str) -> None:
-        super().__init__(board_type, expected_type)
-        self.returned_type = board_type
-        self.expected_type = expected_type
-
-    def __str__(self) -> str:
-        return f"Board returned type {self.returned_type!r}, expected {self.expected_type!r}"
+    # sbot's class defines its own constructor, so its API surface lists one here.
+    __init__ = WrongBoardTypeError.__init__

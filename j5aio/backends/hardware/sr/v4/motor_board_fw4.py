@@ -15,7 +15,6 @@ cached state, :attr:`SRV4MotorBoardFw4HardwareBackend.last_sent`).
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from typing import ClassVar
 
 from j5aio import power_hints
@@ -100,25 +99,7 @@ class SRV4MotorBoardFw4HardwareBackend(
         version = fw3.parse_version_reply(line)
         raise UnsupportedFirmwareError(self.board.name, version, _SUPPORTED)
 
-    async def _query(self, command: bytes) -> bytes:
-        try:
-            return await super()._query(command)
-        except CommunicationTimeoutError as error:
-            raise self._perhaps_unpowered(error) from error
-
-    async def _act(
-        self,
-        command: bytes,
-        *,
-        then: Callable[[], None] | None = None,
-        idempotent: bool = True,
-    ) -> None:
-        try:
-            await super()._act(command, then=then, idempotent=idempotent)
-        except CommunicationTimeoutError as error:
-            raise self._perhaps_unpowered(error) from error
-
-    def _perhaps_unpowered(self, error: CommunicationTimeoutError) -> CommunicationTimeoutError:
+    def _explain_timeout(self, error: CommunicationTimeoutError) -> CommunicationTimeoutError:
         """The timeout, saying what a silent motor board usually means: no 12 V."""
         hint = power_hints.power_hint(power_hints.output_feeding(self.asset_tag or ""))
         return CommunicationTimeoutError(

@@ -84,7 +84,7 @@ class SRV4PowerBoardHardwareBackend(
         self.firmware_version = version
 
     async def _read_command(self, command: codec.ReadCommand) -> bytes:
-        return await self._read(command.index, command.length)
+        return await self.control_read(command.index, command.length)
 
     # -- power outputs ------------------------------------------------------------------
 
@@ -103,7 +103,7 @@ class SRV4PowerBoardHardwareBackend(
         def remember() -> None:
             self._outputs[identifier] = enabled
 
-        await self._write(identifier, int(enabled), then=remember)
+        await self.control_write(identifier, int(enabled), then=remember)
 
     def make_safe_now(self, timeout: float) -> bool:
         """Switch every output off at once, synchronously (the safety net; see :class:`.Backend`).
@@ -135,7 +135,7 @@ class SRV4PowerBoardHardwareBackend(
         self._check_single(identifier, "piezo")
         note = codec.encode_piezo_note(duration, pitch)
         # Not idempotent: a note sent again after the board came back would play twice.
-        await self._write(codec.PIEZO_WRITE, 0, note, errors=_PIEZO_ERRORS, idempotent=False)
+        await self.control_write(codec.PIEZO_WRITE, 0, note, errors=_PIEZO_ERRORS, idempotent=False)
 
     # -- start button -------------------------------------------------------------------
 
@@ -189,4 +189,4 @@ class SRV4PowerBoardHardwareBackend(
         def remember() -> None:
             self._leds[identifier] = state
 
-        await self._write(index, int(state), then=remember)
+        await self.control_write(index, int(state), then=remember)

@@ -101,19 +101,22 @@ class SRV4RuggeduinoHardwareBackend(
             await self._link.drain()
         self._link.set_resync_line(lambda: (codec.VERSION_QUERY, line))
 
-    async def _command(self, command: bytes, then: Callable[[], None] | None = None) -> bytes:
-        """Send one command and return its reply line (often empty).
+    async def _command(self, command: bytes) -> bytes:
+        """Send one command and return its reply line."""
+        return await self.exchange(command, _LINE)
+
+    async def _tell(self, command: bytes, then: Callable[[], None]) -> None:
+        """Send a command whose reply line (empty) only acknowledges it.
 
         :param then: called once the reply has arrived, even for a cancelled caller.
+            Inside :func:`~j5aio.backends.acknowledgements.acknowledge_later` the command
+            returns once written, and the reply is read before the next request.
         """
-        if then is None:
-            return await self.exchange(command, _LINE)
 
-        def done(line: bytes) -> bytes:
+        def done(_line: bytes) -> None:
             then()
-            return line
 
-        return await self.exchange(command, _LINE, then=done)
+        await self.command(command, _LINE, then=done)
 
     async def _apply_pin(
         self, identifier: int, wanted: DigitalPinState, *, mode_changed: bool
@@ -128,21 +131,21 @@ class SRV4RuggeduinoHardwareBackend(
                     if current.mode is GPIOPinMode.DIGITAL_OUTPUT
                     else current.mode is GPIOPinMode.DIGITAL_INPUT_PULLUP
                 )
-                await self._command(
+                await self._tell(
                     codec.encode_mode(identifier, wanted.mode),
                     then=lambda: self._remember_pin(identifier, wanted.mode, latch),
                 )
-            await self._command(
+            await self._tell(
                 codec.encode_digital_write(identifier, wanted.level),
                 then=lambda: self._remember_pin(identifier, wanted.mode, wanted.level),
             )
         elif wanted.mode is GPIOPinMode.ANALOGUE_INPUT:  # A0-A5 back from a digital mode
-            await self._command(
+            await self._tell(
                 codec.encode_mode(identifier, GPIOPinMode.DIGITAL_INPUT),
                 then=lambda: self._remember_pin(identifier, wanted.mode, False),
             )
         else:
-            await self._command(
+            await self._tell(
                 codec.encode_mode(identifier, wanted.mode),
                 then=lambda: self._remember_pin(identifier, wanted.mode, current.level),
             )

@@ -48,12 +48,12 @@ class SRV4ServoBoardHardwareBackend(ServoInterface, USBHardwareBackend):
 
     async def _handshake(self) -> None:
         command = codec.FIRMWARE_VERSION
-        reply = await self._read(command.index, command.length, errors=_HANDSHAKE_ERRORS)
+        reply = await self.control_read(command.index, command.length, errors=_HANDSHAKE_ERRORS)
         version = str(codec.parse_u32(reply))
         if version not in codec.SUPPORTED_VERSIONS:
             raise UnsupportedFirmwareError(self.board.name, version, codec.SUPPORTED_VERSIONS)
         self.firmware_version = version
-        await self._write(codec.INIT_WRITE, 0, errors=_HANDSHAKE_ERRORS)
+        await self.control_write(codec.INIT_WRITE, 0, errors=_HANDSHAKE_ERRORS)
         for servo in range(codec.SERVO_COUNT):
             await self.set_servo_position(servo, 0.0)
 
@@ -85,4 +85,4 @@ class SRV4ServoBoardHardwareBackend(ServoInterface, USBHardwareBackend):
         def remember() -> None:
             self._positions[index] = position
 
-        await self._write(index, value, then=remember)
+        await self.control_write(index, value, then=remember)

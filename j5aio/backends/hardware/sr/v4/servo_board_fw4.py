@@ -110,7 +110,12 @@ class _ServoBoardFw4Backend(
         return await self.exchange(request, _REPLY)
 
     async def _act(self, request: bytes) -> None:
-        codec.check_ack(self.board.name, request, await self._query(request))
+        """Send an action and check its ``ACK`` (later, inside ``acknowledge_later()``)."""
+
+        def acknowledged(reply: bytes) -> None:
+            codec.check_ack(self.board.name, request, reply)
+
+        await self.command(request, _REPLY, then=acknowledged)
 
     def _check_servo(self, identifier: int) -> None:
         codec.check_servo(self.firmware, identifier)

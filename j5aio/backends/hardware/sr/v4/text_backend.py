@@ -23,6 +23,7 @@ from j5aio.backends.hardware.sr.v4.text_protocol import (
     echo_probe,
 )
 from j5aio.backends.hardware.transports.readers import read_line
+from j5aio.errors import CommunicationTimeoutError
 
 __all__ = ["SRTextBackend"]
 
@@ -38,9 +39,19 @@ class SRTextBackend(SerialHardwareBackend):
     def _link_ready(self) -> None:
         self._link.set_resync_line(echo_probe)
 
+    def _explain_timeout(self, error: CommunicationTimeoutError) -> CommunicationTimeoutError:
+        """Return the timeout a caller sees: ``error`` here; a board may add a hint."""
+        return error
+
     async def _query(self, command: bytes) -> bytes:
         """Send ``command`` and return its reply line (a NACK raises :class:`NackError`)."""
-        reply = await self.exchange(command, _REPLY)
+        try:
+            reply = await self.exchange(command, _REPLY)
+        except CommunicationTimeoutError as error:
+            explained = self._explain_timeout(error)
+            if explained is error:
+                raise
+            raise explained from error
         return check_not_nack(self.board.name, command, reply)
 
     async def _query_then(self, command: bytes, then: Callable[[bytes], T]) -> T:
@@ -53,7 +64,13 @@ class SRTextBackend(SerialHardwareBackend):
         def checked(reply: bytes) -> T:
             return then(check_not_nack(self.board.name, command, reply))
 
-        return await self.exchange(command, _REPLY, then=checked)
+        try:
+            return await self.exchange(command, _REPLY, then=checked)
+        except CommunicationTimeoutError as error:
+            explained = self._explain_timeout(error)
+            if explained is error:
+                raise
+            raise explained from error
 
     async def _act(
         self,
@@ -63,6 +80,9 @@ class SRTextBackend(SerialHardwareBackend):
         idempotent: bool = True,
     ) -> None:
         """Send an action ``command`` and check that the board acknowledges it.
+
+        Inside :func:`~j5aio.backends.acknowledgements.acknowledge_later` it returns once
+        the command is written; the acknowledgement is checked before the next request.
 
         :param then: runs once the board has acknowledged ``command`` (even for a
             cancelled caller): where a backend updates what it remembers of the board.
@@ -75,4 +95,10 @@ class SRTextBackend(SerialHardwareBackend):
             if then is not None:
                 then()
 
-        await self.exchange(command, _REPLY, then=acknowledged, idempotent=idempotent)
+        try:
+            await self.command(command, _REPLY, then=acknowledged, idempotent=idempotent)
+        except CommunicationTimeoutError as error:
+            explained = self._explain_timeout(error)
+            if explained is error:
+                raise
+            raise explained from error
