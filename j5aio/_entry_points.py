@@ -17,28 +17,20 @@ import importlib
 import os
 import re
 import sys
-from typing import ClassVar
-
-from j5aio._records import record, set_fields
+from dataclasses import dataclass
 
 __all__ = ["PluginEntryPoint", "find"]
 
 _SUFFIXES = (".dist-info", ".egg-info")
 
 
-@record
+@dataclass(frozen=True)
 class PluginEntryPoint:
     """One entry point: ``name = value`` in its group, from the distribution ``package``."""
-
-    __slots__ = ("name", "package", "value")
-    _fields: ClassVar[tuple[str, ...]] = ("name", "value", "package")
 
     name: str
     value: str
     package: str
-
-    def __init__(self, name: str, value: str, package: str) -> None:
-        set_fields(self, name=name, value=value, package=package)
 
     def load(self) -> object:
         """Import the module ``value`` names and return the object it names in it.

@@ -163,10 +163,3 @@ def test_dotted_folder_names_and_distributions_without_the_group_are_read_as_imp
     assert len(found) == 1  # (two spellings of one distribution: the first listed wins)
     assert found == by_importlib_metadata("test.group")
     assert as_tuples(find("console_scripts")) == by_importlib_metadata("console_scripts")
-
-
-def test_an_entry_point_is_a_record_equal_by_its_fields() -> None:
-    point = PluginEntryPoint("a", "m:f", "pkg")
-    assert point == PluginEntryPoint("a", "m:f", "pkg")
-    assert point != PluginEntryPoint("a", "m:g", "pkg")
-    assert repr(point) == "PluginEntryPoint(name='a', value='m:f', package='pkg')"

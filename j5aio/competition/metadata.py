@@ -24,11 +24,10 @@ import math
 import os
 import stat
 from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, replace
 from enum import StrEnum
 from pathlib import Path
-from typing import ClassVar, Final
-
-from j5aio._records import record, set_fields
+from typing import Final
 
 __all__ = [
     "ASTORIA_FILENAME",
@@ -105,7 +104,7 @@ class MetadataError(ValueError):
     """The metadata file is unreadable, malformed, or has a bad field."""
 
 
-@record
+@dataclass(frozen=True)
 class Metadata:
     """The settings of a match, or of development at the bench.
 
@@ -122,37 +121,16 @@ class Metadata:
     :raises MetadataError: a field is out of range or of the wrong type.
     """
 
-    __slots__ = (
-        "arena", "duration", "marker_offset", "mode", "origin", "source", "wifi_enabled", "zone",
-    )
-    _fields: ClassVar[tuple[str, ...]] = (
-        "arena", "zone", "mode", "duration", "marker_offset", "source", "wifi_enabled", "origin",
-    )
+    arena: str = "A"
+    zone: int = 0
+    mode: Mode = Mode.DEV
+    duration: float | None = None
+    marker_offset: int = 0
+    source: Path | None = None
+    wifi_enabled: bool | None = None
+    origin: str | None = None
 
-    arena: str
-    zone: int
-    mode: Mode
-    duration: float | None
-    marker_offset: int
-    source: Path | None
-    wifi_enabled: bool | None
-    origin: str | None
-
-    def __init__(
-        self,
-        arena: str = "A",
-        zone: int = 0,
-        mode: Mode = Mode.DEV,
-        duration: float | None = None,
-        marker_offset: int = 0,
-        source: Path | None = None,
-        wifi_enabled: bool | None = None,
-        origin: str | None = None,
-    ) -> None:
-        set_fields(
-            self, arena=arena, zone=zone, mode=mode, duration=duration,
-            marker_offset=marker_offset, source=source, wifi_enabled=wifi_enabled, origin=origin,
-        )
+    def __post_init__(self) -> None:
         where = str(self.source or self.origin or "metadata")
         _check_arena(self.arena, where)
         _check_int(self.zone, "zone", where, 0, MAX_ZONE)
@@ -773,8 +751,7 @@ def load_metadata(sticks: Sequence[Path] | None = None) -> Metadata:
 
 def _match_of(metadata: Metadata) -> Metadata:
     """What must agree between two files of the same match (not the file, nor extras)."""
-    m = metadata
-    return Metadata(m.arena, m.zone, m.mode, m.duration, m.marker_offset)
+    return replace(metadata, source=None, origin=None, wifi_enabled=None)
 
 
 def describe(metadata: Metadata) -> str:

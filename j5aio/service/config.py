@@ -22,10 +22,9 @@ from __future__ import annotations
 
 import os
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import ClassVar, Final
-
-from j5aio._records import record, set_fields
+from typing import Final
 
 __all__ = [
     "ASTORIA_CONFIG_PATHS",
@@ -56,7 +55,7 @@ class ServiceConfigError(ValueError):
     """The service's configuration (a URL or ``astoria.toml``) is malformed."""
 
 
-@record
+@dataclass(frozen=True)
 class ServiceConfig:
     """How to reach the robot's service.
 
@@ -74,42 +73,17 @@ class ServiceConfig:
     :raises ServiceConfigError: a field is out of range.
     """
 
-    __slots__ = (
-        "frame_topic", "host", "mqtt_v311", "password", "port", "source", "tls", "topic_prefix",
-        "username",
-    )
-    _fields: ClassVar[tuple[str, ...]] = (
-        "host", "port", "topic_prefix", "tls", "mqtt_v311", "username", "password",
-        "frame_topic", "source",
-    )
-    _shown_fields: ClassVar[tuple[str, ...]] = tuple(f for f in _fields if f != "password")
-
     host: str
-    port: int
-    topic_prefix: str
-    tls: bool
-    mqtt_v311: bool
-    username: str | None
-    password: str | None
-    frame_topic: str
-    source: str
+    port: int = 1883
+    topic_prefix: str = "astoria"
+    tls: bool = False
+    mqtt_v311: bool = False
+    username: str | None = None
+    password: str | None = field(default=None, repr=False)
+    frame_topic: str = "camera/annotated"
+    source: str = "defaults"
 
-    def __init__(
-        self,
-        host: str,
-        port: int = 1883,
-        topic_prefix: str = "astoria",
-        tls: bool = False,
-        mqtt_v311: bool = False,
-        username: str | None = None,
-        password: str | None = None,
-        frame_topic: str = "camera/annotated",
-        source: str = "defaults",
-    ) -> None:
-        set_fields(
-            self, host=host, port=port, topic_prefix=topic_prefix, tls=tls, mqtt_v311=mqtt_v311,
-            username=username, password=password, frame_topic=frame_topic, source=source,
-        )
+    def __post_init__(self) -> None:
         if not isinstance(self.host, str) or not self.host:
             raise ServiceConfigError(f"{self.source}: the broker's host must be a name")
         if isinstance(self.port, bool) or not isinstance(self.port, int) or not (

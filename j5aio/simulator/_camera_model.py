@@ -8,9 +8,9 @@ it lives here, below both. Its names are documented, and imported, as
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, ClassVar
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
-from j5aio._records import record, set_fields
 from j5aio.vision.calibration import CameraCalibration
 
 if TYPE_CHECKING:  # (the renderer is imported only when a picture is drawn)
@@ -23,7 +23,7 @@ __all__ = ["DEFAULT_CALIBRATION", "SimulatedCamera"]
 DEFAULT_CALIBRATION = CameraCalibration(1387.5, 1387.5, 639.5, 359.5, (), (1280, 720))
 
 
-@record
+@dataclass(frozen=True)
 class SimulatedCamera:
     """The camera on the simulated robot.
 
@@ -32,20 +32,9 @@ class SimulatedCamera:
     :param lighting: brightness, blur and noise of its pictures.
     """
 
-    __slots__ = ("calibration", "lighting", "resolution")
-    _fields: ClassVar[tuple[str, ...]] = ("calibration", "resolution", "lighting")
-
-    calibration: CameraCalibration
-    resolution: tuple[int, int] | None
-    lighting: Lighting | None
-
-    def __init__(
-        self,
-        calibration: CameraCalibration = DEFAULT_CALIBRATION,
-        resolution: tuple[int, int] | None = None,
-        lighting: Lighting | None = None,
-    ) -> None:
-        set_fields(self, calibration=calibration, resolution=resolution, lighting=lighting)
+    calibration: CameraCalibration = DEFAULT_CALIBRATION
+    resolution: tuple[int, int] | None = None
+    lighting: Lighting | None = field(default=None)
 
     def model(self) -> tuple[CameraCalibration, tuple[int, int]]:
         """The calibration and resolution its pictures have."""
@@ -56,5 +45,6 @@ class SimulatedCamera:
         return calibration, resolution
 
 
-# Documented, and imported, as j5aio.simulator.camera's.
+# Documented, and imported, as j5aio.simulator.camera's (set once the dataclass is made:
+# making it reads the module its __module__ names, which may not be imported yet).
 SimulatedCamera.__module__ = "j5aio.simulator.camera"

@@ -21,9 +21,8 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING
 
-from j5aio._records import record, set_fields
 from j5aio.vision.sizes import MarkerSizes
 
 if TYPE_CHECKING:  # (imported where used: a kit that never locates itself needs neither)
@@ -40,7 +39,7 @@ __all__ = [
 ]
 
 
-@record
+@dataclass(frozen=True)
 class ArenaMarker:
     """A marker fixed in the arena.
 
@@ -53,9 +52,6 @@ class ArenaMarker:
         the opposite), radians.
     """
 
-    __slots__ = ("facing", "marker_id", "size", "x", "y", "z")
-    _fields: ClassVar[tuple[str, ...]] = ("marker_id", "size", "x", "y", "z", "facing")
-
     marker_id: int
     size: float
     x: float
@@ -63,13 +59,8 @@ class ArenaMarker:
     z: float
     facing: float
 
-    def __init__(
-        self, marker_id: int, size: float, x: float, y: float, z: float, facing: float,
-    ) -> None:
-        set_fields(self, marker_id=marker_id, size=size, x=x, y=y, z=z, facing=facing)
 
-
-@record
+@dataclass(frozen=True)
 class Token:
     """A cube on the floor with the same marker on each of its four sides.
 
@@ -81,28 +72,12 @@ class Token:
     :param heading: which way its first face points, radians.
     """
 
-    __slots__ = ("heading", "marker_id", "marker_size", "side", "x", "y")
-    _fields: ClassVar[tuple[str, ...]] = ("marker_id", "x", "y", "side", "marker_size", "heading")
-
     marker_id: int
     x: float
     y: float
-    side: float
-    marker_size: float
-    heading: float
-
-    def __init__(
-        self,
-        marker_id: int,
-        x: float,
-        y: float,
-        side: float = 130.0,
-        marker_size: float = 80.0,
-        heading: float = 0.0,
-    ) -> None:
-        set_fields(self,
-            marker_id=marker_id, x=x, y=y, side=side, marker_size=marker_size, heading=heading,
-        )
+    side: float = 130.0
+    marker_size: float = 80.0
+    heading: float = 0.0
 
     def markers(self) -> list[ArenaMarker]:
         """The four markers on its sides."""
@@ -123,7 +98,7 @@ class Token:
         return out
 
 
-@record
+@dataclass(frozen=True)
 class Arena:
     """A rectangular arena with markers on its walls and tokens on its floor.
 
@@ -134,27 +109,11 @@ class Arena:
     :param tokens: the tokens.
     """
 
-    __slots__ = ("length", "markers", "tokens", "wall_height", "width")
-    _fields: ClassVar[tuple[str, ...]] = ("width", "length", "wall_height", "markers", "tokens")
-
-    width: float
-    length: float
-    wall_height: float
-    markers: tuple[ArenaMarker, ...]
-    tokens: tuple[Token, ...]
-
-    def __init__(
-        self,
-        width: float = 5750.0,
-        length: float = 5750.0,
-        wall_height: float = 500.0,
-        markers: tuple[ArenaMarker, ...] = (),
-        tokens: tuple[Token, ...] = (),
-    ) -> None:
-        set_fields(
-            self, width=width, length=length, wall_height=wall_height, markers=markers,
-            tokens=tokens,
-        )
+    width: float = 5750.0
+    length: float = 5750.0
+    wall_height: float = 500.0
+    markers: tuple[ArenaMarker, ...] = ()
+    tokens: tuple[Token, ...] = ()
 
     @classmethod
     def standard(
@@ -222,22 +181,16 @@ class Arena:
         )
 
 
-@record
+@dataclass(frozen=True)
 class Pose:
     """Where the robot is: x, y (mm) of its centre and its heading (radians, from east)."""
-
-    __slots__ = ("heading", "x", "y")
-    _fields: ClassVar[tuple[str, ...]] = ("x", "y", "heading")
 
     x: float
     y: float
     heading: float
 
-    def __init__(self, x: float, y: float, heading: float) -> None:
-        set_fields(self, x=x, y=y, heading=heading)
 
-
-@record
+@dataclass(frozen=True)
 class DifferentialDrive:
     """Which motors drive the wheels, and how fast the robot goes.
 
@@ -248,26 +201,13 @@ class DifferentialDrive:
     :param radius: how far the robot reaches from its centre, mm (it stops at the walls).
     """
 
-    __slots__ = ("left", "max_speed", "radius", "right", "track_width")
-    _fields: ClassVar[tuple[str, ...]] = ("left", "right", "max_speed", "track_width", "radius")
+    left: tuple[int, int] = (0, 0)
+    right: tuple[int, int] = (0, 1)
+    max_speed: float = 1000.0
+    track_width: float = 300.0
+    radius: float = 200.0
 
-    left: tuple[int, int]
-    right: tuple[int, int]
-    max_speed: float
-    track_width: float
-    radius: float
-
-    def __init__(
-        self,
-        left: tuple[int, int] = (0, 0),
-        right: tuple[int, int] = (0, 1),
-        max_speed: float = 1000.0,
-        track_width: float = 300.0,
-        radius: float = 200.0,
-    ) -> None:
-        set_fields(self,
-            left=left, right=right, max_speed=max_speed, track_width=track_width, radius=radius,
-        )
+    def __post_init__(self) -> None:
         for name in ("max_speed", "track_width", "radius"):
             value = getattr(self, name)
             if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):

@@ -16,9 +16,9 @@ import copy
 import functools
 import math
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar
 
-from j5aio._records import record, set_fields
 from j5aio.backends.camera.frames import FrameCameraBackend
 from j5aio.boards.camera import CameraBoard
 
@@ -150,19 +150,13 @@ def scene(world: SimulatedWorld) -> list[QuadItem | MarkerItem]:
     return items
 
 
-@record
+@dataclass(frozen=True)
 class VisibleMarker:
     """Where a marker truly is from the camera: what a perfect ``see()`` would report."""
-
-    __slots__ = ("marker_id", "orientation", "position")
-    _fields: ClassVar[tuple[str, ...]] = ("marker_id", "position", "orientation")
 
     marker_id: int
     position: Position
     orientation: Orientation
-
-    def __init__(self, marker_id: int, position: Position, orientation: Orientation) -> None:
-        set_fields(self, marker_id=marker_id, position=position, orientation=orientation)
 
 
 def visible_markers(world: SimulatedWorld, camera: SimulatedCamera) -> list[VisibleMarker]:

@@ -42,9 +42,8 @@ import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import Any
 
-from j5aio._records import record, set_fields
 from j5aio.components._checks import check_number, describe
 from j5aio.vision.sizes import FAMILY_SIZE, MarkerSizes
 
@@ -79,7 +78,7 @@ def _marker_id(value: object, name: str) -> int:
     return value
 
 
-@record
+@dataclass(frozen=True)
 class WallMarker:
     """A marker fixed on a wall of the arena.
 
@@ -94,27 +93,21 @@ class WallMarker:
     :raises ValueError: an id outside AprilTag 36h11, a size not above 0, a value not finite.
     """
 
-    __slots__ = ("facing", "id", "size", "x", "y", "z")
-    _fields: ClassVar[tuple[str, ...]] = ("id", "x", "y", "facing", "size", "z")
-
     id: int
     x: float
     y: float
     facing: float
-    size: float
-    z: float
+    size: float = 150.0
+    z: float = 250.0
 
-    def __init__(
-        self, id: int, x: float, y: float, facing: float, size: float = 150.0, z: float = 250.0,
-    ) -> None:
-        _marker_id(id, "a wall marker's id")
-        name = f"wall marker {id}'s"
-        x, y, facing, z = (
-            _number(value, f"{name} {attribute}")
-            for attribute, value in (("x", x), ("y", y), ("facing", facing), ("z", z))
-        )
-        size = _number(size, f"{name} size", positive=True)
-        set_fields(self, id=id, x=x, y=y, facing=facing, size=size, z=z)
+    def __post_init__(self) -> None:
+        _marker_id(self.id, "a wall marker's id")
+        name = f"wall marker {self.id}'s"
+        for attribute in ("x", "y", "facing", "z"):
+            object.__setattr__(
+                self, attribute, _number(getattr(self, attribute), f"{name} {attribute}")
+            )
+        object.__setattr__(self, "size", _number(self.size, f"{name} size", positive=True))
 
 
 @dataclass(frozen=True)

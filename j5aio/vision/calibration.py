@@ -13,10 +13,10 @@ from __future__ import annotations
 
 import math
 import sys
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import ClassVar, Final
+from typing import Final
 
-from j5aio._records import record, set_fields
 from j5aio.components._checks import check_number
 
 __all__ = ["KNOWN_CALIBRATIONS", "CameraCalibration", "known_calibration"]
@@ -29,7 +29,7 @@ def _pixels(name: str, value: object, low: float) -> float:
     )
 
 
-@record
+@dataclass(frozen=True)
 class CameraCalibration:
     """The pinhole model of one camera at one resolution.
 
@@ -45,30 +45,18 @@ class CameraCalibration:
         negative, or there are not 0, 4, 5, 8, 12 or 14 distortion coefficients.
     """
 
-    __slots__ = ("cx", "cy", "distortion", "fx", "fy", "resolution")
-    _fields: ClassVar[tuple[str, ...]] = ("fx", "fy", "cx", "cy", "distortion", "resolution")
-
     fx: float
     fy: float
     cx: float
     cy: float
-    distortion: tuple[float, ...]
-    resolution: tuple[int, int] | None
+    distortion: tuple[float, ...] = field(default=())
+    resolution: tuple[int, int] | None = None
 
-    def __init__(
-        self,
-        fx: float,
-        fy: float,
-        cx: float,
-        cy: float,
-        distortion: tuple[float, ...] = (),
-        resolution: tuple[int, int] | None = None,
-    ) -> None:
-        given = {"fx": fx, "fy": fy, "cx": cx, "cy": cy}
-        for name, value in given.items():
+    def __post_init__(self) -> None:
+        for name in ("fx", "fy", "cx", "cy"):
             low = sys.float_info.min if name.startswith("f") else 0.0
-            given[name] = _pixels(name, value, low)
-        coefficients = tuple(distortion)
+            object.__setattr__(self, name, _pixels(name, getattr(self, name), low))
+        coefficients = tuple(self.distortion)
         if len(coefficients) not in (0, 4, 5, 8, 12, 14):
             raise ValueError(
                 "distortion must have 0, 4, 5, 8, 12 or 14 coefficients (OpenCV's models), "
@@ -77,12 +65,10 @@ class CameraCalibration:
         for c in coefficients:
             if isinstance(c, bool) or not isinstance(c, int | float) or not math.isfinite(c):
                 raise TypeError(f"distortion coefficients must be finite numbers, not {c!r}")
-        if resolution is not None:
-            width, height = resolution
-            resolution = (int(width), int(height))
-        set_fields(
-            self, **given, distortion=tuple(float(c) for c in coefficients), resolution=resolution,
-        )
+        object.__setattr__(self, "distortion", tuple(float(c) for c in coefficients))
+        if self.resolution is not None:
+            width, height = self.resolution
+            object.__setattr__(self, "resolution", (int(width), int(height)))
 
     def scaled_to(self, width: int, height: int) -> CameraCalibration:
         """Return this calibration for the same camera at another resolution.

@@ -548,20 +548,3 @@ def test_in_sbots_folder_metadata_json_is_sbots_format(
     monkeypatch.setenv(SBOT_METADATA_VARIABLE, str(tmp_path / "stick"))
     with pytest.raises(MetadataError, match="missing: 'is_competition'"):
         load_metadata([])  # sbot's folder: sbot's format, which needs both fields
-
-
-def test_metadata_is_a_frozen_record_equal_by_its_fields() -> None:
-    import pickle
-    from dataclasses import FrozenInstanceError
-
-    match = Metadata("B", 2, Mode.COMP, 150.0)
-    assert match == Metadata(arena="B", zone=2, mode=Mode.COMP, duration=150.0)
-    assert match != Metadata("B", 3, Mode.COMP, 150.0)
-    assert hash(match) == hash(Metadata("B", 2, Mode.COMP, 150.0))
-    assert repr(match) == (
-        "Metadata(arena='B', zone=2, mode=<Mode.COMP: 'COMP'>, duration=150.0, "
-        "marker_offset=0, source=None, wifi_enabled=None, origin=None)"
-    )
-    assert pickle.loads(pickle.dumps(match)) == match
-    with pytest.raises(FrozenInstanceError):
-        match.zone = 1  # type: ignore[misc]

@@ -149,20 +149,3 @@ def test_find_config_reads_the_working_directory(
         monkeypatch.delenv(name, raising=False)
     config = find_config()
     assert config is not None and config.host == "10.0.0.5"
-
-
-def test_a_config_is_a_frozen_record_that_hides_its_password() -> None:
-    import pickle
-    from dataclasses import FrozenInstanceError
-
-    config = ServiceConfig(host="h", username="u", password="p")
-    assert config == ServiceConfig("h", 1883, "astoria", False, False, "u", "p")
-    assert config != ServiceConfig(host="h", username="u", password="q")
-    assert hash(config) == hash(ServiceConfig(host="h", username="u", password="p"))
-    assert repr(config) == (
-        "ServiceConfig(host='h', port=1883, topic_prefix='astoria', tls=False, "
-        "mqtt_v311=False, username='u', frame_topic='camera/annotated', source='defaults')"
-    )
-    assert pickle.loads(pickle.dumps(config)) == config
-    with pytest.raises(FrozenInstanceError):
-        config.port = 1  # type: ignore[misc]
