@@ -146,9 +146,11 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         """The link to the board (for tools and tests)."""
         return self._link
 
+    _acknowledges_later: ClassVar[bool] = True  # (the interface calls read the link's state)
+
     def owes_acknowledgement(self) -> bool:
         """Whether the link still owes the acknowledgement of a command confirmed later."""
-        return self._link.acknowledgement_owed is not None
+        return self._link.unconfirmed is not None
 
     async def confirm_acknowledgement(self) -> None:
         """Read and check the acknowledgement the link still owes (see :meth:`command`).

@@ -193,8 +193,14 @@ class SimulatorStream(ByteStream):
             stream is closed.
         """
         await anyio.lowlevel.checkpoint_if_cancelled()
-        self._check_usable()
-        response = self._simulator.receive(data)
+        simulator = self._simulator
+        if (
+            self._closed
+            or not simulator.connected
+            or getattr(simulator, "connection", None) != self._connection
+        ):
+            self._check_usable()  # raises, saying why
+        response = simulator.receive(data)
         self._queue_output(response, after=self._wire_time(data))
 
     def send_now(self, data: bytes, timeout: float) -> None:

@@ -21,7 +21,7 @@ from __future__ import annotations
 import abc
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Generic, TypeVar
+from typing import ClassVar, Generic, TypeVar
 
 from j5aio.errors import UnexpectedReplyError
 
@@ -63,14 +63,11 @@ class ReplyReader(abc.ABC, Generic[T_co]):
     def describe(self) -> str:
         """Say in a few words what this reader waits for, for error messages."""
 
-    @property
-    def correlates(self) -> bool:
-        """Whether this reader recognises, and skips, replies to other requests.
-
-        False by default: a reader that only finds where a reply ends cannot tell a late
-        reply to an earlier request from its own.
-        """
-        return False
+    #: Whether this reader recognises, and skips, replies to other requests. False by
+    #: default: a reader that only finds where a reply ends cannot tell a late reply to
+    #: an earlier request from its own. (A class attribute, read on every exchange; a
+    #: subclass may make it a property.)
+    correlates: ClassVar[bool] = False
 
 
 def _split_line(
@@ -326,10 +323,8 @@ class MatchingReader(ReplyReader[T_co]):
         name = getattr(self.belongs, "__name__", repr(self.belongs))
         return f"{self.reader.describe()}, for which {name} holds"
 
-    @property
-    def correlates(self) -> bool:
-        """Always true: foreign replies are recognised and skipped."""
-        return True
+    #: Always true: foreign replies are recognised and skipped.
+    correlates: ClassVar[bool] = True
 
 
 def matching(

@@ -13,7 +13,7 @@ even a late answer to an earlier probe is mistaken for it.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Awaitable, Callable
 from typing import TypeVar
 
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
@@ -23,7 +23,7 @@ from j5aio.backends.hardware.sr.v4.text_protocol import (
     echo_probe,
 )
 from j5aio.backends.hardware.transports.readers import read_line
-from j5aio.errors import CommunicationTimeoutError
+from j5aio.errors import BoardDisconnectionError, CommunicationTimeoutError
 
 __all__ = ["SRTextBackend"]
 
@@ -46,7 +46,17 @@ class SRTextBackend(SerialHardwareBackend):
     async def _query(self, command: bytes) -> bytes:
         """Send ``command`` and return its reply line (a NACK raises :class:`NackError`)."""
         try:
-            reply = await self.exchange(command, _REPLY)
+            if self._lost or self._closed_for_good:
+                reply = await self.exchange(command, _REPLY)
+            else:  # the board is there: straight to the link, as exchange() would go
+                try:
+                    reply = await self._link.exchange(command, _REPLY)
+                except BoardDisconnectionError as lost:
+
+                    def again() -> Awaitable[bytes]:  # the link is looked up anew
+                        return self._link.exchange(command, _REPLY)
+
+                    reply = await self._retry_after(lost, again, idempotent=True)
         except CommunicationTimeoutError as error:
             explained = self._explain_timeout(error)
             if explained is error:
@@ -65,7 +75,16 @@ class SRTextBackend(SerialHardwareBackend):
             return then(check_not_nack(self.board.name, command, reply))
 
         try:
-            return await self.exchange(command, _REPLY, then=checked)
+            if self._lost or self._closed_for_good:
+                return await self.exchange(command, _REPLY, then=checked)
+            try:  # the board is there: straight to the link, as exchange() would go
+                return await self._link.exchange(command, _REPLY, then=checked)
+            except BoardDisconnectionError as lost:
+
+                def again() -> Awaitable[T]:  # the link is looked up anew
+                    return self._link.exchange(command, _REPLY, then=checked)
+
+                return await self._retry_after(lost, again, idempotent=True)
         except CommunicationTimeoutError as error:
             explained = self._explain_timeout(error)
             if explained is error:
@@ -96,7 +115,19 @@ class SRTextBackend(SerialHardwareBackend):
                 then()
 
         try:
-            await self.command(command, _REPLY, then=acknowledged, idempotent=idempotent)
+            if self._lost or self._closed_for_good:
+                await self.command(command, _REPLY, then=acknowledged, idempotent=idempotent)
+                return
+            # The board is there: straight to the link, as :meth:`command` would go (one
+            # hop fewer on every motor, servo and power output command).
+            try:
+                await self._link.command(command, _REPLY, then=acknowledged)
+            except BoardDisconnectionError as lost:
+
+                def again() -> Awaitable[None]:  # the link is looked up anew
+                    return self._link.command(command, _REPLY, then=acknowledged)
+
+                await self._retry_after(lost, again, idempotent=idempotent)
         except CommunicationTimeoutError as error:
             explained = self._explain_timeout(error)
             if explained is error:
