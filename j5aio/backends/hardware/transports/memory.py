@@ -214,8 +214,14 @@ class SimulatorStream(ByteStream):
         if max_bytes < 1:
             raise ValueError(f"max_bytes must be at least 1, not {max_bytes}")
         await anyio.lowlevel.checkpoint()
+        simulator = self._simulator
         while True:
-            self._check_usable()
+            if (
+                self._closed
+                or not simulator.connected
+                or getattr(simulator, "connection", None) != self._connection
+            ):
+                self._check_usable()  # raises, saying why
             now = time.monotonic()
             if self._pending and self._pending[0][0] <= now:
                 return self._take_due(now, max_bytes)

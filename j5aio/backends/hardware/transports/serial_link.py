@@ -151,16 +151,15 @@ class _Progress:
     that a task that finishes it (after ``Task.cancel``) goes on where it stopped.
     """
 
-    __slots__ = ("bracket", "deadline", "opened", "remaining", "replied", "reply", "seconds")
-
-    def __init__(self) -> None:
-        self.deadline: float | None = None
-        self.seconds = 0.0
-        self.bracket: tuple[bytes, bytes] | None = None
-        self.opened = False
-        self.replied = False
-        self.reply: Any = None
-        self.remaining = 0
+    # Defaults on the class, and no ``__init__``: making one runs no Python code (it is
+    # made on the path of every acknowledgement confirmed later).
+    deadline: float | None = None
+    seconds: float = 0.0
+    bracket: tuple[bytes, bytes] | None = None
+    opened: bool = False
+    replied: bool = False
+    reply: Any = None
+    remaining: int = 0
 
 
 class _OwedAcknowledgement:
@@ -563,7 +562,8 @@ class SerialLink(AsyncResource):
         """
         if self.unconfirmed is None:
             return
-        await self._acquire()
+        await anyio.lowlevel.checkpoint_if_cancelled()  # a cancelled caller takes nothing
+        await self._lock.acquire()
         try:
             if self.unconfirmed is not None:
                 await self._confirm_locked()
@@ -583,19 +583,22 @@ class SerialLink(AsyncResource):
         assert owed is not None
         self.unconfirmed = None
         progress = _Progress()
-        progress.deadline = max(owed.deadline, self._loop_time() + self._quiet_time)
+        progress.deadline = max(
+            owed.deadline, asyncio.get_running_loop().time() + self._quiet_time
+        )
         progress.seconds = owed.seconds
-        shown = _preview(owed.request)
         try:
             with anyio.CancelScope(shield=True):
                 reply = await self._finish_reply(owed.request, owed.reader, progress)
                 if owed.then is not None:
                     owed.then(reply)
         except BoardDisconnectionError as exc:
+            shown = _preview(owed.request)
             raise BoardDisconnectionError(
                 f"{exc} (while reading the acknowledgement of the earlier command {shown})"
             ) from exc
         except CommunicationError as exc:
+            shown = _preview(owed.request)
             _log.warning("%s: the earlier command %s failed: %s", self._name, shown, exc)
             if making_safe():
                 return
@@ -605,7 +608,10 @@ class SerialLink(AsyncResource):
                 owed.request,
             ) from exc
         except asyncio.CancelledError:
-            _log.debug("%s: the acknowledgement of %s was not read (cancelled)", self._name, shown)
+            _log.debug(
+                "%s: the acknowledgement of %s was not read (cancelled)",
+                self._name, _preview(owed.request),
+            )
             raise
 
     async def _exchange_held(
@@ -1146,5 +1152,6 @@ class SerialLink(AsyncResource):
             raise BoardDisconnectionError(f"{self._name}: the port has gone ({exc!r})") from exc
         except OSError as exc:
             raise CommunicationError(f"{self._name}: reading failed: {exc}") from exc
-        log_wire(self._wire, "<-", chunk)
+        if self._wire.isEnabledFor(TRACE):
+            log_wire(self._wire, "<-", chunk)
         return chunk
