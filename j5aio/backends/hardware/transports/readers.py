@@ -111,11 +111,23 @@ class LineReader(ReplyReader[bytes]):
 
     def parse(self, buffer: bytes | bytearray) -> tuple[bytes, int] | None:
         """Return the first line of ``buffer``, if it is complete."""
-        found = _split_line(buffer, 0, self.terminator, self.max_length)
-        if found is None:
-            return None
-        line, end = found
-        return (line if self.keep_ends else _strip_line(line, self.terminator)), end
+        # Every reply of a line protocol is read here: the common cases are written out
+        # (a line too long is left to _split_line, which refuses it).
+        terminator = self.terminator
+        end = buffer.find(terminator)
+        if end < 0:
+            if len(buffer) <= self.max_length:
+                return None
+            return _split_line(buffer, 0, terminator, self.max_length)
+        end += len(terminator)
+        if end > self.max_length:
+            return _split_line(buffer, 0, terminator, self.max_length)
+        line = bytes(buffer[:end])
+        if not self.keep_ends:
+            line = line[: -len(terminator)]
+            if terminator == b"\n" and line.endswith(b"\r"):
+                line = line[:-1]
+        return line, end
 
     def describe(self) -> str:
         """Describe this reader."""

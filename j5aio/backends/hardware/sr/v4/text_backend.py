@@ -18,6 +18,8 @@ from typing import TypeVar
 
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
 from j5aio.backends.hardware.sr.v4.text_protocol import (
+    ACK,
+    NACK_PREFIX,
     check_ack,
     check_not_nack,
     echo_probe,
@@ -62,7 +64,9 @@ class SRTextBackend(SerialHardwareBackend):
             if explained is error:
                 raise
             raise explained from error
-        return check_not_nack(self.board.name, command, reply)
+        if reply.startswith(NACK_PREFIX):
+            check_not_nack(self.board.name, command, reply)  # raises, with the reason
+        return reply
 
     async def _query_then(self, command: bytes, then: Callable[[bytes], T]) -> T:
         """Send ``command`` and return ``then(reply line)``, as :meth:`_query` checks it.
@@ -72,7 +76,9 @@ class SRTextBackend(SerialHardwareBackend):
         """
 
         def checked(reply: bytes) -> T:
-            return then(check_not_nack(self.board.name, command, reply))
+            if reply.startswith(NACK_PREFIX):
+                check_not_nack(self.board.name, command, reply)  # raises, with the reason
+            return then(reply)
 
         try:
             if self._lost or self._closed_for_good:
@@ -110,7 +116,8 @@ class SRTextBackend(SerialHardwareBackend):
         """
 
         def acknowledged(reply: bytes) -> None:
-            check_ack(self.board.name, command, reply)
+            if reply != ACK:
+                check_ack(self.board.name, command, reply)  # raises, saying what came
             if then is not None:
                 then()
 
