@@ -159,10 +159,9 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         :raises ~j5aio.errors.BoardDisconnectionError: the port has gone (the board is
             marked lost, as any call that finds it gone does).
         """
-        if self._lost or self._closed_for_good:
-            await self._guarded(lambda: self._link.confirm(), idempotent=False)
-            return
-        try:  # the board is there: straight to the link (on every call that owes one)
+        try:  # the steps of _guarded, written out (this runs on every call that owes one)
+            if self._lost or self._closed_for_good:
+                await self._check_connected()
             await self._link.confirm()
         except BoardDisconnectionError as error:
             await self._retry_after(error, lambda: self._link.confirm(), idempotent=False)

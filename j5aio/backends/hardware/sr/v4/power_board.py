@@ -162,10 +162,9 @@ class SRV4PowerBoardHardwareBackend(
                 interval=self.BUTTON_POLL_INTERVAL, then=lambda _reply: report(),
             )
 
-        if self._lost or self._closed_for_good:
-            await self._guarded(poll, idempotent=True)
-            return
-        try:  # the board is there: straight to the link (the poll written out)
+        try:  # the steps of _guarded, written out: one call fewer to the first poll
+            if self._lost or self._closed_for_good:
+                await self._check_connected()
             await self._link.poll_control_read(
                 codec.BUTTON.index, codec.BUTTON.length, _button_held,
                 interval=self.BUTTON_POLL_INTERVAL, then=lambda _reply: report(),

@@ -48,17 +48,16 @@ class SRTextBackend(SerialHardwareBackend):
     async def _query(self, command: bytes) -> bytes:
         """Send ``command`` and return its reply line (a NACK raises :class:`NackError`)."""
         try:
-            if self._lost or self._closed_for_good:
-                reply = await self.exchange(command, _REPLY)
-            else:  # the board is there: straight to the link, as exchange() would go
-                try:
-                    reply = await self._link.exchange(command, _REPLY)
-                except BoardDisconnectionError as lost:
+            try:  # the steps of the backend's guarded exchange, written out (see _act)
+                if self._lost or self._closed_for_good:
+                    await self._check_connected()
+                reply = await self._link.exchange(command, _REPLY)
+            except BoardDisconnectionError as lost:
 
-                    def again() -> Awaitable[bytes]:  # the link is looked up anew
-                        return self._link.exchange(command, _REPLY)
+                def again() -> Awaitable[bytes]:  # the link is looked up anew
+                    return self._link.exchange(command, _REPLY)
 
-                    reply = await self._retry_after(lost, again, idempotent=True)
+                reply = await self._retry_after(lost, again, idempotent=True)
         except CommunicationTimeoutError as error:
             explained = self._explain_timeout(error)
             if explained is error:
@@ -81,9 +80,9 @@ class SRTextBackend(SerialHardwareBackend):
             return then(reply)
 
         try:
-            if self._lost or self._closed_for_good:
-                return await self.exchange(command, _REPLY, then=checked)
-            try:  # the board is there: straight to the link, as exchange() would go
+            try:  # the steps of the backend's guarded exchange, written out (see _act)
+                if self._lost or self._closed_for_good:
+                    await self._check_connected()
                 return await self._link.exchange(command, _REPLY, then=checked)
             except BoardDisconnectionError as lost:
 
@@ -122,12 +121,12 @@ class SRTextBackend(SerialHardwareBackend):
                 then()
 
         try:
-            if self._lost or self._closed_for_good:
-                await self.command(command, _REPLY, then=acknowledged, idempotent=idempotent)
-                return
-            # The board is there: straight to the link, as :meth:`command` would go (one
-            # hop fewer on every motor, servo and power output command).
+            # What the backend's command() does, written out: one call fewer on every
+            # motor, servo and power output command. A lost board is looked for first;
+            # one that vanishes under the call is handed to the reconnection policy.
             try:
+                if self._lost or self._closed_for_good:
+                    await self._check_connected()
                 await self._link.command(command, _REPLY, then=acknowledged)
             except BoardDisconnectionError as lost:
 
