@@ -680,7 +680,9 @@ class SerialLink(AsyncResource):
                         # Nothing awaits from here to the end of the scope, so its
                         # deadline cannot fire any more; leaving the scope drops it.
                         finished = True
-                        self._after_reply(request, reader)
+                        self._dirty = False
+                        if self._buffer and not correlates:
+                            self._after_reply(request, reader)  # more than the reply came
                     finally:
                         if not finished:
                             self._dirty = True
@@ -860,11 +862,6 @@ class SerialLink(AsyncResource):
             return self._default_timeout
         return _check_duration("timeout", timeout)
 
-    @staticmethod
-    def _loop_time() -> float:
-        """The event loop's clock, which anyio's deadlines use (read without sniffio)."""
-        return asyncio.get_running_loop().time()
-
     def _check_open(self) -> None:
         if self._closed:
             raise BoardDisconnectionError(f"{self._name}: the link is closed")
@@ -983,7 +980,9 @@ class SerialLink(AsyncResource):
                         finished = progress.remaining <= 0
                 reply = await self._read_reply(reader, request)
                 finished = True
-                self._after_reply(request, reader)
+                self._dirty = False
+                if self._buffer and not reader.correlates:
+                    self._after_reply(request, reader)  # more than the reply came
                 return reply
             raise self._timed_out(request, reader, progress.seconds)
         finally:
@@ -992,17 +991,19 @@ class SerialLink(AsyncResource):
                 self._owe(progress.remaining if progress.bracket else _lines_of(reader))
 
     def _after_reply(self, request: bytes, reader: ReplyReader[Any]) -> None:
-        # The line was clean when the exchange began (drained, resynchronised, or
-        # correlated), so it is dirty now only if more than the reply came.
-        self._dirty = False
-        if self._buffer and not reader.correlates:
-            _log.debug(
-                "%s: reply to %r followed by %s; the next exchange drains first",
-                self._name,
-                request,
-                _preview(self._buffer),
-            )
-            self._dirty = True
+        """Mark the link dirty: bytes came after the reply to ``request``.
+
+        The line was clean when the exchange began (drained, resynchronised, or
+        correlated), so it is dirty now only if more than the reply came; a correlating
+        reader skips whatever it is, so its callers do not call this.
+        """
+        _log.debug(
+            "%s: reply to %r followed by %s; the next exchange drains first",
+            self._name,
+            request,
+            _preview(self._buffer),
+        )
+        self._dirty = True
 
     def _timed_out(
         self, request: bytes, reader: ReplyReader[Any], seconds: float
@@ -1126,10 +1127,9 @@ class SerialLink(AsyncResource):
         return discarded
 
     async def _write(self, data: bytes) -> None:
+        """Write ``data`` (a probe, or a bracketed request: never empty), logged."""
         if self._wire.isEnabledFor(TRACE):
             log_wire(self._wire, "->", data)
-        if not data:
-            return
         try:
             await self._stream.send(data)
         except CommunicationError:

@@ -459,6 +459,19 @@ async def test_each_request_reads_the_acknowledgement_owed_first() -> None:
         tg.cancel_scope.cancel()
 
 
+async def test_a_resynchronisation_probe_is_logged_and_its_failed_write_wrapped(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    link = SerialLink(BrokenStream(OSError(5, "Input/output error"), on_send=True), name="p")
+    link.set_resync(b"?", b"!")
+    link.mark_dirty()
+    caplog.set_level(TRACE, logger="j5aio.wire")
+    with pytest.raises(CommunicationError, match=r"sending b'\?' failed") as caught:
+        await link.exchange(b"x\n", read_line(), timeout=1)
+    assert not isinstance(caught.value, BoardDisconnectionError)
+    assert [r.getMessage() for r in caplog.records if r.name == "j5aio.wire.p"] == ["-> b'?'"]
+
+
 async def test_other_exceptions_from_a_stream_are_not_hidden() -> None:
     link = SerialLink(BrokenStream(AssertionError("script broken"), on_send=True))
     with pytest.raises(AssertionError, match="script broken"):
