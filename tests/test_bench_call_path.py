@@ -177,13 +177,27 @@ def test_profiling_ends_with_the_context(toy: tuple[ModuleType, ModuleType, Path
 
 def test_a_real_case_counts_the_async_motor_call_to_the_simulated_board() -> None:
     result = bench.run_case("async motor.power fw3")
-    [segment] = result["segments"]
-    assert segment["functions"][0] == "j5aio.components.motor:Motor.set_power"
-    assert segment["ended_by"] == "j5aio.simulator.base:SerialBoardSimulator.receive"
-    assert not any(name.startswith("j5aio.simulator.") for name in segment["functions"])
+    steady, owed = result["segments"]  # fw 3 sends no acknowledgement: the same path
+    for segment in (steady, owed):
+        assert segment["functions"][0] == "j5aio.components.motor:Motor.set_power"
+        assert segment["ended_by"] == "j5aio.simulator.base:SerialBoardSimulator.receive"
+        assert not any(name.startswith("j5aio.simulator.") for name in segment["functions"])
+    assert steady["functions"] == owed["functions"]
     lines = bench.describe(result, quiet=True)
+    count = len(steady["functions"])
     assert lines == [
-        f"  async motor.power fw3: to the bytes: {len(segment['functions'])} functions"
-        f"{'  MET' if len(segment['functions']) <= 15 else '  NOT MET'}"
+        f"  async motor.power fw3: to the bytes (nothing owed): {count} functions"
+        f"{'  MET' if count <= 15 else '  NOT MET'}"
+        " (stopped at j5aio.simulator.base:SerialBoardSimulator.receive)",
+        f"  async motor.power fw3: to the bytes (the last ACK owed): {count} functions"
         " (stopped at j5aio.simulator.base:SerialBoardSimulator.receive)",
     ]
+
+
+def test_a_sync_fw4_command_is_counted_with_nothing_owed_and_with_the_last_ack_owed() -> None:
+    steady, owed = bench.run_case("sync motor.power fw4")["segments"]
+    confirm = "j5aio.backends.hardware.serial_backend:SerialHardwareBackend.confirm_acknowledgement"
+    # After a query nothing is owed; after a command, its ACK is read first, and counted.
+    assert confirm not in steady["functions"]
+    assert confirm in owed["functions"]
+    assert set(steady["functions"]) < set(owed["functions"])

@@ -29,10 +29,15 @@ from __future__ import annotations
 from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
+from typing import Final
 
-__all__ = ["acknowledge_later", "acknowledging_later"]
+__all__ = ["LATER_SWITCH", "acknowledge_later", "acknowledging_later"]
 
 _LATER: ContextVar[bool] = ContextVar("j5aio_acknowledge_later", default=False)
+
+#: The context variable that :func:`acknowledge_later` sets: ``LATER_SWITCH.get()`` is
+#: :func:`acknowledging_later` read without a call of it, for a link's hot path.
+LATER_SWITCH: Final = _LATER
 
 
 @contextmanager

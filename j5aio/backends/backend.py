@@ -99,7 +99,7 @@ def _logged(
     @functools.wraps(method)
     async def logged_method(*args: Any, **kwargs: Any) -> Any:
         backend = args[0]
-        if backend.owes_acknowledgement():
+        if backend._acknowledges_later and backend._link.unconfirmed is not None:
             # An earlier command's reply is still to be read (it was confirmed later): read
             # it first, so that what the backend remembers of its board is up to date.
             await backend.confirm_acknowledgement()
@@ -159,6 +159,11 @@ class Backend(Generic[BoardT], metaclass=BackendMeta):
 
     #: The class of board this backend drives.
     board: ClassVar[type[Board]]
+    #: Whether commands may be confirmed later on this backend's link: then it has a
+    #: ``_link`` whose ``unconfirmed`` is not ``None`` while an acknowledgement is owed,
+    #: which every interface call tests first (an attribute read, no call: see
+    #: :meth:`owes_acknowledgement`, which says the same).
+    _acknowledges_later: ClassVar[bool] = False
 
     @classmethod
     @abstractmethod

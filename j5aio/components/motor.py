@@ -72,7 +72,11 @@ class Motor(IdentifiedComponent[MotorInterface]):
         :raises ValueError: ``power`` is outside [-1, 1], or NaN.
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
-        await self._backend.set_motor_state(self._identifier, check_motor_state(power))
+        # A float in range (the common case) is checked here, without a call; anything
+        # else (an int, a special state, NaN, bad input) by check_motor_state.
+        if type(power) is not float or not -1.0 <= power <= 1.0:
+            power = check_motor_state(power)
+        await self._backend.set_motor_state(self._identifier, power)
 
 
 def check_motor_state(power: object, *, name: str = "motor power") -> MotorState:

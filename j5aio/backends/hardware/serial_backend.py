@@ -146,9 +146,11 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         """The link to the board (for tools and tests)."""
         return self._link
 
+    _acknowledges_later: ClassVar[bool] = True  # (the interface calls read the link's state)
+
     def owes_acknowledgement(self) -> bool:
         """Whether the link still owes the acknowledgement of a command confirmed later."""
-        return self._link.acknowledgement_owed is not None
+        return self._link.unconfirmed is not None
 
     async def confirm_acknowledgement(self) -> None:
         """Read and check the acknowledgement the link still owes (see :meth:`command`).
@@ -157,7 +159,12 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         :raises ~j5aio.errors.BoardDisconnectionError: the port has gone (the board is
             marked lost, as any call that finds it gone does).
         """
-        await self._guarded(lambda: self._link.confirm(), idempotent=False)
+        try:  # the steps of _guarded, written out (this runs on every call that owes one)
+            if self._lost or self._closed_for_good:
+                await self._check_connected()
+            await self._link.confirm()
+        except BoardDisconnectionError as error:
+            await self._retry_after(error, lambda: self._link.confirm(), idempotent=False)
 
     @property
     def firmware_version(self) -> str | None:

@@ -220,3 +220,24 @@ async def test_the_motor_cache_changes_only_once_the_board_has_acknowledged() ->
     assert backend.last_sent == [None, None]
     stream.assert_all_used()
     await board.close()
+
+
+async def test_a_refused_query_raises_the_boards_reason() -> None:
+    stream = ScriptedStream([
+        (PROBE, PROBE_REPLY),
+        (b"MOT:1:GET?\n", b"NACK:Busy\n"),
+        (b"MOT:1:GET?\n", b"0:0\n"),
+        (b"*STATUS?\n", b"NACK:Later\n"),
+    ])
+    board = await Backend.from_stream(stream, port="scripted", serial_number="srM")
+    backend = board.backend
+    assert isinstance(backend, Backend)
+    with pytest.raises(NackError, match=r"MOT:1:GET\?.*Busy"):
+        await backend.get_motor_state(1)
+    assert await backend.get_motor_state(1) is MotorSpecialState.COAST
+    seen: list[bytes] = []
+    with pytest.raises(NackError, match=r"\*STATUS\?.*Later"):
+        await backend._query_then(b"*STATUS?\n", seen.append)
+    assert seen == []  # a refusal never reaches the reply's reader
+    stream.assert_all_used()
+    await board.close()

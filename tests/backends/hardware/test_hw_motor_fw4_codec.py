@@ -31,7 +31,8 @@ def test_versions(version: str, ok: bool) -> None:
     [(1.0, b"MOT:0:SET:1000\n"), (-1.0, b"MOT:0:SET:-1000\n"), (0.5, b"MOT:0:SET:500\n"),
      (0.0, b"MOT:0:SET:0\n"), (0.0005, b"MOT:0:SET:0\n"), (0.0015, b"MOT:0:SET:2\n"),
      (-0.123, b"MOT:0:SET:-123\n"), (MotorSpecialState.BRAKE, b"MOT:0:SET:0\n"),
-     (MotorSpecialState.COAST, b"MOT:0:DISABLE\n")],
+     (MotorSpecialState.COAST, b"MOT:0:DISABLE\n"), (1, b"MOT:0:SET:1000\n"),
+     (-1, b"MOT:0:SET:-1000\n"), (0, b"MOT:0:SET:0\n")],
 )
 def test_encode_set(state: float | MotorSpecialState, line: bytes) -> None:
     assert codec.encode_set(0, state) == line
@@ -48,6 +49,10 @@ def test_encode_refuses_bad_input() -> None:
         codec.encode_set(0, 1.01)
     with pytest.raises(TypeError):
         codec.encode_set(0, True)
+    with pytest.raises(ValueError, match="between -1 and 1"):
+        codec.encode_set(0, float("nan"))
+    with pytest.raises(TypeError, match="float in"):
+        codec.encode_set(0, "0.5")  # type: ignore[arg-type]
     assert codec.encode_get(1) == b"MOT:1:GET?\n"
     assert codec.encode_current(1) == b"MOT:1:I?\n"
 

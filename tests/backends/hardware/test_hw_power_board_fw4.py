@@ -269,16 +269,24 @@ async def test_a_note_is_not_sent_again_after_a_reconnection(
 ) -> None:
     board, backend, _ = await connect(SRPowerBoardFw4Simulator("srABC"))
     seen: list[bool] = []
-    original = backend.command
 
-    async def spy(*args: object, **kwargs: object) -> None:
-        seen.append(bool(kwargs.get("idempotent", True)))
-        await original(*args, **kwargs)  # type: ignore[arg-type]
+    async def vanished(*args: object, **kwargs: object) -> None:
+        raise BoardDisconnectionError("the port has gone")
 
-    monkeypatch.setattr(backend, "command", spy)
-    await board.piezo.buzz(0.1, Note.A6)
-    await board.outputs[PowerBoardOutput.H0].set_is_enabled(True)
+    async def retry_after(
+        error: BoardDisconnectionError, call: object, *, idempotent: bool
+    ) -> None:
+        seen.append(idempotent)  # whether the command would be sent again
+        raise error
+
+    monkeypatch.setattr(backend.link, "command", vanished)
+    monkeypatch.setattr(backend, "_retry_after", retry_after)
+    with pytest.raises(BoardDisconnectionError):
+        await board.piezo.buzz(0.1, Note.A6)
+    with pytest.raises(BoardDisconnectionError):
+        await board.outputs[PowerBoardOutput.H0].set_is_enabled(True)
     assert seen == [False, True]
+    monkeypatch.undo()
     await board.close()
 
 

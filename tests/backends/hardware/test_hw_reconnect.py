@@ -10,15 +10,18 @@ from typing import Any
 import anyio
 import pytest
 
+from j5aio.backends.acknowledgements import acknowledge_later
 from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.reconnect import Reconnecting, ReconnectPolicy
 from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
 from j5aio.backends.hardware.sb.arduino_2024 import SBArduino2024HardwareBackend
 from j5aio.backends.hardware.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4HardwareBackend
+from j5aio.backends.hardware.sr.v4.motor_fw4_codec import parse_status
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
 from j5aio.backends.hardware.transports.memory import SimulatorStream
+from j5aio.backends.hardware.transports.readers import read_line
 from j5aio.backends.safe_state_pass import claim_attempt, safe_state_pass
 from j5aio.boards.board import Board
 from j5aio.boards.sr.v4.motor_board_fw4 import MotorBoardFw4
@@ -546,3 +549,96 @@ async def test_a_guarded_call_that_fails_for_good_forgets_the_board_by_default()
     with pytest.raises(BoardDisconnectionError, match="the board is disconnected"):
         await backend._guarded(vanish, idempotent=True)
     assert calls == ["call"]  # a lost board is not called
+
+
+async def test_a_brown_out_on_the_fw4_hot_paths_retries_what_may_be_repeated() -> None:
+    # Commands and queries go straight to the link while the board is there; a board
+    # that vanished under them is handled as any guarded call: found again, and the
+    # call retried if it may be repeated.
+    sim = SRMotorBoardFw4Simulator("srM2")
+    ports = [usb_port("/dev/ttyUSB0", "srM2", 0x0403, 0x6001,
+                      manufacturer="Student Robotics", product="MCV4B")]
+
+    async def opener(port: str, baudrate: int) -> Any:
+        return SimulatorStream(sim, time_scale=0)
+
+    options = DiscoveryOptions(port_source=lambda: ports, opener=opener, time_scale=0.01)
+    (board,) = await SRV4MotorBoardFw4HardwareBackend.discover(options=options)
+    assert isinstance(board, MotorBoardFw4)
+    backend = board.backend
+    assert isinstance(backend, SRV4MotorBoardFw4HardwareBackend)
+    backend.reconnect_policy = QUICK
+    await board.setup()
+    sim.unplug()
+    sim.plug()
+    await board.motors[0].set_power(0.5)  # a command, retried on the board that came back
+    assert sim.motors[0].value == 500
+    assert backend.reconnections == 1
+    sim.unplug()
+    sim.plug()
+    assert await board.motors[1].get_power() is MotorSpecialState.COAST  # a query, retried
+    assert backend.reconnections == 2
+    sim.unplug()
+    sim.plug()
+    status = await backend._query_then(  # retried too
+        b"*STATUS?\n", lambda reply: parse_status(backend.board.name, reply)
+    )
+    assert status.faults == (False, False)
+    assert backend.reconnections == 3
+    # An acknowledgement owed when the board vanished is not asked for again: the call
+    # that was to read it fails, and the next finds the board again.
+    with acknowledge_later():
+        await board.motors[0].set_power(0.25)
+        assert backend.owes_acknowledgement()
+        sim.unplug()
+        sim.plug()
+        with pytest.raises(BoardDisconnectionError, match="acknowledgement of the earlier"):
+            await board.motors[0].get_power()
+        assert not backend.owes_acknowledgement() and not backend.is_connected
+        await board.motors[0].get_power()  # the board is found again
+        assert backend.is_connected and backend.reconnections == 4
+    # A call to a board known to be lost looks for it first.
+    for call in (
+        lambda: board.motors[0].set_power(0.75),
+        lambda: backend._query_then(b"*STATUS?\n", lambda reply: reply),
+        lambda: backend.command(b"MOT:1:SET:100\n", read_line()),
+        backend.confirm_acknowledgement,
+    ):
+        sim.unplug()
+        with pytest.raises(BoardDisconnectionError):
+            await board.motors[1].get_power()
+        assert not backend.is_connected
+        sim.plug()
+        await call()
+        assert backend.is_connected
+    assert sim.motors[0].value == 750 and sim.motors[1].value == 100
+    assert backend.reconnections == 8
+    sim.unplug()
+    sim.plug()
+    await backend.command(b"MOT:1:SET:200\n", read_line())  # a backend's command, retried
+    assert sim.motors[1].value == 200 and backend.reconnections == 9
+    await board.close()
+
+
+async def test_a_brown_out_under_a_fw3_button_wait_is_retried() -> None:
+    kit = use_kit(KitConfig(power_boards=1, motor_boards=0, servo_boards=0, sb_arduinos=0))
+    board = (await SIMULATED_ENVIRONMENT.get_board_group(PowerBoard)).singular()
+    backend = board.backend
+    assert isinstance(backend, SRV4PowerBoardHardwareBackend)
+    sim = kit.power_boards[0]
+    sim.unplug()
+    sim.plug()
+    sim.press_start()
+    with anyio.fail_after(5):
+        await board.start_button.wait_until_pressed()  # the poll is retried
+    assert backend.reconnections == 1
+    backend.reconnect_policy = ReconnectPolicy(interval=0.0, retry_idempotent=False)
+    sim.unplug()
+    with pytest.raises(BoardDisconnectionError):
+        await board.battery_sensor.get_voltage()
+    assert not backend.is_connected
+    sim.plug()
+    with anyio.fail_after(5):
+        await board.start_button.wait_until_pressed()  # a lost board is looked for first
+    assert backend.is_connected and backend.reconnections == 2
+    await board.close()

@@ -193,8 +193,14 @@ class SimulatorStream(ByteStream):
             stream is closed.
         """
         await anyio.lowlevel.checkpoint_if_cancelled()
-        self._check_usable()
-        response = self._simulator.receive(data)
+        simulator = self._simulator
+        if (
+            self._closed
+            or not simulator.connected
+            or getattr(simulator, "connection", None) != self._connection
+        ):
+            self._check_usable()  # raises, saying why
+        response = simulator.receive(data)
         self._queue_output(response, after=self._wire_time(data))
 
     def send_now(self, data: bytes, timeout: float) -> None:
@@ -208,10 +214,19 @@ class SimulatorStream(ByteStream):
         if max_bytes < 1:
             raise ValueError(f"max_bytes must be at least 1, not {max_bytes}")
         await anyio.lowlevel.checkpoint()
+        simulator = self._simulator
         while True:
-            self._check_usable()
+            if (
+                self._closed
+                or not simulator.connected
+                or getattr(simulator, "connection", None) != self._connection
+            ):
+                self._check_usable()  # raises, saying why
             now = time.monotonic()
-            if self._pending and self._pending[0][0] <= now:
+            pending = self._pending
+            if pending and pending[0][0] <= now:
+                if len(pending) == 1 and len(pending[0][1]) <= max_bytes:
+                    return bytes(pending.popleft()[1])  # one reply, whole (the usual case)
                 return self._take_due(now, max_bytes)
             wait = self._poll_interval
             if self._pending:

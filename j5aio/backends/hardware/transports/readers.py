@@ -21,7 +21,7 @@ from __future__ import annotations
 import abc
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Generic, TypeVar
+from typing import ClassVar, Generic, TypeVar
 
 from j5aio.errors import UnexpectedReplyError
 
@@ -63,14 +63,11 @@ class ReplyReader(abc.ABC, Generic[T_co]):
     def describe(self) -> str:
         """Say in a few words what this reader waits for, for error messages."""
 
-    @property
-    def correlates(self) -> bool:
-        """Whether this reader recognises, and skips, replies to other requests.
-
-        False by default: a reader that only finds where a reply ends cannot tell a late
-        reply to an earlier request from its own.
-        """
-        return False
+    #: Whether this reader recognises, and skips, replies to other requests. False by
+    #: default: a reader that only finds where a reply ends cannot tell a late reply to
+    #: an earlier request from its own. (A class attribute, read on every exchange; a
+    #: subclass may make it a property.)
+    correlates: ClassVar[bool] = False
 
 
 def _split_line(
@@ -114,11 +111,23 @@ class LineReader(ReplyReader[bytes]):
 
     def parse(self, buffer: bytes | bytearray) -> tuple[bytes, int] | None:
         """Return the first line of ``buffer``, if it is complete."""
-        found = _split_line(buffer, 0, self.terminator, self.max_length)
-        if found is None:
-            return None
-        line, end = found
-        return (line if self.keep_ends else _strip_line(line, self.terminator)), end
+        # Every reply of a line protocol is read here: the common cases are written out
+        # (a line too long is left to _split_line, which refuses it).
+        terminator = self.terminator
+        end = buffer.find(terminator)
+        if end < 0:
+            if len(buffer) <= self.max_length:
+                return None
+            return _split_line(buffer, 0, terminator, self.max_length)
+        end += len(terminator)
+        if end > self.max_length:
+            return _split_line(buffer, 0, terminator, self.max_length)
+        line = bytes(buffer[:end])
+        if not self.keep_ends:
+            line = line[: -len(terminator)]
+            if terminator == b"\n" and line.endswith(b"\r"):
+                line = line[:-1]
+        return line, end
 
     def describe(self) -> str:
         """Describe this reader."""
@@ -326,10 +335,8 @@ class MatchingReader(ReplyReader[T_co]):
         name = getattr(self.belongs, "__name__", repr(self.belongs))
         return f"{self.reader.describe()}, for which {name} holds"
 
-    @property
-    def correlates(self) -> bool:
-        """Always true: foreign replies are recognised and skipped."""
-        return True
+    #: Always true: foreign replies are recognised and skipped.
+    correlates: ClassVar[bool] = True
 
 
 def matching(

@@ -125,7 +125,7 @@ import anyio
 import anyio.lowlevel
 from anyio.abc import AsyncResource
 
-from j5aio.backends.acknowledgements import acknowledging_later
+from j5aio.backends.acknowledgements import LATER_SWITCH as _LATER_SWITCH
 from j5aio.backends.safe_state_pass import making_safe
 from j5aio.errors import (
     BoardDisconnectionError,
@@ -138,7 +138,7 @@ from j5aio.errors import (
 from .completion import run_to_completion
 from .readers import LinesReader, MatchingReader, ReplyReader, read_line
 from .stream import ByteStream
-from .trace import log_wire, wire_logger
+from .trace import TRACE, log_wire, wire_logger
 
 __all__ = ["SerialLink"]
 
@@ -151,16 +151,15 @@ class _Progress:
     that a task that finishes it (after ``Task.cancel``) goes on where it stopped.
     """
 
-    __slots__ = ("bracket", "deadline", "opened", "remaining", "replied", "reply", "seconds")
-
-    def __init__(self) -> None:
-        self.deadline: float | None = None
-        self.seconds = 0.0
-        self.bracket: tuple[bytes, bytes] | None = None
-        self.opened = False
-        self.replied = False
-        self.reply: Any = None
-        self.remaining = 0
+    # Defaults on the class, and no ``__init__``: making one runs no Python code (it is
+    # made on the path of every acknowledgement confirmed later).
+    deadline: float | None = None
+    seconds: float = 0.0
+    bracket: tuple[bytes, bytes] | None = None
+    opened: bool = False
+    replied: bool = False
+    reply: Any = None
+    remaining: int = 0
 
 
 class _OwedAcknowledgement:
@@ -189,6 +188,8 @@ U = TypeVar("U")
 _log = logging.getLogger(__name__)
 
 _DISCONNECTION_ERRORS = (anyio.EndOfStream, anyio.BrokenResourceError, anyio.ClosedResourceError)
+#: What a stream's ``send`` may raise that the link turns into a CommunicationError.
+_WRITE_ERRORS = (*_DISCONNECTION_ERRORS, OSError)
 
 
 def _check_duration(name: str, value: float) -> float:
@@ -258,8 +259,10 @@ class SerialLink(AsyncResource):
         # Reply lines owed by requests that timed out, not yet seen (line protocols).
         self._owed = 0
         self._owed_until = 0.0
-        # A command returned before its acknowledgement was read (see command()).
-        self._unconfirmed: _OwedAcknowledgement | None = None
+        # A command returned before its acknowledgement was read (see command()). Public
+        # and a plain attribute, for a backend's every call tests it (as its
+        # ``acknowledgement_owed``, without a call); only the link sets it.
+        self.unconfirmed: _OwedAcknowledgement | None = None
 
     # -- state ---------------------------------------------------------------------------
 
@@ -286,7 +289,7 @@ class SerialLink(AsyncResource):
     @property
     def acknowledgement_owed(self) -> bytes | None:
         """The command whose acknowledgement is still to be read, if any (see :meth:`command`)."""
-        return None if self._unconfirmed is None else self._unconfirmed.request
+        return None if self.unconfirmed is None else self.unconfirmed.request
 
     @property
     def buffered(self) -> bytes:
@@ -361,40 +364,47 @@ class SerialLink(AsyncResource):
         :raises CommunicationTimeoutError: the bytes could not be sent in time.
         :raises BoardDisconnectionError: the port has gone or the link is closed.
         """
-        seconds = self._timeout(timeout)
+        # The hot path of a motor command: the steps are written out here rather than
+        # called (each call is a frame more on every command).
+        seconds = self._default_timeout if timeout is None else self._timeout(timeout)
         data = bytes(data)
-        await self._acquire()
+        await anyio.lowlevel.checkpoint_if_cancelled()  # a cancelled caller takes nothing
+        await self._lock.acquire()
         try:
             with anyio.CancelScope(shield=True):
-                if self._unconfirmed is not None:
+                if self.unconfirmed is not None:
                     await self._confirm_locked()
-                await self._send_locked(data, seconds, then)
+                if self._closed:
+                    raise BoardDisconnectionError(f"{self._name}: the link is closed")
+                finished = False
+                try:
+                    if self._dirty and self._can_resync:
+                        await self._resync_locked()
+                    with anyio.move_on_after(seconds):
+                        if self._wire.isEnabledFor(TRACE):
+                            log_wire(self._wire, "->", data)
+                        if data:
+                            try:
+                                await self._stream.send(data)
+                            except CommunicationError:
+                                raise
+                            except _WRITE_ERRORS as exc:
+                                raise self._write_failed(exc, data) from exc
+                        finished = True
+                    if not finished:
+                        raise CommunicationTimeoutError(
+                            f"{self._name}: could not send {_preview(data)} within {seconds} s"
+                        )
+                finally:
+                    if not finished:
+                        self._dirty = True
+                if then is not None:
+                    then()
         finally:
             self._lock.release()
         # Writing does not wait, so yield here: like every call to the board, a send is a
         # checkpoint, and a loop of sends leaves the event loop (signals, other tasks) room.
         await anyio.lowlevel.checkpoint()
-
-    async def _send_locked(
-        self, data: bytes, seconds: float, then: Callable[[], None] | None
-    ) -> None:
-        self._check_open()
-        finished = False
-        try:
-            if self._dirty and self._can_resync:
-                await self._resync_locked()
-            with anyio.move_on_after(seconds):
-                await self._write(data)
-                finished = True
-            if not finished:
-                raise CommunicationTimeoutError(
-                    f"{self._name}: could not send {_preview(data)} within {seconds} s"
-                )
-        finally:
-            if not finished:
-                self._dirty = True
-        if then is not None:
-            then()
 
     @overload
     async def exchange(
@@ -454,11 +464,12 @@ class SerialLink(AsyncResource):
         :raises CommunicationError: the line never went quiet, or the resynchronisation
             probe was not answered.
         """
-        seconds = self._timeout(timeout)
+        seconds = self._default_timeout if timeout is None else self._timeout(timeout)
         request = bytes(request)
-        await self._acquire()
+        await anyio.lowlevel.checkpoint_if_cancelled()  # a cancelled caller takes nothing
+        await self._lock.acquire()
         try:
-            if self._unconfirmed is not None:
+            if self.unconfirmed is not None:
                 await self._confirm_locked()
             return await self._exchange_held(request, reader, seconds, then, when_dirty)
         finally:
@@ -494,17 +505,43 @@ class SerialLink(AsyncResource):
             showed that it failed.
         :raises BoardDisconnectionError: the port has gone or the link is closed.
         """
-        seconds = self._timeout(timeout)
+        # A hot path (a motor command through the sync facade): its steps are written out
+        # here rather than called.
+        seconds = self._default_timeout if timeout is None else self._timeout(timeout)
         request = bytes(request)
-        await self._acquire()
+        await anyio.lowlevel.checkpoint_if_cancelled()  # a cancelled caller takes nothing
+        await self._lock.acquire()
         try:
-            if self._unconfirmed is not None:
+            if self.unconfirmed is not None:
                 await self._confirm_locked()
-            if not acknowledging_later() or self._dirty or (self._owed and self._owes()):
+            if not _LATER_SWITCH.get() or self._dirty or (self._owed and self._owes()):
                 await self._exchange_held(request, reader, seconds, then, when_dirty)
                 return
             with anyio.CancelScope(shield=True) as scope:
-                await self._write_unconfirmed(request, reader, seconds, then, scope)
+                # Write the request and note that its acknowledgement is owed.
+                if self._closed:
+                    raise BoardDisconnectionError(f"{self._name}: the link is closed")
+                if self._buffer:
+                    _log.debug("%s: discarding stale input %s", self._name, _preview(self._buffer))
+                    self._settle(self._buffer.count(b"\n"))
+                    self._buffer.clear()
+                deadline = scope.deadline = asyncio.get_running_loop().time() + seconds
+                written = False
+                try:
+                    if self._wire.isEnabledFor(TRACE):
+                        log_wire(self._wire, "->", request)
+                    if request:
+                        try:
+                            await self._stream.send(request)
+                        except CommunicationError:
+                            raise
+                        except _WRITE_ERRORS as exc:
+                            raise self._write_failed(exc, request) from exc
+                    written = True
+                finally:
+                    if not written:
+                        self._dirty = True  # a stream sends all or nothing, but be safe
+                self.unconfirmed = _OwedAcknowledgement(request, reader, then, deadline, seconds)
             if scope.cancelled_caught:
                 raise CommunicationTimeoutError(
                     f"{self._name}: could not send {_preview(request)} within {seconds} s"
@@ -523,38 +560,15 @@ class SerialLink(AsyncResource):
         :raises EarlierCommandError: the command had failed.
         :raises BoardDisconnectionError: the port has gone.
         """
-        if self._unconfirmed is None:
+        if self.unconfirmed is None:
             return
-        await self._acquire()
+        await anyio.lowlevel.checkpoint_if_cancelled()  # a cancelled caller takes nothing
+        await self._lock.acquire()
         try:
-            if self._unconfirmed is not None:
+            if self.unconfirmed is not None:
                 await self._confirm_locked()
         finally:
             self._lock.release()
-
-    async def _write_unconfirmed(
-        self,
-        request: bytes,
-        reader: ReplyReader[Any],
-        seconds: float,
-        then: Callable[[Any], object] | None,
-        scope: anyio.CancelScope,
-    ) -> None:
-        """Write ``request`` and note that its acknowledgement is owed (lock held)."""
-        self._check_open()
-        if self._buffer:
-            _log.debug("%s: discarding stale input %s", self._name, _preview(self._buffer))
-            self._settle(self._buffer.count(b"\n"))
-            self._buffer.clear()
-        deadline = scope.deadline = self._loop_time() + seconds
-        written = False
-        try:
-            await self._write(request)
-            written = True
-        finally:
-            if not written:
-                self._dirty = True  # a stream sends all or nothing, but be safe
-        self._unconfirmed = _OwedAcknowledgement(request, reader, then, deadline, seconds)
 
     async def _confirm_locked(self) -> None:
         """Read and check the acknowledgement owed to the last command (lock held).
@@ -565,23 +579,26 @@ class SerialLink(AsyncResource):
         :class:`~j5aio.errors.BoardDisconnectionError`), unless the boards are being made
         safe: their safe state must still be sent.
         """
-        owed = self._unconfirmed
+        owed = self.unconfirmed
         assert owed is not None
-        self._unconfirmed = None
+        self.unconfirmed = None
         progress = _Progress()
-        progress.deadline = max(owed.deadline, self._loop_time() + self._quiet_time)
+        progress.deadline = max(
+            owed.deadline, asyncio.get_running_loop().time() + self._quiet_time
+        )
         progress.seconds = owed.seconds
-        shown = _preview(owed.request)
         try:
             with anyio.CancelScope(shield=True):
                 reply = await self._finish_reply(owed.request, owed.reader, progress)
                 if owed.then is not None:
                     owed.then(reply)
         except BoardDisconnectionError as exc:
+            shown = _preview(owed.request)
             raise BoardDisconnectionError(
                 f"{exc} (while reading the acknowledgement of the earlier command {shown})"
             ) from exc
         except CommunicationError as exc:
+            shown = _preview(owed.request)
             _log.warning("%s: the earlier command %s failed: %s", self._name, shown, exc)
             if making_safe():
                 return
@@ -591,7 +608,10 @@ class SerialLink(AsyncResource):
                 owed.request,
             ) from exc
         except asyncio.CancelledError:
-            _log.debug("%s: the acknowledgement of %s was not read (cancelled)", self._name, shown)
+            _log.debug(
+                "%s: the acknowledgement of %s was not read (cancelled)",
+                self._name, _preview(owed.request),
+            )
             raise
 
     async def _exchange_held(
@@ -609,15 +629,25 @@ class SerialLink(AsyncResource):
         ``seconds`` from when the request goes out, so that it cancels the read (and
         this raises the timeout) if the reply is late.
         """
-        if when_dirty is not None and (self._dirty or self._owes()):
+        # Every request's path: the steps of the common case (a clean link) are written
+        # out here rather than called, and the progress is made only when needed.
+        if when_dirty is not None and (self._dirty or (self._owed and self._owes())):
             request, reader = when_dirty()
             request = bytes(request)
-        progress = _Progress()
+        progress: _Progress | None = None
+        sent: float | None = None  # the deadline of a request that has gone
         with anyio.CancelScope(shield=True) as scope:
             try:
-                self._check_open()
+                if self._closed:
+                    raise BoardDisconnectionError(f"{self._name}: the link is closed")
                 correlates = reader.correlates
-                if not correlates and self._resync_line is not None and self._owes():
+                if (
+                    not correlates
+                    and self._resync_line is not None
+                    and self._owed
+                    and self._owes()
+                ):
+                    progress = _Progress()
                     reply = await self._bracketed_locked(request, reader, seconds, progress)
                 else:
                     finished = False
@@ -635,18 +665,28 @@ class SerialLink(AsyncResource):
                             )
                             self._settle(self._buffer.count(b"\n"))
                             self._buffer.clear()
-                        deadline = scope.deadline = self._loop_time() + seconds
-                        await self._write(request)
-                        progress.deadline, progress.seconds = deadline, seconds
+                        deadline = scope.deadline = asyncio.get_running_loop().time() + seconds
+                        if self._wire.isEnabledFor(TRACE):
+                            log_wire(self._wire, "->", request)
+                        if request:
+                            try:
+                                await self._stream.send(request)
+                            except CommunicationError:
+                                raise
+                            except _WRITE_ERRORS as exc:
+                                raise self._write_failed(exc, request) from exc
+                        sent = deadline
                         reply = await self._read_reply(reader, request)
                         # Nothing awaits from here to the end of the scope, so its
                         # deadline cannot fire any more; leaving the scope drops it.
                         finished = True
-                        self._after_reply(request, reader)
+                        self._dirty = False
+                        if self._buffer and not correlates:
+                            self._after_reply(request, reader)  # more than the reply came
                     finally:
                         if not finished:
                             self._dirty = True
-                            if progress.deadline is not None:
+                            if sent is not None:
                                 self._owe(_lines_of(reader))
             except asyncio.CancelledError:
                 # Task.cancel broke through the shield (unless this is the scope's
@@ -654,7 +694,14 @@ class SerialLink(AsyncResource):
                 # its reply is read (and ``then`` run) in a task of its own, which
                 # the caller waits for before being cancelled; before that, nothing
                 # was sent (a stream sends all or, cancelled, nothing).
-                if progress.deadline is not None and not scope.cancel_called:
+                if progress is None and sent is not None:
+                    progress = _Progress()
+                    progress.deadline, progress.seconds = sent, seconds
+                if (
+                    progress is not None
+                    and progress.deadline is not None
+                    and not scope.cancel_called
+                ):
                     scope.deadline = math.inf  # the task that finishes it keeps time
                     await self._finish_torn(request, reader, progress, then)
                 raise
@@ -695,7 +742,7 @@ class SerialLink(AsyncResource):
         await self._acquire()
         try:
             self._check_open()
-            if self._unconfirmed is not None:
+            if self.unconfirmed is not None:
                 await self._confirm_locked()
             with anyio.move_on_after(seconds):
                 return await self._read_reply(reader, b"")
@@ -728,7 +775,7 @@ class SerialLink(AsyncResource):
         await self._acquire()
         try:
             self._check_open()
-            if self._unconfirmed is not None:
+            if self.unconfirmed is not None:
                 await self._confirm_locked()
             discarded = await self._drain_locked(quiet, bound)
             self._owed = 0
@@ -778,12 +825,12 @@ class SerialLink(AsyncResource):
 
     def _drop_unconfirmed(self, why: str) -> None:
         """Give up reading the acknowledgement owed, if any (a resync discards it)."""
-        if self._unconfirmed is not None:
+        if self.unconfirmed is not None:
             _log.warning(
                 "%s: the acknowledgement of %s was not checked: %s",
-                self._name, _preview(self._unconfirmed.request), why,
+                self._name, _preview(self.unconfirmed.request), why,
             )
-            self._unconfirmed = None
+            self.unconfirmed = None
 
     async def aclose(self) -> None:
         """Close the link and its stream, letting queued output go first; idempotent.
@@ -792,10 +839,10 @@ class SerialLink(AsyncResource):
         failure is logged, not raised.
         """
         with anyio.CancelScope(shield=True):
-            if self._unconfirmed is not None and not self._closed:
+            if self.unconfirmed is not None and not self._closed:
                 await self._lock.acquire()
                 try:
-                    if self._unconfirmed is not None:
+                    if self.unconfirmed is not None:
                         await self._confirm_locked()
                 except CommunicationError:
                     pass  # logged as it was read; a board being closed has nothing to tell
@@ -814,11 +861,6 @@ class SerialLink(AsyncResource):
         if timeout is None:
             return self._default_timeout
         return _check_duration("timeout", timeout)
-
-    @staticmethod
-    def _loop_time() -> float:
-        """The event loop's clock, which anyio's deadlines use (read without sniffio)."""
-        return asyncio.get_running_loop().time()
 
     def _check_open(self) -> None:
         if self._closed:
@@ -938,7 +980,9 @@ class SerialLink(AsyncResource):
                         finished = progress.remaining <= 0
                 reply = await self._read_reply(reader, request)
                 finished = True
-                self._after_reply(request, reader)
+                self._dirty = False
+                if self._buffer and not reader.correlates:
+                    self._after_reply(request, reader)  # more than the reply came
                 return reply
             raise self._timed_out(request, reader, progress.seconds)
         finally:
@@ -947,17 +991,19 @@ class SerialLink(AsyncResource):
                 self._owe(progress.remaining if progress.bracket else _lines_of(reader))
 
     def _after_reply(self, request: bytes, reader: ReplyReader[Any]) -> None:
-        # The line was clean when the exchange began (drained, resynchronised, or
-        # correlated), so it is dirty now only if more than the reply came.
-        self._dirty = False
-        if self._buffer and not reader.correlates:
-            _log.debug(
-                "%s: reply to %r followed by %s; the next exchange drains first",
-                self._name,
-                request,
-                _preview(self._buffer),
-            )
-            self._dirty = True
+        """Mark the link dirty: bytes came after the reply to ``request``.
+
+        The line was clean when the exchange began (drained, resynchronised, or
+        correlated), so it is dirty now only if more than the reply came; a correlating
+        reader skips whatever it is, so its callers do not call this.
+        """
+        _log.debug(
+            "%s: reply to %r followed by %s; the next exchange drains first",
+            self._name,
+            request,
+            _preview(self._buffer),
+        )
+        self._dirty = True
 
     def _timed_out(
         self, request: bytes, reader: ReplyReader[Any], seconds: float
@@ -1081,19 +1127,21 @@ class SerialLink(AsyncResource):
         return discarded
 
     async def _write(self, data: bytes) -> None:
-        log_wire(self._wire, "->", data)
-        if not data:
-            return
+        """Write ``data`` (a probe, or a bracketed request: never empty), logged."""
+        if self._wire.isEnabledFor(TRACE):
+            log_wire(self._wire, "->", data)
         try:
             await self._stream.send(data)
         except CommunicationError:
             raise
-        except _DISCONNECTION_ERRORS as exc:
-            raise BoardDisconnectionError(f"{self._name}: the port has gone ({exc!r})") from exc
-        except OSError as exc:
-            raise CommunicationError(
-                f"{self._name}: sending {_preview(data)} failed: {exc}"
-            ) from exc
+        except _WRITE_ERRORS as exc:
+            raise self._write_failed(exc, data) from exc
+
+    def _write_failed(self, exc: BaseException, data: bytes) -> CommunicationError:
+        """The error that a stream's failure to send ``data`` (``exc``) is raised as."""
+        if isinstance(exc, _DISCONNECTION_ERRORS):
+            return BoardDisconnectionError(f"{self._name}: the port has gone ({exc!r})")
+        return CommunicationError(f"{self._name}: sending {_preview(data)} failed: {exc}")
 
     async def _receive(self) -> bytes:
         try:
@@ -1104,5 +1152,6 @@ class SerialLink(AsyncResource):
             raise BoardDisconnectionError(f"{self._name}: the port has gone ({exc!r})") from exc
         except OSError as exc:
             raise CommunicationError(f"{self._name}: reading failed: {exc}") from exc
-        log_wire(self._wire, "<-", chunk)
+        if self._wire.isEnabledFor(TRACE):
+            log_wire(self._wire, "<-", chunk)
         return chunk

@@ -13,6 +13,7 @@ import anyio.abc
 import anyio.lowlevel
 import pytest
 
+from j5aio.backends.acknowledgements import acknowledge_later
 from j5aio.backends.hardware.transports import (
     TRACE,
     ByteStream,
@@ -240,6 +241,10 @@ async def test_a_closed_link_refuses_every_call() -> None:
     with pytest.raises(BoardDisconnectionError, match="link is closed"):
         await link.send(b"x")
     with pytest.raises(BoardDisconnectionError, match="link is closed"):
+        await link.command(b"x\n", read_line(), timeout=1)
+    with acknowledge_later(), pytest.raises(BoardDisconnectionError, match="link is closed"):
+        await link.command(b"x\n", read_line(), timeout=1)
+    with pytest.raises(BoardDisconnectionError, match="link is closed"):
         await link.read_line(timeout=1)
     with pytest.raises(BoardDisconnectionError, match="link is closed"):
         await link.drain()
@@ -388,6 +393,83 @@ async def test_anyio_stream_errors_become_board_disconnection(
     link = SerialLink(BrokenStream(error, on_send=on_send))
     with pytest.raises(BoardDisconnectionError, match="has gone"):
         await link.exchange(b"x\n", read_line(), timeout=1)
+
+
+async def _write_by(link: SerialLink, how: str) -> None:
+    """Write ``x`` through one of the paths that write without reading a reply."""
+    if how == "send":
+        await link.send(b"x\n", timeout=1)
+    else:  # a command whose acknowledgement is read later
+        with acknowledge_later():
+            await link.command(b"x\n", read_line(), timeout=1)
+
+
+@pytest.mark.parametrize("how", ["send", "command later"])
+@pytest.mark.parametrize(
+    ("error", "raised"),
+    [
+        (OSError(5, "Input/output error"), CommunicationError),
+        (anyio.BrokenResourceError(), BoardDisconnectionError),
+        (CommunicationTimeoutError("the stream's own"), CommunicationTimeoutError),
+        (AssertionError("script broken"), AssertionError),
+    ],
+)
+async def test_a_write_that_fails_raises_the_same_on_every_path(
+    how: str, error: BaseException, raised: type[BaseException]
+) -> None:
+    link = SerialLink(BrokenStream(error, on_send=True))
+    with pytest.raises(raised) as caught:
+        await _write_by(link, how)
+    assert type(caught.value) is raised
+    if raised is CommunicationError:
+        assert "sending b'x\\n' failed: [Errno 5] Input/output error" in str(caught.value)
+        assert caught.value.__cause__ is error
+    assert link.acknowledgement_owed is None  # nothing was written, so nothing is owed
+
+
+@pytest.mark.parametrize("how", ["send", "command later"])
+async def test_every_write_path_logs_the_bytes_at_trace(
+    how: str, caplog: pytest.LogCaptureFixture
+) -> None:
+    host, board = memory_stream_pair()
+    link = SerialLink(host, name="/dev/ttyACM8")
+    caplog.set_level(TRACE, logger="j5aio.wire")
+    await _write_by(link, how)
+    assert await board.receive() == b"x\n"
+    records = [r for r in caplog.records if r.name == "j5aio.wire./dev/ttyACM8"]
+    assert [r.getMessage() for r in records] == ["-> b'x\\n'"]
+
+
+async def test_each_request_reads_the_acknowledgement_owed_first() -> None:
+    host, board = memory_stream_pair()
+    link = SerialLink(host)
+    async with anyio.create_task_group() as tg:
+        peer = await start_peer(tg, board, lambda line: b"ACK\n" if line != b"q" else b"42\n")
+        with acknowledge_later():
+            await link.command(b"a\n", read_line(), timeout=1)
+            assert link.acknowledgement_owed == b"a\n"
+            assert await link.exchange(b"q\n", read_line(), timeout=1) == b"42"
+            await link.command(b"b\n", read_line(), timeout=1)
+            await link.command(b"c\n", read_line(), timeout=1)  # reads b's ACK first
+            assert link.acknowledgement_owed == b"c\n"
+            await link.send(b"d\n", timeout=1)  # reads c's ACK first
+            assert link.acknowledgement_owed is None
+        await link.exchange(b"q\n", read_line(), timeout=1)
+        assert peer.lines == [b"a", b"q", b"b", b"c", b"d", b"q"]
+        tg.cancel_scope.cancel()
+
+
+async def test_a_resynchronisation_probe_is_logged_and_its_failed_write_wrapped(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    link = SerialLink(BrokenStream(OSError(5, "Input/output error"), on_send=True), name="p")
+    link.set_resync(b"?", b"!")
+    link.mark_dirty()
+    caplog.set_level(TRACE, logger="j5aio.wire")
+    with pytest.raises(CommunicationError, match=r"sending b'\?' failed") as caught:
+        await link.exchange(b"x\n", read_line(), timeout=1)
+    assert not isinstance(caught.value, BoardDisconnectionError)
+    assert [r.getMessage() for r in caplog.records if r.name == "j5aio.wire.p"] == ["-> b'?'"]
 
 
 async def test_other_exceptions_from_a_stream_are_not_hidden() -> None:

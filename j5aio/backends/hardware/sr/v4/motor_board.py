@@ -77,7 +77,8 @@ class SRV4MotorBoardHardwareBackend(MotorInterface, SerialHardwareBackend):
 
     async def set_motor_state(self, identifier: int, power: MotorState) -> None:
         """Set a motor to a power in [-1, 1] (``round(p x SPEED_SCALE) + 128``), BRAKE or COAST."""
-        self._check_motor(identifier)
+        if identifier not in range(codec.MOTOR_COUNT):
+            self._check_motor(identifier)  # raises, naming the board
         command = codec.encode_motor_command(identifier, power, scale=self.SPEED_SCALE)
 
         def remember() -> None:

@@ -136,6 +136,9 @@ def encode_motor_command(motor: int, state: MotorState, *, scale: int = LINEAR_S
     """
     if motor not in range(MOTOR_COUNT):
         raise ValueError(f"the motor board has motors 0 and 1, not {motor!r}")
+    if type(state) is float and -1.0 <= state <= 1.0 and scale in (LINEAR_SCALE, J5_SCALE):
+        # A power (the common case), encoded here without a call, as encode_speed does.
+        return bytes((CMD_MOTOR[motor], round(state * scale) + _OFFSET))
     return bytes((CMD_MOTOR[motor], encode_speed(state, scale=scale)))
 
 

@@ -147,12 +147,19 @@ def encode_set(motor: int, state: MotorState) -> bytes:
     :raises TypeError: ``state`` is neither a number nor a
         :class:`~j5aio.components.motor.MotorSpecialState`.
     """
-    check_motor(motor)
+    # The path of every motor command: checked and formatted here, without calls (the
+    # lines are those command_line makes).
+    if motor not in range(MOTOR_COUNT):
+        raise ValueError(f"the motor board has motors 0 and 1, not {motor!r}")
     if state is MotorSpecialState.COAST:
-        return command_line("MOT", motor, "DISABLE")
+        return f"MOT:{motor}:DISABLE\n".encode("ascii")
     if state is MotorSpecialState.BRAKE:
-        return command_line("MOT", motor, "SET", 0)
-    return command_line("MOT", motor, "SET", encode_value(state))
+        value = 0
+    elif type(state) is float and -1.0 <= state <= 1.0:
+        value = round(state * FULL_SCALE)
+    else:
+        value = encode_value(state)  # an int, or bad input (which it refuses)
+    return f"MOT:{motor}:SET:{value}\n".encode("ascii")
 
 
 def encode_get(motor: int) -> bytes:

@@ -9,7 +9,7 @@ enumerates the board).
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Awaitable, Callable
 from datetime import timedelta
 from typing import ClassVar
 
@@ -23,7 +23,7 @@ from j5aio.components.button import ButtonInterface
 from j5aio.components.led import LEDInterface
 from j5aio.components.piezo import PiezoInterface
 from j5aio.components.power_output import PowerOutputInterface
-from j5aio.errors import UnsupportedFirmwareError
+from j5aio.errors import BoardDisconnectionError, UnsupportedFirmwareError
 
 __all__ = ["SRV4PowerBoardHardwareBackend"]
 
@@ -150,18 +150,27 @@ class SRV4PowerBoardHardwareBackend(
         However many tasks wait, the board is read by one poll stream (see
         :class:`~j5aio.backends.press_watch.PressWatch`).
         """
-        self._check_single(identifier, "button")
+        if identifier != 0:
+            self._check_single(identifier, "button")  # raises
         await self._presses.wait()
 
     async def _poll_button(self, report: Callable[[], None], *, fresh: bool) -> None:
         # The button is a level, not a latch: ``fresh`` has nothing to forget.
-        await self._guarded(
-            lambda: self._link.poll_control_read(
+        def poll() -> Awaitable[bytes]:  # the link is looked up anew for a retry
+            return self._link.poll_control_read(
                 codec.BUTTON.index, codec.BUTTON.length, _button_held,
                 interval=self.BUTTON_POLL_INTERVAL, then=lambda _reply: report(),
-            ),
-            idempotent=True,
-        )
+            )
+
+        try:  # the steps of _guarded, written out: one call fewer to the first poll
+            if self._lost or self._closed_for_good:
+                await self._check_connected()
+            await self._link.poll_control_read(
+                codec.BUTTON.index, codec.BUTTON.length, _button_held,
+                interval=self.BUTTON_POLL_INTERVAL, then=lambda _reply: report(),
+            )
+        except BoardDisconnectionError as error:
+            await self._retry_after(error, poll, idempotent=True)
 
     # -- battery ------------------------------------------------------------------------
 

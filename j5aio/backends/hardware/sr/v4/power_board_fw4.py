@@ -154,7 +154,8 @@ class SRV4PowerBoardFw4HardwareBackend(
         the latch is read once and forgotten, then read every 15 ms. The board latches
         presses, so none is lost between reads.
         """
-        self._check_single(identifier, "start button")
+        if identifier != 0:
+            self._check_single(identifier, "start button")  # raises
         await self._presses.wait()
 
     async def _poll_button(self, report: Callable[[], None], *, fresh: bool) -> None:

@@ -25,6 +25,7 @@ __all__ = [
     "ACK",
     "IDENTIFY",
     "MANUFACTURER",
+    "NACK_PREFIX",
     "Identity",
     "NackError",
     "check_ack",
@@ -45,7 +46,8 @@ IDENTIFY: Final = b"*IDN?\n"
 #: The manufacturer field of every identity reply.
 MANUFACTURER: Final = "Student Robotics"
 
-_NACK_PREFIX: Final = b"NACK:"
+#: How a refusal starts: ``NACK:<reason>``.
+NACK_PREFIX: Final = b"NACK:"
 _INTEGER = re.compile(rb"-?[0-9]+")
 
 
@@ -117,8 +119,8 @@ def check_not_nack(board: str, command: bytes, reply: bytes) -> bytes:
 
     :raises NackError: the reply is ``NACK:<reason>``.
     """
-    if reply.startswith(_NACK_PREFIX):
-        reason = reply[len(_NACK_PREFIX):].decode("ascii", errors="replace")
+    if reply.startswith(NACK_PREFIX):
+        reason = reply[len(NACK_PREFIX):].decode("ascii", errors="replace")
         raise NackError(board, _shown(command), reason)
     return reply
 
