@@ -12,9 +12,12 @@ There is one asyncio loop per process and, at any moment, at most one thread run
   background work of a program (the match timer, the robot service's client, the live
   view, reconnections, worker threads' results) goes on while the program sleeps or
   computes. It takes the loop once it has been idle for :data:`GRACE`, or at once when
-  calls made from other threads are waiting; a caller that finds it driving asks it to
-  stop (``call_soon_threadsafe(loop.stop)``) and takes the loop when it has. While a
-  caller drives a long call, the keeper sleeps with no time limit.
+  calls made from other threads are waiting. While calls keep coming it looks only every
+  :data:`LOOK_AGAIN` (a thread that woke every few milliseconds was measured to slow
+  each call of the main thread by several microseconds), so a program that leaves the
+  calls has the keeper take over within ``LOOK_AGAIN + GRACE``; a caller that finds it
+  driving asks it to stop (``call_soon_threadsafe(loop.stop)``) and takes the loop when
+  it has. While a caller drives a long call, the keeper sleeps with no time limit.
 
 A call from a thread that finds *another caller* driving is queued for the loop's worker,
 as the hand-off portal does (:mod:`j5aio.sync._loop_thread`), and its thread waits on a
@@ -54,12 +57,14 @@ from j5aio.sync._calls import (
 from j5aio.sync._deferral import SignalDeferral, current_handler
 from j5aio.sync._signals import keep_signals_for_the_main_thread
 
-__all__ = ["GRACE", "NESTED_CALL", "DrivenLoop"]
+__all__ = ["GRACE", "LOOK_AGAIN", "NESTED_CALL", "DrivenLoop"]
 
 LOGGER = logging.getLogger("j5aio.sync")
 
 #: How long the loop may stay idle (the program in its own code) before the keeper runs it.
 GRACE: Final = 0.015
+#: While calls keep coming, how often the keeper looks whether they have stopped.
+LOOK_AGAIN: Final = 0.25
 
 #: What a blocking call made from async code running in the facade's loop is told.
 NESTED_CALL: Final = (
@@ -87,6 +92,8 @@ class DrivenLoop:
     def __init__(self, *, grace: float = GRACE) -> None:
         self.loop = asyncio.SelectorEventLoop()
         self.grace = grace
+        #: While calls keep coming, how often the keeper looks whether they have stopped.
+        self.look_again = max(grace, LOOK_AGAIN)
         self._queue: deque[Call] = deque()
         self._current: Call | None = None
         self._driven: Call | None = None
@@ -413,17 +420,21 @@ class DrivenLoop:
                 while True:
                     if self._closing:
                         return
+                    idle = 0.0
                     if self._owner is None:
                         if self._queue or self._current is not None:
                             break
                         idle = self._left_at + self.grace - time.monotonic()
                         if idle <= 0:
                             break
-                        turns.wait(idle)
-                    elif self._calls != seen:
-                        # Calls come and go: look again after the grace, waking nobody.
+                    if self._calls != seen:
+                        # Calls come and go: look again later, waking nobody. (Not every
+                        # grace: a thread that wakes that often slows the calls of the
+                        # main thread by several microseconds each, measured.)
                         seen = self._calls
-                        turns.wait(self.grace)
+                        turns.wait(self.look_again)
+                    elif self._owner is None:
+                        turns.wait(idle)
                     else:
                         # One call has lasted a whole grace (a wait for a button, say):
                         # sleep with no time limit; its caller wakes the keeper at its end.

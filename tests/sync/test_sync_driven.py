@@ -91,6 +91,29 @@ def test_the_keeper_runs_the_loop_while_the_program_is_away_from_calls(
     assert call(add, 2, 3) == 5  # and a caller takes the loop back from the keeper
 
 
+def test_the_keeper_does_not_wake_for_each_call_while_calls_keep_coming(
+    portal: DrivenLoop, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # A thread that wakes every few milliseconds slows every call of the main thread: while
+    # calls come, the keeper looks again only every `look_again`, whatever the grace.
+    waits: list[float | None] = []
+    real_wait = portal._turns.wait
+
+    def counted(timeout: float | None = None) -> bool:
+        waits.append(timeout)
+        return real_wait(timeout)
+
+    portal.grace = 0.001
+    portal.look_again = LIVENESS
+    monkeypatch.setattr(portal._turns, "wait", counted)
+    with portal._turns:
+        portal._turns.notify_all()  # the keeper looks again, now with the patched wait
+    for _ in range(2000):
+        assert call(add, 1, 1) == 2
+    assert len(waits) <= 3, waits
+    assert all(timeout in (None, LIVENESS) for timeout in waits[1:]), waits
+
+
 def test_a_call_from_another_thread_waits_for_the_driving_call_then_runs(
     portal: DrivenLoop,
 ) -> None:
