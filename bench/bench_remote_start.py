@@ -46,12 +46,17 @@ import anyio.to_thread
 
 async def one_start(kind: str, path: Path) -> float:
     """Seconds from the start (given in another thread) to the wait returning."""
-    from j5aio.competition.start import trigger_start, wait_for_start
+    from j5aio.competition.start import is_waiting, trigger_start, wait_for_start
 
     began: list[float] = []
 
     def start_later() -> None:
-        time.sleep(0.02)  # the wait is under way by then
+        # Only once the wait is under way (it has cleared any old start file by then: a
+        # file there before the wait begins is an old one; a fixed pause lost that race
+        # under load).
+        deadline = time.monotonic() + 10
+        while not is_waiting() and time.monotonic() < deadline:
+            time.sleep(0.001)
         began.append(time.perf_counter())
         if kind == "trigger":
             trigger_start("remote start")
