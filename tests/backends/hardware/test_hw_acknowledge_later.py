@@ -22,13 +22,9 @@ import pytest
 from j5aio.backends import acknowledge_later, acknowledging_later
 from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
-from j5aio.backends.hardware.sb.arduino_2024 import SBArduino2024HardwareBackend
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
-from j5aio.backends.hardware.sr.v4.arduino import SRArduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4HardwareBackend
-from j5aio.backends.hardware.sr.v4.power_board_fw4 import SRV4PowerBoardFw4HardwareBackend
 from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
-from j5aio.backends.hardware.sr.v4.servo_board_fw4 import SRV4ServoBoardFw4HardwareBackend
 from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.backends.safe_state_pass import safe_state_pass
@@ -49,30 +45,16 @@ from j5aio.simulator import (
 )
 from j5aio.simulator.sr_ruggeduino_fw1 import SRRuggeduinoSimulator
 from j5aio.testing.transports import FaultyStream, RecordingStream
+from tests.backends.hardware.test_hw_late_replies_today import (
+    TIMEOUT,
+    QuickMotor,
+    QuickPower,
+    QuickSB2024,
+    QuickServo,
+    QuickSRArduino,
+)
 from tests.backends.hardware.test_hw_reconnect import QUICK, usb_port
 from tests.testing.reliability_rig import cancellation_trials
-
-TIMEOUT = 0.05
-
-
-class QuickPower(SRV4PowerBoardFw4HardwareBackend):
-    DEFAULT_TIMEOUT: ClassVar[float] = TIMEOUT
-
-
-class QuickMotor(SRV4MotorBoardFw4HardwareBackend):
-    DEFAULT_TIMEOUT: ClassVar[float] = TIMEOUT
-
-
-class QuickServo(SRV4ServoBoardFw4HardwareBackend):
-    DEFAULT_TIMEOUT: ClassVar[float] = TIMEOUT
-
-
-class QuickSRArduino(SRArduinoHardwareBackend):
-    DEFAULT_TIMEOUT: ClassVar[float] = TIMEOUT
-
-
-class QuickSB2024(SBArduino2024HardwareBackend):
-    DEFAULT_TIMEOUT: ClassVar[float] = TIMEOUT
 
 
 class QuickRuggeduino(SRV4RuggeduinoHardwareBackend):

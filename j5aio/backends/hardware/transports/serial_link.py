@@ -381,15 +381,7 @@ class SerialLink(AsyncResource):
                     if self._dirty and self._can_resync:
                         await self._resync_locked()
                     with anyio.move_on_after(seconds):
-                        if self._wire.isEnabledFor(TRACE):
-                            log_wire(self._wire, "->", data)
-                        if data:
-                            try:
-                                await self._stream.send(data)
-                            except CommunicationError:
-                                raise
-                            except _WRITE_ERRORS as exc:
-                                raise self._write_failed(exc, data) from exc
+                        await self._write(data)
                         finished = True
                     if not finished:
                         raise CommunicationTimeoutError(
@@ -522,21 +514,11 @@ class SerialLink(AsyncResource):
                 if self._closed:
                     raise BoardDisconnectionError(f"{self._name}: the link is closed")
                 if self._buffer:
-                    _log.debug("%s: discarding stale input %s", self._name, _preview(self._buffer))
-                    self._settle(self._buffer.count(b"\n"))
-                    self._buffer.clear()
+                    self._discard_stale()
                 deadline = scope.deadline = asyncio.get_running_loop().time() + seconds
                 written = False
                 try:
-                    if self._wire.isEnabledFor(TRACE):
-                        log_wire(self._wire, "->", request)
-                    if request:
-                        try:
-                            await self._stream.send(request)
-                        except CommunicationError:
-                            raise
-                        except _WRITE_ERRORS as exc:
-                            raise self._write_failed(exc, request) from exc
+                    await self._write(request)
                     written = True
                 finally:
                     if not written:
@@ -659,22 +641,9 @@ class SerialLink(AsyncResource):
                         elif self._dirty:
                             await self._drain_locked(self._quiet_time, self._drain_limit)
                         if self._buffer and not correlates:
-                            _log.debug(
-                                "%s: discarding stale input %s",
-                                self._name, _preview(self._buffer),
-                            )
-                            self._settle(self._buffer.count(b"\n"))
-                            self._buffer.clear()
+                            self._discard_stale()
                         deadline = scope.deadline = asyncio.get_running_loop().time() + seconds
-                        if self._wire.isEnabledFor(TRACE):
-                            log_wire(self._wire, "->", request)
-                        if request:
-                            try:
-                                await self._stream.send(request)
-                            except CommunicationError:
-                                raise
-                            except _WRITE_ERRORS as exc:
-                                raise self._write_failed(exc, request) from exc
+                        await self._write(request)
                         sent = deadline
                         reply = await self._read_reply(reader, request)
                         # Nothing awaits from here to the end of the scope, so its
@@ -1127,15 +1096,23 @@ class SerialLink(AsyncResource):
         return discarded
 
     async def _write(self, data: bytes) -> None:
-        """Write ``data`` (a probe, or a bracketed request: never empty), logged."""
+        """Write ``data``, logged on the wire trace (an empty request is logged, not sent)."""
         if self._wire.isEnabledFor(TRACE):
             log_wire(self._wire, "->", data)
+        if not data:
+            return
         try:
             await self._stream.send(data)
         except CommunicationError:
             raise
         except _WRITE_ERRORS as exc:
             raise self._write_failed(exc, data) from exc
+
+    def _discard_stale(self) -> None:
+        """Throw away input received before a request was written (none was asked for)."""
+        _log.debug("%s: discarding stale input %s", self._name, _preview(self._buffer))
+        self._settle(self._buffer.count(b"\n"))
+        self._buffer.clear()
 
     def _write_failed(self, exc: BaseException, data: bytes) -> CommunicationError:
         """The error that a stream's failure to send ``data`` (``exc``) is raised as."""
