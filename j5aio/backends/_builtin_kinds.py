@@ -228,7 +228,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             hardware="j5aio.backends.camera.opencv:OpenCVCameraBackend",
             console="j5aio.backends.console.camera:CameraConsoleBackend",
             # Every simulated kit has the robot's camera in its arena (kit.camera).
-            simulated="j5aio.simulator.camera:SimulatedCameraBackend",
+            simulated="j5aio.simulator._camera_backend:SimulatedCameraBackend",
         ),
         KitDefinition(
             DEFAULT_KIT,

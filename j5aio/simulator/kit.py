@@ -32,7 +32,6 @@ from typing import TYPE_CHECKING, Final, cast
 from j5aio.board_kinds import DEFAULT_KIT, BoardKind, KitDefinition, get_kit, simulator_entries
 from j5aio.power_outputs import output_number
 
-from .arena import SimulatedWorld
 from .base import SerialBoardSimulator, UsbBoardSimulator
 from .clock import Clock, drive, kit_clock
 from .sb_arduino_2019 import SBArduinoSimulator
@@ -42,6 +41,7 @@ from .sr_servo_fw2 import SRServoBoardFw2Simulator
 from .wiring import KitWiring, PowerBoardSimulator, PowerFed, default_outputs
 
 if TYPE_CHECKING:
+    from .arena import SimulatedWorld
     from .camera import SimulatedCamera
     from .sr_motor_fw4 import SRMotorBoardFw4Simulator
     from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
@@ -212,11 +212,11 @@ class SimulatedKit:
         #: The kit's clock, which its boards' firmware timers follow: real time divided by
         #: the time scale (:func:`~j5aio.simulator.clock.kit_clock`); see :meth:`use_clock`.
         self.clock: Clock = kit_clock(self._config.time_scale)
-        #: The arena, the robot's pose and its drive (see :mod:`j5aio.simulator.arena`).
-        self.world = SimulatedWorld()
-        #: The robot's camera (a :class:`~j5aio.simulator.camera.SimulatedCamera`), or
-        #: ``None`` for a robot without one.
-        self.camera: SimulatedCamera | None = _default_camera()
+        # The world and the camera are made when first read (a robot that never looks
+        # through its camera never needs the arena, nor the vision modules).
+        self._world: SimulatedWorld | None = None
+        self._camera: SimulatedCamera | _DefaultCamera | None = _DEFAULT_CAMERA
+        self._made_default_camera: SimulatedCamera | None = None
         self._boards: dict[str, tuple[BoardSimulator, ...]] = {}
         self._kinds: dict[int, BoardKind] = {}
         entries = simulator_entries()
@@ -286,6 +286,59 @@ class SimulatedKit:
         order = {id(sim): index for index, sim in enumerate(self._all())}
         feeds.sort(key=lambda feed: order[id(feed[0])])
         return KitWiring(power_board, feeds)
+
+    @property
+    def world(self) -> SimulatedWorld:
+        """The arena, the robot's pose and its drive (see :mod:`j5aio.simulator.arena`)."""
+        if self._world is None:
+            from .arena import SimulatedWorld
+
+            self._world = SimulatedWorld()
+        return self._world
+
+    @world.setter
+    def world(self, world: SimulatedWorld) -> None:
+        self._world = world
+
+    @property
+    def has_world(self) -> bool:
+        """Whether :attr:`world` has been made yet (reading it makes it)."""
+        return self._world is not None
+
+    @property
+    def camera(self) -> SimulatedCamera | None:
+        """The robot's camera, or ``None`` for a robot without one.
+
+        A :class:`~j5aio.simulator.camera.SimulatedCamera`; set it to change or remove
+        the camera.
+        """
+        if isinstance(self._camera, _DefaultCamera):
+            self._camera = self.default_camera()
+        return self._camera
+
+    @camera.setter
+    def camera(self, camera: SimulatedCamera | None) -> None:
+        self._camera = camera
+
+    @property
+    def has_camera(self) -> bool:
+        """Whether the robot has a camera (:attr:`camera` is not ``None``), making none."""
+        return self._camera is not None
+
+    def _camera_if_made(self) -> SimulatedCamera | None:
+        """The camera, or ``None`` while it is the default camera and not made yet."""
+        return None if isinstance(self._camera, _DefaultCamera) else self._camera
+
+    def default_camera(self) -> SimulatedCamera:
+        """The camera the kit was made with (made when first asked for, then kept).
+
+        It is :attr:`camera` until that is set to another.
+        """
+        if self._made_default_camera is None:
+            from ._camera_model import SimulatedCamera
+
+            self._made_default_camera = SimulatedCamera()
+        return self._made_default_camera
 
     @property
     def wiring(self) -> KitWiring | None:
@@ -429,10 +482,11 @@ class SimulatedKit:
         return f"<SimulatedKit {self._name} {what}>"
 
 
-def _default_camera() -> SimulatedCamera:
-    from ._camera_model import SimulatedCamera
+class _DefaultCamera:
+    """Marks a kit's camera as the default one, not made yet."""
 
-    return SimulatedCamera()
+
+_DEFAULT_CAMERA: Final = _DefaultCamera()
 
 
 def _serial(prefix: str, index: int, count: int) -> str:
