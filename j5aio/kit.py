@@ -178,7 +178,7 @@ class KitRobot(BaseRobot):
         self.servo_boards = await environment.get_board_group(ServoBoard)
         self.arduinos = await self._find_arduinos(environment)
         self.ruggeduinos = await environment.get_board_group(Ruggeduino)
-        if CameraBoard in environment.supported_boards:
+        if environment._has_backend_for(CameraBoard):
             self.cameras = await environment.get_board_group(CameraBoard)
         else:
             # (imported here: the camera backends bring the vision modules with them)
