@@ -71,6 +71,7 @@ NOT_NEEDED_TO_START = {
     "j5aio.competition.metadata": "there is no metadata to read, so the robot develops",
     "j5aio.competition.timer": "no match is started",
     "j5aio.competition.start": "nothing waits for the start",
+    "j5aio.simulator._kit_config": "the kit is a named one, not one made from counts",
 }
 
 STARTED_ROBOT = (

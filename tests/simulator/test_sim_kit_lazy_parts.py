@@ -131,3 +131,42 @@ async def test_the_marker_camera_keeps_the_arena_table_unread() -> None:
     finally:
         for board in boards:
             await board.backend.close()
+
+
+def test_a_named_kit_makes_its_configuration_when_first_read() -> None:
+    from j5aio.simulator.kit import KitConfig
+
+    kit = SimulatedKit("sr2019", time_scale=0.5)
+    assert kit._config is None
+    assert kit.time_scale == 0.5
+    assert kit.config == KitConfig(
+        power_boards=1, motor_boards=1, servo_boards=1, sb_arduinos=0, ruggeduinos=1,
+        time_scale=0.5,
+    )
+    assert kit.config is kit.config
+    assert "KitConfig(" not in repr(kit)  # a named kit shows its name
+    from_counts = SimulatedKit(KitConfig(motor_boards=1))
+    assert "KitConfig(" in repr(from_counts) and from_counts.config.motor_boards == 1
+
+
+def test_a_named_kits_counts_are_checked_as_its_configuration_checks_them() -> None:
+    from j5aio.board_kinds import KitDefinition
+
+    too_many = KitDefinition("big", "too many motor boards", {"sr-motor": 100})
+    with pytest.raises(ValueError, match="motor_boards must be between 0 and 99, not 100"):
+        SimulatedKit(too_many)
+    with pytest.raises(TypeError, match="time_scale must be a number, not str"):
+        SimulatedKit("sr2019", time_scale="fast")  # type: ignore[arg-type]
+
+
+def test_kit_config_is_the_kit_modules_own() -> None:
+    from j5aio.simulator import kit
+    from j5aio.simulator._kit_config import KitConfig
+
+    assert kit.KitConfig is KitConfig
+    assert KitConfig.__module__ == "j5aio.simulator.kit"
+    assert kit._is_kit_config(KitConfig())
+    assert not kit._is_kit_config("default")
+    assert use_kit(KitConfig(sb_arduinos=0)).config.sb_arduinos == 0
+    with pytest.raises(AttributeError, match="has no attribute 'NoSuchThing'"):
+        kit.NoSuchThing  # noqa: B018
