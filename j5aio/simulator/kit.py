@@ -441,6 +441,10 @@ def __getattr__(name: str) -> Any:  # PEP 562: KitConfig's class is made when fi
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
+def __dir__() -> list[str]:
+    return sorted({*globals(), *__all__})
+
+
 class _DefaultCamera:
     """Marks a kit's camera as the default one, not made yet."""
 
