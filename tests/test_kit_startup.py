@@ -56,6 +56,8 @@ NOT_NEEDED = {
     "j5aio.boards.sr.v4.arduino": "the default kit has no SR Arduino",
     "j5aio.boards.sb.arduino_2024": "the default kit has no sb2024 Arduino",
     "j5aio.boards.sb.servo_board": "the default kit has no SourceBots servo board",
+    "j5aio.boards.sr.v4.servo_board_fw4": "the default kit has no firmware-4 servo board",
+    "j5aio.boards.sr.kch": "the default kit has no KCH",
     "j5aio.simulator._camera_model": "the camera's model is read at its first look",
     "j5aio.vision.calibration": "the camera's calibration is read at its first look",
     "j5aio.service.config": "nothing configures the robot service",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable, Iterable, Iterator
 from typing import TypeVar
 
@@ -255,6 +256,24 @@ class Environment:
             and (slot.idle is None or not slot.idle())
             for slot in self._slots
         )
+
+    def _might_find_named(self, path: str) -> bool:
+        """:meth:`might_find` for the board class at ``path``, imported only if it may be found.
+
+        While its module is not imported, no board class registered as a class can be it
+        or a subclass of it (such a class would have imported it): only a backend whose
+        board is still named by its path, and is not idle, may find one; the class is
+        imported then to ask.
+        """
+        module = check_import_path(path, "a board class").partition(":")[0]
+        if module not in sys.modules and all(
+            not isinstance(slot._board, str) or slot.idle_unloaded() for slot in self._slots
+        ):
+            return False
+        board = import_class(path, "a board class")
+        if not issubclass(board, Board):
+            raise TypeError(f"{path} is not a Board subclass")
+        return self.might_find(board)
 
     def _unsupported(self, board: type[Board]) -> str:
         known = ", ".join(sorted({slot.board.__name__ for slot in self._slots})) or "none"

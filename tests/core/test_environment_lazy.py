@@ -284,3 +284,32 @@ def test_a_path_that_names_no_board_class_is_refused(lazy_module_unloaded: None)
     env._register_lazily_by_path("builtins:int", _lazy_backend)
     with pytest.raises(TypeError, match="builtins:int is not a Board subclass"):
         env.might_find(LampBoard)
+
+
+def test_might_find_named_imports_the_class_only_where_a_backend_may_find_one(
+    lazy_module_unloaded: None,
+) -> None:
+    import sys
+
+    path = f"{LAZY_MODULE}:LazyLampBoard"
+    idle = [True]
+    env = Environment("E")
+    env.register_lazily(LampBoard, Loader(LampBackend))
+    env._register_lazily_by_path(path, _lazy_backend, idle=lambda: idle[0])
+    assert not env._might_find_named(path)  # its only backend is idle
+    assert LAZY_MODULE not in sys.modules
+    idle[0] = False
+    assert env._might_find_named(path)
+    assert LAZY_MODULE in sys.modules
+    idle[0] = True  # imported now: asked as might_find asks
+    assert not env._might_find_named(path)
+    assert env._might_find_named(f"{LampBoard.__module__}:LampBoard")
+
+
+def test_might_find_named_refuses_what_names_no_board_class() -> None:
+    env = Environment("E")
+    env.register_lazily(LampBoard, Loader(LampBackend))
+    with pytest.raises(ValueError, match="a board class must be named"):
+        env._might_find_named("not a path")
+    with pytest.raises(TypeError, match="builtins:int is not a Board subclass"):
+        env._might_find_named("builtins:int")
