@@ -164,6 +164,7 @@ def test_kit_config_is_the_kit_modules_own() -> None:
     from j5aio.simulator._kit_config import KitConfig
 
     assert kit.KitConfig is KitConfig
+    assert "KitConfig" in dir(kit) and "SimulatedKit" in dir(kit)
     assert KitConfig.__module__ == "j5aio.simulator.kit"
     assert kit._is_kit_config(KitConfig())
     assert not kit._is_kit_config("default")
