@@ -61,11 +61,13 @@ async def test_nothing_configured_starts_nothing_and_says_so(
     assert "Robot service: not configured here" in caplog.text
 
 
+@pytest.mark.skipif(
+    os.path.isfile("/etc/astoria.toml"),
+    reason="this machine has astoria's configuration: the service is configured",
+)
 async def test_find_config_decides_where_the_quick_look_cannot_tell(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path
 ) -> None:
-    if os.path.isfile("/etc/astoria.toml"):
-        pytest.skip("this machine has astoria's configuration: the service is configured")
     monkeypatch.chdir(tmp_path)
     monkeypatch.setattr(auto, "_may_be_configured", lambda environ: True)
     assert await start_service(environ={}) is None  # find_config: nothing configures it
