@@ -26,9 +26,11 @@ portal, the facade's wrappers).
 from __future__ import annotations
 
 import argparse
+import functools
 import os
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -79,12 +81,17 @@ anyio.run(main)
 """
 
 
-def time_to_ready(case: Case) -> float:
-    """Seconds from starting ``case``'s process to reading its ready line; it is then ended."""
+def time_to_ready(case: Case, folder: str) -> float:
+    """Seconds from starting ``case``'s process to reading its ready line; it is then ended.
+
+    The child runs in ``folder``, an empty one: a ``python -c`` program has its working
+    folder first on its path, which from a checkout's root would shadow ``--compare``'s
+    checkout (and this one's, from the other's root).
+    """
     start = time.perf_counter()
     child = subprocess.Popen(
         case.argv, env=case.env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE, text=True,
+        stderr=subprocess.PIPE, text=True, cwd=folder,
     )
     assert child.stdout is not None
     try:
@@ -137,7 +144,8 @@ def main() -> int:
     if peer is not None:
         j5 = Case("j5 console robot", [str(peer), "-c", J5_PROGRAM], j5aio_env())
         cases.append(j5)
-    run_interleaved(cases, options.rounds, time_to_ready)
+    with tempfile.TemporaryDirectory(prefix="j5aio-bench-startup-") as folder:
+        run_interleaved(cases, options.rounds, functools.partial(time_to_ready, folder=folder))
     print(f"process start -> robot ready, {options.rounds} interleaved rounds")
     print_table("time to a ready robot", cases, "ms", reference=j5, scale=1000)
     limit = floor.median * 1000 + GOAL_ABOVE_FLOOR_MS

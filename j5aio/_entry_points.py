@@ -17,20 +17,39 @@ import importlib
 import os
 import re
 import sys
-from dataclasses import dataclass
 
 __all__ = ["PluginEntryPoint", "find"]
 
 _SUFFIXES = (".dist-info", ".egg-info")
 
 
-@dataclass(frozen=True)
 class PluginEntryPoint:
-    """One entry point: ``name = value`` in its group, from the distribution ``package``."""
+    """One entry point: ``name = value`` in its group, from the distribution ``package``.
 
-    name: str
-    value: str
-    package: str
+    (A plain record rather than a dataclass: every program on the simulated kit reads
+    the entry points, and making a dataclass costs as much as the rest of this module.)
+    """
+
+    __slots__ = ("name", "package", "value")
+
+    def __init__(self, name: str, value: str, package: str) -> None:
+        self.name = name
+        self.value = value
+        self.package = package
+
+    def __repr__(self) -> str:
+        return (
+            f"PluginEntryPoint(name={self.name!r}, value={self.value!r}, "
+            f"package={self.package!r})"
+        )
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, PluginEntryPoint):
+            return NotImplemented
+        return (self.name, self.value, self.package) == (other.name, other.value, other.package)
+
+    def __hash__(self) -> int:
+        return hash((self.name, self.value, self.package))
 
     def load(self) -> object:
         """Import the module ``value`` names and return the object it names in it.

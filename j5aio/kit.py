@@ -38,16 +38,20 @@ from j5aio.boards.board import Board
 from j5aio.boards.board_group import BoardGroup
 from j5aio.boards.camera import CameraBoard
 from j5aio.boards.sb import SBArduinoBoard
-from j5aio.boards.sr.kch import KCHBoard
-from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard, ServoBoardFw4
+from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
 from j5aio.components.marker_camera import MarkerCamera
 from j5aio.environments import get_default_environment, hint_no_hardware
 from j5aio.robot import BaseRobot
 
 if TYPE_CHECKING:
+    from j5aio.boards.sr.kch import KCHBoard
+    from j5aio.boards.sr.v4 import ServoBoardFw4
     from j5aio.view import LiveView
 
 BoardT = TypeVar("BoardT", bound=Board)
+
+#: The KCH's board class, by its path (imported where a KCH may be found).
+_KCH_BOARD = "j5aio.boards.sr.kch:KCHBoard"
 
 __all__ = ["KitRobot"]
 
@@ -178,7 +182,7 @@ class KitRobot(BaseRobot):
         self.servo_boards = await environment.get_board_group(ServoBoard)
         self.arduinos = await self._find_arduinos(environment)
         self.ruggeduinos = await environment.get_board_group(Ruggeduino)
-        if CameraBoard in environment.supported_boards:
+        if environment._has_backend_for(CameraBoard):
             self.cameras = await environment.get_board_group(CameraBoard)
         else:
             # (imported here: the camera backends bring the vision modules with them)
@@ -226,10 +230,15 @@ class KitRobot(BaseRobot):
         silent = await kit_power.silent_motor_boards(
             environment, (board.serial_number for board in self.motor_boards)
         )
+        # (a firmware-4 servo board exists only once its module is loaded)
+        fw4 = sys.modules.get("j5aio.boards.sr.v4.servo_board_fw4")
+        fw4_class: type[ServoBoardFw4] | None = fw4.ServoBoardFw4 if fw4 is not None else None
         unpowered = [
             board.serial_number
             for board in self.servo_boards
-            if isinstance(board, ServoBoardFw4) and not await board.power_good.get_state()
+            if fw4_class is not None
+            and isinstance(board, fw4_class)
+            and not await board.power_good.get_state()
         ]
         said = {*silent, *unpowered}
         found = {board.serial_number for board in (*self.motor_boards, *self.servo_boards)}
@@ -307,8 +316,11 @@ class KitRobot(BaseRobot):
     @staticmethod
     async def _find_kch(environment: Environment) -> KCHBoard | None:
         """The KCH, if the environment can find one and there is one (a Pi has one HAT)."""
-        if not environment.might_find(KCHBoard):  # (its backend is then not even loaded)
+        # (neither its backend nor, on the simulated kit, its class is loaded otherwise)
+        if not environment._might_find_named(_KCH_BOARD):
             return None
+        from j5aio.boards.sr.kch import KCHBoard
+
         found = await environment.get_board_group(KCHBoard)
         return found[0] if found else None
 

@@ -8,9 +8,11 @@ import importlib
 import logging
 import os
 import socket
+import sys
+from collections.abc import Awaitable, Callable, Iterable
 from pathlib import Path
 from types import TracebackType
-from typing import Any, ClassVar, Self
+from typing import TYPE_CHECKING, Any, ClassVar, Final, Self
 
 import anyio
 
@@ -18,19 +20,13 @@ from j5aio import lifetime
 from j5aio.boards.board import Board
 from j5aio.competition import service_state
 from j5aio.competition.clock import MatchClock
-from j5aio.competition.metadata import (
-    Metadata,
-    MetadataError,
-    Mode,
-    describe,
-    find_usb_sticks,
-    load_metadata,
-)
-from j5aio.competition.start import wait_for_start
-from j5aio.competition.timer import MatchTimer
 from j5aio.components._checks import check_timeout
 from j5aio.errors import UnableToObtainLock
 from j5aio.safety import make_all_safe_uncancellably
+
+if TYPE_CHECKING:
+    from j5aio.competition.metadata import Metadata, Mode
+    from j5aio.competition.timer import MatchTimer
 
 __all__ = ["BaseRobot", "UnableToObtainLock"]
 
@@ -81,6 +77,7 @@ class BaseRobot:
 
     _lock: socket.socket | None
     _metadata: Metadata | None
+    _no_metadata_at_start: bool
     _clock: MatchClock
     _match_timer: MatchTimer | None
     _started: bool
@@ -98,6 +95,7 @@ class BaseRobot:
         robot = super().__new__(cls)
         robot._lock = None
         robot._metadata = None
+        robot._no_metadata_at_start = False
         robot._clock = MatchClock()
         robot._match_timer = None
         robot._started = False
@@ -248,7 +246,11 @@ class BaseRobot:
             if live is not None:
                 return live
         if self._metadata is None:
-            self._metadata = load_metadata()
+            from j5aio.competition import metadata
+
+            self._metadata = (
+                metadata.DEV_DEFAULTS if self._no_metadata_at_start else metadata.load_metadata()
+            )
         return self._metadata
 
     @property
@@ -281,6 +283,8 @@ class BaseRobot:
         usercode = service_state.usercode_path()
         if usercode is not None:
             return usercode
+        from j5aio.competition.metadata import find_usb_sticks
+
         source = self.metadata.source
         sticks = find_usb_sticks()
         for stick in sticks:
@@ -345,7 +349,7 @@ class BaseRobot:
         if not self._started:  # no watcher, or it failed: wait here
             self._waiting = True
             try:
-                how = await wait_for_start(self.boards(), limit)
+                how = await _wait_for_start()(self.boards(), limit)
             finally:
                 self._waiting = False
             self._begin_match(how)
@@ -367,10 +371,19 @@ class BaseRobot:
         """
         if self._watch_loop is not None or self._started:
             return
-        self.metadata  # noqa: B018 - read now: unusable metadata is an error before the match
+        nothing_to_read = (
+            self._metadata is None
+            and service_state.metadata() is None
+            and not _metadata_may_be_there()
+        )
+        if nothing_to_read:  # (so development mode, and the metadata module is not loaded)
+            self._no_metadata_at_start = True
+        else:
+            self.metadata  # noqa: B018 - read now: unusable metadata is an error before the match
         self._watch_loop = asyncio.get_running_loop()
         service_state.add_listener(self._on_service_change)
-        self._watch_if_in_a_match()
+        if not nothing_to_read:
+            self._watch_if_in_a_match()
 
     def _on_service_change(self) -> None:
         """The service's metadata changed (on its thread): look again, on the robot's loop."""
@@ -380,6 +393,8 @@ class BaseRobot:
                 loop.call_soon_threadsafe(self._look_again)
 
     def _look_again(self) -> None:
+        from j5aio.competition.metadata import MetadataError
+
         try:
             self._watch_if_in_a_match()
         except MetadataError as error:
@@ -391,6 +406,8 @@ class BaseRobot:
         metadata = self.metadata
         if not metadata.is_competition:
             return
+        from j5aio.competition.metadata import describe
+
         LOGGER.info("In a match (%s): watching for the start", describe(metadata))
         self._watch_scope = None
         self._watcher = asyncio.get_running_loop().create_task(
@@ -401,7 +418,7 @@ class BaseRobot:
         # (the scope is made here: anyio needs a running task to make one)
         with anyio.CancelScope() as self._watch_scope:
             try:
-                how = await wait_for_start(self.boards())
+                how = await _wait_for_start()(self.boards(), None)
                 self._begin_match(how)
             except Exception as exc:  # a board or the metadata failed: say so; the
                 # program's wait_start() raises it, and waits itself when called again
@@ -424,6 +441,8 @@ class BaseRobot:
 
     def _begin_match(self, how: str) -> None:
         """The start has come (by ``how``): fix the metadata and start the match timer."""
+        from j5aio.competition.metadata import describe, load_metadata
+
         metadata = load_metadata()
         self._started = True
         self._metadata = metadata
@@ -435,7 +454,7 @@ class BaseRobot:
             def cancel() -> None:
                 loop.call_soon_threadsafe(self._cancel_work)
 
-            self._match_timer = MatchTimer(
+            self._match_timer = _match_timer()(
                 self._clock.to_real(metadata.duration), cancel=cancel
             )
             self._match_timer.start()
@@ -466,3 +485,58 @@ class BaseRobot:
 
     def __del__(self) -> None:
         self.release_lock()
+
+
+# Where match metadata may be, for a quick look that reads nothing: the variables and
+# folders :func:`j5aio.competition.metadata.load_metadata` reads (named as there; a test
+# checks that they agree), so that a robot with none imports no metadata reader.
+_METADATA_VARIABLES: Final = ("J5AIO_METADATA", "SBOT_METADATA_PATH")
+_MEDIA_ROOTS_VARIABLE: Final = "J5AIO_MEDIA_ROOTS"
+_DEFAULT_MEDIA_ROOTS: Final = ("/media", "/run/media")
+
+
+def _metadata_may_be_there() -> bool:
+    """Whether there may be match metadata to read: False only where there is surely none.
+
+    That is: no variable names a metadata file or folder, and every folder where USB
+    sticks are mounted is empty or missing.
+    """
+    if any(os.environ.get(variable) for variable in _METADATA_VARIABLES):
+        return True
+    override = os.environ.get(_MEDIA_ROOTS_VARIABLE)
+    roots = _DEFAULT_MEDIA_ROOTS if override is None else override.split(os.pathsep)
+    for root in filter(None, roots):
+        try:
+            with os.scandir(root) as entries:
+                if next(entries, None) is not None:
+                    return True
+        except OSError:
+            continue  # (no such folder: no stick there)
+    return False
+
+
+_LAZY: Final = {
+    "MatchTimer": "j5aio.competition.timer",
+    "wait_for_start": "j5aio.competition.start",
+}
+
+
+def __getattr__(name: str) -> Any:  # PEP 562: what a match needs, imported for a match
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(_LAZY[name]), name)
+    globals()[name] = value
+    return value
+
+
+def _wait_for_start() -> Callable[[Iterable[Board], float | None], Awaitable[str]]:
+    """:func:`~j5aio.competition.start.wait_for_start`, looked up here (a test may replace it)."""
+    found: Callable[[Iterable[Board], float | None], Awaitable[str]]
+    found = sys.modules[__name__].wait_for_start
+    return found
+
+
+def _match_timer() -> type[MatchTimer]:
+    """:class:`~j5aio.competition.timer.MatchTimer`, looked up here (a test may replace it)."""
+    found: type[MatchTimer] = sys.modules[__name__].MatchTimer
+    return found

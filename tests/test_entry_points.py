@@ -163,3 +163,14 @@ def test_dotted_folder_names_and_distributions_without_the_group_are_read_as_imp
     assert len(found) == 1  # (two spellings of one distribution: the first listed wins)
     assert found == by_importlib_metadata("test.group")
     assert as_tuples(find("console_scripts")) == by_importlib_metadata("console_scripts")
+
+
+def test_an_entry_point_is_a_value_with_a_readable_repr() -> None:
+    one = PluginEntryPoint("beekit", "beekit.kinds:entries", "beekit")
+    assert one == PluginEntryPoint("beekit", "beekit.kinds:entries", "beekit")
+    assert one != PluginEntryPoint("beekit", "beekit.kinds:entries", "other")
+    assert one != ("beekit", "beekit.kinds:entries", "beekit")
+    assert len({one, PluginEntryPoint("beekit", "beekit.kinds:entries", "beekit")}) == 1
+    assert repr(one) == (
+        "PluginEntryPoint(name='beekit', value='beekit.kinds:entries', package='beekit')"
+    )

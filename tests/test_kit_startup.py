@@ -51,7 +51,39 @@ NOT_NEEDED = {
     "concurrent.futures.thread": "the camera's worker thread waits for a first look",
     "j5aio.simulator.sr_motor_fw4": "the default kit has no firmware-4 motor board",
     "j5aio.simulator.sr_ruggeduino_fw1": "the default kit has no Ruggeduino",
+    "j5aio.boards.sr.v4.motor_board_fw4": "the default kit has no firmware-4 motor board",
+    "j5aio.boards.sr.v4.power_board_fw4": "the default kit has no firmware-4 power board",
+    "j5aio.boards.sr.v4.arduino": "the default kit has no SR Arduino",
+    "j5aio.boards.sb.arduino_2024": "the default kit has no sb2024 Arduino",
+    "j5aio.boards.sb.servo_board": "the default kit has no SourceBots servo board",
+    "j5aio.boards.sr.v4.servo_board_fw4": "the default kit has no firmware-4 servo board",
+    "j5aio.boards.sr.kch": "the default kit has no KCH",
+    "j5aio.simulator._camera_model": "the camera's model is read at its first look",
+    "j5aio.vision.calibration": "the camera's calibration is read at its first look",
+    "j5aio.service.config": "nothing configures the robot service",
 }
+
+#: Modules a robot on the default simulated kit has no use for until it does something
+#: (the program starts and ends at once), each with why.
+NOT_NEEDED_TO_START = {
+    **NOT_NEEDED,
+    "j5aio.simulator.arena": "the world is made when the robot first moves or looks",
+    "j5aio.simulator.camera": "the camera draws nothing until it is looked through",
+    "j5aio.vision.arena_map": "nothing asks where the robot is",
+    "j5aio.competition.metadata": "there is no metadata to read, so the robot develops",
+    "j5aio.competition.timer": "no match is started",
+    "j5aio.competition.start": "nothing waits for the start",
+    "j5aio.simulator._kit_config": "the kit is a named one, not one made from counts",
+}
+
+STARTED_ROBOT = (
+    "import anyio\n"
+    "from j5aio.kit import KitRobot\n\n"
+    "async def main() -> None:\n"
+    "    async with KitRobot() as robot:\n"
+    "        print('BOARDS', len(robot.motor_boards), len(robot.cameras), flush=True)\n\n"
+    "anyio.run(main)\n" + REPORT
+)
 
 
 def _free_port() -> int:
@@ -68,8 +100,11 @@ def _modules_of(program: str) -> tuple[set[str], str]:
         for key, value in os.environ.items()
         if key not in {"J5AIO_VIEW", "J5AIO_KIT", "J5AIO_KIT_FILE", "J5AIO_ENV"}
     }
+    for key in ("J5AIO_METADATA", "SBOT_METADATA_PATH", "J5AIO_MQTT_URL", "SBOT_MQTT_URL"):
+        env.pop(key, None)
     env.update(
         J5AIO_ENV="sim",
+        J5AIO_MEDIA_ROOTS=str(ROOT / "no-media-here"),
         J5AIO_LOCK_PORT=str(_free_port()),
         PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])),
     )
@@ -97,6 +132,17 @@ def test_a_robot_on_the_simulated_kit_imports_only_what_it_uses(bare_modules: se
     loaded = {
         name: why
         for name, why in NOT_NEEDED.items()
+        if _loaded(modules - bare_modules, name)
+    }
+    assert loaded == {}
+
+
+def test_a_robot_that_only_starts_loads_no_arena_nor_match(bare_modules: set[str]) -> None:
+    modules, output = _modules_of(STARTED_ROBOT)
+    assert "BOARDS 2 1" in output
+    loaded = {
+        name: why
+        for name, why in NOT_NEEDED_TO_START.items()
         if _loaded(modules - bare_modules, name)
     }
     assert loaded == {}

@@ -8,8 +8,6 @@ is entered with ``_kind``, and its simulators with ``_simulator``.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from j5aio.backends._kind_types import (
     DEFAULT_KIT,
     BoardKind,
@@ -18,22 +16,6 @@ from j5aio.backends._kind_types import (
     SimulatorEntry,
     SimulatorTransport,
 )
-from j5aio.boards.camera import CameraBoard
-from j5aio.boards.sb import SBArduino2024Board, SBArduinoBoard, SBServoBoard
-from j5aio.boards.sr.kch import KCHBoard
-from j5aio.boards.sr.v4 import (
-    MotorBoard,
-    MotorBoardFw4,
-    PowerBoard,
-    PowerBoardFw4,
-    Ruggeduino,
-    ServoBoard,
-    ServoBoardFw4,
-    SRArduinoBoard,
-)
-
-if TYPE_CHECKING:
-    from j5aio.boards.board import Board
 
 __all__ = ["entries"]
 
@@ -60,7 +42,7 @@ def _simulator(
 
 def _kind(
     name: str,
-    board: type[Board],
+    board: str,
     description: str,
     stem: str,
     modules: tuple[str, str, str],
@@ -69,14 +51,16 @@ def _kind(
 ) -> BoardKind:
     """A board kind whose three backends are named after one stem.
 
-    They are ``<stem>HardwareBackend``, ``<stem>ConsoleBackend`` and
-    ``<stem>SimulatedBackend``, in the modules ``modules`` names below
-    ``j5aio.backends.hardware``, ``j5aio.backends.console`` and ``j5aio.simulator``.
+    Its board class is named by its path below ``j5aio.boards`` (imported when first
+    read: a program imports the board classes of the kit it uses only). Its backends are
+    ``<stem>HardwareBackend``, ``<stem>ConsoleBackend`` and ``<stem>SimulatedBackend``,
+    in the modules ``modules`` names below ``j5aio.backends.hardware``,
+    ``j5aio.backends.console`` and ``j5aio.simulator``.
     """
     hardware, console, simulated = modules
     return BoardKind(
         name=name,
-        board=board,
+        board=f"j5aio.boards.{board}",
         description=description,
         hardware=f"j5aio.backends.hardware.{hardware}:{stem}HardwareBackend",
         console=f"j5aio.backends.console.{console}:{stem}ConsoleBackend",
@@ -98,7 +82,8 @@ def entries() -> list[BoardKind | KitDefinition]:
     """
     return [
         _kind(
-            "sr-v4-power-fw3", PowerBoard, "SR v4 power board, firmware 3 (USB)",
+            "sr-v4-power-fw3", "sr.v4.power_board:PowerBoard",
+            "SR v4 power board, firmware 3 (USB)",
             "SRV4PowerBoard", ("sr.v4.power_board", "sr.v4", "sim_backends"),
             _simulator(
                 "sr-power", "sr_power_fw3:SRPowerBoardFw3Simulator",
@@ -106,7 +91,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             ),
         ),
         _kind(
-            "sr-v4-motor-fw3", MotorBoard, "SR v4 motor board, firmware 3 (serial, 1 Mbaud)",
+            "sr-v4-motor-fw3", "sr.v4.motor_board:MotorBoard",
+            "SR v4 motor board, firmware 3 (serial, 1 Mbaud)",
             "SRV4MotorBoard", ("sr.v4.motor_board", "sr.v4", "sim_backends"),
             _simulator(
                 "sr-motor", "sr_motor_fw3:SRMotorBoardFw3Simulator",
@@ -117,7 +103,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             identify_order=10,
         ),
         _kind(
-            "sr-v4-servo-fw2", ServoBoard, "SR v4 servo board, firmware 2 (USB)",
+            "sr-v4-servo-fw2", "sr.v4.servo_board:ServoBoard",
+            "SR v4 servo board, firmware 2 (USB)",
             "SRV4ServoBoard", ("sr.v4.servo_board", "sr.v4", "sim_backends"),
             _simulator(
                 "sr-servo", "sr_servo_fw2:SRServoBoardFw2Simulator",
@@ -125,7 +112,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             ),
         ),
         _kind(
-            "sb-arduino-2019", SBArduinoBoard,
+            "sb-arduino-2019", "sb.arduino:SBArduinoBoard",
             "SourceBots Arduino, 2019 firmware (serial, 115200 baud)",
             "SBArduino", ("sb.arduino", "sb.arduino", "sim_backends"),
             _simulator(
@@ -135,7 +122,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             identify_order=50,
         ),
         _kind(
-            "sr-ruggeduino-fw1", Ruggeduino, "SR Ruggeduino, firmware 1 (serial, 115200 baud)",
+            "sr-ruggeduino-fw1", "sr.v4.ruggeduino:Ruggeduino",
+            "SR Ruggeduino, firmware 1 (serial, 115200 baud)",
             "SRV4Ruggeduino", ("sr.v4.ruggeduino", "sr.v4", "sim_backends"),
             _simulator(
                 "sr-ruggeduino", "sr_ruggeduino_fw1:SRRuggeduinoSimulator",
@@ -144,7 +132,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             identify_order=60,
         ),
         _kind(
-            "sr-v4-power-fw4", PowerBoardFw4, "SR v4 power board, firmware 4.4 (CDC serial)",
+            "sr-v4-power-fw4", "sr.v4.power_board_fw4:PowerBoardFw4",
+            "SR v4 power board, firmware 4.4 (CDC serial)",
             "SRV4PowerBoardFw4", ("sr.v4.power_board_fw4", "sr.v4", "sim_backends_2023"),
             _simulator(
                 "sr-power-fw4", "sr_power_fw4:SRPowerBoardFw4Simulator",
@@ -153,7 +142,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             identify_order=20,
         ),
         _kind(
-            "sr-v4-motor-fw4", MotorBoardFw4,
+            "sr-v4-motor-fw4", "sr.v4.motor_board_fw4:MotorBoardFw4",
             "SR v4 motor board, firmware 4.4 / 4.5 (serial, 115200 baud)",
             "SRV4MotorBoardFw4", ("sr.v4.motor_board_fw4", "sr.v4", "sim_backends_2023"),
             _simulator(
@@ -170,7 +159,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             identify_order=12,
         ),
         _kind(
-            "sr-v4-servo-fw4", ServoBoardFw4,
+            "sr-v4-servo-fw4", "sr.v4.servo_board_fw4:ServoBoardFw4",
             "SR v4 servo board, firmware 4.3 (CDC serial, 12 servos)",
             "SRV4ServoBoardFw4", ("sr.v4.servo_board_fw4", "sr.v4", "sim_backends_2023"),
             _simulator(
@@ -180,7 +169,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             identify_order=30,
         ),
         _kind(
-            "sb-servo-fw4", SBServoBoard,
+            "sb-servo-fw4", "sb.servo_board:SBServoBoard",
             "SR v4 servo board, SourceBots firmware 4.4 (CDC serial, 8 servos)",
             "SBServoBoard", ("sr.v4.servo_board_fw4", "sr.v4", "sim_backends_2023"),
             _simulator(
@@ -190,7 +179,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             identify_order=31,
         ),
         _kind(
-            "sr-arduino-fw2", SRArduinoBoard, "SR Arduino, firmware 2 (serial, 115200 baud)",
+            "sr-arduino-fw2", "sr.v4.arduino:SRArduinoBoard",
+            "SR Arduino, firmware 2 (serial, 115200 baud)",
             "SRArduino", ("sr.v4.arduino", "sr.v4", "sim_backends_2023"),
             _simulator(
                 "sr-arduino-fw2", "sr_ruggeduino_fw1:SRRuggeduinoSimulator",
@@ -200,7 +190,7 @@ def entries() -> list[BoardKind | KitDefinition]:
             identify_order=55,
         ),
         _kind(
-            "sb-arduino-2024", SBArduino2024Board,
+            "sb-arduino-2024", "sb.arduino_2024:SBArduino2024Board",
             "SourceBots Arduino, sb2024 firmware 2.0 (serial, 115200 baud)",
             "SBArduino2024", ("sb.arduino_2024", "sb.arduino_2024", "sim_backends_2023"),
             _simulator(
@@ -214,7 +204,8 @@ def entries() -> list[BoardKind | KitDefinition]:
             identify_order=45,
         ),
         _kind(
-            "sr-kch", KCHBoard, "SR KCH, the Raspberry Pi HAT (GPIO: user and start LEDs)",
+            "sr-kch", "sr.kch:KCHBoard",
+            "SR KCH, the Raspberry Pi HAT (GPIO: user and start LEDs)",
             "KCH", ("sr.kch", "sr.kch", "kch"),
             _simulator(
                 "kch", "kch:KCHSimulator", "SR KCH (mock GPIO pins)", "SIMKCH", "other",
@@ -223,12 +214,12 @@ def entries() -> list[BoardKind | KitDefinition]:
         ),
         BoardKind(
             name="camera",
-            board=CameraBoard,
+            board="j5aio.boards.camera:CameraBoard",
             description="a webcam finding AprilTag markers (the optional extra j5aio[vision])",
             hardware="j5aio.backends.camera.opencv:OpenCVCameraBackend",
             console="j5aio.backends.console.camera:CameraConsoleBackend",
             # Every simulated kit has the robot's camera in its arena (kit.camera).
-            simulated="j5aio.simulator.camera:SimulatedCameraBackend",
+            simulated="j5aio.simulator._camera_backend:SimulatedCameraBackend",
         ),
         KitDefinition(
             DEFAULT_KIT,

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable, Iterable, Iterator
 from typing import TypeVar
 
 from j5aio.backends.backend import Backend
 from j5aio.boards.board import Board
 from j5aio.boards.board_group import BoardGroup
+from j5aio.import_paths import check_import_path, import_class
 
 __all__ = ["BackendLoader", "Environment"]
 
@@ -20,20 +22,46 @@ BackendLoader = Callable[[], type[Backend]]
 class _Slot:
     """One registered backend: known, or to be loaded the first time it is needed."""
 
-    __slots__ = ("_backend", "board", "idle", "load")
+    __slots__ = ("_backend", "_board", "idle", "load")
 
     def __init__(
         self,
-        board: type[Board],
+        board: type[Board] | str,
         backend: type[Backend] | None = None,
         load: BackendLoader | None = None,
         idle: Callable[[], bool] | None = None,
     ) -> None:
-        #: The board class the backend drives (the one declared, until it is loaded).
-        self.board = board
+        # The board class the backend drives (the one declared, until it is loaded), or
+        # its import path until it is first needed.
+        self._board = board
         self._backend = backend
         self.load = load
         self.idle = idle
+
+    @property
+    def board(self) -> type[Board]:
+        """The board class (imported the first time, if it was given by its path)."""
+        if isinstance(self._board, str):
+            board = import_class(self._board, "the board of a backend registered lazily")
+            if not issubclass(board, Board):
+                raise TypeError(f"{self._board} is not a Board subclass")
+            self._board = board
+        return self._board
+
+    @board.setter
+    def board(self, board: type[Board]) -> None:
+        self._board = board
+
+    def declares(self, board: type[Board], path: str) -> bool:
+        """Whether the board is ``board`` (whose import path is ``path``), importing nothing."""
+        return self._board == path if isinstance(self._board, str) else self._board is board
+
+    def idle_unloaded(self) -> bool:
+        """Whether the board class is not imported yet and the backend would find nothing.
+
+        Such a slot is passed over without importing its board to learn its class.
+        """
+        return isinstance(self._board, str) and self.idle is not None and self.idle()
 
     def backend(self) -> type[Backend]:
         if self._backend is None:
@@ -110,6 +138,11 @@ class Environment:
         """The kinds of board this environment has a backend for (loading none of them)."""
         return {slot.board for slot in self._slots}
 
+    def _has_backend_for(self, board: type[Board]) -> bool:
+        """Whether ``board`` is in :attr:`supported_boards`, importing no board class to tell."""
+        path = f"{board.__module__}:{board.__qualname__}"
+        return any(slot.declares(board, path) for slot in self._slots)
+
     def register_backend(self, backend: type[Backend], *, alongside: bool = False) -> None:
         """Use ``backend`` for the kind of board it drives.
 
@@ -164,6 +197,20 @@ class Environment:
             raise TypeError(f"load must be callable, not {type(load).__name__}")
         self._slots.append(_Slot(board, load=load, idle=idle))
 
+    def _register_lazily_by_path(
+        self, board: str, load: BackendLoader, *, idle: Callable[[], bool] | None = None
+    ) -> None:
+        """As :meth:`register_lazily`, the board class named by its import path.
+
+        The board's module is imported the first time a board of a class it may be a
+        subclass of is asked for, unless ``idle`` says then that the backend would find
+        nothing (a simulated kit without such boards never imports their classes).
+        """
+        check_import_path(board, "the board of a backend registered lazily")
+        if not callable(load):
+            raise TypeError(f"load must be callable, not {type(load).__name__}")
+        self._slots.append(_Slot(board, load=load, idle=idle))
+
     def get_backend(self, board: type[Board]) -> type[Backend]:
         """Return the (first) backend this environment uses for ``board``.
 
@@ -186,6 +233,8 @@ class Environment:
 
     def _backends_for(self, board: type[Board], *, active_only: bool) -> Iterator[type[Backend]]:
         for slot in self._slots:
+            if active_only and slot.idle_unloaded():
+                continue
             if not issubclass(slot.board, board):
                 continue
             if active_only and slot.idle is not None and slot.idle():
@@ -202,9 +251,29 @@ class Environment:
         loads no backend to tell.
         """
         return any(
-            issubclass(slot.board, board) and (slot.idle is None or not slot.idle())
+            not slot.idle_unloaded()
+            and issubclass(slot.board, board)
+            and (slot.idle is None or not slot.idle())
             for slot in self._slots
         )
+
+    def _might_find_named(self, path: str) -> bool:
+        """:meth:`might_find` for the board class at ``path``, imported only if it may be found.
+
+        While its module is not imported, no board class registered as a class can be it
+        or a subclass of it (such a class would have imported it): only a backend whose
+        board is still named by its path, and is not idle, may find one; the class is
+        imported then to ask.
+        """
+        module = check_import_path(path, "a board class").partition(":")[0]
+        if module not in sys.modules and all(
+            not isinstance(slot._board, str) or slot.idle_unloaded() for slot in self._slots
+        ):
+            return False
+        board = import_class(path, "a board class")
+        if not issubclass(board, Board):
+            raise TypeError(f"{path} is not a Board subclass")
+        return self.might_find(board)
 
     def _unsupported(self, board: type[Board]) -> str:
         known = ", ".join(sorted({slot.board.__name__ for slot in self._slots})) or "none"

@@ -82,7 +82,10 @@ class MarkerCamera(IdentifiedComponent[MarkerCameraInterface]):
         marker_sizes: Mapping[int, float] | None = None,
     ) -> None:
         super().__init__(identifier, backend)
-        self._marker_sizes = MarkerSizes(marker_sizes)
+        # (a table is kept as it is, unread: a simulated arena's is read on first use)
+        self._marker_sizes = (
+            marker_sizes if isinstance(marker_sizes, MarkerSizes) else MarkerSizes(marker_sizes)
+        )
 
     @classmethod
     def interface_class(cls) -> type[MarkerCameraInterface]:

@@ -140,7 +140,10 @@ def _make_environment() -> Environment:
     environment = Environment("SimulatedEnvironment")
     for kind in board_kinds():
         if _has_simulated_backend(kind):
-            environment.register_lazily(kind.board, _loader(kind), idle=_idle(kind))
+            # (by its path: a board class the kit has none of is never imported)
+            environment._register_lazily_by_path(
+                kind.board_reference(), _loader(kind), idle=_idle(kind)
+            )
     return environment
 
 

@@ -25,14 +25,14 @@ from __future__ import annotations
 import itertools
 import os
 import sys
-from collections.abc import Iterator, Mapping
-from dataclasses import dataclass, fields
-from typing import TYPE_CHECKING, Final, cast
+from collections.abc import Iterator
+from typing import TYPE_CHECKING, Any, Final, TypeGuard, cast
 
 from j5aio.board_kinds import DEFAULT_KIT, BoardKind, KitDefinition, get_kit, simulator_entries
 from j5aio.power_outputs import output_number
 
-from .arena import SimulatedWorld
+from . import _kit_counts
+from ._kit_counts import check_count, check_time_scale
 from .base import SerialBoardSimulator, UsbBoardSimulator
 from .clock import Clock, drive, kit_clock
 from .sb_arduino_2019 import SBArduinoSimulator
@@ -42,6 +42,8 @@ from .sr_servo_fw2 import SRServoBoardFw2Simulator
 from .wiring import KitWiring, PowerBoardSimulator, PowerFed, default_outputs
 
 if TYPE_CHECKING:
+    from ._kit_config import KitConfig
+    from .arena import SimulatedWorld
     from .camera import SimulatedCamera
     from .sr_motor_fw4 import SRMotorBoardFw4Simulator
     from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
@@ -57,7 +59,7 @@ __all__ = [
 ]
 
 #: The most boards of one kind a simulated kit may have.
-MAX_BOARDS_OF_A_KIND: Final = 99
+MAX_BOARDS_OF_A_KIND: Final = _kit_counts.MAX_BOARDS_OF_A_KIND
 
 #: The environment variable that names the kit of the simulated environment.
 KIT_VARIABLE: Final = "J5AIO_KIT"
@@ -72,73 +74,6 @@ or a :class:`~j5aio.simulator.base.UsbBoardSimulator`, but a board reached other
 Raspberry Pi HAT's GPIO, say) has a simulator of its own shape."""
 
 _kit_numbers = itertools.count(1)
-
-#: The simulator (by registry name) each count of a :class:`KitConfig` makes.
-_CONFIG_SIMULATORS: Final = {
-    "power_boards": "sr-power",
-    "motor_boards": "sr-motor",
-    "servo_boards": "sr-servo",
-    "sb_arduinos": "sb-arduino",
-    "ruggeduinos": "sr-ruggeduino",
-}
-
-
-@dataclass(frozen=True)
-class KitConfig:
-    """How many of each board the simulated kit has, and how fast its time runs.
-
-    :param power_boards: SR v4 power boards (firmware 3, USB).
-    :param motor_boards: SR v4 motor boards (firmware 3, serial).
-    :param servo_boards: SR v4 servo boards (firmware 2, USB).
-    :param sb_arduinos: SourceBots Arduinos (2019 firmware, serial).
-    :param ruggeduinos: SR Ruggeduinos (firmware 1, serial).
-    :param time_scale: multiplies the time a board takes to boot when its port opens (an
-        Arduino's 1.5 s): ``1.0`` is as slow as the real boards, ``0`` (the default)
-        instant. The boards' firmware timers (a note playing, an LED flashing) run on the
-        kit's clock, at ``1 / time_scale`` of real time, or real time for ``0``.
-    :raises TypeError: a count is not an int, or ``time_scale`` not a number.
-    :raises ValueError: a count is outside 0 to 99, or ``time_scale`` is negative.
-    """
-
-    power_boards: int = 1
-    motor_boards: int = 2
-    servo_boards: int = 1
-    sb_arduinos: int = 1
-    ruggeduinos: int = 0
-    time_scale: float = 0.0
-
-    def __post_init__(self) -> None:
-        for field in fields(self):
-            value = getattr(self, field.name)
-            if field.name == "time_scale":
-                _check_time_scale(value)
-                continue
-            _check_count(field.name, value)
-
-    def boards(self) -> dict[str, int]:
-        """The simulators (by registry name) this configuration makes, and how many."""
-        return {name: getattr(self, count) for count, name in _CONFIG_SIMULATORS.items()}
-
-    @classmethod
-    def from_boards(cls, boards: Mapping[str, int], time_scale: float = 0.0) -> KitConfig:
-        """The configuration with the seed-generation boards among ``boards``."""
-        counts = {count: boards.get(name, 0) for count, name in _CONFIG_SIMULATORS.items()}
-        return cls(**counts, time_scale=time_scale)
-
-
-def _check_time_scale(value: object) -> None:
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        raise TypeError(f"time_scale must be a number, not {type(value).__name__}")
-    if not value >= 0:
-        raise ValueError(f"time_scale must be 0 or more, not {value}")
-
-
-def _check_count(name: str, value: object) -> None:
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise TypeError(f"{name} must be an int, not {type(value).__name__}")
-    if not 0 <= value <= MAX_BOARDS_OF_A_KIND:
-        raise ValueError(f"{name} must be between 0 and {MAX_BOARDS_OF_A_KIND}, not {value}")
-
 
 class SimulatedKit:
     """One simulator for each board of a kit.
@@ -193,16 +128,21 @@ class SimulatedKit:
             config = DEFAULT_KIT
         if isinstance(config, str):
             config = get_kit(config)
-        if isinstance(config, KitConfig):
+        self._config: KitConfig | None
+        if _is_kit_config(config):
             if time_scale is not None:
                 raise TypeError("give the time scale in the KitConfig, not beside it")
             boards, self._definition = config.boards(), None
-            self._config = config
+            self._config, self._time_scale = config, config.time_scale
         elif isinstance(config, KitDefinition):
             scale = 0.0 if time_scale is None else time_scale
-            _check_time_scale(scale)
+            check_time_scale(scale)
             boards, self._definition = dict(config.boards), config
-            self._config = KitConfig.from_boards(boards, scale)
+            # (checked as its KitConfig would check them; that is made when first read)
+            for field_name, seed in _kit_counts.CONFIG_SIMULATORS.items():
+                check_count(field_name, boards.get(seed, 0))
+            self._config, self._time_scale = None, scale
+            self._boards_asked = boards
         else:
             raise TypeError(
                 "a kit is a KitConfig, a KitDefinition or a kit's name, not "
@@ -211,18 +151,18 @@ class SimulatedKit:
         self._name = f"kit{next(_kit_numbers)}"
         #: The kit's clock, which its boards' firmware timers follow: real time divided by
         #: the time scale (:func:`~j5aio.simulator.clock.kit_clock`); see :meth:`use_clock`.
-        self.clock: Clock = kit_clock(self._config.time_scale)
-        #: The arena, the robot's pose and its drive (see :mod:`j5aio.simulator.arena`).
-        self.world = SimulatedWorld()
-        #: The robot's camera (a :class:`~j5aio.simulator.camera.SimulatedCamera`), or
-        #: ``None`` for a robot without one.
-        self.camera: SimulatedCamera | None = _default_camera()
+        self.clock: Clock = kit_clock(self._time_scale)
+        # The world and the camera are made when first read (a robot that never looks
+        # through its camera never needs the arena, nor the vision modules).
+        self._world: SimulatedWorld | None = None
+        self._camera: SimulatedCamera | _DefaultCamera | None = _DEFAULT_CAMERA
+        self._made_default_camera: SimulatedCamera | None = None
         self._boards: dict[str, tuple[BoardSimulator, ...]] = {}
         self._kinds: dict[int, BoardKind] = {}
         entries = simulator_entries()
         prefixes: dict[str, str] = {}
         for simulator_name, count in boards.items():
-            _check_count(simulator_name, count)
+            check_count(simulator_name, count)
             try:
                 kind, entry = entries[simulator_name]
             except KeyError:
@@ -288,6 +228,59 @@ class SimulatedKit:
         return KitWiring(power_board, feeds)
 
     @property
+    def world(self) -> SimulatedWorld:
+        """The arena, the robot's pose and its drive (see :mod:`j5aio.simulator.arena`)."""
+        if self._world is None:
+            from .arena import SimulatedWorld
+
+            self._world = SimulatedWorld()
+        return self._world
+
+    @world.setter
+    def world(self, world: SimulatedWorld) -> None:
+        self._world = world
+
+    @property
+    def has_world(self) -> bool:
+        """Whether :attr:`world` has been made yet (reading it makes it)."""
+        return self._world is not None
+
+    @property
+    def camera(self) -> SimulatedCamera | None:
+        """The robot's camera, or ``None`` for a robot without one.
+
+        A :class:`~j5aio.simulator.camera.SimulatedCamera`; set it to change or remove
+        the camera.
+        """
+        if isinstance(self._camera, _DefaultCamera):
+            self._camera = self.default_camera()
+        return self._camera
+
+    @camera.setter
+    def camera(self, camera: SimulatedCamera | None) -> None:
+        self._camera = camera
+
+    @property
+    def has_camera(self) -> bool:
+        """Whether the robot has a camera (:attr:`camera` is not ``None``), making none."""
+        return self._camera is not None
+
+    def _camera_if_made(self) -> SimulatedCamera | None:
+        """The camera, or ``None`` while it is the default camera and not made yet."""
+        return None if isinstance(self._camera, _DefaultCamera) else self._camera
+
+    def default_camera(self) -> SimulatedCamera:
+        """The camera the kit was made with (made when first asked for, then kept).
+
+        It is :attr:`camera` until that is set to another.
+        """
+        if self._made_default_camera is None:
+            from ._camera_model import SimulatedCamera
+
+            self._made_default_camera = SimulatedCamera()
+        return self._made_default_camera
+
+    @property
     def wiring(self) -> KitWiring | None:
         """The kit's power wiring, or ``None`` while it is not wired (see the class)."""
         return self._wiring
@@ -314,6 +307,10 @@ class SimulatedKit:
     @property
     def config(self) -> KitConfig:
         """The configuration of the kit's seed-generation boards, and its time scale."""
+        if self._config is None:
+            from ._kit_config import KitConfig
+
+            self._config = KitConfig.from_boards(self._boards_asked, self._time_scale)
         return self._config
 
     @property
@@ -329,7 +326,7 @@ class SimulatedKit:
     @property
     def time_scale(self) -> float:
         """The factor applied to every simulated delay."""
-        return self._config.time_scale
+        return self._time_scale
 
     def simulator_names(self) -> tuple[str, ...]:
         """The registry names of the simulators the kit was made from, in order."""
@@ -425,14 +422,34 @@ class SimulatedKit:
         return len(self.usb_simulators()) + len(self.serial_simulators())
 
     def __repr__(self) -> str:
-        what = self._definition.name if self._definition is not None else repr(self._config)
+        what = self._definition.name if self._definition is not None else repr(self.config)
         return f"<SimulatedKit {self._name} {what}>"
 
 
-def _default_camera() -> SimulatedCamera:
-    from ._camera_model import SimulatedCamera
+def _is_kit_config(config: object) -> TypeGuard[KitConfig]:
+    """Whether ``config`` is a :class:`KitConfig` (whose module is then loaded already)."""
+    module = sys.modules.get("j5aio.simulator._kit_config")
+    return module is not None and isinstance(config, module.KitConfig)
 
-    return SimulatedCamera()
+
+def __getattr__(name: str) -> Any:  # PEP 562: KitConfig's class is made when first used
+    if name == "KitConfig":
+        from ._kit_config import KitConfig
+
+        globals()[name] = KitConfig
+        return KitConfig
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *__all__})
+
+
+class _DefaultCamera:
+    """Marks a kit's camera as the default one, not made yet."""
+
+
+_DEFAULT_CAMERA: Final = _DefaultCamera()
 
 
 def _serial(prefix: str, index: int, count: int) -> str:
@@ -463,7 +480,7 @@ def use_kit(
     :raises ValueError: there is no kit of that name; the message lists the kits.
     """
     global _current
-    if kit is None or isinstance(kit, KitConfig | KitDefinition | str):
+    if kit is None or _is_kit_config(kit) or isinstance(kit, KitDefinition | str):
         kit = SimulatedKit(kit, time_scale=time_scale, wired=wired)
     elif not isinstance(kit, SimulatedKit):
         raise TypeError(

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import importlib
 from collections.abc import Callable, Sequence
 
 import pytest
@@ -209,3 +210,106 @@ async def test_without_gathering_the_first_backend_of_the_class_asked_for_is_use
     only_gen2 = Environment("E2", gather=False)
     only_gen2.register_backend(LampGen2Backend)
     assert [b.serial_number for b in await only_gen2.get_board_group(LampBoard)] == ["C"]
+
+
+# (beside this module, in the package it is imported as, so that its lamp board is ours)
+LAZY_MODULE = f"{__package__}.lazy_lamp"
+
+
+@pytest.fixture
+def lazy_module_unloaded(monkeypatch: pytest.MonkeyPatch) -> None:
+    import sys
+
+    monkeypatch.delitem(sys.modules, LAZY_MODULE, raising=False)
+
+
+def _lazy(name: str) -> type:
+    found: type = getattr(importlib.import_module(LAZY_MODULE), name)
+    return found
+
+
+def _lazy_backend() -> type[Backend]:
+    return _lazy("LazyLampBackend")
+
+
+async def test_a_board_named_by_path_is_not_imported_while_its_backend_is_idle(
+    lazy_module_unloaded: None,
+) -> None:
+    import sys
+
+    idle = [True]
+    env = Environment("E")
+    env.register_lazily(LampBoard, Loader(LampBackend))
+    env._register_lazily_by_path(
+        f"{LAZY_MODULE}:LazyLampBoard", _lazy_backend, idle=lambda: idle[0]
+    )
+    assert [board.serial_number for board in await env.get_board_group(LampBoard)] == ["A", "B"]
+    assert not env.might_find(LampBoardGen2)
+    assert env._has_backend_for(LampBoard)
+    assert not env._has_backend_for(LampBoardGen2)
+    assert LAZY_MODULE not in sys.modules  # idle: its class was never needed
+    idle[0] = False
+    assert env.might_find(LampBoard)
+    group = await env.get_board_group(LampBoard)
+    assert [board.serial_number for board in group] == ["A", "B", "L"]
+    lazy_board = _lazy("LazyLampBoard")
+    assert env._has_backend_for(lazy_board)
+    assert lazy_board in env.supported_boards
+
+
+def test_a_board_named_by_path_is_known_by_its_path_before_it_is_imported(
+    lazy_module_unloaded: None,
+) -> None:
+    import sys
+
+    env = Environment("E")
+    env._register_lazily_by_path(f"{LAZY_MODULE}:LazyLampBoard", _lazy_backend)
+    assert LAZY_MODULE not in sys.modules
+    # Asking for another class imports it, to learn whether it is a subclass.
+    assert not env.might_find(LampBoardGen2)
+    assert env._has_backend_for(_lazy("LazyLampBoard"))
+    assert env.get_backend(_lazy("LazyLampBoard")) is _lazy("LazyLampBackend")
+
+
+def test_a_path_that_names_no_board_class_is_refused(lazy_module_unloaded: None) -> None:
+    env = Environment("E")
+    with pytest.raises(ValueError, match=r"must be named 'package\.module:ClassName'"):
+        env._register_lazily_by_path("no path", _lazy_backend)
+    with pytest.raises(TypeError, match="load must be callable"):
+        env._register_lazily_by_path(f"{LAZY_MODULE}:LazyLampBoard", None)  # type: ignore[arg-type]
+    env._register_lazily_by_path(f"{LAZY_MODULE}:NOT_A_BOARD", _lazy_backend)
+    with pytest.raises(TypeError, match="is not a class"):
+        env.might_find(LampBoard)
+    env = Environment("E")
+    env._register_lazily_by_path("builtins:int", _lazy_backend)
+    with pytest.raises(TypeError, match="builtins:int is not a Board subclass"):
+        env.might_find(LampBoard)
+
+
+def test_might_find_named_imports_the_class_only_where_a_backend_may_find_one(
+    lazy_module_unloaded: None,
+) -> None:
+    import sys
+
+    path = f"{LAZY_MODULE}:LazyLampBoard"
+    idle = [True]
+    env = Environment("E")
+    env.register_lazily(LampBoard, Loader(LampBackend))
+    env._register_lazily_by_path(path, _lazy_backend, idle=lambda: idle[0])
+    assert not env._might_find_named(path)  # its only backend is idle
+    assert LAZY_MODULE not in sys.modules
+    idle[0] = False
+    assert env._might_find_named(path)
+    assert LAZY_MODULE in sys.modules
+    idle[0] = True  # imported now: asked as might_find asks
+    assert not env._might_find_named(path)
+    assert env._might_find_named(f"{LampBoard.__module__}:LampBoard")
+
+
+def test_might_find_named_refuses_what_names_no_board_class() -> None:
+    env = Environment("E")
+    env.register_lazily(LampBoard, Loader(LampBackend))
+    with pytest.raises(ValueError, match="a board class must be named"):
+        env._might_find_named("not a path")
+    with pytest.raises(TypeError, match="builtins:int is not a Board subclass"):
+        env._might_find_named("builtins:int")
