@@ -33,6 +33,15 @@ pulled). The link's polls then read at once when rung, and otherwise only every
 and check, soon after it happens, at a fraction of the cost. Without that method (a real
 board) a poll reads every interval, as asked.
 
+A device that answers at once: a board simulator's transfers are function calls that
+never block (see :func:`answers_at_once`). Its link runs each transfer in the event loop,
+after one checkpoint (so that a cancelled caller's transfer never runs and other tasks get
+their turn, as with a hand-off to the thread), and starts its worker thread only for its
+first poll, which needs one to read every so often; from then on every transfer takes the
+thread, in order. A simulated kit's start therefore starts no thread at all. A synchronous
+:meth:`USBLink.control_write_now` from another thread runs in that thread, after any
+transfer running in the loop.
+
 Errors: a pyusb error becomes :class:`~j5aio.errors.USBCommunicationError` naming the
 board, with the pyusb exception kept as ``usb_error``. errno 19 (``ENODEV``: unplugged)
 becomes :class:`USBDisconnectionError`, which is also a
@@ -68,6 +77,7 @@ from j5aio.errors import (
 from .trace import log_wire, wire_logger
 
 __all__ = [
+    "ANSWERS_AT_ONCE",
     "CONTROL_REQUEST",
     "MAX_POLL_INTERVAL",
     "READ_REQUEST_TYPE",
@@ -78,6 +88,7 @@ __all__ = [
     "USBDisconnectionError",
     "USBLink",
     "USBTransferTimeoutError",
+    "answers_at_once",
 ]
 
 _log = logging.getLogger(__name__)
@@ -98,6 +109,10 @@ MAX_POLL_INTERVAL = 86_400.0
 #: the device is still there, so they can be rare (once in 0.75 s for the power board's
 #: 15 ms button poll).
 RUNG_INTERVAL_FACTOR = 50
+
+#: The attribute by which a device, or a USB finder, says that it answers at once: a
+#: simulator, whose calls are function calls that never block (see :func:`answers_at_once`).
+ANSWERS_AT_ONCE = "answers_at_once"
 
 T = TypeVar("T")
 _JobT = TypeVar("_JobT", bound="_Job[Any]")
@@ -153,6 +168,17 @@ class RingingDevice(Protocol):
         that stops the calls.
         """
         ...
+
+
+def answers_at_once(thing: object) -> bool:
+    """Whether ``thing`` (a device, or a function that finds devices) never blocks.
+
+    It says so with a true :data:`ANSWERS_AT_ONCE` attribute (a board simulator, the
+    simulated kit's finder); a pyusb device and ``usb.core.find`` have none, and are run on
+    a thread. Such a device's link needs no worker thread for its transfers (see the
+    module's notes).
+    """
+    return getattr(thing, ANSWERS_AT_ONCE, False) is True
 
 
 class _State(enum.Enum):
@@ -340,7 +366,16 @@ class USBLink(AsyncResource):
         self._thread = threading.Thread(
             target=self._run, name=f"j5aio USB {board_name}", daemon=True
         )
-        self._thread.start()
+        # A device that answers at once has its transfers run in the event loop, one at a
+        # time under this lock, until its first poll starts the thread (see the module's
+        # notes); ``_threaded`` says whether the thread runs them (set under the lock).
+        self._here: threading.Lock | None = None
+        self._threaded = True
+        if answers_at_once(device):
+            self._here = threading.Lock()
+            self._threaded = False
+        else:
+            self._thread.start()
 
     @property
     def board_name(self) -> str:
@@ -359,7 +394,10 @@ class USBLink(AsyncResource):
 
     @property
     def thread(self) -> threading.Thread:
-        """The worker thread (exposed so that tests can check it has stopped)."""
+        """The worker thread (exposed so that tests can check it has stopped).
+
+        Not started, for a device that answers at once, until the link's first poll.
+        """
         return self._thread
 
     @property
@@ -507,6 +545,23 @@ class USBLink(AsyncResource):
             succeeded, even if the caller has been cancelled meanwhile; an exception it
             raises reaches the caller.
         """
+        here = self._here
+        if here is not None and not self._threaded:
+            # A device that answers at once: in the loop, after a checkpoint (a cancelled
+            # caller's transfer never runs; other tasks get their turn).
+            await asyncio.sleep(0)
+            with here:
+                if not self._threaded:
+                    if self._closed:
+                        raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
+                    try:
+                        value = work()
+                    except Exception as exc:
+                        raise self._translate(exc, description, errors or {}) from exc
+                    if then is not None:
+                        then(value)
+                    return value
+            # (a poll started the thread meanwhile: the transfer takes its turn there)
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
         job = self._submit(_Job(work, loop, future, then))
@@ -574,6 +629,8 @@ class USBLink(AsyncResource):
 
     def _submit(self, job: _JobT) -> _JobT:
         """Queue ``job`` for the worker thread, unless the link is closed."""
+        if not self._threaded:
+            self._start_thread()
         with self._state_lock:
             if self._closed:
                 raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
@@ -582,6 +639,14 @@ class USBLink(AsyncResource):
             if self._doorbell.locked():
                 self._doorbell.release()
         return job
+
+    def _start_thread(self) -> None:
+        """Start the worker thread of a device that answers at once (its first poll)."""
+        assert self._here is not None
+        with self._here:  # after any transfer running outside the thread
+            if not self._threaded and not self._closed:
+                self._threaded = True
+                self._thread.start()
 
     def _ring(self) -> None:
         """The device's doorbell: what a poll reads may have changed (any thread)."""
@@ -637,6 +702,8 @@ class USBLink(AsyncResource):
                 job.finish((True, job.work()))
             except Exception as exc:
                 job.finish((False, exc))
+        elif self._here is not None and self._ran_here(job, timeout, description):
+            pass
         else:
             with self._state_lock:
                 if self._closed:
@@ -650,6 +717,30 @@ class USBLink(AsyncResource):
         if not succeeded:
             raise self._translate(value, description, {}) from value
 
+    def _ran_here(self, job: _NowJob, timeout: float, description: str) -> bool:
+        """Run a synchronous caller's transfer in its own thread if no worker thread runs.
+
+        It waits up to ``timeout`` seconds for a transfer running in the event loop.
+        Returns whether it ran it (else the worker thread runs transfers: queue it there).
+        """
+        assert self._here is not None
+        if not self._here.acquire(timeout=max(timeout, 0.0)):
+            raise USBTransferTimeoutError(
+                f"{self._board_name}: {description} did not finish within {timeout} s"
+            )
+        try:
+            if self._threaded:
+                return False
+            if self._closed:
+                raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
+            try:
+                job.finish((True, job.work()))
+            except Exception as exc:
+                job.finish((False, exc))
+            return True
+        finally:
+            self._here.release()
+
     # -- closing -------------------------------------------------------------------------
 
     def close_now(self, timeout: float = 2.0) -> None:
@@ -658,12 +749,16 @@ class USBLink(AsyncResource):
         Synchronous (no event loop or executor needed, so it works in ``atexit``);
         waits up to ``timeout`` seconds for the thread. Idempotent.
         """
+        if self._stopped_here():
+            return
         self._request_stop()
         if threading.current_thread() is not self._thread:
             self._thread.join(timeout)
 
     async def aclose(self) -> None:
         """Stop the worker thread once the transfers already asked for are done."""
+        if self._stopped_here():
+            return
         loop = asyncio.get_running_loop()
         stopped: asyncio.Future[Any] = loop.create_future()
         with self._state_lock:
@@ -675,6 +770,19 @@ class USBLink(AsyncResource):
         # The thread has posted its last word and only returns now: wait for that, so
         # that a closed link never has a live thread.
         self._thread.join(1.0)
+
+    def _stopped_here(self) -> bool:
+        """Close a link whose worker thread never started, at once; whether it was one."""
+        here = self._here
+        if here is None:
+            return False
+        with here:  # after any transfer running in the event loop
+            if self._threaded:
+                return False
+            if not self._stopped:
+                self._request_stop()
+                self._end()
+            return True
 
     def _request_stop(self) -> None:
         with self._state_lock:
@@ -712,7 +820,8 @@ class USBLink(AsyncResource):
                 continue
             job = jobs.popleft()
             if job is None:
-                break
+                self._end()
+                return
             if isinstance(job, _PollJob):
                 self._polls.append(job)  # due at once: its first read runs next
                 self._poll_due = 0.0
@@ -726,6 +835,9 @@ class USBLink(AsyncResource):
                 job.finish(outcome)
             if self._polls:
                 self._run_due_polls()
+
+    def _end(self) -> None:
+        """The link's last steps (its worker thread's, or its closer's if it had none)."""
         for poll in self._polls:
             if not poll.withdrawn:
                 poll.finish((False, _LinkClosed()))
