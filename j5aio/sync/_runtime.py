@@ -100,8 +100,11 @@ def _get_portal() -> DrivenLoop | LoopThread:
         if _portal is None:
             lifetime.install()
             lifetime.add_exit_step(shutdown)
-            start_signal_watch(_wake_waiting_callers)
-            _portal = DrivenLoop() if CALLER_DRIVES else LoopThread()
+            if CALLER_DRIVES:  # its loop hears of signals itself: no watcher thread
+                _portal = DrivenLoop(on_signal=_wake_waiting_callers)
+            else:
+                start_signal_watch(_wake_waiting_callers)
+                _portal = LoopThread()
         return _portal
 
 
