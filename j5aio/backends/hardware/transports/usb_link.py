@@ -34,13 +34,13 @@ and check, soon after it happens, at a fraction of the cost. Without that method
 board) a poll reads every interval, as asked.
 
 A device that answers at once: a board simulator's transfers are function calls that
-never block (see :func:`answers_at_once`). Its link runs each transfer in the event loop,
-after one checkpoint (so that a cancelled caller's transfer never runs and other tasks get
-their turn, as with a hand-off to the thread), and starts its worker thread only for its
-first poll, which needs one to read every so often; from then on every transfer takes the
-thread, in order. A simulated kit's start therefore starts no thread at all. A synchronous
-:meth:`USBLink.control_write_now` from another thread runs in that thread, after any
-transfer running in the loop.
+never block (see :func:`answers_at_once`). Its link has no worker thread. Each transfer
+runs in the event loop, after one checkpoint (so that a cancelled caller's transfer never
+runs and other tasks get their turn, as with a hand-off to the thread); a poll reads in
+the loop too, waiting between reads on a timer and on the device's doorbell; a
+synchronous :meth:`USBLink.control_write_now` from another thread runs in that thread,
+after any transfer running in the loop. A simulated kit's robot therefore starts no
+thread for its USB boards, and its transfers cost no thread hand-off.
 
 Errors: a pyusb error becomes :class:`~j5aio.errors.USBCommunicationError` naming the
 board, with the pyusb exception kept as ``usb_error``. errno 19 (``ENODEV``: unplugged)
@@ -287,6 +287,43 @@ class _NowJob:
         self.done.set()
 
 
+class _HerePoll:
+    """A poll reading a device that answers at once, in the event loop: its doorbell."""
+
+    def __init__(self, loop: asyncio.AbstractEventLoop) -> None:
+        self.loop = loop
+        #: Whether the device rang since the last read began (under the link's state lock).
+        self.rung = False
+        self._waiter: asyncio.Future[None] | None = None
+
+    def ring(self) -> None:
+        """The device rang (any thread; the link's state lock is held)."""
+        self.rung = True
+        waiter = self._waiter
+        if waiter is not None:
+            with contextlib.suppress(RuntimeError):  # the loop has closed: nobody waits
+                self.loop.call_soon_threadsafe(_resolve, waiter, None)
+
+    async def wait(self, delay: float, lock: threading.Lock) -> bool:
+        """Wait ``delay`` seconds, or until the device rings; return whether it rang.
+
+        ``lock`` is the link's state lock, under which :meth:`ring` is called.
+        """
+        waiter: asyncio.Future[None] = self.loop.create_future()
+        with lock:
+            if self.rung:
+                return True
+            self._waiter = waiter
+        timer = self.loop.call_later(max(delay, 0.0), _resolve, waiter, None)
+        try:
+            await waiter
+        finally:
+            timer.cancel()
+            with lock:
+                self._waiter = None
+        return self.rung
+
+
 def _resolve(future: asyncio.Future[Any], outcome: Any) -> None:
     if not future.done():
         future.set_result(outcome)
@@ -366,14 +403,13 @@ class USBLink(AsyncResource):
         self._thread = threading.Thread(
             target=self._run, name=f"j5aio USB {board_name}", daemon=True
         )
-        # A device that answers at once has its transfers run in the event loop, one at a
-        # time under this lock, until its first poll starts the thread (see the module's
-        # notes); ``_threaded`` says whether the thread runs them (set under the lock).
+        # A device that answers at once has no worker thread: its transfers run where they
+        # are asked for, one at a time under this lock (see the module's notes).
         self._here: threading.Lock | None = None
-        self._threaded = True
+        # The polls reading such a device in the event loop (guarded by ``_state_lock``).
+        self._polls_here: list[_HerePoll] = []
         if answers_at_once(device):
             self._here = threading.Lock()
-            self._threaded = False
         else:
             self._thread.start()
 
@@ -396,7 +432,7 @@ class USBLink(AsyncResource):
     def thread(self) -> threading.Thread:
         """The worker thread (exposed so that tests can check it has stopped).
 
-        Not started, for a device that answers at once, until the link's first poll.
+        Never started for a device that answers at once.
         """
         return self._thread
 
@@ -506,6 +542,12 @@ class USBLink(AsyncResource):
                 )
             return data
 
+        if self._here is not None:
+            accepted = await self._poll_here(transfer, found, interval, description, None)
+            if then is not None:
+                then(accepted)
+            log_wire(self._wire, f"<- wIndex={w_index} wValue={w_value}", accepted)
+            return accepted
         # What :meth:`poll_until` does, inline: this is the start button's path.
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
@@ -545,23 +587,14 @@ class USBLink(AsyncResource):
             succeeded, even if the caller has been cancelled meanwhile; an exception it
             raises reaches the caller.
         """
-        here = self._here
-        if here is not None and not self._threaded:
+        if self._here is not None:
             # A device that answers at once: in the loop, after a checkpoint (a cancelled
             # caller's transfer never runs; other tasks get their turn).
             await asyncio.sleep(0)
-            with here:
-                if not self._threaded:
-                    if self._closed:
-                        raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
-                    try:
-                        value = work()
-                    except Exception as exc:
-                        raise self._translate(exc, description, errors or {}) from exc
-                    if then is not None:
-                        then(value)
-                    return value
-            # (a poll started the thread meanwhile: the transfer takes its turn there)
+            value = self._run_here(work, description, errors)
+            if then is not None:
+                then(value)
+            return value
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
         job = self._submit(_Job(work, loop, future, then))
@@ -603,6 +636,11 @@ class USBLink(AsyncResource):
             :data:`MAX_POLL_INTERVAL`.
         :raises USBCommunicationError: a read failed (or a subclass, as :meth:`call`).
         """
+        if self._here is not None:
+            result = await self._poll_here(work, found, interval, description, errors)
+            if then is not None:
+                then(result)
+            return result
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
         job = self._submit(
@@ -612,7 +650,7 @@ class USBLink(AsyncResource):
             succeeded, value = await future
         finally:
             job.withdrawn = True
-        result: T = self._poll_result(succeeded, value, description, errors)
+        result = self._poll_result(succeeded, value, description, errors)
         return result
 
     def _poll_result(
@@ -627,10 +665,82 @@ class USBLink(AsyncResource):
             )
         return self._result(succeeded, value, description, errors)
 
+    def _run_here(
+        self,
+        work: Callable[[], T],
+        description: str,
+        errors: Mapping[int, str] | None,
+        keep: type[Exception] | tuple[type[Exception], ...] = (),
+    ) -> T:
+        """Run ``work`` now, in this thread, after any transfer running elsewhere.
+
+        For a device that answers at once. Its exceptions are translated as on the thread,
+        but those of the classes in ``keep``.
+        """
+        assert self._here is not None
+        with self._here:
+            if self._closed:
+                raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
+            try:
+                return work()
+            except keep:
+                raise
+            except Exception as exc:
+                raise self._translate(exc, description, errors or {}) from exc
+
+    async def _poll_here(
+        self,
+        work: Callable[[], T],
+        found: Callable[[T], bool],
+        interval: float,
+        description: str,
+        errors: Mapping[int, str] | None,
+    ) -> T:
+        """Poll a device that answers at once in the event loop, as the thread polls.
+
+        ``work`` runs now, then every ``interval`` (times the doorbell's factor), and at
+        once when the device rings; the first result ``found`` accepts is returned.
+        """
+        if not 0 < interval <= MAX_POLL_INTERVAL:
+            raise ValueError(
+                "interval must be a positive number of seconds up to "
+                f"{MAX_POLL_INTERVAL:g}, not {interval!r}"
+            )
+        interval = min(interval * self._interval_factor, MAX_POLL_INTERVAL)
+        loop = asyncio.get_running_loop()
+        poll = _HerePoll(loop)
+        with self._state_lock:
+            self._polls_here.append(poll)
+        try:
+            await asyncio.sleep(0)  # a checkpoint, as every transfer here has
+            due = loop.time()
+            rang = False
+            while True:
+                if self._closed:
+                    raise USBDisconnectionError(
+                        f"{self._board_name}: the USB link was closed while {description}"
+                    )
+                poll.rung = False  # before the read: a ring during it reads again
+                value = self._run_here(work, description, errors, UnexpectedReplyError)
+                try:
+                    if found(value):
+                        return value
+                except UnexpectedReplyError:
+                    raise
+                except Exception as exc:  # as on the thread: the poll's failure
+                    raise self._translate(exc, description, errors or {}) from exc
+                if not rang:  # the read that was due: the next is due an interval later
+                    now = loop.time()
+                    due += interval  # a steady rate, unless the loop fell behind
+                    if due <= now:
+                        due = now + interval
+                rang = await poll.wait(due - loop.time(), self._state_lock)
+        finally:
+            with self._state_lock:
+                self._polls_here.remove(poll)
+
     def _submit(self, job: _JobT) -> _JobT:
         """Queue ``job`` for the worker thread, unless the link is closed."""
-        if not self._threaded:
-            self._start_thread()
         with self._state_lock:
             if self._closed:
                 raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
@@ -640,20 +750,14 @@ class USBLink(AsyncResource):
                 self._doorbell.release()
         return job
 
-    def _start_thread(self) -> None:
-        """Start the worker thread of a device that answers at once (its first poll)."""
-        assert self._here is not None
-        with self._here:  # after any transfer running outside the thread
-            if not self._threaded and not self._closed:
-                self._threaded = True
-                self._thread.start()
-
     def _ring(self) -> None:
         """The device's doorbell: what a poll reads may have changed (any thread)."""
         with self._state_lock:
             self._rung = True
             if self._doorbell.locked():
                 self._doorbell.release()
+            for poll in self._polls_here:
+                poll.ring()
 
     def _queue(self, job: _Job[Any] | _NowJob | None) -> None:
         """Queue ``job`` (``None``: stop) and ring the doorbell; hold ``_state_lock``.
@@ -702,8 +806,8 @@ class USBLink(AsyncResource):
                 job.finish((True, job.work()))
             except Exception as exc:
                 job.finish((False, exc))
-        elif self._here is not None and self._ran_here(job, timeout, description):
-            pass
+        elif self._here is not None:
+            self._run_now_here(job, timeout, description)
         else:
             with self._state_lock:
                 if self._closed:
@@ -717,11 +821,10 @@ class USBLink(AsyncResource):
         if not succeeded:
             raise self._translate(value, description, {}) from value
 
-    def _ran_here(self, job: _NowJob, timeout: float, description: str) -> bool:
-        """Run a synchronous caller's transfer in its own thread if no worker thread runs.
+    def _run_now_here(self, job: _NowJob, timeout: float, description: str) -> None:
+        """Run a synchronous caller's transfer in its own thread (no worker thread).
 
         It waits up to ``timeout`` seconds for a transfer running in the event loop.
-        Returns whether it ran it (else the worker thread runs transfers: queue it there).
         """
         assert self._here is not None
         if not self._here.acquire(timeout=max(timeout, 0.0)):
@@ -729,15 +832,12 @@ class USBLink(AsyncResource):
                 f"{self._board_name}: {description} did not finish within {timeout} s"
             )
         try:
-            if self._threaded:
-                return False
             if self._closed:
                 raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
             try:
                 job.finish((True, job.work()))
             except Exception as exc:
                 job.finish((False, exc))
-            return True
         finally:
             self._here.release()
 
@@ -772,15 +872,16 @@ class USBLink(AsyncResource):
         self._thread.join(1.0)
 
     def _stopped_here(self) -> bool:
-        """Close a link whose worker thread never started, at once; whether it was one."""
+        """Close a link with no worker thread, at once; whether it was one."""
         here = self._here
         if here is None:
             return False
         with here:  # after any transfer running in the event loop
-            if self._threaded:
-                return False
             if not self._stopped:
                 self._request_stop()
+                with self._state_lock:
+                    for poll in self._polls_here:
+                        poll.ring()  # each reads at once, and finds the link closed
                 self._end()
             return True
 

@@ -1,4 +1,4 @@
-"""Tests of USBLink with a device that answers at once: no worker thread until a poll."""
+"""Tests of USBLink with a device that answers at once: no worker thread at all."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ from collections.abc import Callable
 from typing import Any
 
 import anyio
+import anyio.to_thread
 import pytest
 import usb.core
 
@@ -19,7 +20,7 @@ from j5aio.backends.hardware.transports import (
     USBTransferTimeoutError,
 )
 from j5aio.backends.hardware.transports.usb_link import ANSWERS_AT_ONCE, answers_at_once
-from j5aio.errors import USBCommunicationError
+from j5aio.errors import UnexpectedReplyError, USBCommunicationError
 
 
 class AtOnceDevice:
@@ -37,6 +38,8 @@ class AtOnceDevice:
         self.gate: threading.Event | None = None
         self.entered = threading.Event()
         self.doorbells: list[Callable[[], None]] = []
+        #: Called during each read of wIndex 8, after the value was read (a change then).
+        self.during_read: Callable[[], None] | None = None
 
     def add_doorbell(self, ring: Callable[[], None]) -> Callable[[], None]:
         self.doorbells.append(ring)
@@ -59,6 +62,8 @@ class AtOnceDevice:
             raise self.errors[wIndex]
         if bmRequestType & 0x80:
             value = self.value if wIndex == 8 else wIndex
+            if wIndex == 8 and self.during_read is not None:
+                self.during_read()
             return array.array("B", struct.pack("<I", value)[:data_or_wLength])
         return len(data_or_wLength)
 
@@ -134,27 +139,6 @@ async def test_errors_are_translated_and_then_runs_on_success_only() -> None:
         await link.control_read(9, 4)
 
 
-async def test_the_first_poll_starts_the_thread_which_then_runs_every_transfer() -> None:
-    device = AtOnceDevice()
-    link = USBLink(device, board_name="Power Board SRABC1")
-    try:
-        await link.control_write(2, 1)
-        assert not link.thread.is_alive()
-        device.value = 5
-        reply = await link.poll_control_read(8, 4, lambda r: r != bytes(4), interval=0.001)
-        assert reply == struct.pack("<I", 5)
-        assert link.thread.is_alive()
-        await link.control_write(2, 0)
-        assert [thread for _, _, thread in device.calls] == [
-            threading.get_ident(),
-            link.thread.ident,
-            link.thread.ident,
-        ]
-    finally:
-        link.close_now()
-    assert not link.thread.is_alive()
-
-
 def test_control_write_now_runs_in_its_callers_thread() -> None:
     device = AtOnceDevice()
     link = USBLink(device, board_name="Power Board SRABC1")
@@ -197,17 +181,6 @@ async def test_control_write_now_waits_for_a_transfer_running_in_the_loop() -> N
     link.close_now()
 
 
-async def test_control_write_now_takes_the_thread_once_a_poll_started_it() -> None:
-    device = AtOnceDevice()
-    link = USBLink(device, board_name="Power Board SRABC1")
-    device.value = 1
-    await link.poll_control_read(8, 4, lambda r: r != bytes(4), interval=0.001)
-    await anyio.to_thread.run_sync(lambda: link.control_write_now(2, 1, timeout=5))
-    assert device.calls[-1] == (0x00, 2, link.thread.ident)
-    await link.aclose()
-    assert not link.thread.is_alive()
-
-
 def test_a_link_closed_before_any_transfer_ends_at_once() -> None:
     device = AtOnceDevice()
     link = USBLink(device, board_name="Power Board SRABC1")
@@ -218,18 +191,165 @@ def test_a_link_closed_before_any_transfer_ends_at_once() -> None:
     assert repr(link) == "<USBLink 'Power Board SRABC1' closed>"
 
 
-async def test_a_transfer_asked_for_as_a_poll_starts_the_thread_takes_the_thread() -> None:
+class QuietDevice(AtOnceDevice):
+    """A device that answers at once but has no doorbell: polls read every interval."""
+
+    add_doorbell = None  # type: ignore[assignment]
+
+
+def _reads(device: AtOnceDevice) -> int:
+    return sum(1 for kind, index, _ in device.calls if kind & 0x80 and index == 8)
+
+
+def _changed(reply: bytes) -> bool:
+    return reply != bytes(4)
+
+
+async def test_a_poll_reads_in_the_loop_every_interval_without_a_doorbell() -> None:
+    device = QuietDevice()
+    link = USBLink(device, board_name="Power Board SRABC1")
+    assert not link.rung
+
+    def found(reply: bytes) -> bool:
+        return _reads(device) == 3
+
+    with anyio.fail_after(10):
+        assert await link.poll_control_read(8, 4, found, interval=0.001) == bytes(4)
+    assert _reads(device) == 3
+    assert _threads(device) == {threading.get_ident()}
+    assert not link.thread.is_alive()
+    assert not link._polls_here
+    link.close_now()
+
+
+async def test_a_ring_from_another_thread_reads_at_once() -> None:
     device = AtOnceDevice()
     link = USBLink(device, board_name="Power Board SRABC1")
+    assert link.rung
+
+    def press() -> None:
+        assert device.entered.wait(5)
+        device.value = 7
+        for ring in list(device.doorbells):
+            ring()
+
+    presser = threading.Thread(target=press)
+    presser.start()
+    # A second between reads (fifty, as the device rings): only the ring can end this.
+    with anyio.fail_after(10):
+        reply = await link.poll_control_read(8, 4, _changed, interval=1)
+    presser.join()
+    assert reply == struct.pack("<I", 7)
+    assert _reads(device) == 2  # the first read, and the one the ring asked for
+    link.close_now()
+
+
+async def test_a_ring_during_a_read_is_not_lost() -> None:
+    device = AtOnceDevice()
+    link = USBLink(device, board_name="Power Board SRABC1")
+
+    def change_after_the_read() -> None:
+        device.during_read = None
+        device.value = 3  # after this read took its value
+        for ring in list(device.doorbells):
+            ring()
+
+    device.during_read = change_after_the_read
+    with anyio.fail_after(10):
+        reply = await link.poll_control_read(8, 4, _changed, interval=1)
+    assert reply == struct.pack("<I", 3)
+    assert _reads(device) == 2
+    link.close_now()
+
+
+async def test_a_cancelled_poll_stops_reading_and_leaves_nothing_behind() -> None:
+    device = AtOnceDevice()
+    link = USBLink(device, board_name="Power Board SRABC1")
+    with anyio.move_on_after(0.05):
+        await link.poll_control_read(8, 4, _changed, interval=0.001)
+    reads = _reads(device)
+    assert reads >= 1
+    assert not link._polls_here
+    await anyio.sleep(0.02)
+    assert _reads(device) == reads
+    link.close_now()
+
+
+async def test_closing_the_link_ends_a_poll() -> None:
+    device = AtOnceDevice()
+    link = USBLink(device, board_name="Power Board SRABC1")
+
+    async def close_soon() -> None:
+        await anyio.sleep(0.01)
+        link.close_now()
+
+    with anyio.fail_after(10):
+        async with anyio.create_task_group() as group:
+            group.start_soon(close_soon)
+            with pytest.raises(USBDisconnectionError, match="closed while polling"):
+                await link.poll_control_read(8, 4, _changed, interval=1)
+
+
+async def test_poll_failures_reach_the_poller_as_on_the_thread() -> None:
+    device = AtOnceDevice()
+    link = USBLink(device, board_name="Power Board SRABC1")
+    with pytest.raises(ValueError, match="interval"):
+        await link.poll_until(lambda: 1, bool, interval=0, description="nothing")
+    with pytest.raises(UnexpectedReplyError, match="returned 4 bytes"):
+        await link.poll_control_read(9, 8, _changed, interval=0.001)  # 4 bytes, not 8
+
+    def broken_check(_: int) -> bool:
+        raise ArithmeticError("bad check")
+
+    with pytest.raises(USBCommunicationError, match="counting failed: bad check"):
+        await link.poll_until(lambda: 1, broken_check, interval=0.001, description="counting")
+
+    def short_check(_: int) -> bool:
+        raise UnexpectedReplyError("too short")
+
+    with pytest.raises(UnexpectedReplyError, match="too short"):
+        await link.poll_until(lambda: 1, short_check, interval=0.001, description="counting")
+    device.errors[8] = usb.core.USBError("Pipe error", -9, errno.EPIPE)
+    with pytest.raises(USBCommunicationError, match="Pipe error"):
+        await link.poll_control_read(8, 4, _changed, interval=0.001)
+    link.close_now()
+
+
+async def test_then_takes_what_a_poll_found() -> None:
+    device = AtOnceDevice()
+    link = USBLink(device, board_name="Power Board SRABC1")
+    taken: list[object] = []
+    count = iter(range(100))
+    assert (
+        await link.poll_until(
+            lambda: next(count),
+            lambda n: n == 2,
+            interval=0.001,
+            description="counting",
+            then=taken.append,
+        )
+        == 2
+    )
     device.value = 1
+    reply = await link.poll_control_read(8, 4, _changed, interval=0.001, then=taken.append)
+    assert taken == [2, reply]
+    link.close_now()
 
-    async def poll() -> None:
-        await link.poll_control_read(8, 4, lambda r: r != bytes(4), interval=0.001)
 
-    async with anyio.create_task_group() as group:
-        group.start_soon(link.control_write, 2, 1)  # (its checkpoint lets the poll start)
-        group.start_soon(poll)
-    assert link.thread.is_alive()
-    assert {thread for _, _, thread in device.calls} == {link.thread.ident}
-    assert sorted(index for _, index, _ in device.calls) == [2, 8]
-    await link.aclose()
+async def test_control_write_now_runs_beside_a_waiting_poll() -> None:
+    device = AtOnceDevice()
+    link = USBLink(device, board_name="Power Board SRABC1")
+    with anyio.fail_after(10):
+        async with anyio.create_task_group() as group:
+
+            async def poll() -> None:
+                await link.poll_control_read(8, 4, _changed, interval=1)
+
+            group.start_soon(poll)
+            await anyio.sleep(0.01)
+            await anyio.to_thread.run_sync(lambda: link.control_write_now(2, 1, timeout=5))
+            group.cancel_scope.cancel()
+    writes = [thread for kind, index, thread in device.calls if index == 2]
+    assert writes and writes[0] != threading.get_ident()  # in the caller's own thread
+    assert not link.thread.is_alive()
+    link.close_now()
