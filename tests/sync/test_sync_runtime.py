@@ -16,7 +16,7 @@ import anyio.lowlevel
 import anyio.to_thread
 import pytest
 
-from j5aio.sync import _runtime, _signals
+from j5aio.sync import _loop_thread, _runtime, _signals
 from j5aio.sync._calls import DONE, Call, new_done_lock
 from j5aio.sync._driven import DrivenLoop
 from j5aio.sync._loop_thread import LoopThread
@@ -506,7 +506,7 @@ def test_a_call_queued_as_the_portal_stops_is_taken_back_or_left_withdrawn(park:
 def plain_portal(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
     """The facade's portal on the plain event loop, as where asyncio's loop cannot park."""
     shutdown()
-    monkeypatch.setattr(_runtime, "LoopThread", functools.partial(LoopThread, park=False))
+    monkeypatch.setattr(_loop_thread, "LoopThread", functools.partial(LoopThread, park=False))
     yield
     shutdown()
 
