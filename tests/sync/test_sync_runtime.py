@@ -289,15 +289,20 @@ def fresh_signal_watch(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
     """The signal watch as in a new program: no wake-up socket yet, no watcher thread."""
     shutdown()
     theirs = _signals._signal_writer
+    before = set(threading.enumerate())
     monkeypatch.setattr(_signals, "_signal_writer", None)
     monkeypatch.setattr(_signals, "_signal_reader", None)
     monkeypatch.setattr(_signals, "_watched_by_a_thread", False)
     yield
     shutdown()
     signal.set_wakeup_fd(theirs.fileno() if theirs is not None else -1)
-    for end in (_signals._signal_writer, _signals._signal_reader):
-        if end is not None:
-            end.close()
+    if _signals._signal_writer is not None:
+        _signals._signal_writer.close()  # a watcher thread's read ends, and it closes its end
+    for thread in set(threading.enumerate()) - before:
+        if thread.name == "j5aio sync signal watch":
+            thread.join(5)
+    if _signals._signal_reader is not None:
+        _signals._signal_reader.close()
 
 
 @pytest.mark.usefixtures("fresh_signal_watch")
