@@ -12,7 +12,7 @@ from __future__ import annotations
 import array
 import errno
 from collections.abc import Iterable, Iterator
-from typing import TYPE_CHECKING, Any, NoReturn, TypeAlias
+from typing import TYPE_CHECKING, NoReturn, TypeAlias
 
 if TYPE_CHECKING:  # (pyusb is imported when an error is made: a kit's start makes none)
     import usb.core
@@ -83,31 +83,11 @@ def as_payload(data_or_wlength: ControlData) -> bytes:
     return bytes(data_or_wlength)
 
 
-class _Frozen:
-    """An immutable value: equal to, and hashed as, another of its class with equal fields."""
-
-    __slots__ = ()
-
-    def _fields(self) -> tuple[Any, ...]:
-        raise NotImplementedError  # pragma: no cover - each subclass names its fields
-
-    def __setattr__(self, name: str, value: object) -> NoReturn:
-        raise AttributeError(f"cannot assign to field {name!r}: {type(self).__name__} is immutable")
-
-    def __delattr__(self, name: str) -> NoReturn:
-        raise AttributeError(f"cannot delete field {name!r}: {type(self).__name__} is immutable")
-
-    def __eq__(self, other: object) -> bool:
-        if type(other) is not type(self):
-            return NotImplemented
-        assert isinstance(other, _Frozen)
-        return self._fields() == other._fields()
-
-    def __hash__(self) -> int:
-        return hash((type(self).__name__, self._fields()))
+def _refuse_change(value: object, name: str) -> NoReturn:
+    raise AttributeError(f"cannot change field {name!r}: {type(value).__name__} is immutable")
 
 
-class SimulatedInterface(_Frozen):
+class SimulatedInterface:
     """The subset of a pyusb ``Interface`` that discovery code looks at (immutable)."""
 
     __slots__ = (
@@ -152,6 +132,20 @@ class SimulatedInterface(_Frozen):
             self.bNumEndpoints,
         )
 
+    def __setattr__(self, name: str, value: object) -> NoReturn:
+        _refuse_change(self, name)
+
+    def __delattr__(self, name: str) -> NoReturn:
+        _refuse_change(self, name)
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, SimulatedInterface):
+            return NotImplemented
+        return self._fields() == other._fields()
+
+    def __hash__(self) -> int:
+        return hash(self._fields())
+
     def __repr__(self) -> str:
         return (
             f"SimulatedInterface(bInterfaceNumber={self.bInterfaceNumber}, "
@@ -173,7 +167,7 @@ DFU_RUNTIME_INTERFACE = SimulatedInterface(
 )
 
 
-class SimulatedConfiguration(_Frozen):
+class SimulatedConfiguration:
     """The subset of a pyusb ``Configuration``: its value and its interfaces (immutable)."""
 
     __slots__ = ("bConfigurationValue", "interface_list")
@@ -190,6 +184,20 @@ class SimulatedConfiguration(_Frozen):
 
     def _fields(self) -> tuple[int, tuple[SimulatedInterface, ...]]:
         return (self.bConfigurationValue, self.interface_list)
+
+    def __setattr__(self, name: str, value: object) -> NoReturn:
+        _refuse_change(self, name)
+
+    def __delattr__(self, name: str) -> NoReturn:
+        _refuse_change(self, name)
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, SimulatedConfiguration):
+            return NotImplemented
+        return self._fields() == other._fields()
+
+    def __hash__(self) -> int:
+        return hash(self._fields())
 
     def __repr__(self) -> str:
         return (
