@@ -84,8 +84,13 @@ def test_the_stand_ins_are_immutable_values() -> None:
     assert repr(config) == (
         f"SimulatedConfiguration(bConfigurationValue=1, interface_list=({interface!r},))"
     )
+    assert config != (1, (interface,))
     with pytest.raises(AttributeError, match="immutable"):
         interface.bInterfaceClass = 3
     with pytest.raises(AttributeError, match="immutable"):
+        del interface.bInterfaceClass
+    with pytest.raises(AttributeError, match="immutable"):
+        config.bConfigurationValue = 2
+    with pytest.raises(AttributeError, match="immutable"):
         del config.bConfigurationValue
-    assert config.bConfigurationValue == 1
+    assert (interface.bInterfaceClass, config.bConfigurationValue) == (0xFE, 1)
