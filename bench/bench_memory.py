@@ -19,7 +19,7 @@ touched pages and, in glibc, a malloc arena of its own). Cases:
 Rounds are interleaved and shuffled; the table shows medians in MiB and the ratio to j5.
 Run (Linux and macOS)::
 
-    python bench/bench_memory.py [--rounds 7]
+    python bench/bench_memory.py [--rounds 7] [--compare CHECKOUT] [--no-peer]
 
 Goal: the sync program on the simulated kit peaks at most 3 MiB above the floor (the
 median of ``import asyncio`` in the same run). The portal floor above the floor is what
@@ -135,6 +135,11 @@ def main() -> int:
         help="another checkout of j5aio (before a change, say): its async and sync cases "
         "run in the same interleaved rounds",
     )
+    parser.add_argument(
+        "--no-peer", action="store_true",
+        help="leave j5 out (its robot lock is one port for the whole machine: two benches "
+        "running j5 at once fail)",
+    )
     options = parser.parse_args()
 
     sim = j5aio_env(J5AIO_ENV="sim", **SAFE_PATH)
@@ -149,7 +154,7 @@ def main() -> int:
     floor = Case("floor: import asyncio", [sys.executable, "-c", FLOOR_PROGRAM], j5aio_env())
     portal = Case("portal, no j5aio", [sys.executable, "-c", PORTAL_PROGRAM], j5aio_env())
     cases += [floor, portal]
-    peer = j5_python()
+    peer = None if options.no_peer else j5_python()
     j5 = None
     if peer is not None:
         j5 = Case("j5 console program", [str(peer), "-c", J5_PROGRAM], j5aio_env())
