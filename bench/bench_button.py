@@ -199,6 +199,8 @@ def child_async(
         from j5aio.simulator.sr_usb import SRUsbBoardSimulator
 
         SRUsbBoardSimulator.add_doorbell = None  # type: ignore[assignment,method-assign]
+        # Nor does it answer at once: its link polls on its worker thread.
+        SRUsbBoardSimulator.answers_at_once = False
     poll_interval = SRV4PowerBoardHardwareBackend.BUTTON_POLL_INTERVAL
 
     from j5aio.competition.start import wait_for_start

@@ -4,7 +4,8 @@ Each case is a new child process that makes its robot, switches a power output a
 LED on, drives a motor at half power and stops it, then prints its peak resident set
 size as its last act: ``VmHWM`` of ``/proc/self/status`` on Linux (``ru_maxrss`` would
 report at least the peak of the bench process the child was forked from), else
-``ru_maxrss``. Cases:
+``ru_maxrss``, with the number of Python threads then alive (each costs a stack's
+touched pages and, in glibc, a malloc arena of its own). Cases:
 
 * j5aio, sync: ``KitRobot()`` from ``j5aio.sync`` on the simulated kit (``J5AIO_ENV=sim``);
 * j5aio, async: the same program with ``async with KitRobot()``, for reference;
@@ -18,7 +19,7 @@ report at least the peak of the bench process the child was forked from), else
 Rounds are interleaved and shuffled; the table shows medians in MiB and the ratio to j5.
 Run (Linux and macOS)::
 
-    python bench/bench_memory.py [--rounds 7]
+    python bench/bench_memory.py [--rounds 7] [--compare CHECKOUT] [--no-peer]
 
 Goal: the sync program on the simulated kit peaks at most 3 MiB above the floor (the
 median of ``import asyncio`` in the same run). The portal floor above the floor is what
@@ -60,7 +61,8 @@ except (OSError, StopIteration):
     import resource
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
     peak *= 1 if sys.platform == "darwin" else 1024
-print({MARKER!r}, peak, flush=True)
+import threading
+print({MARKER!r}, peak, threading.active_count(), flush=True)
 """
 
 SYNC_PROGRAM = """\
@@ -119,6 +121,12 @@ def _other_checkout(env: dict[str, str], checkout: str) -> dict[str, str]:
     return {**env, "PYTHONPATH": os.pathsep.join([checkout, env["PYTHONPATH"]])}
 
 
+# ``python -c`` puts the working directory first on the path, before PYTHONPATH: run from
+# a checkout, every case would import that checkout's j5aio, ``--compare``'s too. Safe-path
+# mode (Python 3.11+) leaves it out, so PYTHONPATH alone says which j5aio a case runs.
+SAFE_PATH = {"PYTHONSAFEPATH": "1"}
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounds", type=int, default=7, help="runs of each case (default 7)")
@@ -127,9 +135,14 @@ def main() -> int:
         help="another checkout of j5aio (before a change, say): its async and sync cases "
         "run in the same interleaved rounds",
     )
+    parser.add_argument(
+        "--no-peer", action="store_true",
+        help="leave j5 out (its robot lock is one port for the whole machine: two benches "
+        "running j5 at once fail)",
+    )
     options = parser.parse_args()
 
-    sim = j5aio_env(J5AIO_ENV="sim")
+    sim = j5aio_env(J5AIO_ENV="sim", **SAFE_PATH)
     sync = Case("j5aio sync, simulated kit", [sys.executable, "-c", SYNC_PROGRAM], sim)
     cases = [sync, Case("j5aio async, simulated kit", [sys.executable, "-c", ASYNC_PROGRAM], sim)]
     if options.compare:
@@ -141,14 +154,24 @@ def main() -> int:
     floor = Case("floor: import asyncio", [sys.executable, "-c", FLOOR_PROGRAM], j5aio_env())
     portal = Case("portal, no j5aio", [sys.executable, "-c", PORTAL_PROGRAM], j5aio_env())
     cases += [floor, portal]
-    peer = j5_python()
+    peer = None if options.no_peer else j5_python()
     j5 = None
     if peer is not None:
         j5 = Case("j5 console program", [str(peer), "-c", J5_PROGRAM], j5aio_env())
         cases.append(j5)
-    run_interleaved(cases, options.rounds, lambda c: float(run_reporting(c, MARKER)))
+    threads: dict[str, str] = {}
+
+    def measure(case: Case) -> float:
+        peak, alive = run_reporting(case, MARKER).split()
+        threads[case.name] = alive
+        return float(peak)
+
+    run_interleaved(cases, options.rounds, measure)
     print(f"peak RSS at the end of the program, {options.rounds} interleaved rounds")
-    print_table("peak memory", cases, "MiB", reference=j5, scale=1 / 2**20)
+    print_table(
+        "peak memory", cases, "MiB", reference=j5, scale=1 / 2**20,
+        extra=lambda case: f"threads {threads[case.name]}",
+    )
     mib = sync.median / 2**20
     limit = floor.median / 2**20 + GOAL_ABOVE_FLOOR_MIB
     above = (sync.median - floor.median) / 2**20

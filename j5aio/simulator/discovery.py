@@ -177,6 +177,8 @@ def kit_discovery_options(
             and (simulator.idVendor, simulator.idProduct) == (idVendor, idProduct)
         ]
 
+    find.answers_at_once = True  # type: ignore[attr-defined]  # (no thread to scan with)
+    list_ports.answers_at_once = True  # type: ignore[attr-defined]
     wiring = kit.wiring
     return DiscoveryOptions(
         port_source=list_ports,

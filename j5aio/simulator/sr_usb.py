@@ -10,7 +10,8 @@ A host's poll may be told when to read: :meth:`SRUsbBoardSimulator.add_doorbell`
 :class:`~j5aio.backends.hardware.transports.usb_link.RingingDevice` of the USB link) rings
 whenever a board changes what a poll waits for (:meth:`SRUsbBoardSimulator.ring_doorbells`:
 the power board's start buttons) and when its cable is pulled, so that the poll reads
-at once, through the protocol, rather than at its next interval.
+at once, through the protocol, rather than at its next interval. Its transfers never block,
+and it says so (``answers_at_once``): the link runs them without a thread of its own.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from __future__ import annotations
 import contextlib
 from abc import abstractmethod
 from collections.abc import Callable
+from typing import ClassVar
 
 from .base import UsbBoardSimulator
 from .usb_support import CONTROL_BUFFER_SIZE, UsbStall
@@ -32,6 +34,11 @@ _TYPE_AND_RECIPIENT_MASK = 0x7F
 
 class SRUsbBoardSimulator(UsbBoardSimulator):
     """A board speaking the SR "request 64" control-transfer convention."""
+
+    #: Its transfers are function calls that never block: a host's USB link runs them in
+    #: its event loop, with no worker thread until it polls (see
+    #: :func:`~j5aio.backends.hardware.transports.usb_link.answers_at_once`).
+    answers_at_once: ClassVar[bool] = True
 
     def __init__(
         self, serial_number: str | None, *, manufacturer: str | None, product: str | None

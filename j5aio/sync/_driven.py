@@ -55,7 +55,7 @@ from j5aio.sync._calls import (
     stopped_error,
 )
 from j5aio.sync._deferral import SignalDeferral, current_handler
-from j5aio.sync._signals import keep_signals_for_the_main_thread
+from j5aio.sync._signals import keep_signals_for_the_main_thread, watch_signals_in
 
 __all__ = ["GRACE", "LOOK_AGAIN", "NESTED_CALL", "DrivenLoop"]
 
@@ -87,10 +87,18 @@ class DrivenLoop:
     """The facade's event loop, its worker task, its keeper thread and who drives it.
 
     :param grace: how long the loop stays idle before the keeper runs it (:data:`GRACE`).
+    :param on_signal: called in the loop whenever a signal lands on any thread, if given:
+        the loop watches the signal wake-up file itself (see
+        :func:`~j5aio.sync._signals.watch_signals_in`), so no thread does.
     """
 
-    def __init__(self, *, grace: float = GRACE) -> None:
+    def __init__(
+        self, *, grace: float = GRACE, on_signal: Callable[[], None] | None = None
+    ) -> None:
         self.loop = asyncio.SelectorEventLoop()
+        #: Whether the loop watches the signal wake-up file (``on_signal`` was given, and
+        #: the file could be had).
+        self.watches_signals = on_signal is not None and watch_signals_in(self.loop, on_signal)
         self.grace = grace
         #: While calls keep coming, how often the keeper looks whether they have stopped.
         self.look_again = max(grace, LOOK_AGAIN)

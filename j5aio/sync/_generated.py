@@ -15,57 +15,11 @@ from enum import Enum
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Generic, Self, TypeVar, cast, overload
 
-import j5aio.backends.environment as _backends_environment
-import j5aio.boards.arduino.all_digital as _boards_arduino_all_digital
-import j5aio.boards.arduino.ultrasound as _boards_arduino_ultrasound
-import j5aio.boards.arduino.uno as _boards_arduino_uno
-import j5aio.boards.board as _boards_board
-import j5aio.boards.board_group as _boards_board_group
-import j5aio.boards.camera as _boards_camera
-import j5aio.boards.sb.arduino as _boards_sb_arduino
-import j5aio.boards.sb.arduino_2024 as _boards_sb_arduino_2024
-import j5aio.boards.sb.servo_board as _boards_sb_servo_board
-import j5aio.boards.sr.kch as _boards_sr_kch
-import j5aio.boards.sr.v4.arduino as _boards_sr_v4_arduino
-import j5aio.boards.sr.v4.motor_board as _boards_sr_v4_motor_board
-import j5aio.boards.sr.v4.motor_board_fw4 as _boards_sr_v4_motor_board_fw4
-import j5aio.boards.sr.v4.power_board as _boards_sr_v4_power_board
-import j5aio.boards.sr.v4.power_board_fw4 as _boards_sr_v4_power_board_fw4
-import j5aio.boards.sr.v4.ruggeduino as _boards_sr_v4_ruggeduino
-import j5aio.boards.sr.v4.servo_board as _boards_sr_v4_servo_board
-import j5aio.boards.sr.v4.servo_board_fw4 as _boards_sr_v4_servo_board_fw4
-import j5aio.components.battery_sensor as _components_battery_sensor
-import j5aio.components.button as _components_button
-import j5aio.components.component as _components_component
-import j5aio.components.derived.ultrasound as _components_derived_ultrasound
-import j5aio.components.distance_sensor as _components_distance_sensor
-import j5aio.components.fan as _components_fan
-import j5aio.components.flag as _components_flag
-import j5aio.components.flashing_led as _components_flashing_led
-import j5aio.components.gpio_pin as _components_gpio_pin
-import j5aio.components.identified as _components_identified
-import j5aio.components.led as _components_led
-import j5aio.components.marker_camera as _components_marker_camera
-import j5aio.components.monitored_motor as _components_monitored_motor
-import j5aio.components.motor as _components_motor
-import j5aio.components.piezo as _components_piezo
-import j5aio.components.power_output as _components_power_output
-import j5aio.components.protected_power_output as _components_protected_power_output
-import j5aio.components.pulse_servo as _components_pulse_servo
-import j5aio.components.rgb_led as _components_rgb_led
-import j5aio.components.servo as _components_servo
-import j5aio.components.string_command as _components_string_command
-import j5aio.components.supply_sensor as _components_supply_sensor
-import j5aio.components.temperature_sensor as _components_temperature_sensor
-import j5aio.components.voltage_sensor as _components_voltage_sensor
-import j5aio.kit as _kit
-import j5aio.robot as _robot
 from j5aio._lazy import lazy_modules as _lazy_modules
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt as _adopt
 from j5aio.sync.wrapping import adopt_into as _adopt_into
 from j5aio.sync.wrapping import call as _call
-from j5aio.sync.wrapping import register as _register
 from j5aio.sync.wrapping import register_later as _register_later
 from j5aio.sync.wrapping import unwrap as _unwrap
 from j5aio.sync.wrapping import wrap as _wrap
@@ -74,11 +28,56 @@ from j5aio.sync.wrapping import wrap_kept as _wrap_kept
 if TYPE_CHECKING:
     import j5aio.backends.backend as _backends_backend
     import j5aio.backends.console.env as _backends_console_env
+    import j5aio.backends.environment as _backends_environment
     import j5aio.backends.hardware.env as _backends_hardware_env
+    import j5aio.boards.arduino.all_digital as _boards_arduino_all_digital
+    import j5aio.boards.arduino.ultrasound as _boards_arduino_ultrasound
+    import j5aio.boards.arduino.uno as _boards_arduino_uno
+    import j5aio.boards.board as _boards_board
+    import j5aio.boards.board_group as _boards_board_group
+    import j5aio.boards.camera as _boards_camera
+    import j5aio.boards.sb.arduino as _boards_sb_arduino
+    import j5aio.boards.sb.arduino_2024 as _boards_sb_arduino_2024
+    import j5aio.boards.sb.servo_board as _boards_sb_servo_board
+    import j5aio.boards.sr.kch as _boards_sr_kch
+    import j5aio.boards.sr.v4.arduino as _boards_sr_v4_arduino
+    import j5aio.boards.sr.v4.motor_board as _boards_sr_v4_motor_board
+    import j5aio.boards.sr.v4.motor_board_fw4 as _boards_sr_v4_motor_board_fw4
+    import j5aio.boards.sr.v4.power_board as _boards_sr_v4_power_board
+    import j5aio.boards.sr.v4.power_board_fw4 as _boards_sr_v4_power_board_fw4
+    import j5aio.boards.sr.v4.ruggeduino as _boards_sr_v4_ruggeduino
+    import j5aio.boards.sr.v4.servo_board as _boards_sr_v4_servo_board
+    import j5aio.boards.sr.v4.servo_board_fw4 as _boards_sr_v4_servo_board_fw4
     import j5aio.competition.metadata as _competition_metadata
     import j5aio.competition.timer as _competition_timer
+    import j5aio.components.battery_sensor as _components_battery_sensor
+    import j5aio.components.button as _components_button
+    import j5aio.components.component as _components_component
+    import j5aio.components.derived.ultrasound as _components_derived_ultrasound
+    import j5aio.components.distance_sensor as _components_distance_sensor
+    import j5aio.components.fan as _components_fan
+    import j5aio.components.flag as _components_flag
+    import j5aio.components.flashing_led as _components_flashing_led
+    import j5aio.components.gpio_pin as _components_gpio_pin
+    import j5aio.components.identified as _components_identified
+    import j5aio.components.led as _components_led
+    import j5aio.components.marker_camera as _components_marker_camera
+    import j5aio.components.monitored_motor as _components_monitored_motor
+    import j5aio.components.motor as _components_motor
+    import j5aio.components.piezo as _components_piezo
+    import j5aio.components.power_output as _components_power_output
+    import j5aio.components.protected_power_output as _components_protected_power_output
+    import j5aio.components.pulse_servo as _components_pulse_servo
+    import j5aio.components.rgb_led as _components_rgb_led
+    import j5aio.components.servo as _components_servo
+    import j5aio.components.string_command as _components_string_command
+    import j5aio.components.supply_sensor as _components_supply_sensor
+    import j5aio.components.temperature_sensor as _components_temperature_sensor
+    import j5aio.components.voltage_sensor as _components_voltage_sensor
     import j5aio.environments as _environments
+    import j5aio.kit as _kit
     import j5aio.numbered as _numbered
+    import j5aio.robot as _robot
     import j5aio.vision.arena_map as _vision_arena_map
     import j5aio.vision.calibration as _vision_calibration
     import j5aio.vision.locate as _vision_locate
@@ -93,11 +92,56 @@ else:
     _lazy_modules(globals(), {
         "_backends_backend": "j5aio.backends.backend",
         "_backends_console_env": "j5aio.backends.console.env",
+        "_backends_environment": "j5aio.backends.environment",
         "_backends_hardware_env": "j5aio.backends.hardware.env",
+        "_boards_arduino_all_digital": "j5aio.boards.arduino.all_digital",
+        "_boards_arduino_ultrasound": "j5aio.boards.arduino.ultrasound",
+        "_boards_arduino_uno": "j5aio.boards.arduino.uno",
+        "_boards_board": "j5aio.boards.board",
+        "_boards_board_group": "j5aio.boards.board_group",
+        "_boards_camera": "j5aio.boards.camera",
+        "_boards_sb_arduino": "j5aio.boards.sb.arduino",
+        "_boards_sb_arduino_2024": "j5aio.boards.sb.arduino_2024",
+        "_boards_sb_servo_board": "j5aio.boards.sb.servo_board",
+        "_boards_sr_kch": "j5aio.boards.sr.kch",
+        "_boards_sr_v4_arduino": "j5aio.boards.sr.v4.arduino",
+        "_boards_sr_v4_motor_board": "j5aio.boards.sr.v4.motor_board",
+        "_boards_sr_v4_motor_board_fw4": "j5aio.boards.sr.v4.motor_board_fw4",
+        "_boards_sr_v4_power_board": "j5aio.boards.sr.v4.power_board",
+        "_boards_sr_v4_power_board_fw4": "j5aio.boards.sr.v4.power_board_fw4",
+        "_boards_sr_v4_ruggeduino": "j5aio.boards.sr.v4.ruggeduino",
+        "_boards_sr_v4_servo_board": "j5aio.boards.sr.v4.servo_board",
+        "_boards_sr_v4_servo_board_fw4": "j5aio.boards.sr.v4.servo_board_fw4",
         "_competition_metadata": "j5aio.competition.metadata",
         "_competition_timer": "j5aio.competition.timer",
+        "_components_battery_sensor": "j5aio.components.battery_sensor",
+        "_components_button": "j5aio.components.button",
+        "_components_component": "j5aio.components.component",
+        "_components_derived_ultrasound": "j5aio.components.derived.ultrasound",
+        "_components_distance_sensor": "j5aio.components.distance_sensor",
+        "_components_fan": "j5aio.components.fan",
+        "_components_flag": "j5aio.components.flag",
+        "_components_flashing_led": "j5aio.components.flashing_led",
+        "_components_gpio_pin": "j5aio.components.gpio_pin",
+        "_components_identified": "j5aio.components.identified",
+        "_components_led": "j5aio.components.led",
+        "_components_marker_camera": "j5aio.components.marker_camera",
+        "_components_monitored_motor": "j5aio.components.monitored_motor",
+        "_components_motor": "j5aio.components.motor",
+        "_components_piezo": "j5aio.components.piezo",
+        "_components_power_output": "j5aio.components.power_output",
+        "_components_protected_power_output": "j5aio.components.protected_power_output",
+        "_components_pulse_servo": "j5aio.components.pulse_servo",
+        "_components_rgb_led": "j5aio.components.rgb_led",
+        "_components_servo": "j5aio.components.servo",
+        "_components_string_command": "j5aio.components.string_command",
+        "_components_supply_sensor": "j5aio.components.supply_sensor",
+        "_components_temperature_sensor": "j5aio.components.temperature_sensor",
+        "_components_voltage_sensor": "j5aio.components.voltage_sensor",
         "_environments": "j5aio.environments",
+        "_kit": "j5aio.kit",
         "_numbered": "j5aio.numbered",
+        "_robot": "j5aio.robot",
         "_vision_arena_map": "j5aio.vision.arena_map",
         "_vision_calibration": "j5aio.vision.calibration",
         "_vision_locate": "j5aio.vision.locate",
@@ -476,21 +520,21 @@ class Colour(_SyncWrapper):
 
     _core: _boards_sr_kch.Colour
 
-    OFF: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.OFF
+    OFF: ClassVar[tuple[float, float, float]] = (0.0, 0.0, 0.0)
 
-    RED: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.RED
+    RED: ClassVar[tuple[float, float, float]] = (1.0, 0.0, 0.0)
 
-    YELLOW: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.YELLOW
+    YELLOW: ClassVar[tuple[float, float, float]] = (1.0, 1.0, 0.0)
 
-    GREEN: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.GREEN
+    GREEN: ClassVar[tuple[float, float, float]] = (0.0, 1.0, 0.0)
 
-    CYAN: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.CYAN
+    CYAN: ClassVar[tuple[float, float, float]] = (0.0, 1.0, 1.0)
 
-    BLUE: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.BLUE
+    BLUE: ClassVar[tuple[float, float, float]] = (0.0, 0.0, 1.0)
 
-    MAGENTA: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.MAGENTA
+    MAGENTA: ClassVar[tuple[float, float, float]] = (1.0, 0.0, 1.0)
 
-    WHITE: ClassVar[tuple[float, float, float]] = _boards_sr_kch.Colour.WHITE
+    WHITE: ClassVar[tuple[float, float, float]] = (1.0, 1.0, 1.0)
 
 
 class BaseRobot(_SyncWrapper):
@@ -536,7 +580,7 @@ class BaseRobot(_SyncWrapper):
     def __new__(cls, *args: Any, **kwargs: Any) -> Self:
         return _adopt(cls, _robot.BaseRobot())
 
-    lock_port: ClassVar[int] = _robot.BaseRobot.lock_port
+    lock_port: ClassVar[int] = 10653
 
     def release_lock(self) -> None:
         """Give up the machine-wide lock, so that another robot can be created."""
@@ -812,9 +856,9 @@ class Board(_SyncWrapper):
 
     _core: _boards_board.Board
 
-    name: ClassVar[str] = _boards_board.Board.name
+    name: ClassVar[str] = 'Board'
 
-    MAKE_SAFE_LAST: ClassVar[bool] = _boards_board.Board.MAKE_SAFE_LAST
+    MAKE_SAFE_LAST: ClassVar[bool] = False
 
     @property
     def serial_number(self) -> str:
@@ -1488,7 +1532,7 @@ class KitRobot(BaseRobot):
             raise
         return robot
 
-    POWER_UP_WAIT: ClassVar[float] = _kit.KitRobot.POWER_UP_WAIT
+    POWER_UP_WAIT: ClassVar[float] = 0.5
 
     @property
     def environment(self) -> Environment:
@@ -1683,11 +1727,11 @@ class ArduinoUno(Board):
 
     AnaloguePin = _boards_arduino_uno.ArduinoUno.AnaloguePin
 
-    name: ClassVar[str] = _boards_arduino_uno.ArduinoUno.name
+    name: ClassVar[str] = 'Arduino Uno'
 
     FIRST_ANALOGUE_PIN: ClassVar[int] = _boards_arduino_uno.ArduinoUno.FIRST_ANALOGUE_PIN
 
-    DIGITAL_PINS: ClassVar[range] = _boards_arduino_uno.ArduinoUno.DIGITAL_PINS
+    DIGITAL_PINS: ClassVar[range] = range(2, 14)
 
     DIGITAL_PIN_MODES: ClassVar[frozenset[_components_gpio_pin.GPIOPinMode]] = _boards_arduino_uno.ArduinoUno.DIGITAL_PIN_MODES
 
@@ -1735,7 +1779,7 @@ class CameraBoard(Board):
     def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
         _adopt_into(self, _boards_camera.CameraBoard(serial_number, backend))
 
-    name: ClassVar[str] = _boards_camera.CameraBoard.name
+    name: ClassVar[str] = 'Camera'
 
     @property
     def camera(self) -> MarkerCamera:
@@ -1774,9 +1818,9 @@ class KCHBoard(Board):
     def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
         _adopt_into(self, _boards_sr_kch.KCHBoard(serial_number, backend))
 
-    name: ClassVar[str] = _boards_sr_kch.KCHBoard.name
+    name: ClassVar[str] = 'Student Robotics KCH'
 
-    LED_COUNT: ClassVar[int] = _boards_sr_kch.KCHBoard.LED_COUNT
+    LED_COUNT: ClassVar[int] = 3
 
     @property
     def leds(self) -> tuple[RGBLED, ...]:
@@ -1821,9 +1865,9 @@ class MotorBoard(Board):
     ) -> None:
         _adopt_into(self, _boards_sr_v4_motor_board.MotorBoard(serial_number, backend, safe_state=safe_state))
 
-    name: ClassVar[str] = _boards_sr_v4_motor_board.MotorBoard.name
+    name: ClassVar[str] = 'Student Robotics v4 Motor Board'
 
-    MOTOR_COUNT: ClassVar[int] = _boards_sr_v4_motor_board.MotorBoard.MOTOR_COUNT
+    MOTOR_COUNT: ClassVar[int] = 2
 
     @property
     def motors(self) -> tuple[Motor, ...]:
@@ -1862,13 +1906,13 @@ class PowerBoard(Board):
     def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
         _adopt_into(self, _boards_sr_v4_power_board.PowerBoard(serial_number, backend))
 
-    name: ClassVar[str] = _boards_sr_v4_power_board.PowerBoard.name
+    name: ClassVar[str] = 'Student Robotics v4 Power Board'
 
-    MAKE_SAFE_LAST: ClassVar[bool] = _boards_sr_v4_power_board.PowerBoard.MAKE_SAFE_LAST
+    MAKE_SAFE_LAST: ClassVar[bool] = True
 
-    START_POLL_INTERVAL: ClassVar[float] = _boards_sr_v4_power_board.PowerBoard.START_POLL_INTERVAL
+    START_POLL_INTERVAL: ClassVar[float] = 0.05
 
-    START_FLASH_POLLS: ClassVar[int] = _boards_sr_v4_power_board.PowerBoard.START_FLASH_POLLS
+    START_FLASH_POLLS: ClassVar[int] = 6
 
     @property
     def outputs(self) -> PowerOutputGroup[_boards_sr_v4_power_board.PowerOutputPosition]:
@@ -1926,7 +1970,7 @@ class PowerBoard(Board):
         _call(self._core.wait_for_start_flash, timeout)
 
 
-class PowerBoardOutputGroup(PowerOutputGroup[_boards_sr_v4_power_board.PowerOutputPosition]):
+class PowerBoardOutputGroup(PowerOutputGroup["_boards_sr_v4_power_board.PowerOutputPosition"]):
     """The outputs of a firmware 4 power board.
 
     Look an output up by :class:`PowerBoardOutput`, by the seed kit's
@@ -1979,9 +2023,9 @@ class ServoBoard(Board):
     def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
         _adopt_into(self, _boards_sr_v4_servo_board.ServoBoard(serial_number, backend))
 
-    name: ClassVar[str] = _boards_sr_v4_servo_board.ServoBoard.name
+    name: ClassVar[str] = 'Student Robotics v4 Servo Board'
 
-    SERVO_COUNT: ClassVar[int] = _boards_sr_v4_servo_board.ServoBoard.SERVO_COUNT
+    SERVO_COUNT: ClassVar[int] = 12
 
     @property
     def servos(self) -> tuple[Servo, ...]:
@@ -2114,9 +2158,9 @@ class SBArduinoBoard(ArduinoUno):
     def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
         _adopt_into(self, _boards_sb_arduino.SBArduinoBoard(serial_number, backend))
 
-    name: ClassVar[str] = _boards_sb_arduino.SBArduinoBoard.name
+    name: ClassVar[str] = 'SourceBots Arduino'
 
-    SERVO_COUNT: ClassVar[int] = _boards_sb_arduino.SBArduinoBoard.SERVO_COUNT
+    SERVO_COUNT: ClassVar[int] = 16
 
     DIGITAL_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_sb_arduino.SBArduinoBoard.DIGITAL_PIN_FIRMWARE_MODES
 
@@ -2162,7 +2206,7 @@ class MotorBoardFw4(MotorBoard):
     ) -> None:
         _adopt_into(self, _boards_sr_v4_motor_board_fw4.MotorBoardFw4(serial_number, backend, safe_state=safe_state))
 
-    name: ClassVar[str] = _boards_sr_v4_motor_board_fw4.MotorBoardFw4.name
+    name: ClassVar[str] = 'Student Robotics v4 Motor Board (firmware 4)'
 
     @property
     def motors(self) -> _numbered.NumberedComponents[MonitoredMotor]:
@@ -2209,7 +2253,7 @@ class PowerBoardFw4(PowerBoard):
     def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
         _adopt_into(self, _boards_sr_v4_power_board_fw4.PowerBoardFw4(serial_number, backend))
 
-    name: ClassVar[str] = _boards_sr_v4_power_board_fw4.PowerBoardFw4.name
+    name: ClassVar[str] = 'Student Robotics v4 Power Board (firmware 4)'
 
     @property
     def outputs(self) -> PowerBoardOutputGroup:
@@ -2281,7 +2325,7 @@ class Ruggeduino(ArduinoUno):
     def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
         _adopt_into(self, _boards_sr_v4_ruggeduino.Ruggeduino(serial_number, backend))
 
-    name: ClassVar[str] = _boards_sr_v4_ruggeduino.Ruggeduino.name
+    name: ClassVar[str] = 'Ruggeduino'
 
     ANALOGUE_PIN_MODES: ClassVar[frozenset[_components_gpio_pin.GPIOPinMode]] = _boards_sr_v4_ruggeduino.Ruggeduino.ANALOGUE_PIN_MODES
 
@@ -2326,11 +2370,11 @@ class ServoBoardFw4(ServoBoard):
     def __init__(self, serial_number: str, backend: _backends_backend.Backend) -> None:
         _adopt_into(self, _boards_sr_v4_servo_board_fw4.ServoBoardFw4(serial_number, backend))
 
-    name: ClassVar[str] = _boards_sr_v4_servo_board_fw4.ServoBoardFw4.name
+    name: ClassVar[str] = 'Student Robotics v4 Servo Board (firmware 4.3)'
 
-    POWER_GOOD: ClassVar[int] = _boards_sr_v4_servo_board_fw4.ServoBoardFw4.POWER_GOOD
+    POWER_GOOD: ClassVar[int] = 0
 
-    WATCHDOG_FAILED: ClassVar[int] = _boards_sr_v4_servo_board_fw4.ServoBoardFw4.WATCHDOG_FAILED
+    WATCHDOG_FAILED: ClassVar[int] = 1
 
     @property
     def servos(self) -> tuple[PulseServo, ...]:
@@ -2401,7 +2445,7 @@ class SBArduino2024Board(AllDigitalUno):
 
     _core: _boards_sb_arduino_2024.SBArduino2024Board
 
-    name: ClassVar[str] = _boards_sb_arduino_2024.SBArduino2024Board.name
+    name: ClassVar[str] = 'SourceBots Arduino (sb2024)'
 
 
 class SBServoBoard(ServoBoardFw4):
@@ -2419,12 +2463,12 @@ class SBServoBoard(ServoBoardFw4):
 
     _core: _boards_sb_servo_board.SBServoBoard
 
-    name: ClassVar[str] = _boards_sb_servo_board.SBServoBoard.name
+    name: ClassVar[str] = 'SourceBots Servo Board (firmware 4.4)'
 
-    SERVO_COUNT: ClassVar[int] = _boards_sb_servo_board.SBServoBoard.SERVO_COUNT
+    SERVO_COUNT: ClassVar[int] = 8
 
 
-class BatterySensor(IdentifiedComponent[_components_battery_sensor.BatterySensorInterface]):
+class BatterySensor(IdentifiedComponent["_components_battery_sensor.BatterySensorInterface"]):
     """A sensor that measures the robot's battery: its voltage and the current drawn.
 
     :param identifier: the number of the sensor on its board.
@@ -2457,7 +2501,7 @@ class BatterySensor(IdentifiedComponent[_components_battery_sensor.BatterySensor
         return _components_battery_sensor.BatterySensor.interface_class()
 
 
-class Button(IdentifiedComponent[_components_button.ButtonInterface]):
+class Button(IdentifiedComponent["_components_button.ButtonInterface"]):
     """A button the user can press, such as the start button of a robot.
 
     :param identifier: the number of the button on its board.
@@ -2564,7 +2608,7 @@ class UltrasoundSensor(DerivedComponent, Rangefinder):
         return _call(self._core.distance_mm)
 
 
-class Fan(IdentifiedComponent[_components_fan.FanInterface]):
+class Fan(IdentifiedComponent["_components_fan.FanInterface"]):
     """A cooling fan that the board switches on when it gets warm.
 
     :param identifier: the number of the fan on its board.
@@ -2589,7 +2633,7 @@ class Fan(IdentifiedComponent[_components_fan.FanInterface]):
         return _components_fan.Fan.interface_class()
 
 
-class Flag(IdentifiedComponent[_components_flag.FlagInterface]):
+class Flag(IdentifiedComponent["_components_flag.FlagInterface"]):
     """A condition a board reports as raised (``True``) or not (``False``).
 
     What a flag means is given by the name the board gives it, for example a servo
@@ -2617,7 +2661,7 @@ class Flag(IdentifiedComponent[_components_flag.FlagInterface]):
         return _components_flag.Flag.interface_class()
 
 
-class GPIOPin(IdentifiedComponent[_components_gpio_pin.GPIOPinInterface]):
+class GPIOPin(IdentifiedComponent["_components_gpio_pin.GPIOPinInterface"]):
     """A general-purpose input/output pin.
 
     A pin works in one *mode* at a time: a hardware mode (:class:`GPIOPinMode`, such as
@@ -2770,7 +2814,7 @@ class GPIOPin(IdentifiedComponent[_components_gpio_pin.GPIOPinInterface]):
         _call(self._core.pwm_write, duty_cycle)
 
 
-class LED(IdentifiedComponent[_components_led.LEDInterface]):
+class LED(IdentifiedComponent["_components_led.LEDInterface"]):
     """A light on a board that is either on or off.
 
     Turn it on with ``await led.set_state(True)`` and off with ``await led.set_state(False)``.
@@ -2806,7 +2850,7 @@ class LED(IdentifiedComponent[_components_led.LEDInterface]):
         return _components_led.LED.interface_class()
 
 
-class MarkerCamera(IdentifiedComponent[_components_marker_camera.MarkerCameraInterface]):
+class MarkerCamera(IdentifiedComponent["_components_marker_camera.MarkerCameraInterface"]):
     """A camera that finds fiducial markers (AprilTag 36h11) and says where they are.
 
     :param identifier: the number of the camera on its board.
@@ -2887,7 +2931,7 @@ class MarkerCamera(IdentifiedComponent[_components_marker_camera.MarkerCameraInt
         _call(self._core.save, path)
 
 
-class Motor(IdentifiedComponent[_components_motor.MotorInterface]):
+class Motor(IdentifiedComponent["_components_motor.MotorInterface"]):
     """A DC motor, driven at a power between full reverse (-1) and full forward (1).
 
     ``await motor.set_power(0.5)`` drives forward at half power, ``-1`` drives backwards
@@ -2929,7 +2973,7 @@ class Motor(IdentifiedComponent[_components_motor.MotorInterface]):
         return _components_motor.Motor.interface_class()
 
 
-class Piezo(IdentifiedComponent[_components_piezo.PiezoInterface]):
+class Piezo(IdentifiedComponent["_components_piezo.PiezoInterface"]):
     """A piezo sounder: a buzzer that plays one pitch at a time.
 
     ``await piezo.buzz(0.5, Note.A6)`` plays an A for half a second.
@@ -2994,7 +3038,7 @@ class Piezo(IdentifiedComponent[_components_piezo.PiezoInterface]):
         _components_piezo.Piezo.verify_duration(duration)
 
 
-class PowerOutput(IdentifiedComponent[_components_power_output.PowerOutputInterface]):
+class PowerOutput(IdentifiedComponent["_components_power_output.PowerOutputInterface"]):
     """A power output: a supply that can be switched on and off, with a current meter.
 
     :param identifier: the number of the output on its board.
@@ -3036,7 +3080,7 @@ class PowerOutput(IdentifiedComponent[_components_power_output.PowerOutputInterf
         return _components_power_output.PowerOutput.interface_class()
 
 
-class RGBLED(IdentifiedComponent[_components_rgb_led.RGBLEDInterface]):
+class RGBLED(IdentifiedComponent["_components_rgb_led.RGBLEDInterface"]):
     """An LED that mixes red, green and blue light into any colour.
 
     Each channel has a brightness (a duty cycle) between 0 (off) and 1 (full). Set one
@@ -3132,7 +3176,7 @@ class RGBLED(IdentifiedComponent[_components_rgb_led.RGBLEDInterface]):
         return _components_rgb_led.RGBLED.interface_class()
 
 
-class Servo(IdentifiedComponent[_components_servo.ServoInterface]):
+class Servo(IdentifiedComponent["_components_servo.ServoInterface"]):
     """A servo: an actuator that moves to a position and holds it.
 
     Positions run from -1 (one end of its travel) to 1 (the other end). ``None``
@@ -3174,7 +3218,7 @@ class Servo(IdentifiedComponent[_components_servo.ServoInterface]):
         return _components_servo.Servo.interface_class()
 
 
-class StringCommandComponent(IdentifiedComponent[_components_string_command.StringCommandComponentInterface]):
+class StringCommandComponent(IdentifiedComponent["_components_string_command.StringCommandComponentInterface"]):
     """A raw text channel to a board, for boards that run custom firmware.
 
     ``await cmd.execute("X")`` (or ``await cmd("X")``) sends ``X`` and returns the
@@ -3207,7 +3251,7 @@ class StringCommandComponent(IdentifiedComponent[_components_string_command.Stri
         return _call(self._core.__call__, command)
 
 
-class SupplySensor(IdentifiedComponent[_components_supply_sensor.SupplySensorInterface]):
+class SupplySensor(IdentifiedComponent["_components_supply_sensor.SupplySensorInterface"]):
     """A meter on one of a board's power rails (such as a servo board's servo supply).
 
     :param identifier: the number of the rail on its board.
@@ -3240,7 +3284,7 @@ class SupplySensor(IdentifiedComponent[_components_supply_sensor.SupplySensorInt
         return _components_supply_sensor.SupplySensor.interface_class()
 
 
-class TemperatureSensor(IdentifiedComponent[_components_temperature_sensor.TemperatureSensorInterface]):
+class TemperatureSensor(IdentifiedComponent["_components_temperature_sensor.TemperatureSensorInterface"]):
     """A thermometer on a board, such as the power board's.
 
     :param identifier: the number of the sensor on its board.
@@ -3265,7 +3309,7 @@ class TemperatureSensor(IdentifiedComponent[_components_temperature_sensor.Tempe
         return _components_temperature_sensor.TemperatureSensor.interface_class()
 
 
-class VoltageSensor(IdentifiedComponent[_components_voltage_sensor.VoltageSensorInterface]):
+class VoltageSensor(IdentifiedComponent["_components_voltage_sensor.VoltageSensorInterface"]):
     """A voltmeter on a board: a regulator's output, or the board's input supply.
 
     :param identifier: the number of the sensor on its board.
@@ -3308,7 +3352,7 @@ class SRArduinoBoard(AllDigitalUno, Ruggeduino):
 
     _core: _boards_sr_v4_arduino.SRArduinoBoard
 
-    name: ClassVar[str] = _boards_sr_v4_arduino.SRArduinoBoard.name
+    name: ClassVar[str] = 'SR Arduino'
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -3316,7 +3360,7 @@ class SRArduinoBoard(AllDigitalUno, Ruggeduino):
         return _boards_sr_v4_arduino.SRArduinoBoard.supported_components()
 
 
-class DistanceSensor(IdentifiedComponent[_components_distance_sensor.DistanceSensorInterface], Rangefinder):
+class DistanceSensor(IdentifiedComponent["_components_distance_sensor.DistanceSensorInterface"], Rangefinder):
     """A distance sensor that a board numbers and reads with one command.
 
     A board lists them as ``distance_sensors``; each reads in millimetres
@@ -3535,57 +3579,57 @@ def get_default_environment() -> Environment:
     return cast("Environment", _wrap(_environments.get_default_environment()))
 
 
-_register(_backends_environment.Environment, Environment)
-_register(_boards_arduino_ultrasound.UltrasoundSensors, UltrasoundSensors)
-_register(_boards_sr_kch.Colour, Colour)
-_register(_robot.BaseRobot, BaseRobot)
+_register_later("j5aio.backends.environment", "Environment", Environment)
+_register_later("j5aio.boards.arduino.ultrasound", "UltrasoundSensors", UltrasoundSensors)
+_register_later("j5aio.boards.sr.kch", "Colour", Colour)
+_register_later("j5aio.robot", "BaseRobot", BaseRobot)
 _register_later("j5aio.vision.track", "PositionTracker", PositionTracker)
-_register(_boards_board.Board, Board)
-_register(_boards_board_group.BoardGroup, BoardGroup)
-_register(_components_component.Component, Component)
-_register(_components_power_output.PowerOutputGroup, PowerOutputGroup)
-_register(_kit.KitRobot, KitRobot)
-_register(_boards_arduino_uno.ArduinoUno, ArduinoUno)
-_register(_boards_camera.CameraBoard, CameraBoard)
-_register(_boards_sr_kch.KCHBoard, KCHBoard)
-_register(_boards_sr_v4_motor_board.MotorBoard, MotorBoard)
-_register(_boards_sr_v4_power_board.PowerBoard, PowerBoard)
-_register(_boards_sr_v4_power_board_fw4.PowerBoardOutputGroup, PowerBoardOutputGroup)
-_register(_boards_sr_v4_servo_board.ServoBoard, ServoBoard)
-_register(_components_component.DerivedComponent, DerivedComponent)
-_register(_components_distance_sensor.Rangefinder, Rangefinder)
-_register(_boards_arduino_all_digital.AllDigitalUno, AllDigitalUno)
-_register(_boards_sb_arduino.SBArduinoBoard, SBArduinoBoard)
-_register(_boards_sr_v4_motor_board_fw4.MotorBoardFw4, MotorBoardFw4)
-_register(_boards_sr_v4_power_board_fw4.PowerBoardFw4, PowerBoardFw4)
-_register(_boards_sr_v4_ruggeduino.Ruggeduino, Ruggeduino)
-_register(_boards_sr_v4_servo_board_fw4.ServoBoardFw4, ServoBoardFw4)
-_register(_components_identified.IdentifiedComponent, IdentifiedComponent)
-_register(_boards_sb_arduino_2024.SBArduino2024Board, SBArduino2024Board)
-_register(_boards_sb_servo_board.SBServoBoard, SBServoBoard)
-_register(_components_battery_sensor.BatterySensor, BatterySensor)
-_register(_components_button.Button, Button)
-_register(_components_derived_ultrasound.UltrasoundSensor, UltrasoundSensor)
-_register(_components_fan.Fan, Fan)
-_register(_components_flag.Flag, Flag)
-_register(_components_gpio_pin.GPIOPin, GPIOPin)
-_register(_components_led.LED, LED)
-_register(_components_marker_camera.MarkerCamera, MarkerCamera)
-_register(_components_motor.Motor, Motor)
-_register(_components_piezo.Piezo, Piezo)
-_register(_components_power_output.PowerOutput, PowerOutput)
-_register(_components_rgb_led.RGBLED, RGBLED)
-_register(_components_servo.Servo, Servo)
-_register(_components_string_command.StringCommandComponent, StringCommandComponent)
-_register(_components_supply_sensor.SupplySensor, SupplySensor)
-_register(_components_temperature_sensor.TemperatureSensor, TemperatureSensor)
-_register(_components_voltage_sensor.VoltageSensor, VoltageSensor)
-_register(_boards_sr_v4_arduino.SRArduinoBoard, SRArduinoBoard)
-_register(_components_distance_sensor.DistanceSensor, DistanceSensor)
-_register(_components_flashing_led.FlashingLED, FlashingLED)
-_register(_components_monitored_motor.MonitoredMotor, MonitoredMotor)
-_register(_components_protected_power_output.ProtectedPowerOutput, ProtectedPowerOutput)
-_register(_components_pulse_servo.PulseServo, PulseServo)
+_register_later("j5aio.boards.board", "Board", Board)
+_register_later("j5aio.boards.board_group", "BoardGroup", BoardGroup)
+_register_later("j5aio.components.component", "Component", Component)
+_register_later("j5aio.components.power_output", "PowerOutputGroup", PowerOutputGroup)
+_register_later("j5aio.kit", "KitRobot", KitRobot)
+_register_later("j5aio.boards.arduino.uno", "ArduinoUno", ArduinoUno)
+_register_later("j5aio.boards.camera", "CameraBoard", CameraBoard)
+_register_later("j5aio.boards.sr.kch", "KCHBoard", KCHBoard)
+_register_later("j5aio.boards.sr.v4.motor_board", "MotorBoard", MotorBoard)
+_register_later("j5aio.boards.sr.v4.power_board", "PowerBoard", PowerBoard)
+_register_later("j5aio.boards.sr.v4.power_board_fw4", "PowerBoardOutputGroup", PowerBoardOutputGroup)
+_register_later("j5aio.boards.sr.v4.servo_board", "ServoBoard", ServoBoard)
+_register_later("j5aio.components.component", "DerivedComponent", DerivedComponent)
+_register_later("j5aio.components.distance_sensor", "Rangefinder", Rangefinder)
+_register_later("j5aio.boards.arduino.all_digital", "AllDigitalUno", AllDigitalUno)
+_register_later("j5aio.boards.sb.arduino", "SBArduinoBoard", SBArduinoBoard)
+_register_later("j5aio.boards.sr.v4.motor_board_fw4", "MotorBoardFw4", MotorBoardFw4)
+_register_later("j5aio.boards.sr.v4.power_board_fw4", "PowerBoardFw4", PowerBoardFw4)
+_register_later("j5aio.boards.sr.v4.ruggeduino", "Ruggeduino", Ruggeduino)
+_register_later("j5aio.boards.sr.v4.servo_board_fw4", "ServoBoardFw4", ServoBoardFw4)
+_register_later("j5aio.components.identified", "IdentifiedComponent", IdentifiedComponent)
+_register_later("j5aio.boards.sb.arduino_2024", "SBArduino2024Board", SBArduino2024Board)
+_register_later("j5aio.boards.sb.servo_board", "SBServoBoard", SBServoBoard)
+_register_later("j5aio.components.battery_sensor", "BatterySensor", BatterySensor)
+_register_later("j5aio.components.button", "Button", Button)
+_register_later("j5aio.components.derived.ultrasound", "UltrasoundSensor", UltrasoundSensor)
+_register_later("j5aio.components.fan", "Fan", Fan)
+_register_later("j5aio.components.flag", "Flag", Flag)
+_register_later("j5aio.components.gpio_pin", "GPIOPin", GPIOPin)
+_register_later("j5aio.components.led", "LED", LED)
+_register_later("j5aio.components.marker_camera", "MarkerCamera", MarkerCamera)
+_register_later("j5aio.components.motor", "Motor", Motor)
+_register_later("j5aio.components.piezo", "Piezo", Piezo)
+_register_later("j5aio.components.power_output", "PowerOutput", PowerOutput)
+_register_later("j5aio.components.rgb_led", "RGBLED", RGBLED)
+_register_later("j5aio.components.servo", "Servo", Servo)
+_register_later("j5aio.components.string_command", "StringCommandComponent", StringCommandComponent)
+_register_later("j5aio.components.supply_sensor", "SupplySensor", SupplySensor)
+_register_later("j5aio.components.temperature_sensor", "TemperatureSensor", TemperatureSensor)
+_register_later("j5aio.components.voltage_sensor", "VoltageSensor", VoltageSensor)
+_register_later("j5aio.boards.sr.v4.arduino", "SRArduinoBoard", SRArduinoBoard)
+_register_later("j5aio.components.distance_sensor", "DistanceSensor", DistanceSensor)
+_register_later("j5aio.components.flashing_led", "FlashingLED", FlashingLED)
+_register_later("j5aio.components.monitored_motor", "MonitoredMotor", MonitoredMotor)
+_register_later("j5aio.components.protected_power_output", "ProtectedPowerOutput", ProtectedPowerOutput)
+_register_later("j5aio.components.pulse_servo", "PulseServo", PulseServo)
 
 
 if not TYPE_CHECKING:

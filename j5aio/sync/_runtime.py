@@ -46,7 +46,7 @@ import logging
 import threading
 import time
 from collections.abc import Awaitable, Callable
-from typing import Any, Final, ParamSpec, TypeVar
+from typing import TYPE_CHECKING, Any, Final, ParamSpec, TypeVar
 
 import anyio
 
@@ -55,8 +55,10 @@ from j5aio.boards.board import Board
 from j5aio.safety import make_all_safe_uncancellably
 from j5aio.sync._calls import CANCEL_GRACE, DONE, Call, new_done_lock
 from j5aio.sync._driven import NESTED_CALL, DrivenLoop
-from j5aio.sync._loop_thread import LoopThread
 from j5aio.sync._signals import INTERRUPTIBLE_WAIT, start_signal_watch
+
+if TYPE_CHECKING:  # (imported only where the callers cannot drive the loop)
+    from j5aio.sync._loop_thread import LoopThread
 
 __all__ = [
     "CALLER_DRIVES",
@@ -100,8 +102,13 @@ def _get_portal() -> DrivenLoop | LoopThread:
         if _portal is None:
             lifetime.install()
             lifetime.add_exit_step(shutdown)
-            start_signal_watch(_wake_waiting_callers)
-            _portal = DrivenLoop() if CALLER_DRIVES else LoopThread()
+            if CALLER_DRIVES:  # its loop hears of signals itself: no watcher thread
+                _portal = DrivenLoop(on_signal=_wake_waiting_callers)
+            else:
+                from j5aio.sync._loop_thread import LoopThread
+
+                start_signal_watch(_wake_waiting_callers)
+                _portal = LoopThread()
         return _portal
 
 
@@ -126,7 +133,7 @@ def call(fn: Callable[P, Awaitable[T]], /, *args: P.args, **kwargs: P.kwargs) ->
         if not asyncio.iscoroutine(coro):
             raise TypeError(f"{fn!r} did not return a coroutine")
         return portal.run(coro, _wait)  # type: ignore[no-any-return]
-    assert isinstance(portal, LoopThread)
+    assert not isinstance(portal, DrivenLoop)
     if threading.get_ident() == portal.thread.ident:
         raise RuntimeError(NESTED_CALL)
     coro = fn(*args, **kwargs)
@@ -181,8 +188,8 @@ def _wait_done(request: Call, timeout: float) -> bool:
     """Wait up to ``timeout`` seconds for ``request`` to finish; return whether it did.
 
     The loop also releases a caller's lock to let it run a signal handler (see
-    :meth:`LoopThread.wake_callers`), so a release alone does not mean done: only
-    :attr:`Call.state` does.
+    :meth:`~j5aio.sync._loop_thread.LoopThread.wake_callers`), so a release alone does
+    not mean done: only :attr:`Call.state` does.
     """
     deadline = time.monotonic() + timeout
     while request.state != DONE:

@@ -20,7 +20,7 @@ import importlib
 import sys
 import weakref
 from collections import deque
-from collections.abc import Iterator, Mapping, Sequence, Set
+from collections.abc import Collection, Iterator, Mapping, Sequence, Set
 from typing import TYPE_CHECKING, Any, Final, TypeVar
 
 from j5aio.numbered import NumberedComponents, Pins
@@ -130,21 +130,27 @@ def register_later(module: str, name: str, wrapper_class: type[SyncWrapper]) -> 
     """Use ``wrapper_class`` for the core class ``name`` of ``module``, without importing it.
 
     The class is registered (as by :func:`register`) once its module has been imported:
-    until then no object of it can exist, so no wrapper of one is asked for. A wrapper
-    module registers this way the classes of features a program may never use (the
-    vision package's tracker), so that importing it does not import them.
+    until then no object of it can exist, so no wrapper of one is asked for. j5aio's own
+    facade registers every class this way, so that importing it imports only the core
+    modules a program uses (the boards of its kit, not every kind's).
     Asking for the core class of ``wrapper_class`` (:func:`core_class_of`, or
-    :func:`unwrap` of the class) imports the module.
+    :func:`unwrap` of the class) imports the module (that of its wrapped bases too).
     """
     _PENDING[wrapper_class] = (module, name)
 
 
-def _register_pending(*, importing: bool = False) -> None:
+def _register_pending(
+    *, importing: bool = False, only: Collection[type] | None = None
+) -> None:
     """Register the classes of :func:`register_later` whose modules are imported.
 
     :param importing: import the modules of the others first.
+    :param only: the wrapper classes to look at (all pending ones if ``None``).
     """
-    for wrapper_class, (module, name) in list(_PENDING.items()):
+    pending = list(_PENDING.items())
+    if only is not None:
+        pending = [(wrapper, where) for wrapper, where in pending if wrapper in only]
+    for wrapper_class, (module, name) in pending:
         loaded = importlib.import_module(module) if importing else sys.modules.get(module)
         # (a module still being imported may not have defined the class yet)
         core_class = getattr(loaded, name, None)
@@ -173,7 +179,7 @@ def registered() -> dict[type, type[SyncWrapper]]:
 def core_class_of(cls: type) -> type | None:
     """Return the core class that wrapper class ``cls`` (or its nearest wrapped base) wraps."""
     if _PENDING and any(klass in _PENDING for klass in cls.__mro__):
-        _register_pending(importing=True)
+        _register_pending(importing=True, only=cls.__mro__)  # (its own modules alone)
     for klass in cls.__mro__:
         core = _CORE_CLASSES.get(klass)
         if core is not None:

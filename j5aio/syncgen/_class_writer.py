@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import ast
 import inspect
+import math
 import sys
 import textwrap
 import typing
@@ -22,6 +23,18 @@ from j5aio.syncgen._renderer import _Either, _Member, _Renderer, _SyncVar
 from j5aio.syncgen._scope import _NONE_TYPE, FORWARDED_DUNDERS, LINE_LENGTH
 
 __all__ = []
+
+
+def _is_plain_literal(value: object) -> bool:
+    """Whether ``repr(value)`` is Python source for an equal value.
+
+    That is a bool, int, finite float, str or None, a range, or a tuple of such.
+    """
+    if value is None or type(value) in (bool, int, str, range):
+        return True
+    if type(value) is float:
+        return math.isfinite(value)
+    return type(value) is tuple and all(_is_plain_literal(item) for item in value)
 
 
 class _ClassWriter:
@@ -250,7 +263,13 @@ class _ClassWriter:
 
     def class_constant(self, name: str, annotation: Any) -> list[str]:
         rendered = self.r.render(annotation)
-        ref = f"{self.r.core_ref(self.cls)}.{name}"
+        value = getattr(self.cls, name)
+        if self.r.discovery.scope.is_core and _is_plain_literal(value):
+            # Written out (a test fails when it changes): defining the wrapper does not
+            # import the core module for it (see ``render_module``).
+            ref = repr(value)
+        else:
+            ref = f"{self.r.core_ref(self.cls)}.{name}"
         return [f"    {name}: {self.r.typing_ref('ClassVar')}[{rendered}] = {ref}"]
 
     def class_annotations(self) -> dict[str, Any]:
@@ -315,13 +334,29 @@ class _ClassWriter:
                 or origin is typing.Generic
                 or getattr(origin, "__module__", "") == "collections.abc"
             ):
-                bases.append(self.r.render(base))
+                bases.append(self._base(base))
         if not any(
             self.r.is_wrapped_class(typing.get_origin(b) or b)
             for b in self.cls.__dict__.get("__orig_bases__", self.cls.__bases__)
         ):
             bases.insert(0, "_SyncWrapper")
         return bases
+
+    def _base(self, base: Any) -> str:
+        """Render a base class; in j5aio's facade, a core class as a type argument is quoted.
+
+        ``IdentifiedComponent["_components_fan.FanInterface"]``: type checkers read it as
+        ever, and defining the class does not import the core module (see
+        ``render_module``).
+        """
+        origin, args = typing.get_origin(base), typing.get_args(base)
+        if not self.r.discovery.scope.is_core or origin is None or not args:
+            return self.r.render(base)
+        rendered = [
+            self.r.render(arg) if isinstance(arg, typing.TypeVar) else f'"{self.r.render(arg)}"'
+            for arg in args
+        ]
+        return f"{self.r.render(origin)}[{', '.join(rendered)}]"
 
     def core_annotation(self) -> str:
         params = getattr(self.cls, "__parameters__", ())

@@ -156,7 +156,7 @@ class Lamp:
     assert 'return cast("Mapping[str, Lamp]", _wrap(self._core.by_name()))' in text
     assert "colour: Colour = Colour.RED" in text
     assert "from sync_gen_fake_component import Colour" in text
-    assert "_register(_sync_gen_fake_component.Lamp, Lamp)" in text
+    assert '_register_later("sync_gen_fake_component", "Lamp", Lamp)' in text
     assert 'level: float = float("inf")' in text
     assert "def name(self) -> str:" in text
     assert "def options(self) -> dict[str, int]:" in text

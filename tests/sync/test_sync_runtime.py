@@ -16,8 +16,9 @@ import anyio.lowlevel
 import anyio.to_thread
 import pytest
 
-from j5aio.sync import _runtime, _signals
+from j5aio.sync import _loop_thread, _runtime, _signals
 from j5aio.sync._calls import DONE, Call, new_done_lock
+from j5aio.sync._driven import DrivenLoop
 from j5aio.sync._loop_thread import LoopThread
 from j5aio.sync._runtime import call, get_loop, shutdown
 from j5aio.sync._selectors import CAN_PARK, ParkingLoop
@@ -283,6 +284,97 @@ def test_a_signal_wake_up_file_of_the_program_is_left_alone() -> None:
         peer.close()
 
 
+@pytest.fixture
+def fresh_signal_watch(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
+    """The signal watch as in a new program: no wake-up socket yet, no watcher thread."""
+    shutdown()
+    theirs = _signals._signal_writer
+    before = set(threading.enumerate())
+    monkeypatch.setattr(_signals, "_signal_writer", None)
+    monkeypatch.setattr(_signals, "_signal_reader", None)
+    monkeypatch.setattr(_signals, "_watched_by_a_thread", False)
+    yield
+    shutdown()
+    signal.set_wakeup_fd(theirs.fileno() if theirs is not None else -1)
+    if _signals._signal_writer is not None:
+        _signals._signal_writer.close()  # a watcher thread's read ends, and it closes its end
+    for thread in set(threading.enumerate()) - before:
+        if thread.name == "j5aio sync signal watch":
+            thread.join(5)
+    if _signals._signal_reader is not None:
+        _signals._signal_reader.close()
+
+
+@pytest.mark.usefixtures("fresh_signal_watch")
+def test_the_callers_loop_hears_of_signals_itself_and_no_watcher_thread_starts() -> None:
+    before = set(threading.enumerate())
+    call(add, 0, 0)
+    portal = _runtime._portal
+    assert isinstance(portal, DrivenLoop)
+    assert portal.watches_signals
+    started = {thread.name for thread in set(threading.enumerate()) - before}
+    assert started == {"j5aio sync loop keeper"}
+    events: list[str] = []
+
+    def ctrl_c_on_this_thread() -> None:
+        signal.pthread_kill(threading.get_ident(), signal.SIGINT)  # not the main thread
+
+    timer = threading.Timer(0.1, ctrl_c_on_this_thread)
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        call(recorded_command(events, 30))
+    timer.join()
+    assert events == ["started", "cancelled"]
+
+
+@pytest.mark.usefixtures("fresh_signal_watch")
+def test_once_a_watcher_thread_reads_the_wake_up_file_no_loop_does() -> None:
+    calls: list[str] = []
+    _signals.start_signal_watch(lambda: calls.append("first portal"))
+    assert any(t.name == "j5aio sync signal watch" for t in threading.enumerate())
+    loop = asyncio.new_event_loop()
+    try:
+        assert not _signals.watch_signals_in(loop, lambda: calls.append("new portal"))
+    finally:
+        loop.close()  # (a loop that watched the file would have read it first)
+    assert _signals._signal_writer is not None
+    _signals._signal_writer.send(b"x")  # as the C-level handler of a signal does
+    deadline = time.monotonic() + 5
+    while not calls and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert calls == ["new portal"]  # the thread wakes the current portal's callers
+
+
+@pytest.mark.usefixtures("fresh_signal_watch")
+def test_a_loop_watching_the_wake_up_file_calls_on_signal_for_what_was_written() -> None:
+    calls: list[str] = []
+    loop = asyncio.new_event_loop()
+    try:
+        assert _signals.watch_signals_in(loop, lambda: calls.append("loop"))
+        assert _signals._signal_writer is not None
+        _signals._signal_writer.send(b"xyz")
+        loop.run_until_complete(asyncio.sleep(0.05))
+        assert calls == ["loop"]  # once for all it read
+    finally:
+        loop.close()
+
+
+@pytest.mark.usefixtures("fresh_signal_watch")
+def test_off_the_main_thread_no_loop_watches_the_wake_up_file() -> None:
+    loop = asyncio.new_event_loop()
+    results: list[bool] = []
+    try:
+        thread = threading.Thread(
+            target=lambda: results.append(_signals.watch_signals_in(loop, lambda: None))
+        )
+        thread.start()
+        thread.join()
+    finally:
+        loop.close()
+    assert results == [False]
+    assert _signals._signal_writer is None
+
+
 class InterruptedJustAfterAcquiring:
     """A lock whose first acquire succeeds and is then interrupted, as by a late Ctrl-C."""
 
@@ -419,7 +511,7 @@ def test_a_call_queued_as_the_portal_stops_is_taken_back_or_left_withdrawn(park:
 def plain_portal(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
     """The facade's portal on the plain event loop, as where asyncio's loop cannot park."""
     shutdown()
-    monkeypatch.setattr(_runtime, "LoopThread", functools.partial(LoopThread, park=False))
+    monkeypatch.setattr(_loop_thread, "LoopThread", functools.partial(LoopThread, park=False))
     yield
     shutdown()
 

@@ -176,6 +176,10 @@ class _SlowStream(ByteStream):
 class _SlowDevice:
     """A USB simulator whose transfers take up to :data:`LATENCY` each."""
 
+    #: Its transfers block, as a real board's do (the simulator's own claim is not
+    #: passed on): the link runs them on its thread, where cancellations can land.
+    answers_at_once = False
+
     def __init__(self, simulator: Any, rng: random.Random) -> None:
         self._simulator = simulator
         self._rng = rng

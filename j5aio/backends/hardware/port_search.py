@@ -30,6 +30,7 @@ from j5aio.backends.hardware.transports.discovery import (
     list_serial_ports,
     match_ports,
 )
+from j5aio.backends.hardware.transports.usb_link import answers_at_once
 from j5aio.boards.board import Board
 from j5aio.errors import CommunicationError, UnsupportedFirmwareError
 
@@ -136,7 +137,11 @@ async def search_ports(
         (unless ``options.skip_failures``).
     """
     options = options or DiscoveryOptions()
-    ports = await anyio.to_thread.run_sync(list_serial_ports, options.port_source)
+    source = options.port_source
+    if source is not None and answers_at_once(source):  # (a simulated kit's: no thread)
+        ports = list_serial_ports(source)
+    else:
+        ports = await anyio.to_thread.run_sync(list_serial_ports, source)
     wanted: dict[str, tuple[PortInfo, list[type[SerialHardwareBackend[Board]]]]] = {}
     for backend in backends:
         matched = match_ports(

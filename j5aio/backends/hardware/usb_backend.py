@@ -4,7 +4,9 @@
 :meth:`USBHardwareBackend.from_usb_device` (the seam the simulated environment uses,
 with a simulated device) reads the serial number, runs the handshake and returns the
 board. Each device is driven through one :class:`~.transports.usb_link.USBLink`, whose
-worker thread runs its transfers in order. A device a live backend holds is never
+worker thread runs its transfers in order (a simulated device's link runs them in the
+event loop until it polls). The bus is scanned on a worker thread, a finder that answers
+at once (the simulated kit's) in the event loop. A device a live backend holds is never
 opened twice (see :mod:`~j5aio.backends.hardware.registry`).
 
 A board that vanishes (errno 19) is looked for again by vendor, product and serial
@@ -28,7 +30,7 @@ from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.reconnect import Reconnecting
 from j5aio.backends.hardware.transports.discovery import USBFinder, find_usb_devices
-from j5aio.backends.hardware.transports.usb_link import USBDeviceLike, USBLink
+from j5aio.backends.hardware.transports.usb_link import USBDeviceLike, USBLink, answers_at_once
 from j5aio.boards.board import Board
 from j5aio.errors import BoardDisconnectionError, DeviceMissingSerialNumberError
 
@@ -45,6 +47,17 @@ def device_key(device: USBDeviceLike) -> str:
     if bus is not None and address is not None:
         return f"usb:{ids}@{bus}.{address}"
     return f"usb:{ids}#{id(device)}"
+
+
+async def _find(vid: int, pid: int, finder: USBFinder | None) -> list[USBDeviceLike]:
+    """The devices ``finder`` finds, scanned for on a worker thread (a bus scan blocks).
+
+    A finder that answers at once (the simulated kit's) runs here: no thread starts.
+    """
+    if finder is not None and answers_at_once(finder):
+        return find_usb_devices(vid, pid, finder=finder)
+    find = functools.partial(find_usb_devices, vid, pid, finder=finder)
+    return await anyio.to_thread.run_sync(find)
 
 
 class USBHardwareBackend(Reconnecting, Backend):
@@ -127,8 +140,7 @@ class USBHardwareBackend(Reconnecting, Backend):
             handshake (unless skipped).
         """
         options = options or DiscoveryOptions()
-        find = functools.partial(find_usb_devices, cls.VID, cls.PID, finder=options.usb_finder)
-        found = await anyio.to_thread.run_sync(find)
+        found = await _find(cls.VID, cls.PID, options.usb_finder)
         devices = [device for device in found if cls.drives_device(device)]
         boards: list[Board] = []
         for device in devices:
@@ -190,8 +202,7 @@ class USBHardwareBackend(Reconnecting, Backend):
             raise BoardDisconnectionError(
                 f"{self._key}: this board was not found by discovery, so it cannot be found again"
             )
-        find = functools.partial(find_usb_devices, self.VID, self.PID, finder=self._finder)
-        for device in await anyio.to_thread.run_sync(find):
+        for device in await _find(self.VID, self.PID, self._finder):
             if device_key(device) in registry.held() and device_key(device) != self._key:
                 continue  # another board's device
             link = USBLink(device, board_name=self.board.name)

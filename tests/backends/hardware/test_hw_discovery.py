@@ -1,4 +1,5 @@
 import logging
+import threading
 from types import SimpleNamespace
 from typing import Any
 
@@ -17,7 +18,7 @@ from j5aio.backends.hardware.sr.v4 import (
 )
 from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.backends.hardware.transports.stream import ByteStream
-from j5aio.backends.hardware.usb_backend import device_key
+from j5aio.backends.hardware.usb_backend import USBHardwareBackend, device_key
 from j5aio.boards.sb import SBArduinoBoard
 from j5aio.boards.sr.v4 import MotorBoard, PowerBoard, Ruggeduino, ServoBoard
 from j5aio.errors import (
@@ -162,6 +163,30 @@ async def test_usb_boards_are_discovered_and_rediscovered() -> None:
     assert str(getattr(power_board.backend, "port", "")).startswith("usb:1bda:0010#")
     await power_board.close()
     await servo_board.close()
+
+
+async def test_a_finder_that_answers_at_once_runs_in_the_loop_and_others_on_a_thread() -> None:
+    power = SRPowerBoardFw3Simulator("PB1")
+    threads: list[int] = []
+
+    def find(**kwargs: Any) -> list[Any]:
+        threads.append(threading.get_ident())
+        return list(finder_for(power)(**kwargs))
+
+    [board] = await SRV4PowerBoardHardwareBackend.discover(
+        options=DiscoveryOptions(usb_finder=find)
+    )
+    find.answers_at_once = True  # type: ignore[attr-defined]  # as the simulated kit's does
+    assert await SRV4PowerBoardHardwareBackend.discover(
+        options=DiscoveryOptions(usb_finder=find)
+    ) == [board]
+    assert threads[0] != threading.get_ident()  # a bus scan blocks: a worker thread
+    assert threads[1] == threading.get_ident()
+    # A simulator answers at once too: its link starts no thread for the handshake.
+    backend = board.backend
+    assert isinstance(backend, USBHardwareBackend)
+    assert not backend.link.thread.is_alive()
+    await board.close()
 
 
 async def test_usb_discovery_failures() -> None:

@@ -33,6 +33,15 @@ pulled). The link's polls then read at once when rung, and otherwise only every
 and check, soon after it happens, at a fraction of the cost. Without that method (a real
 board) a poll reads every interval, as asked.
 
+A device that answers at once: a board simulator's transfers are function calls that
+never block (see :func:`answers_at_once`). Its link has no worker thread. Each transfer
+runs in the event loop, after one checkpoint (so that a cancelled caller's transfer never
+runs and other tasks get their turn, as with a hand-off to the thread); a poll reads in
+the loop too, waiting between reads on a timer and on the device's doorbell; a
+synchronous :meth:`USBLink.control_write_now` from another thread runs in that thread,
+after any transfer running in the loop. A simulated kit's robot therefore starts no
+thread for its USB boards, and its transfers cost no thread hand-off.
+
 Errors: a pyusb error becomes :class:`~j5aio.errors.USBCommunicationError` naming the
 board, with the pyusb exception kept as ``usb_error``. errno 19 (``ENODEV``: unplugged)
 becomes :class:`USBDisconnectionError`, which is also a
@@ -68,6 +77,7 @@ from j5aio.errors import (
 from .trace import log_wire, wire_logger
 
 __all__ = [
+    "ANSWERS_AT_ONCE",
     "CONTROL_REQUEST",
     "MAX_POLL_INTERVAL",
     "READ_REQUEST_TYPE",
@@ -78,6 +88,7 @@ __all__ = [
     "USBDisconnectionError",
     "USBLink",
     "USBTransferTimeoutError",
+    "answers_at_once",
 ]
 
 _log = logging.getLogger(__name__)
@@ -98,6 +109,10 @@ MAX_POLL_INTERVAL = 86_400.0
 #: the device is still there, so they can be rare (once in 0.75 s for the power board's
 #: 15 ms button poll).
 RUNG_INTERVAL_FACTOR = 50
+
+#: The attribute by which a device, or a USB finder, says that it answers at once: a
+#: simulator, whose calls are function calls that never block (see :func:`answers_at_once`).
+ANSWERS_AT_ONCE = "answers_at_once"
 
 T = TypeVar("T")
 _JobT = TypeVar("_JobT", bound="_Job[Any]")
@@ -153,6 +168,17 @@ class RingingDevice(Protocol):
         that stops the calls.
         """
         ...
+
+
+def answers_at_once(thing: object) -> bool:
+    """Whether ``thing`` (a device, or a function that finds devices) never blocks.
+
+    It says so with a true :data:`ANSWERS_AT_ONCE` attribute (a board simulator, the
+    simulated kit's finder); a pyusb device and ``usb.core.find`` have none, and are run on
+    a thread. Such a device's link needs no worker thread for its transfers (see the
+    module's notes).
+    """
+    return getattr(thing, ANSWERS_AT_ONCE, False) is True
 
 
 class _State(enum.Enum):
@@ -261,6 +287,43 @@ class _NowJob:
         self.done.set()
 
 
+class _HerePoll:
+    """A poll reading a device that answers at once, in the event loop: its doorbell."""
+
+    def __init__(self, loop: asyncio.AbstractEventLoop) -> None:
+        self.loop = loop
+        #: Whether the device rang since the last read began (under the link's state lock).
+        self.rung = False
+        self._waiter: asyncio.Future[None] | None = None
+
+    def ring(self) -> None:
+        """The device rang (any thread; the link's state lock is held)."""
+        self.rung = True
+        waiter = self._waiter
+        if waiter is not None:
+            with contextlib.suppress(RuntimeError):  # the loop has closed: nobody waits
+                self.loop.call_soon_threadsafe(_resolve, waiter, None)
+
+    async def wait(self, delay: float, lock: threading.Lock) -> bool:
+        """Wait ``delay`` seconds, or until the device rings; return whether it rang.
+
+        ``lock`` is the link's state lock, under which :meth:`ring` is called.
+        """
+        waiter: asyncio.Future[None] = self.loop.create_future()
+        with lock:
+            if self.rung:
+                return True
+            self._waiter = waiter
+        timer = self.loop.call_later(max(delay, 0.0), _resolve, waiter, None)
+        try:
+            await waiter
+        finally:
+            timer.cancel()
+            with lock:
+                self._waiter = None
+        return self.rung
+
+
 def _resolve(future: asyncio.Future[Any], outcome: Any) -> None:
     if not future.done():
         future.set_result(outcome)
@@ -340,7 +403,15 @@ class USBLink(AsyncResource):
         self._thread = threading.Thread(
             target=self._run, name=f"j5aio USB {board_name}", daemon=True
         )
-        self._thread.start()
+        # A device that answers at once has no worker thread: its transfers run where they
+        # are asked for, one at a time under this lock (see the module's notes).
+        self._here: threading.Lock | None = None
+        # The polls reading such a device in the event loop (guarded by ``_state_lock``).
+        self._polls_here: list[_HerePoll] = []
+        if answers_at_once(device):
+            self._here = threading.Lock()
+        else:
+            self._thread.start()
 
     @property
     def board_name(self) -> str:
@@ -359,7 +430,10 @@ class USBLink(AsyncResource):
 
     @property
     def thread(self) -> threading.Thread:
-        """The worker thread (exposed so that tests can check it has stopped)."""
+        """The worker thread (exposed so that tests can check it has stopped).
+
+        Never started for a device that answers at once.
+        """
         return self._thread
 
     @property
@@ -468,6 +542,12 @@ class USBLink(AsyncResource):
                 )
             return data
 
+        if self._here is not None:
+            accepted = await self._poll_here(transfer, found, interval, description, None)
+            if then is not None:
+                then(accepted)
+            log_wire(self._wire, f"<- wIndex={w_index} wValue={w_value}", accepted)
+            return accepted
         # What :meth:`poll_until` does, inline: this is the start button's path.
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
@@ -507,6 +587,14 @@ class USBLink(AsyncResource):
             succeeded, even if the caller has been cancelled meanwhile; an exception it
             raises reaches the caller.
         """
+        if self._here is not None:
+            # A device that answers at once: in the loop, after a checkpoint (a cancelled
+            # caller's transfer never runs; other tasks get their turn).
+            await asyncio.sleep(0)
+            value = self._run_here(work, description, errors)
+            if then is not None:
+                then(value)
+            return value
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
         job = self._submit(_Job(work, loop, future, then))
@@ -548,6 +636,11 @@ class USBLink(AsyncResource):
             :data:`MAX_POLL_INTERVAL`.
         :raises USBCommunicationError: a read failed (or a subclass, as :meth:`call`).
         """
+        if self._here is not None:
+            result = await self._poll_here(work, found, interval, description, errors)
+            if then is not None:
+                then(result)
+            return result
         loop = asyncio.get_running_loop()
         future: asyncio.Future[tuple[bool, Any]] = loop.create_future()
         job = self._submit(
@@ -557,7 +650,7 @@ class USBLink(AsyncResource):
             succeeded, value = await future
         finally:
             job.withdrawn = True
-        result: T = self._poll_result(succeeded, value, description, errors)
+        result = self._poll_result(succeeded, value, description, errors)
         return result
 
     def _poll_result(
@@ -571,6 +664,80 @@ class USBLink(AsyncResource):
                 f"{self._board_name}: the USB link was closed while {description}"
             )
         return self._result(succeeded, value, description, errors)
+
+    def _run_here(
+        self,
+        work: Callable[[], T],
+        description: str,
+        errors: Mapping[int, str] | None,
+        keep: type[Exception] | tuple[type[Exception], ...] = (),
+    ) -> T:
+        """Run ``work`` now, in this thread, after any transfer running elsewhere.
+
+        For a device that answers at once. Its exceptions are translated as on the thread,
+        but those of the classes in ``keep``.
+        """
+        assert self._here is not None
+        with self._here:
+            if self._closed:
+                raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
+            try:
+                return work()
+            except keep:
+                raise
+            except Exception as exc:
+                raise self._translate(exc, description, errors or {}) from exc
+
+    async def _poll_here(
+        self,
+        work: Callable[[], T],
+        found: Callable[[T], bool],
+        interval: float,
+        description: str,
+        errors: Mapping[int, str] | None,
+    ) -> T:
+        """Poll a device that answers at once in the event loop, as the thread polls.
+
+        ``work`` runs now, then every ``interval`` (times the doorbell's factor), and at
+        once when the device rings; the first result ``found`` accepts is returned.
+        """
+        if not 0 < interval <= MAX_POLL_INTERVAL:
+            raise ValueError(
+                "interval must be a positive number of seconds up to "
+                f"{MAX_POLL_INTERVAL:g}, not {interval!r}"
+            )
+        interval = min(interval * self._interval_factor, MAX_POLL_INTERVAL)
+        loop = asyncio.get_running_loop()
+        poll = _HerePoll(loop)
+        with self._state_lock:
+            self._polls_here.append(poll)
+        try:
+            await asyncio.sleep(0)  # a checkpoint, as every transfer here has
+            due = loop.time()
+            rang = False
+            while True:
+                if self._closed:
+                    raise USBDisconnectionError(
+                        f"{self._board_name}: the USB link was closed while {description}"
+                    )
+                poll.rung = False  # before the read: a ring during it reads again
+                value = self._run_here(work, description, errors, UnexpectedReplyError)
+                try:
+                    if found(value):
+                        return value
+                except UnexpectedReplyError:
+                    raise
+                except Exception as exc:  # as on the thread: the poll's failure
+                    raise self._translate(exc, description, errors or {}) from exc
+                if not rang:  # the read that was due: the next is due an interval later
+                    now = loop.time()
+                    due += interval  # a steady rate, unless the loop fell behind
+                    if due <= now:
+                        due = now + interval
+                rang = await poll.wait(due - loop.time(), self._state_lock)
+        finally:
+            with self._state_lock:
+                self._polls_here.remove(poll)
 
     def _submit(self, job: _JobT) -> _JobT:
         """Queue ``job`` for the worker thread, unless the link is closed."""
@@ -589,6 +756,8 @@ class USBLink(AsyncResource):
             self._rung = True
             if self._doorbell.locked():
                 self._doorbell.release()
+            for poll in self._polls_here:
+                poll.ring()
 
     def _queue(self, job: _Job[Any] | _NowJob | None) -> None:
         """Queue ``job`` (``None``: stop) and ring the doorbell; hold ``_state_lock``.
@@ -637,6 +806,8 @@ class USBLink(AsyncResource):
                 job.finish((True, job.work()))
             except Exception as exc:
                 job.finish((False, exc))
+        elif self._here is not None:
+            self._run_now_here(job, timeout, description)
         else:
             with self._state_lock:
                 if self._closed:
@@ -650,6 +821,26 @@ class USBLink(AsyncResource):
         if not succeeded:
             raise self._translate(value, description, {}) from value
 
+    def _run_now_here(self, job: _NowJob, timeout: float, description: str) -> None:
+        """Run a synchronous caller's transfer in its own thread (no worker thread).
+
+        It waits up to ``timeout`` seconds for a transfer running in the event loop.
+        """
+        assert self._here is not None
+        if not self._here.acquire(timeout=max(timeout, 0.0)):
+            raise USBTransferTimeoutError(
+                f"{self._board_name}: {description} did not finish within {timeout} s"
+            )
+        try:
+            if self._closed:
+                raise USBDisconnectionError(f"{self._board_name}: the USB link is closed")
+            try:
+                job.finish((True, job.work()))
+            except Exception as exc:
+                job.finish((False, exc))
+        finally:
+            self._here.release()
+
     # -- closing -------------------------------------------------------------------------
 
     def close_now(self, timeout: float = 2.0) -> None:
@@ -658,12 +849,16 @@ class USBLink(AsyncResource):
         Synchronous (no event loop or executor needed, so it works in ``atexit``);
         waits up to ``timeout`` seconds for the thread. Idempotent.
         """
+        if self._stopped_here():
+            return
         self._request_stop()
         if threading.current_thread() is not self._thread:
             self._thread.join(timeout)
 
     async def aclose(self) -> None:
         """Stop the worker thread once the transfers already asked for are done."""
+        if self._stopped_here():
+            return
         loop = asyncio.get_running_loop()
         stopped: asyncio.Future[Any] = loop.create_future()
         with self._state_lock:
@@ -675,6 +870,20 @@ class USBLink(AsyncResource):
         # The thread has posted its last word and only returns now: wait for that, so
         # that a closed link never has a live thread.
         self._thread.join(1.0)
+
+    def _stopped_here(self) -> bool:
+        """Close a link with no worker thread, at once; whether it was one."""
+        here = self._here
+        if here is None:
+            return False
+        with here:  # after any transfer running in the event loop
+            if not self._stopped:
+                self._request_stop()
+                with self._state_lock:
+                    for poll in self._polls_here:
+                        poll.ring()  # each reads at once, and finds the link closed
+                self._end()
+            return True
 
     def _request_stop(self) -> None:
         with self._state_lock:
@@ -712,7 +921,8 @@ class USBLink(AsyncResource):
                 continue
             job = jobs.popleft()
             if job is None:
-                break
+                self._end()
+                return
             if isinstance(job, _PollJob):
                 self._polls.append(job)  # due at once: its first read runs next
                 self._poll_due = 0.0
@@ -726,6 +936,9 @@ class USBLink(AsyncResource):
                 job.finish(outcome)
             if self._polls:
                 self._run_due_polls()
+
+    def _end(self) -> None:
+        """The link's last steps (its worker thread's, or its closer's if it had none)."""
         for poll in self._polls:
             if not poll.withdrawn:
                 poll.finish((False, _LinkClosed()))

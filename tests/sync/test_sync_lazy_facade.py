@@ -1,0 +1,95 @@
+"""j5aio's facade imports no core module its definitions do not need."""
+
+from __future__ import annotations
+
+import enum
+import math
+import subprocess
+import sys
+
+import pytest
+
+from j5aio.sync import wrapping
+from j5aio.syncgen._class_writer import _is_plain_literal
+
+from .sync_fakes import ROOT, child_env
+
+#: Core modules of boards and components that a program of one kit may never use.
+NOT_NEEDED_TO_START = (
+    "j5aio.kit",
+    "j5aio.boards.sr.kch",
+    "j5aio.boards.sb.servo_board",
+    "j5aio.boards.sr.v4.power_board_fw4",
+    "j5aio.components.fan",
+    "j5aio.components.rgb_led",
+    "j5aio.vision.track",
+)
+
+
+def _run(source: str) -> str:
+    result = subprocess.run(
+        [sys.executable, "-c", source],
+        capture_output=True, text=True, timeout=60, cwd=ROOT, env=child_env(), check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    return result.stdout.strip()
+
+
+def test_importing_the_facade_imports_no_board_module() -> None:
+    loaded = _run(
+        "import sys\n"
+        "from j5aio.sync import KitRobot, PowerBoard, Fan, Colour\n"
+        f"print(sorted(m for m in {NOT_NEEDED_TO_START!r} if m in sys.modules))\n"
+    )
+    assert loaded == "[]"
+
+
+def test_a_wrapper_class_asked_for_its_core_class_imports_that_class_alone() -> None:
+    loaded = _run(
+        "import sys\n"
+        "from j5aio.sync import Fan, wrapping\n"
+        "from j5aio.components.fan import Fan as CoreFan\n"
+        "assert wrapping.unwrap(Fan) is CoreFan\n"
+        "print(sorted(m for m in ('j5aio.boards.sr.kch', 'j5aio.components.rgb_led')"
+        " if m in sys.modules))\n"
+    )
+    assert loaded == "[]"
+
+
+def test_the_facades_written_out_constants_equal_the_cores() -> None:
+    checked = 0
+    for core, wrapper in wrapping.registered().items():
+        for name, value in vars(wrapper).items():
+            if not name.startswith("_") and _is_plain_literal(value) and hasattr(core, name):
+                assert getattr(core, name) == value, f"{wrapper.__name__}.{name}"
+                checked += 1
+    assert checked > 20
+
+
+class Level(enum.IntEnum):
+    LOW = 1
+
+
+@pytest.mark.parametrize(
+    ("value", "plain"),
+    [
+        (1, True),
+        (True, True),
+        (1.5, True),
+        ("Power Board", True),
+        (None, True),
+        (range(2, 14), True),
+        ((0.0, (1, "x")), True),
+        (math.inf, False),
+        (math.nan, False),
+        (Level.LOW, False),  # an int, but its repr is not source
+        (frozenset({1}), False),
+        ([1, 2], False),
+        ((1, [2]), False),
+        (int, False),
+    ],
+)
+def test_a_plain_literal_is_one_whose_repr_is_its_source(value: object, plain: bool) -> None:
+    assert _is_plain_literal(value) is plain
+    if plain:
+        assert eval(repr(value)) == value
