@@ -193,6 +193,17 @@ class SimulatorStream(ByteStream):
             stream is closed.
         """
         await anyio.lowlevel.checkpoint_if_cancelled()
+        # This class's own (a subclass with a send of its own has the default back).
+        SimulatorStream.send_nowait(self, data)
+
+    def send_nowait(self, data: bytes) -> bool:
+        """Hand ``data`` to the simulator at once; see :meth:`.ByteStream.send_nowait`.
+
+        Always sent (``True``): the simulator takes every byte at once.
+
+        :raises BoardDisconnectionError: the simulated board is disconnected, or the
+            stream is closed.
+        """
         simulator = self._simulator
         if (
             self._closed
@@ -202,6 +213,7 @@ class SimulatorStream(ByteStream):
             self._check_usable()  # raises, saying why
         response = simulator.receive(data)
         self._queue_output(response, after=self._wire_time(data))
+        return True
 
     def send_now(self, data: bytes, timeout: float) -> None:
         """Hand ``data`` to the simulator at once; see :meth:`.ByteStream.send_now`."""

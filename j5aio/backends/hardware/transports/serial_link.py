@@ -1052,7 +1052,9 @@ class SerialLink(AsyncResource):
         while True:
             try:
                 parsed: tuple[T, int] | tuple[T, int, int] | None
-                if isinstance(reader, MatchingReader):
+                # (``correlates`` first: a class attribute, where ``isinstance`` of an
+                # abstract class is a call on every reply.)
+                if reader.correlates and isinstance(reader, MatchingReader):
                     parsed = reader.parse_counting(self._buffer)
                 else:
                     parsed = reader.parse(self._buffer)
@@ -1102,7 +1104,10 @@ class SerialLink(AsyncResource):
         if not data:
             return
         try:
-            await self._stream.send(data)
+            # The caller holds the lock, shielded, past its own cancellation check: the
+            # bytes go at once where the stream can take them, with no second check.
+            if not self._stream.send_nowait(data):
+                await self._stream.send(data)
         except CommunicationError:
             raise
         except _WRITE_ERRORS as exc:

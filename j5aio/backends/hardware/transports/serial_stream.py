@@ -183,19 +183,31 @@ class _EventSerialStream(SerialStream):
         a caller waiting for its reply yields then.
         """
         await anyio.lowlevel.checkpoint_if_cancelled()
-        while True:
-            self._check_writable()
-            if not self._write_paused:
-                break
+        # This class's own (a subclass with a send of its own has the default back).
+        while not _EventSerialStream.send_nowait(self, data):
             self._writer_wakeup = anyio.Event()
             await self._writer_wakeup.wait()
-        assert self._transport is not None
-        self._transport.write(data)
-        if self._transport.is_closing():
+
+    def send_nowait(self, data: bytes) -> bool:
+        """Queue ``data`` on the port unless its output buffer is over its limit.
+
+        See :meth:`.ByteStream.send_nowait`: ``False`` (nothing sent) while the output
+        buffer is over its limit.
+
+        :raises BoardDisconnectionError: the port has gone or the stream is closed.
+        """
+        self._check_writable()
+        if self._write_paused:
+            return False
+        transport = self._transport
+        assert transport is not None
+        transport.write(data)
+        if transport.is_closing():
             raise BoardDisconnectionError(
                 f"{self._name}: writing to the port failed; the device has gone away. "
                 "Check the USB cable and the board's power."
             )
+        return True
 
     async def receive(self, max_bytes: int = 4096) -> bytes:
         """Return received bytes; see :meth:`ByteStream.receive`."""

@@ -10,9 +10,11 @@ import pytest
 
 from j5aio.backends.hardware.transports import (
     ByteStream,
+    SerialLink,
     SerialSimulatorLike,
     SimulatorStream,
     memory_stream_pair,
+    read_line,
 )
 from j5aio.backends.hardware.transports._inbox import Inbox, fresh_copy
 from j5aio.errors import BoardDisconnectionError, CommunicationError
@@ -194,6 +196,42 @@ async def test_simulator_stream_passes_requests_and_queues_responses() -> None:
     assert await stream.receive(2) == b"PI"
     assert await stream.receive() == b"NG\n"
     assert stream.name == "sim"
+
+
+async def test_simulator_stream_sends_at_once_without_waiting() -> None:
+    simulator = EchoSimulator(banner=b"")
+    stream = SimulatorStream(simulator, name="sim")
+    assert stream.send_nowait(b"ping\n") is True
+    assert simulator.received == [b"ping\n"]
+    assert await stream.receive() == b"PING\n"
+    stream.close_now()
+    with pytest.raises(BoardDisconnectionError):
+        stream.send_nowait(b"ping\n")
+
+
+async def test_a_stream_with_a_send_of_its_own_never_sends_round_it() -> None:
+    class Counting(SimulatorStream):
+        sends = 0
+
+        async def send(self, data: bytes) -> None:
+            self.sends += 1
+            await super().send(data)
+
+    simulator = EchoSimulator(banner=b"")
+    stream = Counting(simulator)
+    assert stream.send_nowait(b"ping\n") is False  # the default: nothing sent
+    assert simulator.received == []
+    link = SerialLink(stream)
+    assert await link.exchange(b"ping\n", read_line()) == b"PING"
+    assert stream.sends == 1
+    assert simulator.received == [b"ping\n"]
+
+
+async def test_memory_streams_send_through_send_only() -> None:
+    ours, theirs = memory_stream_pair()
+    assert ours.send_nowait(b"x") is False
+    await ours.send(b"x")
+    assert await theirs.receive() == b"x"
 
 
 async def test_boot_output_appears_after_the_scaled_boot_delay() -> None:

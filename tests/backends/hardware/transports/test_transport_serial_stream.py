@@ -498,6 +498,31 @@ async def test_a_polled_receive_waits_for_data() -> None:
     stream.close_now()
 
 
+async def test_send_nowait_writes_at_once_unless_the_output_is_over_its_limit(
+    board: PtyBoard, stream: SerialStream
+) -> None:
+    assert stream.send_nowait(b"now\n") is True
+    assert read_master(board, 4) == b"now\n"
+    stream._write_paused = True  # type: ignore[attr-defined]  # (as the transport pauses it)
+    assert stream.send_nowait(b"later\n") is False
+    sender_done = anyio.Event()
+
+    async def sender() -> None:
+        await stream.send(b"later\n")
+        sender_done.set()
+
+    async with anyio.create_task_group() as group:
+        group.start_soon(sender)
+        await anyio.wait_all_tasks_blocked()
+        assert not sender_done.is_set()  # waiting for the transport to resume
+        protocol = stream._transport.get_protocol()  # type: ignore[attr-defined]
+        protocol.resume_writing()
+    assert read_master(board, 6) == b"later\n"
+    stream.close_now()
+    with pytest.raises(BoardDisconnectionError):
+        stream.send_nowait(b"gone\n")
+
+
 # -- sending synchronously (the safety net) ------------------------------------------------
 
 
