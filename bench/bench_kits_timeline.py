@@ -32,7 +32,8 @@ ROLES = ("power", "motor", "servo", "arduino")
 
 def note_times(stream: Any, role: str, marks: dict[str, float]) -> None:
     """Wrap ``stream`` so that its first write and last receive are noted in ``marks``."""
-    send, send_nowait, receive = stream.send, stream.send_nowait, stream.receive
+    send, send_nowait = stream.send, stream.send_nowait
+    receive, receive_by = stream.receive, stream.receive_by
 
     async def timed_send(data: bytes) -> None:
         marks.setdefault(f"{role} written", time.perf_counter())
@@ -48,8 +49,13 @@ def note_times(stream: Any, role: str, marks: dict[str, float]) -> None:
         marks[f"{role} reply"] = time.perf_counter()
         return chunk
 
+    async def timed_receive_by(deadline: float, max_bytes: int = 4096) -> bytes | None:
+        chunk: bytes | None = await receive_by(deadline, max_bytes)
+        marks[f"{role} reply"] = time.perf_counter()
+        return chunk
+
     stream.send, stream.send_nowait = timed_send, timed_send_nowait
-    stream.receive = timed_receive
+    stream.receive, stream.receive_by = timed_receive, timed_receive_by
 
 
 async def run(iterations: int) -> dict[str, list[float]]:

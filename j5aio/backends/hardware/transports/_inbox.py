@@ -34,7 +34,7 @@ class Inbox:
         self._error: CommunicationError | None = None
         # The reader's wake-up: a bare future of the running loop, the cheapest thing
         # to wait on (an anyio cancellation reaches it as it reaches any await).
-        self._wakeup: asyncio.Future[None] | None = None
+        self._wakeup: asyncio.Future[object] | None = None
 
     @property
     def ended(self) -> bool:
@@ -81,6 +81,42 @@ class Inbox:
         del self._buffer[:max_bytes]
         return data
 
+    async def take_by(self, max_bytes: int, deadline: float) -> bytes | None:
+        """As :meth:`take`, but ``None`` if nothing has arrived by ``deadline``.
+
+        ``deadline`` is on the event loop's clock. Waiting costs one timer, and no
+        cancel scope.
+        """
+        if max_bytes < 1:
+            raise ValueError(f"max_bytes must be at least 1, not {max_bytes}")
+        if self._buffer:
+            await anyio.lowlevel.checkpoint()
+        while not self._buffer:
+            if self._error is not None:
+                raise fresh_copy(self._error)
+            loop = asyncio.get_running_loop()
+            waiter = self._wakeup = loop.create_future()
+            timer = loop.call_at(deadline, _expire, waiter)
+            try:
+                await waiter
+            finally:
+                self._wakeup = None
+                timer.cancel()
+            if not self._buffer and waiter.result() is _EXPIRED:
+                return None
+        data = bytes(self._buffer[:max_bytes])
+        del self._buffer[:max_bytes]
+        return data
+
     def _wake(self) -> None:
         if self._wakeup is not None and not self._wakeup.done():
             self._wakeup.set_result(None)
+
+
+#: What a waiter's timer sets it to (a wake-up by bytes or an end sets ``None``).
+_EXPIRED = object()
+
+
+def _expire(waiter: asyncio.Future[object]) -> None:
+    if not waiter.done():
+        waiter.set_result(_EXPIRED)

@@ -48,12 +48,22 @@ class MemoryStream(ByteStream):
         :raises BoardDisconnectionError: either end has been closed.
         """
         await anyio.lowlevel.checkpoint()
+        MemoryStream.send_nowait(self, data)
+
+    def send_nowait(self, data: bytes) -> bool:
+        """Deliver ``data`` to the other end at once; see :meth:`.ByteStream.send_nowait`.
+
+        Always sent (``True``).
+
+        :raises BoardDisconnectionError: either end has been closed.
+        """
         if self._closed:
             raise BoardDisconnectionError(f"{self._name}: the stream is closed")
         peer = self._peer
         if peer is None or peer._closed:
             raise BoardDisconnectionError(f"{self._name}: the other end has gone away")
         peer._inbox.feed(data)
+        return True
 
     def send_now(self, data: bytes, timeout: float) -> None:
         """Deliver ``data`` to the other end at once; see :meth:`.ByteStream.send_now`."""
@@ -67,6 +77,13 @@ class MemoryStream(ByteStream):
     async def receive(self, max_bytes: int = 4096) -> bytes:
         """Return bytes sent by the other end; see :meth:`.ByteStream.receive`."""
         return await self._inbox.take(max_bytes)
+
+    async def receive_by(self, deadline: float, max_bytes: int = 4096) -> bytes | None:
+        """Return received bytes, or ``None`` at ``deadline``.
+
+        See :meth:`.ByteStream.receive_by`.
+        """
+        return await self._inbox.take_by(max_bytes, deadline)
 
     def close_now(self) -> None:
         """Close this end; the other end then receives what was already sent, then EOF."""

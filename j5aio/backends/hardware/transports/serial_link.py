@@ -19,12 +19,20 @@ A reader task would only add a second place where bytes wait.
 and drains run one at a time, in the order they asked.
 
 **Cancellation.** The trap: a request cancelled after its bytes were written leaves its
-reply on the line, and the next request reads it. So the whole of an exchange (write the
-request, read the reply) runs inside ``anyio.CancelScope(shield=True)``, with the timeout
-*inside* the shield. A caller that is cancelled part way still has its exchange complete
-and consume its own reply; the cancellation takes effect once the exchange is over (at
-worst ``timeout`` later; plus the bounded drain described next). Cancelling a caller
-that is still waiting for the lock is immediate and sends nothing.
+reply on the line, and the next request reads it. So an exchange (write the request,
+read the reply) is never torn: a caller that is cancelled part way still has its
+exchange complete and consume its own reply, and the cancellation takes effect once the
+exchange is over (at worst ``timeout`` later; plus the bounded drain described next).
+Cancelling a caller that is still waiting for the lock is immediate and sends nothing.
+On a link in step whose stream takes the bytes at once
+(:meth:`~.stream.ByteStream.send_nowait`: the common case, every request of a working
+robot) the only thing awaited after the write is the reply, by the stream's own timer
+(:meth:`~.stream.ByteStream.receive_by`); a cancellation that reaches that wait,
+anyio's or asyncio's, is handled as the next paragraph says, with no cancel scope on
+the way (a scope costs more than the rest of the request's path to its bytes). Every
+other exchange (one that first cleans the line, or whose stream makes it wait to
+write) runs inside ``anyio.CancelScope(shield=True)``, with the timeout *inside* the
+shield.
 
 **Timeouts and the dirty flag.** A timeout is the only way an exchange can end while its
 reply may still be coming. After a timeout (or any exchange that did not finish: a stream
@@ -41,11 +49,11 @@ and ``asyncio.wait_for``) breaks through anyio shields. So, once the lock is hel
 exchange runs to completion (:func:`~.completion.run_to_completion`) in a task that no
 caller's cancellation reaches; the caller waits for it either way and is cancelled
 afterwards. That task is made only when needed (a task for every call would cost tens
-of microseconds): an exchange or a send runs in the caller's task, and
-if ``Task.cancel`` tears it after its request has gone, a task of its own reads the reply
-to its end, by the same deadline, while the caller waits. (A stream sends all of a
-request or, cancelled, none of it, so a request torn before it went needs no reply, and
-a send has nothing left to do once its bytes have gone.) An
+of microseconds): an exchange or a send runs in the caller's task, and if ``Task.cancel``
+(or, on the unshielded path above, anyio) tears it after its request has gone, a task
+of its own reads the reply to its end, by the same deadline, while the caller waits.
+(A stream sends all of a request or, cancelled, none of it, so a request torn before it
+went needs no reply, and a send has nothing left to do once its bytes have gone.) An
 exchange is therefore never torn half way, whoever cancels. A ``then`` callback given to
 :meth:`~SerialLink.exchange` or :meth:`~SerialLink.send` runs as soon as the board has
 answered (or the bytes have gone), even for a cancelled caller: that is where a backend
@@ -160,6 +168,10 @@ class _Progress:
     replied: bool = False
     reply: Any = None
     remaining: int = 0
+
+
+class _LateReplyError(Exception):
+    """No complete reply by the deadline (raised inside the link, turned into a timeout)."""
 
 
 class _OwedAcknowledgement:
@@ -611,8 +623,26 @@ class SerialLink(AsyncResource):
         ``seconds`` from when the request goes out, so that it cancels the read (and
         this raises the timeout) if the reply is late.
         """
-        # Every request's path: the steps of the common case (a clean link) are written
-        # out here rather than called, and the progress is made only when needed.
+        # Every request's path. The common case, a link in step with nothing to clean
+        # and a stream that takes the bytes at once, needs no cancel scope: see
+        # _reply_unshielded.
+        if request and not (self._dirty or self._owed or self._buffer or self._closed):
+            deadline = asyncio.get_running_loop().time() + seconds
+            try:
+                written = self._stream.send_nowait(request)
+            except BaseException as exc:
+                self._dirty = True  # a stream sends all or nothing, but be safe
+                if self._wire.isEnabledFor(TRACE):
+                    log_wire(self._wire, "->", request)
+                if isinstance(exc, _WRITE_ERRORS) and not isinstance(exc, CommunicationError):
+                    raise self._write_failed(exc, request) from exc
+                raise
+            if written:
+                if self._wire.isEnabledFor(TRACE):
+                    log_wire(self._wire, "->", request)
+                return await self._reply_unshielded(request, reader, seconds, then, deadline)
+        # Otherwise (nothing was sent): the steps are written out here rather than
+        # called, and the progress is made only when needed.
         if when_dirty is not None and (self._dirty or (self._owed and self._owes())):
             request, reader = when_dirty()
             request = bytes(request)
@@ -676,6 +706,42 @@ class SerialLink(AsyncResource):
                 raise
             return reply if then is None else then(reply)
         raise self._timed_out(request, reader, seconds)
+
+    async def _reply_unshielded(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        seconds: float,
+        then: Callable[[T], object] | None,
+        deadline: float,
+    ) -> object:
+        """Read the reply to ``request``, written at once on a link in step (lock held).
+
+        No cancel scope: the stream's own timer ends the wait at ``deadline``, and a
+        cancellation (anyio's or ``Task.cancel``) that reaches the wait is handled as
+        a torn exchange is: the reply is read, and ``then`` run, in a task of its own,
+        by the same deadline, while the caller waits; the caller is cancelled once it
+        has finished. Nothing is awaited but the reply, so nothing else can be torn.
+        """
+        finished = False
+        try:
+            reply = await self._read_reply(reader, request, deadline)
+            finished = True
+        except _LateReplyError:
+            raise self._timed_out(request, reader, seconds) from None
+        except asyncio.CancelledError:
+            finished = True  # the task that finishes it marks the link if it fails
+            progress = _Progress()
+            progress.deadline, progress.seconds = deadline, seconds
+            await self._finish_torn(request, reader, progress, then)
+            raise
+        finally:
+            if not finished:
+                self._dirty = True
+                self._owe(_lines_of(reader))
+        if self._buffer and not reader.correlates:
+            self._after_reply(request, reader)  # more than the reply came
+        return reply if then is None else then(reply)
 
     async def _acquire(self) -> None:
         """Take the link's lock; a caller already cancelled (by anyio) takes nothing."""
@@ -1048,7 +1114,13 @@ class SerialLink(AsyncResource):
             lines += 1
         return start, -1, lines
 
-    async def _read_reply(self, reader: ReplyReader[T], request: bytes) -> T:
+    async def _read_reply(
+        self, reader: ReplyReader[T], request: bytes, deadline: float | None = None
+    ) -> T:
+        """Read what ``reader`` parses; by ``deadline`` (the loop's clock) if one is given.
+
+        :raises _LateReplyError: nothing complete by ``deadline``.
+        """
         while True:
             try:
                 parsed: tuple[T, int] | tuple[T, int, int] | None
@@ -1072,7 +1144,13 @@ class SerialLink(AsyncResource):
                     self._settle(parsed[2])  # foreign replies skipped: late ones, come
                 del self._buffer[:used]
                 return reply
-            self._buffer += await self._receive()
+            if deadline is None:
+                self._buffer += await self._receive()
+                continue
+            chunk = await self._receive_by(deadline)
+            if chunk is None:
+                raise _LateReplyError
+            self._buffer += chunk
 
     async def _drain_locked(self, quiet: float, bound: float) -> int:
         discarded = len(self._buffer)
@@ -1124,6 +1202,20 @@ class SerialLink(AsyncResource):
         if isinstance(exc, _DISCONNECTION_ERRORS):
             return BoardDisconnectionError(f"{self._name}: the port has gone ({exc!r})")
         return CommunicationError(f"{self._name}: sending {_preview(data)} failed: {exc}")
+
+    async def _receive_by(self, deadline: float) -> bytes | None:
+        """As :meth:`_receive`, but ``None`` if nothing has come by ``deadline``."""
+        try:
+            chunk = await self._stream.receive_by(deadline, self._chunk_size)
+        except CommunicationError:
+            raise
+        except _DISCONNECTION_ERRORS as exc:
+            raise BoardDisconnectionError(f"{self._name}: the port has gone ({exc!r})") from exc
+        except OSError as exc:
+            raise CommunicationError(f"{self._name}: reading failed: {exc}") from exc
+        if chunk is not None and self._wire.isEnabledFor(TRACE):
+            log_wire(self._wire, "<-", chunk)
+        return chunk
 
     async def _receive(self) -> bytes:
         try:

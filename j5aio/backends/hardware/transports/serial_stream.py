@@ -213,6 +213,13 @@ class _EventSerialStream(SerialStream):
         """Return received bytes; see :meth:`ByteStream.receive`."""
         return await self._inbox.take(max_bytes)
 
+    async def receive_by(self, deadline: float, max_bytes: int = 4096) -> bytes | None:
+        """Return received bytes, or ``None`` at ``deadline``.
+
+        See :meth:`.ByteStream.receive_by`.
+        """
+        return await self._inbox.take_by(max_bytes, deadline)
+
     def send_now(self, data: bytes, timeout: float) -> None:
         """Drop output still queued, then write ``data`` synchronously; see :class:`ByteStream`."""
         self._check_writable()

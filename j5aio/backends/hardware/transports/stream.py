@@ -42,10 +42,13 @@ class ByteStream(AsyncResource):
 
     def __init_subclass__(cls, **kwargs: object) -> None:
         super().__init_subclass__(**kwargs)
+        # A class with a send (or receive) of its own (a wrapper, a test's fault) must
+        # see every request (and reply) go through it: a send_nowait (or receive_by) it
+        # inherits would go round it, so it gets the defaults, which use its own.
         if "send" in cls.__dict__ and "send_nowait" not in cls.__dict__:
-            # A class with a send of its own (a wrapper, a test's fault) must see every
-            # request go through it: a send_nowait it inherits would go round it.
             cls.send_nowait = ByteStream.send_nowait  # type: ignore[method-assign]
+        if "receive" in cls.__dict__ and "receive_by" not in cls.__dict__:
+            cls.receive_by = ByteStream.receive_by  # type: ignore[method-assign]
 
     @property
     @abc.abstractmethod
@@ -89,6 +92,18 @@ class ByteStream(AsyncResource):
             stream is closed.
         :raises CommunicationError: reading failed.
         """
+
+    async def receive_by(self, deadline: float, max_bytes: int = 4096) -> bytes | None:
+        """As :meth:`receive`, but return ``None`` if nothing has arrived by ``deadline``.
+
+        ``deadline`` is on the event loop's clock (:func:`anyio.current_time`). The
+        default runs :meth:`receive` in a cancel scope with that deadline; a stream
+        that can wait more cheaply overrides it. A subclass that overrides
+        :meth:`receive` alone gets this default back.
+        """
+        with anyio.CancelScope(deadline=deadline):
+            return await self.receive(max_bytes)
+        return None
 
     @abc.abstractmethod
     def close_now(self) -> None:

@@ -161,6 +161,66 @@ async def test_inbox_ignores_bytes_after_it_has_ended() -> None:
         await inbox.take(10)
 
 
+async def test_inbox_take_by_returns_what_came_or_none_at_the_deadline() -> None:
+    inbox = Inbox()
+    now = anyio.current_time()
+    assert await inbox.take_by(10, now + 0.01) is None
+    assert anyio.current_time() >= now + 0.01
+    inbox.feed(b"abc")
+    assert await inbox.take_by(2, now) == b"ab"  # already there: no wait, whatever the time
+    assert await inbox.take_by(2, now) == b"c"
+    with pytest.raises(ValueError, match="at least 1"):
+        await inbox.take_by(0, now)
+
+
+async def test_inbox_take_by_wakes_for_bytes_and_for_the_end() -> None:
+    inbox = Inbox()
+    deadline = anyio.current_time() + 5
+    async with anyio.create_task_group() as tg:
+
+        async def feed_soon() -> None:
+            await anyio.sleep(0.01)
+            inbox.feed(b"hi")
+
+        tg.start_soon(feed_soon)
+        with anyio.fail_after(1):
+            assert await inbox.take_by(10, deadline) == b"hi"
+
+        async def end_soon() -> None:
+            await anyio.sleep(0.01)
+            inbox.finish(CommunicationError("ended"))
+
+        tg.start_soon(end_soon)
+        with anyio.fail_after(1), pytest.raises(CommunicationError, match="ended"):
+            await inbox.take_by(10, deadline)
+
+
+async def test_inbox_take_by_cancelled_loses_nothing() -> None:
+    inbox = Inbox()
+    with anyio.move_on_after(0.01):
+        await inbox.take_by(10, anyio.current_time() + 5)
+    inbox.feed(b"kept")
+    assert await inbox.take_by(10, anyio.current_time() + 5) == b"kept"
+
+
+async def test_receive_by_of_a_stream_with_a_receive_of_its_own_uses_it() -> None:
+    class Slow(SimulatorStream):
+        receives = 0
+
+        async def receive(self, max_bytes: int = 4096) -> bytes:
+            self.receives += 1
+            return await super().receive(max_bytes)
+
+    stream = Slow(EchoSimulator(banner=b""))
+    assert await stream.receive_by(anyio.current_time() + 0.01) is None  # the default
+    await stream.send(b"ping\n")
+    assert await stream.receive_by(anyio.current_time() + 1) == b"PING\n"
+    assert stream.receives == 2
+    a, b = memory_stream_pair()
+    a.send_nowait(b"x")
+    assert await b.receive_by(anyio.current_time() + 1) == b"x"
+
+
 def test_fresh_copy_keeps_the_cause() -> None:
     cause = OSError("underneath")
     error = BoardDisconnectionError("gone")
@@ -227,11 +287,14 @@ async def test_a_stream_with_a_send_of_its_own_never_sends_round_it() -> None:
     assert simulator.received == [b"ping\n"]
 
 
-async def test_memory_streams_send_through_send_only() -> None:
+async def test_memory_streams_send_at_once_without_waiting() -> None:
     ours, theirs = memory_stream_pair()
-    assert ours.send_nowait(b"x") is False
-    await ours.send(b"x")
-    assert await theirs.receive() == b"x"
+    assert ours.send_nowait(b"x") is True
+    await ours.send(b"y")
+    assert await theirs.receive() == b"xy"
+    theirs.close_now()
+    with pytest.raises(BoardDisconnectionError):
+        ours.send_nowait(b"z")
 
 
 async def test_boot_output_appears_after_the_scaled_boot_delay() -> None:
