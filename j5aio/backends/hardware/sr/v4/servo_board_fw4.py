@@ -183,7 +183,7 @@ class _ServoBoardFw4Backend(
         if position is None:
             await self._act(codec.encode_disable(firmware, identifier))
             return
-        self._check_servo(identifier)
+        codec.check_servo(firmware, identifier)  # before the index: -1 is an index too
         pulse = codec.pulse_for_position(position, self._limits[identifier])
         await self._act(codec.encode_set(firmware, identifier, pulse))
 
