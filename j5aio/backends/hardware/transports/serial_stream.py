@@ -169,11 +169,13 @@ class _EventSerialStream(SerialStream):
         self._writer_wakeup: anyio.Event | None = None
         self._lost = False
         self._transport: serial_asyncio_fast.SerialTransport | None = None
+        self._fileno = -1
 
     async def _attach(self) -> None:
         loop = asyncio.get_running_loop()
         # (What the library's connection_for_serial does, with the quieter transport.)
         self._transport = _QuietSerialTransport(loop, _SerialProtocol(self), self._port)
+        self._fileno = self._port.fileno()
 
     async def send(self, data: bytes) -> None:
         """Queue ``data`` on the port; waits while the output buffer is over its limit.
@@ -196,11 +198,23 @@ class _EventSerialStream(SerialStream):
 
         :raises BoardDisconnectionError: the port has gone or the stream is closed.
         """
-        self._check_writable()
+        self._check_writable()  # the port is open: the transport is not closing
         if self._write_paused:
             return False
         transport = self._transport
         assert transport is not None
+        if not transport.get_write_buffer_size():
+            # Nothing queued ahead of it: the bytes go straight to the port, as the
+            # transport's write would (after five calls of its own and pyserial's).
+            # What the port does not take at once, or refuses, goes to the transport,
+            # which queues it, or meets the error its own way.
+            try:
+                written = os.write(self._fileno, data)
+            except OSError:
+                written = 0
+            if written == len(data):
+                return True
+            data = data[written:]
         transport.write(data)
         if transport.is_closing():
             raise BoardDisconnectionError(

@@ -411,6 +411,51 @@ def test_the_file_descriptor_probe() -> None:
 # -- rarer failures ------------------------------------------------------------------------
 
 
+def refuse_direct_writes(monkeypatch: pytest.MonkeyPatch) -> list[bytes]:
+    """Make the stream's own writes to the port fail (EIO); return what they were given.
+
+    What the port refuses goes to the transport, which writes through pyserial.
+    """
+    tried: list[bytes] = []
+
+    class Refusing:
+        def __getattr__(self, name: str) -> Any:
+            return getattr(os, name)
+
+        @staticmethod
+        def write(fd: int, data: Any) -> int:
+            tried.append(bytes(data))
+            raise OSError(errno.EIO, "Input/output error")
+
+    monkeypatch.setattr(serial_stream_module, "os", Refusing())
+    return tried
+
+
+async def test_what_the_port_refuses_at_once_goes_through_the_transport(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    tried = refuse_direct_writes(monkeypatch)
+    assert stream.send_nowait(b"via the transport\n") is True
+    assert tried == [b"via the transport\n"]
+    assert read_master(board, 18) == b"via the transport\n"
+
+
+async def test_what_the_port_takes_in_part_goes_on_through_the_transport(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    class Partial:
+        def __getattr__(self, name: str) -> Any:
+            return getattr(os, name)
+
+        @staticmethod
+        def write(fd: int, data: Any) -> int:
+            return os.write(fd, bytes(data)[:3])
+
+    monkeypatch.setattr(serial_stream_module, "os", Partial())
+    assert stream.send_nowait(b"abcdef\n") is True
+    assert read_master(board, 7) == b"abcdef\n"
+
+
 async def test_a_write_that_fails_raises_board_disconnection(
     board: PtyBoard,
     stream: SerialStream,
@@ -426,6 +471,7 @@ async def test_a_write_that_fails_raises_board_disconnection(
         raise serial.SerialException("write failed: [Errno 5] Input/output error")
 
     monkeypatch.setattr(stream.serial, "write", failing_write)
+    refuse_direct_writes(monkeypatch)
     try:
         with pytest.raises(BoardDisconnectionError, match="writing to the port failed"):
             await stream.send(b"x")
@@ -449,6 +495,7 @@ async def test_other_transport_failures_still_reach_the_event_loop(
         raise RuntimeError("a bug, not an unplugged board")
 
     monkeypatch.setattr(stream.serial, "write", broken_write)
+    refuse_direct_writes(monkeypatch)
     try:
         with pytest.raises(BoardDisconnectionError):
             await stream.send(b"x")
