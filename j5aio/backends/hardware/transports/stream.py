@@ -96,7 +96,7 @@ class ByteStream(AsyncResource):
     async def receive_by(self, deadline: float, max_bytes: int = 4096) -> bytes | None:
         """As :meth:`receive`, but return ``None`` if nothing has arrived by ``deadline``.
 
-        ``deadline`` is on the event loop's clock (:func:`anyio.current_time`). The
+        ``deadline`` is on the event loop's clock (``anyio.current_time()``). The
         default runs :meth:`receive` in a cancel scope with that deadline; a stream
         that can wait more cheaply overrides it. A subclass that overrides
         :meth:`receive` alone gets this default back.

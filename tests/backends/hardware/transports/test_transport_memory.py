@@ -195,6 +195,53 @@ async def test_inbox_take_by_wakes_for_bytes_and_for_the_end() -> None:
             await inbox.take_by(10, deadline)
 
 
+async def test_inbox_take_by_keeps_time_with_the_timer_of_an_earlier_wait() -> None:
+    inbox = Inbox()
+    start = anyio.current_time()
+    inbox.feed(b"a")
+    assert await inbox.take_by(10, start + 0.02) == b"a"  # no wait, no timer
+    # A wait that ends with bytes leaves its timer (due at +0.02) for the next wait.
+    async with anyio.create_task_group() as tg:
+
+        async def feed_soon() -> None:
+            await anyio.sleep(0.005)
+            inbox.feed(b"b")
+
+        tg.start_soon(feed_soon)
+        assert await inbox.take_by(10, start + 0.02) == b"b"
+    # A later deadline: the timer, due earlier, is set again, and the wait lasts.
+    assert await inbox.take_by(10, start + 0.06) is None
+    assert anyio.current_time() >= start + 0.06
+    # An earlier deadline than the timer's: it is set earlier.
+    long_wait = anyio.current_time()
+    async with anyio.create_task_group() as tg:
+
+        async def feed_late() -> None:
+            await anyio.sleep(0.005)
+            inbox.feed(b"c")
+
+        tg.start_soon(feed_late)
+        assert await inbox.take_by(10, long_wait + 5) == b"c"
+    short_wait = anyio.current_time()
+    with anyio.fail_after(1):
+        assert await inbox.take_by(10, short_wait + 0.01) is None
+
+
+async def test_inbox_timer_of_a_wait_by_a_deadline_leaves_a_plain_take_waiting() -> None:
+    inbox = Inbox()
+    async with anyio.create_task_group() as tg:
+
+        async def feed(data: bytes, after: float) -> None:
+            await anyio.sleep(after)
+            inbox.feed(data)
+
+        tg.start_soon(feed, b"w", 0.001)
+        assert await inbox.take_by(10, anyio.current_time() + 0.01) == b"w"  # timer left
+        tg.start_soon(feed, b"x", 0.03)
+        with anyio.fail_after(1):
+            assert await inbox.take(10) == b"x"  # the timer lapsed meanwhile; take waited on
+
+
 async def test_inbox_take_by_cancelled_loses_nothing() -> None:
     inbox = Inbox()
     with anyio.move_on_after(0.01):
