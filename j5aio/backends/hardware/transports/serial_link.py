@@ -618,10 +618,12 @@ class SerialLink(AsyncResource):
     ) -> object:
         """The body of :meth:`exchange`, with the lock held.
 
-        Cleans the line if need be, then sends ``request`` and reads its reply. One
-        scope both shields the exchange and times it out: its deadline is set to
-        ``seconds`` from when the request goes out, so that it cancels the read (and
-        this raises the timeout) if the reply is late.
+        Cleans the line if need be, then sends ``request`` and reads its reply. On a
+        link in step whose stream takes the bytes at once, the reply is read by the
+        deadline with no scope (:meth:`_reply_unshielded`). Otherwise one scope both
+        shields the exchange and times it out: its deadline is set to ``seconds`` from
+        when the request goes out, so that it cancels the read (and this raises the
+        timeout) if the reply is late.
         """
         # Every request's path. The common case, a link in step with nothing to clean
         # and a stream that takes the bytes at once, needs no cancel scope: see
