@@ -475,6 +475,9 @@ class SerialLink(AsyncResource):
         try:
             if self.unconfirmed is not None:
                 await self._confirm_locked()
+            deadline = self._write_at_once(request, seconds)
+            if deadline is not None:
+                return await self._reply_unshielded(request, reader, seconds, then, deadline)
             return await self._exchange_held(request, reader, seconds, then, when_dirty)
         finally:
             self._lock.release()
@@ -519,7 +522,11 @@ class SerialLink(AsyncResource):
             if self.unconfirmed is not None:
                 await self._confirm_locked()
             if not _LATER_SWITCH.get() or self._dirty or (self._owed and self._owes()):
-                await self._exchange_held(request, reader, seconds, then, when_dirty)
+                deadline = self._write_at_once(request, seconds)
+                if deadline is not None:
+                    await self._reply_unshielded(request, reader, seconds, then, deadline)
+                else:
+                    await self._exchange_held(request, reader, seconds, then, when_dirty)
                 return
             with anyio.CancelScope(shield=True) as scope:
                 # Write the request and note that its acknowledgement is owed.
@@ -618,33 +625,16 @@ class SerialLink(AsyncResource):
     ) -> object:
         """The body of :meth:`exchange`, with the lock held.
 
-        Cleans the line if need be, then sends ``request`` and reads its reply. On a
-        link in step whose stream takes the bytes at once, the reply is read by the
-        deadline with no scope (:meth:`_reply_unshielded`). Otherwise one scope both
+        Cleans the line if need be, then sends ``request`` and reads its reply. (A
+        request on a link in step whose stream takes the bytes at once was written by
+        the caller, and its reply read by :meth:`_reply_unshielded`.) One scope both
         shields the exchange and times it out: its deadline is set to ``seconds`` from
         when the request goes out, so that it cancels the read (and this raises the
         timeout) if the reply is late.
         """
-        # Every request's path. The common case, a link in step with nothing to clean
-        # and a stream that takes the bytes at once, needs no cancel scope: see
-        # _reply_unshielded.
-        if request and not (self._dirty or self._owed or self._buffer or self._closed):
-            deadline = asyncio.get_running_loop().time() + seconds
-            try:
-                written = self._stream.send_nowait(request)
-            except BaseException as exc:
-                self._dirty = True  # a stream sends all or nothing, but be safe
-                if self._wire.isEnabledFor(TRACE):
-                    log_wire(self._wire, "->", request)
-                if isinstance(exc, _WRITE_ERRORS) and not isinstance(exc, CommunicationError):
-                    raise self._write_failed(exc, request) from exc
-                raise
-            if written:
-                if self._wire.isEnabledFor(TRACE):
-                    log_wire(self._wire, "->", request)
-                return await self._reply_unshielded(request, reader, seconds, then, deadline)
-        # Otherwise (nothing was sent): the steps are written out here rather than
-        # called, and the progress is made only when needed.
+        # Every request's path that its caller did not take at once (see
+        # _write_at_once): the steps are written out here rather than called, and the
+        # progress is made only when needed.
         if when_dirty is not None and (self._dirty or (self._owed and self._owes())):
             request, reader = when_dirty()
             request = bytes(request)
@@ -708,6 +698,33 @@ class SerialLink(AsyncResource):
                 raise
             return reply if then is None else then(reply)
         raise self._timed_out(request, reader, seconds)
+
+    def _write_at_once(self, request: bytes, seconds: float) -> float | None:
+        """Write ``request`` at once if the link is in step; return its deadline if so.
+
+        The common case of every request (lock held): a link in step, with nothing to
+        clean, on a stream that takes the bytes at once. Its reply is then read with no
+        cancel scope (:meth:`_reply_unshielded`), and its deadline is ``seconds`` from
+        now. ``None``: nothing was sent, and the request takes the shielded path
+        (:meth:`_exchange_held`).
+        """
+        if not request or self._dirty or self._owed or self._buffer or self._closed:
+            return None
+        deadline = asyncio.get_running_loop().time() + seconds
+        try:
+            written = self._stream.send_nowait(request)
+        except BaseException as exc:
+            self._dirty = True  # a stream sends all or nothing, but be safe
+            if self._wire.isEnabledFor(TRACE):
+                log_wire(self._wire, "->", request)
+            if isinstance(exc, _WRITE_ERRORS) and not isinstance(exc, CommunicationError):
+                raise self._write_failed(exc, request) from exc
+            raise
+        if not written:
+            return None
+        if self._wire.isEnabledFor(TRACE):
+            log_wire(self._wire, "->", request)
+        return deadline
 
     async def _reply_unshielded(
         self,
@@ -1149,9 +1166,21 @@ class SerialLink(AsyncResource):
             if deadline is None:
                 self._buffer += await self._receive()
                 continue
-            chunk = await self._receive_by(deadline)
+            # (What _receive does, written out: a call fewer on every reply.)
+            try:
+                chunk = await self._stream.receive_by(deadline, self._chunk_size)
+            except CommunicationError:
+                raise
+            except _DISCONNECTION_ERRORS as exc:
+                raise BoardDisconnectionError(
+                    f"{self._name}: the port has gone ({exc!r})"
+                ) from exc
+            except OSError as exc:
+                raise CommunicationError(f"{self._name}: reading failed: {exc}") from exc
             if chunk is None:
                 raise _LateReplyError
+            if self._wire.isEnabledFor(TRACE):
+                log_wire(self._wire, "<-", chunk)
             self._buffer += chunk
 
     async def _drain_locked(self, quiet: float, bound: float) -> int:
@@ -1204,20 +1233,6 @@ class SerialLink(AsyncResource):
         if isinstance(exc, _DISCONNECTION_ERRORS):
             return BoardDisconnectionError(f"{self._name}: the port has gone ({exc!r})")
         return CommunicationError(f"{self._name}: sending {_preview(data)} failed: {exc}")
-
-    async def _receive_by(self, deadline: float) -> bytes | None:
-        """As :meth:`_receive`, but ``None`` if nothing has come by ``deadline``."""
-        try:
-            chunk = await self._stream.receive_by(deadline, self._chunk_size)
-        except CommunicationError:
-            raise
-        except _DISCONNECTION_ERRORS as exc:
-            raise BoardDisconnectionError(f"{self._name}: the port has gone ({exc!r})") from exc
-        except OSError as exc:
-            raise CommunicationError(f"{self._name}: reading failed: {exc}") from exc
-        if chunk is not None and self._wire.isEnabledFor(TRACE):
-            log_wire(self._wire, "<-", chunk)
-        return chunk
 
     async def _receive(self) -> bytes:
         try:
