@@ -32,18 +32,30 @@ ROLES = ("power", "motor", "servo", "arduino")
 
 def note_times(stream: Any, role: str, marks: dict[str, float]) -> None:
     """Wrap ``stream`` so that its first write and last receive are noted in ``marks``."""
-    send, receive = stream.send, stream.receive
+    send, send_nowait = stream.send, stream.send_nowait
+    receive, receive_by = stream.receive, stream.receive_by
 
     async def timed_send(data: bytes) -> None:
         marks.setdefault(f"{role} written", time.perf_counter())
         await send(data)
+
+    def timed_send_nowait(data: bytes) -> bool:
+        marks.setdefault(f"{role} written", time.perf_counter())
+        sent: bool = send_nowait(data)
+        return sent
 
     async def timed_receive(max_bytes: int = 4096) -> bytes:
         chunk: bytes = await receive(max_bytes)
         marks[f"{role} reply"] = time.perf_counter()
         return chunk
 
-    stream.send, stream.receive = timed_send, timed_receive
+    async def timed_receive_by(deadline: float, max_bytes: int = 4096) -> bytes | None:
+        chunk: bytes | None = await receive_by(deadline, max_bytes)
+        marks[f"{role} reply"] = time.perf_counter()
+        return chunk
+
+    stream.send, stream.send_nowait = timed_send, timed_send_nowait
+    stream.receive, stream.receive_by = timed_receive, timed_receive_by
 
 
 async def run(iterations: int) -> dict[str, list[float]]:

@@ -63,7 +63,12 @@ class Servo(IdentifiedComponent[ServoInterface]):
             a servo.
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
-        if position is not None:
+        # A float in range (the common case) is checked here, without a call (an
+        # abstract-class check of the number's type is one); anything else by
+        # check_number.
+        if position is not None and (
+            type(position) is not float or not -1.0 <= position <= 1.0
+        ):
             position = check_number(
                 position,
                 name="servo position",

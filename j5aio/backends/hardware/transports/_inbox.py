@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import asyncio
 import copy
+import math
 
 import anyio.lowlevel
 
@@ -34,7 +35,13 @@ class Inbox:
         self._error: CommunicationError | None = None
         # The reader's wake-up: a bare future of the running loop, the cheapest thing
         # to wait on (an anyio cancellation reaches it as it reaches any await).
-        self._wakeup: asyncio.Future[None] | None = None
+        self._wakeup: asyncio.Future[object] | None = None
+        # take_by's timer, kept from one wait to the next (see take_by): when it fires,
+        # on which loop, and the deadline of the wait in progress (infinite for take).
+        self._timer: asyncio.TimerHandle | None = None
+        self._timer_at = math.inf
+        self._timer_loop: asyncio.AbstractEventLoop | None = None
+        self._deadline = math.inf
 
     @property
     def ended(self) -> bool:
@@ -73,6 +80,7 @@ class Inbox:
                 await anyio.lowlevel.checkpoint()
                 raise fresh_copy(self._error)
             self._wakeup = asyncio.get_running_loop().create_future()
+            self._deadline = math.inf
             try:
                 await self._wakeup
             finally:
@@ -81,6 +89,60 @@ class Inbox:
         del self._buffer[:max_bytes]
         return data
 
+    async def take_by(self, max_bytes: int, deadline: float) -> bytes | None:
+        """As :meth:`take`, but ``None`` if nothing has arrived by ``deadline``.
+
+        ``deadline`` is on the event loop's clock. Waiting needs no cancel scope, and
+        mostly no new timer: one request after another waits by much the same deadline
+        (a second or so from now, where the reply comes in milliseconds), so the timer
+        is kept from one wait to the next. A timer due by the deadline is kept; when it
+        fires before the deadline of the wait then in progress, it is set again for that
+        deadline (once a timeout or so); one due after the deadline is set earlier.
+        """
+        if max_bytes < 1:
+            raise ValueError(f"max_bytes must be at least 1, not {max_bytes}")
+        if self._buffer:
+            await anyio.lowlevel.checkpoint()
+        while not self._buffer:
+            if self._error is not None:
+                raise fresh_copy(self._error)
+            loop = asyncio.get_running_loop()
+            waiter = self._wakeup = loop.create_future()
+            self._deadline = deadline
+            if self._timer is None or self._timer_at > deadline or self._timer_loop is not loop:
+                self._set_timer(loop, deadline)
+            try:
+                await waiter
+            finally:
+                self._wakeup = None
+            if not self._buffer and waiter.result() is _EXPIRED:
+                return None
+        data = bytes(self._buffer[:max_bytes])
+        del self._buffer[:max_bytes]
+        return data
+
+    def _set_timer(self, loop: asyncio.AbstractEventLoop, when: float) -> None:
+        if self._timer is not None:
+            self._timer.cancel()
+        self._timer = loop.call_at(when, self._on_timer)
+        self._timer_at = when
+        self._timer_loop = loop
+
+    def _on_timer(self) -> None:
+        """The timer has fired: end the wait in progress if its deadline has come."""
+        self._timer = None
+        waiter, deadline = self._wakeup, self._deadline
+        if waiter is None or waiter.done() or deadline == math.inf:
+            return  # no wait by a deadline: the timer lapses until the next one sets it
+        if self._timer_at >= deadline:
+            waiter.set_result(_EXPIRED)
+        else:  # set for an earlier wait's deadline: this wait's is later
+            self._set_timer(waiter.get_loop(), deadline)
+
     def _wake(self) -> None:
         if self._wakeup is not None and not self._wakeup.done():
             self._wakeup.set_result(None)
+
+
+#: What a waiter's timer sets it to (a wake-up by bytes or an end sets ``None``).
+_EXPIRED = object()

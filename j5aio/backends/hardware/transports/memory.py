@@ -48,12 +48,22 @@ class MemoryStream(ByteStream):
         :raises BoardDisconnectionError: either end has been closed.
         """
         await anyio.lowlevel.checkpoint()
+        MemoryStream.send_nowait(self, data)
+
+    def send_nowait(self, data: bytes) -> bool:
+        """Deliver ``data`` to the other end at once; see :meth:`.ByteStream.send_nowait`.
+
+        Always sent (``True``).
+
+        :raises BoardDisconnectionError: either end has been closed.
+        """
         if self._closed:
             raise BoardDisconnectionError(f"{self._name}: the stream is closed")
         peer = self._peer
         if peer is None or peer._closed:
             raise BoardDisconnectionError(f"{self._name}: the other end has gone away")
         peer._inbox.feed(data)
+        return True
 
     def send_now(self, data: bytes, timeout: float) -> None:
         """Deliver ``data`` to the other end at once; see :meth:`.ByteStream.send_now`."""
@@ -67,6 +77,13 @@ class MemoryStream(ByteStream):
     async def receive(self, max_bytes: int = 4096) -> bytes:
         """Return bytes sent by the other end; see :meth:`.ByteStream.receive`."""
         return await self._inbox.take(max_bytes)
+
+    async def receive_by(self, deadline: float, max_bytes: int = 4096) -> bytes | None:
+        """Return received bytes, or ``None`` at ``deadline``.
+
+        See :meth:`.ByteStream.receive_by`.
+        """
+        return await self._inbox.take_by(max_bytes, deadline)
 
     def close_now(self) -> None:
         """Close this end; the other end then receives what was already sent, then EOF."""
@@ -193,6 +210,17 @@ class SimulatorStream(ByteStream):
             stream is closed.
         """
         await anyio.lowlevel.checkpoint_if_cancelled()
+        # This class's own (a subclass with a send of its own has the default back).
+        SimulatorStream.send_nowait(self, data)
+
+    def send_nowait(self, data: bytes) -> bool:
+        """Hand ``data`` to the simulator at once; see :meth:`.ByteStream.send_nowait`.
+
+        Always sent (``True``): the simulator takes every byte at once.
+
+        :raises BoardDisconnectionError: the simulated board is disconnected, or the
+            stream is closed.
+        """
         simulator = self._simulator
         if (
             self._closed
@@ -202,6 +230,7 @@ class SimulatorStream(ByteStream):
             self._check_usable()  # raises, saying why
         response = simulator.receive(data)
         self._queue_output(response, after=self._wire_time(data))
+        return True
 
     def send_now(self, data: bytes, timeout: float) -> None:
         """Hand ``data`` to the simulator at once; see :meth:`.ByteStream.send_now`."""

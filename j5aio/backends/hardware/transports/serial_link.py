@@ -19,12 +19,20 @@ A reader task would only add a second place where bytes wait.
 and drains run one at a time, in the order they asked.
 
 **Cancellation.** The trap: a request cancelled after its bytes were written leaves its
-reply on the line, and the next request reads it. So the whole of an exchange (write the
-request, read the reply) runs inside ``anyio.CancelScope(shield=True)``, with the timeout
-*inside* the shield. A caller that is cancelled part way still has its exchange complete
-and consume its own reply; the cancellation takes effect once the exchange is over (at
-worst ``timeout`` later; plus the bounded drain described next). Cancelling a caller
-that is still waiting for the lock is immediate and sends nothing.
+reply on the line, and the next request reads it. So an exchange (write the request,
+read the reply) is never torn: a caller that is cancelled part way still has its
+exchange complete and consume its own reply, and the cancellation takes effect once the
+exchange is over (at worst ``timeout`` later; plus the bounded drain described next).
+Cancelling a caller that is still waiting for the lock is immediate and sends nothing.
+On a link in step whose stream takes the bytes at once
+(:meth:`~.stream.ByteStream.send_nowait`: the common case, every request of a working
+robot) the only thing awaited after the write is the reply, by the stream's own timer
+(:meth:`~.stream.ByteStream.receive_by`); a cancellation that reaches that wait,
+anyio's or asyncio's, is handled as the next paragraph says, with no cancel scope on
+the way (a scope costs more than the rest of the request's path to its bytes). Every
+other exchange (one that first cleans the line, or whose stream makes it wait to
+write) runs inside ``anyio.CancelScope(shield=True)``, with the timeout *inside* the
+shield.
 
 **Timeouts and the dirty flag.** A timeout is the only way an exchange can end while its
 reply may still be coming. After a timeout (or any exchange that did not finish: a stream
@@ -41,11 +49,11 @@ and ``asyncio.wait_for``) breaks through anyio shields. So, once the lock is hel
 exchange runs to completion (:func:`~.completion.run_to_completion`) in a task that no
 caller's cancellation reaches; the caller waits for it either way and is cancelled
 afterwards. That task is made only when needed (a task for every call would cost tens
-of microseconds): an exchange or a send runs in the caller's task, and
-if ``Task.cancel`` tears it after its request has gone, a task of its own reads the reply
-to its end, by the same deadline, while the caller waits. (A stream sends all of a
-request or, cancelled, none of it, so a request torn before it went needs no reply, and
-a send has nothing left to do once its bytes have gone.) An
+of microseconds): an exchange or a send runs in the caller's task, and if ``Task.cancel``
+(or, on the unshielded path above, anyio) tears it after its request has gone, a task
+of its own reads the reply to its end, by the same deadline, while the caller waits.
+(A stream sends all of a request or, cancelled, none of it, so a request torn before it
+went needs no reply, and a send has nothing left to do once its bytes have gone.) An
 exchange is therefore never torn half way, whoever cancels. A ``then`` callback given to
 :meth:`~SerialLink.exchange` or :meth:`~SerialLink.send` runs as soon as the board has
 answered (or the bytes have gone), even for a cancelled caller: that is where a backend
@@ -160,6 +168,10 @@ class _Progress:
     replied: bool = False
     reply: Any = None
     remaining: int = 0
+
+
+class _LateReplyError(Exception):
+    """No complete reply by the deadline (raised inside the link, turned into a timeout)."""
 
 
 class _OwedAcknowledgement:
@@ -463,6 +475,9 @@ class SerialLink(AsyncResource):
         try:
             if self.unconfirmed is not None:
                 await self._confirm_locked()
+            deadline = self._write_at_once(request, seconds)
+            if deadline is not None:
+                return await self._reply_unshielded(request, reader, seconds, then, deadline)
             return await self._exchange_held(request, reader, seconds, then, when_dirty)
         finally:
             self._lock.release()
@@ -507,7 +522,11 @@ class SerialLink(AsyncResource):
             if self.unconfirmed is not None:
                 await self._confirm_locked()
             if not _LATER_SWITCH.get() or self._dirty or (self._owed and self._owes()):
-                await self._exchange_held(request, reader, seconds, then, when_dirty)
+                deadline = self._write_at_once(request, seconds)
+                if deadline is not None:
+                    await self._reply_unshielded(request, reader, seconds, then, deadline)
+                else:
+                    await self._exchange_held(request, reader, seconds, then, when_dirty)
                 return
             with anyio.CancelScope(shield=True) as scope:
                 # Write the request and note that its acknowledgement is owed.
@@ -606,13 +625,16 @@ class SerialLink(AsyncResource):
     ) -> object:
         """The body of :meth:`exchange`, with the lock held.
 
-        Cleans the line if need be, then sends ``request`` and reads its reply. One
-        scope both shields the exchange and times it out: its deadline is set to
-        ``seconds`` from when the request goes out, so that it cancels the read (and
-        this raises the timeout) if the reply is late.
+        Cleans the line if need be, then sends ``request`` and reads its reply. (A
+        request on a link in step whose stream takes the bytes at once was written by
+        the caller, and its reply read by :meth:`_reply_unshielded`.) One scope both
+        shields the exchange and times it out: its deadline is set to ``seconds`` from
+        when the request goes out, so that it cancels the read (and this raises the
+        timeout) if the reply is late.
         """
-        # Every request's path: the steps of the common case (a clean link) are written
-        # out here rather than called, and the progress is made only when needed.
+        # Every request's path that its caller did not take at once (see
+        # _write_at_once): the steps are written out here rather than called, and the
+        # progress is made only when needed.
         if when_dirty is not None and (self._dirty or (self._owed and self._owes())):
             request, reader = when_dirty()
             request = bytes(request)
@@ -676,6 +698,69 @@ class SerialLink(AsyncResource):
                 raise
             return reply if then is None else then(reply)
         raise self._timed_out(request, reader, seconds)
+
+    def _write_at_once(self, request: bytes, seconds: float) -> float | None:
+        """Write ``request`` at once if the link is in step; return its deadline if so.
+
+        The common case of every request (lock held): a link in step, with nothing to
+        clean, on a stream that takes the bytes at once. Its reply is then read with no
+        cancel scope (:meth:`_reply_unshielded`), and its deadline is ``seconds`` from
+        now. ``None``: nothing was sent, and the request takes the shielded path
+        (:meth:`_exchange_held`).
+        """
+        if not request or self._dirty or self._owed or self._buffer or self._closed:
+            return None
+        deadline = asyncio.get_running_loop().time() + seconds
+        try:
+            written = self._stream.send_nowait(request)
+        except BaseException as exc:
+            self._dirty = True  # a stream sends all or nothing, but be safe
+            if self._wire.isEnabledFor(TRACE):
+                log_wire(self._wire, "->", request)
+            if isinstance(exc, _WRITE_ERRORS) and not isinstance(exc, CommunicationError):
+                raise self._write_failed(exc, request) from exc
+            raise
+        if not written:
+            return None
+        if self._wire.isEnabledFor(TRACE):
+            log_wire(self._wire, "->", request)
+        return deadline
+
+    async def _reply_unshielded(
+        self,
+        request: bytes,
+        reader: ReplyReader[T],
+        seconds: float,
+        then: Callable[[T], object] | None,
+        deadline: float,
+    ) -> object:
+        """Read the reply to ``request``, written at once on a link in step (lock held).
+
+        No cancel scope: the stream's own timer ends the wait at ``deadline``, and a
+        cancellation (anyio's or ``Task.cancel``) that reaches the wait is handled as
+        a torn exchange is: the reply is read, and ``then`` run, in a task of its own,
+        by the same deadline, while the caller waits; the caller is cancelled once it
+        has finished. Nothing is awaited but the reply, so nothing else can be torn.
+        """
+        finished = False
+        try:
+            reply = await self._read_reply(reader, request, deadline)
+            finished = True
+        except _LateReplyError:
+            raise self._timed_out(request, reader, seconds) from None
+        except asyncio.CancelledError:
+            finished = True  # the task that finishes it marks the link if it fails
+            progress = _Progress()
+            progress.deadline, progress.seconds = deadline, seconds
+            await self._finish_torn(request, reader, progress, then)
+            raise
+        finally:
+            if not finished:
+                self._dirty = True
+                self._owe(_lines_of(reader))
+        if self._buffer and not reader.correlates:
+            self._after_reply(request, reader)  # more than the reply came
+        return reply if then is None else then(reply)
 
     async def _acquire(self) -> None:
         """Take the link's lock; a caller already cancelled (by anyio) takes nothing."""
@@ -1048,11 +1133,19 @@ class SerialLink(AsyncResource):
             lines += 1
         return start, -1, lines
 
-    async def _read_reply(self, reader: ReplyReader[T], request: bytes) -> T:
+    async def _read_reply(
+        self, reader: ReplyReader[T], request: bytes, deadline: float | None = None
+    ) -> T:
+        """Read what ``reader`` parses; by ``deadline`` (the loop's clock) if one is given.
+
+        :raises _LateReplyError: nothing complete by ``deadline``.
+        """
         while True:
             try:
                 parsed: tuple[T, int] | tuple[T, int, int] | None
-                if isinstance(reader, MatchingReader):
+                # (``correlates`` first: a class attribute, where ``isinstance`` of an
+                # abstract class is a call on every reply.)
+                if reader.correlates and isinstance(reader, MatchingReader):
                     parsed = reader.parse_counting(self._buffer)
                 else:
                     parsed = reader.parse(self._buffer)
@@ -1070,7 +1163,25 @@ class SerialLink(AsyncResource):
                     self._settle(parsed[2])  # foreign replies skipped: late ones, come
                 del self._buffer[:used]
                 return reply
-            self._buffer += await self._receive()
+            if deadline is None:
+                self._buffer += await self._receive()
+                continue
+            # (What _receive does, written out: a call fewer on every reply.)
+            try:
+                chunk = await self._stream.receive_by(deadline, self._chunk_size)
+            except CommunicationError:
+                raise
+            except _DISCONNECTION_ERRORS as exc:
+                raise BoardDisconnectionError(
+                    f"{self._name}: the port has gone ({exc!r})"
+                ) from exc
+            except OSError as exc:
+                raise CommunicationError(f"{self._name}: reading failed: {exc}") from exc
+            if chunk is None:
+                raise _LateReplyError
+            if self._wire.isEnabledFor(TRACE):
+                log_wire(self._wire, "<-", chunk)
+            self._buffer += chunk
 
     async def _drain_locked(self, quiet: float, bound: float) -> int:
         discarded = len(self._buffer)
@@ -1102,7 +1213,10 @@ class SerialLink(AsyncResource):
         if not data:
             return
         try:
-            await self._stream.send(data)
+            # The caller holds the lock, shielded, past its own cancellation check: the
+            # bytes go at once where the stream can take them, with no second check.
+            if not self._stream.send_nowait(data):
+                await self._stream.send(data)
         except CommunicationError:
             raise
         except _WRITE_ERRORS as exc:

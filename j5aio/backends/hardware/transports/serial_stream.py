@@ -169,11 +169,13 @@ class _EventSerialStream(SerialStream):
         self._writer_wakeup: anyio.Event | None = None
         self._lost = False
         self._transport: serial_asyncio_fast.SerialTransport | None = None
+        self._fileno = -1
 
     async def _attach(self) -> None:
         loop = asyncio.get_running_loop()
         # (What the library's connection_for_serial does, with the quieter transport.)
         self._transport = _QuietSerialTransport(loop, _SerialProtocol(self), self._port)
+        self._fileno = self._port.fileno()
 
     async def send(self, data: bytes) -> None:
         """Queue ``data`` on the port; waits while the output buffer is over its limit.
@@ -183,23 +185,54 @@ class _EventSerialStream(SerialStream):
         a caller waiting for its reply yields then.
         """
         await anyio.lowlevel.checkpoint_if_cancelled()
-        while True:
-            self._check_writable()
-            if not self._write_paused:
-                break
+        # This class's own (a subclass with a send of its own has the default back).
+        while not _EventSerialStream.send_nowait(self, data):
             self._writer_wakeup = anyio.Event()
             await self._writer_wakeup.wait()
-        assert self._transport is not None
-        self._transport.write(data)
-        if self._transport.is_closing():
+
+    def send_nowait(self, data: bytes) -> bool:
+        """Queue ``data`` on the port unless its output buffer is over its limit.
+
+        See :meth:`.ByteStream.send_nowait`: ``False`` (nothing sent) while the output
+        buffer is over its limit.
+
+        :raises BoardDisconnectionError: the port has gone or the stream is closed.
+        """
+        self._check_writable()  # the port is open: the transport is not closing
+        if self._write_paused:
+            return False
+        transport = self._transport
+        assert transport is not None
+        if not transport.get_write_buffer_size():
+            # Nothing queued ahead of it: the bytes go straight to the port, as the
+            # transport's write would (after five calls of its own and pyserial's).
+            # What the port does not take at once, or refuses, goes to the transport,
+            # which queues it, or meets the error its own way.
+            try:
+                written = os.write(self._fileno, data)
+            except OSError:
+                written = 0
+            if written == len(data):
+                return True
+            data = data[written:]
+        transport.write(data)
+        if transport.is_closing():
             raise BoardDisconnectionError(
                 f"{self._name}: writing to the port failed; the device has gone away. "
                 "Check the USB cable and the board's power."
             )
+        return True
 
     async def receive(self, max_bytes: int = 4096) -> bytes:
         """Return received bytes; see :meth:`ByteStream.receive`."""
         return await self._inbox.take(max_bytes)
+
+    async def receive_by(self, deadline: float, max_bytes: int = 4096) -> bytes | None:
+        """Return received bytes, or ``None`` at ``deadline``.
+
+        See :meth:`.ByteStream.receive_by`.
+        """
+        return await self._inbox.take_by(max_bytes, deadline)
 
     def send_now(self, data: bytes, timeout: float) -> None:
         """Drop output still queued, then write ``data`` synchronously; see :class:`ByteStream`."""

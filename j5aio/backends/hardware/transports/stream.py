@@ -40,6 +40,16 @@ class ByteStream(AsyncResource):
     :meth:`close_now`.
     """
 
+    def __init_subclass__(cls, **kwargs: object) -> None:
+        super().__init_subclass__(**kwargs)
+        # A class with a send (or receive) of its own (a wrapper, a test's fault) must
+        # see every request (and reply) go through it: a send_nowait (or receive_by) it
+        # inherits would go round it, so it gets the defaults, which use its own.
+        if "send" in cls.__dict__ and "send_nowait" not in cls.__dict__:
+            cls.send_nowait = ByteStream.send_nowait  # type: ignore[method-assign]
+        if "receive" in cls.__dict__ and "receive_by" not in cls.__dict__:
+            cls.receive_by = ByteStream.receive_by  # type: ignore[method-assign]
+
     @property
     @abc.abstractmethod
     def name(self) -> str:
@@ -58,6 +68,22 @@ class ByteStream(AsyncResource):
         :raises CommunicationError: the bytes could not be sent.
         """
 
+    def send_nowait(self, data: bytes) -> bool:
+        """Send ``data`` at once if that needs no wait, and say whether it was sent.
+
+        For a caller that has already checked for cancellation and runs shielded from
+        it (:class:`~.serial_link.SerialLink`, once it holds its lock): it skips the
+        check :meth:`send` makes, and the coroutine. ``False`` means nothing was sent;
+        :meth:`send` then waits until it can. The default always says ``False``: a
+        stream that can send without waiting overrides it. A subclass that overrides
+        :meth:`send` alone gets this default back, so that its :meth:`send` sees every
+        request.
+
+        :raises BoardDisconnectionError: the far end has gone or the stream is closed.
+        :raises CommunicationError: the bytes could not be sent.
+        """
+        return False
+
     @abc.abstractmethod
     async def receive(self, max_bytes: int = 4096) -> bytes:
         """Return between 1 and ``max_bytes`` bytes, waiting until at least one arrives.
@@ -66,6 +92,18 @@ class ByteStream(AsyncResource):
             stream is closed.
         :raises CommunicationError: reading failed.
         """
+
+    async def receive_by(self, deadline: float, max_bytes: int = 4096) -> bytes | None:
+        """As :meth:`receive`, but return ``None`` if nothing has arrived by ``deadline``.
+
+        ``deadline`` is on the event loop's clock (``anyio.current_time()``). The
+        default runs :meth:`receive` in a cancel scope with that deadline; a stream
+        that can wait more cheaply overrides it. A subclass that overrides
+        :meth:`receive` alone gets this default back.
+        """
+        with anyio.CancelScope(deadline=deadline):
+            return await self.receive(max_bytes)
+        return None
 
     @abc.abstractmethod
     def close_now(self) -> None:

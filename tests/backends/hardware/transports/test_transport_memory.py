@@ -10,9 +10,11 @@ import pytest
 
 from j5aio.backends.hardware.transports import (
     ByteStream,
+    SerialLink,
     SerialSimulatorLike,
     SimulatorStream,
     memory_stream_pair,
+    read_line,
 )
 from j5aio.backends.hardware.transports._inbox import Inbox, fresh_copy
 from j5aio.errors import BoardDisconnectionError, CommunicationError
@@ -159,6 +161,113 @@ async def test_inbox_ignores_bytes_after_it_has_ended() -> None:
         await inbox.take(10)
 
 
+async def test_inbox_take_by_returns_what_came_or_none_at_the_deadline() -> None:
+    inbox = Inbox()
+    now = anyio.current_time()
+    assert await inbox.take_by(10, now + 0.01) is None
+    assert anyio.current_time() >= now + 0.01
+    inbox.feed(b"abc")
+    assert await inbox.take_by(2, now) == b"ab"  # already there: no wait, whatever the time
+    assert await inbox.take_by(2, now) == b"c"
+    with pytest.raises(ValueError, match="at least 1"):
+        await inbox.take_by(0, now)
+
+
+async def test_inbox_take_by_wakes_for_bytes_and_for_the_end() -> None:
+    inbox = Inbox()
+    deadline = anyio.current_time() + 5
+    async with anyio.create_task_group() as tg:
+
+        async def feed_soon() -> None:
+            await anyio.sleep(0.01)
+            inbox.feed(b"hi")
+
+        tg.start_soon(feed_soon)
+        with anyio.fail_after(1):
+            assert await inbox.take_by(10, deadline) == b"hi"
+
+        async def end_soon() -> None:
+            await anyio.sleep(0.01)
+            inbox.finish(CommunicationError("ended"))
+
+        tg.start_soon(end_soon)
+        with anyio.fail_after(1), pytest.raises(CommunicationError, match="ended"):
+            await inbox.take_by(10, deadline)
+
+
+async def test_inbox_take_by_keeps_time_with_the_timer_of_an_earlier_wait() -> None:
+    inbox = Inbox()
+    start = anyio.current_time()
+    inbox.feed(b"a")
+    assert await inbox.take_by(10, start + 0.02) == b"a"  # no wait, no timer
+    # A wait that ends with bytes leaves its timer (due at +0.02) for the next wait.
+    async with anyio.create_task_group() as tg:
+
+        async def feed_soon() -> None:
+            await anyio.sleep(0.005)
+            inbox.feed(b"b")
+
+        tg.start_soon(feed_soon)
+        assert await inbox.take_by(10, start + 0.02) == b"b"
+    # A later deadline: the timer, due earlier, is set again, and the wait lasts.
+    assert await inbox.take_by(10, start + 0.06) is None
+    assert anyio.current_time() >= start + 0.06
+    # An earlier deadline than the timer's: it is set earlier.
+    long_wait = anyio.current_time()
+    async with anyio.create_task_group() as tg:
+
+        async def feed_late() -> None:
+            await anyio.sleep(0.005)
+            inbox.feed(b"c")
+
+        tg.start_soon(feed_late)
+        assert await inbox.take_by(10, long_wait + 5) == b"c"
+    short_wait = anyio.current_time()
+    with anyio.fail_after(1):
+        assert await inbox.take_by(10, short_wait + 0.01) is None
+
+
+async def test_inbox_timer_of_a_wait_by_a_deadline_leaves_a_plain_take_waiting() -> None:
+    inbox = Inbox()
+    async with anyio.create_task_group() as tg:
+
+        async def feed(data: bytes, after: float) -> None:
+            await anyio.sleep(after)
+            inbox.feed(data)
+
+        tg.start_soon(feed, b"w", 0.001)
+        assert await inbox.take_by(10, anyio.current_time() + 0.01) == b"w"  # timer left
+        tg.start_soon(feed, b"x", 0.03)
+        with anyio.fail_after(1):
+            assert await inbox.take(10) == b"x"  # the timer lapsed meanwhile; take waited on
+
+
+async def test_inbox_take_by_cancelled_loses_nothing() -> None:
+    inbox = Inbox()
+    with anyio.move_on_after(0.01):
+        await inbox.take_by(10, anyio.current_time() + 5)
+    inbox.feed(b"kept")
+    assert await inbox.take_by(10, anyio.current_time() + 5) == b"kept"
+
+
+async def test_receive_by_of_a_stream_with_a_receive_of_its_own_uses_it() -> None:
+    class Slow(SimulatorStream):
+        receives = 0
+
+        async def receive(self, max_bytes: int = 4096) -> bytes:
+            self.receives += 1
+            return await super().receive(max_bytes)
+
+    stream = Slow(EchoSimulator(banner=b""))
+    assert await stream.receive_by(anyio.current_time() + 0.01) is None  # the default
+    await stream.send(b"ping\n")
+    assert await stream.receive_by(anyio.current_time() + 1) == b"PING\n"
+    assert stream.receives == 2
+    a, b = memory_stream_pair()
+    a.send_nowait(b"x")
+    assert await b.receive_by(anyio.current_time() + 1) == b"x"
+
+
 def test_fresh_copy_keeps_the_cause() -> None:
     cause = OSError("underneath")
     error = BoardDisconnectionError("gone")
@@ -194,6 +303,45 @@ async def test_simulator_stream_passes_requests_and_queues_responses() -> None:
     assert await stream.receive(2) == b"PI"
     assert await stream.receive() == b"NG\n"
     assert stream.name == "sim"
+
+
+async def test_simulator_stream_sends_at_once_without_waiting() -> None:
+    simulator = EchoSimulator(banner=b"")
+    stream = SimulatorStream(simulator, name="sim")
+    assert stream.send_nowait(b"ping\n") is True
+    assert simulator.received == [b"ping\n"]
+    assert await stream.receive() == b"PING\n"
+    stream.close_now()
+    with pytest.raises(BoardDisconnectionError):
+        stream.send_nowait(b"ping\n")
+
+
+async def test_a_stream_with_a_send_of_its_own_never_sends_round_it() -> None:
+    class Counting(SimulatorStream):
+        sends = 0
+
+        async def send(self, data: bytes) -> None:
+            self.sends += 1
+            await super().send(data)
+
+    simulator = EchoSimulator(banner=b"")
+    stream = Counting(simulator)
+    assert stream.send_nowait(b"ping\n") is False  # the default: nothing sent
+    assert simulator.received == []
+    link = SerialLink(stream)
+    assert await link.exchange(b"ping\n", read_line()) == b"PING"
+    assert stream.sends == 1
+    assert simulator.received == [b"ping\n"]
+
+
+async def test_memory_streams_send_at_once_without_waiting() -> None:
+    ours, theirs = memory_stream_pair()
+    assert ours.send_nowait(b"x") is True
+    await ours.send(b"y")
+    assert await theirs.receive() == b"xy"
+    theirs.close_now()
+    with pytest.raises(BoardDisconnectionError):
+        ours.send_nowait(b"z")
 
 
 async def test_boot_output_appears_after_the_scaled_boot_delay() -> None:

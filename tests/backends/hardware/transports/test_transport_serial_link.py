@@ -375,25 +375,66 @@ class BrokenStream(MemoryStream):
         raise self.error
 
 
+class BrokenNowaitStream(BrokenStream):
+    """As :class:`BrokenStream`, failing on the paths that write at once and read by a deadline."""
+
+    def send_nowait(self, data: bytes) -> bool:
+        if self.on_send:
+            raise self.error
+        return True
+
+    async def receive_by(self, deadline: float, max_bytes: int = 4096) -> bytes | None:
+        raise self.error
+
+
+BROKEN_STREAMS = [BrokenStream, BrokenNowaitStream]
+
+
+@pytest.mark.parametrize("broken", BROKEN_STREAMS)
 @pytest.mark.parametrize("on_send", [True, False])
-async def test_os_errors_from_a_stream_become_communication_errors(on_send: bool) -> None:
-    link = SerialLink(BrokenStream(OSError(5, "Input/output error"), on_send=on_send))
+async def test_os_errors_from_a_stream_become_communication_errors(
+    on_send: bool, broken: type[BrokenStream]
+) -> None:
+    link = SerialLink(broken(OSError(5, "Input/output error"), on_send=on_send))
     with pytest.raises(CommunicationError, match="Input/output error") as caught:
         await link.exchange(b"x\n", read_line(), timeout=1)
     assert not isinstance(caught.value, BoardDisconnectionError)
     assert isinstance(caught.value.__cause__, OSError)
 
 
+@pytest.mark.parametrize("broken", BROKEN_STREAMS)
 @pytest.mark.parametrize("on_send", [True, False])
 @pytest.mark.parametrize(
     "error", [anyio.EndOfStream(), anyio.BrokenResourceError(), anyio.ClosedResourceError()]
 )
 async def test_anyio_stream_errors_become_board_disconnection(
-    error: Exception, on_send: bool
+    error: Exception, on_send: bool, broken: type[BrokenStream]
 ) -> None:
-    link = SerialLink(BrokenStream(error, on_send=on_send))
+    link = SerialLink(broken(error, on_send=on_send))
     with pytest.raises(BoardDisconnectionError, match="has gone"):
         await link.exchange(b"x\n", read_line(), timeout=1)
+    assert link.is_dirty
+
+
+@pytest.mark.parametrize(
+    ("error", "raised"),
+    [
+        (OSError(5, "Input/output error"), CommunicationError),
+        (CommunicationTimeoutError("the stream's own"), CommunicationTimeoutError),
+        (AssertionError("script broken"), AssertionError),
+    ],
+)
+async def test_an_exchange_whose_bytes_fail_at_once_is_logged_and_mapped(
+    error: BaseException, raised: type[BaseException], caplog: pytest.LogCaptureFixture
+) -> None:
+    link = SerialLink(BrokenNowaitStream(error, on_send=True), name="/dev/ttyACM7")
+    caplog.set_level(TRACE, logger="j5aio.wire")
+    with pytest.raises(raised) as caught:
+        await link.exchange(b"x\n", read_line(), timeout=1)
+    assert type(caught.value) is raised
+    assert link.is_dirty
+    records = [r for r in caplog.records if r.name == "j5aio.wire./dev/ttyACM7"]
+    assert [r.getMessage() for r in records] == ["-> b'x\\n'"]
 
 
 async def _write_by(link: SerialLink, how: str) -> None:
@@ -415,10 +456,11 @@ async def _write_by(link: SerialLink, how: str) -> None:
         (AssertionError("script broken"), AssertionError),
     ],
 )
+@pytest.mark.parametrize("broken", BROKEN_STREAMS)
 async def test_a_write_that_fails_raises_the_same_on_every_path(
-    how: str, error: BaseException, raised: type[BaseException]
+    how: str, error: BaseException, raised: type[BaseException], broken: type[BrokenStream]
 ) -> None:
-    link = SerialLink(BrokenStream(error, on_send=True))
+    link = SerialLink(broken(error, on_send=True))
     with pytest.raises(raised) as caught:
         await _write_by(link, how)
     assert type(caught.value) is raised
@@ -456,6 +498,7 @@ async def test_each_request_reads_the_acknowledgement_owed_first() -> None:
             await link.send(b"d\n", timeout=1)  # reads c's ACK first
             assert link.acknowledgement_owed is None
         await link.exchange(b"q\n", read_line(), timeout=1)
+        await anyio.wait_all_tasks_blocked()  # the peer reads in a task of its own
         assert peer.lines == [b"a", b"q", b"b", b"c", b"d", b"q"]
         tg.cancel_scope.cancel()
 

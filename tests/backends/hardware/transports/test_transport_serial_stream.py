@@ -411,6 +411,51 @@ def test_the_file_descriptor_probe() -> None:
 # -- rarer failures ------------------------------------------------------------------------
 
 
+def refuse_direct_writes(monkeypatch: pytest.MonkeyPatch) -> list[bytes]:
+    """Make the stream's own writes to the port fail (EIO); return what they were given.
+
+    What the port refuses goes to the transport, which writes through pyserial.
+    """
+    tried: list[bytes] = []
+
+    class Refusing:
+        def __getattr__(self, name: str) -> Any:
+            return getattr(os, name)
+
+        @staticmethod
+        def write(fd: int, data: Any) -> int:
+            tried.append(bytes(data))
+            raise OSError(errno.EIO, "Input/output error")
+
+    monkeypatch.setattr(serial_stream_module, "os", Refusing())
+    return tried
+
+
+async def test_what_the_port_refuses_at_once_goes_through_the_transport(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    tried = refuse_direct_writes(monkeypatch)
+    assert stream.send_nowait(b"via the transport\n") is True
+    assert tried == [b"via the transport\n"]
+    assert read_master(board, 18) == b"via the transport\n"
+
+
+async def test_what_the_port_takes_in_part_goes_on_through_the_transport(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    class Partial:
+        def __getattr__(self, name: str) -> Any:
+            return getattr(os, name)
+
+        @staticmethod
+        def write(fd: int, data: Any) -> int:
+            return os.write(fd, bytes(data)[:3])
+
+    monkeypatch.setattr(serial_stream_module, "os", Partial())
+    assert stream.send_nowait(b"abcdef\n") is True
+    assert read_master(board, 7) == b"abcdef\n"
+
+
 async def test_a_write_that_fails_raises_board_disconnection(
     board: PtyBoard,
     stream: SerialStream,
@@ -426,6 +471,7 @@ async def test_a_write_that_fails_raises_board_disconnection(
         raise serial.SerialException("write failed: [Errno 5] Input/output error")
 
     monkeypatch.setattr(stream.serial, "write", failing_write)
+    refuse_direct_writes(monkeypatch)
     try:
         with pytest.raises(BoardDisconnectionError, match="writing to the port failed"):
             await stream.send(b"x")
@@ -449,6 +495,7 @@ async def test_other_transport_failures_still_reach_the_event_loop(
         raise RuntimeError("a bug, not an unplugged board")
 
     monkeypatch.setattr(stream.serial, "write", broken_write)
+    refuse_direct_writes(monkeypatch)
     try:
         with pytest.raises(BoardDisconnectionError):
             await stream.send(b"x")
@@ -496,6 +543,31 @@ async def test_a_polled_receive_waits_for_data() -> None:
         with anyio.fail_after(1):
             assert await stream.receive() == b"late"
     stream.close_now()
+
+
+async def test_send_nowait_writes_at_once_unless_the_output_is_over_its_limit(
+    board: PtyBoard, stream: SerialStream
+) -> None:
+    assert stream.send_nowait(b"now\n") is True
+    assert read_master(board, 4) == b"now\n"
+    stream._write_paused = True  # type: ignore[attr-defined]  # (as the transport pauses it)
+    assert stream.send_nowait(b"later\n") is False
+    sender_done = anyio.Event()
+
+    async def sender() -> None:
+        await stream.send(b"later\n")
+        sender_done.set()
+
+    async with anyio.create_task_group() as group:
+        group.start_soon(sender)
+        await anyio.wait_all_tasks_blocked()
+        assert not sender_done.is_set()  # waiting for the transport to resume
+        protocol = stream._transport.get_protocol()  # type: ignore[attr-defined]
+        protocol.resume_writing()
+    assert read_master(board, 6) == b"later\n"
+    stream.close_now()
+    with pytest.raises(BoardDisconnectionError):
+        stream.send_nowait(b"gone\n")
 
 
 # -- sending synchronously (the safety net) ------------------------------------------------

@@ -22,7 +22,7 @@ the handshake again is all there is to do.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Awaitable, Mapping
 from types import MappingProxyType
 from typing import ClassVar, Final
 
@@ -37,6 +37,7 @@ from j5aio.components.flag import FlagInterface
 from j5aio.components.pulse_servo import PulseLimits, PulseServoInterface
 from j5aio.components.servo import ServoPosition
 from j5aio.components.supply_sensor import SupplySensorInterface
+from j5aio.errors import BoardDisconnectionError
 
 __all__ = [
     "SERVO_FW4_BACKENDS",
@@ -115,7 +116,19 @@ class _ServoBoardFw4Backend(
         def acknowledged(reply: bytes) -> None:
             codec.check_ack(self.board.name, request, reply)
 
-        await self.command(request, _REPLY, then=acknowledged)
+        # What the backend's command() does, written out (a servo's every move takes
+        # this path): a lost board is looked for first, and one that vanishes under the
+        # call is handed to the reconnection policy.
+        try:
+            if self._lost or self._closed_for_good:
+                await self._check_connected()
+            await self._link.command(request, _REPLY, then=acknowledged)
+        except BoardDisconnectionError as lost:
+
+            def again() -> Awaitable[None]:  # the link is looked up anew
+                return self._link.command(request, _REPLY, then=acknowledged)
+
+            await self._retry_after(lost, again, idempotent=True)
 
     def _check_servo(self, identifier: int) -> None:
         codec.check_servo(self.firmware, identifier)
@@ -170,7 +183,7 @@ class _ServoBoardFw4Backend(
         if position is None:
             await self._act(codec.encode_disable(firmware, identifier))
             return
-        self._check_servo(identifier)
+        codec.check_servo(firmware, identifier)  # before the index: -1 is an index too
         pulse = codec.pulse_for_position(position, self._limits[identifier])
         await self._act(codec.encode_set(firmware, identifier, pulse))
 

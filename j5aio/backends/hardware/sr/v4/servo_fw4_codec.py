@@ -267,9 +267,10 @@ def check_ack(board: str, command: bytes, reply: bytes) -> None:
     :raises CommunicationError: the board refused it (``NACK``).
     :raises UnexpectedReplyError: any reply other than ``ACK``.
     """
+    if reply == _ACK:
+        return
     _check_not_nack(board, command, reply)
-    if reply != _ACK:
-        raise _bad(board, command, reply, "not 'ACK'")
+    raise _bad(board, command, reply, "not 'ACK'")
 
 
 def _parse_unsigned(board: str, command: bytes, reply: bytes) -> int:
