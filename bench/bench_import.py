@@ -9,7 +9,15 @@ of modules loaded after it. Cases:
 * what a first program imports: j5's quick start (``BaseRobot``, ``BoardGroup``, a power
   board and its console backend); the same names from j5aio's sync facade; the README's
   first sync program (``from j5aio.sync import KitRobot``) and first async program
-  (``anyio`` and ``j5aio.kit.KitRobot``).
+  (``anyio`` and ``j5aio.kit.KitRobot``);
+* the hardware stack of the simulated kit: the hardware backends a simulated start
+  makes (power, motor and servo boards, the Arduinos), imported after ``j5aio.kit``, so
+  the figure is what the backends, their codecs and transports add (with the boards
+  and components they drive).
+
+Beside each figure: the modules loaded, and how many of them are j5aio's, and the
+dataclasses j5aio's modules define (each one costs a start the generation of its
+methods, about 0.3 ms for a frozen one on Python 3.11).
 
 Rounds are interleaved and shuffled; the table shows medians and the ratio to j5. Run::
 
@@ -40,11 +48,26 @@ GOAL_RATIO = 1.0
 
 CHILD = """\
 import sys, time
+{setup}
 start = time.perf_counter()
 {statements}
 elapsed = time.perf_counter() - start
-print("BENCH", elapsed, len(sys.modules))
+ours = [m for name, m in list(sys.modules.items()) if name.split(".")[0] == "j5aio"]
+made = sum(
+    1 for m in ours for v in list(vars(m).values())
+    if isinstance(v, type) and v.__module__ == m.__name__ and "__dataclass_fields__" in vars(v)
+)
+print("BENCH", elapsed, len(sys.modules), len(ours), made)
 """
+
+# What a simulated start of the default kit imports from the hardware backends.
+HARDWARE_STACK = (
+    "import j5aio.backends.hardware.sb.arduino\n"
+    "import j5aio.backends.hardware.sr.v4.motor_board\n"
+    "import j5aio.backends.hardware.sr.v4.power_board\n"
+    "import j5aio.backends.hardware.sr.v4.ruggeduino\n"
+    "import j5aio.backends.hardware.sr.v4.servo_board"
+)
 
 J5_FIRST = (
     "from j5 import BaseRobot, BoardGroup\n"
@@ -63,11 +86,12 @@ def main() -> int:
     parser.add_argument("--rounds", type=int, default=15, help="runs of each case (default 15)")
     options = parser.parse_args()
 
-    modules: dict[str, list[int]] = {}
+    modules: dict[str, list[tuple[int, ...]]] = {}
 
-    def case(name: str, python: str, statements: str) -> Case:
+    def case(name: str, python: str, statements: str, setup: str = "") -> Case:
         env = j5aio_env()
-        return Case(name, [python, "-c", CHILD.format(statements=statements)], env)
+        child = CHILD.format(setup=setup, statements=statements)
+        return Case(name, [python, "-c", child], env)
 
     peer = j5_python()
     mine = sys.executable
@@ -86,19 +110,32 @@ def main() -> int:
         case("first sync program (README)", mine, "from j5aio.sync import KitRobot"),
         case("first async program (README)", mine, "import anyio\nfrom j5aio.kit import KitRobot"),
     ]
+    hardware = case(
+        "hardware stack, simulated kit", mine, HARDWARE_STACK,
+        setup="import anyio\nfrom j5aio.kit import KitRobot",
+    )
+    cases.append(hardware)
 
     def measure(c: Case) -> float:
-        elapsed, count = run_reporting(c, "BENCH").split()
-        modules.setdefault(c.name, []).append(int(count))
+        elapsed, *counts = run_reporting(c, "BENCH").split()
+        modules.setdefault(c.name, []).append(tuple(int(n) for n in counts))
         return float(elapsed)
+
+    def loaded(c: Case) -> str:
+        everything, ours, dataclasses = max(modules[c.name])
+        if c.argv[0] != mine:
+            return f"{everything} modules"
+        return f"{everything} modules ({ours} j5aio), {dataclasses} j5aio dataclasses"
 
     run_interleaved(cases, options.rounds, measure)
     print(f"import time, fresh interpreter each run, {options.rounds} interleaved rounds")
     print_table("the packages", [c for c in (j5, core, sync) if c is not None], "ms",
-                reference=j5, scale=1000, extra=lambda c: f"{max(modules[c.name])} modules")
-    print_table("what a first program imports", [c for c in cases if c not in (j5, core, sync)],
-                "ms", reference=j5_first, scale=1000,
-                extra=lambda c: f"{max(modules[c.name])} modules")
+                reference=j5, scale=1000, extra=loaded)
+    print_table("what a first program imports",
+                [c for c in cases if c not in (j5, core, sync, hardware)],
+                "ms", reference=j5_first, scale=1000, extra=loaded)
+    print_table("added by the hardware backends (after j5aio.kit)", [hardware], "ms",
+                reference=None, scale=1000, extra=loaded)
     if j5 is None:
         print("\nno j5 to compare with: goals not checked")
         return 0

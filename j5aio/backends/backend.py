@@ -94,7 +94,16 @@ def _logged(
     method_name: str,
     logger: logging.Logger,
 ) -> Callable[..., Coroutine[Any, Any, Any]]:
-    signature = inspect.signature(method)
+    # The signature is worked out the first time a call is observed or logged, not when
+    # the class is made: that is rare, and every backend class made on a start would pay
+    # for it.
+    signature: inspect.Signature | None = None
+
+    def signature_of() -> inspect.Signature:
+        nonlocal signature
+        if signature is None:
+            signature = inspect.signature(method)
+        return signature
 
     @functools.wraps(method)
     async def logged_method(*args: Any, **kwargs: Any) -> Any:
@@ -107,12 +116,12 @@ def _logged(
             result = await method(*args, **kwargs)
         except Exception as error:
             if CALL_OBSERVERS:
-                _tell_observers(signature, method_name, args, kwargs, None, error)
+                _tell_observers(signature_of, method_name, args, kwargs, None, error)
             raise
         if CALL_OBSERVERS:
-            _tell_observers(signature, method_name, args, kwargs, result, None)
+            _tell_observers(signature_of, method_name, args, kwargs, result, None)
         if logger.isEnabledFor(logging.DEBUG):
-            arguments = signature.bind(*args, **kwargs).arguments
+            arguments = signature_of().bind(*args, **kwargs).arguments
             shown = ", ".join(f"{k}={v!r}" for k, v in arguments.items() if k != "self")
             suffix = f" -> {result!r}" if result is not None else ""
             logger.debug("%s(%s)%s", method_name, shown, suffix)
@@ -123,7 +132,7 @@ def _logged(
 
 
 def _tell_observers(
-    signature: inspect.Signature,
+    signature_of: Callable[[], inspect.Signature],
     method_name: str,
     args: tuple[Any, ...],
     kwargs: dict[str, Any],
@@ -132,7 +141,7 @@ def _tell_observers(
 ) -> None:
     arguments = args[1:]
     if kwargs:
-        arguments = tuple(signature.bind(*args, **kwargs).arguments.values())[1:]
+        arguments = tuple(signature_of().bind(*args, **kwargs).arguments.values())[1:]
     for observer in list(CALL_OBSERVERS):
         try:
             observer(args[0], method_name, arguments, result, error)

@@ -24,7 +24,6 @@ from __future__ import annotations
 import logging
 from abc import abstractmethod
 from collections.abc import Awaitable, Callable, Iterable, Mapping, Sequence
-from dataclasses import dataclass
 from typing import ClassVar, TypeVar, cast, overload
 
 import anyio
@@ -70,15 +69,28 @@ def scaled(seconds: float, time_scale: float) -> float:
     return max(seconds * time_scale, MINIMUM_WAIT)
 
 
-@dataclass(frozen=True)
 class _Origin:
-    """How a board was found, so that it can be found again."""
+    """How a board was found, so that it can be found again.
 
-    serial_number: str
-    by_port: bool
-    opener: StreamOpener | None
-    port_source: Callable[[], Iterable[ComPortLike]] | None
-    time_scale: float
+    A plain class, not a dataclass: one is made for every board found, nothing compares
+    or prints them, and a dataclass would cost every start the generation of its methods.
+    """
+
+    __slots__ = ("by_port", "opener", "port_source", "serial_number", "time_scale")
+
+    def __init__(
+        self,
+        serial_number: str,
+        by_port: bool,
+        opener: StreamOpener | None,
+        port_source: Callable[[], Iterable[ComPortLike]] | None,
+        time_scale: float,
+    ) -> None:
+        self.serial_number = serial_number
+        self.by_port = by_port
+        self.opener = opener
+        self.port_source = port_source
+        self.time_scale = time_scale
 
 
 class SerialHardwareBackend(Reconnecting, Backend[BoardT]):

@@ -24,9 +24,9 @@ from typing import ClassVar
 
 import anyio
 
+import j5aio.backends.hardware.sb.arduino_2019_codec as codec
 from j5aio.backends.hardware.arduino import ArduinoHardwareBackend
 from j5aio.backends.hardware.arduino_pins import DIGITAL_PINS, DigitalPinState
-from j5aio.backends.hardware.sb import arduino_2019_codec as codec
 from j5aio.backends.hardware.serial_backend import scaled
 from j5aio.backends.hardware.transports.readers import ReplyReader
 from j5aio.backends.hardware.transports.serial_link import SerialLink

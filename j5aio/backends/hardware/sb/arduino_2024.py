@@ -17,8 +17,8 @@ from __future__ import annotations
 
 from typing import ClassVar
 
+import j5aio.backends.hardware.sb.arduino_2024_codec as codec
 from j5aio.backends.hardware.arduino_gpio import ArduinoGPIOBackend, PinCodec
-from j5aio.backends.hardware.sb import arduino_2024_codec as codec
 from j5aio.backends.hardware.serial_backend import scaled
 from j5aio.backends.hardware.transports.readers import read_line
 from j5aio.backends.hardware.transports.serial_link import SerialLink

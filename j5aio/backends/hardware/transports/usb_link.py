@@ -55,7 +55,6 @@ from __future__ import annotations
 import asyncio
 import collections
 import contextlib
-import enum
 import errno
 import logging
 import math
@@ -63,7 +62,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Mapping
-from typing import Any, Generic, Protocol, TypeVar
+from typing import Any, Final, Generic, Protocol, TypeVar
 
 from anyio.abc import AsyncResource
 
@@ -181,10 +180,11 @@ def answers_at_once(thing: object) -> bool:
     return getattr(thing, ANSWERS_AT_ONCE, False) is True
 
 
-class _State(enum.Enum):
-    QUEUED = enum.auto()
-    RUNNING = enum.auto()
-    WITHDRAWN = enum.auto()
+# The states of a job (plain strings, compared by identity: an enum class would cost
+# every start its making, for a thread that a simulated or quiet start never uses).
+_QUEUED: Final = "queued"
+_RUNNING: Final = "running"
+_WITHDRAWN: Final = "withdrawn"
 
 
 class _Job(Generic[T]):
@@ -201,22 +201,22 @@ class _Job(Generic[T]):
         self.loop = loop
         self.future = future
         self.then = then
-        self._state = _State.QUEUED
+        self._state = _QUEUED
         self._lock = threading.Lock()
 
     def start(self) -> bool:
         """Claim the job for the thread; False if its caller has withdrawn it."""
         with self._lock:
-            if self._state is _State.WITHDRAWN:
+            if self._state is _WITHDRAWN:
                 return False
-            self._state = _State.RUNNING
+            self._state = _RUNNING
             return True
 
     def withdraw(self) -> None:
         """Stop the job from running, if it has not started."""
         with self._lock:
-            if self._state is _State.QUEUED:
-                self._state = _State.WITHDRAWN
+            if self._state is _QUEUED:
+                self._state = _WITHDRAWN
 
     def finish(self, outcome: tuple[bool, Any]) -> None:
         """Hand ``(succeeded, value_or_exception)`` to the waiting caller, if any.

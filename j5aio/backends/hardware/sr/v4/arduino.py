@@ -11,9 +11,9 @@ from __future__ import annotations
 
 from typing import ClassVar
 
+import j5aio.backends.hardware.sr.v4.arduino_fw2_codec as codec
 from j5aio.backends.hardware.arduino_gpio import ArduinoGPIOBackend, PinCodec
 from j5aio.backends.hardware.serial_backend import scaled
-from j5aio.backends.hardware.sr.v4 import arduino_fw2_codec as codec
 from j5aio.backends.hardware.transports.readers import read_line
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.boards.sr.v4.arduino import SRArduinoBoard

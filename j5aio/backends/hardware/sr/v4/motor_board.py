@@ -21,8 +21,8 @@ from __future__ import annotations
 
 from typing import ClassVar
 
+import j5aio.backends.hardware.sr.v4.motor_fw3_codec as codec
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
-from j5aio.backends.hardware.sr.v4 import motor_fw3_codec as codec
 from j5aio.backends.hardware.transports.readers import read_line
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.boards.sr.v4.motor_board import MotorBoard

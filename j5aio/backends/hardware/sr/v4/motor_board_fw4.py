@@ -17,9 +17,9 @@ from __future__ import annotations
 
 from typing import ClassVar
 
+import j5aio.backends.hardware.sr.v4.motor_fw3_codec as fw3
+import j5aio.backends.hardware.sr.v4.motor_fw4_codec as codec
 from j5aio import power_hints
-from j5aio.backends.hardware.sr.v4 import motor_fw3_codec as fw3
-from j5aio.backends.hardware.sr.v4 import motor_fw4_codec as codec
 from j5aio.backends.hardware.sr.v4.motor_identify import probe_fw4_identity
 from j5aio.backends.hardware.sr.v4.text_backend import SRTextBackend
 from j5aio.backends.hardware.transports.readers import read_line

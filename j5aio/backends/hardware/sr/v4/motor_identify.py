@@ -19,8 +19,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from j5aio.backends.hardware.sr.v4 import motor_fw3_codec as fw3
-from j5aio.backends.hardware.sr.v4 import motor_fw4_codec as fw4
+import j5aio.backends.hardware.sr.v4.motor_fw3_codec as fw3
+import j5aio.backends.hardware.sr.v4.motor_fw4_codec as fw4
 from j5aio.backends.hardware.transports.readers import read_line, read_lines_until
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.backends.hardware.transports.stream import ByteStream

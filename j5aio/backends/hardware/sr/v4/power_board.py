@@ -13,7 +13,7 @@ from collections.abc import Awaitable, Callable
 from datetime import timedelta
 from typing import ClassVar
 
-from j5aio.backends.hardware.sr.v4 import power_fw3_codec as codec
+import j5aio.backends.hardware.sr.v4.power_fw3_codec as codec
 from j5aio.backends.hardware.transports.usb_link import USBLink
 from j5aio.backends.hardware.usb_backend import USBHardwareBackend
 from j5aio.backends.press_watch import PressWatch

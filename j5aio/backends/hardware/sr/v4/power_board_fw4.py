@@ -16,7 +16,7 @@ from typing import ClassVar
 
 import anyio
 
-from j5aio.backends.hardware.sr.v4 import power_fw4_codec as codec
+import j5aio.backends.hardware.sr.v4.power_fw4_codec as codec
 from j5aio.backends.hardware.sr.v4.text_backend import SRTextBackend
 from j5aio.backends.hardware.sr.v4.text_protocol import Identity, NackError
 from j5aio.backends.hardware.transports.serial_link import SerialLink

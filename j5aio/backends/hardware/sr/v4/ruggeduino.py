@@ -24,10 +24,10 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import ClassVar
 
+import j5aio.backends.hardware.sr.v4.ruggeduino_fw1_codec as codec
 from j5aio.backends.hardware.arduino import ArduinoHardwareBackend
 from j5aio.backends.hardware.arduino_pins import DigitalPinState
 from j5aio.backends.hardware.serial_backend import scaled
-from j5aio.backends.hardware.sr.v4 import ruggeduino_fw1_codec as codec
 from j5aio.backends.hardware.transports.readers import read_line
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.boards.sr.v4.ruggeduino import Ruggeduino

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import ClassVar
 
-from j5aio.backends.hardware.sr.v4 import servo_fw2_codec as codec
+import j5aio.backends.hardware.sr.v4.servo_fw2_codec as codec
 from j5aio.backends.hardware.transports.usb_link import USBLink
 from j5aio.backends.hardware.usb_backend import USBHardwareBackend
 from j5aio.boards.sr.v4.servo_board import ServoBoard

@@ -26,8 +26,8 @@ from collections.abc import Awaitable, Mapping
 from types import MappingProxyType
 from typing import ClassVar, Final
 
+import j5aio.backends.hardware.sr.v4.servo_fw4_codec as codec
 from j5aio.backends.hardware.serial_backend import SerialHardwareBackend
-from j5aio.backends.hardware.sr.v4 import servo_fw4_codec as codec
 from j5aio.backends.hardware.sr.v4.text_protocol import echo_probe
 from j5aio.backends.hardware.transports.readers import read_line
 from j5aio.backends.hardware.transports.serial_link import SerialLink

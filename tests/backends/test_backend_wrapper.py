@@ -1,0 +1,123 @@
+"""The wrapper round every interface coroutine: its signature is read only when it is needed."""
+
+from __future__ import annotations
+
+import inspect
+import logging
+from collections.abc import Iterator, Sequence
+from typing import Any
+
+import pytest
+
+from j5aio.backends.backend import CALL_OBSERVERS, Backend
+from j5aio.boards.board import Board
+from j5aio.components.component import Component, Interface
+from j5aio.components.led import LEDInterface
+
+
+class _Light(Component):
+    def __init__(self, identifier: int, backend: LEDInterface) -> None:
+        self._identifier = identifier
+
+    @property
+    def identifier(self) -> int:
+        return self._identifier
+
+    @classmethod
+    def interface_class(cls) -> type[Interface]:
+        return LEDInterface
+
+
+class _LightBoard(Board):
+    name = "Light Board"
+
+    @staticmethod
+    def supported_components() -> set[type[Component]]:
+        return {_Light}
+
+    async def make_safe(self) -> None:
+        pass
+
+
+def _make_backend_class() -> type[Any]:
+    class LightBackend(LEDInterface, Backend):
+        board = _LightBoard
+
+        def __init__(self) -> None:
+            self.states: dict[int, bool] = {}
+
+        @classmethod
+        async def discover(cls) -> Sequence[Board]:
+            return []
+
+        @property
+        def firmware_version(self) -> str | None:
+            return None
+
+        async def get_led_state(self, identifier: int) -> bool:
+            return self.states.get(identifier, False)
+
+        async def set_led_state(self, identifier: int, state: bool) -> None:
+            self.states[identifier] = state
+
+    return LightBackend
+
+
+@pytest.fixture
+def calls() -> Iterator[list[tuple[Any, ...]]]:
+    seen: list[tuple[Any, ...]] = []
+
+    def observer(*call: Any) -> None:
+        seen.append(call)
+
+    CALL_OBSERVERS.append(observer)
+    try:
+        yield seen
+    finally:
+        CALL_OBSERVERS.remove(observer)
+
+
+def test_making_a_backend_class_reads_no_signature(monkeypatch: pytest.MonkeyPatch) -> None:
+    read: list[object] = []
+    real_signature = inspect.signature
+
+    def counting_signature(target: Any, *args: Any, **kwargs: Any) -> inspect.Signature:
+        read.append(target)
+        return real_signature(target, *args, **kwargs)
+
+    monkeypatch.setattr(inspect, "signature", counting_signature)
+    backend_class = _make_backend_class()
+    assert read == []
+    assert getattr(backend_class.set_led_state, "__j5aio_logged__", False)
+
+
+async def test_a_plain_call_reads_no_signature(
+    monkeypatch: pytest.MonkeyPatch, calls: list[tuple[Any, ...]]
+) -> None:
+    backend = _make_backend_class()()
+    monkeypatch.setattr(inspect, "signature", None)  # any use would fail the call
+    await backend.set_led_state(1, True)
+    assert calls == [(backend, "set_led_state", (1, True), None, None)]
+
+
+async def test_keyword_calls_are_observed_in_order_every_time(
+    calls: list[tuple[Any, ...]],
+) -> None:
+    backend = _make_backend_class()()
+    await backend.set_led_state(state=True, identifier=2)
+    await backend.set_led_state(state=False, identifier=3)  # the signature read once, kept
+    assert [call[2] for call in calls] == [(2, True), (3, False)]
+
+
+async def test_debug_log_names_the_arguments_of_each_call(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    backend = _make_backend_class()()
+    with caplog.at_level(logging.DEBUG):
+        await backend.set_led_state(4, True)
+        assert await backend.get_led_state(identifier=4) is True
+        await backend.set_led_state(4, state=False)
+    messages = [record.getMessage() for record in caplog.records]
+    assert "set_led_state(identifier=4, state=True)" in messages
+    assert "get_led_state(identifier=4) -> True" in messages
+    assert "set_led_state(identifier=4, state=False)" in messages
