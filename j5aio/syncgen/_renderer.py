@@ -7,7 +7,7 @@ import inspect
 import math
 import types
 import typing
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -45,7 +45,15 @@ class _Renderer:
         self,
         discovery: Discovery,
         external: Mapping[type, tuple[str, str]] | None = None,
+        facade: Sequence[type] | None = None,
     ) -> None:
+        """Render for the classes of ``discovery``.
+
+        :param external: core class -> (module, name) of wrappers defined elsewhere.
+        :param facade: every class of the facade being generated, when it is written as
+            several modules (``discovery`` holding those of one); the classes of
+            ``discovery`` by default.
+        """
         self.discovery = discovery
         self.public_only = not discovery.scope.is_core
         self.wrapped: dict[type, str] = {}
@@ -54,6 +62,7 @@ class _Renderer:
                 raise RuntimeError(f"two wrapped classes are called {cls.__name__}")
             self.wrapped[cls] = cls.__name__
         self.external = {k: v for k, v in (external or {}).items() if k not in self.wrapped}
+        self.facade: list[type] = list(discovery.classes if facade is None else facade)
         self.module_aliases: dict[str, str] = {}
         self.name_imports: dict[str, str] = {}  # name -> module
         self.typevars: dict[typing.TypeVar | _SyncVar, str] = {}
@@ -61,6 +70,8 @@ class _Renderer:
         self.typevar_defs: dict[str, str] = {}
         self.namespace = _Namespace()
         self.used_typing: set[str] = set()
+        self.exported: list[str] = []
+        """The public names of the module written (once it is)."""
 
     # --- references ---------------------------------------------------------------
 
