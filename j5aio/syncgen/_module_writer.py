@@ -235,7 +235,7 @@ def _assemble(
 def render_core(discovery: Discovery) -> dict[str, str]:
     """Return j5aio's own facade as file name -> source: one module per family, and the index.
 
-    The families are those of :func:`~j5aio.syncgen._scope.core_family`. A family's module
+    The families are those of :func:`j5aio.syncgen.core_family`. A family's module
     imports those of its classes' bases; it refers to the other families' wrappers through
     their modules, imported when first used. The index (``__init__.py``) lists every
     public name, each imported from its family's module on first use, and tells

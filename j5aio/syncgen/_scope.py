@@ -42,7 +42,13 @@ CORE_FAMILIES: tuple[tuple[str, str], ...] = (
 
 
 def core_family(module: str) -> str:
-    """The family (see :data:`CORE_FAMILIES`) of the classes defined in ``module``."""
+    """The family of the classes defined in ``module``: the facade's module that wraps them.
+
+    Each family is a module of j5aio's facade: ``"sr"`` for Student Robotics' boards,
+    ``"sb"`` for SourceBots', ``"arduino"``, ``"vision"`` (the camera board, its marker
+    camera, the position tracker), ``"components"``, and ``"robot"`` for the rest (robots,
+    environments, and boards and components in general).
+    """
     for prefix, family in CORE_FAMILIES:
         if module == prefix or module.startswith(prefix + "."):
             return family
