@@ -44,8 +44,10 @@ no wrapper contains logic of its own.
 
 _FAMILY_DESCRIPTIONS = {
     "arduino": "the Arduino boards",
-    "components": "the components",
-    "robot": "the robots, environments, and boards and components in general",
+    "components": "the components of every kit's boards",
+    "environment": "the environments",
+    "fw4": "the components of firmware 4's boards and of the KCH",
+    "robot": "the robots, and boards and components in general",
     "sb": "SourceBots' boards",
     "sr": "Student Robotics' boards",
     "vision": "the camera board, its marker camera and the position tracker",
@@ -250,8 +252,12 @@ def render_core(discovery: Discovery) -> dict[str, str]:
     for family, classes in families.items():
         part = Discovery(
             classes=classes,
-            environments=discovery.environments if family == "robot" else {},
-            functions=discovery.functions if family == "robot" else [],
+            environments={
+                name: where
+                for name, where in discovery.environments.items()
+                if core_family(where[0]) == family
+            },
+            functions=[f for f in discovery.functions if core_family(f.__module__) == family],
             scope=discovery.scope,
         )
         external = {

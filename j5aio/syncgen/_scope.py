@@ -27,7 +27,9 @@ CORE_OUTPUT = Path(__file__).resolve().parent.parent / "sync" / "_generated"
 #: whose module (or package) holds the class's module; every other class is in
 #: ``"robot"``, with the robots, boards and components in general. A program imports the
 #: families of what it uses: a robot that finds its boards needs ``"robot"`` alone, and
-#: one that drives the motors of an SR kit ``"sr"`` and ``"components"`` besides.
+#: one that drives the motors of an SR kit ``"sr"`` and ``"components"`` besides. Each
+#: module imported costs some 0.1 ms besides its classes, so a family is a few modules
+#: that programs use together, not one each.
 CORE_FAMILIES: tuple[tuple[str, str], ...] = (
     ("j5aio.boards.sr", "sr"),
     ("j5aio.boards.sb", "sb"),
@@ -35,8 +37,21 @@ CORE_FAMILIES: tuple[tuple[str, str], ...] = (
     ("j5aio.boards.camera", "vision"),
     ("j5aio.vision", "vision"),
     ("j5aio.components.marker_camera", "vision"),
+    ("j5aio.backends", "environment"),
+    ("j5aio.environments", "environment"),
     ("j5aio.components.component", "robot"),
     ("j5aio.components.identified", "robot"),
+    # the components of firmware 4's boards and of the KCH, beside those of every kit
+    ("j5aio.components.monitored_motor", "fw4"),
+    ("j5aio.components.protected_power_output", "fw4"),
+    ("j5aio.components.pulse_servo", "fw4"),
+    ("j5aio.components.fan", "fw4"),
+    ("j5aio.components.flag", "fw4"),
+    ("j5aio.components.flashing_led", "fw4"),
+    ("j5aio.components.rgb_led", "fw4"),
+    ("j5aio.components.supply_sensor", "fw4"),
+    ("j5aio.components.temperature_sensor", "fw4"),
+    ("j5aio.components.voltage_sensor", "fw4"),
     ("j5aio.components", "components"),
 )
 
@@ -46,8 +61,9 @@ def core_family(module: str) -> str:
 
     Each family is a module of j5aio's facade: ``"sr"`` for Student Robotics' boards,
     ``"sb"`` for SourceBots', ``"arduino"``, ``"vision"`` (the camera board, its marker
-    camera, the position tracker), ``"components"``, and ``"robot"`` for the rest (robots,
-    environments, and boards and components in general).
+    camera, the position tracker), ``"environment"``, ``"components"`` (those of every
+    kit), ``"fw4"`` (those of firmware 4's boards and the KCH), and ``"robot"`` for the
+    rest (the robots, and boards and components in general).
     """
     for prefix, family in CORE_FAMILIES:
         if module == prefix or module.startswith(prefix + "."):

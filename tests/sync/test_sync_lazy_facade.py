@@ -125,10 +125,10 @@ def test_wrapping_an_object_imports_the_module_of_its_wrapper() -> None:
     loaded = _run(
         "import sys\n"
         "from j5aio.sync import wrapping, _generated\n"
-        "from j5aio.components.fan import Fan\n"
-        "fan = Fan.__new__(Fan)\n"
+        "from j5aio.components.motor import Motor\n"
+        "motor = Motor.__new__(Motor)\n"
         + _families("'before'")
-        + "face = wrapping.wrap(fan)\n"
+        + "face = wrapping.wrap(motor)\n"
         + _families("type(face).__module__")
         + "wrapping.registered()\n"
         + _families("'all'")
@@ -137,7 +137,7 @@ def test_wrapping_an_object_imports_the_module_of_its_wrapper() -> None:
     assert before == "[] before"
     assert after == "['components', 'robot'] j5aio.sync._generated.components"
     assert everything == (
-        "['arduino', 'components', 'robot', 'sb', 'sr', 'vision'] all"
+        "['arduino', 'components', 'environment', 'fw4', 'robot', 'sb', 'sr', 'vision'] all"
     )
 
 

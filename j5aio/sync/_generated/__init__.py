@@ -19,43 +19,43 @@ if TYPE_CHECKING:
     from j5aio.sync._generated.arduino import ArduinoUno as ArduinoUno
     from j5aio.sync._generated.arduino import UltrasoundSensors as UltrasoundSensors
     from j5aio.sync._generated.components import LED as LED
-    from j5aio.sync._generated.components import RGBLED as RGBLED
     from j5aio.sync._generated.components import BatterySensor as BatterySensor
     from j5aio.sync._generated.components import Button as Button
     from j5aio.sync._generated.components import DistanceSensor as DistanceSensor
-    from j5aio.sync._generated.components import Fan as Fan
-    from j5aio.sync._generated.components import Flag as Flag
-    from j5aio.sync._generated.components import FlashingLED as FlashingLED
     from j5aio.sync._generated.components import GPIOPin as GPIOPin
-    from j5aio.sync._generated.components import MonitoredMotor as MonitoredMotor
     from j5aio.sync._generated.components import Motor as Motor
     from j5aio.sync._generated.components import Piezo as Piezo
     from j5aio.sync._generated.components import PowerOutput as PowerOutput
     from j5aio.sync._generated.components import PowerOutputGroup as PowerOutputGroup
-    from j5aio.sync._generated.components import ProtectedPowerOutput as ProtectedPowerOutput
-    from j5aio.sync._generated.components import PulseServo as PulseServo
     from j5aio.sync._generated.components import Rangefinder as Rangefinder
     from j5aio.sync._generated.components import Servo as Servo
     from j5aio.sync._generated.components import StringCommandComponent as StringCommandComponent
-    from j5aio.sync._generated.components import SupplySensor as SupplySensor
-    from j5aio.sync._generated.components import TemperatureSensor as TemperatureSensor
     from j5aio.sync._generated.components import UltrasoundSensor as UltrasoundSensor
-    from j5aio.sync._generated.components import VoltageSensor as VoltageSensor
-    from j5aio.sync._generated.robot import CONSOLE_ENVIRONMENT as CONSOLE_ENVIRONMENT
-    from j5aio.sync._generated.robot import HARDWARE_ENVIRONMENT as HARDWARE_ENVIRONMENT
+    from j5aio.sync._generated.environment import CONSOLE_ENVIRONMENT as CONSOLE_ENVIRONMENT
+    from j5aio.sync._generated.environment import HARDWARE_ENVIRONMENT as HARDWARE_ENVIRONMENT
+    from j5aio.sync._generated.environment import Environment as Environment
+    from j5aio.sync._generated.environment import console_environment as console_environment
+    from j5aio.sync._generated.environment import get_default_environment as get_default_environment
+    from j5aio.sync._generated.environment import get_environment as get_environment
+    from j5aio.sync._generated.environment import hardware_environment as hardware_environment
+    from j5aio.sync._generated.environment import simulated_environment as simulated_environment
+    from j5aio.sync._generated.fw4 import RGBLED as RGBLED
+    from j5aio.sync._generated.fw4 import Fan as Fan
+    from j5aio.sync._generated.fw4 import Flag as Flag
+    from j5aio.sync._generated.fw4 import FlashingLED as FlashingLED
+    from j5aio.sync._generated.fw4 import MonitoredMotor as MonitoredMotor
+    from j5aio.sync._generated.fw4 import ProtectedPowerOutput as ProtectedPowerOutput
+    from j5aio.sync._generated.fw4 import PulseServo as PulseServo
+    from j5aio.sync._generated.fw4 import SupplySensor as SupplySensor
+    from j5aio.sync._generated.fw4 import TemperatureSensor as TemperatureSensor
+    from j5aio.sync._generated.fw4 import VoltageSensor as VoltageSensor
     from j5aio.sync._generated.robot import BaseRobot as BaseRobot
     from j5aio.sync._generated.robot import Board as Board
     from j5aio.sync._generated.robot import BoardGroup as BoardGroup
     from j5aio.sync._generated.robot import Component as Component
     from j5aio.sync._generated.robot import DerivedComponent as DerivedComponent
-    from j5aio.sync._generated.robot import Environment as Environment
     from j5aio.sync._generated.robot import IdentifiedComponent as IdentifiedComponent
     from j5aio.sync._generated.robot import KitRobot as KitRobot
-    from j5aio.sync._generated.robot import console_environment as console_environment
-    from j5aio.sync._generated.robot import get_default_environment as get_default_environment
-    from j5aio.sync._generated.robot import get_environment as get_environment
-    from j5aio.sync._generated.robot import hardware_environment as hardware_environment
-    from j5aio.sync._generated.robot import simulated_environment as simulated_environment
     from j5aio.sync._generated.sb import SBArduino2024Board as SBArduino2024Board
     from j5aio.sync._generated.sb import SBArduinoBoard as SBArduinoBoard
     from j5aio.sync._generated.sb import SBServoBoard as SBServoBoard
@@ -144,45 +144,49 @@ if not TYPE_CHECKING:
         ],
         "j5aio.sync._generated.components": [
             "LED",
-            "RGBLED",
             "BatterySensor",
             "Button",
             "DistanceSensor",
-            "Fan",
-            "Flag",
-            "FlashingLED",
             "GPIOPin",
-            "MonitoredMotor",
             "Motor",
             "Piezo",
             "PowerOutput",
             "PowerOutputGroup",
-            "ProtectedPowerOutput",
-            "PulseServo",
             "Rangefinder",
             "Servo",
             "StringCommandComponent",
-            "SupplySensor",
-            "TemperatureSensor",
             "UltrasoundSensor",
-            "VoltageSensor",
         ],
-        "j5aio.sync._generated.robot": [
+        "j5aio.sync._generated.environment": [
             "CONSOLE_ENVIRONMENT",
             "HARDWARE_ENVIRONMENT",
-            "BaseRobot",
-            "Board",
-            "BoardGroup",
-            "Component",
-            "DerivedComponent",
             "Environment",
-            "IdentifiedComponent",
-            "KitRobot",
             "console_environment",
             "get_default_environment",
             "get_environment",
             "hardware_environment",
             "simulated_environment",
+        ],
+        "j5aio.sync._generated.fw4": [
+            "RGBLED",
+            "Fan",
+            "Flag",
+            "FlashingLED",
+            "MonitoredMotor",
+            "ProtectedPowerOutput",
+            "PulseServo",
+            "SupplySensor",
+            "TemperatureSensor",
+            "VoltageSensor",
+        ],
+        "j5aio.sync._generated.robot": [
+            "BaseRobot",
+            "Board",
+            "BoardGroup",
+            "Component",
+            "DerivedComponent",
+            "IdentifiedComponent",
+            "KitRobot",
         ],
         "j5aio.sync._generated.sb": [
             "SBArduino2024Board",
@@ -221,27 +225,31 @@ _register_modules_later({
         ("j5aio.components.battery_sensor", "BatterySensor"),
         ("j5aio.components.button", "Button"),
         ("j5aio.components.derived.ultrasound", "UltrasoundSensor"),
-        ("j5aio.components.fan", "Fan"),
-        ("j5aio.components.flag", "Flag"),
         ("j5aio.components.gpio_pin", "GPIOPin"),
         ("j5aio.components.led", "LED"),
         ("j5aio.components.motor", "Motor"),
         ("j5aio.components.piezo", "Piezo"),
         ("j5aio.components.power_output", "PowerOutput"),
-        ("j5aio.components.rgb_led", "RGBLED"),
         ("j5aio.components.servo", "Servo"),
         ("j5aio.components.string_command", "StringCommandComponent"),
+        ("j5aio.components.distance_sensor", "DistanceSensor"),
+    ],
+    "j5aio.sync._generated.environment": [
+        ("j5aio.backends.environment", "Environment"),
+    ],
+    "j5aio.sync._generated.fw4": [
+        ("j5aio.components.fan", "Fan"),
+        ("j5aio.components.flag", "Flag"),
+        ("j5aio.components.rgb_led", "RGBLED"),
         ("j5aio.components.supply_sensor", "SupplySensor"),
         ("j5aio.components.temperature_sensor", "TemperatureSensor"),
         ("j5aio.components.voltage_sensor", "VoltageSensor"),
-        ("j5aio.components.distance_sensor", "DistanceSensor"),
         ("j5aio.components.flashing_led", "FlashingLED"),
         ("j5aio.components.monitored_motor", "MonitoredMotor"),
         ("j5aio.components.protected_power_output", "ProtectedPowerOutput"),
         ("j5aio.components.pulse_servo", "PulseServo"),
     ],
     "j5aio.sync._generated.robot": [
-        ("j5aio.backends.environment", "Environment"),
         ("j5aio.robot", "BaseRobot"),
         ("j5aio.boards.board", "Board"),
         ("j5aio.boards.board_group", "BoardGroup"),

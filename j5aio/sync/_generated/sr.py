@@ -40,6 +40,7 @@ if TYPE_CHECKING:
     import j5aio.components.gpio_pin as _components_gpio_pin
     import j5aio.components.motor as _components_motor
     import j5aio.numbered as _numbered
+    import j5aio.sync._generated.fw4 as _sync_generated_fw4
 else:
     _lazy_modules(globals(), {
         "_backends_backend": "j5aio.backends.backend",
@@ -56,6 +57,7 @@ else:
         "_components_gpio_pin": "j5aio.components.gpio_pin",
         "_components_motor": "j5aio.components.motor",
         "_numbered": "j5aio.numbered",
+        "_sync_generated_fw4": "j5aio.sync._generated.fw4",
     })
 
 __all__ = [
@@ -124,14 +126,14 @@ class KCHBoard(_sync_generated_robot.Board):
     LED_COUNT: ClassVar[int] = 3
 
     @property
-    def leds(self) -> tuple[_sync_generated_components.RGBLED, ...]:
+    def leds(self) -> tuple[_sync_generated_fw4.RGBLED, ...]:
         """The user LEDs A, B and C (0, 1 and 2)."""
-        return cast("tuple[_sync_generated_components.RGBLED, ...]", _wrap_kept(self, "leds", self._core.leds))
+        return cast("tuple[_sync_generated_fw4.RGBLED, ...]", _wrap_kept(self, "leds", self._core.leds))
 
     @property
-    def start_led(self) -> _sync_generated_components.FlashingLED:
+    def start_led(self) -> _sync_generated_fw4.FlashingLED:
         """The start LED, which flashes while the robot waits to be started."""
-        return cast("_sync_generated_components.FlashingLED", _wrap_kept(self, "start_led", self._core.start_led))
+        return cast("_sync_generated_fw4.FlashingLED", _wrap_kept(self, "start_led", self._core.start_led))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -388,14 +390,14 @@ class MotorBoardFw4(MotorBoard):
     name: ClassVar[str] = 'Student Robotics v4 Motor Board (firmware 4)'
 
     @property
-    def motors(self) -> _numbered.NumberedComponents[_sync_generated_components.MonitoredMotor]:
+    def motors(self) -> _numbered.NumberedComponents[_sync_generated_fw4.MonitoredMotor]:
         """The motors, numbered 0 and 1."""
-        return cast("_numbered.NumberedComponents[_sync_generated_components.MonitoredMotor]", _wrap_kept(self, "motors", self._core.motors))
+        return cast("_numbered.NumberedComponents[_sync_generated_fw4.MonitoredMotor]", _wrap_kept(self, "motors", self._core.motors))
 
     @property
-    def input_voltage_sensor(self) -> _sync_generated_components.VoltageSensor:
+    def input_voltage_sensor(self) -> _sync_generated_fw4.VoltageSensor:
         """The voltmeter on the board's power input."""
-        return cast("_sync_generated_components.VoltageSensor", _wrap_kept(self, "input_voltage_sensor", self._core.input_voltage_sensor))
+        return cast("_sync_generated_fw4.VoltageSensor", _wrap_kept(self, "input_voltage_sensor", self._core.input_voltage_sensor))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -440,29 +442,29 @@ class PowerBoardFw4(PowerBoard):
         return cast("PowerBoardOutputGroup", _wrap_kept(self, "outputs", self._core.outputs))
 
     @property
-    def run_led(self) -> _sync_generated_components.FlashingLED:
+    def run_led(self) -> _sync_generated_fw4.FlashingLED:
         """The run LED (LED 0), which can flash by itself."""
-        return cast("_sync_generated_components.FlashingLED", _wrap_kept(self, "run_led", self._core.run_led))
+        return cast("_sync_generated_fw4.FlashingLED", _wrap_kept(self, "run_led", self._core.run_led))
 
     @property
-    def error_led(self) -> _sync_generated_components.FlashingLED:
+    def error_led(self) -> _sync_generated_fw4.FlashingLED:
         """The error LED (LED 1), which can flash by itself."""
-        return cast("_sync_generated_components.FlashingLED", _wrap_kept(self, "error_led", self._core.error_led))
+        return cast("_sync_generated_fw4.FlashingLED", _wrap_kept(self, "error_led", self._core.error_led))
 
     @property
-    def temperature_sensor(self) -> _sync_generated_components.TemperatureSensor:
+    def temperature_sensor(self) -> _sync_generated_fw4.TemperatureSensor:
         """The board's thermometer."""
-        return cast("_sync_generated_components.TemperatureSensor", _wrap_kept(self, "temperature_sensor", self._core.temperature_sensor))
+        return cast("_sync_generated_fw4.TemperatureSensor", _wrap_kept(self, "temperature_sensor", self._core.temperature_sensor))
 
     @property
-    def fan(self) -> _sync_generated_components.Fan:
+    def fan(self) -> _sync_generated_fw4.Fan:
         """The board's fan, which runs above 40 °C."""
-        return cast("_sync_generated_components.Fan", _wrap_kept(self, "fan", self._core.fan))
+        return cast("_sync_generated_fw4.Fan", _wrap_kept(self, "fan", self._core.fan))
 
     @property
-    def regulator_sensor(self) -> _sync_generated_components.VoltageSensor:
+    def regulator_sensor(self) -> _sync_generated_fw4.VoltageSensor:
         """The voltmeter on the 5 V regulator's output."""
-        return cast("_sync_generated_components.VoltageSensor", _wrap_kept(self, "regulator_sensor", self._core.regulator_sensor))
+        return cast("_sync_generated_fw4.VoltageSensor", _wrap_kept(self, "regulator_sensor", self._core.regulator_sensor))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -556,24 +558,24 @@ class ServoBoardFw4(ServoBoard):
     WATCHDOG_FAILED: ClassVar[int] = 1
 
     @property
-    def servos(self) -> tuple[_sync_generated_components.PulseServo, ...]:
+    def servos(self) -> tuple[_sync_generated_fw4.PulseServo, ...]:
         """The servos, numbered from 0."""
-        return cast("tuple[_sync_generated_components.PulseServo, ...]", _wrap_kept(self, "servos", self._core.servos))
+        return cast("tuple[_sync_generated_fw4.PulseServo, ...]", _wrap_kept(self, "servos", self._core.servos))
 
     @property
-    def supply(self) -> _sync_generated_components.SupplySensor:
+    def supply(self) -> _sync_generated_fw4.SupplySensor:
         """The servo rail's voltage and current."""
-        return cast("_sync_generated_components.SupplySensor", _wrap_kept(self, "supply", self._core.supply))
+        return cast("_sync_generated_fw4.SupplySensor", _wrap_kept(self, "supply", self._core.supply))
 
     @property
-    def power_good(self) -> _sync_generated_components.Flag:
+    def power_good(self) -> _sync_generated_fw4.Flag:
         """Raised while the servo rail's regulator reports good power."""
-        return cast("_sync_generated_components.Flag", _wrap_kept(self, "power_good", self._core.power_good))
+        return cast("_sync_generated_fw4.Flag", _wrap_kept(self, "power_good", self._core.power_good))
 
     @property
-    def watchdog_failed(self) -> _sync_generated_components.Flag:
+    def watchdog_failed(self) -> _sync_generated_fw4.Flag:
         """Raised when the board lost touch with its pulse generator (often: no 12 V)."""
-        return cast("_sync_generated_components.Flag", _wrap_kept(self, "watchdog_failed", self._core.watchdog_failed))
+        return cast("_sync_generated_fw4.Flag", _wrap_kept(self, "watchdog_failed", self._core.watchdog_failed))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
