@@ -91,6 +91,16 @@ def render_module(
     return _assemble(renderer, bodies, header)
 
 
+def _from_import(module: str, names: list[str], indent: str) -> list[str]:
+    """``from module import names`` as isort writes it (wrapped if the line is too long)."""
+    ordered = sorted(names, key=_import_order)
+    line = f"{indent}from {module} import {', '.join(ordered)}"
+    if len(line) <= LINE_LENGTH:
+        return [line]
+    wrapped = [f"{indent}    {name}," for name in ordered]
+    return [f"{indent}from {module} import (", *wrapped, f"{indent})"]
+
+
 def _write_class(renderer: _Renderer, cls: type, tables: dict[type, dict[str, str]]) -> str:
     """The source of the wrapper of ``cls``; its members go into ``tables`` for subclasses."""
     inherited: dict[str, str] = {}
@@ -106,7 +116,9 @@ def _assemble(
 ) -> str:
     """The module holding the wrapper classes ``bodies`` (and the discovery's functions).
 
-    :param eager: modules imported when the module is (those of its classes' bases).
+    :param eager: the wrappers of :attr:`_Renderer.wrapper_imports` that the module
+        imports when it is imported (its classes' bases); type checkers alone import the
+        others.
     """
     discovery = renderer.discovery
     # j5aio's own facade registers every class by name, so that importing it imports no
@@ -149,15 +161,21 @@ def _assemble(
     # In j5aio's own facade every core module is imported when first used (a definition
     # that needs one, a class constant, say, imports it then). A kit's module imports
     # them all, through public names only.
-    eager = {renderer.module_ref(module) for module in eager} | {
+    eager_modules = {
         renderer.module_ref(renderer.home(cls)) for cls in discovery.classes if cls not in later
     }
     lazy = {
         alias: module
         for module, alias in sorted(renderer.module_aliases.items())
-        if alias not in eager and discovery.scope.is_core
+        if alias not in eager_modules and discovery.scope.is_core
     }
-    if lazy or environment_decls:
+    # The wrappers of the facade's other modules: the bases at once, the others for type
+    # checkers alone (their objects are wrapped through the registry, never by name).
+    wrappers_now: dict[str, list[str]] = {}
+    wrappers_typed: dict[str, list[str]] = {}
+    for name, module in sorted(renderer.wrapper_imports.items()):
+        (wrappers_now if name in eager else wrappers_typed).setdefault(module, []).append(name)
+    if lazy or environment_decls or wrappers_typed:
         renderer.used_typing.add("TYPE_CHECKING")
     future = "from __future__ import annotations"
     out = [header.rstrip("\n"), "", future, ""]
@@ -175,6 +193,8 @@ def _assemble(
             out.append(f"import {module} as {alias}")
     if lazy:
         out.append("from j5aio._lazy import lazy_modules as _lazy_modules")
+    for module, imported in sorted(wrappers_now.items()):
+        out += _from_import(module, imported, "")
     used = "\n".join([*bodies, *functions, *environment_lines])
     used = "\n".join([used, *registrations])
     for name in ("SyncWrapper", "adopt", "adopt_into", "call", "register", "register_later",
@@ -182,9 +202,11 @@ def _assemble(
         if re.search(rf"\b_{name}\b", used):
             out.append(f"from j5aio.sync.wrapping import {name} as _{name}")
     out.append("")
-    if lazy or environment_decls:
+    if lazy or environment_decls or wrappers_typed:
         out.append("if TYPE_CHECKING:")
         out += [f"    import {module} as {alias}" for alias, module in lazy.items()]
+        for module, imported in sorted(wrappers_typed.items()):
+            out += _from_import(module, imported, "    ")
         out += environment_decls
         if lazy:
             out.append("else:")
@@ -238,8 +260,8 @@ def render_core(discovery: Discovery) -> dict[str, str]:
     """Return j5aio's own facade as file name -> source: one module per family, and the index.
 
     The families are those of :func:`j5aio.syncgen.core_family`. A family's module
-    imports those of its classes' bases; it refers to the other families' wrappers through
-    their modules, imported when first used. The index (``__init__.py``) lists every
+    imports its classes' bases from their families' modules, and the other families'
+    wrappers that it names only for type checkers. The index (``__init__.py``) lists every
     public name, each imported from its family's module on first use, and tells
     :mod:`j5aio.sync.wrapping` which module wraps each core class, so that wrapping an
     object of a family not yet imported imports it.
@@ -265,7 +287,9 @@ def render_core(discovery: Discovery) -> dict[str, str]:
             for cls, other in home.items()
             if other != family
         }
-        renderers[family] = _Renderer(part, external, facade=discovery.classes)
+        renderers[family] = _Renderer(
+            part, external, facade=discovery.classes, external_by_name=True,
+        )
     tables: dict[type, dict[str, str]] = {}
     bodies: dict[str, list[str]] = {family: [] for family in families}
     for cls in discovery.classes:  # (bases first: a subclass leaves out what they define)
@@ -274,7 +298,7 @@ def render_core(discovery: Discovery) -> dict[str, str]:
     sources: dict[str, str] = {}
     for family, renderer in sorted(renderers.items()):
         eager = {
-            f"{CORE_PACKAGE}.{home[base]}"
+            base.__name__
             for cls in families[family]
             for base in cls.__bases__
             if base in home and home[base] != family

@@ -46,6 +46,8 @@ class _Renderer:
         discovery: Discovery,
         external: Mapping[type, tuple[str, str]] | None = None,
         facade: Sequence[type] | None = None,
+        *,
+        external_by_name: bool = False,
     ) -> None:
         """Render for the classes of ``discovery``.
 
@@ -53,6 +55,9 @@ class _Renderer:
         :param facade: every class of the facade being generated, when it is written as
             several modules (``discovery`` holding those of one); the classes of
             ``discovery`` by default.
+        :param external_by_name: refer to the wrappers of ``external`` by their names,
+            imported from their modules (:attr:`wrapper_imports`), rather than through
+            their modules: the other modules of a facade written as several.
         """
         self.discovery = discovery
         self.public_only = not discovery.scope.is_core
@@ -63,6 +68,9 @@ class _Renderer:
             self.wrapped[cls] = cls.__name__
         self.external = {k: v for k, v in (external or {}).items() if k not in self.wrapped}
         self.facade: list[type] = list(discovery.classes if facade is None else facade)
+        self.external_by_name = external_by_name
+        self.wrapper_imports: dict[str, str] = {}
+        """Name -> module of each wrapper of ``external`` referred to by name."""
         self.module_aliases: dict[str, str] = {}
         self.name_imports: dict[str, str] = {}  # name -> module
         self.typevars: dict[typing.TypeVar | _SyncVar, str] = {}
@@ -98,7 +106,15 @@ class _Renderer:
         if local is not None:
             return local
         module, name = self.external[cls]
+        if self.external_by_name:
+            self.wrapper_imports[name] = module
+            return name
         return f"{self.module_ref(module)}.{name}"
+
+    @property
+    def external_names(self) -> set[str]:
+        """The names of the wrappers of ``external``."""
+        return {name for _, name in self.external.values()}
 
     def name_ref(self, obj: Any) -> str:
         module: str = self.home(obj)
@@ -109,6 +125,7 @@ class _Renderer:
         if (
             module.startswith("j5aio")
             or top in self.wrapped.values()
+            or (self.external_by_name and top in self.external_names)
             or (self.public_only and module.startswith(self.discovery.scope.modules))
         ):
             return f"{self.module_ref(module)}.{name}"

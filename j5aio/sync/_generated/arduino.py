@@ -12,8 +12,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, ClassVar, cast
 
-import j5aio.sync._generated.robot as _sync_generated_robot
 from j5aio._lazy import lazy_modules as _lazy_modules
+from j5aio.sync._generated.robot import Board
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt_into as _adopt_into
 from j5aio.sync.wrapping import call as _call
@@ -30,7 +30,7 @@ if TYPE_CHECKING:
     import j5aio.components.component as _components_component
     import j5aio.components.gpio_pin as _components_gpio_pin
     import j5aio.numbered as _numbered
-    import j5aio.sync._generated.components as _sync_generated_components
+    from j5aio.sync._generated.components import LED, GPIOPin, UltrasoundSensor
 else:
     _lazy_modules(globals(), {
         "_backends_backend": "j5aio.backends.backend",
@@ -40,7 +40,6 @@ else:
         "_components_component": "j5aio.components.component",
         "_components_gpio_pin": "j5aio.components.gpio_pin",
         "_numbered": "j5aio.numbered",
-        "_sync_generated_components": "j5aio.sync._generated.components",
     })
 
 __all__ = [
@@ -68,16 +67,16 @@ class UltrasoundSensors(_SyncWrapper):
     def __init__(self, board: ArduinoUno) -> None:
         _adopt_into(self, _boards_arduino_ultrasound.UltrasoundSensors(_unwrap(board)))
 
-    def __getitem__(self, pins: tuple[int, int]) -> _sync_generated_components.UltrasoundSensor:
+    def __getitem__(self, pins: tuple[int, int]) -> UltrasoundSensor:
         """Return an ultrasound sensor on the pin pair ``(trigger, echo)``.
 
         :raises TypeError: ``pins`` is not a pair of pin numbers.
         :raises KeyError: a pin number is not a pin of the board.
         """
-        return cast("_sync_generated_components.UltrasoundSensor", _wrap(self._core.__getitem__(pins)))
+        return cast("UltrasoundSensor", _wrap(self._core.__getitem__(pins)))
 
 
-class ArduinoUno(_sync_generated_robot.Board):
+class ArduinoUno(Board):
     """An Arduino Uno: digital pins 2 to 13, analogue pins A0 to A5 and the LED on pin 13.
 
     Pins 0 and 1 carry the serial link to the computer, so they are not offered. Every pin
@@ -112,17 +111,17 @@ class ArduinoUno(_sync_generated_robot.Board):
     ANALOGUE_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_arduino_uno.ArduinoUno.ANALOGUE_PIN_FIRMWARE_MODES
 
     @property
-    def pins(self) -> _numbered.Pins[_sync_generated_components.GPIOPin]:
+    def pins(self) -> _numbered.Pins[GPIOPin]:
         """The GPIO pins, by number or by :class:`AnaloguePin`.
 
         Iterating gives the pins themselves, as in j5; ``pins.keys()`` gives the numbers.
         """
-        return cast("_numbered.Pins[_sync_generated_components.GPIOPin]", _wrap_kept(self, "pins", self._core.pins))
+        return cast("_numbered.Pins[GPIOPin]", _wrap_kept(self, "pins", self._core.pins))
 
     @property
-    def led(self) -> _sync_generated_components.LED:
+    def led(self) -> LED:
         """The LED on the board, wired to digital pin 13."""
-        return cast("_sync_generated_components.LED", _wrap_kept(self, "led", self._core.led))
+        return cast("LED", _wrap_kept(self, "led", self._core.led))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:

@@ -14,8 +14,8 @@ from collections.abc import Iterator, Mapping, Set
 from datetime import timedelta
 from typing import TYPE_CHECKING, Any, ClassVar, Generic, TypeVar, cast
 
-import j5aio.sync._generated.robot as _sync_generated_robot
 from j5aio._lazy import lazy_modules as _lazy_modules
+from j5aio.sync._generated.robot import Component, DerivedComponent, IdentifiedComponent
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt_into as _adopt_into
 from j5aio.sync.wrapping import call as _call
@@ -130,7 +130,7 @@ class PowerOutputGroup(_SyncWrapper, Generic[K]):
         return self._core.__len__()
 
 
-class Rangefinder(_sync_generated_robot.Component):
+class Rangefinder(Component):
     """Anything that measures how far away the nearest object is.
 
     A subclass implements :meth:`distance_mm`; :meth:`distance` gives the same reading in
@@ -159,7 +159,7 @@ class Rangefinder(_sync_generated_robot.Component):
         return _call(self._core.distance)
 
 
-class BatterySensor(_sync_generated_robot.IdentifiedComponent["_components_battery_sensor.BatterySensorInterface"]):
+class BatterySensor(IdentifiedComponent["_components_battery_sensor.BatterySensorInterface"]):
     """A sensor that measures the robot's battery: its voltage and the current drawn.
 
     :param identifier: the number of the sensor on its board.
@@ -192,7 +192,7 @@ class BatterySensor(_sync_generated_robot.IdentifiedComponent["_components_batte
         return _components_battery_sensor.BatterySensor.interface_class()
 
 
-class Button(_sync_generated_robot.IdentifiedComponent["_components_button.ButtonInterface"]):
+class Button(IdentifiedComponent["_components_button.ButtonInterface"]):
     """A button the user can press, such as the start button of a robot.
 
     :param identifier: the number of the button on its board.
@@ -231,7 +231,7 @@ class Button(_sync_generated_robot.IdentifiedComponent["_components_button.Butto
         _call(self._core.wait_until_pressed, timeout)
 
 
-class UltrasoundSensor(_sync_generated_robot.DerivedComponent, Rangefinder):
+class UltrasoundSensor(DerivedComponent, Rangefinder):
     """An ultrasound distance sensor, such as an HC-SR04, wired to two GPIO pins.
 
     The sensor sends a burst of sound when its trigger pin is pulsed and raises its echo
@@ -299,7 +299,7 @@ class UltrasoundSensor(_sync_generated_robot.DerivedComponent, Rangefinder):
         return _call(self._core.distance_mm)
 
 
-class GPIOPin(_sync_generated_robot.IdentifiedComponent["_components_gpio_pin.GPIOPinInterface"]):
+class GPIOPin(IdentifiedComponent["_components_gpio_pin.GPIOPinInterface"]):
     """A general-purpose input/output pin.
 
     A pin works in one *mode* at a time: a hardware mode (:class:`GPIOPinMode`, such as
@@ -327,7 +327,7 @@ class GPIOPin(_sync_generated_robot.IdentifiedComponent["_components_gpio_pin.GP
         identifier: int,
         backend: _components_gpio_pin.GPIOPinInterface | _backends_backend.Backend,
         *,
-        initial_mode: _components_gpio_pin.GPIOPinMode | type[_components_component.DerivedComponent | _sync_generated_robot.DerivedComponent],
+        initial_mode: _components_gpio_pin.GPIOPinMode | type[_components_component.DerivedComponent | DerivedComponent],
         hardware_modes: Set[_components_gpio_pin.GPIOPinMode] = frozenset({_components_gpio_pin.GPIOPinMode.DIGITAL_OUTPUT}),
         firmware_modes: Set[type[_components_component.DerivedComponent]] = frozenset(),
     ) -> None:
@@ -452,7 +452,7 @@ class GPIOPin(_sync_generated_robot.IdentifiedComponent["_components_gpio_pin.GP
         _call(self._core.pwm_write, duty_cycle)
 
 
-class LED(_sync_generated_robot.IdentifiedComponent["_components_led.LEDInterface"]):
+class LED(IdentifiedComponent["_components_led.LEDInterface"]):
     """A light on a board that is either on or off.
 
     Turn it on with ``await led.set_state(True)`` and off with ``await led.set_state(False)``.
@@ -488,7 +488,7 @@ class LED(_sync_generated_robot.IdentifiedComponent["_components_led.LEDInterfac
         return _components_led.LED.interface_class()
 
 
-class Motor(_sync_generated_robot.IdentifiedComponent["_components_motor.MotorInterface"]):
+class Motor(IdentifiedComponent["_components_motor.MotorInterface"]):
     """A DC motor, driven at a power between full reverse (-1) and full forward (1).
 
     ``await motor.set_power(0.5)`` drives forward at half power, ``-1`` drives backwards
@@ -530,7 +530,7 @@ class Motor(_sync_generated_robot.IdentifiedComponent["_components_motor.MotorIn
         return _components_motor.Motor.interface_class()
 
 
-class Piezo(_sync_generated_robot.IdentifiedComponent["_components_piezo.PiezoInterface"]):
+class Piezo(IdentifiedComponent["_components_piezo.PiezoInterface"]):
     """A piezo sounder: a buzzer that plays one pitch at a time.
 
     ``await piezo.buzz(0.5, Note.A6)`` plays an A for half a second.
@@ -595,7 +595,7 @@ class Piezo(_sync_generated_robot.IdentifiedComponent["_components_piezo.PiezoIn
         _components_piezo.Piezo.verify_duration(duration)
 
 
-class PowerOutput(_sync_generated_robot.IdentifiedComponent["_components_power_output.PowerOutputInterface"]):
+class PowerOutput(IdentifiedComponent["_components_power_output.PowerOutputInterface"]):
     """A power output: a supply that can be switched on and off, with a current meter.
 
     :param identifier: the number of the output on its board.
@@ -637,7 +637,7 @@ class PowerOutput(_sync_generated_robot.IdentifiedComponent["_components_power_o
         return _components_power_output.PowerOutput.interface_class()
 
 
-class Servo(_sync_generated_robot.IdentifiedComponent["_components_servo.ServoInterface"]):
+class Servo(IdentifiedComponent["_components_servo.ServoInterface"]):
     """A servo: an actuator that moves to a position and holds it.
 
     Positions run from -1 (one end of its travel) to 1 (the other end). ``None``
@@ -679,7 +679,7 @@ class Servo(_sync_generated_robot.IdentifiedComponent["_components_servo.ServoIn
         return _components_servo.Servo.interface_class()
 
 
-class StringCommandComponent(_sync_generated_robot.IdentifiedComponent["_components_string_command.StringCommandComponentInterface"]):
+class StringCommandComponent(IdentifiedComponent["_components_string_command.StringCommandComponentInterface"]):
     """A raw text channel to a board, for boards that run custom firmware.
 
     ``await cmd.execute("X")`` (or ``await cmd("X")``) sends ``X`` and returns the
@@ -712,7 +712,7 @@ class StringCommandComponent(_sync_generated_robot.IdentifiedComponent["_compone
         return _call(self._core.__call__, command)
 
 
-class DistanceSensor(_sync_generated_robot.IdentifiedComponent["_components_distance_sensor.DistanceSensorInterface"], Rangefinder):
+class DistanceSensor(IdentifiedComponent["_components_distance_sensor.DistanceSensorInterface"], Rangefinder):
     """A distance sensor that a board numbers and reads with one command.
 
     A board lists them as ``distance_sensors``; each reads in millimetres

@@ -43,11 +43,21 @@ if TYPE_CHECKING:
     import j5aio.boards.sr.v4.servo_board as _boards_sr_v4_servo_board
     import j5aio.boards.sr.v4.servo_board_fw4 as _boards_sr_v4_servo_board_fw4
     import j5aio.environments as _environments
-    import j5aio.sync._generated.arduino as _sync_generated_arduino
-    import j5aio.sync._generated.robot as _sync_generated_robot
-    import j5aio.sync._generated.sb as _sync_generated_sb
-    import j5aio.sync._generated.sr as _sync_generated_sr
-    import j5aio.sync._generated.vision as _sync_generated_vision
+    from j5aio.sync._generated.arduino import AllDigitalUno, ArduinoUno
+    from j5aio.sync._generated.robot import Board, BoardGroup
+    from j5aio.sync._generated.sb import SBArduino2024Board, SBArduinoBoard, SBServoBoard
+    from j5aio.sync._generated.sr import (
+        KCHBoard,
+        MotorBoard,
+        MotorBoardFw4,
+        PowerBoard,
+        PowerBoardFw4,
+        Ruggeduino,
+        ServoBoard,
+        ServoBoardFw4,
+        SRArduinoBoard,
+    )
+    from j5aio.sync._generated.vision import CameraBoard
     CONSOLE_ENVIRONMENT: Environment
     """The sync face of ``j5aio.backends.console.env.CONSOLE_ENVIRONMENT``."""
     HARDWARE_ENVIRONMENT: Environment
@@ -75,11 +85,6 @@ else:
         "_boards_sr_v4_servo_board": "j5aio.boards.sr.v4.servo_board",
         "_boards_sr_v4_servo_board_fw4": "j5aio.boards.sr.v4.servo_board_fw4",
         "_environments": "j5aio.environments",
-        "_sync_generated_arduino": "j5aio.sync._generated.arduino",
-        "_sync_generated_robot": "j5aio.sync._generated.robot",
-        "_sync_generated_sb": "j5aio.sync._generated.sb",
-        "_sync_generated_sr": "j5aio.sync._generated.sr",
-        "_sync_generated_vision": "j5aio.sync._generated.vision",
     })
 
 __all__ = [
@@ -93,7 +98,7 @@ __all__ = [
     "simulated_environment",
 ]
 
-SyncBoardT = TypeVar("SyncBoardT", bound="_sync_generated_robot.Board")
+SyncBoardT = TypeVar("SyncBoardT", bound="Board")
 
 
 class Environment(_SyncWrapper):
@@ -174,7 +179,7 @@ class Environment(_SyncWrapper):
 
     def register_lazily(
         self,
-        board: type[_boards_board.Board | _sync_generated_robot.Board],
+        board: type[_boards_board.Board | Board],
         load: Callable[[], type[_backends_backend.Backend]],
         *,
         idle: Callable[[], bool] | None = None,
@@ -201,7 +206,7 @@ class Environment(_SyncWrapper):
 
     def get_backend(
         self,
-        board: type[_boards_board.Board | _sync_generated_robot.Board],
+        board: type[_boards_board.Board | Board],
     ) -> type[_backends_backend.Backend]:
         """Return the (first) backend this environment uses for ``board``.
 
@@ -211,7 +216,7 @@ class Environment(_SyncWrapper):
 
     def backends_for(
         self,
-        board: type[_boards_board.Board | _sync_generated_robot.Board],
+        board: type[_boards_board.Board | Board],
     ) -> tuple[type[_backends_backend.Backend], ...]:
         """Return every backend for ``board`` or a subclass of it, in registration order.
 
@@ -219,7 +224,7 @@ class Environment(_SyncWrapper):
         """
         return self._core.backends_for(_unwrap(board))
 
-    def might_find(self, board: type[_boards_board.Board | _sync_generated_robot.Board]) -> bool:
+    def might_find(self, board: type[_boards_board.Board | Board]) -> bool:
         """Whether :meth:`get_board_group` would ask any backend for ``board`` now.
 
         False when the environment has no backend for ``board`` (or a subclass), or when
@@ -229,128 +234,113 @@ class Environment(_SyncWrapper):
         return self._core.might_find(_unwrap(board))
 
     @overload
-    def get_board_group(
-        self,
-        board: type[SyncBoardT],
-    ) -> _sync_generated_robot.BoardGroup[SyncBoardT]:
+    def get_board_group(self, board: type[SyncBoardT]) -> BoardGroup[SyncBoardT]:
         ...
 
     @overload
     def get_board_group(
         self,
         board: type[_boards_sr_v4_arduino.SRArduinoBoard],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_sr.SRArduinoBoard]:
+    ) -> BoardGroup[SRArduinoBoard]:
         ...
 
     @overload
     def get_board_group(
         self,
         board: type[_boards_sb_arduino_2024.SBArduino2024Board],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_sb.SBArduino2024Board]:
+    ) -> BoardGroup[SBArduino2024Board]:
         ...
 
     @overload
     def get_board_group(
         self,
         board: type[_boards_sb_servo_board.SBServoBoard],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_sb.SBServoBoard]:
+    ) -> BoardGroup[SBServoBoard]:
         ...
 
     @overload
     def get_board_group(
         self,
         board: type[_boards_arduino_all_digital.AllDigitalUno],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_arduino.AllDigitalUno]:
+    ) -> BoardGroup[AllDigitalUno]:
         ...
 
     @overload
     def get_board_group(
         self,
         board: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_sr.MotorBoardFw4]:
+    ) -> BoardGroup[MotorBoardFw4]:
         ...
 
     @overload
     def get_board_group(
         self,
         board: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_sr.PowerBoardFw4]:
+    ) -> BoardGroup[PowerBoardFw4]:
         ...
 
     @overload
     def get_board_group(
         self,
         board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_sr.Ruggeduino]:
+    ) -> BoardGroup[Ruggeduino]:
         ...
 
     @overload
     def get_board_group(
         self,
         board: type[_boards_sb_arduino.SBArduinoBoard],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_sb.SBArduinoBoard]:
+    ) -> BoardGroup[SBArduinoBoard]:
         ...
 
     @overload
     def get_board_group(
         self,
         board: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_sr.ServoBoardFw4]:
+    ) -> BoardGroup[ServoBoardFw4]:
         ...
 
     @overload
     def get_board_group(
         self,
         board: type[_boards_arduino_uno.ArduinoUno],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_arduino.ArduinoUno]:
+    ) -> BoardGroup[ArduinoUno]:
         ...
 
     @overload
-    def get_board_group(
-        self,
-        board: type[_boards_camera.CameraBoard],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_vision.CameraBoard]:
+    def get_board_group(self, board: type[_boards_camera.CameraBoard]) -> BoardGroup[CameraBoard]:
         ...
 
     @overload
-    def get_board_group(
-        self,
-        board: type[_boards_sr_kch.KCHBoard],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_sr.KCHBoard]:
+    def get_board_group(self, board: type[_boards_sr_kch.KCHBoard]) -> BoardGroup[KCHBoard]:
         ...
 
     @overload
     def get_board_group(
         self,
         board: type[_boards_sr_v4_motor_board.MotorBoard],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_sr.MotorBoard]:
+    ) -> BoardGroup[MotorBoard]:
         ...
 
     @overload
     def get_board_group(
         self,
         board: type[_boards_sr_v4_power_board.PowerBoard],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_sr.PowerBoard]:
+    ) -> BoardGroup[PowerBoard]:
         ...
 
     @overload
     def get_board_group(
         self,
         board: type[_boards_sr_v4_servo_board.ServoBoard],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_sr.ServoBoard]:
+    ) -> BoardGroup[ServoBoard]:
         ...
 
     @overload
-    def get_board_group(
-        self,
-        board: type[_boards_board.Board],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_robot.Board]:
+    def get_board_group(self, board: type[_boards_board.Board]) -> BoardGroup[Board]:
         ...
 
-    def get_board_group(
-        self,
-        board: type[_boards_board.Board | _sync_generated_robot.Board],
-    ) -> _sync_generated_robot.BoardGroup[_sync_generated_robot.Board]:
+    def get_board_group(self, board: type[_boards_board.Board | Board]) -> BoardGroup[Board]:
         """Find every ``board`` through each backend this environment has for it.
 
         Boards of every generation (backends for ``board`` or a subclass) are gathered
@@ -359,7 +349,7 @@ class Environment(_SyncWrapper):
 
         :raises NotImplementedError: the environment has no backend for that board.
         """
-        return cast("_sync_generated_robot.BoardGroup[_sync_generated_robot.Board]", _wrap(_call(self._core.get_board_group, _unwrap(board))))
+        return cast("BoardGroup[Board]", _wrap(_call(self._core.get_board_group, _unwrap(board))))
 
     def merge(self, other: Environment) -> None:
         """Add every backend of ``other`` to this environment (unloaded ones stay so).

@@ -12,9 +12,9 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-import j5aio.sync._generated.components as _sync_generated_components
-import j5aio.sync._generated.robot as _sync_generated_robot
 from j5aio._lazy import lazy_modules as _lazy_modules
+from j5aio.sync._generated.components import LED, Motor, PowerOutput, Servo
+from j5aio.sync._generated.robot import IdentifiedComponent
 from j5aio.sync.wrapping import call as _call
 from j5aio.sync.wrapping import register_later as _register_later
 
@@ -57,7 +57,7 @@ __all__ = [
 ]
 
 
-class Fan(_sync_generated_robot.IdentifiedComponent["_components_fan.FanInterface"]):
+class Fan(IdentifiedComponent["_components_fan.FanInterface"]):
     """A cooling fan that the board switches on when it gets warm.
 
     :param identifier: the number of the fan on its board.
@@ -82,7 +82,7 @@ class Fan(_sync_generated_robot.IdentifiedComponent["_components_fan.FanInterfac
         return _components_fan.Fan.interface_class()
 
 
-class Flag(_sync_generated_robot.IdentifiedComponent["_components_flag.FlagInterface"]):
+class Flag(IdentifiedComponent["_components_flag.FlagInterface"]):
     """A condition a board reports as raised (``True``) or not (``False``).
 
     What a flag means is given by the name the board gives it, for example a servo
@@ -110,7 +110,7 @@ class Flag(_sync_generated_robot.IdentifiedComponent["_components_flag.FlagInter
         return _components_flag.Flag.interface_class()
 
 
-class RGBLED(_sync_generated_robot.IdentifiedComponent["_components_rgb_led.RGBLEDInterface"]):
+class RGBLED(IdentifiedComponent["_components_rgb_led.RGBLEDInterface"]):
     """An LED that mixes red, green and blue light into any colour.
 
     Each channel has a brightness (a duty cycle) between 0 (off) and 1 (full). Set one
@@ -206,7 +206,7 @@ class RGBLED(_sync_generated_robot.IdentifiedComponent["_components_rgb_led.RGBL
         return _components_rgb_led.RGBLED.interface_class()
 
 
-class SupplySensor(_sync_generated_robot.IdentifiedComponent["_components_supply_sensor.SupplySensorInterface"]):
+class SupplySensor(IdentifiedComponent["_components_supply_sensor.SupplySensorInterface"]):
     """A meter on one of a board's power rails (such as a servo board's servo supply).
 
     :param identifier: the number of the rail on its board.
@@ -239,7 +239,7 @@ class SupplySensor(_sync_generated_robot.IdentifiedComponent["_components_supply
         return _components_supply_sensor.SupplySensor.interface_class()
 
 
-class TemperatureSensor(_sync_generated_robot.IdentifiedComponent["_components_temperature_sensor.TemperatureSensorInterface"]):
+class TemperatureSensor(IdentifiedComponent["_components_temperature_sensor.TemperatureSensorInterface"]):
     """A thermometer on a board, such as the power board's.
 
     :param identifier: the number of the sensor on its board.
@@ -264,7 +264,7 @@ class TemperatureSensor(_sync_generated_robot.IdentifiedComponent["_components_t
         return _components_temperature_sensor.TemperatureSensor.interface_class()
 
 
-class VoltageSensor(_sync_generated_robot.IdentifiedComponent["_components_voltage_sensor.VoltageSensorInterface"]):
+class VoltageSensor(IdentifiedComponent["_components_voltage_sensor.VoltageSensorInterface"]):
     """A voltmeter on a board: a regulator's output, or the board's input supply.
 
     :param identifier: the number of the sensor on its board.
@@ -289,7 +289,7 @@ class VoltageSensor(_sync_generated_robot.IdentifiedComponent["_components_volta
         return _components_voltage_sensor.VoltageSensor.interface_class()
 
 
-class FlashingLED(_sync_generated_components.LED):
+class FlashingLED(LED):
     """An LED that can be off, on, or flashing without the program's help.
 
     It is an :class:`~j5aio.components.led.LED` too: ``set_state(True)`` lights it
@@ -334,7 +334,7 @@ class FlashingLED(_sync_generated_components.LED):
         _call(self._core.flash)
 
 
-class MonitoredMotor(_sync_generated_components.Motor):
+class MonitoredMotor(Motor):
     """A :class:`~j5aio.components.motor.Motor` whose driver measures its current and faults.
 
     :param identifier: the number of the motor on its board.
@@ -367,7 +367,7 @@ class MonitoredMotor(_sync_generated_components.Motor):
         return _components_monitored_motor.MonitoredMotor.interface_class()
 
 
-class ProtectedPowerOutput(_sync_generated_components.PowerOutput):
+class ProtectedPowerOutput(PowerOutput):
     """A power output that the board switches off, and keeps off, when it draws too much.
 
     While the trip is latched, switching the output on does nothing; the board clears
@@ -397,7 +397,7 @@ class ProtectedPowerOutput(_sync_generated_components.PowerOutput):
         return _components_protected_power_output.ProtectedPowerOutput.interface_class()
 
 
-class PulseServo(_sync_generated_components.Servo):
+class PulseServo(Servo):
     """A servo driven by pulses whose widths are set by its position.
 
     Position -1 gives the lower pulse limit and 1 the upper one (the board's defaults,

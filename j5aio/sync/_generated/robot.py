@@ -49,11 +49,21 @@ if TYPE_CHECKING:
     import j5aio.components.identified as _components_identified
     import j5aio.kit as _kit
     import j5aio.robot as _robot
-    import j5aio.sync._generated.arduino as _sync_generated_arduino
-    import j5aio.sync._generated.environment as _sync_generated_environment
-    import j5aio.sync._generated.sb as _sync_generated_sb
-    import j5aio.sync._generated.sr as _sync_generated_sr
-    import j5aio.sync._generated.vision as _sync_generated_vision
+    from j5aio.sync._generated.arduino import AllDigitalUno, ArduinoUno
+    from j5aio.sync._generated.environment import Environment
+    from j5aio.sync._generated.sb import SBArduino2024Board, SBArduinoBoard, SBServoBoard
+    from j5aio.sync._generated.sr import (
+        KCHBoard,
+        MotorBoard,
+        MotorBoardFw4,
+        PowerBoard,
+        PowerBoardFw4,
+        Ruggeduino,
+        ServoBoard,
+        ServoBoardFw4,
+        SRArduinoBoard,
+    )
+    from j5aio.sync._generated.vision import CameraBoard, MarkerCamera
 else:
     _lazy_modules(globals(), {
         "_backends_backend": "j5aio.backends.backend",
@@ -80,11 +90,6 @@ else:
         "_components_identified": "j5aio.components.identified",
         "_kit": "j5aio.kit",
         "_robot": "j5aio.robot",
-        "_sync_generated_arduino": "j5aio.sync._generated.arduino",
-        "_sync_generated_environment": "j5aio.sync._generated.environment",
-        "_sync_generated_sb": "j5aio.sync._generated.sb",
-        "_sync_generated_sr": "j5aio.sync._generated.sr",
-        "_sync_generated_vision": "j5aio.sync._generated.vision",
     })
 
 __all__ = [
@@ -393,7 +398,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_sr.SRArduinoBoard]:
+    ) -> BoardGroup[SRArduinoBoard]:
         ...
 
     @overload
@@ -404,7 +409,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_sb.SBArduino2024Board]:
+    ) -> BoardGroup[SBArduino2024Board]:
         ...
 
     @overload
@@ -415,7 +420,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_sb.SBServoBoard]:
+    ) -> BoardGroup[SBServoBoard]:
         ...
 
     @overload
@@ -426,7 +431,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_arduino.AllDigitalUno]:
+    ) -> BoardGroup[AllDigitalUno]:
         ...
 
     @overload
@@ -437,7 +442,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_sr.MotorBoardFw4]:
+    ) -> BoardGroup[MotorBoardFw4]:
         ...
 
     @overload
@@ -448,7 +453,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_sr.PowerBoardFw4]:
+    ) -> BoardGroup[PowerBoardFw4]:
         ...
 
     @overload
@@ -459,7 +464,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_sr.Ruggeduino]:
+    ) -> BoardGroup[Ruggeduino]:
         ...
 
     @overload
@@ -470,7 +475,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_sb.SBArduinoBoard]:
+    ) -> BoardGroup[SBArduinoBoard]:
         ...
 
     @overload
@@ -481,7 +486,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_sr.ServoBoardFw4]:
+    ) -> BoardGroup[ServoBoardFw4]:
         ...
 
     @overload
@@ -492,7 +497,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_arduino.ArduinoUno]:
+    ) -> BoardGroup[ArduinoUno]:
         ...
 
     @overload
@@ -503,7 +508,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_vision.CameraBoard]:
+    ) -> BoardGroup[CameraBoard]:
         ...
 
     @overload
@@ -514,7 +519,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_sr.KCHBoard]:
+    ) -> BoardGroup[KCHBoard]:
         ...
 
     @overload
@@ -525,7 +530,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_sr.MotorBoard]:
+    ) -> BoardGroup[MotorBoard]:
         ...
 
     @overload
@@ -536,7 +541,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_sr.PowerBoard]:
+    ) -> BoardGroup[PowerBoard]:
         ...
 
     @overload
@@ -547,7 +552,7 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
         *,
         ports: Sequence[str] = (),
-    ) -> BoardGroup[_sync_generated_sr.ServoBoard]:
+    ) -> BoardGroup[ServoBoard]:
         ...
 
     @overload
@@ -903,7 +908,7 @@ class KitRobot(BaseRobot):
     def __new__(
         cls,
         *args: Any,
-        environment: _sync_generated_environment.Environment | None = None,
+        environment: Environment | None = None,
         boards: Mapping[str, type[_boards_board.Board]] | None = None,
         view: bool | None = None,
         power_on: bool | Iterable[int | str | Enum] | None = True,
@@ -922,9 +927,9 @@ class KitRobot(BaseRobot):
     POWER_UP_WAIT: ClassVar[float] = 0.5
 
     @property
-    def environment(self) -> _sync_generated_environment.Environment:
+    def environment(self) -> Environment:
         """The environment the boards are found in."""
-        return cast("_sync_generated_environment.Environment", _wrap_kept(self, "environment", self._core.environment))
+        return cast("Environment", _wrap_kept(self, "environment", self._core.environment))
 
     def setup(self) -> None:
         """Find the power board, power the kit up, then find every other board.
@@ -944,105 +949,96 @@ class KitRobot(BaseRobot):
     def board_group(
         self,
         board: type[_boards_sr_v4_arduino.SRArduinoBoard],
-    ) -> BoardGroup[_sync_generated_sr.SRArduinoBoard]:
+    ) -> BoardGroup[SRArduinoBoard]:
         ...
 
     @overload
     def board_group(
         self,
         board: type[_boards_sb_arduino_2024.SBArduino2024Board],
-    ) -> BoardGroup[_sync_generated_sb.SBArduino2024Board]:
+    ) -> BoardGroup[SBArduino2024Board]:
         ...
 
     @overload
     def board_group(
         self,
         board: type[_boards_sb_servo_board.SBServoBoard],
-    ) -> BoardGroup[_sync_generated_sb.SBServoBoard]:
+    ) -> BoardGroup[SBServoBoard]:
         ...
 
     @overload
     def board_group(
         self,
         board: type[_boards_arduino_all_digital.AllDigitalUno],
-    ) -> BoardGroup[_sync_generated_arduino.AllDigitalUno]:
+    ) -> BoardGroup[AllDigitalUno]:
         ...
 
     @overload
     def board_group(
         self,
         board: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
-    ) -> BoardGroup[_sync_generated_sr.MotorBoardFw4]:
+    ) -> BoardGroup[MotorBoardFw4]:
         ...
 
     @overload
     def board_group(
         self,
         board: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
-    ) -> BoardGroup[_sync_generated_sr.PowerBoardFw4]:
+    ) -> BoardGroup[PowerBoardFw4]:
         ...
 
     @overload
     def board_group(
         self,
         board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
-    ) -> BoardGroup[_sync_generated_sr.Ruggeduino]:
+    ) -> BoardGroup[Ruggeduino]:
         ...
 
     @overload
     def board_group(
         self,
         board: type[_boards_sb_arduino.SBArduinoBoard],
-    ) -> BoardGroup[_sync_generated_sb.SBArduinoBoard]:
+    ) -> BoardGroup[SBArduinoBoard]:
         ...
 
     @overload
     def board_group(
         self,
         board: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
-    ) -> BoardGroup[_sync_generated_sr.ServoBoardFw4]:
+    ) -> BoardGroup[ServoBoardFw4]:
         ...
 
     @overload
-    def board_group(
-        self,
-        board: type[_boards_arduino_uno.ArduinoUno],
-    ) -> BoardGroup[_sync_generated_arduino.ArduinoUno]:
+    def board_group(self, board: type[_boards_arduino_uno.ArduinoUno]) -> BoardGroup[ArduinoUno]:
         ...
 
     @overload
-    def board_group(
-        self,
-        board: type[_boards_camera.CameraBoard],
-    ) -> BoardGroup[_sync_generated_vision.CameraBoard]:
+    def board_group(self, board: type[_boards_camera.CameraBoard]) -> BoardGroup[CameraBoard]:
         ...
 
     @overload
-    def board_group(
-        self,
-        board: type[_boards_sr_kch.KCHBoard],
-    ) -> BoardGroup[_sync_generated_sr.KCHBoard]:
+    def board_group(self, board: type[_boards_sr_kch.KCHBoard]) -> BoardGroup[KCHBoard]:
         ...
 
     @overload
     def board_group(
         self,
         board: type[_boards_sr_v4_motor_board.MotorBoard],
-    ) -> BoardGroup[_sync_generated_sr.MotorBoard]:
+    ) -> BoardGroup[MotorBoard]:
         ...
 
     @overload
     def board_group(
         self,
         board: type[_boards_sr_v4_power_board.PowerBoard],
-    ) -> BoardGroup[_sync_generated_sr.PowerBoard]:
+    ) -> BoardGroup[PowerBoard]:
         ...
 
     @overload
     def board_group(
         self,
         board: type[_boards_sr_v4_servo_board.ServoBoard],
-    ) -> BoardGroup[_sync_generated_sr.ServoBoard]:
+    ) -> BoardGroup[ServoBoard]:
         ...
 
     @overload
@@ -1058,51 +1054,49 @@ class KitRobot(BaseRobot):
         return cast("BoardGroup[Board]", _wrap(self._core.board_group(_unwrap(board))))
 
     @property
-    def power_board(self) -> _sync_generated_sr.PowerBoard:
+    def power_board(self) -> PowerBoard:
         """The ``power_board`` of the wrapped object."""
-        return cast("_sync_generated_sr.PowerBoard", _wrap_kept(self, "power_board", self._core.power_board))
+        return cast("PowerBoard", _wrap_kept(self, "power_board", self._core.power_board))
 
     @property
-    def power_boards(self) -> BoardGroup[_sync_generated_sr.PowerBoard]:
+    def power_boards(self) -> BoardGroup[PowerBoard]:
         """The ``power_boards`` of the wrapped object."""
-        return cast("BoardGroup[_sync_generated_sr.PowerBoard]", _wrap_kept(self, "power_boards", self._core.power_boards))
+        return cast("BoardGroup[PowerBoard]", _wrap_kept(self, "power_boards", self._core.power_boards))
 
     @property
-    def motor_boards(self) -> BoardGroup[_sync_generated_sr.MotorBoard]:
+    def motor_boards(self) -> BoardGroup[MotorBoard]:
         """The ``motor_boards`` of the wrapped object."""
-        return cast("BoardGroup[_sync_generated_sr.MotorBoard]", _wrap_kept(self, "motor_boards", self._core.motor_boards))
+        return cast("BoardGroup[MotorBoard]", _wrap_kept(self, "motor_boards", self._core.motor_boards))
 
     @property
-    def servo_boards(self) -> BoardGroup[_sync_generated_sr.ServoBoard]:
+    def servo_boards(self) -> BoardGroup[ServoBoard]:
         """The ``servo_boards`` of the wrapped object."""
-        return cast("BoardGroup[_sync_generated_sr.ServoBoard]", _wrap_kept(self, "servo_boards", self._core.servo_boards))
+        return cast("BoardGroup[ServoBoard]", _wrap_kept(self, "servo_boards", self._core.servo_boards))
 
     @property
-    def arduinos(
-        self,
-    ) -> BoardGroup[_sync_generated_sb.SBArduinoBoard | _sync_generated_arduino.AllDigitalUno]:
+    def arduinos(self) -> BoardGroup[SBArduinoBoard | AllDigitalUno]:
         """The ``arduinos`` of the wrapped object."""
-        return cast("BoardGroup[_sync_generated_sb.SBArduinoBoard | _sync_generated_arduino.AllDigitalUno]", _wrap_kept(self, "arduinos", self._core.arduinos))
+        return cast("BoardGroup[SBArduinoBoard | AllDigitalUno]", _wrap_kept(self, "arduinos", self._core.arduinos))
 
     @property
-    def ruggeduinos(self) -> BoardGroup[_sync_generated_sr.Ruggeduino]:
+    def ruggeduinos(self) -> BoardGroup[Ruggeduino]:
         """The ``ruggeduinos`` of the wrapped object."""
-        return cast("BoardGroup[_sync_generated_sr.Ruggeduino]", _wrap_kept(self, "ruggeduinos", self._core.ruggeduinos))
+        return cast("BoardGroup[Ruggeduino]", _wrap_kept(self, "ruggeduinos", self._core.ruggeduinos))
 
     @property
-    def cameras(self) -> BoardGroup[_sync_generated_vision.CameraBoard]:
+    def cameras(self) -> BoardGroup[CameraBoard]:
         """The ``cameras`` of the wrapped object."""
-        return cast("BoardGroup[_sync_generated_vision.CameraBoard]", _wrap_kept(self, "cameras", self._core.cameras))
+        return cast("BoardGroup[CameraBoard]", _wrap_kept(self, "cameras", self._core.cameras))
 
     @property
-    def camera(self) -> _sync_generated_vision.MarkerCamera | None:
+    def camera(self) -> MarkerCamera | None:
         """The ``camera`` of the wrapped object."""
-        return cast("_sync_generated_vision.MarkerCamera | None", _wrap_kept(self, "camera", self._core.camera))
+        return cast("MarkerCamera | None", _wrap_kept(self, "camera", self._core.camera))
 
     @property
-    def kch(self) -> _sync_generated_sr.KCHBoard | None:
+    def kch(self) -> KCHBoard | None:
         """The ``kch`` of the wrapped object."""
-        return cast("_sync_generated_sr.KCHBoard | None", _wrap_kept(self, "kch", self._core.kch))
+        return cast("KCHBoard | None", _wrap_kept(self, "kch", self._core.kch))
 
 
 class DerivedComponent(Component):

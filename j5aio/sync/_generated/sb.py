@@ -12,9 +12,9 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, ClassVar, cast
 
-import j5aio.sync._generated.arduino as _sync_generated_arduino
-import j5aio.sync._generated.sr as _sync_generated_sr
 from j5aio._lazy import lazy_modules as _lazy_modules
+from j5aio.sync._generated.arduino import AllDigitalUno, ArduinoUno
+from j5aio.sync._generated.sr import ServoBoardFw4
 from j5aio.sync.wrapping import adopt_into as _adopt_into
 from j5aio.sync.wrapping import register_later as _register_later
 from j5aio.sync.wrapping import wrap_kept as _wrap_kept
@@ -25,7 +25,8 @@ if TYPE_CHECKING:
     import j5aio.boards.sb.arduino_2024 as _boards_sb_arduino_2024
     import j5aio.boards.sb.servo_board as _boards_sb_servo_board
     import j5aio.components.component as _components_component
-    import j5aio.sync._generated.components as _sync_generated_components
+    from j5aio.sync._generated.arduino import UltrasoundSensors
+    from j5aio.sync._generated.components import Servo
 else:
     _lazy_modules(globals(), {
         "_backends_backend": "j5aio.backends.backend",
@@ -33,7 +34,6 @@ else:
         "_boards_sb_arduino_2024": "j5aio.boards.sb.arduino_2024",
         "_boards_sb_servo_board": "j5aio.boards.sb.servo_board",
         "_components_component": "j5aio.components.component",
-        "_sync_generated_components": "j5aio.sync._generated.components",
     })
 
 __all__ = [
@@ -43,7 +43,7 @@ __all__ = [
 ]
 
 
-class SBArduinoBoard(_sync_generated_arduino.ArduinoUno):
+class SBArduinoBoard(ArduinoUno):
     """The SourceBots Arduino.
 
     On top of an Uno's pins it drives 16 servos, and an ultrasound sensor on any pair of
@@ -67,14 +67,14 @@ class SBArduinoBoard(_sync_generated_arduino.ArduinoUno):
     DIGITAL_PIN_FIRMWARE_MODES: ClassVar[frozenset[type[_components_component.DerivedComponent]]] = _boards_sb_arduino.SBArduinoBoard.DIGITAL_PIN_FIRMWARE_MODES
 
     @property
-    def servos(self) -> tuple[_sync_generated_components.Servo, ...]:
+    def servos(self) -> tuple[Servo, ...]:
         """The servos, numbered 0 to 15."""
-        return cast("tuple[_sync_generated_components.Servo, ...]", _wrap_kept(self, "servos", self._core.servos))
+        return cast("tuple[Servo, ...]", _wrap_kept(self, "servos", self._core.servos))
 
     @property
-    def ultrasound_sensors(self) -> _sync_generated_arduino.UltrasoundSensors:
+    def ultrasound_sensors(self) -> UltrasoundSensors:
         """Ultrasound sensors on demand: ``board.ultrasound_sensors[trigger_pin, echo_pin]``."""
-        return cast("_sync_generated_arduino.UltrasoundSensors", _wrap_kept(self, "ultrasound_sensors", self._core.ultrasound_sensors))
+        return cast("UltrasoundSensors", _wrap_kept(self, "ultrasound_sensors", self._core.ultrasound_sensors))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -82,7 +82,7 @@ class SBArduinoBoard(_sync_generated_arduino.ArduinoUno):
         return _boards_sb_arduino.SBArduinoBoard.supported_components()
 
 
-class SBArduino2024Board(_sync_generated_arduino.AllDigitalUno):
+class SBArduino2024Board(AllDigitalUno):
     """The SourceBots Arduino of the 2024 kit (firmware ``2.0``, the sb2024 protocol).
 
     Every pin from 2 to 19 is a digital input, input with pull-up or output; A0 to A5
@@ -101,7 +101,7 @@ class SBArduino2024Board(_sync_generated_arduino.AllDigitalUno):
     name: ClassVar[str] = 'SourceBots Arduino (sb2024)'
 
 
-class SBServoBoard(_sync_generated_sr.ServoBoardFw4):
+class SBServoBoard(ServoBoardFw4):
     """The servo board of the SourceBots 2024+ kit: SourceBots' firmware 4.4, eight servos.
 
     The same board and protocol as :class:`~j5aio.boards.sr.v4.servo_board_fw4.ServoBoardFw4`,

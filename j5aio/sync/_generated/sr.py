@@ -13,10 +13,10 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, ClassVar, cast
 
-import j5aio.sync._generated.arduino as _sync_generated_arduino
-import j5aio.sync._generated.components as _sync_generated_components
-import j5aio.sync._generated.robot as _sync_generated_robot
 from j5aio._lazy import lazy_modules as _lazy_modules
+from j5aio.sync._generated.arduino import AllDigitalUno, ArduinoUno
+from j5aio.sync._generated.components import PowerOutputGroup
+from j5aio.sync._generated.robot import Board
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt_into as _adopt_into
 from j5aio.sync.wrapping import call as _call
@@ -40,7 +40,27 @@ if TYPE_CHECKING:
     import j5aio.components.gpio_pin as _components_gpio_pin
     import j5aio.components.motor as _components_motor
     import j5aio.numbered as _numbered
-    import j5aio.sync._generated.fw4 as _sync_generated_fw4
+    from j5aio.sync._generated.components import (
+        LED,
+        BatterySensor,
+        Button,
+        Motor,
+        Piezo,
+        PowerOutput,
+        Servo,
+        StringCommandComponent,
+    )
+    from j5aio.sync._generated.fw4 import (
+        RGBLED,
+        Fan,
+        Flag,
+        FlashingLED,
+        MonitoredMotor,
+        PulseServo,
+        SupplySensor,
+        TemperatureSensor,
+        VoltageSensor,
+    )
 else:
     _lazy_modules(globals(), {
         "_backends_backend": "j5aio.backends.backend",
@@ -57,7 +77,6 @@ else:
         "_components_gpio_pin": "j5aio.components.gpio_pin",
         "_components_motor": "j5aio.components.motor",
         "_numbered": "j5aio.numbered",
-        "_sync_generated_fw4": "j5aio.sync._generated.fw4",
     })
 
 __all__ = [
@@ -99,7 +118,7 @@ class Colour(_SyncWrapper):
     WHITE: ClassVar[tuple[float, float, float]] = (1.0, 1.0, 1.0)
 
 
-class KCHBoard(_sync_generated_robot.Board):
+class KCHBoard(Board):
     """The KCH, the HAT on the Raspberry Pi of the Student Robotics 2023+ kit.
 
     Its three user LEDs A, B and C (:attr:`leds`, 0 to 2) each have a red, a green and a
@@ -126,14 +145,14 @@ class KCHBoard(_sync_generated_robot.Board):
     LED_COUNT: ClassVar[int] = 3
 
     @property
-    def leds(self) -> tuple[_sync_generated_fw4.RGBLED, ...]:
+    def leds(self) -> tuple[RGBLED, ...]:
         """The user LEDs A, B and C (0, 1 and 2)."""
-        return cast("tuple[_sync_generated_fw4.RGBLED, ...]", _wrap_kept(self, "leds", self._core.leds))
+        return cast("tuple[RGBLED, ...]", _wrap_kept(self, "leds", self._core.leds))
 
     @property
-    def start_led(self) -> _sync_generated_fw4.FlashingLED:
+    def start_led(self) -> FlashingLED:
         """The start LED, which flashes while the robot waits to be started."""
-        return cast("_sync_generated_fw4.FlashingLED", _wrap_kept(self, "start_led", self._core.start_led))
+        return cast("FlashingLED", _wrap_kept(self, "start_led", self._core.start_led))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -145,7 +164,7 @@ class KCHBoard(_sync_generated_robot.Board):
         _call(self._core.make_safe)
 
 
-class MotorBoard(_sync_generated_robot.Board):
+class MotorBoard(Board):
     """The Student Robotics v4 Motor Board: two DC motor outputs.
 
     :param serial_number: the board's serial number.
@@ -173,9 +192,9 @@ class MotorBoard(_sync_generated_robot.Board):
     MOTOR_COUNT: ClassVar[int] = 2
 
     @property
-    def motors(self) -> tuple[_sync_generated_components.Motor, ...]:
+    def motors(self) -> tuple[Motor, ...]:
         """The motors, numbered 0 and 1."""
-        return cast("tuple[_sync_generated_components.Motor, ...]", _wrap_kept(self, "motors", self._core.motors))
+        return cast("tuple[Motor, ...]", _wrap_kept(self, "motors", self._core.motors))
 
     @property
     def safe_state(self) -> float | _components_motor.MotorSpecialState:
@@ -192,7 +211,7 @@ class MotorBoard(_sync_generated_robot.Board):
         _call(self._core.make_safe)
 
 
-class PowerBoard(_sync_generated_robot.Board):
+class PowerBoard(Board):
     """The Student Robotics v4 Power Board.
 
     It switches six power outputs, sounds a piezo, reads the battery and the start button,
@@ -218,36 +237,34 @@ class PowerBoard(_sync_generated_robot.Board):
     START_FLASH_POLLS: ClassVar[int] = 6
 
     @property
-    def outputs(
-        self,
-    ) -> _sync_generated_components.PowerOutputGroup[_boards_sr_v4_power_board.PowerOutputPosition]:
+    def outputs(self) -> PowerOutputGroup[_boards_sr_v4_power_board.PowerOutputPosition]:
         """The six power outputs, by :class:`PowerOutputPosition` or by number."""
-        return cast("_sync_generated_components.PowerOutputGroup[_boards_sr_v4_power_board.PowerOutputPosition]", _wrap_kept(self, "outputs", self._core.outputs))
+        return cast("PowerOutputGroup[_boards_sr_v4_power_board.PowerOutputPosition]", _wrap_kept(self, "outputs", self._core.outputs))
 
     @property
-    def piezo(self) -> _sync_generated_components.Piezo:
+    def piezo(self) -> Piezo:
         """The piezo sounder."""
-        return cast("_sync_generated_components.Piezo", _wrap_kept(self, "piezo", self._core.piezo))
+        return cast("Piezo", _wrap_kept(self, "piezo", self._core.piezo))
 
     @property
-    def start_button(self) -> _sync_generated_components.Button:
+    def start_button(self) -> Button:
         """The start button."""
-        return cast("_sync_generated_components.Button", _wrap_kept(self, "start_button", self._core.start_button))
+        return cast("Button", _wrap_kept(self, "start_button", self._core.start_button))
 
     @property
-    def battery_sensor(self) -> _sync_generated_components.BatterySensor:
+    def battery_sensor(self) -> BatterySensor:
         """The battery voltage and current sensor."""
-        return cast("_sync_generated_components.BatterySensor", _wrap_kept(self, "battery_sensor", self._core.battery_sensor))
+        return cast("BatterySensor", _wrap_kept(self, "battery_sensor", self._core.battery_sensor))
 
     @property
-    def run_led(self) -> _sync_generated_components.LED:
+    def run_led(self) -> LED:
         """The run LED (LED 0), which :meth:`wait_for_start_flash` flashes."""
-        return cast("_sync_generated_components.LED", _wrap_kept(self, "run_led", self._core.run_led))
+        return cast("LED", _wrap_kept(self, "run_led", self._core.run_led))
 
     @property
-    def error_led(self) -> _sync_generated_components.LED:
+    def error_led(self) -> LED:
         """The error LED (LED 1)."""
-        return cast("_sync_generated_components.LED", _wrap_kept(self, "error_led", self._core.error_led))
+        return cast("LED", _wrap_kept(self, "error_led", self._core.error_led))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -275,7 +292,7 @@ class PowerBoard(_sync_generated_robot.Board):
         _call(self._core.wait_for_start_flash, timeout)
 
 
-class PowerBoardOutputGroup(_sync_generated_components.PowerOutputGroup["_boards_sr_v4_power_board.PowerOutputPosition"]):
+class PowerBoardOutputGroup(PowerOutputGroup["_boards_sr_v4_power_board.PowerOutputPosition"]):
     """The outputs of a firmware 4 power board.
 
     Look an output up by :class:`PowerBoardOutput`, by the seed kit's
@@ -291,19 +308,19 @@ class PowerBoardOutputGroup(_sync_generated_components.PowerOutputGroup["_boards
 
     def __init__(
         self,
-        outputs: Mapping[_boards_sr_v4_power_board_fw4.PowerBoardOutput, _sync_generated_components.PowerOutput],
+        outputs: Mapping[_boards_sr_v4_power_board_fw4.PowerBoardOutput, PowerOutput],
     ) -> None:
         _adopt_into(self, _boards_sr_v4_power_board_fw4.PowerBoardOutputGroup(_unwrap(outputs)))
 
     def __getitem__(
         self,
         key: _boards_sr_v4_power_board_fw4.PowerBoardOutput | _boards_sr_v4_power_board.PowerOutputPosition | int,
-    ) -> _sync_generated_components.PowerOutput:
+    ) -> PowerOutput:
         """Return the output under ``key`` (a name of either kind, or a number).
 
         :raises KeyError: there is no output under ``key``.
         """
-        return cast("_sync_generated_components.PowerOutput", _wrap(self._core.__getitem__(key)))
+        return cast("PowerOutput", _wrap(self._core.__getitem__(key)))
 
     def power_on(self) -> None:
         """Switch on every output but L2 (the brain's, which is always on)."""
@@ -314,7 +331,7 @@ class PowerBoardOutputGroup(_sync_generated_components.PowerOutputGroup["_boards
         _call(self._core.power_off)
 
 
-class ServoBoard(_sync_generated_robot.Board):
+class ServoBoard(Board):
     """The Student Robotics v4 Servo Board: twelve servo outputs.
 
     :param serial_number: the board's serial number.
@@ -333,9 +350,9 @@ class ServoBoard(_sync_generated_robot.Board):
     SERVO_COUNT: ClassVar[int] = 12
 
     @property
-    def servos(self) -> tuple[_sync_generated_components.Servo, ...]:
+    def servos(self) -> tuple[Servo, ...]:
         """The servos, numbered 0 to 11."""
-        return cast("tuple[_sync_generated_components.Servo, ...]", _wrap_kept(self, "servos", self._core.servos))
+        return cast("tuple[Servo, ...]", _wrap_kept(self, "servos", self._core.servos))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -390,14 +407,14 @@ class MotorBoardFw4(MotorBoard):
     name: ClassVar[str] = 'Student Robotics v4 Motor Board (firmware 4)'
 
     @property
-    def motors(self) -> _numbered.NumberedComponents[_sync_generated_fw4.MonitoredMotor]:
+    def motors(self) -> _numbered.NumberedComponents[MonitoredMotor]:
         """The motors, numbered 0 and 1."""
-        return cast("_numbered.NumberedComponents[_sync_generated_fw4.MonitoredMotor]", _wrap_kept(self, "motors", self._core.motors))
+        return cast("_numbered.NumberedComponents[MonitoredMotor]", _wrap_kept(self, "motors", self._core.motors))
 
     @property
-    def input_voltage_sensor(self) -> _sync_generated_fw4.VoltageSensor:
+    def input_voltage_sensor(self) -> VoltageSensor:
         """The voltmeter on the board's power input."""
-        return cast("_sync_generated_fw4.VoltageSensor", _wrap_kept(self, "input_voltage_sensor", self._core.input_voltage_sensor))
+        return cast("VoltageSensor", _wrap_kept(self, "input_voltage_sensor", self._core.input_voltage_sensor))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -442,29 +459,29 @@ class PowerBoardFw4(PowerBoard):
         return cast("PowerBoardOutputGroup", _wrap_kept(self, "outputs", self._core.outputs))
 
     @property
-    def run_led(self) -> _sync_generated_fw4.FlashingLED:
+    def run_led(self) -> FlashingLED:
         """The run LED (LED 0), which can flash by itself."""
-        return cast("_sync_generated_fw4.FlashingLED", _wrap_kept(self, "run_led", self._core.run_led))
+        return cast("FlashingLED", _wrap_kept(self, "run_led", self._core.run_led))
 
     @property
-    def error_led(self) -> _sync_generated_fw4.FlashingLED:
+    def error_led(self) -> FlashingLED:
         """The error LED (LED 1), which can flash by itself."""
-        return cast("_sync_generated_fw4.FlashingLED", _wrap_kept(self, "error_led", self._core.error_led))
+        return cast("FlashingLED", _wrap_kept(self, "error_led", self._core.error_led))
 
     @property
-    def temperature_sensor(self) -> _sync_generated_fw4.TemperatureSensor:
+    def temperature_sensor(self) -> TemperatureSensor:
         """The board's thermometer."""
-        return cast("_sync_generated_fw4.TemperatureSensor", _wrap_kept(self, "temperature_sensor", self._core.temperature_sensor))
+        return cast("TemperatureSensor", _wrap_kept(self, "temperature_sensor", self._core.temperature_sensor))
 
     @property
-    def fan(self) -> _sync_generated_fw4.Fan:
+    def fan(self) -> Fan:
         """The board's fan, which runs above 40 °C."""
-        return cast("_sync_generated_fw4.Fan", _wrap_kept(self, "fan", self._core.fan))
+        return cast("Fan", _wrap_kept(self, "fan", self._core.fan))
 
     @property
-    def regulator_sensor(self) -> _sync_generated_fw4.VoltageSensor:
+    def regulator_sensor(self) -> VoltageSensor:
         """The voltmeter on the 5 V regulator's output."""
-        return cast("_sync_generated_fw4.VoltageSensor", _wrap_kept(self, "regulator_sensor", self._core.regulator_sensor))
+        return cast("VoltageSensor", _wrap_kept(self, "regulator_sensor", self._core.regulator_sensor))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -489,7 +506,7 @@ class PowerBoardFw4(PowerBoard):
         _call(self._core.wait_for_start_flash, timeout)
 
 
-class Ruggeduino(_sync_generated_arduino.ArduinoUno):
+class Ruggeduino(ArduinoUno):
     """The Student Robotics Ruggeduino.
 
     It has the pins of an Arduino Uno, plus :attr:`command` to send a firmware of the
@@ -511,9 +528,9 @@ class Ruggeduino(_sync_generated_arduino.ArduinoUno):
     ANALOGUE_PIN_MODES: ClassVar[frozenset[_components_gpio_pin.GPIOPinMode]] = _boards_sr_v4_ruggeduino.Ruggeduino.ANALOGUE_PIN_MODES
 
     @property
-    def command(self) -> _sync_generated_components.StringCommandComponent:
+    def command(self) -> StringCommandComponent:
         """Sends raw text commands to the board's firmware."""
-        return cast("_sync_generated_components.StringCommandComponent", _wrap_kept(self, "command", self._core.command))
+        return cast("StringCommandComponent", _wrap_kept(self, "command", self._core.command))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -558,24 +575,24 @@ class ServoBoardFw4(ServoBoard):
     WATCHDOG_FAILED: ClassVar[int] = 1
 
     @property
-    def servos(self) -> tuple[_sync_generated_fw4.PulseServo, ...]:
+    def servos(self) -> tuple[PulseServo, ...]:
         """The servos, numbered from 0."""
-        return cast("tuple[_sync_generated_fw4.PulseServo, ...]", _wrap_kept(self, "servos", self._core.servos))
+        return cast("tuple[PulseServo, ...]", _wrap_kept(self, "servos", self._core.servos))
 
     @property
-    def supply(self) -> _sync_generated_fw4.SupplySensor:
+    def supply(self) -> SupplySensor:
         """The servo rail's voltage and current."""
-        return cast("_sync_generated_fw4.SupplySensor", _wrap_kept(self, "supply", self._core.supply))
+        return cast("SupplySensor", _wrap_kept(self, "supply", self._core.supply))
 
     @property
-    def power_good(self) -> _sync_generated_fw4.Flag:
+    def power_good(self) -> Flag:
         """Raised while the servo rail's regulator reports good power."""
-        return cast("_sync_generated_fw4.Flag", _wrap_kept(self, "power_good", self._core.power_good))
+        return cast("Flag", _wrap_kept(self, "power_good", self._core.power_good))
 
     @property
-    def watchdog_failed(self) -> _sync_generated_fw4.Flag:
+    def watchdog_failed(self) -> Flag:
         """Raised when the board lost touch with its pulse generator (often: no 12 V)."""
-        return cast("_sync_generated_fw4.Flag", _wrap_kept(self, "watchdog_failed", self._core.watchdog_failed))
+        return cast("Flag", _wrap_kept(self, "watchdog_failed", self._core.watchdog_failed))
 
     @staticmethod
     def supported_components() -> set[type[_components_component.Component]]:
@@ -583,7 +600,7 @@ class ServoBoardFw4(ServoBoard):
         return _boards_sr_v4_servo_board_fw4.ServoBoardFw4.supported_components()
 
 
-class SRArduinoBoard(_sync_generated_arduino.AllDigitalUno, Ruggeduino):
+class SRArduinoBoard(AllDigitalUno, Ruggeduino):
     """The Student Robotics Arduino (an Uno running SR firmware 2, ``SRduino:2``).
 
     It speaks the Ruggeduino's single-character protocol. Every pin from 2 to 19 is a

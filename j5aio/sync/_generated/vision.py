@@ -14,8 +14,8 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, cast
 
-import j5aio.sync._generated.robot as _sync_generated_robot
 from j5aio._lazy import lazy_modules as _lazy_modules
+from j5aio.sync._generated.robot import Board, IdentifiedComponent
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt_into as _adopt_into
 from j5aio.sync.wrapping import call as _call
@@ -176,7 +176,7 @@ class PositionTracker(_SyncWrapper):
         _call(self._core.run, interval)
 
 
-class CameraBoard(_sync_generated_robot.Board):
+class CameraBoard(Board):
     """A camera plugged into the robot: a webcam, a file of pictures, or a simulated one.
 
     :param serial_number: the camera's name (its device path, or its place in a kit).
@@ -208,7 +208,7 @@ class CameraBoard(_sync_generated_robot.Board):
         _call(self._core.make_safe)
 
 
-class MarkerCamera(_sync_generated_robot.IdentifiedComponent["_components_marker_camera.MarkerCameraInterface"]):
+class MarkerCamera(IdentifiedComponent["_components_marker_camera.MarkerCameraInterface"]):
     """A camera that finds fiducial markers (AprilTag 36h11) and says where they are.
 
     :param identifier: the number of the camera on its board.
