@@ -8,6 +8,9 @@ report at least the peak of the bench process the child was forked from), else
 touched pages and, in glibc, a malloc arena of its own). Cases:
 
 * j5aio, sync: ``KitRobot()`` from ``j5aio.sync`` on the simulated kit (``J5AIO_ENV=sim``);
+* j5aio, sync, every wrapper: the same program, then every wrapper class of the facade
+  imported (as a program using every kind of board would): what loading only the
+  wrappers a program uses saves;
 * j5aio, async: the same program with ``async with KitRobot()``, for reference;
 * the floor: the same interpreter after ``import asyncio`` and nothing else, what any
   asyncio program holds;
@@ -65,7 +68,7 @@ import threading
 print({MARKER!r}, peak, threading.active_count(), flush=True)
 """
 
-SYNC_PROGRAM = """\
+SYNC_STEPS = """\
 from j5aio.sync import KitRobot
 
 robot = KitRobot()
@@ -74,6 +77,15 @@ robot.power_board.run_led.state = True
 motor = robot.motor_boards[0].motors[0]
 motor.power = 0.5
 motor.power = 0
+"""
+SYNC_PROGRAM = SYNC_STEPS + REPORT
+# The same, then every wrapper class of the facade loaded (not the environment constants,
+# whose first use makes environments, nor the core classes of the wrappers).
+EVERY_WRAPPER_PROGRAM = SYNC_STEPS + """\
+import j5aio.sync
+for name in j5aio.sync.__all__:
+    if not name.isupper():
+        getattr(j5aio.sync, name)
 """ + REPORT
 
 ASYNC_PROGRAM = """\
@@ -144,7 +156,13 @@ def main() -> int:
 
     sim = j5aio_env(J5AIO_ENV="sim", **SAFE_PATH)
     sync = Case("j5aio sync, simulated kit", [sys.executable, "-c", SYNC_PROGRAM], sim)
-    cases = [sync, Case("j5aio async, simulated kit", [sys.executable, "-c", ASYNC_PROGRAM], sim)]
+    every = Case(
+        "j5aio sync, every wrapper", [sys.executable, "-c", EVERY_WRAPPER_PROGRAM], sim,
+    )
+    cases = [
+        sync, every,
+        Case("j5aio async, simulated kit", [sys.executable, "-c", ASYNC_PROGRAM], sim),
+    ]
     if options.compare:
         cases += [
             Case(f"{case.name} ({options.compare})", case.argv,
@@ -181,6 +199,8 @@ def main() -> int:
     )
     portal_share = (portal.median - floor.median) / 2**20
     print(f"  of which the portal (an anyio loop in a thread, no j5aio): {portal_share:.1f} MiB")
+    unused = (every.median - sync.median) / 2**20
+    print(f"  the wrappers the program does not use, left unloaded: {unused:.2f} MiB")
     return 0
 
 

@@ -27,7 +27,9 @@ given as the core's or as these wrappers (``BoardGroup.get_board_group(MotorBoar
 with either ``MotorBoard``).
 
 ``import j5aio.sync`` itself is light: the wrappers (and with them the core, the event
-loop's modules and the board classes) are loaded the first time a name is used.
+loop's modules and the board classes) are loaded the first time a name is used, one
+family at a time (the robots; Student Robotics' boards; the components; ...): a program
+loads the wrappers of what it uses.
 """
 
 from __future__ import annotations

@@ -20,7 +20,7 @@ import importlib
 import sys
 import weakref
 from collections import deque
-from collections.abc import Collection, Iterator, Mapping, Sequence, Set
+from collections.abc import Collection, Iterable, Iterator, Mapping, Sequence, Set
 from typing import TYPE_CHECKING, Any, Final, TypeVar
 
 from j5aio.numbered import NumberedComponents, Pins
@@ -37,6 +37,7 @@ __all__ = [
     "core_class_of",
     "register",
     "register_later",
+    "register_modules_later",
     "registered",
     "unwrap",
     "wrap",
@@ -54,6 +55,9 @@ _CORE_CLASSES: dict[type, type] = {}
 #: wrapper class -> (module, class name) of a core class registered by name, whose module
 #: has not been imported yet (see :func:`register_later`).
 _PENDING: dict[type, tuple[str, str]] = {}
+#: (module, name) of a core class -> the module defining its wrapper, not imported yet
+#: (see :func:`register_modules_later`).
+_WRAPPER_MODULES: dict[tuple[str, str], str] = {}
 #: id(core object) -> its wrapper. The wrapper keeps its core object (and so the id) alive,
 #: and the entry goes when the wrapper does, so an id is never looked up for a new object.
 _WRAPPERS: weakref.WeakValueDictionary[int, SyncWrapper] = weakref.WeakValueDictionary()
@@ -139,6 +143,38 @@ def register_later(module: str, name: str, wrapper_class: type[SyncWrapper]) -> 
     _PENDING[wrapper_class] = (module, name)
 
 
+def register_modules_later(modules: Mapping[str, Iterable[tuple[str, str]]]) -> None:
+    """Say which module wraps each core class, to be imported when it is first needed.
+
+    :param modules: the module of wrappers -> the ``(module, name)`` of each core class it
+        wraps (registering them itself, by :func:`register` or :func:`register_later`).
+
+    j5aio's own facade is one module per family of classes: the first object of a core
+    class that :func:`wrap` is given imports the module of its wrapper (and those of its
+    wrapped bases), so a program imports only the wrappers of what it uses.
+    :func:`registered` imports them all.
+    """
+    for module, classes in modules.items():
+        for where in classes:
+            _WRAPPER_MODULES[where] = module
+
+
+def _import_wrapper_modules(cls: type) -> bool:
+    """Import the modules of :func:`register_modules_later` that wrap ``cls`` or its bases.
+
+    :returns: whether one was imported.
+    """
+    modules = [
+        module
+        for klass in cls.__mro__
+        if (module := _WRAPPER_MODULES.get((klass.__module__, klass.__qualname__)))
+        and module not in sys.modules
+    ]
+    for module in modules:
+        importlib.import_module(module)
+    return bool(modules)
+
+
 def _register_pending(
     *, importing: bool = False, only: Collection[type] | None = None
 ) -> None:
@@ -168,6 +204,8 @@ def registered() -> dict[type, type[SyncWrapper]]:
     The classes registered with :func:`register_later` are among them: their modules are
     imported.
     """
+    for module in sorted(set(_WRAPPER_MODULES.values())):
+        importlib.import_module(module)
     _register_pending(importing=True)
     return {
         core: wrapper
@@ -205,7 +243,9 @@ def _wrapper_class_of(cls: type) -> type[SyncWrapper] | None:
         return _WRAPPER_CLASSES[cls]
     except KeyError:
         pass
-    if _PENDING:  # (a class registered by name whose module is imported now, perhaps)
+    # (the module of its wrapper, not imported yet, perhaps; then a class registered by
+    # name whose module is imported now)
+    if (_WRAPPER_MODULES and _import_wrapper_modules(cls)) or _PENDING:
         _register_pending()
         if cls in _WRAPPER_CLASSES:
             return _WRAPPER_CLASSES[cls]

@@ -1,6 +1,7 @@
 """The generator of sync facades: typed ``__slots__`` wrappers of async boards and components.
 
-j5aio's own facade (``j5aio/sync/_generated.py``) is made by it, and so is the sync module
+j5aio's own facade (the package ``j5aio/sync/_generated``: one module per family of
+classes, and an index of the module of each name) is made by it, and so is the sync module
 of a third-party kit::
 
     python -m j5aio sync-gen beekit.boards -o beekit/sync.py          # write it
@@ -43,22 +44,33 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from j5aio.syncgen._cli import add_arguments, check_or_write, main, run
+    from j5aio.syncgen._cli import (
+        add_arguments,
+        check_or_write,
+        check_or_write_package,
+        main,
+        run,
+    )
     from j5aio.syncgen._discovery import Discovery, discover, existing_wrappers
-    from j5aio.syncgen._module_writer import generate, render_module
-    from j5aio.syncgen._scope import CORE_OUTPUT, CORE_SCOPE, Scope
+    from j5aio.syncgen._module_writer import generate, generate_core, render_core, render_module
+    from j5aio.syncgen._scope import CORE_OUTPUT, CORE_PACKAGE, CORE_SCOPE, Scope, core_family
 
 __all__ = [
     "CORE_OUTPUT",
+    "CORE_PACKAGE",
     "CORE_SCOPE",
     "Discovery",
     "Scope",
     "add_arguments",
     "check_or_write",
+    "check_or_write_package",
+    "core_family",
     "discover",
     "existing_wrappers",
     "generate",
+    "generate_core",
     "main",
+    "render_core",
     "render_module",
     "run",
 ]
@@ -66,15 +78,20 @@ __all__ = [
 #: The module of each public name.
 _HOMES = {
     "CORE_OUTPUT": "_scope",
+    "CORE_PACKAGE": "_scope",
     "CORE_SCOPE": "_scope",
     "Scope": "_scope",
+    "core_family": "_scope",
     "Discovery": "_discovery",
     "discover": "_discovery",
     "existing_wrappers": "_discovery",
     "generate": "_module_writer",
+    "generate_core": "_module_writer",
+    "render_core": "_module_writer",
     "render_module": "_module_writer",
     "add_arguments": "_cli",
     "check_or_write": "_cli",
+    "check_or_write_package": "_cli",
     "main": "_cli",
     "run": "_cli",
 }

@@ -124,7 +124,7 @@ class _ClassWriter:
 
     def wrapped_typevar_choices(self, var: typing.TypeVar) -> list[type]:
         bound: type = var.__bound__  # type: ignore[assignment]
-        choices = [c for c in self.r.wrapped if issubclass(c, bound) and c is not bound]
+        choices = [c for c in self.r.facade if issubclass(c, bound) and c is not bound]
         return sorted(choices, key=lambda c: (-len(c.__mro__), c.__name__))
 
     # --- members ------------------------------------------------------------------
@@ -468,7 +468,8 @@ class _ClassWriter:
         ):
             return []
         decls, call, _ = self.signature(init, skip_first=True)
-        if any("__new__" in base.__dict__ for base in cls.__mro__[1:] if base in self.r.wrapped):
+        facade = self.r.facade
+        if any("__new__" in base.__dict__ for base in cls.__mro__[1:] if base in facade):
             return self.robot_constructor(decls, call)
         lines = self.def_line("    ", "__init__", ["self", *decls], "None")
         lines.append(f"        _adopt_into(self, {self.r.core_ref(cls)}({', '.join(call)}))")

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-__all__ = ["add_arguments", "check_or_write", "main", "run"]
+__all__ = ["add_arguments", "check_or_write", "check_or_write_package", "main", "run"]
 
 
 def check_or_write(source: str, output: Path, *, check: bool, command: str) -> int:
@@ -28,6 +28,41 @@ def check_or_write(source: str, output: Path, *, check: bool, command: str) -> i
         print(f"wrote {output}")
     else:
         print(f"{output} is up to date")
+    return 0
+
+
+def check_or_write_package(
+    sources: Mapping[str, str], folder: Path, *, check: bool, command: str,
+) -> int:
+    """Write the modules ``sources`` (file name -> source) into ``folder``; or only compare.
+
+    A module of ``folder`` that ``sources`` does not hold (a family no longer generated) is
+    stale too: it is removed (or, with ``check``, reported).
+
+    :param command: how to regenerate, for the message when ``folder`` is stale.
+    :returns: the exit status: 1 if ``check`` found a module stale, missing or extra, else 0.
+    """
+    extra = sorted(
+        path.name for path in folder.glob("*.py") if path.name not in sources
+    ) if folder.is_dir() else []
+    if check:
+        stale = [
+            name for name, source in sources.items()
+            if not (folder / name).exists()
+            or (folder / name).read_text(encoding="utf-8") != source
+        ]
+        if stale or extra:
+            print(f"{folder} is stale ({', '.join([*stale, *extra])}): run {command}",
+                  file=sys.stderr)
+            return 1
+        print(f"{folder} is up to date")
+        return 0
+    folder.mkdir(parents=True, exist_ok=True)
+    for name in extra:
+        (folder / name).unlink()
+        print(f"removed {folder / name}")
+    for name, source in sources.items():
+        check_or_write(source, folder / name, check=False, command=command)
     return 0
 
 

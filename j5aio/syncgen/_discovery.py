@@ -136,8 +136,9 @@ def _public_module(obj: Any) -> str:
 def existing_wrappers(skip: Iterable[type] = ()) -> dict[type, tuple[str, str]]:
     """Return core class -> (public module, name) of every wrapper registered so far.
 
-    Importing ``j5aio.sync._generated`` registers j5aio's own; a kit's generated module registers
-    its own when imported. ``skip`` leaves out the classes about to be generated afresh.
+    Importing ``j5aio.sync._generated`` tells where j5aio's own are (all are imported
+    here); a kit's generated module registers its own when imported. ``skip`` leaves out
+    the classes about to be generated afresh.
     """
     import j5aio.sync._generated  # noqa: F401 - registers j5aio's own wrappers
     from j5aio.sync.wrapping import registered

@@ -7,7 +7,7 @@ import inspect
 import math
 import types
 import typing
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -45,7 +45,20 @@ class _Renderer:
         self,
         discovery: Discovery,
         external: Mapping[type, tuple[str, str]] | None = None,
+        facade: Sequence[type] | None = None,
+        *,
+        external_by_name: bool = False,
     ) -> None:
+        """Render for the classes of ``discovery``.
+
+        :param external: core class -> (module, name) of wrappers defined elsewhere.
+        :param facade: every class of the facade being generated, when it is written as
+            several modules (``discovery`` holding those of one); the classes of
+            ``discovery`` by default.
+        :param external_by_name: refer to the wrappers of ``external`` by their names,
+            imported from their modules (:attr:`wrapper_imports`), rather than through
+            their modules: the other modules of a facade written as several.
+        """
         self.discovery = discovery
         self.public_only = not discovery.scope.is_core
         self.wrapped: dict[type, str] = {}
@@ -54,6 +67,10 @@ class _Renderer:
                 raise RuntimeError(f"two wrapped classes are called {cls.__name__}")
             self.wrapped[cls] = cls.__name__
         self.external = {k: v for k, v in (external or {}).items() if k not in self.wrapped}
+        self.facade: list[type] = list(discovery.classes if facade is None else facade)
+        self.external_by_name = external_by_name
+        self.wrapper_imports: dict[str, str] = {}
+        """Name -> module of each wrapper of ``external`` referred to by name."""
         self.module_aliases: dict[str, str] = {}
         self.name_imports: dict[str, str] = {}  # name -> module
         self.typevars: dict[typing.TypeVar | _SyncVar, str] = {}
@@ -61,6 +78,8 @@ class _Renderer:
         self.typevar_defs: dict[str, str] = {}
         self.namespace = _Namespace()
         self.used_typing: set[str] = set()
+        self.exported: list[str] = []
+        """The public names of the module written (once it is)."""
 
     # --- references ---------------------------------------------------------------
 
@@ -87,7 +106,15 @@ class _Renderer:
         if local is not None:
             return local
         module, name = self.external[cls]
+        if self.external_by_name:
+            self.wrapper_imports[name] = module
+            return name
         return f"{self.module_ref(module)}.{name}"
+
+    @property
+    def external_names(self) -> set[str]:
+        """The names of the wrappers of ``external``."""
+        return {name for _, name in self.external.values()}
 
     def name_ref(self, obj: Any) -> str:
         module: str = self.home(obj)
@@ -98,6 +125,7 @@ class _Renderer:
         if (
             module.startswith("j5aio")
             or top in self.wrapped.values()
+            or (self.external_by_name and top in self.external_names)
             or (self.public_only and module.startswith(self.discovery.scope.modules))
         ):
             return f"{self.module_ref(module)}.{name}"

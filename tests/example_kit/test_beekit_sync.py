@@ -130,7 +130,8 @@ def test_the_generated_module_is_typed(tmp_path: Path) -> None:
     bad = [line for line in stdout.splitlines() if line.startswith(str(files["bad"]))]
     assert [line for line in good if ": error:" in line] == []
     revealed = [line.split("Revealed type is ")[1] for line in good if "Revealed type" in line]
-    assert revealed == ['"beekit.sync.BeeBoard"', '"j5aio.sync._generated.Motor"', '"bool"']
+    motor = '"j5aio.sync._generated.components.Motor"'
+    assert revealed == ['"beekit.sync.BeeBoard"', motor, '"bool"']
     errors = [line for line in bad if ": error:" in line]
     assert len(errors) == 2, errors
     assert '"BeeBoard" has no attribute "moters"' in errors[0]

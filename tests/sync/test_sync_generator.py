@@ -32,19 +32,56 @@ def gen() -> types.ModuleType:
     return syncgen
 
 
-def test_committed_module_is_up_to_date(gen: types.ModuleType) -> None:
-    committed = Path(_generated.__file__).read_text(encoding="utf-8")
-    fresh = gen.generate()
-    assert committed == fresh, "j5aio/sync/_generated.py is stale: run python tools/gen_sync.py"
+def test_committed_package_is_up_to_date(gen: types.ModuleType) -> None:
+    folder = Path(_generated.__file__).parent
+    fresh: dict[str, str] = gen.generate_core()
+    assert {"__init__.py", "robot.py", "sr.py", "components.py"} <= set(fresh)
+    committed = {path.name: path.read_text(encoding="utf-8") for path in folder.glob("*.py")}
+    assert committed == fresh, "j5aio/sync/_generated is stale: run python tools/gen_sync.py"
 
 
-def test_check_option_reports_staleness(gen: types.ModuleType, tmp_path: Path) -> None:
+def test_check_option_reports_staleness(
+    gen: types.ModuleType, tmp_path: Path, capsys: pytest.CaptureFixture[str],
+) -> None:
     tool = load_tool()
-    target = tmp_path / "generated.py"
+    target = tmp_path / "generated"
     assert tool.main(["--check", "--output", str(target)]) == 1
+    assert not target.exists()  # (a check writes nothing)
     assert tool.main(["--output", str(target)]) == 0
     assert tool.main(["--check", "--output", str(target)]) == 0
-    assert target.read_text(encoding="utf-8") == gen.generate()
+    fresh: dict[str, str] = gen.generate_core()
+    assert {path.name: path.read_text(encoding="utf-8") for path in target.iterdir()} == fresh
+
+    # one module edited by hand, and one that is no longer generated: both are stale
+    (target / "sr.py").write_text("# edited\n", encoding="utf-8")
+    (target / "gone.py").write_text("# an old family\n", encoding="utf-8")
+    capsys.readouterr()
+    assert tool.main(["--check", "--output", str(target)]) == 1
+    assert "sr.py, gone.py" in capsys.readouterr().err
+    assert tool.main(["--output", str(target)]) == 0
+    assert not (target / "gone.py").exists()
+    assert (target / "sr.py").read_text(encoding="utf-8") == fresh["sr.py"]
+    assert tool.main(["--check", "--output", str(target)]) == 0
+
+
+def test_each_family_holds_the_classes_of_its_core_modules(gen: types.ModuleType) -> None:
+    from j5aio.boards.sr.v4.motor_board import MotorBoard
+    from j5aio.components.motor import Motor
+    from j5aio.kit import KitRobot
+
+    assert gen.core_family(MotorBoard.__module__) == "sr"
+    assert gen.core_family(Motor.__module__) == "components"
+    assert gen.core_family(KitRobot.__module__) == "robot"
+    assert gen.core_family("j5aio.boards.srx") == "robot"  # a prefix is a whole package
+    for cls in gen.discover().classes:
+        family = gen.core_family(cls.__module__)
+        wrapper = getattr(_generated, cls.__name__)
+        assert wrapper.__module__ == f"{gen.CORE_PACKAGE}.{family}", cls
+
+
+def test_a_kit_module_with_no_boards_is_refused(gen: types.ModuleType) -> None:
+    with pytest.raises(ValueError, match="found no board or component classes"):
+        gen.generate(["j5aio.errors"])
 
 
 def test_discovery_finds_every_board_and_component(gen: types.ModuleType) -> None:

@@ -93,3 +93,56 @@ def test_a_plain_literal_is_one_whose_repr_is_its_source(value: object, plain: b
     assert _is_plain_literal(value) is plain
     if plain:
         assert eval(repr(value)) == value
+
+
+def _families(names: str) -> str:
+    """Source printing which of the facade's family modules are imported."""
+    return (
+        "print(sorted(m.rpartition('.')[2] for m in sys.modules"
+        f" if m.startswith('j5aio.sync._generated.')), {names})\n"
+    )
+
+
+def test_a_robot_imports_the_wrappers_of_what_the_program_uses() -> None:
+    loaded = _run(
+        "import os, sys\n"
+        "os.environ['J5AIO_ENV'] = 'sim'\n"
+        "from j5aio.sync import KitRobot\n"
+        "robot = KitRobot()\n"
+        + _families("'ready'")
+        + "board = robot.motor_boards[0]\n"
+        + _families("type(board).__name__")
+        + "motor = board.motors[0]\n"
+        + _families("type(motor).__name__")
+    )
+    ready, board, motor = loaded.splitlines()
+    assert ready == "['robot'] ready"
+    assert board == "['arduino', 'components', 'robot', 'sr'] MotorBoard"
+    assert motor == "['arduino', 'components', 'robot', 'sr'] Motor"
+
+
+def test_wrapping_an_object_imports_the_module_of_its_wrapper() -> None:
+    loaded = _run(
+        "import sys\n"
+        "from j5aio.sync import wrapping, _generated\n"
+        "from j5aio.components.motor import Motor\n"
+        "motor = Motor.__new__(Motor)\n"
+        + _families("'before'")
+        + "face = wrapping.wrap(motor)\n"
+        + _families("type(face).__module__")
+        + "wrapping.registered()\n"
+        + _families("'all'")
+    )
+    before, after, everything = loaded.splitlines()
+    assert before == "[] before"
+    assert after == "['components', 'robot'] j5aio.sync._generated.components"
+    assert everything == (
+        "['arduino', 'components', 'environment', 'fw4', 'robot', 'sb', 'sr', 'vision'] all"
+    )
+
+
+def test_a_class_without_a_wrapper_module_is_left_as_it_is() -> None:
+    class Plain:
+        pass
+
+    assert wrapping.wrap(plain := Plain()) is plain

@@ -98,13 +98,13 @@ def test_facade_code_type_checks_with_precise_types(mypy_report: dict[str, list[
     assert errors == []
     revealed = [line.split("Revealed type is ")[1] for line in lines if "Revealed type" in line]
     assert revealed == [
-        '"j5aio.sync._generated.PowerBoard"',
+        '"j5aio.sync._generated.sr.PowerBoard"',
         '"bool"',
-        '"j5aio.sync._generated.Motor"',
-        '"j5aio.sync._generated.BoardGroup[j5aio.sync._generated.MotorBoard]"',
-        '"j5aio.sync._generated.MotorBoard"',
-        '"j5aio.sync._generated.MotorBoard"',
-        '"j5aio.sync._generated.BoardGroup[j5aio.sync._generated.PowerBoard]"',
+        '"j5aio.sync._generated.components.Motor"',
+        '"j5aio.sync._generated.robot.BoardGroup[j5aio.sync._generated.sr.MotorBoard]"',
+        '"j5aio.sync._generated.sr.MotorBoard"',
+        '"j5aio.sync._generated.sr.MotorBoard"',
+        '"j5aio.sync._generated.robot.BoardGroup[j5aio.sync._generated.sr.PowerBoard]"',
     ]
 
 
