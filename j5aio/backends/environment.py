@@ -187,8 +187,9 @@ class Environment:
             (:class:`TypeError` otherwise).
         :param idle: says, when :meth:`get_board_group` runs, that the backend would
             find no board now (the simulated kit has none of its boards, say): it is then
-            not asked, nor loaded if it is not yet (unless no backend for the board is
-            active: the group then holds the first backend, with no boards).
+            not asked, nor loaded if it is not yet (when no backend for the board is
+            active, the group holds the first backend, with no boards, loaded the first
+            time the group is looked in again or asked for its backends).
         :raises TypeError: ``board`` is not a Board subclass, or ``load`` is not callable.
         """
         if not (isinstance(board, type) and issubclass(board, Board)):
@@ -293,10 +294,11 @@ class Environment:
             return await BoardGroup.get_board_group(board, (first,))
         backends = tuple(self._backends_for(board, active_only=True))
         if not backends:  # each would find nothing now: a group of the first, not asked
-            fallback = next(self._backends_for(board, active_only=False), None)
-            if fallback is None:
+            slot = next((slot for slot in self._slots if issubclass(slot.board, board)), None)
+            if slot is None:
                 raise NotImplementedError(self._unsupported(board))
-            return BoardGroup(board, fallback)
+            # (its backend is imported only if the group is looked in again, or asked)
+            return BoardGroup._not_looked_in(board, lambda: (slot.backend(),))
         return await BoardGroup.get_board_group(board, backends)
 
     def _first_for(self, board: type[Board]) -> type[Backend]:

@@ -1,0 +1,24 @@
+"""The SR v4 power board (firmware 4): its simulated backend."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from j5aio.backends.hardware.options import DiscoveryOptions
+from j5aio.backends.hardware.sr.v4.power_board_fw4 import SRV4PowerBoardFw4HardwareBackend
+from j5aio.boards.board import Board
+
+from ..discovery import kind_options
+
+__all__ = ["SRV4PowerBoardFw4SimulatedBackend"]
+
+
+class SRV4PowerBoardFw4SimulatedBackend(SRV4PowerBoardFw4HardwareBackend):
+    """The SR v4 power board (firmware 4) hardware backend, on the simulated kit."""
+
+    __module__ = "j5aio.simulator.sim_backends_2023"  # where it is documented, and imported from
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
+        return await super().discover(options=options or kind_options(cls))
