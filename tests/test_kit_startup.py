@@ -52,7 +52,7 @@ NOT_NEEDED = {
     "j5aio.simulator.sr_motor_fw4": "the default kit has no firmware-4 motor board",
     "j5aio.simulator.sr_ruggeduino_fw1": "the default kit has no Ruggeduino",
     "j5aio.backends.hardware.sr.v4.ruggeduino": "the default kit has no Ruggeduino",
-    "j5aio.simulator._backends.sr_ruggeduino_fw1": "the default kit has no Ruggeduino",
+    "j5aio.simulator._sim_sr_ruggeduino_fw1": "the default kit has no Ruggeduino",
     "j5aio.boards.sr.v4.motor_board_fw4": "the default kit has no firmware-4 motor board",
     "j5aio.boards.sr.v4.power_board_fw4": "the default kit has no firmware-4 power board",
     "j5aio.boards.sr.v4.arduino": "the default kit has no SR Arduino",

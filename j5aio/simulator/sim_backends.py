@@ -5,11 +5,11 @@ Each is the board's hardware backend whose ``discover`` looks at the boards of
 :mod:`j5aio.simulator.discovery`), and nothing else: from there on every call runs the
 hardware backend's own code (its polls included) over a simulated transport, as on a
 robot. Each board kind names its simulated backend (``simulated=`` of
-:class:`~j5aio.board_kinds.BoardKind`); the simulated environment looks it up here the
-first time it needs it. Each is imported, with its board's hardware backend, the first
-time it is looked up, so a kit imports the backends of the boards it has and no others
-(the default kit, say, none of the Ruggeduino's). The later boards' are in
-:mod:`j5aio.simulator.sim_backends_2023`.
+:class:`~j5aio.board_kinds.BoardKind`); the simulated environment imports this module the
+first time it needs one of them. The power, motor and servo boards' are in every kit of
+these boards; each Arduino's is imported, with its hardware backend, the first time it is
+looked up here, so that a kit imports the backend of the Arduino it has only. The later
+boards' are in :mod:`j5aio.simulator.sim_backends_2023`.
 
 A plugin's simulated backend is written the same way, with
 :func:`~j5aio.simulator.discovery.kind_options`::
@@ -20,35 +20,64 @@ A plugin's simulated backend is written the same way, with
             return await super().discover(options=options or kind_options(cls))
 """
 
+from __future__ import annotations
+
+from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from j5aio._lazy import lazy_exports
+from j5aio.backends.hardware.options import DiscoveryOptions
+from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
+from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
+from j5aio.boards.board import Board
+
+from .discovery import kind_options
 
 if TYPE_CHECKING:
-    from ._backends.sb_arduino_2019 import (
-        SBArduinoSimulatedBackend as SBArduinoSimulatedBackend,
-    )
-    from ._backends.sr_motor_fw3 import (
-        SRV4MotorBoardSimulatedBackend as SRV4MotorBoardSimulatedBackend,
-    )
-    from ._backends.sr_power_fw3 import (
-        SRV4PowerBoardSimulatedBackend as SRV4PowerBoardSimulatedBackend,
-    )
-    from ._backends.sr_ruggeduino_fw1 import (
+    from ._sim_sb_arduino_2019 import SBArduinoSimulatedBackend as SBArduinoSimulatedBackend
+    from ._sim_sr_ruggeduino_fw1 import (
         SRV4RuggeduinoSimulatedBackend as SRV4RuggeduinoSimulatedBackend,
     )
-    from ._backends.sr_servo_fw2 import (
-        SRV4ServoBoardSimulatedBackend as SRV4ServoBoardSimulatedBackend,
-    )
+
+
+class SRV4PowerBoardSimulatedBackend(SRV4PowerBoardHardwareBackend):
+    """The SR v4 power board (firmware 3) hardware backend, on the simulated kit."""
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
+        return await super().discover(options=options or kind_options(cls))
+
+
+class SRV4MotorBoardSimulatedBackend(SRV4MotorBoardHardwareBackend):
+    """The SR v4 motor board (firmware 3) hardware backend, on the simulated kit."""
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
+        return await super().discover(options=options or kind_options(cls))
+
+
+class SRV4ServoBoardSimulatedBackend(SRV4ServoBoardHardwareBackend):
+    """The SR v4 servo board (firmware 2) hardware backend, on the simulated kit."""
+
+    @classmethod
+    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
+        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
+        return await super().discover(options=options or kind_options(cls))
+
 
 if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
     __getattr__, __dir__ = lazy_exports(
         __name__,
         {
-            "j5aio.simulator._backends.sr_power_fw3": ["SRV4PowerBoardSimulatedBackend"],
-            "j5aio.simulator._backends.sr_motor_fw3": ["SRV4MotorBoardSimulatedBackend"],
-            "j5aio.simulator._backends.sr_servo_fw2": ["SRV4ServoBoardSimulatedBackend"],
-            "j5aio.simulator._backends.sb_arduino_2019": ["SBArduinoSimulatedBackend"],
-            "j5aio.simulator._backends.sr_ruggeduino_fw1": ["SRV4RuggeduinoSimulatedBackend"],
+            "j5aio.simulator._sim_sb_arduino_2019": ["SBArduinoSimulatedBackend"],
+            "j5aio.simulator._sim_sr_ruggeduino_fw1": ["SRV4RuggeduinoSimulatedBackend"],
         },
+        own=(
+            "SRV4MotorBoardSimulatedBackend",
+            "SRV4PowerBoardSimulatedBackend",
+            "SRV4ServoBoardSimulatedBackend",
+        ),
     )

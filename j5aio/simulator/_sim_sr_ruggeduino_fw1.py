@@ -8,7 +8,7 @@ from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
 from j5aio.boards.sr.v4 import Ruggeduino
 
-from ..discovery import kind_options
+from .discovery import kind_options
 
 __all__ = ["SRV4RuggeduinoSimulatedBackend"]
 

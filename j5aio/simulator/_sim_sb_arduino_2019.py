@@ -8,7 +8,7 @@ from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
 from j5aio.boards.sb import SBArduinoBoard
 
-from ..discovery import kind_options
+from .discovery import kind_options
 
 __all__ = ["SBArduinoSimulatedBackend"]
 

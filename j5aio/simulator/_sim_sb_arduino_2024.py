@@ -8,7 +8,7 @@ from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.sb.arduino_2024 import SBArduino2024HardwareBackend
 from j5aio.boards.sb import SBArduino2024Board
 
-from ..discovery import kind_options
+from .discovery import kind_options
 
 __all__ = ["SBArduino2024SimulatedBackend"]
 

@@ -8,7 +8,7 @@ from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.sr.v4.arduino import SRArduinoHardwareBackend
 from j5aio.boards.sr.v4 import SRArduinoBoard
 
-from ..discovery import kind_options
+from .discovery import kind_options
 
 __all__ = ["SRArduinoSimulatedBackend"]
 
