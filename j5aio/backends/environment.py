@@ -187,9 +187,8 @@ class Environment:
             (:class:`TypeError` otherwise).
         :param idle: says, when :meth:`get_board_group` runs, that the backend would
             find no board now (the simulated kit has none of its boards, say): it is then
-            not asked, nor loaded if it is not yet (when no backend for the board is
-            active, the group holds the first backend, with no boards, loaded the first
-            time the group is looked in again or asked for its backends).
+            not asked, nor loaded if it is not yet (unless no backend for the board is
+            active: the group then holds the first backend, with no boards).
         :raises TypeError: ``board`` is not a Board subclass, or ``load`` is not callable.
         """
         if not (isinstance(board, type) and issubclass(board, Board)):
