@@ -157,8 +157,16 @@ def test_the_bare_program_is_a_fair_baseline(bare_modules: set[str]) -> None:
     assert _loaded(bare_modules, "anyio")
 
 
-#: For each named kit, backends of boards it does not have (which a robot asks for all
-#: the same), with the board they are of.
+#: The simulators of the boards of the kits before 2023, with their boards.
+FIRMWARE_3_SIMULATORS = {
+    "j5aio.simulator.sr_power_fw3": "a firmware-3 power board",
+    "j5aio.simulator.sr_motor_fw3": "a firmware-3 motor board",
+    "j5aio.simulator.sr_servo_fw2": "a firmware-2 servo board",
+    "j5aio.simulator.sb_arduino_2019": "a SourceBots Arduino of 2019",
+}
+
+#: For each named kit, backends (which a robot asks for all the same) and simulators of
+#: boards it does not have, with the board they are of.
 OTHER_KITS_BACKENDS = {
     "sr2019": {"j5aio.backends.hardware.sb": "a SourceBots Arduino"},
     "sb2019": {"j5aio.backends.hardware.sr.v4.ruggeduino": "a Ruggeduino"},
@@ -167,17 +175,19 @@ OTHER_KITS_BACKENDS = {
         "j5aio.backends.hardware.sr.v4.ruggeduino": "a Ruggeduino",
         "j5aio.backends.hardware.sr.v4.power_board": "a firmware-3 power board",
         "j5aio.backends.hardware.sr.v4.motor_board": "a firmware-3 motor board",
+        **FIRMWARE_3_SIMULATORS,
     },
     "sb2024": {
         "j5aio.backends.hardware.sr.v4.arduino": "an SR Arduino",
         "j5aio.backends.hardware.sr.v4.ruggeduino": "a Ruggeduino",
         "j5aio.backends.hardware.sb.arduino": "a SourceBots Arduino of 2019",
+        **FIRMWARE_3_SIMULATORS,
     },
 }
 
 
 @pytest.mark.parametrize("kit", sorted(OTHER_KITS_BACKENDS))
-def test_a_named_kit_imports_the_backends_of_its_own_boards_only(kit: str) -> None:
+def test_a_named_kit_imports_the_backends_and_simulators_of_its_own_boards_only(kit: str) -> None:
     modules, output = _modules_of(STARTED_ROBOT, kit)
     assert "BOARDS 1 1" in output
     loaded = {
