@@ -63,6 +63,7 @@ NOT_NEEDED = {
     "j5aio.simulator._camera_model": "the camera's model is read at its first look",
     "j5aio.vision.calibration": "the camera's calibration is read at its first look",
     "j5aio.service.config": "nothing configures the robot service",
+    "numbers": "the numbers given are ints and floats, which need no number ABCs",
 }
 
 #: Modules a robot on the default simulated kit has no use for until it does something
