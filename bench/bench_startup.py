@@ -15,7 +15,11 @@ the hand-offs to the event loop. Cases:
 
 Rounds are interleaved and shuffled; the table shows medians and the ratio to j5. Run::
 
-    python bench/bench_startup.py [--rounds 15] [--kit NAME]
+    python bench/bench_startup.py [--rounds 15] [--kit NAME] [--compare CHECKOUT] [--imports]
+
+``--imports`` also says, for each j5aio case, what its process has imported once the
+robot is ready: how many modules (all of them, and j5aio's) and how many of j5aio's
+classes are dataclasses (each costs a few hundred microseconds to make).
 
 Goal: a ready robot on the simulated kit, async and sync, at most 20 ms after the floor
 (the median of ``anyio.run`` on an empty coroutine in the same run). The sync case's
@@ -81,6 +85,42 @@ anyio.run(main)
 """
 
 
+# What a program has imported at its ready line, printed as one line (--imports).
+_IMPORTS_REPORT = f"""\
+import dataclasses as _dataclasses, sys as _sys
+_ours = [_name for _name in list(_sys.modules) if _name.split(".")[0] == "j5aio"]
+_classes = {{
+    _value for _name in _ours for _value in list(vars(_sys.modules[_name]).values())
+    if isinstance(_value, type) and _dataclasses.is_dataclass(_value)
+    and _value.__module__.split(".")[0] == "j5aio"
+}}
+print({MARKER!r}, "IMPORTS", len(_sys.modules), len(_ours), len(_classes), flush=True)
+"""
+
+
+def _reporting_imports(program: str) -> str:
+    """``program`` printing what it has imported just before its ready line."""
+    lines = program.splitlines(keepends=True)
+    at = next(index for index, line in enumerate(lines) if f"print({MARKER!r}" in line)
+    indent = lines[at][: len(lines[at]) - len(lines[at].lstrip())]
+    report = "".join(f"{indent}{line}" for line in _IMPORTS_REPORT.splitlines(keepends=True))
+    return "".join([*lines[:at], report, *lines[at:]])
+
+
+def imports_at_ready(case: Case, folder: str) -> tuple[int, int, int]:
+    """Modules (all, j5aio's) and j5aio dataclasses ``case``'s program has at its ready line."""
+    program = _reporting_imports(case.argv[-1])
+    done = subprocess.run(
+        [*case.argv[:-1], program], env=case.env, capture_output=True, text=True, cwd=folder,
+        timeout=120, check=False,
+    )
+    for line in done.stdout.splitlines():
+        if line.startswith(f"{MARKER} IMPORTS "):
+            modules, ours, dataclasses = map(int, line.split()[2:])
+            return modules, ours, dataclasses
+    raise RuntimeError(f"{case.name}: no imports line:\n{done.stderr[-2000:]}")
+
+
 def time_to_ready(case: Case, folder: str) -> float:
     """Seconds from starting ``case``'s process to reading its ready line; it is then ended.
 
@@ -124,6 +164,10 @@ def main() -> int:
         help="another checkout of j5aio (before a change, say): its async and sync cases "
         "run in the same interleaved rounds",
     )
+    parser.add_argument(
+        "--imports", action="store_true",
+        help="also count the modules and dataclasses each j5aio case has imported when ready",
+    )
     options = parser.parse_args()
 
     sim = {"J5AIO_ENV": "sim", **({"J5AIO_KIT": options.kit} if options.kit else {})}
@@ -146,6 +190,8 @@ def main() -> int:
         cases.append(j5)
     with tempfile.TemporaryDirectory(prefix="j5aio-bench-startup-") as folder:
         run_interleaved(cases, options.rounds, functools.partial(time_to_ready, folder=folder))
+        counted = [case for case in cases if case.name.startswith("j5aio") and options.imports]
+        imported = {case.name: imports_at_ready(case, folder) for case in counted}
     print(f"process start -> robot ready, {options.rounds} interleaved rounds")
     print_table("time to a ready robot", cases, "ms", reference=j5, scale=1000)
     limit = floor.median * 1000 + GOAL_ABOVE_FLOOR_MS
@@ -162,6 +208,10 @@ def main() -> int:
         )
     sync_share = (cases[1].median - cases[0].median) * 1000
     print(f"  the sync runtime's share (sync - async): {sync_share:.1f} ms")
+    if imported:
+        print("\nimported when ready (modules: all, j5aio's; j5aio's dataclasses):")
+        for name, (modules, ours, dataclasses) in imported.items():
+            print(f"  {name:<40} {modules:5d} {ours:5d} {dataclasses:5d}")
     return 0
 
 

@@ -51,6 +51,8 @@ NOT_NEEDED = {
     "concurrent.futures.thread": "the camera's worker thread waits for a first look",
     "j5aio.simulator.sr_motor_fw4": "the default kit has no firmware-4 motor board",
     "j5aio.simulator.sr_ruggeduino_fw1": "the default kit has no Ruggeduino",
+    "j5aio.backends.hardware.sr.v4.ruggeduino": "the default kit has no Ruggeduino",
+    "j5aio.simulator._sim_sr_ruggeduino_fw1": "the default kit has no Ruggeduino",
     "j5aio.boards.sr.v4.motor_board_fw4": "the default kit has no firmware-4 motor board",
     "j5aio.boards.sr.v4.power_board_fw4": "the default kit has no firmware-4 power board",
     "j5aio.boards.sr.v4.arduino": "the default kit has no SR Arduino",
@@ -61,6 +63,7 @@ NOT_NEEDED = {
     "j5aio.simulator._camera_model": "the camera's model is read at its first look",
     "j5aio.vision.calibration": "the camera's calibration is read at its first look",
     "j5aio.service.config": "nothing configures the robot service",
+    "numbers": "the numbers given are ints and floats, which need no number ABCs",
 }
 
 #: Modules a robot on the default simulated kit has no use for until it does something
@@ -93,8 +96,8 @@ def _free_port() -> int:
         return port
 
 
-def _modules_of(program: str) -> tuple[set[str], str]:
-    """The modules loaded at the end of ``program``, run on the default simulated kit."""
+def _modules_of(program: str, kit: str | None = None) -> tuple[set[str], str]:
+    """The modules loaded at the end of ``program``, run on the simulated kit ``kit``."""
     env = {
         key: value
         for key, value in os.environ.items()
@@ -104,6 +107,7 @@ def _modules_of(program: str) -> tuple[set[str], str]:
         env.pop(key, None)
     env.update(
         J5AIO_ENV="sim",
+        **({"J5AIO_KIT": kit} if kit else {}),
         J5AIO_MEDIA_ROOTS=str(ROOT / "no-media-here"),
         J5AIO_LOCK_PORT=str(_free_port()),
         PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])),
@@ -152,3 +156,42 @@ def test_the_bare_program_is_a_fair_baseline(bare_modules: set[str]) -> None:
     # (the comparison above would pass vacuously if the baseline had loaded j5aio)
     assert not _loaded(bare_modules, "j5aio")
     assert _loaded(bare_modules, "anyio")
+
+
+#: The simulators of the boards of the kits before 2023, with their boards.
+FIRMWARE_3_SIMULATORS = {
+    "j5aio.simulator.sr_power_fw3": "a firmware-3 power board",
+    "j5aio.simulator.sr_motor_fw3": "a firmware-3 motor board",
+    "j5aio.simulator.sr_servo_fw2": "a firmware-2 servo board",
+    "j5aio.simulator.sb_arduino_2019": "a SourceBots Arduino of 2019",
+}
+
+#: For each named kit, backends (which a robot asks for all the same) and simulators of
+#: boards it does not have, with the board they are of.
+OTHER_KITS_BACKENDS = {
+    "sr2019": {"j5aio.backends.hardware.sb": "a SourceBots Arduino"},
+    "sb2019": {"j5aio.backends.hardware.sr.v4.ruggeduino": "a Ruggeduino"},
+    "sr2023": {
+        "j5aio.backends.hardware.sb": "a SourceBots Arduino",
+        "j5aio.backends.hardware.sr.v4.ruggeduino": "a Ruggeduino",
+        "j5aio.backends.hardware.sr.v4.power_board": "a firmware-3 power board",
+        "j5aio.backends.hardware.sr.v4.motor_board": "a firmware-3 motor board",
+        **FIRMWARE_3_SIMULATORS,
+    },
+    "sb2024": {
+        "j5aio.backends.hardware.sr.v4.arduino": "an SR Arduino",
+        "j5aio.backends.hardware.sr.v4.ruggeduino": "a Ruggeduino",
+        "j5aio.backends.hardware.sb.arduino": "a SourceBots Arduino of 2019",
+        **FIRMWARE_3_SIMULATORS,
+    },
+}
+
+
+@pytest.mark.parametrize("kit", sorted(OTHER_KITS_BACKENDS))
+def test_a_named_kit_imports_the_backends_and_simulators_of_its_own_boards_only(kit: str) -> None:
+    modules, output = _modules_of(STARTED_ROBOT, kit)
+    assert "BOARDS 1 1" in output
+    loaded = {
+        name: board for name, board in OTHER_KITS_BACKENDS[kit].items() if _loaded(modules, name)
+    }
+    assert loaded == {}

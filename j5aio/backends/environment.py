@@ -293,10 +293,11 @@ class Environment:
             return await BoardGroup.get_board_group(board, (first,))
         backends = tuple(self._backends_for(board, active_only=True))
         if not backends:  # each would find nothing now: a group of the first, not asked
-            fallback = next(self._backends_for(board, active_only=False), None)
-            if fallback is None:
+            slot = next((slot for slot in self._slots if issubclass(slot.board, board)), None)
+            if slot is None:
                 raise NotImplementedError(self._unsupported(board))
-            return BoardGroup(board, fallback)
+            # (its backend is imported only if the group is looked in again, or asked)
+            return BoardGroup._not_looked_in(board, lambda: (slot.backend(),))
         return await BoardGroup.get_board_group(board, backends)
 
     def _first_for(self, board: type[Board]) -> type[Backend]:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 from j5aio.boards.board import Board
@@ -38,15 +38,11 @@ class BoardGroup(Generic[BoardT]):
         *,
         ports: Sequence[str] = (),
     ) -> None:
-        backends = _backend_tuple(backend_class)
-        for backend in backends:
-            if not issubclass(backend.board, board_type):
-                raise TypeError(
-                    f"{backend.__name__} drives {backend.board.__name__}, not "
-                    f"{board_type.__name__}: choose a backend for {board_type.__name__}.",
-                )
+        backends = _checked(board_type, _backend_tuple(backend_class))
         self._board_type = board_type
         self._backend_classes = backends
+        # (set by _not_looked_in: loads the backends the first time they are needed)
+        self._load_backends: Callable[[], tuple[type[Backend], ...]] | None = None
         self._ports = tuple(ports)
         self._boards: dict[str, BoardT] = {}
         #: Said when a board is looked up in the group while it is empty: which other
@@ -81,6 +77,33 @@ class BoardGroup(Generic[BoardT]):
         return group
 
     @classmethod
+    def _not_looked_in(
+        cls, board_type: type[BoardT], load_backends: Callable[[], tuple[type[Backend], ...]]
+    ) -> BoardGroup[BoardT]:
+        """An empty group whose backends are imported the first time they are needed.
+
+        An environment makes one for a board it knows would find none now, so that the
+        backend is imported only if a program looks again (:meth:`update_boards`) or asks
+        for it. ``load_backends`` returns them; it is called once, and each is checked
+        then to drive a ``board_type`` (:class:`TypeError` otherwise).
+        """
+        group = cls.__new__(cls)
+        group._board_type = board_type
+        group._backend_classes = ()
+        group._load_backends = load_backends
+        group._ports = ()
+        group._boards = {}
+        group.empty_hint = None
+        return group
+
+    def _backends(self) -> tuple[type[Backend], ...]:
+        """The backends, loaded now if they were left to be loaded when first needed."""
+        if self._load_backends is not None:
+            self._backend_classes = _checked(self._board_type, self._load_backends())
+            self._load_backends = None
+        return self._backend_classes
+
+    @classmethod
     def of_groups(
         cls, board_type: type[BoardT], groups: Sequence[BoardGroup[Any]]
     ) -> BoardGroup[Any]:
@@ -92,8 +115,11 @@ class BoardGroup(Generic[BoardT]):
         :param groups: the groups, each already looked in.
         :raises TypeError: a group's backend drives another kind of board.
         """
-        backends = tuple(dict.fromkeys(b for group in groups for b in group.backend_classes))
-        combined: BoardGroup[Any] = cls(board_type, backends)
+        if any(group._load_backends is not None for group in groups):
+            # (a group not looked in keeps its backends unloaded: so does the whole)
+            combined: BoardGroup[Any] = cls._not_looked_in(board_type, lambda: _joined(groups))
+        else:
+            combined = cls(board_type, _joined(groups))
         found = {board.serial_number: board for group in groups for board in group}
         combined._boards = dict(sorted(found.items()))
         return combined
@@ -105,10 +131,10 @@ class BoardGroup(Generic[BoardT]):
         """
         safety_hooks.install()  # a program's way to its boards: it gets the safety hooks
         found: list[tuple[Board, type[Backend]]] = []
-        for backend in self._backend_classes:
+        for backend in self._backends():
             found.extend((board, backend) for board in await backend.discover())
         for port in self._ports:
-            first = self._backend_classes[0]
+            first = self._backends()[0]
             found.append((await first.attach(port), first))
         boards: dict[str, BoardT] = {}
         finders: dict[str, type[Backend]] = {}
@@ -148,12 +174,12 @@ class BoardGroup(Generic[BoardT]):
     @property
     def backend_class(self) -> type[Backend]:
         """The backend that finds and drives the boards (the first, if there are several)."""
-        return self._backend_classes[0]
+        return self._backends()[0]
 
     @property
     def backend_classes(self) -> tuple[type[Backend], ...]:
         """Every backend the boards are found through (one per generation of the board)."""
-        return self._backend_classes
+        return self._backends()
 
     @property
     def board_type(self) -> type[BoardT]:
@@ -212,7 +238,7 @@ class BoardGroup(Generic[BoardT]):
     def __repr__(self) -> str:
         return (
             f"BoardGroup(board_type={self._board_type.__name__}, "
-            f"backend_class={', '.join(b.__name__ for b in self._backend_classes)})"
+            f"backend_class={', '.join(b.__name__ for b in self._backends())})"
         )
 
 
@@ -228,3 +254,19 @@ def _backend_tuple(
             f"not {backend_class!r}",
         )
     return backends
+
+
+def _checked(
+    board_type: type[Board], backends: tuple[type[Backend], ...]
+) -> tuple[type[Backend], ...]:
+    for backend in backends:
+        if not issubclass(backend.board, board_type):
+            raise TypeError(
+                f"{backend.__name__} drives {backend.board.__name__}, not "
+                f"{board_type.__name__}: choose a backend for {board_type.__name__}.",
+            )
+    return backends
+
+
+def _joined(groups: Sequence[BoardGroup[Any]]) -> tuple[type[Backend], ...]:
+    return tuple(dict.fromkeys(b for group in groups for b in group.backend_classes))

@@ -8,7 +8,11 @@ shows what was given. Nothing here talks to a backend.
 from __future__ import annotations
 
 import math
-from numbers import Real
+import sys
+from typing import TYPE_CHECKING, TypeGuard
+
+if TYPE_CHECKING:
+    from numbers import Real
 
 __all__ = ["check_bool", "check_number", "check_timeout", "describe"]
 
@@ -44,7 +48,7 @@ def check_number(
     :raises TypeError: ``value`` is not a real number, or is a bool.
     :raises ValueError: ``value`` is NaN or outside ``[low, high]``.
     """
-    if isinstance(value, bool) or not isinstance(value, Real):
+    if isinstance(value, bool) or not _is_real(value):
         raise TypeError(f"{name} must be {allowed}; got {describe(value)}")
     try:
         number = float(value)
@@ -53,6 +57,19 @@ def check_number(
     if not low <= number <= high:  # also false for NaN
         raise ValueError(f"{name} must be {allowed}; got {value!r}")
     return number
+
+
+def _is_real(value: object) -> TypeGuard[Real]:
+    """Whether ``value`` is a :class:`numbers.Real`, importing :mod:`numbers` for nothing else.
+
+    An int or a float is one. Any other type is one only once registered with (or derived
+    from) ``numbers.Real``, which needs :mod:`numbers` imported: while it is not, nothing
+    else can be one, and a program that passes ints and floats never imports it.
+    """
+    if isinstance(value, int | float):
+        return True
+    numbers = sys.modules.get("numbers")
+    return numbers is not None and isinstance(value, numbers.Real)
 
 
 def check_timeout(timeout: object) -> float | None:

@@ -35,18 +35,18 @@ from . import _kit_counts
 from ._kit_counts import check_count, check_time_scale
 from .base import SerialBoardSimulator, UsbBoardSimulator
 from .clock import Clock, drive, kit_clock
-from .sb_arduino_2019 import SBArduinoSimulator
-from .sr_motor_fw3 import SRMotorBoardFw3Simulator
-from .sr_power_fw3 import SRPowerBoardFw3Simulator
-from .sr_servo_fw2 import SRServoBoardFw2Simulator
 from .wiring import KitWiring, PowerBoardSimulator, PowerFed, default_outputs
 
 if TYPE_CHECKING:
     from ._kit_config import KitConfig
     from .arena import SimulatedWorld
     from .camera import SimulatedCamera
+    from .sb_arduino_2019 import SBArduinoSimulator
+    from .sr_motor_fw3 import SRMotorBoardFw3Simulator
     from .sr_motor_fw4 import SRMotorBoardFw4Simulator
+    from .sr_power_fw3 import SRPowerBoardFw3Simulator
     from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
+    from .sr_servo_fw2 import SRServoBoardFw2Simulator
 
 __all__ = [
     "KIT_VARIABLE",
@@ -350,15 +350,29 @@ class SimulatedKit:
         for made in self._boards.values():
             yield from made
 
+    def _of_class(self, *classes: tuple[str, str]) -> list[Any]:
+        """The kit's simulators of the classes named ``(module, class)`` in this package.
+
+        A class's module is looked up, not imported: the kit has simulators of it only
+        once the kit's factories have imported it (a kit of firmware-4 boards never
+        imports the firmware-3 simulators, say).
+        """
+        loaded = tuple(
+            getattr(sys.modules[f"{__package__}.{module}"], name)
+            for module, name in classes
+            if f"{__package__}.{module}" in sys.modules
+        )
+        return [sim for sim in self._all() if isinstance(sim, loaded)] if loaded else []
+
     @property
     def power_boards(self) -> tuple[SRPowerBoardFw3Simulator, ...]:
         """The simulated power boards."""
-        return tuple(sim for sim in self._all() if isinstance(sim, SRPowerBoardFw3Simulator))
+        return tuple(self._of_class(("sr_power_fw3", "SRPowerBoardFw3Simulator")))
 
     @property
     def motor_boards(self) -> tuple[SRMotorBoardFw3Simulator, ...]:
         """The simulated motor boards."""
-        return tuple(sim for sim in self._all() if isinstance(sim, SRMotorBoardFw3Simulator))
+        return tuple(self._of_class(("sr_motor_fw3", "SRMotorBoardFw3Simulator")))
 
     @property
     def drive_motor_boards(self) -> tuple[SRMotorBoardFw3Simulator | SRMotorBoardFw4Simulator, ...]:
@@ -367,34 +381,29 @@ class SimulatedKit:
         Each has ``motors[i].power``, the signed duty the board drives: the simulated world
         moves the robot by these (:func:`j5aio.simulator.camera.update_world`).
         """
-        # (firmware 4's module is looked up, not imported: a kit has boards of it only
-        # once the kit's factory has loaded it)
-        fw4 = sys.modules.get("j5aio.simulator.sr_motor_fw4")
-        kinds: tuple[type, ...] = (SRMotorBoardFw3Simulator,)
-        if fw4 is not None:
-            kinds += (fw4.SRMotorBoardFw4Simulator,)
         boards = cast(
             "list[SRMotorBoardFw3Simulator | SRMotorBoardFw4Simulator]",
-            [sim for sim in self._all() if isinstance(sim, kinds)],
+            self._of_class(
+                ("sr_motor_fw3", "SRMotorBoardFw3Simulator"),
+                ("sr_motor_fw4", "SRMotorBoardFw4Simulator"),
+            ),
         )
         return tuple(sorted(boards, key=lambda sim: sim.serial_number))
 
     @property
     def servo_boards(self) -> tuple[SRServoBoardFw2Simulator, ...]:
         """The simulated servo boards."""
-        return tuple(sim for sim in self._all() if isinstance(sim, SRServoBoardFw2Simulator))
+        return tuple(self._of_class(("sr_servo_fw2", "SRServoBoardFw2Simulator")))
 
     @property
     def sb_arduinos(self) -> tuple[SBArduinoSimulator, ...]:
         """The simulated SourceBots Arduinos."""
-        return tuple(sim for sim in self._all() if isinstance(sim, SBArduinoSimulator))
+        return tuple(self._of_class(("sb_arduino_2019", "SBArduinoSimulator")))
 
     @property
     def ruggeduinos(self) -> tuple[SRRuggeduinoSimulator, ...]:
         """The simulated Ruggeduinos."""
-        from .sr_ruggeduino_fw1 import SRRuggeduinoSimulator
-
-        return tuple(sim for sim in self._all() if isinstance(sim, SRRuggeduinoSimulator))
+        return tuple(self._of_class(("sr_ruggeduino_fw1", "SRRuggeduinoSimulator")))
 
     def serial_simulators(self) -> tuple[SerialBoardSimulator, ...]:
         """Every board reached through a serial port."""

@@ -6,8 +6,10 @@ Each is the board's hardware backend whose ``discover`` looks at the boards of
 hardware backend's own code (its polls included) over a simulated transport, as on a
 robot. Each board kind names its simulated backend (``simulated=`` of
 :class:`~j5aio.board_kinds.BoardKind`); the simulated environment imports this module the
-first time it needs one of them. The later boards' are in
-:mod:`j5aio.simulator.sim_backends_2023`.
+first time it needs one of them. The power, motor and servo boards' are in every kit of
+these boards; each Arduino's is imported, with its hardware backend, the first time it is
+looked up here, so that a kit imports the backend of the Arduino it has only. The later
+boards' are in :mod:`j5aio.simulator.sim_backends_2023`.
 
 A plugin's simulated backend is written the same way, with
 :func:`~j5aio.simulator.discovery.kind_options`::
@@ -21,26 +23,22 @@ A plugin's simulated backend is written the same way, with
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
+from j5aio._lazy import lazy_exports
 from j5aio.backends.hardware.options import DiscoveryOptions
-from j5aio.backends.hardware.sb.arduino import SBArduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
-from j5aio.backends.hardware.sr.v4.ruggeduino import SRV4RuggeduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
 from j5aio.boards.board import Board
-from j5aio.boards.sb import SBArduinoBoard
-from j5aio.boards.sr.v4 import Ruggeduino
 
 from .discovery import kind_options
 
-__all__ = [
-    "SBArduinoSimulatedBackend",
-    "SRV4MotorBoardSimulatedBackend",
-    "SRV4PowerBoardSimulatedBackend",
-    "SRV4RuggeduinoSimulatedBackend",
-    "SRV4ServoBoardSimulatedBackend",
-]
+if TYPE_CHECKING:
+    from ._sim_sb_arduino_2019 import SBArduinoSimulatedBackend as SBArduinoSimulatedBackend
+    from ._sim_sr_ruggeduino_fw1 import (
+        SRV4RuggeduinoSimulatedBackend as SRV4RuggeduinoSimulatedBackend,
+    )
 
 
 class SRV4PowerBoardSimulatedBackend(SRV4PowerBoardHardwareBackend):
@@ -70,19 +68,16 @@ class SRV4ServoBoardSimulatedBackend(SRV4ServoBoardHardwareBackend):
         return await super().discover(options=options or kind_options(cls))
 
 
-class SBArduinoSimulatedBackend(SBArduinoHardwareBackend):
-    """The SourceBots Arduino (2019 firmware) hardware backend, on the simulated kit."""
-
-    @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[SBArduinoBoard]:
-        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
-        return await super().discover(options=options or kind_options(cls))
-
-
-class SRV4RuggeduinoSimulatedBackend(SRV4RuggeduinoHardwareBackend):
-    """The Ruggeduino (firmware 1) hardware backend, on the simulated kit."""
-
-    @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Ruggeduino]:
-        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
-        return await super().discover(options=options or kind_options(cls))
+if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
+    __getattr__, __dir__ = lazy_exports(
+        __name__,
+        {
+            "j5aio.simulator._sim_sb_arduino_2019": ["SBArduinoSimulatedBackend"],
+            "j5aio.simulator._sim_sr_ruggeduino_fw1": ["SRV4RuggeduinoSimulatedBackend"],
+        },
+        own=(
+            "SRV4MotorBoardSimulatedBackend",
+            "SRV4PowerBoardSimulatedBackend",
+            "SRV4ServoBoardSimulatedBackend",
+        ),
+    )

@@ -3,16 +3,18 @@
 As in :mod:`j5aio.simulator.sim_backends`: each is the board's hardware backend whose
 ``discover`` looks at the boards of :func:`~j5aio.simulator.kit.current_kit` made from its
 kind's simulators, and nothing else. They live apart from the older boards' so that a
-program on an older kit imports none of these boards' backends.
+program on an older kit imports none of these boards' backends; and each Arduino's is
+imported, with its hardware backend, the first time it is looked up here, so that a kit
+imports the backend of the Arduino it has only.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
+from j5aio._lazy import lazy_exports
 from j5aio.backends.hardware.options import DiscoveryOptions
-from j5aio.backends.hardware.sb.arduino_2024 import SBArduino2024HardwareBackend
-from j5aio.backends.hardware.sr.v4.arduino import SRArduinoHardwareBackend
 from j5aio.backends.hardware.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4HardwareBackend
 from j5aio.backends.hardware.sr.v4.power_board_fw4 import SRV4PowerBoardFw4HardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board_fw4 import (
@@ -20,19 +22,14 @@ from j5aio.backends.hardware.sr.v4.servo_board_fw4 import (
     SRV4ServoBoardFw4HardwareBackend,
 )
 from j5aio.boards.board import Board
-from j5aio.boards.sb import SBArduino2024Board
-from j5aio.boards.sr.v4 import SRArduinoBoard
 
 from .discovery import kind_options
 
-__all__ = [
-    "SBArduino2024SimulatedBackend",
-    "SBServoBoardSimulatedBackend",
-    "SRArduinoSimulatedBackend",
-    "SRV4MotorBoardFw4SimulatedBackend",
-    "SRV4PowerBoardFw4SimulatedBackend",
-    "SRV4ServoBoardFw4SimulatedBackend",
-]
+if TYPE_CHECKING:
+    from ._sim_sb_arduino_2024 import (
+        SBArduino2024SimulatedBackend as SBArduino2024SimulatedBackend,
+    )
+    from ._sim_sr_arduino_fw2 import SRArduinoSimulatedBackend as SRArduinoSimulatedBackend
 
 
 class SRV4PowerBoardFw4SimulatedBackend(SRV4PowerBoardFw4HardwareBackend):
@@ -71,21 +68,17 @@ class SBServoBoardSimulatedBackend(SBServoBoardHardwareBackend):
         return await super().discover(options=options or kind_options(cls))
 
 
-class SRArduinoSimulatedBackend(SRArduinoHardwareBackend):
-    """The SR Arduino (firmware 2) hardware backend, on the simulated kit."""
-
-    @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[SRArduinoBoard]:
-        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
-        return await super().discover(options=options or kind_options(cls))
-
-
-class SBArduino2024SimulatedBackend(SBArduino2024HardwareBackend):
-    """The SourceBots Arduino (sb2024 firmware) hardware backend, on the simulated kit."""
-
-    @classmethod
-    async def discover(
-        cls, *, options: DiscoveryOptions | None = None
-    ) -> Sequence[SBArduino2024Board]:
-        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
-        return await super().discover(options=options or kind_options(cls))
+if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's
+    __getattr__, __dir__ = lazy_exports(
+        __name__,
+        {
+            "j5aio.simulator._sim_sr_arduino_fw2": ["SRArduinoSimulatedBackend"],
+            "j5aio.simulator._sim_sb_arduino_2024": ["SBArduino2024SimulatedBackend"],
+        },
+        own=(
+            "SBServoBoardSimulatedBackend",
+            "SRV4MotorBoardFw4SimulatedBackend",
+            "SRV4PowerBoardFw4SimulatedBackend",
+            "SRV4ServoBoardFw4SimulatedBackend",
+        ),
+    )

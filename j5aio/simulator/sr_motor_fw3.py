@@ -21,7 +21,6 @@ and no motor is driven; when power comes the controller boots.
 
 from __future__ import annotations
 
-import enum
 from dataclasses import dataclass
 from typing import ClassVar, Final
 
@@ -82,12 +81,6 @@ COAST: Final = MotorOutput(MotorMode.COAST)
 BRAKE: Final = MotorOutput(MotorMode.BRAKE)
 
 
-class _Parser(enum.Enum):
-    IDLE = enum.auto()
-    SPEED0 = enum.auto()
-    SPEED1 = enum.auto()
-
-
 class SRMotorBoardFw3Simulator(SRMotorBoardSimulator):
     """An SR Motor Board v4 with firmware 3 behind its FTDI FT232R USB-serial adapter."""
 
@@ -98,12 +91,13 @@ class SRMotorBoardFw3Simulator(SRMotorBoardSimulator):
     def __init__(self, serial_number: str) -> None:
         super().__init__(serial_number)
         self._motors = [COAST] * self.MOTOR_COUNT
-        self._parser = _Parser.IDLE
+        # The motor whose speed byte the parser waits for (None: it waits for a command).
+        self._awaiting: int | None = None
         self._motor_currents: list[float | None] = [None] * self.MOTOR_COUNT
         self._boot()
 
     def _stop_controller(self) -> None:
-        self._parser = _Parser.IDLE
+        self._awaiting = None
         self._motors = [
             COAST if output.mode in (MotorMode.FORWARD, MotorMode.REVERSE) else output
             for output in self._motors
@@ -131,11 +125,11 @@ class SRMotorBoardFw3Simulator(SRMotorBoardSimulator):
     @property
     def awaiting_speed(self) -> int | None:
         """The motor whose speed byte the parser is waiting for, or None when idle."""
-        return {_Parser.IDLE: None, _Parser.SPEED0: 0, _Parser.SPEED1: 1}[self._parser]
+        return self._awaiting
 
     def _boot(self) -> bytes:
         self._motors = [COAST] * self.MOTOR_COUNT
-        self._parser = _Parser.IDLE
+        self._awaiting = None
         self._in_bootloader = False
         return b""
 
@@ -150,10 +144,10 @@ class SRMotorBoardFw3Simulator(SRMotorBoardSimulator):
         return bytes(emitted)
 
     def _step(self, byte: int) -> bytes:
-        if self._parser is _Parser.IDLE:
+        motor = self._awaiting
+        if motor is None:
             return self._command(byte)
-        motor = 0 if self._parser is _Parser.SPEED0 else 1
-        self._parser = _Parser.IDLE
+        self._awaiting = None
         if byte != _SPEED_IGNORED:
             self._motors[motor] = self._decode_speed(byte)
         return b""
@@ -162,9 +156,9 @@ class SRMotorBoardFw3Simulator(SRMotorBoardSimulator):
         if byte == _CMD_VERSION:
             return _VERSION_REPLY
         if byte == _CMD_MOTOR0:
-            self._parser = _Parser.SPEED0
+            self._awaiting = 0
         elif byte == _CMD_MOTOR1:
-            self._parser = _Parser.SPEED1
+            self._awaiting = 1
         elif byte == _CMD_BOOTLOADER:
             # The MCU resets into ROM: the driver enables are released, the motors coast.
             self._motors = [COAST] * self.MOTOR_COUNT

@@ -29,6 +29,7 @@ feeds a board, boards share them in the same order. L2 is the brain's and feeds 
 
 from __future__ import annotations
 
+import sys
 import threading
 from collections.abc import Callable, Iterable, Sequence
 from typing import ClassVar, Final, Protocol, runtime_checkable
@@ -48,6 +49,11 @@ _MOTOR_ORDER: Final = (0, 1, 2, 3, 5)
 _SERVO_ORDER: Final = (2, 3, 5, 0, 1)
 #: How many rounds of "a trip switched an output off" one change may take.
 _MAX_ROUNDS: Final = 16
+#: The motor boards' simulators (module, class), which the default wiring puts on H first.
+_MOTOR_BOARD_SIMULATORS: Final = (
+    ("j5aio.simulator.sr_motor_fw3", "SRMotorBoardFw3Simulator"),
+    ("j5aio.simulator.sr_motor_fw4", "SRMotorBoardFw4Simulator"),
+)
 
 
 @runtime_checkable
@@ -89,10 +95,12 @@ class PowerBoardSimulator(Protocol):
 
 
 def _is_motor_board(simulator: object) -> bool:
-    from .sr_motor_fw3 import SRMotorBoardFw3Simulator
-    from .sr_motor_fw4 import SRMotorBoardFw4Simulator
-
-    return isinstance(simulator, SRMotorBoardFw3Simulator | SRMotorBoardFw4Simulator)
+    # (each module is looked up, not imported: a simulator of it exists only once it is)
+    return any(
+        isinstance(simulator, getattr(sys.modules[module], name))
+        for module, name in _MOTOR_BOARD_SIMULATORS
+        if module in sys.modules
+    )
 
 
 def default_outputs(fed: Sequence[object], *, taken: Iterable[int] = ()) -> list[int]:

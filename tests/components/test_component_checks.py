@@ -1,6 +1,11 @@
 import importlib
 import math
+import numbers
+import subprocess
+import sys
+from decimal import Decimal
 from fractions import Fraction
+from pathlib import Path
 
 import pytest
 from hypothesis import given
@@ -15,6 +20,48 @@ def test_check_number_returns_a_float_for_any_real_number() -> None:
     value = check_number(Fraction(1, 2), name="x", low=0, high=1, allowed="between 0 and 1")
     assert value == 0.5
     assert type(value) is float
+
+
+class _Metres:
+    """A number type of a program's own, registered as a real number."""
+
+    def __init__(self, value: float) -> None:
+        self.value = value
+
+    def __float__(self) -> float:
+        return self.value
+
+
+numbers.Real.register(_Metres)
+
+
+def test_check_number_takes_a_type_registered_as_real_and_refuses_decimal() -> None:
+    assert check_number(_Metres(0.25), name="x", low=0, high=1, allowed="a number") == 0.25
+    with pytest.raises(TypeError, match="got Decimal"):  # (not a numbers.Real)
+        check_number(Decimal("0.5"), name="x", low=0, high=1, allowed="a number")
+
+
+def test_checking_ints_and_floats_imports_no_number_abcs() -> None:
+    program = (
+        "import sys\n"
+        "from j5aio.components._checks import check_number\n"
+        "assert check_number(1, name='x', low=0, high=1, allowed='a number') == 1.0\n"
+        "assert check_number(0.5, name='x', low=0, high=1, allowed='a number') == 0.5\n"
+        "try:\n"
+        "    check_number('1', name='x', low=0, high=1, allowed='a number')\n"
+        "except TypeError:\n"
+        "    pass\n"
+        "else:\n"
+        "    raise AssertionError('a str was taken')\n"
+        "print('numbers' in sys.modules)\n"
+    )
+    root = Path(__file__).resolve().parents[2]
+    done = subprocess.run(
+        [sys.executable, "-c", program], capture_output=True, text=True, timeout=60,
+        check=False, cwd=root,
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "False"
 
 
 def test_check_number_messages_name_the_quantity_the_range_and_the_value() -> None:

@@ -106,3 +106,59 @@ async def test_str_and_repr() -> None:
 
 def test_backend_type_is_recorded() -> None:
     assert issubclass(LampBackend, Backend)
+
+
+class _Loads:
+    """Returns ``backends`` and counts its calls."""
+
+    def __init__(self, *backends: type[Backend]) -> None:
+        self.backends = backends
+        self.calls = 0
+
+    def __call__(self) -> tuple[type[Backend], ...]:
+        self.calls += 1
+        return self.backends
+
+
+async def test_a_group_not_looked_in_loads_its_backends_once_when_first_needed() -> None:
+    load = _Loads(LampBackend)
+    group = BoardGroup._not_looked_in(LampBoard, load)
+    assert (len(group), list(group), group.board_type, group.empty_hint) == (0, [], LampBoard, None)
+    assert load.calls == 0
+    assert repr(group) == "BoardGroup(board_type=LampBoard, backend_class=LampBackend)"
+    assert (group.backend_class, group.backend_classes) == (LampBackend, (LampBackend,))
+    await group.update_boards()
+    assert [board.serial_number for board in group] == ["A", "B"]
+    assert load.calls == 1
+
+
+async def test_a_group_not_looked_in_finds_boards_when_looked_in() -> None:
+    load = _Loads(LampBackend)
+    group = BoardGroup._not_looked_in(LampBoard, load)
+    await group.update_boards()
+    assert [board.serial_number for board in group] == ["A", "B"]
+    assert load.calls == 1
+
+
+def test_a_group_not_looked_in_checks_its_backends_when_they_are_loaded() -> None:
+    class OtherBoard(LampBoard):
+        pass
+
+    group = BoardGroup._not_looked_in(OtherBoard, _Loads(LampBackend))
+    with pytest.raises(TypeError, match="choose a backend for OtherBoard"):
+        _ = group.backend_class
+
+
+async def test_joined_groups_keep_unloaded_backends_unloaded() -> None:
+    class Gen2Backend(LampBackend):
+        serials = ("C",)
+
+    found = await BoardGroup.get_board_group(LampBoard, LampBackend)
+    load = _Loads(Gen2Backend)
+    joined = BoardGroup.of_groups(LampBoard, [found, BoardGroup._not_looked_in(LampBoard, load)])
+    assert [board.serial_number for board in joined] == ["A", "B"]
+    assert load.calls == 0
+    assert joined.backend_classes == (LampBackend, Gen2Backend)
+    assert load.calls == 1
+    loaded = BoardGroup.of_groups(LampBoard, [found])
+    assert loaded._load_backends is None and loaded.backend_classes == (LampBackend,)

@@ -19,6 +19,10 @@ ACYCLIC = (
     "j5aio.simulator.environment",
     "j5aio.simulator.sim_backends",
     "j5aio.simulator.sim_backends_2023",
+    "j5aio.simulator._sim_sb_arduino_2019",
+    "j5aio.simulator._sim_sr_ruggeduino_fw1",
+    "j5aio.simulator._sim_sr_arduino_fw2",
+    "j5aio.simulator._sim_sb_arduino_2024",
     "j5aio.simulator.discovery",
     "j5aio.backends.hardware.transports.lent",
 )

@@ -101,11 +101,37 @@ async def test_when_every_backend_is_idle_the_group_is_empty_and_nobody_is_asked
             return await super().discover()
 
     env = Environment("E")
-    env.register_lazily(LampBoard, Loader(Recording), idle=lambda: True)
+    load = Loader(Recording)
+    env.register_lazily(LampBoard, load, idle=lambda: True)
     group = await env.get_board_group(LampBoard)
     assert len(group) == 0
+    assert load.calls == 0  # not even loaded, until the group needs it
     assert group.backend_class is Recording
+    assert group.backend_classes == (Recording,)
+    assert load.calls == 1
     assert asked == []
+
+
+async def test_an_empty_group_loads_its_idle_backend_to_look_again() -> None:
+    idle = [True]
+    env = Environment("E")
+    load = Loader(LampBackend)
+    env.register_lazily(LampBoard, load, idle=lambda: idle[0])
+    env.register_lazily(LampBoardGen2, Loader(LampGen2Backend), idle=lambda: True)
+    group = await env.get_board_group(LampBoard)
+    assert (len(group), load.calls) == (0, 0)
+    idle[0] = False
+    await group.update_boards()  # (looking again asks the first backend, as it always did)
+    assert [board.serial_number for board in group] == ["A", "B"]
+    assert load.calls == 1
+
+
+async def test_an_empty_group_s_backend_is_checked_when_it_is_loaded() -> None:
+    env = Environment("E")
+    env.register_lazily(LampBoardGen2, Loader(LampBackend), idle=lambda: True)
+    group = await env.get_board_group(LampBoardGen2)
+    with pytest.raises(TypeError, match=r"LampBackend .*drives LampBoard"):
+        _ = group.backend_classes
 
 
 def test_might_find_says_whether_a_board_group_would_ask_a_backend() -> None:
