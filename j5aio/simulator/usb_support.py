@@ -2,9 +2,7 @@
 
 This module holds the exact errors pyusb's libusb1 backend raises, the tiny stand-ins for a
 device's configuration and interfaces, and the conversion of a ``data_or_wLength`` argument
-the way pyusb does it. The stand-ins are plain immutable value classes rather than frozen
-dataclasses: every simulated kit's start imports this module, and making a dataclass
-costs most of a millisecond.
+the way pyusb does it.
 """
 
 from __future__ import annotations
@@ -12,7 +10,8 @@ from __future__ import annotations
 import array
 import errno
 from collections.abc import Iterable, Iterator
-from typing import TYPE_CHECKING, NoReturn, TypeAlias
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, TypeAlias
 
 if TYPE_CHECKING:  # (pyusb is imported when an error is made: a kit's start makes none)
     import usb.core
@@ -83,78 +82,16 @@ def as_payload(data_or_wlength: ControlData) -> bytes:
     return bytes(data_or_wlength)
 
 
-def _refuse_change(value: object, name: str) -> NoReturn:
-    raise AttributeError(f"cannot change field {name!r}: {type(value).__name__} is immutable")
-
-
+@dataclass(frozen=True)
 class SimulatedInterface:
-    """The subset of a pyusb ``Interface`` that discovery code looks at (immutable)."""
+    """The subset of a pyusb ``Interface`` that discovery code looks at."""
 
-    __slots__ = (
-        "bAlternateSetting",
-        "bInterfaceClass",
-        "bInterfaceNumber",
-        "bInterfaceProtocol",
-        "bInterfaceSubClass",
-        "bNumEndpoints",
-    )
     bInterfaceNumber: int  # noqa: N815 - pyusb's attribute names
     bAlternateSetting: int  # noqa: N815
     bInterfaceClass: int  # noqa: N815
     bInterfaceSubClass: int  # noqa: N815
     bInterfaceProtocol: int  # noqa: N815
-    bNumEndpoints: int  # noqa: N815
-
-    def __init__(
-        self,
-        bInterfaceNumber: int,  # noqa: N803 - pyusb's attribute names
-        bAlternateSetting: int,  # noqa: N803
-        bInterfaceClass: int,  # noqa: N803
-        bInterfaceSubClass: int,  # noqa: N803
-        bInterfaceProtocol: int,  # noqa: N803
-        bNumEndpoints: int = 0,  # noqa: N803
-    ) -> None:
-        assign = object.__setattr__
-        assign(self, "bInterfaceNumber", bInterfaceNumber)
-        assign(self, "bAlternateSetting", bAlternateSetting)
-        assign(self, "bInterfaceClass", bInterfaceClass)
-        assign(self, "bInterfaceSubClass", bInterfaceSubClass)
-        assign(self, "bInterfaceProtocol", bInterfaceProtocol)
-        assign(self, "bNumEndpoints", bNumEndpoints)
-
-    def _fields(self) -> tuple[int, ...]:
-        return (
-            self.bInterfaceNumber,
-            self.bAlternateSetting,
-            self.bInterfaceClass,
-            self.bInterfaceSubClass,
-            self.bInterfaceProtocol,
-            self.bNumEndpoints,
-        )
-
-    def __setattr__(self, name: str, value: object) -> NoReturn:
-        _refuse_change(self, name)
-
-    def __delattr__(self, name: str) -> NoReturn:
-        _refuse_change(self, name)
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, SimulatedInterface):
-            return NotImplemented
-        return self._fields() == other._fields()
-
-    def __hash__(self) -> int:
-        return hash(self._fields())
-
-    def __repr__(self) -> str:
-        return (
-            f"SimulatedInterface(bInterfaceNumber={self.bInterfaceNumber}, "
-            f"bAlternateSetting={self.bAlternateSetting}, "
-            f"bInterfaceClass={self.bInterfaceClass}, "
-            f"bInterfaceSubClass={self.bInterfaceSubClass}, "
-            f"bInterfaceProtocol={self.bInterfaceProtocol}, "
-            f"bNumEndpoints={self.bNumEndpoints})"
-        )
+    bNumEndpoints: int = 0  # noqa: N815
 
 
 #: The DFU-runtime interface that the SR STM32 boards expose (class 0xFE, subclass 1, protocol 1).
@@ -167,43 +104,12 @@ DFU_RUNTIME_INTERFACE = SimulatedInterface(
 )
 
 
+@dataclass(frozen=True)
 class SimulatedConfiguration:
-    """The subset of a pyusb ``Configuration``: its value and its interfaces (immutable)."""
+    """The subset of a pyusb ``Configuration``: its value and its interfaces."""
 
-    __slots__ = ("bConfigurationValue", "interface_list")
     bConfigurationValue: int  # noqa: N815 - pyusb's attribute names
     interface_list: tuple[SimulatedInterface, ...]
-
-    def __init__(
-        self,
-        bConfigurationValue: int,  # noqa: N803 - pyusb's attribute names
-        interface_list: tuple[SimulatedInterface, ...],
-    ) -> None:
-        object.__setattr__(self, "bConfigurationValue", bConfigurationValue)
-        object.__setattr__(self, "interface_list", interface_list)
-
-    def _fields(self) -> tuple[int, tuple[SimulatedInterface, ...]]:
-        return (self.bConfigurationValue, self.interface_list)
-
-    def __setattr__(self, name: str, value: object) -> NoReturn:
-        _refuse_change(self, name)
-
-    def __delattr__(self, name: str) -> NoReturn:
-        _refuse_change(self, name)
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, SimulatedConfiguration):
-            return NotImplemented
-        return self._fields() == other._fields()
-
-    def __hash__(self) -> int:
-        return hash(self._fields())
-
-    def __repr__(self) -> str:
-        return (
-            f"SimulatedConfiguration(bConfigurationValue={self.bConfigurationValue}, "
-            f"interface_list={self.interface_list!r})"
-        )
 
     @property
     def bNumInterfaces(self) -> int:  # noqa: N802 - pyusb's attribute name
