@@ -17,8 +17,8 @@ On Windows, where a lock wait cannot be interrupted, callers wait in slices inst
 from __future__ import annotations
 
 import asyncio
+import os
 import signal
-import socket
 import sys
 import threading
 from collections.abc import Callable
@@ -37,9 +37,11 @@ _SIGNALS_FOR_THE_MAIN_THREAD: Final = frozenset(
     getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name)
 )
 
-#: The two ends of the socket pair given as the signal wake-up file, once made.
-_signal_writer: socket.socket | None = None
-_signal_reader: socket.socket | None = None
+#: The two ends of the pipe given as the signal wake-up file, once made: plain file
+#: descriptors, open for the whole program. (Socket objects here were finalised during the
+#: interpreter's shutdown, and now and then warned there that they were never closed.)
+_signal_writer: int | None = None
+_signal_reader: int | None = None
 #: Whether a watcher thread reads ``_signal_reader`` (then no loop does).
 _watched_by_a_thread = False
 #: What a signal calls when it comes: wakes the current portal's callers.
@@ -52,7 +54,7 @@ def keep_signals_for_the_main_thread() -> None:
         signal.pthread_sigmask(signal.SIG_BLOCK, _SIGNALS_FOR_THE_MAIN_THREAD)
 
 
-def _take_the_wakeup_file(on_signal: Callable[[], None]) -> socket.socket | None:
+def _take_the_wakeup_file(on_signal: Callable[[], None]) -> int | None:
     """Make ours the signal wake-up file if it is free; return its reading end.
 
     ``None`` where a lock wait is not interrupted by signals, or off the main thread (which
@@ -64,9 +66,9 @@ def _take_the_wakeup_file(on_signal: Callable[[], None]) -> socket.socket | None
         return None
     _on_signal = on_signal
     if _signal_writer is None:
-        _signal_reader, _signal_writer = socket.socketpair()
-        _signal_writer.setblocking(False)
-    ours = _signal_writer.fileno()
+        _signal_reader, _signal_writer = os.pipe()
+        os.set_blocking(_signal_writer, False)  # (as the wake-up file must be)
+    ours = _signal_writer
     previous = signal.set_wakeup_fd(ours, warn_on_full_buffer=False)
     if previous not in (-1, ours):  # someone else's: theirs stays
         signal.set_wakeup_fd(previous)
@@ -89,19 +91,19 @@ def watch_signals_in(loop: asyncio.AbstractEventLoop, on_signal: Callable[[], No
     reader = _take_the_wakeup_file(on_signal)
     if reader is None or _watched_by_a_thread:
         return False
-    reader.setblocking(False)
-    loop.add_reader(reader.fileno(), _drain, reader)
+    os.set_blocking(reader, False)
+    loop.add_reader(reader, _drain, reader)
     return True
 
 
-def _drain(reader: socket.socket) -> None:
+def _drain(reader: int) -> None:
     """Read what the signals wrote, then call the current ``on_signal`` (in the loop)."""
     try:
-        while reader.recv(64):
+        while os.read(reader, 64):
             pass
     except (BlockingIOError, InterruptedError):
         pass
-    except OSError:  # pragma: no cover - the socket pair is never closed
+    except OSError:  # pragma: no cover - the pipe is never closed
         return
     on_signal = _on_signal
     if on_signal is not None:
@@ -120,18 +122,20 @@ def start_signal_watch(on_signal: Callable[[], None]) -> None:
     if reader is None or _watched_by_a_thread:
         return
     _watched_by_a_thread = True
-    reader.setblocking(True)
+    os.set_blocking(reader, True)
     threading.Thread(
         target=_watch_signals, args=(reader,), name="j5aio sync signal watch", daemon=True
     ).start()
 
 
-def _watch_signals(reader: socket.socket) -> None:
-    """Call the current ``on_signal`` each time a signal comes (the watcher thread)."""
+def _watch_signals(reader: int) -> None:
+    """Call the current ``on_signal`` each time a signal comes (the watcher thread).
+
+    Ends when the pipe's writing end is closed (which only tests do).
+    """
     # Signals are for the main thread; this one only hears of them.
     keep_signals_for_the_main_thread()
-    with reader:
-        while reader.recv(64):
-            on_signal = _on_signal
-            if on_signal is not None:
-                on_signal()
+    while os.read(reader, 64):
+        on_signal = _on_signal
+        if on_signal is not None:
+            on_signal()

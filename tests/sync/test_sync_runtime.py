@@ -5,6 +5,7 @@ from __future__ import annotations
 import asyncio
 import functools
 import inspect
+import os
 import signal
 import socket
 import threading
@@ -295,14 +296,14 @@ def fresh_signal_watch(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
     monkeypatch.setattr(_signals, "_watched_by_a_thread", False)
     yield
     shutdown()
-    signal.set_wakeup_fd(theirs.fileno() if theirs is not None else -1)
+    signal.set_wakeup_fd(theirs if theirs is not None else -1)
     if _signals._signal_writer is not None:
-        _signals._signal_writer.close()  # a watcher thread's read ends, and it closes its end
+        os.close(_signals._signal_writer)  # a watcher thread's read ends
     for thread in set(threading.enumerate()) - before:
         if thread.name == "j5aio sync signal watch":
             thread.join(5)
     if _signals._signal_reader is not None:
-        _signals._signal_reader.close()
+        os.close(_signals._signal_reader)
 
 
 @pytest.mark.usefixtures("fresh_signal_watch")
@@ -338,7 +339,7 @@ def test_once_a_watcher_thread_reads_the_wake_up_file_no_loop_does() -> None:
     finally:
         loop.close()  # (a loop that watched the file would have read it first)
     assert _signals._signal_writer is not None
-    _signals._signal_writer.send(b"x")  # as the C-level handler of a signal does
+    os.write(_signals._signal_writer, b"x")  # as the C-level handler of a signal does
     deadline = time.monotonic() + 5
     while not calls and time.monotonic() < deadline:
         time.sleep(0.01)
@@ -352,7 +353,7 @@ def test_a_loop_watching_the_wake_up_file_calls_on_signal_for_what_was_written()
     try:
         assert _signals.watch_signals_in(loop, lambda: calls.append("loop"))
         assert _signals._signal_writer is not None
-        _signals._signal_writer.send(b"xyz")
+        os.write(_signals._signal_writer, b"xyz")
         loop.run_until_complete(asyncio.sleep(0.05))
         assert calls == ["loop"]  # once for all it read
     finally:
