@@ -14,6 +14,7 @@ import warnings
 from typing import TYPE_CHECKING, Any
 
 from j5aio.backends.hardware.options import DiscoveryOptions
+from j5aio.backends.hardware.transports._at_once import mark_answers_at_once
 from j5aio.backends.hardware.transports.discovery import PortInfo
 from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.board_kinds import BoardKind, board_kinds
@@ -177,8 +178,8 @@ def kit_discovery_options(
             and (simulator.idVendor, simulator.idProduct) == (idVendor, idProduct)
         ]
 
-    find.answers_at_once = True  # type: ignore[attr-defined]  # (no thread to scan with)
-    list_ports.answers_at_once = True  # type: ignore[attr-defined]
+    mark_answers_at_once(find)  # (no thread to scan with)
+    mark_answers_at_once(list_ports)
     wiring = kit.wiring
     return DiscoveryOptions(
         port_source=list_ports,

@@ -24,13 +24,13 @@ import anyio.to_thread
 from j5aio.backends._kinds import board_kinds
 from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.options import DiscoveryOptions, StreamOpener
+from j5aio.backends.hardware.transports._at_once import call_blocking
 from j5aio.backends.hardware.transports.discovery import (
     ComPortLike,
     PortInfo,
     list_serial_ports,
     match_ports,
 )
-from j5aio.backends.hardware.transports.usb_link import answers_at_once
 from j5aio.boards.board import Board
 from j5aio.errors import CommunicationError, UnsupportedFirmwareError
 
@@ -138,10 +138,7 @@ async def search_ports(
     """
     options = options or DiscoveryOptions()
     source = options.port_source
-    if source is not None and answers_at_once(source):  # (a simulated kit's: no thread)
-        ports = list_serial_ports(source)
-    else:
-        ports = await anyio.to_thread.run_sync(list_serial_ports, source)
+    ports = await call_blocking(list_serial_ports, source, worker=source)
     wanted: dict[str, tuple[PortInfo, list[type[SerialHardwareBackend[Board]]]]] = {}
     for backend in backends:
         matched = match_ports(

@@ -29,8 +29,9 @@ from j5aio.backends.backend import Backend
 from j5aio.backends.hardware import registry
 from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.reconnect import Reconnecting
+from j5aio.backends.hardware.transports._at_once import call_blocking
 from j5aio.backends.hardware.transports.discovery import USBFinder, find_usb_devices
-from j5aio.backends.hardware.transports.usb_link import USBDeviceLike, USBLink, answers_at_once
+from j5aio.backends.hardware.transports.usb_link import USBDeviceLike, USBLink
 from j5aio.boards.board import Board
 from j5aio.errors import BoardDisconnectionError, DeviceMissingSerialNumberError
 
@@ -54,10 +55,8 @@ async def _find(vid: int, pid: int, finder: USBFinder | None) -> list[USBDeviceL
 
     A finder that answers at once (the simulated kit's) runs here: no thread starts.
     """
-    if finder is not None and answers_at_once(finder):
-        return find_usb_devices(vid, pid, finder=finder)
     find = functools.partial(find_usb_devices, vid, pid, finder=finder)
-    return await anyio.to_thread.run_sync(find)
+    return await call_blocking(find, worker=finder)
 
 
 class USBHardwareBackend(Reconnecting, Backend):

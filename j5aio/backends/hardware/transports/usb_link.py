@@ -73,6 +73,7 @@ from j5aio.errors import (
     USBCommunicationError,
 )
 
+from ._at_once import ANSWERS_AT_ONCE, answers_at_once
 from .trace import log_wire, wire_logger
 
 __all__ = [
@@ -108,10 +109,6 @@ MAX_POLL_INTERVAL = 86_400.0
 #: the device is still there, so they can be rare (once in 0.75 s for the power board's
 #: 15 ms button poll).
 RUNG_INTERVAL_FACTOR = 50
-
-#: The attribute by which a device, or a USB finder, says that it answers at once: a
-#: simulator, whose calls are function calls that never block (see :func:`answers_at_once`).
-ANSWERS_AT_ONCE = "answers_at_once"
 
 T = TypeVar("T")
 _JobT = TypeVar("_JobT", bound="_Job[Any]")
@@ -167,17 +164,6 @@ class RingingDevice(Protocol):
         that stops the calls.
         """
         ...
-
-
-def answers_at_once(thing: object) -> bool:
-    """Whether ``thing`` (a device, or a function that finds devices) never blocks.
-
-    It says so with a true :data:`ANSWERS_AT_ONCE` attribute (a board simulator, the
-    simulated kit's finder); a pyusb device and ``usb.core.find`` have none, and are run on
-    a thread. Such a device's link needs no worker thread for its transfers (see the
-    module's notes).
-    """
-    return getattr(thing, ANSWERS_AT_ONCE, False) is True
 
 
 # The states of a job (plain strings, compared by identity: an enum class would cost
