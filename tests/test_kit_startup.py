@@ -63,7 +63,7 @@ NOT_NEEDED = {
     "j5aio.boards.sr.kch": "the default kit has no KCH",
     "j5aio.simulator._camera_model": "the camera's model is read at its first look",
     "j5aio.vision.calibration": "the camera's calibration is read at its first look",
-    "j5aio.service.config": "nothing configures the robot service",
+    "j5aio.service": "nothing configures the robot service: its client is not imported",
     "numbers": "the numbers given are ints and floats, which need no number ABCs",
 }
 
