@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import json
+import logging
 import sys
 import threading
 import types
@@ -277,6 +278,18 @@ async def test_no_service_configured_is_nothing(monkeypatch: pytest.MonkeyPatch)
     monkeypatch.setenv("J5AIO_MQTT_URL", "mqtt://robot.invalid")
     async with BaseRobot() as robot:
         assert robot._service is None
+
+
+async def test_a_configured_service_without_its_client_in_this_build_is_nothing(
+    monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
+) -> None:
+    monkeypatch.setenv("J5AIO_MQTT_URL", "mqtt://robot.invalid")
+    monkeypatch.delenv("J5AIO_SERVICE", raising=False)
+    # (the fixture leaves j5aio.service out, as a build without the client would)
+    with caplog.at_level(logging.DEBUG, logger="j5aio.robot"):
+        async with BaseRobot() as robot:
+            assert robot._service is None
+    assert "No robot service client in this j5aio" in caplog.text
 
 
 async def test_where_nothing_configures_the_service_its_client_is_not_imported(
