@@ -213,7 +213,8 @@ def main() -> int:
     with tempfile.TemporaryDirectory(prefix="j5aio-bench-startup-") as folder:
         run_interleaved(cases, options.rounds, functools.partial(time_to_ready, folder=folder))
         counted = [
-            case for case in cases
+            case
+            for case in cases
             if (case.name.startswith("j5aio") or case is floor) and options.imports
         ]
         imported = {case.name: imports_at_ready(case, folder) for case in counted}
