@@ -12,16 +12,15 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 from datetime import timedelta
-from typing import Final
+from typing import TYPE_CHECKING, Final
 
-from j5aio.backends.hardware.transports.readers import (
-    LinesUntilReader,
-    MatchingReader,
-    matching,
-    read_lines_until,
-)
+from j5aio.backends.hardware.transports import readers
+from j5aio.backends.hardware.transports.readers import LinesUntilReader, read_lines_until
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
+
+if TYPE_CHECKING:
+    from j5aio.backends.hardware.transports.readers import MatchingReader
 
 __all__ = [
     "ANALOGUE_CHANNELS",
@@ -223,7 +222,8 @@ def reply_to(request: bytes) -> MatchingReader[list[bytes]]:
         )
 
     answers_request.__name__ = f"answers {line.decode('ascii', 'replace')!r}"
-    return matching(REPLY, answers_request)
+    # (looked up on the module: the readers module makes its matching reader on first use)
+    return readers.matching(REPLY, answers_request)
 
 
 def parse_reply(lines: list[bytes]) -> Reply:
