@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from datetime import timedelta
 from typing import TYPE_CHECKING, Final
 
+from j5aio._timedelta import timedelta
 from j5aio.backends.hardware.transports import readers
 from j5aio.backends.hardware.transports.readers import LinesUntilReader, read_lines_until
 from j5aio.components.gpio_pin import GPIOPinMode

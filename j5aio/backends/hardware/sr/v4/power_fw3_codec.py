@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import struct
 from dataclasses import dataclass
-from datetime import timedelta
 from typing import Final
 
+from j5aio._timedelta import timedelta
 from j5aio.errors import NotSupportedByHardwareError, UnexpectedReplyError
 
 __all__ = [
