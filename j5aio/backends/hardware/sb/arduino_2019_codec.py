@@ -11,16 +11,13 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Final
+from typing import Final
 
 from j5aio._timedelta import timedelta
 from j5aio.backends.hardware.transports import readers
 from j5aio.backends.hardware.transports.readers import LinesUntilReader, read_lines_until
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
-
-if TYPE_CHECKING:
-    from j5aio.backends.hardware.transports.readers import MatchingReader
 
 __all__ = [
     "ANALOGUE_CHANNELS",
@@ -211,7 +208,7 @@ def is_final_line(line: bytes) -> bool:
 REPLY: Final[LinesUntilReader] = read_lines_until(is_final_line)
 
 
-def reply_to(request: bytes) -> MatchingReader[list[bytes]]:
+def reply_to(request: bytes) -> readers.MatchingReader[list[bytes]]:
     """Return the reader of the reply to ``request``, skipping replies to other requests.
 
     ``request`` must carry a request id (see :func:`with_request_id`). A reply is taken

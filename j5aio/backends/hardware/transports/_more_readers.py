@@ -112,7 +112,8 @@ def read_exactly(count: int) -> ExactReader:
 class MatchingReader(ReplyReader[T_co]):
     """Replies of ``reader`` that ``belongs`` accepts; others are skipped whole.
 
-    See :func:`matching`.
+    See :func:`matching`. Its :attr:`~ReplyReader.correlates` is always true: foreign
+    replies are recognised and skipped.
     """
 
     __module__ = _HOME
