@@ -132,31 +132,51 @@ async def test_banner_then_multi_line_replies_through_a_pty(board: PtyBoard) -> 
 async def test_a_large_write_waits_for_the_port_to_take_it(
     board: PtyBoard, stream: SerialStream
 ) -> None:
+    # Nobody reads the board's end at first: the pty fills, then the transport's buffer
+    # passes its 64 KiB high-water mark and the stream pauses. (With a reader running
+    # from the start, whether the buffer ever filled depended on the machine's load.)
     chunk = bytes(range(256)) * 64  # 16 KiB
-    total = 48 * len(chunk)  # well past the transport's 64 KiB high-water mark
-    got = bytearray()
-    stop = threading.Event()
-
-    def slow_reader() -> None:
-        while not stop.is_set() and len(got) < total:
-            try:
-                got.extend(os.read(board.master, 65536))
-            except BlockingIOError:
-                stop.wait(0.002)
-
-    reader = threading.Thread(target=slow_reader)
-    paused: list[bool] = []
+    sent = 0
     with anyio.fail_after(10):
-        reader.start()
-        for _ in range(48):
+        while not stream._write_paused:  # type: ignore[attr-defined]
+            assert sent < 64, "64 writes of 16 KiB that nobody read never paused the port"
             await stream.send(chunk)
-            paused.append(stream._write_paused)  # type: ignore[attr-defined]
-        await stream.aclose()  # waits for the output buffer to drain
-    reader.join(5)
-    stop.set()
+            sent += 1
+        # One more write waits for the port to take what is queued.
+        done = anyio.Event()
+
+        async def send_one_more() -> None:
+            await stream.send(chunk)
+            sent_count[0] += 1
+            done.set()
+
+        sent_count = [sent]
+        total = (sent + 1) * len(chunk)
+        got = bytearray()
+        stop = threading.Event()
+
+        def reader() -> None:
+            while not stop.is_set() and len(got) < total:
+                try:
+                    got.extend(os.read(board.master, 65536))
+                except BlockingIOError:
+                    stop.wait(0.002)
+
+        thread = threading.Thread(target=reader, daemon=True)
+        try:
+            async with anyio.create_task_group() as group:
+                group.start_soon(send_one_more)
+                await anyio.sleep(0.05)
+                assert not done.is_set(), "a write went out while the port's buffer was full"
+                thread.start()
+                await done.wait()
+            await stream.aclose()  # waits for the output buffer to drain
+            await anyio.to_thread.run_sync(thread.join, 5)
+        finally:
+            stop.set()
+    assert sent_count[0] == sent + 1
     assert len(got) == total
-    assert bytes(got[: len(chunk)]) == chunk
-    assert any(paused), "the transport never applied back-pressure"
+    assert bytes(got) == chunk * (sent + 1)
 
 
 async def test_the_port_vanishing_mid_exchange_raises_board_disconnection(
