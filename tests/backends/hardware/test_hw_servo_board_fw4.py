@@ -8,10 +8,12 @@ from j5aio.backends.hardware.sr.v4 import (
     SBServoBoardHardwareBackend,
     SRV4ServoBoardFw4HardwareBackend,
 )
+from j5aio.backends.hardware.sr.v4 import servo_fw4_codec as servo_codec
 from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.backends.hardware.transports.stream import ByteStream
 from j5aio.boards.sb import SBServoBoard
 from j5aio.boards.sr.v4 import ServoBoard, ServoBoardFw4
+from j5aio.components.pulse_servo import pulse_for_position
 from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
 from j5aio.simulator.sr_servo_fw4 import SBServoBoardFw4Simulator, SRServoBoardFw4Simulator
 from j5aio.testing.transports import RecordingStream, ScriptedStream
@@ -104,6 +106,35 @@ async def test_positions_map_through_limits_and_read_back_quantised() -> None:
     assert sim.pulse_widths[2] is None
     assert await servo.get_position() is None
     assert board.servos[3].identifier == 3
+    await board.close()
+
+
+@pytest.mark.parametrize(
+    ("backend", "sim", "limits"),
+    [
+        (SR, SRServoBoardFw4Simulator, None),
+        (SR, SRServoBoardFw4Simulator, (500, 4000)),
+        (SB, SBServoBoardFw4Simulator, None),
+        (SB, SBServoBoardFw4Simulator, (300, 4000)),
+    ],
+)
+async def test_every_position_sends_what_the_codec_encodes(
+    backend: AnyServoBackend,
+    sim: type[SRServoBoardFw4Simulator],
+    limits: tuple[int, int] | None,
+) -> None:
+    board, stream = await connect(backend, sim("x"))
+    servo_backend = board.backend
+    assert isinstance(servo_backend, backend)
+    if limits is not None:
+        await servo_backend.set_servo_pulse_limits(1, limits)
+    firmware, used = servo_backend.firmware, servo_backend.pulse_limits[1]
+    for step in range(-200, 201):
+        for position in (step / 200, -1, 1, 0):  # floats, and ints given to the backend
+            stream.clear()
+            await servo_backend.set_servo_position(1, position)
+            pulse = pulse_for_position(position, used)
+            assert stream.sent == servo_codec.encode_set(firmware, 1, pulse)
     await board.close()
 
 

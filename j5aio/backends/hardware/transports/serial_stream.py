@@ -26,7 +26,7 @@ import os
 import select
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Coroutine
 from typing import Any
 
 import anyio
@@ -260,16 +260,21 @@ class _EventSerialStream(SerialStream):
             )
         return True
 
-    async def receive(self, max_bytes: int = 4096) -> bytes:
-        """Return received bytes; see :meth:`ByteStream.receive`."""
-        return await self._inbox.take(max_bytes)
+    # The inbox's own coroutines, handed over rather than awaited in one of these: a
+    # reply's wait is then one frame shorter, and so is its wake-up.
 
-    async def receive_by(self, deadline: float, max_bytes: int = 4096) -> bytes | None:
-        """Return received bytes, or ``None`` at ``deadline``.
+    def receive(self, max_bytes: int = 4096) -> Coroutine[Any, Any, bytes]:
+        """Return received bytes; see :meth:`ByteStream.receive` (a coroutine)."""
+        return self._inbox.take(max_bytes)
+
+    def receive_by(
+        self, deadline: float, max_bytes: int = 4096
+    ) -> Coroutine[Any, Any, bytes | None]:
+        """Return received bytes, or ``None`` at ``deadline`` (a coroutine).
 
         See :meth:`.ByteStream.receive_by`.
         """
-        return await self._inbox.take_by(max_bytes, deadline)
+        return self._inbox.take_by(max_bytes, deadline)
 
     def send_now(self, data: bytes, timeout: float) -> None:
         """Drop output still queued, then write ``data`` synchronously; see :class:`ByteStream`."""
