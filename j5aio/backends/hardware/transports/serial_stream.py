@@ -205,6 +205,9 @@ class _EventSerialStream(SerialStream):
         self._lost = False
         self._transport: serial_asyncio_fast.SerialTransport | None = None
         self._fileno = -1
+        # Whether bytes have been handed to the transport (which queues what the port
+        # does not take) since its buffer was last seen empty: only then is it asked.
+        self._handed_over = False
 
     async def _attach(self) -> None:
         loop = asyncio.get_running_loop()
@@ -235,16 +238,18 @@ class _EventSerialStream(SerialStream):
 
         :raises BoardDisconnectionError: the port has gone or the stream is closed.
         """
-        self._check_writable()  # the port is open: the transport is not closing
+        transport = self._transport
+        if self._closed or self._lost or transport is None or transport.is_closing():
+            self._check_writable()  # raises, saying which
+        assert transport is not None
         if self._write_paused:
             return False
-        transport = self._transport
-        assert transport is not None
-        if not transport.get_write_buffer_size():
+        if not self._handed_over or not transport.get_write_buffer_size():
             # Nothing queued ahead of it: the bytes go straight to the port, as the
             # transport's write would (after five calls of its own and pyserial's).
             # What the port does not take at once, or refuses, goes to the transport,
             # which queues it, or meets the error its own way.
+            self._handed_over = False
             try:
                 written = os.write(self._fileno, data)
             except OSError:
@@ -252,6 +257,7 @@ class _EventSerialStream(SerialStream):
             if written == len(data):
                 return True
             data = data[written:]
+        self._handed_over = True  # the transport may hold bytes now: ask it next time
         transport.write(data)
         if transport.is_closing():
             raise BoardDisconnectionError(

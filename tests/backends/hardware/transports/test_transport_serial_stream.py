@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import errno
 import gc
 import logging
@@ -532,6 +533,40 @@ async def test_what_the_port_takes_in_part_goes_on_through_the_transport(
     monkeypatch.setattr(serial_stream_module, "os", Partial())
     assert stream.send_nowait(b"abcdef\n") is True
     assert read_master(board, 7) == b"abcdef\n"
+
+
+async def test_bytes_queued_in_the_transport_go_out_before_later_ones(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    direct: list[bytes] = []
+
+    class Recording:  # the stream's own writes, recorded, then made
+        def __getattr__(self, name: str) -> Any:
+            return getattr(os, name)
+
+        @staticmethod
+        def write(fd: int, data: Any) -> int:
+            direct.append(bytes(data))
+            return os.write(fd, data)
+
+    library_write = stream.serial.write
+    refuse_direct_writes(monkeypatch)  # the first request goes to the transport...
+    monkeypatch.setattr(stream.serial, "write", _raise(BlockingIOError()))  # ...which queues it
+    assert stream.send_nowait(b"first\n") is True
+    monkeypatch.setattr(serial_stream_module, "os", Recording())  # the port would take more
+    assert stream.send_nowait(b"second\n") is True
+    assert direct == []  # but the second was not written ahead of the first
+    monkeypatch.setattr(stream.serial, "write", library_write)  # the transport's writer sends
+    with anyio.fail_after(2):
+        received = b""
+        while len(received) < 13:
+            await anyio.sleep(0.005)
+            with contextlib.suppress(BlockingIOError):
+                received += os.read(board.master, 4096)
+    assert received == b"first\nsecond\n"
+    assert stream.send_nowait(b"third\n") is True  # nothing queued now: straight out
+    assert direct == [b"third\n"]
+    assert read_master(board, 6) == b"third\n"
 
 
 async def test_a_write_that_fails_raises_board_disconnection(
