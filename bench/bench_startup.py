@@ -17,9 +17,12 @@ Rounds are interleaved and shuffled; the table shows medians and the ratio to j5
 
     python bench/bench_startup.py [--rounds 15] [--kit NAME] [--compare CHECKOUT] [--imports]
 
-``--imports`` also says, for each j5aio case, what its process has imported once the
-robot is ready: how many modules (all of them, and j5aio's) and how many of j5aio's
-classes are dataclasses (each costs a few hundred microseconds to make).
+``--imports`` also says, for each j5aio case and the floor, what its process has imported
+once the robot is ready: how many modules (all of them, and j5aio's) and how many of
+j5aio's classes are dataclasses (each costs a few hundred microseconds to make); and how
+many garbage collections ran until then, and their time (every object an import or a
+start makes counts towards the next collection, so the program pays for its
+allocations there too).
 
 Goal: a ready robot on the simulated kit, async and sync, at most 20 ms after the floor
 (the median of ``anyio.run`` on an empty coroutine in the same run). The sync case's
@@ -85,6 +88,20 @@ anyio.run(main)
 """
 
 
+# Counts the garbage collections (and their time) from the program's first line on
+# (--imports; the interpreter's own start is before it, and the same for every case).
+_GC_WATCH = """\
+import gc as _gc, time as _time
+_gc_seen = [0, 0.0, 0.0]  # collections, their seconds, when the current one started
+def _gc_watch(phase, info):
+    if phase == "start":
+        _gc_seen[2] = _time.perf_counter()
+    else:
+        _gc_seen[0] += 1
+        _gc_seen[1] += _time.perf_counter() - _gc_seen[2]
+_gc.callbacks.append(_gc_watch)
+"""
+
 # What a program has imported at its ready line, printed as one line (--imports).
 _IMPORTS_REPORT = f"""\
 import dataclasses as _dataclasses, sys as _sys
@@ -94,7 +111,10 @@ _classes = {{
     if isinstance(_value, type) and _dataclasses.is_dataclass(_value)
     and _value.__module__.split(".")[0] == "j5aio"
 }}
-print({MARKER!r}, "IMPORTS", len(_sys.modules), len(_ours), len(_classes), flush=True)
+print(
+    {MARKER!r}, "IMPORTS", len(_sys.modules), len(_ours), len(_classes), _gc_seen[0],
+    _gc_seen[1], flush=True,
+)
 """
 
 
@@ -104,11 +124,12 @@ def _reporting_imports(program: str) -> str:
     at = next(index for index, line in enumerate(lines) if f"print({MARKER!r}" in line)
     indent = lines[at][: len(lines[at]) - len(lines[at].lstrip())]
     report = "".join(f"{indent}{line}" for line in _IMPORTS_REPORT.splitlines(keepends=True))
-    return "".join([*lines[:at], report, *lines[at:]])
+    return "".join([_GC_WATCH, *lines[:at], report, *lines[at:]])
 
 
-def imports_at_ready(case: Case, folder: str) -> tuple[int, int, int]:
-    """Modules (all, j5aio's) and j5aio dataclasses ``case``'s program has at its ready line."""
+def imports_at_ready(case: Case, folder: str) -> tuple[int, int, int, int, float]:
+    """What ``case``'s program has at its ready line: modules (all, j5aio's), j5aio
+    dataclasses, and the garbage collections run so far (how many, and their seconds)."""
     program = _reporting_imports(case.argv[-1])
     done = subprocess.run(
         [*case.argv[:-1], program], env=case.env, capture_output=True, text=True, cwd=folder,
@@ -116,8 +137,9 @@ def imports_at_ready(case: Case, folder: str) -> tuple[int, int, int]:
     )
     for line in done.stdout.splitlines():
         if line.startswith(f"{MARKER} IMPORTS "):
-            modules, ours, dataclasses = map(int, line.split()[2:])
-            return modules, ours, dataclasses
+            fields = line.split()[2:]
+            modules, ours, dataclasses, collections = map(int, fields[:4])
+            return modules, ours, dataclasses, collections, float(fields[4])
     raise RuntimeError(f"{case.name}: no imports line:\n{done.stderr[-2000:]}")
 
 
@@ -190,7 +212,11 @@ def main() -> int:
         cases.append(j5)
     with tempfile.TemporaryDirectory(prefix="j5aio-bench-startup-") as folder:
         run_interleaved(cases, options.rounds, functools.partial(time_to_ready, folder=folder))
-        counted = [case for case in cases if case.name.startswith("j5aio") and options.imports]
+        counted = [
+            case
+            for case in cases
+            if (case.name.startswith("j5aio") or case is floor) and options.imports
+        ]
         imported = {case.name: imports_at_ready(case, folder) for case in counted}
     print(f"process start -> robot ready, {options.rounds} interleaved rounds")
     print_table("time to a ready robot", cases, "ms", reference=j5, scale=1000)
@@ -209,9 +235,15 @@ def main() -> int:
     sync_share = (cases[1].median - cases[0].median) * 1000
     print(f"  the sync runtime's share (sync - async): {sync_share:.1f} ms")
     if imported:
-        print("\nimported when ready (modules: all, j5aio's; j5aio's dataclasses):")
-        for name, (modules, ours, dataclasses) in imported.items():
-            print(f"  {name:<40} {modules:5d} {ours:5d} {dataclasses:5d}")
+        print(
+            "\nimported when ready (modules: all, j5aio's; j5aio's dataclasses; "
+            "garbage collections so far, and their time):"
+        )
+        for name, (modules, ours, dataclasses, collections, seconds) in imported.items():
+            print(
+                f"  {name:<40} {modules:5d} {ours:5d} {dataclasses:5d} "
+                f"{collections:5d} {seconds * 1000:6.2f} ms"
+            )
     return 0
 
 

@@ -129,8 +129,15 @@ def _path_finder() -> object:
 def _read(distribution: str, group: str) -> list[PluginEntryPoint]:
     path = f"{distribution}{os.sep}entry_points.txt"
     # (most distributions have none: asking is cheaper than failing to open it)
-    text = _text(path) if os.access(path, os.R_OK) else None
-    if not text or f"[{group}]".replace(" ", "") not in text.replace(" ", ""):
+    data = _bytes(path) if os.access(path, os.R_OK) else None
+    # Most of those that have one list other groups: their files are not decoded.
+    if not data or group.encode("utf-8") not in data:
+        return []
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        return []
+    if f"[{group}]".replace(" ", "") not in text.replace(" ", ""):
         return []
     found: list[tuple[str, str]] = []
     section = None
@@ -160,6 +167,27 @@ def _package_name(distribution: str) -> str:
             if key.strip().lower() == "name" and value.strip():
                 return value.strip()
     return os.path.basename(distribution).rpartition(".")[0].split("-", 1)[0]
+
+
+def _bytes(path: str) -> bytes | None:
+    """The file's bytes, or None if it cannot be read.
+
+    (Read through the file descriptor: a file object costs more than the read, and a
+    program reads every distribution's entry points at its start.)
+    """
+    try:
+        descriptor = os.open(path, os.O_RDONLY)
+    except OSError:
+        return None
+    try:
+        chunks = []
+        while chunk := os.read(descriptor, 65536):
+            chunks.append(chunk)
+    except OSError:
+        return None
+    finally:
+        os.close(descriptor)
+    return b"".join(chunks)
 
 
 def _text(path: str) -> str | None:

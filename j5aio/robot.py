@@ -211,9 +211,13 @@ class BaseRobot:
 
         The service (astoria over MQTT) gives the match's metadata, the team's USB stick
         and the remote start (:mod:`j5aio.competition.service_state`). It is optional:
-        without the package, or where no service is configured, nothing happens.
+        without the package, or where no service is configured, nothing happens (and
+        where nothing configures it, the package is not even imported).
         """
         if self._service is not None:
+            return
+        if not service_state.service_may_be_configured():
+            LOGGER.debug("Robot service: not configured here")
             return
         try:
             service = importlib.import_module("j5aio.service")

@@ -174,3 +174,40 @@ def test_an_entry_point_is_a_value_with_a_readable_repr() -> None:
     assert repr(one) == (
         "PluginEntryPoint(name='beekit', value='beekit.kinds:entries', package='beekit')"
     )
+
+
+def test_entry_points_that_cannot_be_read_or_decoded_are_passed_over(path: Path) -> None:
+    nameless = path / "second" / "nameless-2.0.dist-info" / "entry_points.txt"
+    # Naming the group, but not UTF-8.
+    nameless.write_bytes(b"[test.group]\nthree = plugin_for_test \xff\n")
+    assert [e.name for e in find("test.group")] == ["one", "two"]
+    # A folder where the file should be: opened, but not read.
+    nameless.unlink()
+    nameless.mkdir()
+    assert [e.name for e in find("test.group")] == ["one", "two"]
+
+
+def test_a_long_entry_points_file_is_read_to_its_end(path: Path) -> None:
+    nameless = path / "second" / "nameless-2.0.dist-info" / "entry_points.txt"
+    filler = "".join(f"script{number} = module:main\n" for number in range(8000))
+    nameless.write_text(
+        f"[console_scripts]\n{filler}[test.group]\nthree = plugin_for_test\n", encoding="utf-8"
+    )
+    assert len(filler) > 3 * 65536
+    assert [e.name for e in find("test.group")] == ["one", "two", "three"]
+
+
+def test_a_file_naming_the_group_elsewhere_than_its_header_gives_nothing(path: Path) -> None:
+    nameless = path / "second" / "nameless-2.0.dist-info" / "entry_points.txt"
+    nameless.write_text("[console_scripts]\ntest.group = plugin_for_test\n", encoding="utf-8")
+    assert [e.name for e in find("test.group")] == ["one", "two"]
+    nameless.write_text("[test.group]\n# none yet\n", encoding="utf-8")
+    assert [e.name for e in find("test.group")] == ["one", "two"]
+
+
+def test_a_file_gone_between_asking_and_opening_is_passed_over(
+    path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    (path / "second" / "nameless-2.0.dist-info" / "entry_points.txt").unlink()
+    monkeypatch.setattr(os, "access", lambda *args, **kwargs: True)  # (every file "is there")
+    assert [e.name for e in find("test.group")] == ["one", "two"]

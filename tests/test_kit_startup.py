@@ -49,6 +49,7 @@ NOT_NEEDED = {
     "j5aio.vision.locate": "nothing asks where the robot is",
     "j5aio.vision.geometry": "nothing is measured in the arena",
     "concurrent.futures.thread": "the camera's worker thread waits for a first look",
+    "j5aio.vision.worker": "the camera's worker is made at its first look",
     "j5aio.simulator.sr_motor_fw4": "the default kit has no firmware-4 motor board",
     "j5aio.simulator.sr_ruggeduino_fw1": "the default kit has no Ruggeduino",
     "j5aio.backends.hardware.sr.v4.ruggeduino": "the default kit has no Ruggeduino",
@@ -62,7 +63,7 @@ NOT_NEEDED = {
     "j5aio.boards.sr.kch": "the default kit has no KCH",
     "j5aio.simulator._camera_model": "the camera's model is read at its first look",
     "j5aio.vision.calibration": "the camera's calibration is read at its first look",
-    "j5aio.service.config": "nothing configures the robot service",
+    "j5aio.service": "nothing configures the robot service: its client is not imported",
     "numbers": "the numbers given are ints and floats, which need no number ABCs",
 }
 
@@ -73,6 +74,7 @@ NOT_NEEDED_TO_START = {
     "j5aio.simulator.arena": "the world is made when the robot first moves or looks",
     "j5aio.simulator.camera": "the camera draws nothing until it is looked through",
     "j5aio.vision.arena_map": "nothing asks where the robot is",
+    "j5aio.vision": "nothing is looked at (the camera's worker waits for a first look)",
     "j5aio.competition.metadata": "there is no metadata to read, so the robot develops",
     "j5aio.competition.timer": "no match is started",
     "j5aio.competition.start": "nothing waits for the start",

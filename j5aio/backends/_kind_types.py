@@ -54,6 +54,24 @@ say)."""
 
 _TRANSPORTS: Final = ("serial", "usb", "other")
 
+# The dataclasses below write their own ``__init__``, ``__repr__``, ``__eq__`` and
+# ``__hash__`` (what ``@dataclass(frozen=True)`` would make, and no more): every program
+# imports this module, and the generated ones cost a quarter of a millisecond a class to
+# make. They stay dataclasses (``dataclasses.fields``, ``replace``...); a test checks each
+# against the dataclass the decorator alone would make.
+
+
+class _NewDict:
+    """The default of a mapping field: a new empty dict each time (shown as ``{}``)."""
+
+    __slots__ = ()
+
+    def __repr__(self) -> str:
+        return "{}"
+
+
+_NEW_DICT: Any = _NewDict()
+
 
 class SimulatorClass:
     """A simulator factory naming its class by import path: imported on first use.
@@ -116,7 +134,7 @@ class SimulatorClass:
         return f"SimulatorClass({self.path!r}{extras})"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False, repr=False, eq=False)
 class SimulatorEntry:
     """A simulator of a board kind, as the command line and the simulated kits know it.
 
@@ -143,6 +161,50 @@ class SimulatorEntry:
     serial_prefix: str
     kits: Mapping[str, int] = field(default_factory=dict)
     transport: SimulatorTransport = field(kw_only=True)
+
+    def __init__(
+        self,
+        name: str,
+        factory: SimulatorFactory,
+        description: str,
+        serial_prefix: str,
+        kits: Mapping[str, int] = _NEW_DICT,
+        *,
+        transport: SimulatorTransport,
+    ) -> None:
+        set_field = object.__setattr__
+        set_field(self, "name", name)
+        set_field(self, "factory", factory)
+        set_field(self, "description", description)
+        set_field(self, "serial_prefix", serial_prefix)
+        set_field(self, "kits", {} if kits is _NEW_DICT else kits)
+        set_field(self, "transport", transport)
+        self.__post_init__()
+
+    def _values(self) -> tuple[object, ...]:
+        return (
+            self.name,
+            self.factory,
+            self.description,
+            self.serial_prefix,
+            self.kits,
+            self.transport,
+        )
+
+    def __repr__(self) -> str:
+        return (
+            f"{type(self).__qualname__}(name={self.name!r}, factory={self.factory!r}, "
+            f"description={self.description!r}, serial_prefix={self.serial_prefix!r}, "
+            f"kits={self.kits!r}, transport={self.transport!r})"
+        )
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return self._values() == other._values()
+
+    def __hash__(self) -> int:
+        return hash(self._values())
 
     def __post_init__(self) -> None:
         _check_name("simulator", self.name)
@@ -235,7 +297,7 @@ def _check_board(kind: str, board: object) -> None:
         raise TypeError(f"board kind {kind!r}: board must be a Board subclass")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False, repr=False, eq=False)
 class BoardKind:
     """One generation of one board, and everything that drives or stands in for it.
 
@@ -278,6 +340,60 @@ class BoardKind:
     simulated: BackendField = BackendField()
     identify_order: int = 100
     package: str = "j5aio"
+
+    def __init__(
+        self,
+        name: str,
+        board: type[Board] | str,
+        description: str,
+        hardware: type[Backend] | str | None = None,
+        console: type[Backend] | str | None = None,
+        simulators: tuple[SimulatorEntry, ...] = (),
+        simulated: type[Backend] | str | None = None,
+        identify_order: int = 100,
+        package: str = "j5aio",
+    ) -> None:
+        set_field = object.__setattr__  # (the board and backends through their descriptors)
+        set_field(self, "name", name)
+        set_field(self, "board", board)
+        set_field(self, "description", description)
+        set_field(self, "hardware", hardware)
+        set_field(self, "console", console)
+        set_field(self, "simulators", simulators)
+        set_field(self, "simulated", simulated)
+        set_field(self, "identify_order", identify_order)
+        set_field(self, "package", package)
+        self.__post_init__()
+
+    def _values(self) -> tuple[object, ...]:
+        return (
+            self.name,
+            self.board,
+            self.description,
+            self.hardware,
+            self.console,
+            self.simulators,
+            self.simulated,
+            self.identify_order,
+            self.package,
+        )
+
+    def __repr__(self) -> str:
+        return (
+            f"{type(self).__qualname__}(name={self.name!r}, board={self.board!r}, "
+            f"description={self.description!r}, hardware={self.hardware!r}, "
+            f"console={self.console!r}, simulators={self.simulators!r}, "
+            f"simulated={self.simulated!r}, identify_order={self.identify_order!r}, "
+            f"package={self.package!r})"
+        )
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return self._values() == other._values()
+
+    def __hash__(self) -> int:
+        return hash(self._values())
 
     def __post_init__(self) -> None:
         _check_name("board kind", self.name)
@@ -338,7 +454,7 @@ class BoardKind:
             )
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False, repr=False, eq=False)
 class KitDefinition:
     """A named simulated kit: how many boards of each simulator it has, and how they are wired.
 
@@ -374,6 +490,42 @@ class KitDefinition:
     package: str = "j5aio"
     wiring: Mapping[str, tuple[int | str, ...]] = field(default_factory=dict)
     serials: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+
+    def __init__(
+        self,
+        name: str,
+        description: str,
+        boards: Mapping[str, int],
+        package: str = "j5aio",
+        wiring: Mapping[str, tuple[int | str, ...]] = _NEW_DICT,
+        serials: Mapping[str, tuple[str, ...]] = _NEW_DICT,
+    ) -> None:
+        set_field = object.__setattr__
+        set_field(self, "name", name)
+        set_field(self, "description", description)
+        set_field(self, "boards", boards)
+        set_field(self, "package", package)
+        set_field(self, "wiring", {} if wiring is _NEW_DICT else wiring)
+        set_field(self, "serials", {} if serials is _NEW_DICT else serials)
+        self.__post_init__()
+
+    def _values(self) -> tuple[object, ...]:
+        return (self.name, self.description, self.boards, self.package, self.wiring, self.serials)
+
+    def __repr__(self) -> str:
+        return (
+            f"{type(self).__qualname__}(name={self.name!r}, "
+            f"description={self.description!r}, boards={self.boards!r}, "
+            f"package={self.package!r}, wiring={self.wiring!r}, serials={self.serials!r})"
+        )
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return self._values() == other._values()
+
+    def __hash__(self) -> int:
+        return hash(self._values())
 
     def __post_init__(self) -> None:
         _check_name("kit", self.name)

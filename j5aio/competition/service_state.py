@@ -14,10 +14,11 @@ made the change, after it is made; a listener that raises is logged and skipped.
 from __future__ import annotations
 
 import logging
+import os
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Final
 
 if TYPE_CHECKING:
     from j5aio.competition.metadata import Metadata
@@ -27,6 +28,7 @@ __all__ = [
     "clear",
     "metadata",
     "remove_listener",
+    "service_may_be_configured",
     "set_metadata",
     "set_usercode_path",
     "usercode_path",
@@ -101,3 +103,30 @@ def _notify() -> None:
             listener()
         except Exception:
             LOGGER.exception("A listener of the robot service's state failed")
+
+
+# What configures the service, for a quick look that reads nothing: the variables and
+# files :func:`j5aio.service.config.find_config` reads (named as there; a test checks
+# that they agree).
+_SERVICE_VARIABLE: Final = "J5AIO_SERVICE"
+_URL_VARIABLES: Final = ("J5AIO_MQTT_URL", "SBOT_MQTT_URL")
+_CONFIG_PATHS: Final = ("astoria.toml", "/etc/astoria.toml")
+_OFF: Final = frozenset({"off", "0", "no", "false", "disabled"})
+
+
+def service_may_be_configured(environ: Mapping[str, str] | None = None) -> bool:
+    """Whether the robot service may be configured here: False only where it surely is not.
+
+    It looks at a few environment variables and for astoria's two configuration files,
+    and imports nothing: a robot where nothing configures the service (or
+    ``J5AIO_SERVICE=off`` turns it off) loads none of :mod:`j5aio.service`.
+    :func:`j5aio.service.config.find_config` decides where this says it may be.
+
+    :param environ: the environment to read (``os.environ`` if omitted).
+    """
+    environ = os.environ if environ is None else environ
+    if environ.get(_SERVICE_VARIABLE, "").strip().lower() in _OFF:
+        return False
+    if any(environ.get(variable) for variable in _URL_VARIABLES):
+        return True
+    return any(os.path.isfile(path) for path in _CONFIG_PATHS)

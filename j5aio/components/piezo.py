@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import math
 from abc import abstractmethod
-from datetime import timedelta
 from enum import Enum
 from typing import ClassVar
 
 import anyio
 
+from j5aio._timedelta import timedelta
 from j5aio.components._checks import describe
 from j5aio.components.component import Interface
 from j5aio.components.identified import IdentifiedComponent

@@ -1,16 +1,18 @@
 """Starting the robot's service client where the service is configured, and only there.
 
-This module is all a robot imports when no service is configured: finding that out costs
-a look at a few environment variables and two paths, and nothing more is imported (not
-even the reader of the configuration, :mod:`j5aio.service.config`).
+Finding out that no service is configured costs a look at a few environment variables
+and two paths (:func:`~j5aio.competition.service_state.service_may_be_configured`, which
+a robot asks before it imports this package), and nothing more is imported (not even the
+reader of the configuration, :mod:`j5aio.service.config`).
 """
 
 from __future__ import annotations
 
 import logging
-import os
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Final
+
+from j5aio.competition.service_state import service_may_be_configured
 
 if TYPE_CHECKING:
     from j5aio.service.config import ServiceConfig
@@ -54,7 +56,7 @@ async def start_service(
     :returns: the running service, or ``None`` when there is none.
     """
     if config is None:
-        if not _may_be_configured(os.environ if environ is None else environ):
+        if not service_may_be_configured(environ):
             LOGGER.debug("Robot service: not configured here")
             return None
         from j5aio.service.config import ServiceConfigError, find_config
@@ -82,21 +84,3 @@ async def start_service(
     )
     await service.wait_settled(settle)
     return service
-
-
-# What configures the service, for a quick look that reads nothing: the variables and
-# files :func:`j5aio.service.config.find_config` reads (named as there; a test checks
-# that they agree).
-_SERVICE_VARIABLE: Final = "J5AIO_SERVICE"
-_URL_VARIABLES: Final = ("J5AIO_MQTT_URL", "SBOT_MQTT_URL")
-_CONFIG_PATHS: Final = ("astoria.toml", "/etc/astoria.toml")
-_OFF: Final = frozenset({"off", "0", "no", "false", "disabled"})
-
-
-def _may_be_configured(environ: Mapping[str, str]) -> bool:
-    """Whether the service may be configured: False only where it surely is not (or is off)."""
-    if environ.get(_SERVICE_VARIABLE, "").strip().lower() in _OFF:
-        return False
-    if any(environ.get(variable) for variable in _URL_VARIABLES):
-        return True
-    return any(os.path.isfile(path) for path in _CONFIG_PATHS)

@@ -35,7 +35,7 @@ from . import _kit_counts
 from ._kit_counts import check_count, check_time_scale
 from .base import SerialBoardSimulator, UsbBoardSimulator
 from .clock import Clock, drive, kit_clock
-from .wiring import KitWiring, PowerBoardSimulator, PowerFed, default_outputs
+from .wiring import KitWiring, PowerFed, default_outputs, is_power_board, is_power_fed
 
 if TYPE_CHECKING:
     from ._kit_config import KitConfig
@@ -200,9 +200,7 @@ class SimulatedKit:
 
     def _wire(self) -> KitWiring | None:
         """Join the first power board to the boards it feeds (None without a power board)."""
-        power_board = next(
-            (sim for sim in self._all() if isinstance(sim, PowerBoardSimulator)), None
-        )
+        power_board = next((sim for sim in self._all() if is_power_board(sim)), None)
         if power_board is None:
             return None
         given = dict(self._definition.wiring) if self._definition is not None else {}
@@ -215,12 +213,10 @@ class SimulatedKit:
                 ]
                 feeds += [
                     (sim, out) for sim, out in zip(made, outputs, strict=True)
-                    if isinstance(sim, PowerFed)
+                    if is_power_fed(sim)
                 ]
         chosen = {id(sim) for sim, _ in feeds}
-        rest = [
-            sim for sim in self._all() if isinstance(sim, PowerFed) and id(sim) not in chosen
-        ]
+        rest = [sim for sim in self._all() if is_power_fed(sim) and id(sim) not in chosen]
         taken = [out for _, out in feeds]
         feeds += zip(rest, default_outputs(rest, taken=taken), strict=True)
         order = {id(sim): index for index, sim in enumerate(self._all())}

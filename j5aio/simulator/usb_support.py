@@ -82,7 +82,13 @@ def as_payload(data_or_wlength: ControlData) -> bytes:
     return bytes(data_or_wlength)
 
 
-@dataclass(frozen=True)
+# The two dataclasses below write their own ``__init__``, ``__repr__``, ``__eq__`` and
+# ``__hash__``, as ``@dataclass(frozen=True)`` would make them: every simulated kit with a
+# USB board imports them, and making the generated ones costs a quarter of a millisecond
+# a class. A test checks them against the generated ones.
+
+
+@dataclass(frozen=True, init=False, repr=False, eq=False)
 class SimulatedInterface:
     """The subset of a pyusb ``Interface`` that discovery code looks at."""
 
@@ -92,6 +98,51 @@ class SimulatedInterface:
     bInterfaceSubClass: int  # noqa: N815
     bInterfaceProtocol: int  # noqa: N815
     bNumEndpoints: int = 0  # noqa: N815
+
+    def __init__(
+        self,
+        bInterfaceNumber: int,  # noqa: N803 - pyusb's attribute names
+        bAlternateSetting: int,  # noqa: N803
+        bInterfaceClass: int,  # noqa: N803
+        bInterfaceSubClass: int,  # noqa: N803
+        bInterfaceProtocol: int,  # noqa: N803
+        bNumEndpoints: int = 0,  # noqa: N803
+    ) -> None:
+        set_field = object.__setattr__
+        set_field(self, "bInterfaceNumber", bInterfaceNumber)
+        set_field(self, "bAlternateSetting", bAlternateSetting)
+        set_field(self, "bInterfaceClass", bInterfaceClass)
+        set_field(self, "bInterfaceSubClass", bInterfaceSubClass)
+        set_field(self, "bInterfaceProtocol", bInterfaceProtocol)
+        set_field(self, "bNumEndpoints", bNumEndpoints)
+
+    def _values(self) -> tuple[int, ...]:
+        return (
+            self.bInterfaceNumber,
+            self.bAlternateSetting,
+            self.bInterfaceClass,
+            self.bInterfaceSubClass,
+            self.bInterfaceProtocol,
+            self.bNumEndpoints,
+        )
+
+    def __repr__(self) -> str:
+        return (
+            f"{type(self).__qualname__}(bInterfaceNumber={self.bInterfaceNumber!r}, "
+            f"bAlternateSetting={self.bAlternateSetting!r}, "
+            f"bInterfaceClass={self.bInterfaceClass!r}, "
+            f"bInterfaceSubClass={self.bInterfaceSubClass!r}, "
+            f"bInterfaceProtocol={self.bInterfaceProtocol!r}, "
+            f"bNumEndpoints={self.bNumEndpoints!r})"
+        )
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return self._values() == other._values()
+
+    def __hash__(self) -> int:
+        return hash(self._values())
 
 
 #: The DFU-runtime interface that the SR STM32 boards expose (class 0xFE, subclass 1, protocol 1).
@@ -104,12 +155,37 @@ DFU_RUNTIME_INTERFACE = SimulatedInterface(
 )
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False, repr=False, eq=False)
 class SimulatedConfiguration:
     """The subset of a pyusb ``Configuration``: its value and its interfaces."""
 
     bConfigurationValue: int  # noqa: N815 - pyusb's attribute names
     interface_list: tuple[SimulatedInterface, ...]
+
+    def __init__(
+        self,
+        bConfigurationValue: int,  # noqa: N803 - pyusb's attribute name
+        interface_list: tuple[SimulatedInterface, ...],
+    ) -> None:
+        object.__setattr__(self, "bConfigurationValue", bConfigurationValue)
+        object.__setattr__(self, "interface_list", interface_list)
+
+    def __repr__(self) -> str:
+        return (
+            f"{type(self).__qualname__}(bConfigurationValue={self.bConfigurationValue!r}, "
+            f"interface_list={self.interface_list!r})"
+        )
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return (self.bConfigurationValue, self.interface_list) == (
+            other.bConfigurationValue,
+            other.interface_list,
+        )
+
+    def __hash__(self) -> int:
+        return hash((self.bConfigurationValue, self.interface_list))
 
     @property
     def bNumInterfaces(self) -> int:  # noqa: N802 - pyusb's attribute name

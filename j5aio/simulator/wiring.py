@@ -32,7 +32,7 @@ from __future__ import annotations
 import sys
 import threading
 from collections.abc import Callable, Iterable, Sequence
-from typing import ClassVar, Final, Protocol, runtime_checkable
+from typing import ClassVar, Final, Protocol, TypeGuard, runtime_checkable
 
 from j5aio.power_outputs import BRAIN_OUTPUT, OUTPUT_NAMES, output_name
 
@@ -43,6 +43,8 @@ __all__ = [
     "PowerBoardSimulator",
     "PowerFed",
     "default_outputs",
+    "is_power_board",
+    "is_power_fed",
 ]
 
 _MOTOR_ORDER: Final = (0, 1, 2, 3, 5)
@@ -100,6 +102,31 @@ def _is_motor_board(simulator: object) -> bool:
         isinstance(simulator, getattr(sys.modules[module], name))
         for module, name in _MOTOR_BOARD_SIMULATORS
         if module in sys.modules
+    )
+
+
+# ``isinstance`` against the protocols above lists their members again at every check
+# (some tens of microseconds, each simulator of each kit at its start); these make the
+# same test: each member is there, and a method's is not ``None``.
+
+
+def _has_members(obj: object, data: tuple[str, ...], methods: tuple[str, ...]) -> bool:
+    return all(hasattr(obj, name) for name in data) and all(
+        getattr(obj, name, None) is not None for name in methods
+    )
+
+
+def is_power_fed(simulator: object) -> TypeGuard[PowerFed]:
+    """Whether ``simulator`` has the :class:`PowerFed` shape (as ``isinstance`` says)."""
+    return _has_members(simulator, ("powered",), ("supply_current", "listen"))
+
+
+def is_power_board(simulator: object) -> TypeGuard[PowerBoardSimulator]:
+    """Whether ``simulator`` has the :class:`PowerBoardSimulator` shape (as ``isinstance`` says)."""
+    return _has_members(
+        simulator,
+        ("OUTPUT_COUNT", "outputs"),
+        ("set_supplied_current", "trip_output", "listen"),
     )
 
 

@@ -182,8 +182,10 @@ def _assemble(
     by_module: dict[str, set[str]] = {}
     if renderer.used_typing:
         by_module["typing"] = set(renderer.used_typing)
+    own_names: dict[str, set[str]] = {}  # names imported from j5aio's own modules
     for name, module in renderer.name_imports.items():
-        by_module.setdefault(module, set()).add(name)
+        into = own_names if module.startswith("j5aio.") else by_module
+        into.setdefault(module, set()).add(name)
     for module, names in sorted(by_module.items()):
         ordered = sorted(names, key=_export_order)
         out.append(f"from {module} import {', '.join(ordered)}")
@@ -191,9 +193,12 @@ def _assemble(
     for module, alias in sorted(renderer.module_aliases.items()):
         if alias not in lazy:
             out.append(f"import {module} as {alias}")
+    own_imports: dict[str, list[str]] = {m: sorted(n) for m, n in own_names.items()}
     if lazy:
-        out.append("from j5aio._lazy import lazy_modules as _lazy_modules")
-    for module, imported in sorted(wrappers_now.items()):
+        own_imports.setdefault("j5aio._lazy", []).append("lazy_modules as _lazy_modules")
+    for module, imported in wrappers_now.items():
+        own_imports.setdefault(module, []).extend(imported)
+    for module, imported in sorted(own_imports.items()):
         out += _from_import(module, imported, "")
     used = "\n".join([*bodies, *functions, *environment_lines])
     used = "\n".join([used, *registrations])

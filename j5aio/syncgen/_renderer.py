@@ -17,6 +17,10 @@ from j5aio.syncgen._scope import _NONE_TYPE
 
 __all__ = []
 
+#: Foreign names j5aio's own facade imports from a j5aio module that gives the same object
+#: for less: the facade then loads nothing its core does not (see :mod:`j5aio._timedelta`).
+_LIGHTER_HOMES = {"datetime.timedelta": "j5aio._timedelta"}
+
 # --------------------------------------------------------------------------- rendering
 
 
@@ -129,6 +133,8 @@ class _Renderer:
             or (self.public_only and module.startswith(self.discovery.scope.modules))
         ):
             return f"{self.module_ref(module)}.{name}"
+        if self.discovery.scope.is_core:
+            module = _LIGHTER_HOMES.get(f"{module}.{name}", module)
         known = self.name_imports.get(top)
         if known is not None and known != module:
             return f"{self.module_ref(module)}.{name}"

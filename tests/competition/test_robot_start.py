@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import json
+import logging
 import sys
 import threading
 import types
@@ -258,6 +259,8 @@ async def test_the_service_is_started_and_stopped_with_the_robot(
     fake = types.ModuleType("j5aio.service")
     fake.start_service = start_service  # type: ignore[attr-defined]
     monkeypatch.setitem(sys.modules, "j5aio.service", fake)
+    monkeypatch.setenv("J5AIO_MQTT_URL", "mqtt://robot.invalid")  # (so the service may be)
+    monkeypatch.delenv("J5AIO_SERVICE", raising=False)
     async with BaseRobot() as robot:
         assert events == ["start"]
         await robot.after_setup()  # started once only
@@ -272,8 +275,32 @@ async def test_no_service_configured_is_nothing(monkeypatch: pytest.MonkeyPatch)
     fake = types.ModuleType("j5aio.service")
     fake.start_service = start_service  # type: ignore[attr-defined]
     monkeypatch.setitem(sys.modules, "j5aio.service", fake)
+    monkeypatch.setenv("J5AIO_MQTT_URL", "mqtt://robot.invalid")
     async with BaseRobot() as robot:
         assert robot._service is None
+
+
+async def test_a_configured_service_without_its_client_in_this_build_is_nothing(
+    monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
+) -> None:
+    monkeypatch.setenv("J5AIO_MQTT_URL", "mqtt://robot.invalid")
+    monkeypatch.delenv("J5AIO_SERVICE", raising=False)
+    # (the fixture leaves j5aio.service out, as a build without the client would)
+    with caplog.at_level(logging.DEBUG, logger="j5aio.robot"):
+        async with BaseRobot() as robot:
+            assert robot._service is None
+    assert "No robot service client in this j5aio" in caplog.text
+
+
+async def test_where_nothing_configures_the_service_its_client_is_not_imported(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    for name in [name for name in sys.modules if name.startswith("j5aio.service")]:
+        monkeypatch.delitem(sys.modules, name)
+    monkeypatch.setenv("J5AIO_SERVICE", "off")
+    async with BaseRobot() as robot:
+        assert robot._service is None
+    assert not [name for name in sys.modules if name.startswith("j5aio.service")]
 
 
 async def test_the_services_usercode_stick_is_the_robots(tmp_path: Path) -> None:

@@ -8,15 +8,19 @@ from pathlib import Path
 
 import pytest
 
+from j5aio.competition import service_state
 from j5aio.service import auto, config
 from j5aio.service.auto import start_service
 
 
 def test_the_quick_look_reads_what_find_config_reads() -> None:
-    assert auto._SERVICE_VARIABLE == config.SERVICE_VARIABLE
-    assert set(auto._URL_VARIABLES) == {config.MQTT_URL_VARIABLE, config.SBOT_MQTT_URL_VARIABLE}
-    assert tuple(map(Path, auto._CONFIG_PATHS)) == config.ASTORIA_CONFIG_PATHS
-    assert auto._OFF == config._OFF
+    assert service_state._SERVICE_VARIABLE == config.SERVICE_VARIABLE
+    assert set(service_state._URL_VARIABLES) == {
+        config.MQTT_URL_VARIABLE,
+        config.SBOT_MQTT_URL_VARIABLE,
+    }
+    assert tuple(map(Path, service_state._CONFIG_PATHS)) == config.ASTORIA_CONFIG_PATHS
+    assert service_state._OFF == config._OFF
 
 
 @pytest.mark.parametrize(
@@ -34,8 +38,8 @@ def test_the_variables_say_whether_it_may_be_configured(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path, environ: dict[str, str], expected: bool
 ) -> None:
     monkeypatch.chdir(tmp_path)  # (no astoria.toml here)
-    monkeypatch.setattr(auto, "_CONFIG_PATHS", ("astoria.toml",))
-    assert auto._may_be_configured(environ) is expected
+    monkeypatch.setattr(service_state, "_CONFIG_PATHS", ("astoria.toml",))
+    assert service_state.service_may_be_configured(environ) is expected
     # Whatever the quick look says, find_config agrees where it says "not configured".
     if not expected:
         assert config.find_config(environ, search_paths=(Path("astoria.toml"),)) is None
@@ -45,17 +49,17 @@ def test_astorias_file_in_the_working_directory_may_configure_it(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path
 ) -> None:
     monkeypatch.chdir(tmp_path)
-    assert not auto._may_be_configured({}) or os.path.isfile("/etc/astoria.toml")
+    assert not service_state.service_may_be_configured({}) or os.path.isfile("/etc/astoria.toml")
     (tmp_path / "astoria.toml").write_text("[mqtt]\nhost = 'localhost'\nport = 1883\n")
-    assert auto._may_be_configured({})
-    assert not auto._may_be_configured({"J5AIO_SERVICE": "no"})
+    assert service_state.service_may_be_configured({})
+    assert not service_state.service_may_be_configured({"J5AIO_SERVICE": "no"})
 
 
 async def test_nothing_configured_starts_nothing_and_says_so(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path, caplog: pytest.LogCaptureFixture
 ) -> None:
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr(auto, "_CONFIG_PATHS", ("astoria.toml",))
+    monkeypatch.setattr(service_state, "_CONFIG_PATHS", ("astoria.toml",))
     with caplog.at_level(logging.DEBUG, logger="j5aio.service.auto"):
         assert await start_service(environ={}) is None
     assert "Robot service: not configured here" in caplog.text
@@ -69,5 +73,15 @@ async def test_find_config_decides_where_the_quick_look_cannot_tell(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path
 ) -> None:
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr(auto, "_may_be_configured", lambda environ: True)
+    monkeypatch.setattr(auto, "service_may_be_configured", lambda environ: True)
     assert await start_service(environ={}) is None  # find_config: nothing configures it
+
+
+def test_the_quick_look_reads_the_processs_environment_by_default(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setenv("J5AIO_MQTT_URL", "mqtt://robot.invalid")
+    monkeypatch.delenv("J5AIO_SERVICE", raising=False)
+    assert service_state.service_may_be_configured()
+    monkeypatch.setenv("J5AIO_SERVICE", "off")
+    assert not service_state.service_may_be_configured()

@@ -9,6 +9,7 @@ from j5aio.simulator import (
     SimulatorUnpluggedError,
     SRMotorBoardFw3Simulator,
 )
+from tests.dataclass_twins import assert_like_generated
 
 from .split_helpers import cut_lists, feed, pieces, streams
 
@@ -187,3 +188,10 @@ def test_one_byte_at_a_time_gives_the_same_result(data: bytes) -> None:
     split = SRMotorBoardFw3Simulator("b")
     assert feed(split, [bytes([byte]) for byte in data]) == whole.receive(data)
     assert split.motors == whole.motors
+
+
+def test_motor_output_is_the_generated_dataclass() -> None:
+    assert_like_generated(
+        MotorOutput,
+        [((MotorMode.COAST,), {}), ((MotorMode.FORWARD, 50), {}), ((MotorMode.FORWARD,), {})],
+    )

@@ -9,11 +9,13 @@ import usb.core
 from j5aio.simulator.usb_support import (
     DFU_RUNTIME_INTERFACE,
     SimulatedConfiguration,
+    SimulatedInterface,
     as_payload,
     no_device_error,
     pipe_error,
     timeout_error,
 )
+from tests.dataclass_twins import assert_like_generated
 
 
 def test_pipe_error_is_what_pyusb_raises_on_a_stall() -> None:
@@ -64,3 +66,15 @@ def test_configuration_stand_in() -> None:
     assert config[(0, 0)].bInterfaceSubClass == 0x01
     with pytest.raises(IndexError):
         config[(1, 0)]
+
+
+def test_the_stand_ins_are_the_generated_dataclasses() -> None:
+    assert_like_generated(
+        SimulatedInterface,
+        [((0, 0, 0xFE, 1, 1), {}), ((1, 0, 0xFF, 0, 0), {"bNumEndpoints": 2})],
+    )
+    other = SimulatedInterface(1, 0, 0xFF, 0, 0)
+    assert_like_generated(
+        SimulatedConfiguration,
+        [((1, (DFU_RUNTIME_INTERFACE,)), {}), ((1, (DFU_RUNTIME_INTERFACE, other)), {})],
+    )

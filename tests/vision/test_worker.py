@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import threading
+from typing import Any
 
 import pytest
 
@@ -32,3 +33,30 @@ async def test_a_worker_closed_before_any_job_refuses_one() -> None:
     with pytest.raises(RuntimeError, match="closed"):
         await worker.run(lambda: None)
     assert _worker_threads("j5aio never used") == []
+
+
+async def test_a_camera_makes_its_worker_at_its_first_look_and_refuses_once_closed() -> None:
+    from j5aio.backends.camera.frames import FrameCameraBackend
+
+    class StillCamera(FrameCameraBackend):
+        @classmethod
+        async def discover(cls) -> list[Any]:
+            return []
+
+        def grab(self) -> Any:
+            return "a picture"
+
+    never = StillCamera("still never")
+    assert never._worker is None  # made, never looked through: no worker
+    await never.close()
+    assert never._worker is None
+    with pytest.raises(RuntimeError, match="this camera is closed"):
+        await never.capture_frame(0)
+    used = StillCamera("still used")
+    assert await used.capture_frame(0) == "a picture"
+    assert used._worker is not None
+    assert _worker_threads("j5aio camera still used") == ["j5aio camera still used_0"]
+    await used.close()
+    assert used._worker.is_closed
+    with pytest.raises(RuntimeError, match="this camera is closed"):
+        await used.capture_frame(0)

@@ -18,7 +18,6 @@ from typing import TYPE_CHECKING, ClassVar
 from j5aio.backends.backend import Backend
 from j5aio.boards.camera import CameraBoard
 from j5aio.components.marker_camera import MarkerCameraInterface
-from j5aio.vision.worker import CameraWorker
 
 if TYPE_CHECKING:
     from j5aio.boards.board import Board
@@ -27,6 +26,7 @@ if TYPE_CHECKING:
     from j5aio.vision.image import Image
     from j5aio.vision.markers import Marker
     from j5aio.vision.sizes import MarkerSizes
+    from j5aio.vision.worker import CameraWorker
 
 __all__ = ["FrameCameraBackend"]
 
@@ -75,7 +75,10 @@ class FrameCameraBackend(Backend, MarkerCameraInterface):
         self._calibration = calibration
         self._quad_decimate = quad_decimate
         self._detector: MarkerDetector | None = None
-        self._worker = CameraWorker(f"camera {name}")
+        # (made by the first look: every robot on the simulated kit has a camera, and
+        # most programs never look through it)
+        self._worker: CameraWorker | None = None
+        self._closed = False
 
     @property
     def name(self) -> str:
@@ -94,6 +97,19 @@ class FrameCameraBackend(Backend, MarkerCameraInterface):
         :raises CommunicationError: no picture could be had.
         """
         raise NotImplementedError
+
+    def _worker_here(self) -> CameraWorker:
+        """The camera's worker thread (:class:`~j5aio.vision.worker.CameraWorker`).
+
+        :raises RuntimeError: the camera is closed.
+        """
+        if self._worker is None:
+            if self._closed:
+                raise RuntimeError("this camera is closed")
+            from j5aio.vision.worker import CameraWorker
+
+            self._worker = CameraWorker(f"camera {self._name}")
+        return self._worker
 
     def _detector_here(self) -> MarkerDetector:
         # Made on the worker thread, the only thread that uses it.
@@ -131,21 +147,21 @@ class FrameCameraBackend(Backend, MarkerCameraInterface):
 
     async def see_markers(self, identifier: int, marker_sizes: MarkerSizes) -> list[Marker]:
         """Take a picture and return the markers in it, nearest first."""
-        return await self._worker.run(self._see, await self.frame_source(), marker_sizes)
+        return await self._worker_here().run(self._see, await self.frame_source(), marker_sizes)
 
     async def see_marker_ids(self, identifier: int) -> list[int]:
         """Take a picture and return the ids of the markers in it, sorted."""
-        return await self._worker.run(self._see_ids, await self.frame_source())
+        return await self._worker_here().run(self._see_ids, await self.frame_source())
 
     async def capture_frame(self, identifier: int) -> Image:
         """Take a picture and return it."""
-        return await self._worker.run(await self.frame_source())
+        return await self._worker_here().run(await self.frame_source())
 
     async def save_annotated_frame(
         self, identifier: int, path: Path, marker_sizes: MarkerSizes
     ) -> None:
         """Take a picture, outline the markers found, and write it to ``path``."""
-        await self._worker.run(self._save, await self.frame_source(), path, marker_sizes)
+        await self._worker_here().run(self._save, await self.frame_source(), path, marker_sizes)
 
     async def get_calibration(self, identifier: int) -> CameraCalibration | None:
         """Return the camera's calibration, or ``None``."""
@@ -153,4 +169,6 @@ class FrameCameraBackend(Backend, MarkerCameraInterface):
 
     async def close(self) -> None:
         """Stop the camera's worker thread (and release the device, in subclasses)."""
-        self._worker.close()
+        self._closed = True
+        if self._worker is not None:
+            self._worker.close()

@@ -136,5 +136,5 @@ class OpenCVCameraBackend(FrameCameraBackend):
 
     async def close(self) -> None:
         """Release the camera and stop its worker thread."""
-        await self._worker.run(self._capture.release)
+        await self._worker_here().run(self._capture.release)
         await super().close()

@@ -16,9 +16,9 @@ from __future__ import annotations
 
 from abc import abstractmethod
 from collections.abc import Callable
-from datetime import timedelta
 from typing import Any, ClassVar, Protocol, TypeVar
 
+from j5aio._timedelta import timedelta
 from j5aio.backends.acknowledgements import acknowledge_later
 from j5aio.backends.backend import BoardT
 from j5aio.backends.hardware.arduino import ARDUINO_USB_IDS, UnoLEDAndLimits

@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 from abc import abstractmethod
-from datetime import timedelta
 from typing import TYPE_CHECKING
 
+from j5aio._timedelta import timedelta
 from j5aio.components.component import DerivedComponent, Interface
 from j5aio.components.distance_sensor import Rangefinder
 from j5aio.components.gpio_pin import GPIOPin

@@ -11,10 +11,10 @@ no wrapper contains logic of its own.
 from __future__ import annotations
 
 from collections.abc import Iterator, Mapping, Set
-from datetime import timedelta
 from typing import TYPE_CHECKING, Any, ClassVar, Generic, TypeVar, cast
 
 from j5aio._lazy import lazy_modules as _lazy_modules
+from j5aio._timedelta import timedelta
 from j5aio.sync._generated.robot import Component, DerivedComponent, IdentifiedComponent
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt_into as _adopt_into

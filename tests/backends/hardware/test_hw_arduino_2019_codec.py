@@ -1,4 +1,5 @@
 import contextlib
+import re
 from datetime import timedelta
 
 import pytest
@@ -219,3 +220,14 @@ def test_number_parsers_on_arbitrary_text(text: str) -> None:
         data = (f"a0 {text}",) if parse is not codec.parse_ultrasound_pulse else (text,)
         with contextlib.suppress(CommunicationError):
             parse(codec.Reply(data))
+
+
+@settings(max_examples=500, deadline=None)
+@given(st.text(alphabet="0123456789.-+ _e\u0661\n", max_size=14) | st.text(max_size=14))
+def test_number_checks_take_what_the_firmware_grammar_takes(text: str) -> None:
+    """The str-method checks accept exactly the replies' number grammar (ASCII digits)."""
+    assert codec._is_digits(text, 4) == bool(re.fullmatch(r"[0-9]{1,4}", text))
+    assert codec._is_digits(text, 9) == bool(re.fullmatch(r"[0-9]{1,9}", text))
+    assert codec._is_decimal(text, 10, 2) == bool(
+        re.fullmatch(r"[0-9]{1,10}(?:\.[0-9]{1,2})?", text)
+    )

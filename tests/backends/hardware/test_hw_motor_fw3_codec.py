@@ -90,7 +90,21 @@ def test_version_reply_round_trip() -> None:
     assert codec.parse_version_reply(b"MCV4B:4\r\n") == "4"
 
 
-@pytest.mark.parametrize("line", [b"MCV4A:3", b"MCV4B", b"", b"hello"])
+@pytest.mark.parametrize(
+    "line",
+    [
+        b"MCV4A:3",
+        b"MCV4B",
+        b"",
+        b"hello",
+        b"MCV4B:",
+        b"MCV4B:123456",
+        b"MCV4B:-1",
+        b"MCV4B: 3",
+        b"MCV4B:3.0",
+        "MCV4B:\u0663".encode(),
+    ],
+)
 def test_parse_version_reply_refuses_other_models(line: bytes) -> None:
     with pytest.raises(UnexpectedReplyError, match="motor board"):
         codec.parse_version_reply(line)

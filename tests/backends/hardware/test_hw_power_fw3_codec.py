@@ -1,4 +1,7 @@
+import dataclasses
 import struct
+import subprocess
+import sys
 from datetime import timedelta
 
 import pytest
@@ -68,3 +71,22 @@ def test_the_index_checks_name_what_is_allowed() -> None:
     codec.check_led(1)
     with pytest.raises(ValueError, match=r"LEDs 0 \(run\) and 1 \(error\), not 2"):
         codec.check_led(2)
+
+
+def test_the_battery_reading_is_a_dataclass_of_the_codec_made_on_first_use() -> None:
+    assert codec.BatteryReading.__module__ == codec.__name__
+    assert "BatteryReading" in codec.__all__ and "BatteryReading" in dir(codec)
+    reading = codec.parse_battery(struct.pack("<II", 2000, 11000))
+    assert dataclasses.replace(reading, current_ma=1000).current == 1.0
+    assert repr(reading) == "BatteryReading(current_ma=2000, voltage_mv=11000)"
+    program = (
+        "import sys\n"
+        "from j5aio.backends.hardware.sr.v4 import power_fw3_codec as codec\n"
+        "battery = 'j5aio.backends.hardware.sr.v4._power_fw3_battery'\n"
+        "print(battery in sys.modules)\n"
+        "print(codec.parse_battery(bytes(8)).voltage, battery in sys.modules)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", program], capture_output=True, text=True, check=True, timeout=60
+    )
+    assert done.stdout.split() == ["False", "0.0", "True"]

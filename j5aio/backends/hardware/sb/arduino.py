@@ -19,12 +19,12 @@ tagged request's reply has come, the line is clean and requests go plain again.
 from __future__ import annotations
 
 from collections.abc import Callable
-from datetime import timedelta
 from typing import ClassVar
 
 import anyio
 
 import j5aio.backends.hardware.sb.arduino_2019_codec as codec
+from j5aio._timedelta import timedelta
 from j5aio.backends.hardware.arduino import ArduinoHardwareBackend
 from j5aio.backends.hardware.arduino_pins import DIGITAL_PINS, DigitalPinState
 from j5aio.backends.hardware.serial_backend import scaled

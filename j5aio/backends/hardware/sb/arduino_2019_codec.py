@@ -11,15 +11,11 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from datetime import timedelta
 from typing import Final
 
-from j5aio.backends.hardware.transports.readers import (
-    LinesUntilReader,
-    MatchingReader,
-    matching,
-    read_lines_until,
-)
+from j5aio._timedelta import timedelta
+from j5aio.backends.hardware.transports import readers
+from j5aio.backends.hardware.transports.readers import LinesUntilReader, read_lines_until
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
 
@@ -75,10 +71,21 @@ _SERVO_MAX = 550
 MAX_REQUEST_ID: Final = 32767
 
 _ID_PREFIX = re.compile(rb"@-?[0-9]+ ")
-_ADC_READING = re.compile(r"[0-9]{1,4}")
-_MILLIMETRES = re.compile(r"[0-9]{1,5}")
-_MICROSECONDS = re.compile(r"[0-9]{1,10}(?:\.[0-9]{1,2})?")
-_VERSION_PART = re.compile(r"[0-9]{1,9}")
+
+
+# The numbers in replies are plain ASCII digits: checked with str methods rather than a
+# regular expression each, which a start would compile whether it reads them or not.
+def _is_digits(text: str, most: int) -> bool:
+    """Whether ``text`` is 1 to ``most`` ASCII digits (no sign, space or point)."""
+    return 0 < len(text) <= most and text.isascii() and text.isdigit()
+
+
+def _is_decimal(text: str, whole: int, fraction: int) -> bool:
+    """Whether ``text`` is 1 to ``whole`` digits, then maybe a point and 1 to ``fraction``."""
+    head, point, tail = text.partition(".")
+    return _is_digits(head, whole) and (not point or _is_digits(tail, fraction))
+
+
 _UINT16_MAX = 65535
 _UINT32_MAX = 2**32 - 1
 
@@ -201,7 +208,7 @@ def is_final_line(line: bytes) -> bool:
 REPLY: Final[LinesUntilReader] = read_lines_until(is_final_line)
 
 
-def reply_to(request: bytes) -> MatchingReader[list[bytes]]:
+def reply_to(request: bytes) -> readers.MatchingReader[list[bytes]]:
     """Return the reader of the reply to ``request``, skipping replies to other requests.
 
     ``request`` must carry a request id (see :func:`with_request_id`). A reply is taken
@@ -223,7 +230,8 @@ def reply_to(request: bytes) -> MatchingReader[list[bytes]]:
         )
 
     answers_request.__name__ = f"answers {line.decode('ascii', 'replace')!r}"
-    return matching(REPLY, answers_request)
+    # (looked up on the module: the readers module makes its matching reader on first use)
+    return readers.matching(REPLY, answers_request)
 
 
 def parse_reply(lines: list[bytes]) -> Reply:
@@ -291,7 +299,7 @@ def parse_analogue(reply: Reply, pin: int) -> float:
     for item in reply.data:
         name, _, reading = item.partition(" ")
         if name == wanted:
-            if not _ADC_READING.fullmatch(reading) or int(reading) >= _ADC_STEPS:
+            if not _is_digits(reading, 4) or int(reading) >= _ADC_STEPS:
                 raise _bad(f"reading of {wanted}", reading, "a number 0 to 1023")
             return int(reading) / _ADC_STEPS * _ADC_REFERENCE
     raise UnexpectedReplyError(
@@ -307,7 +315,7 @@ def parse_ultrasound_pulse(reply: Reply) -> timedelta | None:
     :raises UnexpectedReplyError: the reply is not one such number of 32-bit range.
     """
     value = _single(reply, "ultrasound pulse")
-    if not _MICROSECONDS.fullmatch(value) or float(value) > _UINT32_MAX:
+    if not _is_decimal(value, 10, 2) or float(value) > _UINT32_MAX:
         raise _bad("ultrasound pulse", value, "microseconds, 0 to 4294967295")
     microseconds = float(value)
     return None if microseconds == 0 else timedelta(microseconds=microseconds)
@@ -321,7 +329,7 @@ def parse_ultrasound_distance(reply: Reply) -> float | None:
     :raises UnexpectedReplyError: the reply is not one such number.
     """
     value = _single(reply, "ultrasound distance")
-    if not _MILLIMETRES.fullmatch(value) or int(value) > _UINT16_MAX:
+    if not _is_digits(value, 5) or int(value) > _UINT16_MAX:
         raise _bad("ultrasound distance", value, "whole millimetres, 0 to 65535")
     millimetres = int(value)
     return None if millimetres == 0 else millimetres / 1000
@@ -347,7 +355,7 @@ def check_version(version: str) -> tuple[int, int, int]:
     :raises UnsupportedFirmwareError: not three integers, or older than 2019.6.0.
     """
     parts = version.split(".")
-    if all(_VERSION_PART.fullmatch(part) for part in parts):
+    if all(_is_digits(part, 9) for part in parts):
         numbers = tuple(int(part) for part in parts)
     else:
         numbers = ()

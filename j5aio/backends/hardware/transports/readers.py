@@ -21,9 +21,18 @@ from __future__ import annotations
 import abc
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import ClassVar, Generic, TypeVar
+from typing import TYPE_CHECKING, ClassVar, Generic, TypeVar
 
+from j5aio._lazy import lazy_exports
 from j5aio.errors import UnexpectedReplyError
+
+if TYPE_CHECKING:
+    from ._more_readers import ExactReader as ExactReader
+    from ._more_readers import LinesReader as LinesReader
+    from ._more_readers import MatchingReader as MatchingReader
+    from ._more_readers import matching as matching
+    from ._more_readers import read_exactly as read_exactly
+    from ._more_readers import read_lines as read_lines
 
 __all__ = [
     "ExactReader",
@@ -70,7 +79,7 @@ class ReplyReader(abc.ABC, Generic[T_co]):
     correlates: ClassVar[bool] = False
 
 
-def _split_line(
+def split_line(
     buffer: bytes | bytearray, start: int, terminator: bytes, max_length: int
 ) -> tuple[bytes, int] | None:
     """Find the line starting at ``start``: return (line with terminator, end) or None."""
@@ -90,7 +99,8 @@ def _split_line(
     return bytes(buffer[start:end]), end
 
 
-def _strip_line(line: bytes, terminator: bytes) -> bytes:
+def strip_line(line: bytes, terminator: bytes) -> bytes:
+    """Remove ``terminator`` from the end of ``line``, and a carriage return before a newline."""
     line = line[: -len(terminator)]
     if terminator == b"\n" and line.endswith(b"\r"):
         line = line[:-1]
@@ -112,16 +122,16 @@ class LineReader(ReplyReader[bytes]):
     def parse(self, buffer: bytes | bytearray) -> tuple[bytes, int] | None:
         """Return the first line of ``buffer``, if it is complete."""
         # Every reply of a line protocol is read here: the common cases are written out
-        # (a line too long is left to _split_line, which refuses it).
+        # (a line too long is left to split_line, which refuses it).
         terminator = self.terminator
         end = buffer.find(terminator)
         if end < 0:
             if len(buffer) <= self.max_length:
                 return None
-            return _split_line(buffer, 0, terminator, self.max_length)
+            return split_line(buffer, 0, terminator, self.max_length)
         end += len(terminator)
         if end > self.max_length:
-            return _split_line(buffer, 0, terminator, self.max_length)
+            return split_line(buffer, 0, terminator, self.max_length)
         line = bytes(buffer[:end])
         if not self.keep_ends:
             line = line[: -len(terminator)]
@@ -132,59 +142,6 @@ class LineReader(ReplyReader[bytes]):
     def describe(self) -> str:
         """Describe this reader."""
         return f"a line ending {self.terminator!r}"
-
-
-@dataclass(frozen=True)
-class LinesReader(ReplyReader[list[bytes]]):
-    """A fixed number of lines; see :func:`read_lines`."""
-
-    count: int
-    terminator: bytes = b"\n"
-    keep_ends: bool = False
-    max_length: int = DEFAULT_MAX_LINE
-
-    def __post_init__(self) -> None:
-        if not self.terminator:
-            raise ValueError("the line terminator must not be empty")
-        if self.count < 1:
-            raise ValueError(f"the line count must be at least 1, not {self.count}")
-
-    def parse(self, buffer: bytes | bytearray) -> tuple[list[bytes], int] | None:
-        """Return the first ``count`` lines of ``buffer``, once they have all arrived."""
-        lines: list[bytes] = []
-        position = 0
-        while len(lines) < self.count:
-            found = _split_line(buffer, position, self.terminator, self.max_length)
-            if found is None:
-                return None
-            line, position = found
-            lines.append(line if self.keep_ends else _strip_line(line, self.terminator))
-        return lines, position
-
-    def describe(self) -> str:
-        """Describe this reader."""
-        return f"{self.count} lines ending {self.terminator!r}"
-
-
-@dataclass(frozen=True)
-class ExactReader(ReplyReader[bytes]):
-    """A fixed number of bytes; see :func:`read_exactly`."""
-
-    count: int
-
-    def __post_init__(self) -> None:
-        if self.count < 1:
-            raise ValueError(f"the byte count must be at least 1, not {self.count}")
-
-    def parse(self, buffer: bytes | bytearray) -> tuple[bytes, int] | None:
-        """Return the first ``count`` bytes of ``buffer``, once there are enough."""
-        if len(buffer) < self.count:
-            return None
-        return bytes(buffer[: self.count]), self.count
-
-    def describe(self) -> str:
-        """Describe this reader."""
-        return f"{self.count} bytes"
 
 
 @dataclass(frozen=True)
@@ -208,11 +165,11 @@ class LinesUntilReader(ReplyReader[list[bytes]]):
         lines: list[bytes] = []
         position = 0
         while True:
-            found = _split_line(buffer, position, self.terminator, self.max_length)
+            found = split_line(buffer, position, self.terminator, self.max_length)
             if found is None:
                 return None
             raw, position = found
-            stripped = _strip_line(raw, self.terminator)
+            stripped = strip_line(raw, self.terminator)
             lines.append(raw if self.keep_ends else stripped)
             if self.predicate(stripped):
                 return lines, position
@@ -239,27 +196,6 @@ def read_line(
         without a terminator raise :class:`~j5aio.errors.UnexpectedReplyError`.
     """
     return LineReader(terminator, keep_ends, max_length)
-
-
-def read_lines(
-    count: int,
-    terminator: bytes = b"\n",
-    *,
-    keep_ends: bool = False,
-    max_length: int = DEFAULT_MAX_LINE,
-) -> LinesReader:
-    """Read ``count`` lines: the replies to as many one-line requests sent together.
-
-    Options as :func:`read_line`. Sending several requests as one exchange makes them one
-    unit for cancellation: the link runs an exchange to its end, so a caller cancelled
-    between them never leaves the first done and the second not.
-    """
-    return LinesReader(count, terminator, keep_ends, max_length)
-
-
-def read_exactly(count: int) -> ExactReader:
-    """Read exactly ``count`` bytes."""
-    return ExactReader(count)
 
 
 def read_lines_until(
@@ -298,57 +234,20 @@ def line_starts_with(*prefixes: bytes) -> Callable[[bytes], bool]:
 #: The most whole foreign replies a :class:`MatchingReader` skips before giving up.
 DEFAULT_MAX_SKIPPED = 32
 
-
-@dataclass(frozen=True)
-class MatchingReader(ReplyReader[T_co]):
-    """Replies of ``reader`` that ``belongs`` accepts; others are skipped whole.
-
-    See :func:`matching`.
-    """
-
-    reader: ReplyReader[T_co]
-    belongs: Callable[[T_co], bool]
-    max_skipped: int = DEFAULT_MAX_SKIPPED
-
-    def parse(self, buffer: bytes | bytearray) -> tuple[T_co, int] | None:
-        """Return the first reply in ``buffer`` that belongs to this request."""
-        found = self.parse_counting(buffer)
-        return None if found is None else found[:2]
-
-    def parse_counting(self, buffer: bytes | bytearray) -> tuple[T_co, int, int] | None:
-        """As :meth:`parse`, and also say how many foreign replies were skipped."""
-        position = 0
-        for skipped in range(self.max_skipped + 1):
-            parsed = self.reader.parse(buffer[position:])
-            if parsed is None:
-                return None
-            reply, used = parsed
-            position += used
-            if self.belongs(reply):
-                return reply, position, skipped
-        raise UnexpectedReplyError(
-            f"received {self.max_skipped + 1} replies that belong to other requests"
-        )
-
-    def describe(self) -> str:
-        """Describe this reader."""
-        name = getattr(self.belongs, "__name__", repr(self.belongs))
-        return f"{self.reader.describe()}, for which {name} holds"
-
-    #: Always true: foreign replies are recognised and skipped.
-    correlates: ClassVar[bool] = True
-
-
-def matching(
-    reader: ReplyReader[T_co],
-    belongs: Callable[[T_co], bool],
-    *,
-    max_skipped: int = DEFAULT_MAX_SKIPPED,
-) -> MatchingReader[T_co]:
-    """Read replies with ``reader``, skipping whole those for which ``belongs`` is false.
-
-    For a firmware that marks each reply with something of its request (an echo, a
-    request id): a reply that arrives after its request timed out is then skipped by the
-    next request instead of being taken as its answer, whatever its timing.
-    """
-    return MatchingReader(reader, belongs, max_skipped)
+# The readers a start seldom needs (a fixed count of lines or bytes, correlated replies)
+# are defined in their own module, imported the first time one of these names is used:
+# each frozen dataclass costs a start a few hundred microseconds to make.
+if not TYPE_CHECKING:
+    __getattr__, __dir__ = lazy_exports(
+        __name__,
+        {
+            "j5aio.backends.hardware.transports._more_readers": [
+                "ExactReader",
+                "LinesReader",
+                "MatchingReader",
+                "matching",
+                "read_exactly",
+                "read_lines",
+            ],
+        },
+    )

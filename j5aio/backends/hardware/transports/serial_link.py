@@ -126,8 +126,9 @@ from __future__ import annotations
 import asyncio
 import logging
 import math
+import sys
 from collections.abc import Callable
-from typing import Any, TypeVar, overload
+from typing import TYPE_CHECKING, Any, TypeGuard, TypeVar, overload
 
 import anyio
 import anyio.lowlevel
@@ -144,9 +145,12 @@ from j5aio.errors import (
 )
 
 from .completion import run_to_completion
-from .readers import LinesReader, MatchingReader, ReplyReader, read_line
+from .readers import ReplyReader, read_line
 from .stream import ByteStream
 from .trace import TRACE, log_wire, wire_logger
+
+if TYPE_CHECKING:
+    from ._more_readers import LinesReader, MatchingReader
 
 __all__ = ["SerialLink"]
 
@@ -206,9 +210,24 @@ def _check_duration(name: str, value: float) -> float:
     return value
 
 
+# The readers module defines its rarer readers in this module on their first use: until it
+# is loaded, no reader can be one of them (and nothing is imported to find that out).
+_MORE_READERS = f"{__package__}._more_readers"
+
+
+def _is_lines_reader(reader: ReplyReader[Any]) -> TypeGuard[LinesReader]:
+    more = sys.modules.get(_MORE_READERS)
+    return more is not None and isinstance(reader, more.LinesReader)
+
+
+def _is_matching_reader(reader: ReplyReader[T]) -> TypeGuard[MatchingReader[T]]:
+    more = sys.modules.get(_MORE_READERS)
+    return more is not None and isinstance(reader, more.MatchingReader)
+
+
 def _lines_of(reader: ReplyReader[Any]) -> int:
     """How many lines a reply read by ``reader`` has, for counting late lines (1 if unsure)."""
-    return reader.count if isinstance(reader, LinesReader) else 1
+    return reader.count if _is_lines_reader(reader) else 1
 
 
 def _preview(data: bytes | bytearray, limit: int = 80) -> str:
@@ -1161,7 +1180,7 @@ class SerialLink(AsyncResource):
                 parsed: tuple[T, int] | tuple[T, int, int] | None
                 # (``correlates`` first: a class attribute, where ``isinstance`` of an
                 # abstract class is a call on every reply.)
-                if reader.correlates and isinstance(reader, MatchingReader):
+                if reader.correlates and _is_matching_reader(reader):
                     parsed = reader.parse_counting(self._buffer)
                 else:
                     parsed = reader.parse(self._buffer)

@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import dataclasses
+import subprocess
+import sys
+
 import pytest
 
 from j5aio.backends.hardware.transports import (
@@ -99,3 +103,40 @@ def test_read_lines_waits_for_all_of_them() -> None:
         read_lines(0)
     with pytest.raises(ValueError, match="must not be empty"):
         read_lines(2, b"")
+
+
+def test_the_rarer_readers_are_public_dataclasses_of_the_readers_module() -> None:
+    from j5aio.backends.hardware.transports import readers
+
+    home = "j5aio.backends.hardware.transports.readers"
+    for name in ("ExactReader", "LinesReader", "MatchingReader"):
+        cls = getattr(readers, name)
+        assert name in readers.__all__
+        assert cls.__module__ == home and cls.__qualname__ == name
+        assert issubclass(cls, readers.ReplyReader)
+        assert dataclasses.is_dataclass(cls)
+    lines = readers.read_lines(2)
+    assert isinstance(lines, readers.LinesReader)
+    assert repr(lines).startswith("LinesReader(count=2, terminator=b")
+    assert [field.name for field in dataclasses.fields(lines)][:2] == ["count", "terminator"]
+    assert dataclasses.replace(lines, count=3) == readers.read_lines(3)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        lines.count = 4  # type: ignore[misc]
+    assert readers.matching(lines, bool).correlates is True
+    assert "matching" in dir(readers)
+
+
+def test_importing_the_readers_does_not_make_the_rarer_ones() -> None:
+    """A start that reads only lines never pays for the rarer readers' dataclasses."""
+    program = (
+        "import sys\n"
+        "from j5aio.backends.hardware.transports.readers import read_line, read_lines_until\n"
+        "more = 'j5aio.backends.hardware.transports._more_readers'\n"
+        "print(more in sys.modules)\n"
+        "from j5aio.backends.hardware.transports.readers import LinesReader\n"
+        "print(more in sys.modules, LinesReader.__name__)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", program], capture_output=True, text=True, check=True, timeout=60
+    )
+    assert done.stdout.split() == ["False", "True", "LinesReader"]

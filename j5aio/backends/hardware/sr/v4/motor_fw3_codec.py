@@ -16,7 +16,6 @@ This module does no I/O: the hardware backend and the motor board simulator both
 
 from __future__ import annotations
 
-import re
 from typing import Final
 
 from j5aio.components.motor import MotorSpecialState, MotorState
@@ -69,7 +68,12 @@ MOTOR_COUNT: Final = 2
 #: What the host sends to ask for the version, resynchronising the parser first.
 RESYNC_AND_VERSION_QUERY: Final = bytes((CMD_RESYNC, CMD_VERSION))
 
-_VERSION = re.compile(r"[0-9]{1,5}")
+
+def _is_version(text: str) -> bool:
+    """Whether ``text`` is a version as the firmware writes it: 1 to 5 ASCII digits."""
+    return 0 < len(text) <= 5 and text.isascii() and text.isdigit()
+
+
 #: Speed steps per unit of power that make the duty equal the power (1.0 → 100 %).
 LINEAR_SCALE: Final = 100
 #: j5's speed steps per unit of power: byte-compatible with j5, saturating from 0.8.
@@ -155,7 +159,7 @@ def parse_version_reply(line: bytes) -> str:
     """
     text = line.decode("ascii", errors="replace").rstrip("\r\n")
     model, separator, version = text.partition(":")
-    if model != MODEL or not separator or not _VERSION.fullmatch(version):
+    if model != MODEL or not separator or not _is_version(version):
         raise UnexpectedReplyError(
             f"expected a motor board version line like '{MODEL}:3', got {text!r}; is this "
             "port really an SR v4 motor board?",

@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import time
 from collections.abc import Awaitable, Callable
-from datetime import timedelta
 from typing import ClassVar
 
 import j5aio.backends.hardware.sr.v4.power_fw3_codec as codec
+from j5aio._timedelta import timedelta
 from j5aio.backends.hardware.transports.usb_link import USBLink
 from j5aio.backends.hardware.usb_backend import USBHardwareBackend
 from j5aio.backends.press_watch import PressWatch

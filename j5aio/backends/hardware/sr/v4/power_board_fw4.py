@@ -11,12 +11,12 @@ cached state but the identity.
 from __future__ import annotations
 
 from collections.abc import Callable
-from datetime import timedelta
 from typing import ClassVar
 
 import anyio
 
 import j5aio.backends.hardware.sr.v4.power_fw4_codec as codec
+from j5aio._timedelta import timedelta
 from j5aio.backends.hardware.sr.v4.text_backend import SRTextBackend
 from j5aio.backends.hardware.sr.v4.text_protocol import Identity, NackError
 from j5aio.backends.hardware.transports.serial_link import SerialLink

@@ -12,10 +12,14 @@ from __future__ import annotations
 
 import struct
 from dataclasses import dataclass
-from datetime import timedelta
-from typing import Final
+from typing import TYPE_CHECKING, Final
 
+from j5aio._lazy import lazy_exports
+from j5aio._timedelta import timedelta
 from j5aio.errors import NotSupportedByHardwareError, UnexpectedReplyError
+
+if TYPE_CHECKING:
+    from j5aio.backends.hardware.sr.v4._power_fw3_battery import BatteryReading as BatteryReading
 
 __all__ = [
     "BATTERY",
@@ -80,24 +84,6 @@ PIEZO_WRITE: Final = 8
 _U16_MAX = 0xFFFF
 
 
-@dataclass(frozen=True)
-class BatteryReading:
-    """What the battery sensor reports."""
-
-    current_ma: int
-    voltage_mv: int
-
-    @property
-    def current(self) -> float:
-        """The battery current in amperes."""
-        return self.current_ma / 1000
-
-    @property
-    def voltage(self) -> float:
-        """The battery voltage in volts."""
-        return self.voltage_mv / 1000
-
-
 def check_output(output: int) -> None:
     """Refuse a number that is not one of the power board's outputs (0 to 5).
 
@@ -154,6 +140,8 @@ def parse_battery(data: bytes) -> BatteryReading:
         raise UnexpectedReplyError(
             f"expected an 8-byte battery reply, got {len(data)} bytes: {data!r}",
         )
+    from j5aio.backends.hardware.sr.v4._power_fw3_battery import BatteryReading
+
     current, voltage = struct.unpack("<II", data)
     return BatteryReading(int(current), int(voltage))
 
@@ -180,3 +168,12 @@ def encode_piezo_note(duration: timedelta, frequency: float) -> bytes:
             f"the power board can buzz at most 65535 Hz, not {frequency_hz} Hz",
         )
     return struct.pack("<HH", frequency_hz, duration_ms)
+
+
+# The battery's reading is made only when a program reads the battery: its class is
+# defined in its own module, imported the first time the name is used.
+if not TYPE_CHECKING:
+    __getattr__, __dir__ = lazy_exports(
+        __name__,
+        {"j5aio.backends.hardware.sr.v4._power_fw3_battery": ["BatteryReading"]},
+    )

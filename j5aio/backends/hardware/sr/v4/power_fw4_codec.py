@@ -17,9 +17,9 @@ naming the board and the reply.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from datetime import timedelta
 from typing import Final
 
+from j5aio._timedelta import timedelta
 from j5aio.backends.hardware.sr.v4.text_protocol import (
     IDENTIFY,
     Identity,

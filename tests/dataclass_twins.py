@@ -1,0 +1,77 @@
+"""Checking a dataclass whose methods are written by hand against what ``@dataclass`` makes.
+
+Some of j5aio's dataclasses are imported by every program and write their own
+``__init__``, ``__repr__``, ``__eq__`` and ``__hash__`` (making the generated ones costs
+time at start-up). :func:`assert_like_generated` checks that such a class behaves as the
+plain ``@dataclass(frozen=True)`` of the same fields would: its twin, made here with
+:func:`dataclasses.make_dataclass` from the class's own fields.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+from collections.abc import Mapping
+from typing import Any
+
+import pytest
+
+__all__ = ["assert_like_generated", "twin_of"]
+
+
+def twin_of(cls: type) -> type:
+    """The frozen dataclass ``@dataclass`` makes from ``cls``'s fields (no methods of its own)."""
+    specs: list[tuple[str, Any, Any]] = []
+    for spec in dataclasses.fields(cls):
+        options: dict[str, Any] = {"kw_only": spec.kw_only}
+        if spec.default is not dataclasses.MISSING:
+            options["default"] = spec.default
+        if spec.default_factory is not dataclasses.MISSING:
+            options["default_factory"] = spec.default_factory
+        specs.append((spec.name, spec.type, dataclasses.field(**options)))
+    return dataclasses.make_dataclass(cls.__name__, specs, frozen=True)
+
+
+def _values(obj: object) -> dict[str, Any]:
+    return {spec.name: getattr(obj, spec.name) for spec in dataclasses.fields(obj)}  # type: ignore[arg-type]
+
+
+def assert_like_generated(
+    cls: type, samples: list[tuple[tuple[Any, ...], Mapping[str, Any]]]
+) -> None:
+    """Check ``cls`` against its twin, made from each of ``samples`` (args, keyword args).
+
+    The samples should hold at least two that differ (for ``==``). Their fields are
+    compared as the constructors leave them, with ``repr``, ``==``, ``hash`` (or the
+    same error from it), the signature's parameters and ``dataclasses.replace``.
+    """
+    twin = twin_of(cls)
+    params = dataclasses.fields(cls)
+    assert dataclasses.is_dataclass(cls) and cls.__dataclass_params__.frozen  # type: ignore[attr-defined]
+    assert [(p.name, p.kind) for p in inspect.signature(cls).parameters.values()] == [
+        (p.name, p.kind) for p in inspect.signature(twin).parameters.values()
+    ]
+    assert cls.__match_args__ == twin.__match_args__  # type: ignore[attr-defined]
+    subclass = type(f"{cls.__name__}Subclass", (cls,), {})
+    made = [cls(*args, **kwargs) for args, kwargs in samples]
+    twins = [twin(**_values(obj)) for obj in made]
+    for obj, other in zip(made, twins, strict=True):
+        assert repr(obj) == repr(other)
+        assert _values(cls(*[], **{p.name: getattr(obj, p.name) for p in params})) == _values(obj)
+        assert dataclasses.replace(obj) == obj
+        try:
+            expected: object = hash(other)
+        except TypeError as error:
+            with pytest.raises(TypeError, match=str(error)):
+                hash(obj)
+        else:
+            assert hash(obj) == expected
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            setattr(obj, params[0].name, None)
+        # Another class, even with equal fields (a subclass too), is not compared.
+        assert obj.__eq__(other) is NotImplemented
+        assert obj.__eq__(subclass(**_values(obj))) is NotImplemented
+    for obj, twin_obj in zip(made, twins, strict=True):
+        for other, other_twin in zip(made, twins, strict=True):
+            assert (obj == other) == (twin_obj == other_twin)
+            assert (obj != other) == (twin_obj != other_twin)
