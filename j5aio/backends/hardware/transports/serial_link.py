@@ -760,7 +760,7 @@ class SerialLink(AsyncResource):
                     # (``correlates`` first: a class attribute, where ``isinstance`` of an
                     # abstract class is a call on every reply.)
                     parsed: tuple[T, int] | tuple[T, int, int] | None
-                    if reader.correlates and isinstance(reader, MatchingReader):
+                    if reader.correlates and _is_matching_reader(reader):
                         parsed = reader.parse_counting(self._buffer)
                     else:
                         parsed = reader.parse(self._buffer)
