@@ -38,6 +38,12 @@ them; ``error`` is the exception the call raised (then ``result`` is ``None``).
 #: this list is empty a call costs one truth test more than it did without observers.
 CALL_OBSERVERS: list[CallObserver] = []
 
+#: ``inspect.markcoroutinefunction`` where there is one (Python 3.12 and later): the
+#: wrapper round each interface method returns a coroutine without being one.
+_mark_coroutine_function: Callable[[Callable[..., Any]], object] | None = getattr(
+    inspect, "markcoroutinefunction", None
+)
+
 
 class BackendMeta(ABCMeta):
     """The metaclass of backends: checks a backend's interfaces when its class is made.
@@ -105,8 +111,7 @@ def _logged(
             signature = inspect.signature(method)
         return signature
 
-    @functools.wraps(method)
-    async def logged_method(*args: Any, **kwargs: Any) -> Any:
+    async def observed(args: tuple[Any, ...], kwargs: dict[str, Any]) -> Any:
         backend = args[0]
         if backend._acknowledges_later and backend._link.unconfirmed is not None:
             # An earlier command's reply is still to be read (it was confirmed later): read
@@ -127,6 +132,23 @@ def _logged(
             logger.debug("%s(%s)%s", method_name, shown, suffix)
         return result
 
+    # Not a coroutine function itself: when there is nothing to do round the call (no
+    # acknowledgement owed, no observer, no debug log) it hands over the backend's own
+    # coroutine, so that a request's every wait and wake-up is a frame shorter. What it
+    # decides, it decides when called: an interface method is called where it is awaited.
+    @functools.wraps(method)
+    def logged_method(*args: Any, **kwargs: Any) -> Coroutine[Any, Any, Any]:
+        backend = args[0]
+        if (
+            CALL_OBSERVERS
+            or (backend._acknowledges_later and backend._link.unconfirmed is not None)
+            or logger.isEnabledFor(logging.DEBUG)
+        ):
+            return observed(args, kwargs)
+        return method(*args, **kwargs)
+
+    if _mark_coroutine_function is not None:  # (Python 3.12 and later)
+        _mark_coroutine_function(logged_method)
     logged_method.__j5aio_logged__ = True  # type: ignore[attr-defined]
     return logged_method
 

@@ -121,3 +121,41 @@ async def test_debug_log_names_the_arguments_of_each_call(
     assert "set_led_state(identifier=4, state=True)" in messages
     assert "get_led_state(identifier=4) -> True" in messages
     assert "set_led_state(identifier=4, state=False)" in messages
+
+
+async def test_a_quiet_call_hands_over_the_backend_s_own_coroutine() -> None:
+    backend_class = _make_backend_class()
+    backend = backend_class()
+    call = backend.set_led_state(5, True)  # nothing observed, logged or owed
+    assert call.cr_code is inspect.unwrap(backend_class.set_led_state).__code__
+    await call
+    assert backend.states == {5: True}
+
+
+async def test_an_observed_call_goes_through_the_wrapper(
+    calls: list[tuple[Any, ...]],
+) -> None:
+    backend_class = _make_backend_class()
+    backend = backend_class()
+    observed = backend.set_led_state(6, True)
+    assert observed.cr_code is not inspect.unwrap(backend_class.set_led_state).__code__
+    await observed
+    assert calls == [(backend, "set_led_state", (6, True), None, None)]
+
+
+async def test_a_logged_call_goes_through_the_wrapper(caplog: pytest.LogCaptureFixture) -> None:
+    backend_class = _make_backend_class()
+    backend = backend_class()
+    with caplog.at_level(logging.DEBUG):
+        logged = backend.set_led_state(6, False)
+        assert logged.cr_code is not inspect.unwrap(backend_class.set_led_state).__code__
+        await logged
+    assert "set_led_state(identifier=6, state=False)" in caplog.text
+
+
+def test_interface_methods_are_still_known_as_coroutine_functions() -> None:
+    from j5aio.syncgen._members import _is_coroutine_function
+
+    backend_class = _make_backend_class()
+    assert inspect.iscoroutinefunction(inspect.unwrap(backend_class.set_led_state))
+    assert _is_coroutine_function(backend_class.set_led_state)

@@ -8,10 +8,12 @@ from j5aio.backends.hardware.sr.v4 import (
     SBServoBoardHardwareBackend,
     SRV4ServoBoardFw4HardwareBackend,
 )
+from j5aio.backends.hardware.sr.v4 import servo_fw4_codec as servo_codec
 from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.backends.hardware.transports.stream import ByteStream
 from j5aio.boards.sb import SBServoBoard
 from j5aio.boards.sr.v4 import ServoBoard, ServoBoardFw4
+from j5aio.components.pulse_servo import pulse_for_position
 from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
 from j5aio.simulator.sr_servo_fw4 import SBServoBoardFw4Simulator, SRServoBoardFw4Simulator
 from j5aio.testing.transports import RecordingStream, ScriptedStream
@@ -23,7 +25,8 @@ IDN_SR = (b"*IDN?\n", b"Student Robotics:SBv4B:srABC:4.3\n")
 
 
 async def connect(
-    backend: AnyServoBackend, sim: SRServoBoardFw4Simulator,
+    backend: AnyServoBackend,
+    sim: SRServoBoardFw4Simulator,
 ) -> tuple[ServoBoardFw4, RecordingStream]:
     stream = RecordingStream(SimulatorStream(sim, time_scale=0))
     board = await backend.from_stream(stream, port="sim", serial_number=sim.serial_number)
@@ -48,11 +51,15 @@ async def test_handshake_sends_only_the_identity_request() -> None:
 
 @pytest.mark.parametrize(
     ("backend", "sim", "board_class", "count"),
-    [(SR, SRServoBoardFw4Simulator, ServoBoardFw4, 12), (SB, SBServoBoardFw4Simulator,
-                                                         SBServoBoard, 8)],
+    [
+        (SR, SRServoBoardFw4Simulator, ServoBoardFw4, 12),
+        (SB, SBServoBoardFw4Simulator, SBServoBoard, 8),
+    ],
 )
 async def test_each_firmware_gets_its_board(
-    backend: AnyServoBackend, sim: type[SRServoBoardFw4Simulator], board_class: type[ServoBoardFw4],
+    backend: AnyServoBackend,
+    sim: type[SRServoBoardFw4Simulator],
+    board_class: type[ServoBoardFw4],
     count: int,
 ) -> None:
     board, _ = await connect(backend, sim("x"))
@@ -65,11 +72,15 @@ async def test_each_firmware_gets_its_board(
 
 @pytest.mark.parametrize(
     ("backend", "sim", "found", "supported"),
-    [(SR, SBServoBoardFw4Simulator, "4.4", ("4.3",)), (SB, SRServoBoardFw4Simulator, "4.3",
-                                                        ("4.4",))],
+    [
+        (SR, SBServoBoardFw4Simulator, "4.4", ("4.3",)),
+        (SB, SRServoBoardFw4Simulator, "4.3", ("4.4",)),
+    ],
 )
 async def test_the_other_firmware_is_unsupported(
-    backend: AnyServoBackend, sim: type[SRServoBoardFw4Simulator], found: str,
+    backend: AnyServoBackend,
+    sim: type[SRServoBoardFw4Simulator],
+    found: str,
     supported: tuple[str],
 ) -> None:
     stream = SimulatorStream(sim("x"), time_scale=0)
@@ -107,6 +118,35 @@ async def test_positions_map_through_limits_and_read_back_quantised() -> None:
     await board.close()
 
 
+@pytest.mark.parametrize(
+    ("backend", "sim", "limits"),
+    [
+        (SR, SRServoBoardFw4Simulator, None),
+        (SR, SRServoBoardFw4Simulator, (500, 4000)),
+        (SB, SBServoBoardFw4Simulator, None),
+        (SB, SBServoBoardFw4Simulator, (300, 4000)),
+    ],
+)
+async def test_every_position_sends_what_the_codec_encodes(
+    backend: AnyServoBackend,
+    sim: type[SRServoBoardFw4Simulator],
+    limits: tuple[int, int] | None,
+) -> None:
+    board, stream = await connect(backend, sim("x"))
+    servo_backend = board.backend
+    assert isinstance(servo_backend, backend)
+    if limits is not None:
+        await servo_backend.set_servo_pulse_limits(1, limits)
+    firmware, used = servo_backend.firmware, servo_backend.pulse_limits[1]
+    for step in range(-200, 201):
+        for position in (step / 200, -1, 1, 0):  # floats, and ints given to the backend
+            stream.clear()
+            await servo_backend.set_servo_position(1, position)
+            pulse = pulse_for_position(position, used)
+            assert stream.sent == servo_codec.encode_set(firmware, 1, pulse)
+    await board.close()
+
+
 async def test_the_fork_accepts_its_shorter_pulses() -> None:
     sim = SBServoBoardFw4Simulator("x")
     board, _ = await connect(SB, sim)
@@ -126,8 +166,11 @@ async def test_the_fork_accepts_its_shorter_pulses() -> None:
     ],
 )
 async def test_each_firmware_starts_with_its_kit_librarys_pulse_limits(
-    backend: AnyServoBackend, sim: type[SRServoBoardFw4Simulator], limits: tuple[int, int],
-    pulse_at_minus_one: int, pulse_at_one: int,
+    backend: AnyServoBackend,
+    sim: type[SRServoBoardFw4Simulator],
+    limits: tuple[int, int],
+    pulse_at_minus_one: int,
+    pulse_at_one: int,
 ) -> None:
     simulator = sim("x")
     board, _ = await connect(backend, simulator)
@@ -151,7 +194,10 @@ async def test_each_firmware_starts_with_its_kit_librarys_pulse_limits(
     ],
 )
 async def test_bad_limits_are_refused_sending_nothing(
-    lower: object, upper: object, error: type[Exception], match: str,
+    lower: object,
+    upper: object,
+    error: type[Exception],
+    match: str,
 ) -> None:
     board, stream = await connect(SR, SRServoBoardFw4Simulator("x"))
     with pytest.raises(error, match=match):
@@ -205,13 +251,15 @@ async def test_supply_flags_and_reset() -> None:
 
 
 async def test_nack_and_malformed_replies_are_communication_errors() -> None:
-    stream = ScriptedStream([
-        IDN_SR,
-        (b"SERVO:0:SET:1500\n", b"NACK:Invalid servo setpoint\n"),
-        (b"SERVO:0:GET?\n", b"1502\n"),
-        (b"*STATUS?\n", b"0:1:1\n"),
-        (b"SERVO:V?\n", b"lots\n"),
-    ])
+    stream = ScriptedStream(
+        [
+            IDN_SR,
+            (b"SERVO:0:SET:1500\n", b"NACK:Invalid servo setpoint\n"),
+            (b"SERVO:0:GET?\n", b"1502\n"),
+            (b"*STATUS?\n", b"0:1:1\n"),
+            (b"SERVO:V?\n", b"lots\n"),
+        ]
+    )
     board = await SR.from_stream(stream, port="scripted", serial_number="x")
     assert isinstance(board, ServoBoardFw4)
     with pytest.raises(CommunicationError, match="refused 'SERVO:0:SET:1500'"):
@@ -236,14 +284,20 @@ def test_firmware_before_the_handshake_is_an_error() -> None:
 
 def servo_port(device: str, serial_number: str) -> SimpleNamespace:
     return SimpleNamespace(
-        device=device, vid=0x1BDA, pid=0x0011, serial_number=serial_number,
-        manufacturer="Student Robotics", product="Servo Board v4", description="Servo Board v4",
+        device=device,
+        vid=0x1BDA,
+        pid=0x0011,
+        serial_number=serial_number,
+        manufacturer="Student Robotics",
+        product="Servo Board v4",
+        description="Servo Board v4",
     )
 
 
 async def test_discovery_and_attach_by_usb_identity() -> None:
     sims = {
-        "/dev/s1": SRServoBoardFw4Simulator("srS1"), "/dev/s2": SRServoBoardFw4Simulator("srS2"),
+        "/dev/s1": SRServoBoardFw4Simulator("srS1"),
+        "/dev/s2": SRServoBoardFw4Simulator("srS2"),
     }
     opened: list[str] = []
 
@@ -251,8 +305,11 @@ async def test_discovery_and_attach_by_usb_identity() -> None:
         opened.append(port)
         return SimulatorStream(sims[port], time_scale=0)
 
-    ports = [servo_port("/dev/s2", "srS2"), servo_port("/dev/s1", "srS1"),
-             SimpleNamespace(**{**vars(servo_port("/dev/p", "srP")), "pid": 0x0010})]
+    ports = [
+        servo_port("/dev/s2", "srS2"),
+        servo_port("/dev/s1", "srS1"),
+        SimpleNamespace(**{**vars(servo_port("/dev/p", "srP")), "pid": 0x0010}),
+    ]
     boards = await SR.discover(options=DiscoveryOptions(port_source=lambda: ports, opener=opener))
     assert [board.serial_number for board in boards] == ["srS1", "srS2"]
     assert sorted(opened) == ["/dev/s1", "/dev/s2"]

@@ -55,7 +55,10 @@ class Inbox:
         """Append received bytes and wake the reader; ignored once ended."""
         if self._error is None and data:
             self._buffer += data
-            self._wake()
+            # (What _wake does, written out: on the path of every reply.)
+            waiter = self._wakeup
+            if waiter is not None and not waiter.done():
+                waiter.set_result(None)
 
     def finish(self, error: CommunicationError, *, discard: bool = False) -> None:
         """End the stream: once the buffer is empty, :meth:`take` raises ``error``.

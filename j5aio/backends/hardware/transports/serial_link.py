@@ -174,10 +174,6 @@ class _Progress:
     remaining: int = 0
 
 
-class _LateReplyError(Exception):
-    """No complete reply by the deadline (raised inside the link, turned into a timeout)."""
-
-
 class _OwedAcknowledgement:
     """A command written whose acknowledgement is still to be read (see ``command``)."""
 
@@ -603,9 +599,7 @@ class SerialLink(AsyncResource):
         assert owed is not None
         self.unconfirmed = None
         progress = _Progress()
-        progress.deadline = max(
-            owed.deadline, asyncio.get_running_loop().time() + self._quiet_time
-        )
+        progress.deadline = max(owed.deadline, asyncio.get_running_loop().time() + self._quiet_time)
         progress.seconds = owed.seconds
         try:
             with anyio.CancelScope(shield=True):
@@ -630,7 +624,8 @@ class SerialLink(AsyncResource):
         except asyncio.CancelledError:
             _log.debug(
                 "%s: the acknowledgement of %s was not read (cancelled)",
-                self._name, _preview(owed.request),
+                self._name,
+                _preview(owed.request),
             )
             raise
 
@@ -664,12 +659,7 @@ class SerialLink(AsyncResource):
                 if self._closed:
                     raise BoardDisconnectionError(f"{self._name}: the link is closed")
                 correlates = reader.correlates
-                if (
-                    not correlates
-                    and self._resync_line is not None
-                    and self._owed
-                    and self._owes()
-                ):
+                if not correlates and self._resync_line is not None and self._owed and self._owes():
                     progress = _Progress()
                     reply = await self._bracketed_locked(request, reader, seconds, progress)
                 else:
@@ -763,10 +753,41 @@ class SerialLink(AsyncResource):
         """
         finished = False
         try:
-            reply = await self._read_reply(reader, request, deadline)
+            # What _read_reply does, written out with the stream's own deadline (a
+            # coroutine fewer on every reply's path).
+            while True:
+                try:
+                    # (``correlates`` first: a class attribute, where ``isinstance`` of an
+                    # abstract class is a call on every reply.)
+                    parsed: tuple[T, int] | tuple[T, int, int] | None
+                    if reader.correlates and _is_matching_reader(reader):
+                        parsed = reader.parse_counting(self._buffer)
+                    else:
+                        parsed = reader.parse(self._buffer)
+                except UnexpectedReplyError as exc:
+                    raise self._unparseable(request, exc) from exc
+                if parsed is not None:
+                    reply, used = parsed[:2]
+                    if len(parsed) > 2:
+                        self._settle(parsed[2])  # foreign replies skipped: late ones, come
+                    del self._buffer[:used]
+                    break
+                try:
+                    chunk = await self._stream.receive_by(deadline, self._chunk_size)
+                except CommunicationError:
+                    raise
+                except _DISCONNECTION_ERRORS as exc:
+                    raise BoardDisconnectionError(
+                        f"{self._name}: the port has gone ({exc!r})"
+                    ) from exc
+                except OSError as exc:
+                    raise CommunicationError(f"{self._name}: reading failed: {exc}") from exc
+                if chunk is None:
+                    raise self._timed_out(request, reader, seconds)
+                if self._wire.isEnabledFor(TRACE):
+                    log_wire(self._wire, "<-", chunk)
+                self._buffer += chunk
             finished = True
-        except _LateReplyError:
-            raise self._timed_out(request, reader, seconds) from None
         except asyncio.CancelledError:
             finished = True  # the task that finishes it marks the link if it fails
             progress = _Progress()
@@ -901,7 +922,9 @@ class SerialLink(AsyncResource):
         if self.unconfirmed is not None:
             _log.warning(
                 "%s: the acknowledgement of %s was not checked: %s",
-                self._name, _preview(self.unconfirmed.request), why,
+                self._name,
+                _preview(self.unconfirmed.request),
+                why,
             )
             self.unconfirmed = None
 
@@ -1038,9 +1061,7 @@ class SerialLink(AsyncResource):
             self._owed = 0
         return self._owed > 0
 
-    async def _finish_reply(
-        self, request: bytes, reader: ReplyReader[T], progress: _Progress
-    ) -> T:
+    async def _finish_reply(self, request: bytes, reader: ReplyReader[T], progress: _Progress) -> T:
         """Read the reply to ``request`` (already sent) by the exchange's deadline."""
         assert progress.deadline is not None
         finished = False
@@ -1152,13 +1173,8 @@ class SerialLink(AsyncResource):
             lines += 1
         return start, -1, lines
 
-    async def _read_reply(
-        self, reader: ReplyReader[T], request: bytes, deadline: float | None = None
-    ) -> T:
-        """Read what ``reader`` parses; by ``deadline`` (the loop's clock) if one is given.
-
-        :raises _LateReplyError: nothing complete by ``deadline``.
-        """
+    async def _read_reply(self, reader: ReplyReader[T], request: bytes) -> T:
+        """Read what ``reader`` parses (the caller bounds the time)."""
         while True:
             try:
                 parsed: tuple[T, int] | tuple[T, int, int] | None
@@ -1169,38 +1185,26 @@ class SerialLink(AsyncResource):
                 else:
                     parsed = reader.parse(self._buffer)
             except UnexpectedReplyError as exc:
-                # What the reader refused (line noise, an over-long line) is never part
-                # of a good reply: drop it, or every later request fails on the same
-                # bytes. The link is dirty now, so what follows is resynchronised.
-                _log.debug("%s: discarding unparseable %s", self._name, _preview(self._buffer))
-                self._buffer.clear()
-                about = f" to {_preview(request)}" if request else ""
-                raise UnexpectedReplyError(f"{self._name}: bad reply{about}: {exc}") from exc
+                raise self._unparseable(request, exc) from exc
             if parsed is not None:
                 reply, used = parsed[:2]
                 if len(parsed) > 2:
                     self._settle(parsed[2])  # foreign replies skipped: late ones, come
                 del self._buffer[:used]
                 return reply
-            if deadline is None:
-                self._buffer += await self._receive()
-                continue
-            # (What _receive does, written out: a call fewer on every reply.)
-            try:
-                chunk = await self._stream.receive_by(deadline, self._chunk_size)
-            except CommunicationError:
-                raise
-            except _DISCONNECTION_ERRORS as exc:
-                raise BoardDisconnectionError(
-                    f"{self._name}: the port has gone ({exc!r})"
-                ) from exc
-            except OSError as exc:
-                raise CommunicationError(f"{self._name}: reading failed: {exc}") from exc
-            if chunk is None:
-                raise _LateReplyError
-            if self._wire.isEnabledFor(TRACE):
-                log_wire(self._wire, "<-", chunk)
-            self._buffer += chunk
+            self._buffer += await self._receive()
+
+    def _unparseable(self, request: bytes, exc: UnexpectedReplyError) -> UnexpectedReplyError:
+        """Drop what a reader refused, and say so (the error to raise for it).
+
+        What the reader refused (line noise, an over-long line) is never part of a good
+        reply: it is dropped, or every later request fails on the same bytes. The link
+        is dirty now, so what follows is resynchronised.
+        """
+        _log.debug("%s: discarding unparseable %s", self._name, _preview(self._buffer))
+        self._buffer.clear()
+        about = f" to {_preview(request)}" if request else ""
+        return UnexpectedReplyError(f"{self._name}: bad reply{about}: {exc}")
 
     async def _drain_locked(self, quiet: float, bound: float) -> int:
         discarded = len(self._buffer)

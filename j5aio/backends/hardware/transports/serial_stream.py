@@ -26,6 +26,7 @@ import os
 import select
 import sys
 import time
+from collections.abc import Callable, Coroutine
 from typing import Any
 
 import anyio
@@ -46,6 +47,8 @@ _log = logging.getLogger(__name__)
 _GONE = {errno.ENOENT, errno.ENODEV, errno.ENXIO}
 _DENIED = {errno.EACCES, errno.EPERM}
 _BUSY = {errno.EBUSY, errno.EAGAIN}
+#: The most bytes read from a port at once (the board's replies are far shorter).
+_READ_SIZE = 4096
 
 
 class SerialStream(ByteStream):
@@ -137,16 +140,48 @@ class _SerialProtocol(asyncio.Protocol):
 
 
 class _QuietSerialTransport(serial_asyncio_fast.SerialTransport):
-    """pyserial-asyncio-fast's transport, but a port that vanished is not an event-loop error.
+    """pyserial-asyncio-fast's transport: received bytes read at once, quiet when unplugged.
 
-    The library reports a failed read or write to the event loop's exception handler,
-    which prints a traceback ("Fatal write error on serial transport") for what is only a
-    board being unplugged. The stream raises
+    **Reading.** When the event loop says the port is readable, the library reads it
+    through pyserial, whose ``read`` is made for blocking use: it asks ``select`` again
+    whether there is anything to read, then reads. Here the bytes are read straight from
+    the (non-blocking) descriptor and handed to ``deliver``: a system call, where
+    pyserial's read makes two and runs a dozen lines of Python more, on the path of
+    every reply. Only bytes are taken this way. Anything else (nothing there after all,
+    an error, the end of the file of a vanished device) goes to the library's own read,
+    which meets it as it always has: nothing to read is nothing, and a failure closes
+    the transport with pyserial's ``SerialException``. (Should the library stop calling
+    this hook, its own read runs: nothing else changes.)
+
+    **Failures.** The library reports a failed write to the event loop's exception
+    handler, which prints a traceback ("Fatal write error on serial transport") for what
+    is only a board being unplugged. The stream raises
     :class:`~j5aio.errors.BoardDisconnectionError` for it, which says what to check; here
     the failure is logged at DEBUG level instead, and the transport closed as before.
     (Should the library stop calling this hook, the traceback is printed again: nothing
     else changes.)
     """
+
+    def __init__(
+        self,
+        loop: asyncio.AbstractEventLoop,
+        protocol: asyncio.Protocol,
+        port: serial.SerialBase,
+        deliver: Callable[[bytes], None],
+    ) -> None:
+        super().__init__(loop, protocol, port)
+        self._deliver = deliver
+        self._descriptor = port.fileno()
+
+    def _read_ready(self) -> None:
+        try:
+            data = os.read(self._descriptor, _READ_SIZE)
+        except OSError:
+            data = b""
+        if data:
+            self._deliver(data)
+        else:  # nothing after all, or a failure: the library's read tells which
+            super()._read_ready()
 
     def _fatal_error(
         self, exc: BaseException, message: str = "Fatal error on serial transport"
@@ -170,11 +205,16 @@ class _EventSerialStream(SerialStream):
         self._lost = False
         self._transport: serial_asyncio_fast.SerialTransport | None = None
         self._fileno = -1
+        # Whether bytes have been handed to the transport (which queues what the port
+        # does not take) since its buffer was last seen empty: only then is it asked.
+        self._handed_over = False
 
     async def _attach(self) -> None:
         loop = asyncio.get_running_loop()
         # (What the library's connection_for_serial does, with the quieter transport.)
-        self._transport = _QuietSerialTransport(loop, _SerialProtocol(self), self._port)
+        self._transport = _QuietSerialTransport(
+            loop, _SerialProtocol(self), self._port, self._inbox.feed
+        )
         self._fileno = self._port.fileno()
 
     async def send(self, data: bytes) -> None:
@@ -198,16 +238,18 @@ class _EventSerialStream(SerialStream):
 
         :raises BoardDisconnectionError: the port has gone or the stream is closed.
         """
-        self._check_writable()  # the port is open: the transport is not closing
+        transport = self._transport
+        if self._closed or self._lost or transport is None or transport.is_closing():
+            self._check_writable()  # raises, saying which
+        assert transport is not None
         if self._write_paused:
             return False
-        transport = self._transport
-        assert transport is not None
-        if not transport.get_write_buffer_size():
+        if not self._handed_over or not transport.get_write_buffer_size():
             # Nothing queued ahead of it: the bytes go straight to the port, as the
             # transport's write would (after five calls of its own and pyserial's).
             # What the port does not take at once, or refuses, goes to the transport,
             # which queues it, or meets the error its own way.
+            self._handed_over = False
             try:
                 written = os.write(self._fileno, data)
             except OSError:
@@ -215,6 +257,7 @@ class _EventSerialStream(SerialStream):
             if written == len(data):
                 return True
             data = data[written:]
+        self._handed_over = True  # the transport may hold bytes now: ask it next time
         transport.write(data)
         if transport.is_closing():
             raise BoardDisconnectionError(
@@ -223,16 +266,21 @@ class _EventSerialStream(SerialStream):
             )
         return True
 
-    async def receive(self, max_bytes: int = 4096) -> bytes:
-        """Return received bytes; see :meth:`ByteStream.receive`."""
-        return await self._inbox.take(max_bytes)
+    # The inbox's own coroutines, handed over rather than awaited in one of these: a
+    # reply's wait is then one frame shorter, and so is its wake-up.
 
-    async def receive_by(self, deadline: float, max_bytes: int = 4096) -> bytes | None:
-        """Return received bytes, or ``None`` at ``deadline``.
+    def receive(self, max_bytes: int = 4096) -> Coroutine[Any, Any, bytes]:
+        """Return received bytes; see :meth:`ByteStream.receive` (a coroutine)."""
+        return self._inbox.take(max_bytes)
+
+    def receive_by(
+        self, deadline: float, max_bytes: int = 4096
+    ) -> Coroutine[Any, Any, bytes | None]:
+        """Return received bytes, or ``None`` at ``deadline`` (a coroutine).
 
         See :meth:`.ByteStream.receive_by`.
         """
-        return await self._inbox.take_by(max_bytes, deadline)
+        return self._inbox.take_by(max_bytes, deadline)
 
     def send_now(self, data: bytes, timeout: float) -> None:
         """Drop output still queued, then write ``data`` synchronously; see :class:`ByteStream`."""

@@ -798,8 +798,14 @@ async def stress_until(
     total = StressResult()
     for _ in range(rounds):
         result = await stress(link, rng, **workload)
-        for name in ("attempts", "cancelled_waiting", "cancelled_mid_exchange", "timeouts",
-                     "replies", "strays"):
+        for name in (
+            "attempts",
+            "cancelled_waiting",
+            "cancelled_mid_exchange",
+            "timeouts",
+            "replies",
+            "strays",
+        ):
             setattr(total, name, getattr(total, name) + getattr(result, name))
         if enough(total):
             break
@@ -854,9 +860,13 @@ async def test_thousands_of_random_cancellations_leave_no_stray_reply() -> None:
     async with anyio.create_task_group() as tg:
         peer = await start_peer(tg, board, respond, delay=delay)
         result = await stress_until(
-            link, rng,
+            link,
+            rng,
             lambda r: r.cancellations >= 2000 and r.cancelled_mid_exchange >= 500,
-            workers=4, per_worker=1000, max_deadline=0.004, timeout=1.0,
+            workers=4,
+            per_worker=1000,
+            max_deadline=0.004,
+            timeout=1.0,
         )
         # One last uncancelled exchange proves the line is clean.
         assert await link.exchange(b"REQ final\n", read_line(), timeout=1) == b"REP final"
@@ -886,9 +896,13 @@ async def test_random_cancellations_and_timeouts_leave_no_stray_reply() -> None:
     async with anyio.create_task_group() as tg:
         await start_peer(tg, board, respond, delay=delay)
         result = await stress_until(
-            link, rng,
+            link,
+            rng,
             lambda r: r.timeouts >= 10 and r.replies >= 10 and r.cancellations >= 100,
-            workers=3, per_worker=200, max_deadline=0.02, timeout=0.002,
+            workers=3,
+            per_worker=200,
+            max_deadline=0.02,
+            timeout=0.002,
         )
         tg.cancel_scope.cancel()
     print(f"\nstress with timeouts: {result}")
@@ -1121,6 +1135,27 @@ async def test_a_request_is_tagged_only_while_a_late_reply_may_come(
         assert tagged == [b"c\n"]
 
 
+async def test_a_correlating_reader_skips_a_foreign_reply_on_a_clean_link(
+    peer_pair: tuple[MemoryStream, MemoryStream], caplog: pytest.LogCaptureFixture
+) -> None:
+    host, board = peer_pair
+    link = SerialLink(host)
+    ours = matching(read_line(), lambda line: line.startswith(b"#3 "))
+
+    async def answer() -> None:
+        assert await board.receive() == b"#3 v\n"
+        await board.send(b"#2 late\n")  # a reply to some other request: not this one's
+        await anyio.sleep(0.01)
+        await board.send(b"#3 V\n")
+
+    caplog.set_level(TRACE, logger="j5aio.wire")
+    async with anyio.create_task_group() as tg:
+        tg.start_soon(answer)
+        assert await link.exchange(b"#3 v\n", ours, timeout=1) == b"#3 V"
+    assert not link.is_dirty and link.buffered == b""
+    assert "<-" in caplog.text  # each chunk received is on the wire trace
+
+
 # -- late replies that overtake (line protocols) ---------------------------------------------
 
 
@@ -1155,8 +1190,8 @@ async def test_while_a_late_line_is_owed_requests_go_between_two_probes(
         assert await link.exchange(b"second\n", read_line(), timeout=1) == b"SECOND"
         assert peer.lines[-3:] == [b"echo n1", b"second", b"echo n2"]
         # The late line lands amid the next reply: an error, not a wrong answer.
-        peer.respond = lambda line: (held.pop() if held and line == b"third" else b"") + (
-            upper(line)
+        peer.respond = lambda line: (
+            (held.pop() if held and line == b"third" else b"") + (upper(line))
         )
         with pytest.raises(CommunicationError, match="cannot be told"):
             await link.exchange(b"third\n", read_line(), timeout=1)

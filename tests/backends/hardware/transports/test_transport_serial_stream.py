@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import errno
 import gc
 import logging
@@ -428,6 +429,84 @@ def test_the_file_descriptor_probe() -> None:
         assert probe(sock)
 
 
+# -- reading straight from the descriptor --------------------------------------------------
+
+
+def count_library_reads(stream: SerialStream, monkeypatch: pytest.MonkeyPatch) -> list[int]:
+    """Count the reads of pyserial's ``read`` (the library's own way in), which still work."""
+    reads: list[int] = []
+    library_read = stream.serial.read
+
+    def counted(size: int = 1) -> bytes:
+        reads.append(size)
+        data: bytes = library_read(size)
+        return data
+
+    monkeypatch.setattr(stream.serial, "read", counted)
+    return reads
+
+
+async def test_received_bytes_are_read_straight_from_the_port(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    reads = count_library_reads(stream, monkeypatch)
+    board.write(b"one reply\n")
+    with anyio.fail_after(2):
+        assert await stream.receive() == b"one reply\n"
+    assert reads == []  # one os.read, not pyserial's select and read
+
+
+async def test_a_readable_port_with_nothing_to_read_is_left_to_the_library(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    reads = count_library_reads(stream, monkeypatch)
+    transport = stream._transport  # type: ignore[attr-defined]
+    transport._read_ready()  # as the event loop calls it, with nothing there (EAGAIN)
+    assert reads and not transport.is_closing()
+    board.write(b"later\n")
+    with anyio.fail_after(2):
+        assert await stream.receive() == b"later\n"
+
+
+async def test_a_port_that_vanishes_is_the_library_s_to_report(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    reads = count_library_reads(stream, monkeypatch)
+    board.unplug()  # reading the slave side now fails (EIO, or the end of the file)
+    with anyio.fail_after(2), pytest.raises(BoardDisconnectionError, match="gone away") as caught:
+        await stream.receive()
+    assert reads  # the failure went to pyserial's read, which raised its own error
+    assert isinstance(caught.value.__cause__, serial.SerialException)
+
+
+@pytest.mark.parametrize(
+    "outcome", [b"", OSError(errno.EIO, "Input/output error")], ids=["end of file", "EIO"]
+)
+async def test_what_a_direct_read_cannot_take_goes_to_the_library(
+    board: PtyBoard,
+    stream: SerialStream,
+    monkeypatch: pytest.MonkeyPatch,
+    outcome: bytes | OSError,
+) -> None:
+    class Failing:  # the descriptor of a device gone from under it
+        def __getattr__(self, name: str) -> Any:
+            return getattr(os, name)
+
+        @staticmethod
+        def read(fd: int, size: int) -> bytes:
+            if isinstance(outcome, OSError):
+                raise outcome
+            return outcome
+
+    monkeypatch.setattr(serial_stream_module, "os", Failing())
+    failure = serial.SerialException("read failed: [Errno 5] Input/output error")
+    monkeypatch.setattr(stream.serial, "read", _raise(failure))
+    stream._transport._read_ready()  # type: ignore[attr-defined]  # (as the event loop does)
+    with anyio.fail_after(2), pytest.raises(BoardDisconnectionError, match="gone away") as caught:
+        await stream.receive()
+    assert caught.value.__cause__ is failure
+
+
 # -- rarer failures ------------------------------------------------------------------------
 
 
@@ -474,6 +553,40 @@ async def test_what_the_port_takes_in_part_goes_on_through_the_transport(
     monkeypatch.setattr(serial_stream_module, "os", Partial())
     assert stream.send_nowait(b"abcdef\n") is True
     assert read_master(board, 7) == b"abcdef\n"
+
+
+async def test_bytes_queued_in_the_transport_go_out_before_later_ones(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    direct: list[bytes] = []
+
+    class Recording:  # the stream's own writes, recorded, then made
+        def __getattr__(self, name: str) -> Any:
+            return getattr(os, name)
+
+        @staticmethod
+        def write(fd: int, data: Any) -> int:
+            direct.append(bytes(data))
+            return os.write(fd, data)
+
+    library_write = stream.serial.write
+    refuse_direct_writes(monkeypatch)  # the first request goes to the transport...
+    monkeypatch.setattr(stream.serial, "write", _raise(BlockingIOError()))  # ...which queues it
+    assert stream.send_nowait(b"first\n") is True
+    monkeypatch.setattr(serial_stream_module, "os", Recording())  # the port would take more
+    assert stream.send_nowait(b"second\n") is True
+    assert direct == []  # but the second was not written ahead of the first
+    monkeypatch.setattr(stream.serial, "write", library_write)  # the transport's writer sends
+    with anyio.fail_after(2):
+        received = b""
+        while len(received) < 13:
+            await anyio.sleep(0.005)
+            with contextlib.suppress(BlockingIOError):
+                received += os.read(board.master, 4096)
+    assert received == b"first\nsecond\n"
+    assert stream.send_nowait(b"third\n") is True  # nothing queued now: straight out
+    assert direct == [b"third\n"]
+    assert read_master(board, 6) == b"third\n"
 
 
 async def test_a_write_that_fails_raises_board_disconnection(

@@ -184,7 +184,15 @@ class _ServoBoardFw4Backend(
             await self._act(codec.encode_disable(firmware, identifier))
             return
         codec.check_servo(firmware, identifier)  # before the index: -1 is an index too
-        pulse = codec.pulse_for_position(position, self._limits[identifier])
+        limits = self._limits[identifier]
+        if type(position) is float and -1.0 <= position <= 1.0:
+            # The path of every move: what pulse_for_position and encode_set do, written
+            # out (the limits are within the firmware's range: they were checked when set).
+            low, high = limits
+            pulse = int((position + 1) * (high - low) / 2 + low)
+            await self._act(f"SERVO:{identifier}:SET:{pulse}\n".encode("ascii"))
+            return
+        pulse = codec.pulse_for_position(position, limits)
         await self._act(codec.encode_set(firmware, identifier, pulse))
 
     async def reset(self) -> None:
