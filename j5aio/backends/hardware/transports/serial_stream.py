@@ -1,19 +1,15 @@
-"""Serial ports as :class:`~.stream.ByteStream` objects, over pyserial-asyncio-fast.
+"""Serial ports as :class:`~.stream.ByteStream` objects, over pyserial.
 
 :func:`open_serial_stream` opens a device path (``/dev/ttyACM0``, ``COM3``) or any pyserial
 URL (``loop://``, ``socket://host:port``, ``rfc2217://...``). Ports with a file descriptor
-are driven by the event loop through pyserial-asyncio-fast's transport; URL handlers
-without one (``loop://``, ``rfc2217://``) are polled every ``poll_interval`` while a
-receive waits.
+(POSIX) are read and written by the event loop, which watches the descriptor; ports
+without one (Windows, and URL handlers such as ``loop://`` and ``rfc2217://``) are polled
+every ``poll_interval`` while a receive waits.
 
 Closing never needs an executor:
 :meth:`SerialStream.close_now <j5aio.backends.hardware.transports.stream.ByteStream.close_now>`
 stops the event loop watching the port and closes it synchronously, so it also works inside
-``atexit`` (the library's own ``close()`` closes through an executor, which fails at interpreter
-exit).
-
-pyserial-asyncio-fast needs the asyncio event loop (it is how j5aio runs); on Windows it
-polls the port every half millisecond.
+``atexit``.
 """
 
 from __future__ import annotations
@@ -26,14 +22,13 @@ import os
 import select
 import sys
 import time
-from collections.abc import Callable, Coroutine
+from collections.abc import Coroutine
 from typing import Any
 
 import anyio
 import anyio.lowlevel
 import anyio.to_thread
 import serial
-import serial_asyncio_fast
 
 from j5aio.errors import BoardDisconnectionError, CommunicationError
 
@@ -119,83 +114,27 @@ class SerialStream(ByteStream):
             _log.debug("%s: error while closing the port: %r", self._name, exc)
 
 
-class _SerialProtocol(asyncio.Protocol):
-    """Feeds received bytes and the loss of the port to an :class:`_EventSerialStream`."""
-
-    def __init__(self, stream: _EventSerialStream) -> None:
-        self._stream = stream
-
-    def data_received(self, data: bytes) -> None:
-        self._stream._inbox.feed(data)
-
-    def connection_lost(self, exc: Exception | None) -> None:
-        self._stream._port_lost(exc)
-
-    def pause_writing(self) -> None:
-        self._stream._write_paused = True
-
-    def resume_writing(self) -> None:
-        self._stream._write_paused = False
-        self._stream._wake_writer()
-
-
-class _QuietSerialTransport(serial_asyncio_fast.SerialTransport):
-    """pyserial-asyncio-fast's transport: received bytes read at once, quiet when unplugged.
-
-    **Reading.** When the event loop says the port is readable, the library reads it
-    through pyserial, whose ``read`` is made for blocking use: it asks ``select`` again
-    whether there is anything to read, then reads. Here the bytes are read straight from
-    the (non-blocking) descriptor and handed to ``deliver``: a system call, where
-    pyserial's read makes two and runs a dozen lines of Python more, on the path of
-    every reply. Only bytes are taken this way. Anything else (nothing there after all,
-    an error, the end of the file of a vanished device) goes to the library's own read,
-    which meets it as it always has: nothing to read is nothing, and a failure closes
-    the transport with pyserial's ``SerialException``. (Should the library stop calling
-    this hook, its own read runs: nothing else changes.)
-
-    **Failures.** The library reports a failed write to the event loop's exception
-    handler, which prints a traceback ("Fatal write error on serial transport") for what
-    is only a board being unplugged. The stream raises
-    :class:`~j5aio.errors.BoardDisconnectionError` for it, which says what to check; here
-    the failure is logged at DEBUG level instead, and the transport closed as before.
-    (Should the library stop calling this hook, the traceback is printed again: nothing
-    else changes.)
-    """
-
-    def __init__(
-        self,
-        loop: asyncio.AbstractEventLoop,
-        protocol: asyncio.Protocol,
-        port: serial.SerialBase,
-        deliver: Callable[[bytes], None],
-    ) -> None:
-        super().__init__(loop, protocol, port)
-        self._deliver = deliver
-        self._descriptor = port.fileno()
-
-    def _read_ready(self) -> None:
-        try:
-            data = os.read(self._descriptor, _READ_SIZE)
-        except OSError:
-            data = b""
-        if data:
-            self._deliver(data)
-        else:  # nothing after all, or a failure: the library's read tells which
-            super()._read_ready()
-
-    def _fatal_error(
-        self, exc: BaseException, message: str = "Fatal error on serial transport"
-    ) -> None:
-        abort = getattr(self, "_abort", None)
-        if not isinstance(exc, serial.SerialException) or abort is None:
-            super()._fatal_error(exc, message)
-            return
-        _log.debug("%s: %s: %r", getattr(self.serial, "port", "?"), message, exc)
-        abort(exc)
+#: Above this many bytes queued for the port, a sender waits (asyncio's transports'
+#: default high-water mark); it goes on once the queue is down to the low-water mark.
+_HIGH_WATER = 64 * 1024
+_LOW_WATER = 16 * 1024
+#: What a non-blocking descriptor raises when it has nothing to give, or no room.
+_NOT_NOW = (BlockingIOError, InterruptedError)
 
 
 class _EventSerialStream(SerialStream):
-    """A port with a file descriptor, watched by the event loop."""
+    """A port with a file descriptor, read and written when the event loop says it can be.
+
+    The stream watches the (non-blocking) descriptor itself: received bytes are read
+    with one ``os.read`` when the loop says there are some, and go to the inbox; a
+    request is written with ``os.write`` at once, and what the port does not take goes
+    to a queue that the loop writes out when the port has room. A sender waits while
+    the queue is over its high-water mark. A failed read or write, or the end of the
+    file of a vanished device, is the port lost: everything waiting on it gets a
+    :class:`~j5aio.errors.BoardDisconnectionError`, and the port is closed. (pyserial's
+    own non-blocking ``write`` retries a full port in a loop, which would hold the event
+    loop for as long as a board does not read: the descriptor is written here instead.)
+    """
 
     def __init__(self, port: serial.SerialBase, name: str) -> None:
         super().__init__(port, name)
@@ -203,19 +142,18 @@ class _EventSerialStream(SerialStream):
         self._write_paused = False
         self._writer_wakeup: anyio.Event | None = None
         self._lost = False
-        self._transport: serial_asyncio_fast.SerialTransport | None = None
+        self._loop: asyncio.AbstractEventLoop | None = None
         self._fileno = -1
-        # Whether bytes have been handed to the transport (which queues what the port
-        # does not take) since its buffer was last seen empty: only then is it asked.
-        self._handed_over = False
+        self._outgoing = bytearray()  # what the port has not taken yet, in order
 
     async def _attach(self) -> None:
         loop = asyncio.get_running_loop()
-        # (What the library's connection_for_serial does, with the quieter transport.)
-        self._transport = _QuietSerialTransport(
-            loop, _SerialProtocol(self), self._port, self._inbox.feed
-        )
+        # (pyserial opens POSIX ports non-blocking; its own reads and writes are told so.)
+        self._port.timeout = 0
+        self._port.write_timeout = 0
         self._fileno = self._port.fileno()
+        loop.add_reader(self._fileno, self._on_readable)
+        self._loop = loop
 
     async def send(self, data: bytes) -> None:
         """Queue ``data`` on the port; waits while the output buffer is over its limit.
@@ -238,32 +176,31 @@ class _EventSerialStream(SerialStream):
 
         :raises BoardDisconnectionError: the port has gone or the stream is closed.
         """
-        transport = self._transport
-        if self._closed or self._lost or transport is None or transport.is_closing():
+        if self._closed or self._lost or self._loop is None:
             self._check_writable()  # raises, saying which
-        assert transport is not None
         if self._write_paused:
             return False
-        if not self._handed_over or not transport.get_write_buffer_size():
-            # Nothing queued ahead of it: the bytes go straight to the port, as the
-            # transport's write would (after five calls of its own and pyserial's).
-            # What the port does not take at once, or refuses, goes to the transport,
-            # which queues it, or meets the error its own way.
-            self._handed_over = False
+        outgoing = self._outgoing
+        if outgoing:  # bytes queued ahead of these: they go after them
+            outgoing += data
+        else:
             try:
                 written = os.write(self._fileno, data)
-            except OSError:
+            except _NOT_NOW:
                 written = 0
+            except OSError as exc:
+                self._lose(exc)
+                raise BoardDisconnectionError(
+                    f"{self._name}: writing to the port failed ({exc}); the device has gone "
+                    "away. Check the USB cable and the board's power."
+                ) from exc
             if written == len(data):
                 return True
-            data = data[written:]
-        self._handed_over = True  # the transport may hold bytes now: ask it next time
-        transport.write(data)
-        if transport.is_closing():
-            raise BoardDisconnectionError(
-                f"{self._name}: writing to the port failed; the device has gone away. "
-                "Check the USB cable and the board's power."
-            )
+            outgoing += memoryview(data)[written:]
+            assert self._loop is not None
+            self._loop.add_writer(self._fileno, self._on_writable)
+        if len(outgoing) > _HIGH_WATER:
+            self._write_paused = True
         return True
 
     # The inbox's own coroutines, handed over rather than awaited in one of these: a
@@ -285,8 +222,7 @@ class _EventSerialStream(SerialStream):
     def send_now(self, data: bytes, timeout: float) -> None:
         """Drop output still queued, then write ``data`` synchronously; see :class:`ByteStream`."""
         self._check_writable()
-        assert self._transport is not None
-        self._transport.flush()  # queued output would otherwise follow ``data``
+        self._drop_outgoing()  # queued output would otherwise follow ``data``
         self._write_now(bytes(data), timeout)
 
     def close_now(self) -> None:
@@ -296,42 +232,109 @@ class _EventSerialStream(SerialStream):
         self._closed = True
         self._inbox.finish(self._closed_error(), discard=True)
         self._wake_writer()
-        transport = self._transport
-        if transport is not None and transport.is_closing():
-            return  # the transport is already closing the port after a failure
-        if transport is not None:
-            try:
-                transport.pause_reading()  # removes the reader from the event loop
-                transport.flush()  # removes the writer and drops unsent bytes
-            except Exception as exc:
-                _log.debug("%s: could not detach from the event loop: %r", self._name, exc)
+        self._detach()
         self._close_port()
 
     async def aclose(self, *, flush_timeout: float = 0.5) -> None:
         """Let queued output go (for at most ``flush_timeout`` seconds), then close."""
         with anyio.CancelScope(shield=True), anyio.move_on_after(flush_timeout):
-            # The transport gives no event for "buffer empty", only for the high-water
-            # mark, so poll; this only runs while the device is not taking bytes.
-            while (  # noqa: ASYNC110
-                not self._closed
-                and not self._lost
-                and self._transport is not None
-                and self._transport.get_write_buffer_size() > 0
-            ):
+            # Polled: this only runs while the device is not taking bytes.
+            while not self._closed and not self._lost and self._outgoing:  # noqa: ASYNC110
                 await anyio.sleep(0.001)
         self.close_now()
         await anyio.lowlevel.checkpoint()
 
+    def _on_readable(self) -> None:
+        """The event loop's call when the port has bytes (or has failed)."""
+        data = self._read_some()
+        if data == b"":
+            # pyserial sets the port to return at once (VMIN 0), so an empty read is either
+            # a wake-up with nothing after all or the end of a vanished device's file. As
+            # pyserial's own read decides: readable now and still empty is the end.
+            try:
+                readable, _, _ = select.select([self._fileno], [], [], 0)
+            except (OSError, ValueError) as exc:
+                self._lose(exc)
+                return
+            if not readable:
+                return
+            data = self._read_some()
+            if data == b"":
+                self._lose(
+                    serial.SerialException(
+                        "the device reports readiness to read but returned no data"
+                    )
+                )
+                return
+        if data:
+            self._inbox.feed(data)
+
+    def _read_some(self) -> bytes | None:
+        """What the port has (``b""``: nothing, or its end), or ``None`` once it has failed."""
+        try:
+            return os.read(self._fileno, _READ_SIZE)
+        except _NOT_NOW:
+            return b""
+        except OSError as exc:
+            self._lose(exc)
+            return None
+
+    def _on_writable(self) -> None:
+        """The event loop's call when the port has room for queued bytes."""
+        outgoing = self._outgoing
+        try:
+            written = os.write(self._fileno, outgoing)
+        except _NOT_NOW:
+            return
+        except OSError as exc:
+            self._lose(exc)
+            return
+        del outgoing[:written]
+        if not outgoing and self._loop is not None:
+            self._loop.remove_writer(self._fileno)
+        if self._write_paused and len(outgoing) <= _LOW_WATER:
+            self._write_paused = False
+            self._wake_writer()
+
+    def _detach(self) -> None:
+        """Stop the event loop watching the port, and drop what it has not taken."""
+        loop, self._loop = self._loop, None
+        self._outgoing.clear()
+        if loop is None:
+            return
+        try:
+            loop.remove_reader(self._fileno)
+            loop.remove_writer(self._fileno)
+        except Exception as exc:  # (a closed event loop has no watchers left to remove)
+            _log.debug("%s: could not detach from the event loop: %r", self._name, exc)
+
+    def _drop_outgoing(self) -> None:
+        self._outgoing.clear()
+        if self._loop is not None:
+            self._loop.remove_writer(self._fileno)
+        if self._write_paused:
+            self._write_paused = False
+            self._wake_writer()
+
+    def _lose(self, exc: BaseException) -> None:
+        """The port failed: tell everyone waiting, stop watching it and close it."""
+        if self._lost or self._closed:
+            return
+        _log.debug("%s: the port failed: %r", self._name, exc)
+        self._detach()
+        self._port_lost(exc)
+        self._close_port()
+
     def _check_writable(self) -> None:
         if self._closed:
             raise self._closed_error()
-        if self._lost or self._transport is None or self._transport.is_closing():
+        if self._lost or self._loop is None:
             raise BoardDisconnectionError(
                 f"{self._name}: the port has gone away. Check the USB cable and the board's "
                 "power, then run the program again."
             )
 
-    def _port_lost(self, exc: Exception | None) -> None:
+    def _port_lost(self, exc: BaseException | None) -> None:
         self._lost = True
         if exc is None:
             error = self._closed_error()

@@ -4,8 +4,8 @@ A :class:`ByteStream` moves bytes to and from one board. Serial ports
 (:mod:`.serial_stream`), in-memory pairs and board simulators (:mod:`.memory`) and the
 fault-injecting fakes in :mod:`j5aio.testing.transports` all implement it, so that
 :class:`~.serial_link.SerialLink` and every backend above it never know which library, if
-any, carries the bytes. Replacing pyserial-asyncio-fast with another serial library means
-writing one new ``ByteStream``.
+any, carries the bytes. Replacing pyserial with another serial library means writing one
+new ``ByteStream``.
 
 The contract that implementations keep:
 

@@ -8,6 +8,7 @@ import errno
 import gc
 import logging
 import os
+import select
 import socket
 import sys
 import threading
@@ -433,7 +434,7 @@ def test_the_file_descriptor_probe() -> None:
 
 
 def count_library_reads(stream: SerialStream, monkeypatch: pytest.MonkeyPatch) -> list[int]:
-    """Count the reads of pyserial's ``read`` (the library's own way in), which still work."""
+    """Count the calls of pyserial's ``read`` (the stream reads the descriptor itself)."""
     reads: list[int] = []
     library_read = stream.serial.read
 
@@ -446,6 +447,27 @@ def count_library_reads(stream: SerialStream, monkeypatch: pytest.MonkeyPatch) -
     return reads
 
 
+class FakeOs:
+    """``os`` for the stream module, with ``read`` and ``write`` replaced where given."""
+
+    def __init__(
+        self,
+        read: Callable[[int, int], bytes] | None = None,
+        write: Callable[[int, Any], int] | None = None,
+    ) -> None:
+        self._read = read
+        self._write = write
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(os, name)
+
+    def read(self, fd: int, size: int) -> bytes:
+        return (self._read or os.read)(fd, size)
+
+    def write(self, fd: int, data: Any) -> int:
+        return (self._write or os.write)(fd, data)
+
+
 async def test_received_bytes_are_read_straight_from_the_port(
     board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -456,155 +478,125 @@ async def test_received_bytes_are_read_straight_from_the_port(
     assert reads == []  # one os.read, not pyserial's select and read
 
 
-async def test_a_readable_port_with_nothing_to_read_is_left_to_the_library(
-    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+async def test_a_readable_port_with_nothing_to_read_is_nothing(
+    board: PtyBoard, stream: SerialStream
 ) -> None:
-    reads = count_library_reads(stream, monkeypatch)
-    transport = stream._transport  # type: ignore[attr-defined]
-    transport._read_ready()  # as the event loop calls it, with nothing there (EAGAIN)
-    assert reads and not transport.is_closing()
+    stream._on_readable()  # type: ignore[attr-defined]  # woken with nothing there (EAGAIN)
+    assert not stream.is_closed and stream.serial.is_open
     board.write(b"later\n")
     with anyio.fail_after(2):
         assert await stream.receive() == b"later\n"
+    assert stream.send_nowait(b"still open\n") is True
 
 
-async def test_a_port_that_vanishes_is_the_library_s_to_report(
-    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+async def test_a_port_that_vanishes_ends_the_stream_and_is_closed(
+    board: PtyBoard, stream: SerialStream
 ) -> None:
-    reads = count_library_reads(stream, monkeypatch)
     board.unplug()  # reading the slave side now fails (EIO, or the end of the file)
     with anyio.fail_after(2), pytest.raises(BoardDisconnectionError, match="gone away") as caught:
         await stream.receive()
-    assert reads  # the failure went to pyserial's read, which raised its own error
-    assert isinstance(caught.value.__cause__, serial.SerialException)
+    assert isinstance(caught.value.__cause__, (OSError, serial.SerialException))
+    assert not stream.serial.is_open  # closed at once, not left to the program's end
+    with pytest.raises(BoardDisconnectionError, match="gone away"):
+        stream.send_nowait(b"x")
+    stream.close_now()  # still fine to close
+    assert stream.is_closed
 
 
 @pytest.mark.parametrize(
     "outcome", [b"", OSError(errno.EIO, "Input/output error")], ids=["end of file", "EIO"]
 )
-async def test_what_a_direct_read_cannot_take_goes_to_the_library(
+async def test_a_read_that_fails_or_ends_is_the_port_lost(
     board: PtyBoard,
     stream: SerialStream,
     monkeypatch: pytest.MonkeyPatch,
     outcome: bytes | OSError,
 ) -> None:
-    class Failing:  # the descriptor of a device gone from under it
-        def __getattr__(self, name: str) -> Any:
-            return getattr(os, name)
+    def read(fd: int, size: int) -> bytes:
+        if isinstance(outcome, OSError):
+            raise outcome
+        return outcome
 
-        @staticmethod
-        def read(fd: int, size: int) -> bytes:
-            if isinstance(outcome, OSError):
-                raise outcome
-            return outcome
+    monkeypatch.setattr(serial_stream_module, "os", FakeOs(read=read))
+    board.write(b"x")  # the port is readable: an empty read then is its end
+    with anyio.fail_after(2), pytest.raises(BoardDisconnectionError, match="gone away") as caught:
+        await stream.receive()
+    if isinstance(outcome, OSError):
+        assert caught.value.__cause__ is outcome
+    else:
+        assert isinstance(caught.value.__cause__, serial.SerialException)
+        assert "no data" in str(caught.value.__cause__)
+    assert not stream.serial.is_open
 
-    monkeypatch.setattr(serial_stream_module, "os", Failing())
-    failure = serial.SerialException("read failed: [Errno 5] Input/output error")
-    monkeypatch.setattr(stream.serial, "read", _raise(failure))
-    stream._transport._read_ready()  # type: ignore[attr-defined]  # (as the event loop does)
+
+async def test_a_readiness_check_that_fails_is_the_port_lost(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    failure = OSError(errno.EBADF, "Bad file descriptor")
+    monkeypatch.setattr(serial_stream_module, "os", FakeOs(read=lambda fd, size: b""))
+    monkeypatch.setattr(select, "select", _raise(failure))
+    stream._on_readable()  # type: ignore[attr-defined]
     with anyio.fail_after(2), pytest.raises(BoardDisconnectionError, match="gone away") as caught:
         await stream.receive()
     assert caught.value.__cause__ is failure
 
 
-# -- rarer failures ------------------------------------------------------------------------
+# -- writing -------------------------------------------------------------------------------
 
 
-def refuse_direct_writes(monkeypatch: pytest.MonkeyPatch) -> list[bytes]:
-    """Make the stream's own writes to the port fail (EIO); return what they were given.
-
-    What the port refuses goes to the transport, which writes through pyserial.
-    """
-    tried: list[bytes] = []
-
-    class Refusing:
-        def __getattr__(self, name: str) -> Any:
-            return getattr(os, name)
-
-        @staticmethod
-        def write(fd: int, data: Any) -> int:
-            tried.append(bytes(data))
-            raise OSError(errno.EIO, "Input/output error")
-
-    monkeypatch.setattr(serial_stream_module, "os", Refusing())
-    return tried
-
-
-async def test_what_the_port_refuses_at_once_goes_through_the_transport(
+async def test_what_the_port_takes_in_part_goes_on_when_it_has_room(
     board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    tried = refuse_direct_writes(monkeypatch)
-    assert stream.send_nowait(b"via the transport\n") is True
-    assert tried == [b"via the transport\n"]
-    assert read_master(board, 18) == b"via the transport\n"
+    calls: list[bytes] = []
 
-
-async def test_what_the_port_takes_in_part_goes_on_through_the_transport(
-    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    class Partial:
-        def __getattr__(self, name: str) -> Any:
-            return getattr(os, name)
-
-        @staticmethod
-        def write(fd: int, data: Any) -> int:
+    def first_three_only(fd: int, data: Any) -> int:
+        calls.append(bytes(data))
+        if len(calls) == 1:
             return os.write(fd, bytes(data)[:3])
+        return os.write(fd, data)
 
-    monkeypatch.setattr(serial_stream_module, "os", Partial())
+    monkeypatch.setattr(serial_stream_module, "os", FakeOs(write=first_three_only))
     assert stream.send_nowait(b"abcdef\n") is True
-    assert read_master(board, 7) == b"abcdef\n"
+    assert calls == [b"abcdef\n"]  # the rest waits for the event loop's word
+    assert await read_master_later(board, 7) == b"abcdef\n"
+    assert calls[1] == b"def\n"
 
 
-async def test_bytes_queued_in_the_transport_go_out_before_later_ones(
+async def test_bytes_queued_for_the_port_go_out_before_later_ones(
     board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
 ) -> None:
+    full = [True]
     direct: list[bytes] = []
 
-    class Recording:  # the stream's own writes, recorded, then made
-        def __getattr__(self, name: str) -> Any:
-            return getattr(os, name)
+    def write(fd: int, data: Any) -> int:
+        direct.append(bytes(data))
+        if full[0]:
+            raise BlockingIOError(errno.EAGAIN, "no room")
+        return os.write(fd, data)
 
-        @staticmethod
-        def write(fd: int, data: Any) -> int:
-            direct.append(bytes(data))
-            return os.write(fd, data)
-
-    library_write = stream.serial.write
-    refuse_direct_writes(monkeypatch)  # the first request goes to the transport...
-    monkeypatch.setattr(stream.serial, "write", _raise(BlockingIOError()))  # ...which queues it
-    assert stream.send_nowait(b"first\n") is True
-    monkeypatch.setattr(serial_stream_module, "os", Recording())  # the port would take more
-    assert stream.send_nowait(b"second\n") is True
-    assert direct == []  # but the second was not written ahead of the first
-    monkeypatch.setattr(stream.serial, "write", library_write)  # the transport's writer sends
-    with anyio.fail_after(2):
-        received = b""
-        while len(received) < 13:
-            await anyio.sleep(0.005)
-            with contextlib.suppress(BlockingIOError):
-                received += os.read(board.master, 4096)
-    assert received == b"first\nsecond\n"
+    monkeypatch.setattr(serial_stream_module, "os", FakeOs(write=write))
+    assert stream.send_nowait(b"first\n") is True  # no room: queued
+    assert stream.send_nowait(b"second\n") is True  # behind it, not written ahead of it
+    assert direct == [b"first\n"]
+    full[0] = False  # the port takes bytes again: the event loop writes the queue out
+    assert await read_master_later(board, 13) == b"first\nsecond\n"
+    assert direct[-1] == b"first\nsecond\n"
     assert stream.send_nowait(b"third\n") is True  # nothing queued now: straight out
-    assert direct == [b"third\n"]
+    assert direct[-1] == b"third\n"
     assert read_master(board, 6) == b"third\n"
 
 
 async def test_a_write_that_fails_raises_board_disconnection(
-    board: PtyBoard,
-    stream: SerialStream,
-    monkeypatch: pytest.MonkeyPatch,
-    caplog: pytest.LogCaptureFixture,
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    caplog.set_level(logging.DEBUG, logger="j5aio.backends.hardware.transports.serial_stream")
     loop = asyncio.get_running_loop()
     reported: list[dict[str, Any]] = []
     loop.set_exception_handler(lambda _loop, context: reported.append(context))
 
-    def failing_write(data: Any) -> int:
-        raise serial.SerialException("write failed: [Errno 5] Input/output error")
+    def refuse(fd: int, data: Any) -> int:
+        raise OSError(errno.EIO, "Input/output error")
 
-    monkeypatch.setattr(stream.serial, "write", failing_write)
-    refuse_direct_writes(monkeypatch)
+    monkeypatch.setattr(serial_stream_module, "os", FakeOs(write=refuse))
     try:
         with pytest.raises(BoardDisconnectionError, match="writing to the port failed"):
             await stream.send(b"x")
@@ -612,55 +604,62 @@ async def test_a_write_that_fails_raises_board_disconnection(
             await stream.receive()
     finally:
         loop.set_exception_handler(None)
-    # An unplugged board is not an event-loop error: no "Fatal write error" traceback.
-    assert reported == []
-    assert "Fatal write error on serial transport" in caplog.text  # at DEBUG level only
+    assert reported == []  # an unplugged board is not an event-loop error
+    assert not stream.serial.is_open
 
 
-async def test_other_transport_failures_still_reach_the_event_loop(
-    stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+async def test_a_queued_write_that_fails_wakes_the_waiting_sender(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    loop = asyncio.get_running_loop()
-    reported: list[dict[str, Any]] = []
-    loop.set_exception_handler(lambda _loop, context: reported.append(context))
+    state = {"full": True, "broken": False}
 
-    def broken_write(data: Any) -> int:
-        raise RuntimeError("a bug, not an unplugged board")
+    def write(fd: int, data: Any) -> int:
+        if state["broken"]:
+            raise OSError(errno.EIO, "Input/output error")
+        if state["full"]:
+            raise BlockingIOError(errno.EAGAIN, "no room")
+        return os.write(fd, data)
 
-    monkeypatch.setattr(stream.serial, "write", broken_write)
-    refuse_direct_writes(monkeypatch)
-    try:
-        with pytest.raises(BoardDisconnectionError):
-            await stream.send(b"x")
-    finally:
-        loop.set_exception_handler(None)
-    assert reported and isinstance(reported[0]["exception"], RuntimeError)
+    monkeypatch.setattr(serial_stream_module, "os", FakeOs(write=write))
+    chunk = b"x" * 40_000
+    assert stream.send_nowait(chunk) is True
+    assert stream.send_nowait(chunk) is True  # 80 kB queued: over the high-water mark
+    assert stream.send_nowait(chunk) is False
+    failed = anyio.Event()
 
+    async def sender() -> None:
+        with pytest.raises(BoardDisconnectionError, match="gone away"):
+            await stream.send(chunk)
+        failed.set()
 
-async def test_the_transport_closing_by_itself_ends_the_stream(stream: SerialStream) -> None:
-    transport = stream._transport  # type: ignore[attr-defined]
-    transport.close()
-    with anyio.fail_after(2), pytest.raises(BoardDisconnectionError, match="closed"):
-        await stream.receive()
+    with anyio.fail_after(2):
+        async with anyio.create_task_group() as group:
+            group.start_soon(sender)
+            await anyio.wait_all_tasks_blocked()
+            assert not failed.is_set()
+            state["broken"] = True  # the device goes while bytes wait for it
+            await failed.wait()
+    assert not stream.serial.is_open
 
 
 async def test_close_now_survives_errors_while_closing(
     stream: SerialStream, monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
 ) -> None:
     caplog.set_level(logging.DEBUG, logger="j5aio.backends.hardware.transports.serial_stream")
-    transport = stream._transport  # type: ignore[attr-defined]
+    loop = asyncio.get_running_loop()
 
-    def refuse() -> None:
+    def refuse(*args: Any) -> None:
         raise OSError("no")
 
-    monkeypatch.setattr(transport, "pause_reading", refuse)
+    fileno = stream.serial.fileno()
+    monkeypatch.setattr(loop, "remove_reader", refuse)
     monkeypatch.setattr(stream.serial, "close", refuse)
     stream.close_now()
     assert stream.is_closed
     assert "could not detach from the event loop" in caplog.text
     assert "error while closing the port" in caplog.text
     monkeypatch.undo()  # then clean up for real
-    transport.pause_reading()
+    loop.remove_reader(fileno)
     stream.serial.close()
 
 
@@ -683,7 +682,7 @@ async def test_send_nowait_writes_at_once_unless_the_output_is_over_its_limit(
 ) -> None:
     assert stream.send_nowait(b"now\n") is True
     assert read_master(board, 4) == b"now\n"
-    stream._write_paused = True  # type: ignore[attr-defined]  # (as the transport pauses it)
+    stream._write_paused = True  # type: ignore[attr-defined]  # (as a full queue pauses it)
     assert stream.send_nowait(b"later\n") is False
     sender_done = anyio.Event()
 
@@ -694,9 +693,8 @@ async def test_send_nowait_writes_at_once_unless_the_output_is_over_its_limit(
     async with anyio.create_task_group() as group:
         group.start_soon(sender)
         await anyio.wait_all_tasks_blocked()
-        assert not sender_done.is_set()  # waiting for the transport to resume
-        protocol = stream._transport.get_protocol()  # type: ignore[attr-defined]
-        protocol.resume_writing()
+        assert not sender_done.is_set()  # waiting for the queue to go down
+        stream._on_writable()  # type: ignore[attr-defined]  # the port has room: it goes on
     assert read_master(board, 6) == b"later\n"
     stream.close_now()
     with pytest.raises(BoardDisconnectionError):
@@ -755,6 +753,17 @@ def read_master(board: PtyBoard, count: int) -> bytes:
             data += os.read(board.master, 4096)
         except BlockingIOError:
             time.sleep(0.005)
+    return data
+
+
+async def read_master_later(board: PtyBoard, count: int) -> bytes:
+    """Read what the program wrote to the port, letting the event loop write meanwhile."""
+    data = b""
+    with anyio.fail_after(2):
+        while len(data) < count:
+            await anyio.sleep(0.002)
+            with contextlib.suppress(BlockingIOError):
+                data += os.read(board.master, 4096)
     return data
 
 
