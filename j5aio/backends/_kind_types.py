@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any, Final, Literal, cast, overload
 
+from j5aio._records import FrozenRecord
 from j5aio.backends.backend import Backend
 from j5aio.boards.board import Board
 from j5aio.import_paths import check_import_path, import_class
@@ -54,11 +55,10 @@ say)."""
 
 _TRANSPORTS: Final = ("serial", "usb", "other")
 
-# The dataclasses below write their own ``__init__``, ``__repr__``, ``__eq__`` and
-# ``__hash__`` (what ``@dataclass(frozen=True)`` would make, and no more): every program
-# imports this module, and the generated ones cost a quarter of a millisecond a class to
-# make. They stay dataclasses (``dataclasses.fields``, ``replace``...); a test checks each
-# against the dataclass the decorator alone would make.
+# The dataclasses below write their own ``__init__`` and take ``__repr__``, ``__eq__`` and
+# ``__hash__`` from FrozenRecord (as ``@dataclass(frozen=True)`` would make them): every
+# program imports this module, and the generated ones cost a quarter of a millisecond a
+# class to make. A test checks each against the dataclass the decorator alone would make.
 
 
 class _NewDict:
@@ -135,7 +135,7 @@ class SimulatorClass:
 
 
 @dataclass(frozen=True, init=False, repr=False, eq=False)
-class SimulatorEntry:
+class SimulatorEntry(FrozenRecord):
     """A simulator of a board kind, as the command line and the simulated kits know it.
 
     :param name: the command-line name, e.g. ``"sr-motor"`` (``simulate NAME``, kits).
@@ -180,31 +180,6 @@ class SimulatorEntry:
         set_field(self, "kits", {} if kits is _NEW_DICT else kits)
         set_field(self, "transport", transport)
         self.__post_init__()
-
-    def _values(self) -> tuple[object, ...]:
-        return (
-            self.name,
-            self.factory,
-            self.description,
-            self.serial_prefix,
-            self.kits,
-            self.transport,
-        )
-
-    def __repr__(self) -> str:
-        return (
-            f"{type(self).__qualname__}(name={self.name!r}, factory={self.factory!r}, "
-            f"description={self.description!r}, serial_prefix={self.serial_prefix!r}, "
-            f"kits={self.kits!r}, transport={self.transport!r})"
-        )
-
-    def __eq__(self, other: object) -> bool:
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        return self._values() == other._values()
-
-    def __hash__(self) -> int:
-        return hash(self._values())
 
     def __post_init__(self) -> None:
         _check_name("simulator", self.name)
@@ -298,7 +273,7 @@ def _check_board(kind: str, board: object) -> None:
 
 
 @dataclass(frozen=True, init=False, repr=False, eq=False)
-class BoardKind:
+class BoardKind(FrozenRecord):
     """One generation of one board, and everything that drives or stands in for it.
 
     Each of ``hardware``, ``console`` and ``simulated`` may be given as the backend's
@@ -365,36 +340,6 @@ class BoardKind:
         set_field(self, "package", package)
         self.__post_init__()
 
-    def _values(self) -> tuple[object, ...]:
-        return (
-            self.name,
-            self.board,
-            self.description,
-            self.hardware,
-            self.console,
-            self.simulators,
-            self.simulated,
-            self.identify_order,
-            self.package,
-        )
-
-    def __repr__(self) -> str:
-        return (
-            f"{type(self).__qualname__}(name={self.name!r}, board={self.board!r}, "
-            f"description={self.description!r}, hardware={self.hardware!r}, "
-            f"console={self.console!r}, simulators={self.simulators!r}, "
-            f"simulated={self.simulated!r}, identify_order={self.identify_order!r}, "
-            f"package={self.package!r})"
-        )
-
-    def __eq__(self, other: object) -> bool:
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        return self._values() == other._values()
-
-    def __hash__(self) -> int:
-        return hash(self._values())
-
     def __post_init__(self) -> None:
         _check_name("board kind", self.name)
         board = vars(self)["_board"]
@@ -455,7 +400,7 @@ class BoardKind:
 
 
 @dataclass(frozen=True, init=False, repr=False, eq=False)
-class KitDefinition:
+class KitDefinition(FrozenRecord):
     """A named simulated kit: how many boards of each simulator it has, and how they are wired.
 
     ::
@@ -508,24 +453,6 @@ class KitDefinition:
         set_field(self, "wiring", {} if wiring is _NEW_DICT else wiring)
         set_field(self, "serials", {} if serials is _NEW_DICT else serials)
         self.__post_init__()
-
-    def _values(self) -> tuple[object, ...]:
-        return (self.name, self.description, self.boards, self.package, self.wiring, self.serials)
-
-    def __repr__(self) -> str:
-        return (
-            f"{type(self).__qualname__}(name={self.name!r}, "
-            f"description={self.description!r}, boards={self.boards!r}, "
-            f"package={self.package!r}, wiring={self.wiring!r}, serials={self.serials!r})"
-        )
-
-    def __eq__(self, other: object) -> bool:
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        return self._values() == other._values()
-
-    def __hash__(self) -> int:
-        return hash(self._values())
 
     def __post_init__(self) -> None:
         _check_name("kit", self.name)
@@ -590,5 +517,3 @@ def _check_fed_output(kit: str, simulator: str, output: object) -> None:
         raise ValueError(
             f"kit {kit!r}: {simulator!r} cannot be wired to L2: that output powers the brain"
         )
-
-

@@ -24,6 +24,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import ClassVar, Final
 
+from j5aio._records import FrozenRecord
+
 from .loads import MOTOR_BOARD_IDLE_CURRENT, MOTOR_FULL_POWER_CURRENT
 from .sr_motor import MotorDrive, SRMotorBoardSimulator
 
@@ -51,11 +53,12 @@ _BOOTLOADER_REPLY: Final = b"Entering bootloader\n"
 MotorMode = MotorDrive
 
 
-# (It writes its own ``__init__``, ``__repr__``, ``__eq__`` and ``__hash__``, as
-# ``@dataclass(frozen=True)`` would make them: the default kit imports it, and making the
-# generated ones costs a quarter of a millisecond. A test checks them against those.)
+# (It writes its own ``__init__`` and takes ``__repr__``, ``__eq__`` and ``__hash__`` from
+# FrozenRecord, as ``@dataclass(frozen=True)`` would make them: the default kit imports
+# it, and making the generated ones costs a quarter of a millisecond. A test checks them
+# against those.)
 @dataclass(frozen=True, init=False, repr=False, eq=False)
-class MotorOutput:
+class MotorOutput(FrozenRecord):
     """The state of one motor output: its mode and, when driving, the speed step ``|s|``."""
 
     mode: MotorMode
@@ -65,17 +68,6 @@ class MotorOutput:
     def __init__(self, mode: MotorMode, steps: int = 0) -> None:
         object.__setattr__(self, "mode", mode)
         object.__setattr__(self, "steps", steps)
-
-    def __repr__(self) -> str:
-        return f"{type(self).__qualname__}(mode={self.mode!r}, steps={self.steps!r})"
-
-    def __eq__(self, other: object) -> bool:
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        return (self.mode, self.steps) == (other.mode, other.steps)
-
-    def __hash__(self) -> int:
-        return hash((self.mode, self.steps))
 
     @property
     def duty(self) -> float:

@@ -13,6 +13,8 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, TypeAlias
 
+from j5aio._records import FrozenRecord
+
 if TYPE_CHECKING:  # (pyusb is imported when an error is made: a kit's start makes none)
     import usb.core
 
@@ -82,14 +84,14 @@ def as_payload(data_or_wlength: ControlData) -> bytes:
     return bytes(data_or_wlength)
 
 
-# The two dataclasses below write their own ``__init__``, ``__repr__``, ``__eq__`` and
-# ``__hash__``, as ``@dataclass(frozen=True)`` would make them: every simulated kit with a
-# USB board imports them, and making the generated ones costs a quarter of a millisecond
-# a class. A test checks them against the generated ones.
+# The two dataclasses below write their own ``__init__`` and take ``__repr__``, ``__eq__``
+# and ``__hash__`` from FrozenRecord, as ``@dataclass(frozen=True)`` would make them: every
+# simulated kit with a USB board imports them, and making the generated ones costs a
+# quarter of a millisecond a class. A test checks them against the generated ones.
 
 
 @dataclass(frozen=True, init=False, repr=False, eq=False)
-class SimulatedInterface:
+class SimulatedInterface(FrozenRecord):
     """The subset of a pyusb ``Interface`` that discovery code looks at."""
 
     bInterfaceNumber: int  # noqa: N815 - pyusb's attribute names
@@ -116,34 +118,6 @@ class SimulatedInterface:
         set_field(self, "bInterfaceProtocol", bInterfaceProtocol)
         set_field(self, "bNumEndpoints", bNumEndpoints)
 
-    def _values(self) -> tuple[int, ...]:
-        return (
-            self.bInterfaceNumber,
-            self.bAlternateSetting,
-            self.bInterfaceClass,
-            self.bInterfaceSubClass,
-            self.bInterfaceProtocol,
-            self.bNumEndpoints,
-        )
-
-    def __repr__(self) -> str:
-        return (
-            f"{type(self).__qualname__}(bInterfaceNumber={self.bInterfaceNumber!r}, "
-            f"bAlternateSetting={self.bAlternateSetting!r}, "
-            f"bInterfaceClass={self.bInterfaceClass!r}, "
-            f"bInterfaceSubClass={self.bInterfaceSubClass!r}, "
-            f"bInterfaceProtocol={self.bInterfaceProtocol!r}, "
-            f"bNumEndpoints={self.bNumEndpoints!r})"
-        )
-
-    def __eq__(self, other: object) -> bool:
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        return self._values() == other._values()
-
-    def __hash__(self) -> int:
-        return hash(self._values())
-
 
 #: The DFU-runtime interface that the SR STM32 boards expose (class 0xFE, subclass 1, protocol 1).
 DFU_RUNTIME_INTERFACE = SimulatedInterface(
@@ -156,7 +130,7 @@ DFU_RUNTIME_INTERFACE = SimulatedInterface(
 
 
 @dataclass(frozen=True, init=False, repr=False, eq=False)
-class SimulatedConfiguration:
+class SimulatedConfiguration(FrozenRecord):
     """The subset of a pyusb ``Configuration``: its value and its interfaces."""
 
     bConfigurationValue: int  # noqa: N815 - pyusb's attribute names
@@ -169,23 +143,6 @@ class SimulatedConfiguration:
     ) -> None:
         object.__setattr__(self, "bConfigurationValue", bConfigurationValue)
         object.__setattr__(self, "interface_list", interface_list)
-
-    def __repr__(self) -> str:
-        return (
-            f"{type(self).__qualname__}(bConfigurationValue={self.bConfigurationValue!r}, "
-            f"interface_list={self.interface_list!r})"
-        )
-
-    def __eq__(self, other: object) -> bool:
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        return (self.bConfigurationValue, self.interface_list) == (
-            other.bConfigurationValue,
-            other.interface_list,
-        )
-
-    def __hash__(self) -> int:
-        return hash((self.bConfigurationValue, self.interface_list))
 
     @property
     def bNumInterfaces(self) -> int:  # noqa: N802 - pyusb's attribute name

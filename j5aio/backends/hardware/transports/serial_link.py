@@ -128,7 +128,7 @@ import logging
 import math
 import sys
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, TypeGuard, TypeVar, overload
+from typing import TYPE_CHECKING, Any, Final, TypeGuard, TypeVar, overload
 
 import anyio
 import anyio.lowlevel
@@ -218,6 +218,15 @@ _MORE_READERS = f"{__package__}._more_readers"
 def _is_lines_reader(reader: ReplyReader[Any]) -> TypeGuard[LinesReader]:
     more = sys.modules.get(_MORE_READERS)
     return more is not None and isinstance(reader, more.LinesReader)
+
+
+class _NotYet:
+    """What :meth:`SerialLink._take_reply` returns while a reply has not all arrived."""
+
+    __slots__ = ()
+
+
+_NOT_YET: Final = _NotYet()
 
 
 def _is_matching_reader(reader: ReplyReader[T]) -> TypeGuard[MatchingReader[T]]:
@@ -755,23 +764,7 @@ class SerialLink(AsyncResource):
         try:
             # What _read_reply does, written out with the stream's own deadline (a
             # coroutine fewer on every reply's path).
-            while True:
-                try:
-                    # (``correlates`` first: a class attribute, where ``isinstance`` of an
-                    # abstract class is a call on every reply.)
-                    parsed: tuple[T, int] | tuple[T, int, int] | None
-                    if reader.correlates and _is_matching_reader(reader):
-                        parsed = reader.parse_counting(self._buffer)
-                    else:
-                        parsed = reader.parse(self._buffer)
-                except UnexpectedReplyError as exc:
-                    raise self._unparseable(request, exc) from exc
-                if parsed is not None:
-                    reply, used = parsed[:2]
-                    if len(parsed) > 2:
-                        self._settle(parsed[2])  # foreign replies skipped: late ones, come
-                    del self._buffer[:used]
-                    break
+            while isinstance(reply := self._take_reply(reader, request), _NotYet):
                 try:
                     chunk = await self._stream.receive_by(deadline, self._chunk_size)
                 except CommunicationError:
@@ -1175,24 +1168,30 @@ class SerialLink(AsyncResource):
 
     async def _read_reply(self, reader: ReplyReader[T], request: bytes) -> T:
         """Read what ``reader`` parses (the caller bounds the time)."""
-        while True:
-            try:
-                parsed: tuple[T, int] | tuple[T, int, int] | None
-                # (``correlates`` first: a class attribute, where ``isinstance`` of an
-                # abstract class is a call on every reply.)
-                if reader.correlates and _is_matching_reader(reader):
-                    parsed = reader.parse_counting(self._buffer)
-                else:
-                    parsed = reader.parse(self._buffer)
-            except UnexpectedReplyError as exc:
-                raise self._unparseable(request, exc) from exc
-            if parsed is not None:
-                reply, used = parsed[:2]
-                if len(parsed) > 2:
-                    self._settle(parsed[2])  # foreign replies skipped: late ones, come
-                del self._buffer[:used]
-                return reply
+        while isinstance(reply := self._take_reply(reader, request), _NotYet):
             self._buffer += await self._receive()
+        return reply
+
+    def _take_reply(self, reader: ReplyReader[T], request: bytes) -> T | _NotYet:
+        """Take what ``reader`` parses out of the buffer, or :data:`_NOT_YET` if incomplete."""
+        try:
+            parsed: tuple[T, int] | tuple[T, int, int] | None
+            # (``correlates`` first: a class attribute, where ``isinstance`` of an
+            # abstract class is a call on every reply.)
+            if reader.correlates and _is_matching_reader(reader):
+                parsed = reader.parse_counting(self._buffer)
+            else:
+                parsed = reader.parse(self._buffer)
+        except UnexpectedReplyError as exc:
+            raise self._unparseable(request, exc) from exc
+        if parsed is None:
+            return _NOT_YET
+        reply: T = parsed[0]
+        used = parsed[1]
+        if len(parsed) > 2:
+            self._settle(parsed[2])  # foreign replies skipped: late ones, come
+        del self._buffer[:used]
+        return reply
 
     def _unparseable(self, request: bytes, exc: UnexpectedReplyError) -> UnexpectedReplyError:
         """Drop what a reader refused, and say so (the error to raise for it).
