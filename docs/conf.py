@@ -123,6 +123,20 @@ def _keep_constants(
     return None
 
 
+def _hide_record_base(
+    app: object, name: str, obj: object, options: object, bases: list[type]
+) -> None:
+    """Leave j5aio's private ``FrozenRecord`` out of a class's listed bases.
+
+    It only supplies ``repr``/``==``/``hash`` to a few frozen dataclasses that write their
+    own ``__init__`` (a start-up saving); to a reader they are plain dataclasses.
+    """
+    from j5aio._records import FrozenRecord
+
+    bases[:] = [base for base in bases if base is not FrozenRecord] or [object]
+
+
 def setup(app: object) -> None:
     """Connect the hooks above."""
     app.connect("autodoc-skip-member", _keep_constants)  # type: ignore[attr-defined]
+    app.connect("autodoc-process-bases", _hide_record_base)  # type: ignore[attr-defined]
