@@ -309,9 +309,13 @@ class _EventSerialStream(SerialStream):
             _log.debug("%s: could not detach from the event loop: %r", self._name, exc)
 
     def _drop_outgoing(self) -> None:
+        """Forget what the port has not taken (the safety net's write goes first)."""
         self._outgoing.clear()
         if self._loop is not None:
-            self._loop.remove_writer(self._fileno)
+            try:
+                self._loop.remove_writer(self._fileno)
+            except Exception as exc:  # (the safety net's write must not fail for this)
+                _log.debug("%s: could not stop the queued writes: %r", self._name, exc)
         if self._write_paused:
             self._write_paused = False
             self._wake_writer()
@@ -334,16 +338,13 @@ class _EventSerialStream(SerialStream):
                 "power, then run the program again."
             )
 
-    def _port_lost(self, exc: BaseException | None) -> None:
+    def _port_lost(self, exc: BaseException) -> None:
         self._lost = True
-        if exc is None:
-            error = self._closed_error()
-        else:
-            error = BoardDisconnectionError(
-                f"{self._name}: the port has gone away ({exc}). Check the USB cable and "
-                "the board's power, then run the program again."
-            )
-            error.__cause__ = exc
+        error = BoardDisconnectionError(
+            f"{self._name}: the port has gone away ({exc}). Check the USB cable and "
+            "the board's power, then run the program again."
+        )
+        error.__cause__ = exc
         self._inbox.finish(error)
         self._wake_writer()
 

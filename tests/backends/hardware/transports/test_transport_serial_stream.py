@@ -489,6 +489,21 @@ async def test_a_readable_port_with_nothing_to_read_is_nothing(
     assert stream.send_nowait(b"still open\n") is True
 
 
+async def test_a_port_that_says_try_again_is_nothing(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    def read(fd: int, size: int) -> bytes:
+        raise BlockingIOError(errno.EAGAIN, "nothing yet")
+
+    monkeypatch.setattr(serial_stream_module, "os", FakeOs(read=read))
+    stream._on_readable()  # type: ignore[attr-defined]
+    monkeypatch.undo()
+    assert stream.serial.is_open
+    board.write(b"then\n")
+    with anyio.fail_after(2):
+        assert await stream.receive() == b"then\n"
+
+
 async def test_a_port_that_vanishes_ends_the_stream_and_is_closed(
     board: PtyBoard, stream: SerialStream
 ) -> None:
@@ -640,6 +655,91 @@ async def test_a_queued_write_that_fails_wakes_the_waiting_sender(
             state["broken"] = True  # the device goes while bytes wait for it
             await failed.wait()
     assert not stream.serial.is_open
+
+
+async def test_send_now_goes_first_even_if_the_queue_cannot_be_stopped(
+    board: PtyBoard,
+    stream: SerialStream,
+    monkeypatch: pytest.MonkeyPatch,
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    caplog.set_level(logging.DEBUG, logger="j5aio.backends.hardware.transports.serial_stream")
+    full = [True]
+
+    def write(fd: int, data: Any) -> int:
+        if full[0]:
+            raise BlockingIOError(errno.EAGAIN, "no room")
+        return os.write(fd, data)
+
+    monkeypatch.setattr(serial_stream_module, "os", FakeOs(write=write))
+    assert stream.send_nowait(b"queued\n") is True
+    loop = asyncio.get_running_loop()
+    fileno = stream.serial.fileno()
+    monkeypatch.setattr(loop, "remove_writer", _raise(RuntimeError("the loop is going")))
+    full[0] = False
+    stream.send_now(b"safe\n", 0.5)  # the queued request is dropped: the safe one goes
+    assert "could not stop the queued writes" in caplog.text
+    monkeypatch.undo()
+    loop.remove_writer(fileno)
+    assert read_master(board, 5) == b"safe\n"
+
+
+async def test_a_full_port_woken_for_nothing_keeps_its_queue(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    full = [True]
+
+    def write(fd: int, data: Any) -> int:
+        if full[0]:
+            raise BlockingIOError(errno.EAGAIN, "no room")
+        return os.write(fd, data)
+
+    monkeypatch.setattr(serial_stream_module, "os", FakeOs(write=write))
+    assert stream.send_nowait(b"kept\n") is True
+    stream._on_writable()  # type: ignore[attr-defined]  # woken, but still no room
+    assert stream.serial.is_open
+    full[0] = False
+    assert await read_master_later(board, 5) == b"kept\n"
+
+
+async def test_send_now_lets_a_waiting_sender_go_on(
+    board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    full = [True]
+
+    def write(fd: int, data: Any) -> int:
+        if full[0]:
+            raise BlockingIOError(errno.EAGAIN, "no room")
+        return os.write(fd, data)
+
+    monkeypatch.setattr(serial_stream_module, "os", FakeOs(write=write))
+    chunk = b"x" * 70_000
+    assert stream.send_nowait(chunk) is True  # over the high-water mark: senders wait
+    assert stream.send_nowait(b"waits\n") is False
+    sent = anyio.Event()
+
+    async def sender() -> None:
+        await stream.send(b"after\n")
+        sent.set()
+
+    with anyio.fail_after(2):
+        async with anyio.create_task_group() as group:
+            group.start_soon(sender)
+            await anyio.wait_all_tasks_blocked()
+            assert not sent.is_set()
+            full[0] = False
+            stream.send_now(b"safe\n", 0.5)  # drops the queue: the sender may go on
+            await sent.wait()
+    assert await read_master_later(board, 11) == b"safe\nafter\n"
+
+
+async def test_a_second_failure_keeps_the_first(stream: SerialStream) -> None:
+    first = OSError(errno.EIO, "first")
+    stream._lose(first)  # type: ignore[attr-defined]
+    stream._lose(OSError(errno.ENODEV, "second"))  # type: ignore[attr-defined]
+    with pytest.raises(BoardDisconnectionError, match="first") as caught:
+        await stream.receive()
+    assert caught.value.__cause__ is first
 
 
 async def test_close_now_survives_errors_while_closing(
