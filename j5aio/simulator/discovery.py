@@ -28,6 +28,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "MINIMUM_TIMEOUT_SCALE",
+    "KitDiscovery",
     "SimulatedUSBDevice",
     "UnmatchedSimulatorWarning",
     "kind_options",
@@ -230,6 +231,27 @@ def kind_options(backend: type) -> DiscoveryOptions:
     kind = _kind_of(backend)
     _check_usb_ids(kit, kind, backend)
     return kit_discovery_options(kit, kind=kind)
+
+
+class KitDiscovery:
+    """Makes a hardware backend find the current simulated kit's boards of its kind.
+
+    The simulated backend of a serial or USB board is its hardware backend with this
+    class first among its bases: its ``discover``, given no options, finds the boards of
+    :func:`~j5aio.simulator.kit.current_kit` made from its kind's simulators
+    (:func:`kind_options`), and from there on every call runs the hardware backend's own
+    code over a simulated transport::
+
+        class BeeSimulatedBackend(KitDiscovery, BeeHardwareBackend):
+            "The Bee Board's hardware backend, on the simulated kit."
+    """
+
+    __slots__ = ()
+
+    @classmethod
+    def default_discovery_options(cls) -> DiscoveryOptions:
+        """The current simulated kit's boards of this backend's kind (:func:`kind_options`)."""
+        return kind_options(cls)
 
 
 class UnmatchedSimulatorWarning(UserWarning):

@@ -12,27 +12,22 @@ looked up here, so that a kit imports the backend of the Arduino it has only. Th
 boards' are in :mod:`j5aio.simulator.sim_backends_2023`.
 
 A plugin's simulated backend is written the same way, with
-:func:`~j5aio.simulator.discovery.kind_options`::
+:class:`~j5aio.simulator.discovery.KitDiscovery` first among its bases::
 
-    class BeeSimulatedBackend(BeeBackend):
-        @classmethod
-        async def discover(cls, *, options=None):
-            return await super().discover(options=options or kind_options(cls))
+    class BeeSimulatedBackend(KitDiscovery, BeeBackend):
+        "The Bee Board's backend, on the simulated kit."
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from j5aio._lazy import lazy_exports
-from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.sr.v4.motor_board import SRV4MotorBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.power_board import SRV4PowerBoardHardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board import SRV4ServoBoardHardwareBackend
-from j5aio.boards.board import Board
 
-from .discovery import kind_options
+from .discovery import KitDiscovery
 
 if TYPE_CHECKING:
     from ._sim_sb_arduino_2019 import SBArduinoSimulatedBackend as SBArduinoSimulatedBackend
@@ -41,31 +36,16 @@ if TYPE_CHECKING:
     )
 
 
-class SRV4PowerBoardSimulatedBackend(SRV4PowerBoardHardwareBackend):
+class SRV4PowerBoardSimulatedBackend(KitDiscovery, SRV4PowerBoardHardwareBackend):
     """The SR v4 power board (firmware 3) hardware backend, on the simulated kit."""
 
-    @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
-        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
-        return await super().discover(options=options or kind_options(cls))
 
-
-class SRV4MotorBoardSimulatedBackend(SRV4MotorBoardHardwareBackend):
+class SRV4MotorBoardSimulatedBackend(KitDiscovery, SRV4MotorBoardHardwareBackend):
     """The SR v4 motor board (firmware 3) hardware backend, on the simulated kit."""
 
-    @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
-        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
-        return await super().discover(options=options or kind_options(cls))
 
-
-class SRV4ServoBoardSimulatedBackend(SRV4ServoBoardHardwareBackend):
+class SRV4ServoBoardSimulatedBackend(KitDiscovery, SRV4ServoBoardHardwareBackend):
     """The SR v4 servo board (firmware 2) hardware backend, on the simulated kit."""
-
-    @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
-        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
-        return await super().discover(options=options or kind_options(cls))
 
 
 if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's

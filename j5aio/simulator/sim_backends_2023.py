@@ -10,20 +10,17 @@ imports the backend of the Arduino it has only.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from j5aio._lazy import lazy_exports
-from j5aio.backends.hardware.options import DiscoveryOptions
 from j5aio.backends.hardware.sr.v4.motor_board_fw4 import SRV4MotorBoardFw4HardwareBackend
 from j5aio.backends.hardware.sr.v4.power_board_fw4 import SRV4PowerBoardFw4HardwareBackend
 from j5aio.backends.hardware.sr.v4.servo_board_fw4 import (
     SBServoBoardHardwareBackend,
     SRV4ServoBoardFw4HardwareBackend,
 )
-from j5aio.boards.board import Board
 
-from .discovery import kind_options
+from .discovery import KitDiscovery
 
 if TYPE_CHECKING:
     from ._sim_sb_arduino_2024 import (
@@ -32,40 +29,20 @@ if TYPE_CHECKING:
     from ._sim_sr_arduino_fw2 import SRArduinoSimulatedBackend as SRArduinoSimulatedBackend
 
 
-class SRV4PowerBoardFw4SimulatedBackend(SRV4PowerBoardFw4HardwareBackend):
+class SRV4PowerBoardFw4SimulatedBackend(KitDiscovery, SRV4PowerBoardFw4HardwareBackend):
     """The SR v4 power board (firmware 4) hardware backend, on the simulated kit."""
 
-    @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
-        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
-        return await super().discover(options=options or kind_options(cls))
 
-
-class SRV4MotorBoardFw4SimulatedBackend(SRV4MotorBoardFw4HardwareBackend):
+class SRV4MotorBoardFw4SimulatedBackend(KitDiscovery, SRV4MotorBoardFw4HardwareBackend):
     """The SR v4 motor board (firmware 4) hardware backend, on the simulated kit."""
 
-    @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
-        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
-        return await super().discover(options=options or kind_options(cls))
 
-
-class SRV4ServoBoardFw4SimulatedBackend(SRV4ServoBoardFw4HardwareBackend):
+class SRV4ServoBoardFw4SimulatedBackend(KitDiscovery, SRV4ServoBoardFw4HardwareBackend):
     """The SR v4 servo board (firmware 4.3) hardware backend, on the simulated kit."""
 
-    @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
-        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
-        return await super().discover(options=options or kind_options(cls))
 
-
-class SBServoBoardSimulatedBackend(SBServoBoardHardwareBackend):
+class SBServoBoardSimulatedBackend(KitDiscovery, SBServoBoardHardwareBackend):
     """The SourceBots servo board (firmware 4.4) hardware backend, on the simulated kit."""
-
-    @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
-        """Find the current simulated kit's boards of this kind (or those ``options`` find)."""
-        return await super().discover(options=options or kind_options(cls))
 
 
 if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is the table's

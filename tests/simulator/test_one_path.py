@@ -25,14 +25,16 @@ from j5aio.simulator.kit import use_kit
 
 pytestmark = pytest.mark.usefixtures("fresh_kit")
 
-#: What a class statement adds by itself (docstring, module, abc and typing machinery).
+#: What a class statement adds by itself (docstring, module, abc and typing machinery,
+#: and the instance dict's descriptors a class gets when a slotted mixin comes first).
 _CLASS_MACHINERY = frozenset({
-    "__abstractmethods__", "__doc__", "__firstlineno__", "__module__", "__orig_bases__",
-    "__parameters__", "__qualname__", "__static_attributes__", "_abc_impl",
+    "__abstractmethods__", "__dict__", "__doc__", "__firstlineno__", "__module__",
+    "__orig_bases__", "__parameters__", "__qualname__", "__slots__", "__static_attributes__",
+    "__weakref__", "_abc_impl",
 })
 
 #: What a simulated backend may change: where it finds its boards.
-_TRANSPORT_ONLY = frozenset({"discover"})
+_TRANSPORT_ONLY = frozenset({"discover", "default_discovery_options"})
 
 
 def _code(cls: type, name: str) -> object:

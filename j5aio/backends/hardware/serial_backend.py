@@ -254,6 +254,15 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         return cast(BoardT, await registry.claim(port, cls, connect))
 
     @classmethod
+    def default_discovery_options(cls) -> DiscoveryOptions:
+        """The options :meth:`discover` uses when it is given none: this machine's own.
+
+        A simulated backend returns the current simulated kit's instead
+        (:class:`~j5aio.simulator.discovery.KitDiscovery`).
+        """
+        return DiscoveryOptions()
+
+    @classmethod
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[BoardT]:
         """Open every port whose USB identity matches this board and return the boards.
 
@@ -266,13 +275,13 @@ class SerialHardwareBackend(Reconnecting, Backend[BoardT]):
         backend is skipped.
 
         :param options: stand-in port lists and openers, a time scale, and whether a
-            failing board is skipped; the real thing by default.
+            failing board is skipped; by default :meth:`default_discovery_options`.
         :raises DeviceMissingSerialNumberError: a matching port has no serial number.
         :raises CommunicationError: a board failed its handshake (unless skipped).
         """
         from j5aio.backends.hardware.port_search import search_ports
 
-        options = options or DiscoveryOptions()
+        options = options or cls.default_discovery_options()
         sharing = cls._kinds_sharing_ports() if options.identify_shared_ports else ()
         backends = sharing if len(sharing) > 1 else (cls,)
         found = await search_ports(SerialHardwareBackend, options=options, backends=backends)

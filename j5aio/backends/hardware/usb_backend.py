@@ -129,16 +129,26 @@ class USBHardwareBackend(Reconnecting, Backend):
         return cls.board(serial_number, backend)
 
     @classmethod
+    def default_discovery_options(cls) -> DiscoveryOptions:
+        """The options :meth:`discover` uses when it is given none: this machine's own.
+
+        A simulated backend returns the current simulated kit's instead
+        (:class:`~j5aio.simulator.discovery.KitDiscovery`).
+        """
+        return DiscoveryOptions()
+
+    @classmethod
     async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[Board]:
         """Find every connected board of this kind and return them (not yet set up).
 
         A device this backend already holds gives back its board.
 
-        :param options: a stand-in USB finder, and whether a failing board is skipped.
+        :param options: a stand-in USB finder, and whether a failing board is skipped; by
+            default :meth:`default_discovery_options`.
         :raises CommunicationError: the bus could not be scanned, or a board failed its
             handshake (unless skipped).
         """
-        options = options or DiscoveryOptions()
+        options = options or cls.default_discovery_options()
         found = await _find(cls.VID, cls.PID, options.usb_finder)
         devices = [device for device in found if cls.drives_device(device)]
         boards: list[Board] = []

@@ -2,21 +2,12 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-
-from j5aio.backends.hardware.options import DiscoveryOptions
-from j5aio.simulator.discovery import kind_options
+from j5aio.simulator.discovery import KitDiscovery
 
 from .backend import BeeBackend
-from .boards import BeeBoard
 
 __all__ = ["BeeSimulatedBackend"]
 
 
-class BeeSimulatedBackend(BeeBackend):
-    """:class:`~beekit.backend.BeeBackend` on the simulated kit: only ``discover`` differs."""
-
-    @classmethod
-    async def discover(cls, *, options: DiscoveryOptions | None = None) -> Sequence[BeeBoard]:
-        """Find the current simulated kit's Bee Boards (or those ``options`` find)."""
-        return await super().discover(options=options or kind_options(cls))
+class BeeSimulatedBackend(KitDiscovery, BeeBackend):
+    """:class:`~beekit.backend.BeeBackend` on the simulated kit: only where it looks differs."""
