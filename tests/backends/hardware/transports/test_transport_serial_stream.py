@@ -468,6 +468,27 @@ class FakeOs:
         return (self._write or os.write)(fd, data)
 
 
+class FullPort:
+    """The stream's writes to a port with no room (EAGAIN) until ``full`` is cleared.
+
+    Every write tried is kept in ``tried``; with ``broken`` set, writes fail (EIO).
+    """
+
+    def __init__(self, monkeypatch: pytest.MonkeyPatch) -> None:
+        self.full = True
+        self.broken = False
+        self.tried: list[bytes] = []
+        monkeypatch.setattr(serial_stream_module, "os", FakeOs(write=self._write))
+
+    def _write(self, fd: int, data: Any) -> int:
+        self.tried.append(bytes(data))
+        if self.broken:
+            raise OSError(errno.EIO, "Input/output error")
+        if self.full:
+            raise BlockingIOError(errno.EAGAIN, "no room")
+        return os.write(fd, data)
+
+
 async def test_received_bytes_are_read_straight_from_the_port(
     board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -580,20 +601,12 @@ async def test_what_the_port_takes_in_part_goes_on_when_it_has_room(
 async def test_bytes_queued_for_the_port_go_out_before_later_ones(
     board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    full = [True]
-    direct: list[bytes] = []
-
-    def write(fd: int, data: Any) -> int:
-        direct.append(bytes(data))
-        if full[0]:
-            raise BlockingIOError(errno.EAGAIN, "no room")
-        return os.write(fd, data)
-
-    monkeypatch.setattr(serial_stream_module, "os", FakeOs(write=write))
+    port = FullPort(monkeypatch)
+    direct = port.tried
     assert stream.send_nowait(b"first\n") is True  # no room: queued
     assert stream.send_nowait(b"second\n") is True  # behind it, not written ahead of it
     assert direct == [b"first\n"]
-    full[0] = False  # the port takes bytes again: the event loop writes the queue out
+    port.full = False  # the port takes bytes again: the event loop writes the queue out
     assert await read_master_later(board, 13) == b"first\nsecond\n"
     assert direct[-1] == b"first\nsecond\n"
     assert stream.send_nowait(b"third\n") is True  # nothing queued now: straight out
@@ -626,16 +639,7 @@ async def test_a_write_that_fails_raises_board_disconnection(
 async def test_a_queued_write_that_fails_wakes_the_waiting_sender(
     board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    state = {"full": True, "broken": False}
-
-    def write(fd: int, data: Any) -> int:
-        if state["broken"]:
-            raise OSError(errno.EIO, "Input/output error")
-        if state["full"]:
-            raise BlockingIOError(errno.EAGAIN, "no room")
-        return os.write(fd, data)
-
-    monkeypatch.setattr(serial_stream_module, "os", FakeOs(write=write))
+    port = FullPort(monkeypatch)
     chunk = b"x" * 40_000
     assert stream.send_nowait(chunk) is True
     assert stream.send_nowait(chunk) is True  # 80 kB queued: over the high-water mark
@@ -652,7 +656,7 @@ async def test_a_queued_write_that_fails_wakes_the_waiting_sender(
             group.start_soon(sender)
             await anyio.wait_all_tasks_blocked()
             assert not failed.is_set()
-            state["broken"] = True  # the device goes while bytes wait for it
+            port.broken = True  # the device goes while bytes wait for it
             await failed.wait()
     assert not stream.serial.is_open
 
@@ -664,19 +668,12 @@ async def test_send_now_goes_first_even_if_the_queue_cannot_be_stopped(
     caplog: pytest.LogCaptureFixture,
 ) -> None:
     caplog.set_level(logging.DEBUG, logger="j5aio.backends.hardware.transports.serial_stream")
-    full = [True]
-
-    def write(fd: int, data: Any) -> int:
-        if full[0]:
-            raise BlockingIOError(errno.EAGAIN, "no room")
-        return os.write(fd, data)
-
-    monkeypatch.setattr(serial_stream_module, "os", FakeOs(write=write))
+    port = FullPort(monkeypatch)
     assert stream.send_nowait(b"queued\n") is True
     loop = asyncio.get_running_loop()
     fileno = stream.serial.fileno()
     monkeypatch.setattr(loop, "remove_writer", _raise(RuntimeError("the loop is going")))
-    full[0] = False
+    port.full = False
     stream.send_now(b"safe\n", 0.5)  # the queued request is dropped: the safe one goes
     assert "could not stop the queued writes" in caplog.text
     monkeypatch.undo()
@@ -687,32 +684,18 @@ async def test_send_now_goes_first_even_if_the_queue_cannot_be_stopped(
 async def test_a_full_port_woken_for_nothing_keeps_its_queue(
     board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    full = [True]
-
-    def write(fd: int, data: Any) -> int:
-        if full[0]:
-            raise BlockingIOError(errno.EAGAIN, "no room")
-        return os.write(fd, data)
-
-    monkeypatch.setattr(serial_stream_module, "os", FakeOs(write=write))
+    port = FullPort(monkeypatch)
     assert stream.send_nowait(b"kept\n") is True
     stream._on_writable()  # type: ignore[attr-defined]  # woken, but still no room
     assert stream.serial.is_open
-    full[0] = False
+    port.full = False
     assert await read_master_later(board, 5) == b"kept\n"
 
 
 async def test_send_now_lets_a_waiting_sender_go_on(
     board: PtyBoard, stream: SerialStream, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    full = [True]
-
-    def write(fd: int, data: Any) -> int:
-        if full[0]:
-            raise BlockingIOError(errno.EAGAIN, "no room")
-        return os.write(fd, data)
-
-    monkeypatch.setattr(serial_stream_module, "os", FakeOs(write=write))
+    port = FullPort(monkeypatch)
     chunk = b"x" * 70_000
     assert stream.send_nowait(chunk) is True  # over the high-water mark: senders wait
     assert stream.send_nowait(b"waits\n") is False
@@ -727,7 +710,7 @@ async def test_send_now_lets_a_waiting_sender_go_on(
             group.start_soon(sender)
             await anyio.wait_all_tasks_blocked()
             assert not sent.is_set()
-            full[0] = False
+            port.full = False
             stream.send_now(b"safe\n", 0.5)  # drops the queue: the sender may go on
             await sent.wait()
     assert await read_master_later(board, 11) == b"safe\nafter\n"
