@@ -7,10 +7,11 @@ board, fw 4.4), sets a servo's position (servo board, fw 4.3) and reads a digita
 process of its own, with ``--uart-timing``: each reply comes only after the time the
 board's serial line takes to carry the request and the reply, as on the real wire.
 
-* j5aio touches the four boards at once (one task each, in an anyio task group, as the
-  docs teach): the loop takes as long as the slowest board. For context, the same loop in
-  an ``asyncio.TaskGroup`` is printed beside it: anyio's group costs some 30 us more an
-  iteration than asyncio's for four tasks, all of it on the loop's critical path.
+* j5aio touches the four boards at once (:func:`j5aio.concurrency.at_once`, as the docs
+  teach for requests whose answers a loop needs): the loop takes as long as the slowest
+  board. For context, the same requests one task each in an ``asyncio.TaskGroup`` and in
+  anyio's task group are printed beside it: anyio's group takes some 20 us longer to
+  start its four tasks, all of it on the loop's critical path.
 * j5aio's sync facade (a student's program) touches them one after another, as
   sr-robot3 does; the facade runs its calls with acknowledgements confirmed later (see
   the next item). j5aio's async API awaiting the same requests in turn, each waiting for
@@ -75,6 +76,7 @@ from j5aio.backends.hardware.sr.v4 import (
 )
 from j5aio.boards.sr.v4 import MotorBoardFw4, PowerBoardFw4, ServoBoardFw4, SRArduinoBoard
 from j5aio.components.gpio_pin import GPIOPinMode
+from j5aio.concurrency import at_once
 
 #: The simulators of the sr2023 kit's serial boards, by the role they play in the loop.
 BOARDS = {
@@ -159,8 +161,18 @@ class J5aioLoop:
         return loop
 
     async def iteration(self, index: int) -> None:
+        """The four requests at once with :func:`j5aio.concurrency.at_once`, as the docs teach."""
         power = 0.5 if index % 2 else -0.5
+        await at_once(
+            self.power.battery_sensor.get_voltage(),
+            self.motor.motors[0].set_power(power),
+            self.servo.servos[0].set_position(power),
+            self.arduino.pins[3].digital_read(),
+        )
 
+    async def iteration_anyio_group(self, index: int) -> None:
+        """The same requests at once, one task each in anyio's task group (context)."""
+        power = 0.5 if index % 2 else -0.5
         async with anyio.create_task_group() as group:
             group.start_soon(self.power.battery_sensor.get_voltage)
             group.start_soon(self.motor.motors[0].set_power, power)
@@ -168,7 +180,7 @@ class J5aioLoop:
             group.start_soon(self.arduino.pins[3].digital_read)
 
     async def iteration_asyncio_group(self, index: int) -> None:
-        """The same requests at once in an ``asyncio.TaskGroup`` (context: anyio's group's cost)."""
+        """The same requests at once in an ``asyncio.TaskGroup`` (context)."""
         power = 0.5 if index % 2 else -0.5
         async with asyncio.TaskGroup() as group:
             group.create_task(self.power.battery_sensor.get_voltage())
@@ -191,13 +203,16 @@ class J5aioLoop:
         in_turn: bool = False,
         ack_later: bool = False,
         asyncio_group: bool = False,
+        anyio_group: bool = False,
     ) -> list[float]:
-        """Time ``iterations`` loops: at once (in anyio's task group, or asyncio's), or in
-        turn (with acknowledgements later)."""
+        """Time ``iterations`` loops: at once (with ``at_once``, or in anyio's or asyncio's
+        task group), or in turn (with acknowledgements later)."""
         if in_turn:
             iteration = self.iteration_in_turn
         elif asyncio_group:
             iteration = self.iteration_asyncio_group
+        elif anyio_group:
+            iteration = self.iteration_anyio_group
         else:
             iteration = self.iteration
         times = []
@@ -308,6 +323,7 @@ class Figures:
         self.ours: list[list[float]] = []
         self.ours_sync: list[list[float]] = []
         self.ours_asyncio_group: list[list[float]] = []
+        self.ours_anyio_group: list[list[float]] = []
         self.ours_in_turn: list[list[float]] = []
         self.ours_ack_later: list[list[float]] = []
         self.theirs: list[list[float]] = []
@@ -359,6 +375,7 @@ async def run(iterations: int, repeats: int) -> Figures:
             figures.ours.append(await ours.batch(iterations))
             figures.ours_sync.append(ours_sync.batch(iterations))
             figures.ours_asyncio_group.append(await ours.batch(iterations, asyncio_group=True))
+            figures.ours_anyio_group.append(await ours.batch(iterations, anyio_group=True))
             figures.ours_in_turn.append(await ours.batch(iterations, in_turn=True))
             figures.ours_ack_later.append(
                 await ours.batch(iterations, in_turn=True, ack_later=True)
@@ -391,13 +408,17 @@ def main(argv: list[str] | None = None) -> None:
     )
     print("                                    p50        p95")
     ours50, ours95 = figures.p50_p95_ms(figures.ours)
-    print(f"  j5aio (4 boards at once)       {ours50:8.2f}   {ours95:8.2f} ms")
+    print(f"  j5aio (4 boards at once)       {ours50:8.2f}   {ours95:8.2f} ms"
+          "   (at_once)")
     sync50, sync95 = figures.p50_p95_ms(figures.ours_sync)
     print(f"  j5aio sync (one after another) {sync50:8.2f}   {sync95:8.2f} ms"
           "   (the facade confirms acknowledgements later)")
     group50, group95 = figures.p50_p95_ms(figures.ours_asyncio_group)
     print(f"  at once, asyncio.TaskGroup     {group50:8.2f}   {group95:8.2f} ms"
-          "   (context: the same loop in asyncio's task group instead of anyio's)")
+          "   (context: the same requests, one task each in asyncio's task group)")
+    anyio50, anyio95 = figures.p50_p95_ms(figures.ours_anyio_group)
+    print(f"  at once, anyio task group      {anyio50:8.2f}   {anyio95:8.2f} ms"
+          "   (context: the same in anyio's task group, ~20 us more to start its tasks)")
     turn50, turn95 = figures.p50_p95_ms(figures.ours_in_turn)
     print(f"  j5aio async, awaited in turn   {turn50:8.2f}   {turn95:8.2f} ms"
           "   (the sync loop's requests with no thread hand-off)")
@@ -418,6 +439,7 @@ def main(argv: list[str] | None = None) -> None:
     )
     for label, batches, p95 in (
         ("at once, asyncio.TaskGroup", figures.ours_asyncio_group, group95),
+        ("at once, anyio task group", figures.ours_anyio_group, anyio95),
         ("async in turn", figures.ours_in_turn, turn95),
         ("in turn, ACKs later", figures.ours_ack_later, later95),
     ):

@@ -1,7 +1,7 @@
 """Where one iteration of bench_kits.py's async loop (four boards at once) spends its time.
 
 The same four wire-timed simulators on ptys as ``bench/bench_kits.py``, the same loop
-(``J5aioLoop.iteration``: a task group starting the power, motor, servo and Arduino
+(``J5aioLoop.iteration``: ``at_once`` making the power, motor, servo and Arduino
 requests). Each board's stream is wrapped to note when its request is written and when
 its reply arrives; printed are the medians, in microseconds from the iteration's start,
 of each write and each reply, and of the iteration's end. What lies on the critical path

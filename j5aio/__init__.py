@@ -13,6 +13,7 @@ if TYPE_CHECKING:
     from j5aio.backends.environment import Environment as Environment
     from j5aio.boards.board import Board as Board
     from j5aio.boards.board_group import BoardGroup as BoardGroup
+    from j5aio.concurrency import at_once as at_once
     from j5aio.errors import BadGPIOPinModeError as BadGPIOPinModeError
     from j5aio.errors import BoardDisconnectionError as BoardDisconnectionError
     from j5aio.errors import CommunicationError as CommunicationError
@@ -31,6 +32,7 @@ if not TYPE_CHECKING:  # type checkers see the names imported above; __all__ is 
             "j5aio.backends.environment": ["Environment"],
             "j5aio.boards.board": ["Board"],
             "j5aio.boards.board_group": ["BoardGroup"],
+            "j5aio.concurrency": ["at_once"],
             "j5aio.errors": [
                 "BadGPIOPinModeError",
                 "BoardDisconnectionError",

@@ -1,0 +1,194 @@
+"""Several requests at once, their answers in order: :func:`at_once`.
+
+A control loop that reads the battery, sets a motor and reads a pin waits for each board
+in turn when it awaits one request after another. Requests to different boards can be
+on their wires at the same time instead; ``at_once`` sends them together and gives back
+every answer, in the order the requests were given::
+
+    voltage, _, pin_high = await at_once(
+        robot.power_board.battery_sensor.get_voltage(),
+        robot.motor_boards[0].motors[0].set_power(0.5),
+        robot.arduinos[0].pins[3].digital_read(),
+    )
+
+The loop then takes as long as its slowest board, not the sum of them all. (Requests to
+one board still go in the order given: a board answers one request at a time.)
+
+Use ``at_once`` for requests whose answers the code needs now, and a task group
+(``anyio.create_task_group()``) for behaviours that run for a while side by side (drive,
+blink, watch). Both are cancelled as one: when the code awaiting ``at_once`` is cancelled
+(a ``move_on_after`` scope running out, a task group cancelled, Ctrl-C), every request
+still running is cancelled and ``at_once`` waits until each has stopped before it lets
+the cancellation through; nothing is left running behind the caller's back.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import inspect
+from collections.abc import Awaitable
+from types import CoroutineType
+from typing import Any, TypeVar, overload
+
+__all__ = ["at_once"]
+
+_T1 = TypeVar("_T1")
+_T2 = TypeVar("_T2")
+_T3 = TypeVar("_T3")
+_T4 = TypeVar("_T4")
+_T5 = TypeVar("_T5")
+_T6 = TypeVar("_T6")
+
+
+@overload
+async def at_once() -> tuple[()]: ...
+@overload
+async def at_once(first: Awaitable[_T1], /) -> tuple[_T1]: ...
+@overload
+async def at_once(first: Awaitable[_T1], second: Awaitable[_T2], /) -> tuple[_T1, _T2]: ...
+@overload
+async def at_once(
+    first: Awaitable[_T1], second: Awaitable[_T2], third: Awaitable[_T3], /
+) -> tuple[_T1, _T2, _T3]: ...
+@overload
+async def at_once(
+    first: Awaitable[_T1],
+    second: Awaitable[_T2],
+    third: Awaitable[_T3],
+    fourth: Awaitable[_T4],
+    /,
+) -> tuple[_T1, _T2, _T3, _T4]: ...
+@overload
+async def at_once(
+    first: Awaitable[_T1],
+    second: Awaitable[_T2],
+    third: Awaitable[_T3],
+    fourth: Awaitable[_T4],
+    fifth: Awaitable[_T5],
+    /,
+) -> tuple[_T1, _T2, _T3, _T4, _T5]: ...
+@overload
+async def at_once(
+    first: Awaitable[_T1],
+    second: Awaitable[_T2],
+    third: Awaitable[_T3],
+    fourth: Awaitable[_T4],
+    fifth: Awaitable[_T5],
+    sixth: Awaitable[_T6],
+    /,
+) -> tuple[_T1, _T2, _T3, _T4, _T5, _T6]: ...
+@overload
+async def at_once(*requests: Awaitable[Any]) -> tuple[Any, ...]: ...
+
+
+async def at_once(*requests: Awaitable[Any]) -> tuple[Any, ...]:
+    """Run ``requests`` at the same time; return their results in the order given.
+
+    Each request is what a call such as ``battery_sensor.get_voltage()`` returns, not yet
+    awaited (any awaitable will do). Each runs as its own task, so requests to different
+    boards are on their wires at once.
+
+    If a request raises, the others still running are cancelled, and once every one has
+    stopped, that first exception is raised (any other request that failed on its own
+    before it could be cancelled is named in a note on it). If the caller is cancelled,
+    every request still running is cancelled and waited for first; an exception a
+    request raised on its own is raised rather than the cancellation, so that it is not
+    lost.
+
+    :raises TypeError: an argument is not something to await (for instance the method
+        ``get_voltage`` itself rather than ``get_voltage()``, or the value of a request
+        already awaited); then no request is started.
+    """
+    if not requests:
+        return ()
+    _check_requests(requests)
+    return await _Gathering(requests).results()
+
+
+def _check_requests(requests: tuple[object, ...]) -> None:
+    """Raise TypeError for the first argument that cannot be awaited, closing the rest."""
+    for position, request in enumerate(requests, start=1):
+        if type(request) is CoroutineType or inspect.isawaitable(request):
+            continue
+        for other in requests:
+            if type(other) is CoroutineType:
+                other.close()  # never started: nothing was sent, and no warning follows
+        raise TypeError(_not_a_request(position, request))
+
+
+def _not_a_request(position: int, request: object) -> str:
+    name = getattr(request, "__name__", None)
+    if callable(request) and isinstance(name, str):
+        return (
+            f"at_once() takes requests to make, such as motor.set_power(0.5); argument "
+            f"{position} is {name} itself, not a request: call it ({name}(...)) and pass "
+            f"what the call returns, without awaiting it"
+        )
+    return (
+        f"at_once() takes requests to make, such as battery_sensor.get_voltage(); argument "
+        f"{position} is {type(request).__name__} {request!r}, which cannot be awaited: "
+        f"pass the call itself, not awaited (at_once awaits it)"
+    )
+
+
+class _Gathering:
+    """The tasks of one :func:`at_once` call and what became of them."""
+
+    __slots__ = ("_failures", "_remaining", "_tasks", "_waiter")
+
+    def __init__(self, requests: tuple[Awaitable[Any], ...]) -> None:
+        loop = asyncio.get_running_loop()
+        self._failures: list[BaseException] = []
+        self._remaining = len(requests)
+        self._waiter: asyncio.Future[None] | None = None
+        self._tasks: list[asyncio.Future[Any]] = []
+        done = self._one_done
+        for request in requests:
+            task: asyncio.Future[Any] = (
+                loop.create_task(request)
+                if type(request) is CoroutineType
+                else asyncio.ensure_future(request)
+            )
+            task.add_done_callback(done)
+            self._tasks.append(task)
+
+    async def results(self) -> tuple[Any, ...]:
+        """Wait until every task has ended; their results, or the first failure raised."""
+        cancelled: asyncio.CancelledError | None = None
+        while self._remaining:
+            self._waiter = waiter = asyncio.get_running_loop().create_future()
+            try:
+                await waiter
+            except asyncio.CancelledError as cancellation:
+                # The caller is cancelled (perhaps again, as a cancel scope repeats it):
+                # stop every request, and wait until each has really stopped.
+                cancelled = cancelled or cancellation
+                self._cancel_all()
+        if self._failures:
+            raise self._first_failure()
+        if cancelled is not None:
+            raise cancelled
+        return tuple(task.result() for task in self._tasks)
+
+    def _one_done(self, task: asyncio.Future[Any]) -> None:
+        self._remaining -= 1
+        if not task.cancelled():
+            failure = task.exception()  # (read here, it is never reported as unread)
+            if failure is not None:
+                self._failures.append(failure)
+                if len(self._failures) == 1:
+                    self._cancel_all()
+        waiter = self._waiter
+        if not self._remaining and waiter is not None and not waiter.done():
+            waiter.set_result(None)
+
+    def _cancel_all(self) -> None:
+        for task in self._tasks:
+            task.cancel()  # (a finished task ignores it)
+
+    def _first_failure(self) -> BaseException:
+        first, *others = self._failures
+        if others:
+            named = ", ".join(f"{type(other).__name__}: {other}" for other in others)
+            first.add_note(f"at_once(): other requests failed at the same time: {named}")
+        return first
