@@ -124,10 +124,16 @@ def _not_a_request(position: int, request: object) -> str:
             f"{position} is {name} itself, not a request: call it ({name}(...)) and pass "
             f"what the call returns, without awaiting it"
         )
+    hint = (
+        " (at_once is for async code; with j5aio.sync each call has already been made and "
+        "answered by the time it returns)"
+        if request is None
+        else ""
+    )
     return (
         f"at_once() takes requests to make, such as battery_sensor.get_voltage(); argument "
         f"{position} is {type(request).__name__} {request!r}, which cannot be awaited: "
-        f"pass the call itself, not awaited (at_once awaits it)"
+        f"pass the call itself, not awaited (at_once awaits it){hint}"
     )
 
 

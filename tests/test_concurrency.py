@@ -163,7 +163,8 @@ async def test_each_request_sees_the_callers_context() -> None:
     ("make_bad", "says"),
     [
         (lambda: answer, "argument 2 is answer itself, not a request: call it (answer(...))"),
-        (lambda: 12.5, "argument 2 is float 12.5, which cannot be awaited"),
+        (lambda: 12.5, "argument 2 is float 12.5, which cannot be awaited: pass the call"),
+        (lambda: None, "argument 2 is NoneType None, which cannot be awaited: pass the call"),
     ],
 )
 async def test_something_that_cannot_be_awaited_is_refused_and_nothing_starts(
@@ -183,6 +184,7 @@ async def test_something_that_cannot_be_awaited_is_refused_and_nothing_starts(
             message = str(error)
         gc.collect()
     assert says in message
+    assert ("at_once is for async code" in message) is (make_bad() is None)
     assert "at_once() takes requests to make" in message
     assert started == []
     # The requests given were closed, never started: no "was never awaited" warning.
