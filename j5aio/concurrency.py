@@ -19,7 +19,9 @@ Use ``at_once`` for requests whose answers the code needs now, and a task group
 blink, watch). Both are cancelled as one: when the code awaiting ``at_once`` is cancelled
 (a ``move_on_after`` scope running out, a task group cancelled, Ctrl-C), every request
 still running is cancelled and ``at_once`` waits until each has stopped before it lets
-the cancellation through; nothing is left running behind the caller's back.
+the cancellation through; nothing is left running behind the caller's back. Requests are
+stopped as a task group stops its tasks, through anyio cancel scopes: a clean-up a
+request runs under ``anyio.CancelScope(shield=True)`` (braking, say) is not broken into.
 """
 
 from __future__ import annotations
@@ -29,6 +31,8 @@ import inspect
 from collections.abc import Awaitable
 from types import CoroutineType
 from typing import Any, TypeVar, overload
+
+import anyio
 
 __all__ = ["at_once"]
 
@@ -138,25 +142,44 @@ def _not_a_request(position: int, request: object) -> str:
 
 
 class _Gathering:
-    """The tasks of one :func:`at_once` call and what became of them."""
+    """The tasks of one :func:`at_once` call and what became of them.
 
-    __slots__ = ("_failures", "_remaining", "_tasks", "_waiter")
+    Each request runs in a task of its own, inside an anyio cancel scope of its own:
+    ``at_once`` stops a request by cancelling its scope, never with ``Task.cancel()``,
+    which would break through the ``anyio.CancelScope(shield=True)`` a request's
+    clean-up may be running in.
+    """
+
+    __slots__ = ("_failures", "_remaining", "_scopes", "_stopping", "_tasks", "_waiter")
 
     def __init__(self, requests: tuple[Awaitable[Any], ...]) -> None:
         loop = asyncio.get_running_loop()
         self._failures: list[BaseException] = []
         self._remaining = len(requests)
+        self._stopping = False
         self._waiter: asyncio.Future[None] | None = None
-        self._tasks: list[asyncio.Future[Any]] = []
+        self._scopes = [anyio.CancelScope() for _ in requests]
+        self._tasks: list[asyncio.Task[Any]] = []
         done = self._one_done
-        for request in requests:
-            task: asyncio.Future[Any] = (
-                loop.create_task(request)
-                if type(request) is CoroutineType
-                else asyncio.ensure_future(request)
-            )
+        for request, scope in zip(requests, self._scopes, strict=True):
+            task = loop.create_task(self._run(request, scope))
             task.add_done_callback(done)
             self._tasks.append(task)
+
+    async def _run(self, request: Awaitable[Any], scope: anyio.CancelScope) -> Any:
+        if self._stopping:  # stopped before its turn came: it never starts, nothing is sent
+            if type(request) is CoroutineType:
+                request.close()
+            return None
+        with scope:
+            try:
+                return await request
+            except BaseException:
+                # Stop the others now, not when the loop next runs this task's callbacks:
+                # a request whose turn has not come yet then never starts.
+                self._stop_all()
+                raise
+        return None  # (its scope was cancelled: at_once is stopping it)
 
     async def results(self) -> tuple[Any, ...]:
         """Wait until every task has ended; their results, or the first failure raised."""
@@ -169,28 +192,29 @@ class _Gathering:
                 # The caller is cancelled (perhaps again, as a cancel scope repeats it):
                 # stop every request, and wait until each has really stopped.
                 cancelled = cancelled or cancellation
-                self._cancel_all()
+                self._stop_all()
         if self._failures:
             raise self._first_failure()
         if cancelled is not None:
             raise cancelled
         return tuple(task.result() for task in self._tasks)
 
-    def _one_done(self, task: asyncio.Future[Any]) -> None:
+    def _one_done(self, task: asyncio.Task[Any]) -> None:
         self._remaining -= 1
         if not task.cancelled():
             failure = task.exception()  # (read here, it is never reported as unread)
             if failure is not None:
                 self._failures.append(failure)
-                if len(self._failures) == 1:
-                    self._cancel_all()
+                self._stop_all()
         waiter = self._waiter
         if not self._remaining and waiter is not None and not waiter.done():
             waiter.set_result(None)
 
-    def _cancel_all(self) -> None:
-        for task in self._tasks:
-            task.cancel()  # (a finished task ignores it)
+    def _stop_all(self) -> None:
+        if not self._stopping:
+            self._stopping = True
+            for scope in self._scopes:
+                scope.cancel()  # (the scope of a finished request ignores it)
 
     def _first_failure(self) -> BaseException:
         first, *others = self._failures

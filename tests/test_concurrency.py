@@ -89,9 +89,45 @@ async def test_a_failure_cancels_the_others_and_waits_for_them_before_it_is_rais
     assert not getattr(raised.value, "__notes__", None)
 
 
+async def test_a_shielded_clean_up_under_way_is_not_broken_into() -> None:
+    # at_once stops a request through anyio, as a task group would: Task.cancel() would
+    # break through the shield of a brake already being applied.
+    braked: list[str] = []
+
+    async def braking() -> None:
+        with anyio.CancelScope(shield=True):
+            await anyio.sleep(0.05)  # the brake's request, on its way
+            braked.append("left")
+        await anyio.sleep(3600)
+
+    with pytest.raises(KeyError, match="servo"):
+        await at_once(braking(), fail(KeyError("servo"), after=0.01))
+    assert braked == ["left"]
+
+
+async def test_a_request_stopped_before_its_turn_never_starts() -> None:
+    started: list[str] = []
+
+    async def request() -> None:
+        started.append("request")
+
+    async def fails_at_once() -> None:
+        raise KeyError("power board")
+
+    with pytest.raises(KeyError, match="power board"):
+        # The first request fails before the second has had its first turn.
+        await at_once(fails_at_once(), request())
+    assert started == []
+
+
 async def test_failures_at_the_same_moment_raise_the_first_and_name_the_others() -> None:
+    async def fail_shielded(error: BaseException) -> None:
+        with anyio.CancelScope(shield=True):  # (so that the first failure cannot stop it)
+            await asyncio.sleep(0)
+            raise error
+
     with pytest.raises(ValueError, match="first") as raised:
-        await at_once(fail(ValueError("first")), fail(OSError("second")))
+        await at_once(fail(ValueError("first")), fail_shielded(OSError("second")))
     assert raised.value.__notes__ == [
         "at_once(): other requests failed at the same time: OSError: second"
     ]
