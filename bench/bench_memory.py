@@ -16,6 +16,9 @@ touched pages and, in glibc, a malloc arena of its own). Cases:
   asyncio program holds;
 * the portal floor, for context: an anyio event loop running in a thread (a blocking
   portal, as the sync facade's runtime runs one) and nothing of j5aio;
+* the anyio floor, for context: ``anyio.run`` of an empty coroutine (asyncio and anyio's
+  asyncio backend, which every program on j5aio runs, sync or async), and nothing of
+  j5aio: the figure above it is j5aio's own;
 * j5 0.12 (its own venv, made by ``_peers.py``): the same steps on j5's console power and
   motor boards (the program of j5's quick start).
 
@@ -108,6 +111,16 @@ FLOOR_PROGRAM = """\
 import asyncio
 """ + REPORT
 
+# For context: anyio's own share (its asyncio backend, loaded by anyio.run), no j5aio.
+ANYIO_PROGRAM = """\
+import anyio
+
+async def main() -> None:
+    pass
+
+anyio.run(main)
+""" + REPORT
+
 # For context: anyio with an event loop running in a thread, as the sync facade runs one
 # (a blocking portal), and no j5aio.
 PORTAL_PROGRAM = """\
@@ -171,7 +184,8 @@ def main() -> int:
         ]
     floor = Case("floor: import asyncio", [sys.executable, "-c", FLOOR_PROGRAM], j5aio_env())
     portal = Case("portal, no j5aio", [sys.executable, "-c", PORTAL_PROGRAM], j5aio_env())
-    cases += [floor, portal]
+    anyio_floor = Case("anyio.run, no j5aio", [sys.executable, "-c", ANYIO_PROGRAM], j5aio_env())
+    cases += [floor, portal, anyio_floor]
     peer = None if options.no_peer else j5_python()
     j5 = None
     if peer is not None:
@@ -199,6 +213,12 @@ def main() -> int:
     )
     portal_share = (portal.median - floor.median) / 2**20
     print(f"  of which the portal (an anyio loop in a thread, no j5aio): {portal_share:.1f} MiB")
+    anyio_share = (anyio_floor.median - floor.median) / 2**20
+    own = (sync.median - anyio_floor.median) / 2**20
+    print(
+        f"  of which anyio's asyncio backend (anyio.run, no j5aio): {anyio_share:.1f} MiB; "
+        f"j5aio's own (above anyio.run): {own:.1f} MiB"
+    )
     unused = (every.median - sync.median) / 2**20
     print(f"  the wrappers the program does not use, left unloaded: {unused:.2f} MiB")
     return 0
