@@ -16,6 +16,8 @@ from typing import Any
 
 import pytest
 
+from j5aio._records import FrozenRecord
+
 __all__ = ["assert_like_generated", "twin_of"]
 
 
@@ -23,7 +25,12 @@ def twin_of(cls: type) -> type:
     """The frozen dataclass ``@dataclass`` makes from ``cls``'s fields (no methods of its own)."""
     specs: list[tuple[str, Any, Any]] = []
     for spec in dataclasses.fields(cls):
-        options: dict[str, Any] = {"kw_only": spec.kw_only}
+        options: dict[str, Any] = {
+            "kw_only": spec.kw_only,
+            "repr": spec.repr,
+            "hash": spec.hash,
+            "compare": spec.compare,
+        }
         if spec.default is not dataclasses.MISSING:
             options["default"] = spec.default
         if spec.default_factory is not dataclasses.MISSING:
@@ -36,6 +43,24 @@ def _values(obj: object) -> dict[str, Any]:
     return {spec.name: getattr(obj, spec.name) for spec in dataclasses.fields(obj)}  # type: ignore[arg-type]
 
 
+def _refusal(action: Any, *args: Any) -> str | None:
+    try:
+        action(*args)
+    except dataclasses.FrozenInstanceError as error:
+        return str(error)
+    return None
+
+
+def _assert_frozen_alike(obj: object, twin_obj: object, names: list[str]) -> None:
+    """Assigning or deleting each of ``names`` is refused (or let be) as by the twin."""
+    for name in names:
+        refused = _refusal(setattr, twin_obj, name, None)
+        assert _refusal(setattr, obj, name, None) == refused
+        assert _refusal(delattr, twin_obj, name) == _refusal(delattr, obj, name)
+        if refused is None:  # (the attribute was made, and deleted: the objects are unchanged)
+            assert not hasattr(obj, name)
+
+
 def assert_like_generated(
     cls: type, samples: list[tuple[tuple[Any, ...], Mapping[str, Any]]]
 ) -> None:
@@ -43,11 +68,14 @@ def assert_like_generated(
 
     The samples should hold at least two that differ (for ``==``). Their fields are
     compared as the constructors leave them, with ``repr``, ``==``, ``hash`` (or the
-    same error from it), the signature's parameters and ``dataclasses.replace``.
+    same error from it), the signature's parameters, ``dataclasses.replace`` and the
+    errors that assigning or deleting an attribute raise.
     """
     twin = twin_of(cls)
     params = dataclasses.fields(cls)
-    assert dataclasses.is_dataclass(cls) and cls.__dataclass_params__.frozen  # type: ignore[attr-defined]
+    assert dataclasses.is_dataclass(cls)
+    # Frozen by the decorator, or (made without the generated methods) by FrozenRecord.
+    assert cls.__dataclass_params__.frozen or issubclass(cls, FrozenRecord)  # type: ignore[attr-defined]
     assert [(p.name, p.kind) for p in inspect.signature(cls).parameters.values()] == [
         (p.name, p.kind) for p in inspect.signature(twin).parameters.values()
     ]
@@ -66,8 +94,13 @@ def assert_like_generated(
                 hash(obj)
         else:
             assert hash(obj) == expected
-        with pytest.raises(dataclasses.FrozenInstanceError):
-            setattr(obj, params[0].name, None)
+        _assert_frozen_alike(obj, other, [params[0].name, params[-1].name, "not_a_field"])
+        # A subclass that is no dataclass freezes its fields only (as the twin's does).
+        _assert_frozen_alike(
+            subclass(**_values(obj)),
+            type(f"{cls.__name__}TwinSubclass", (twin,), {})(**_values(obj)),
+            [params[0].name, "not_a_field"],
+        )
         # Another class, even with equal fields (a subclass too), is not compared.
         assert obj.__eq__(other) is NotImplemented
         assert obj.__eq__(subclass(**_values(obj))) is NotImplemented
