@@ -9,6 +9,7 @@ plain ``@dataclass(frozen=True)`` of the same fields would: its twin, made here 
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import inspect
 from collections.abc import Mapping
@@ -21,8 +22,8 @@ from j5aio._records import FrozenRecord
 __all__ = ["assert_like_generated", "twin_of"]
 
 
-def twin_of(cls: type) -> type:
-    """The frozen dataclass ``@dataclass`` makes from ``cls``'s fields (no methods of its own)."""
+def twin_of(cls: type, *, frozen: bool = True) -> type:
+    """The dataclass ``@dataclass`` makes from ``cls``'s fields (no methods of its own)."""
     specs: list[tuple[str, Any, Any]] = []
     for spec in dataclasses.fields(cls):
         options: dict[str, Any] = {
@@ -36,7 +37,7 @@ def twin_of(cls: type) -> type:
         if spec.default_factory is not dataclasses.MISSING:
             options["default_factory"] = spec.default_factory
         specs.append((spec.name, spec.type, dataclasses.field(**options)))
-    return dataclasses.make_dataclass(cls.__name__, specs, frozen=True)
+    return dataclasses.make_dataclass(cls.__name__, specs, frozen=frozen)
 
 
 def _values(obj: object) -> dict[str, Any]:
@@ -62,20 +63,22 @@ def _assert_frozen_alike(obj: object, twin_obj: object, names: list[str]) -> Non
 
 
 def assert_like_generated(
-    cls: type, samples: list[tuple[tuple[Any, ...], Mapping[str, Any]]]
+    cls: type, samples: list[tuple[tuple[Any, ...], Mapping[str, Any]]], *, frozen: bool = True
 ) -> None:
     """Check ``cls`` against its twin, made from each of ``samples`` (args, keyword args).
 
     The samples should hold at least two that differ (for ``==``). Their fields are
     compared as the constructors leave them, with ``repr``, ``==``, ``hash`` (or the
     same error from it), the signature's parameters, ``dataclasses.replace`` and the
-    errors that assigning or deleting an attribute raise.
+    errors that assigning or deleting an attribute raise (none, for a class that is not
+    ``frozen``: the twin is then a mutable dataclass).
     """
-    twin = twin_of(cls)
+    twin = twin_of(cls, frozen=frozen)
     params = dataclasses.fields(cls)
     assert dataclasses.is_dataclass(cls)
     # Frozen by the decorator, or (made without the generated methods) by FrozenRecord.
-    assert cls.__dataclass_params__.frozen or issubclass(cls, FrozenRecord)  # type: ignore[attr-defined]
+    is_frozen = cls.__dataclass_params__.frozen or issubclass(cls, FrozenRecord)  # type: ignore[attr-defined]
+    assert is_frozen == frozen
     assert [(p.name, p.kind) for p in inspect.signature(cls).parameters.values()] == [
         (p.name, p.kind) for p in inspect.signature(twin).parameters.values()
     ]
@@ -94,13 +97,18 @@ def assert_like_generated(
                 hash(obj)
         else:
             assert hash(obj) == expected
-        _assert_frozen_alike(obj, other, [params[0].name, params[-1].name, "not_a_field"])
-        # A subclass that is no dataclass freezes its fields only (as the twin's does).
-        _assert_frozen_alike(
-            subclass(**_values(obj)),
-            type(f"{cls.__name__}TwinSubclass", (twin,), {})(**_values(obj)),
-            [params[0].name, "not_a_field"],
-        )
+        if frozen:
+            _assert_frozen_alike(obj, other, [params[0].name, params[-1].name, "not_a_field"])
+            # A subclass that is no dataclass freezes its fields only (as the twin's does).
+            _assert_frozen_alike(
+                subclass(**_values(obj)),
+                type(f"{cls.__name__}TwinSubclass", (twin,), {})(**_values(obj)),
+                [params[0].name, "not_a_field"],
+            )
+        else:
+            changed = copy.copy(obj)
+            setattr(changed, params[0].name, getattr(other, params[-1].name))
+            assert getattr(changed, params[0].name) is getattr(other, params[-1].name)
         # Another class, even with equal fields (a subclass too), is not compared.
         assert obj.__eq__(other) is NotImplemented
         assert obj.__eq__(subclass(**_values(obj))) is NotImplemented

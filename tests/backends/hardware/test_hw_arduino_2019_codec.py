@@ -9,6 +9,7 @@ from hypothesis import strategies as st
 from j5aio.backends.hardware.sb import arduino_2019_codec as codec
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
+from tests.dataclass_twins import assert_like_generated
 
 
 def test_request_vectors() -> None:
@@ -111,7 +112,19 @@ def test_unsupported_versions(version: str) -> None:
 # -- strict parsing: hostile values and arbitrary bytes -------------------------------
 
 HOSTILE_NUMBERS = [
-    "inf", "nan", "-inf", "1e20", "9" * 400, "-1", "+5", " 12 ", "1_000", "0x10", "١٢", "", "1.5",
+    "inf",
+    "nan",
+    "-inf",
+    "1e20",
+    "9" * 400,
+    "-1",
+    "+5",
+    " 12 ",
+    "1_000",
+    "0x10",
+    "١٢",
+    "",
+    "1.5",
 ]
 
 
@@ -231,3 +244,7 @@ def test_number_checks_take_what_the_firmware_grammar_takes(text: str) -> None:
     assert codec._is_decimal(text, 10, 2) == bool(
         re.fullmatch(r"[0-9]{1,10}(?:\.[0-9]{1,2})?", text)
     )
+
+
+def test_a_reply_is_the_generated_dataclass() -> None:
+    assert_like_generated(codec.Reply, [(((),), {}), ((("1", "2"),), {}), ((), {"data": ("x",)})])
