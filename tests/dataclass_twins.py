@@ -12,6 +12,8 @@ from __future__ import annotations
 import copy
 import dataclasses
 import inspect
+import pickle
+import re
 from collections.abc import Mapping
 from typing import Any
 
@@ -62,6 +64,25 @@ def _assert_frozen_alike(obj: object, twin_obj: object, names: list[str]) -> Non
             assert not hasattr(obj, name)
 
 
+def _assert_copies(obj: object, twin_obj: object) -> None:
+    """Copies of ``obj`` are made (or refused) as the twin's; pickles, if its fields pickle."""
+    for make in (copy.copy, copy.deepcopy):
+        try:
+            twin_copy = make(twin_obj)
+        except TypeError as error:  # (a field that cannot be copied)
+            with pytest.raises(TypeError, match=re.escape(str(error))):
+                make(obj)
+        else:
+            assert (make(obj) == obj) == (twin_copy == twin_obj)
+    try:
+        fields = pickle.dumps(tuple(_values(obj).values()))
+    except (pickle.PicklingError, AttributeError, TypeError):
+        return  # (a field that cannot be pickled: a function made in a function, say)
+    assert fields
+    made = pickle.loads(pickle.dumps(obj))
+    assert made == obj and type(made) is type(obj) and made is not obj
+
+
 def assert_like_generated(
     cls: type, samples: list[tuple[tuple[Any, ...], Mapping[str, Any]]], *, frozen: bool = True
 ) -> None:
@@ -71,7 +92,7 @@ def assert_like_generated(
     compared as the constructors leave them, with ``repr``, ``==``, ``hash`` (or the
     same error from it), the signature's parameters, ``dataclasses.replace`` and the
     errors that assigning or deleting an attribute raise (none, for a class that is not
-    ``frozen``: the twin is then a mutable dataclass).
+    ``frozen``: the twin is then a mutable dataclass); copies and pickles are equal.
     """
     twin = twin_of(cls, frozen=frozen)
     params = dataclasses.fields(cls)
@@ -109,6 +130,7 @@ def assert_like_generated(
             changed = copy.copy(obj)
             setattr(changed, params[0].name, getattr(other, params[-1].name))
             assert getattr(changed, params[0].name) is getattr(other, params[-1].name)
+        _assert_copies(obj, other)
         # Another class, even with equal fields (a subclass too), is not compared.
         assert obj.__eq__(other) is NotImplemented
         assert obj.__eq__(subclass(**_values(obj))) is NotImplemented
