@@ -248,3 +248,22 @@ def test_number_checks_take_what_the_firmware_grammar_takes(text: str) -> None:
 
 def test_a_reply_is_the_generated_dataclass() -> None:
     assert_like_generated(codec.Reply, [(((),), {}), ((("1", "2"),), {}), ((), {"data": ("x",)})])
+
+
+@settings(max_examples=500, deadline=None)
+@given(
+    st.one_of(
+        st.binary(max_size=12),
+        st.builds(
+            lambda sign, digits, rest: b"@" + sign + digits + rest,
+            st.sampled_from([b"", b"-", b"--", b"+"]),
+            st.text("0123456789 x", max_size=6).map(str.encode),
+            st.binary(max_size=6),
+        ),
+    )
+)
+def test_a_request_id_prefix_is_the_one_the_protocol_writes(line: bytes) -> None:
+    # The protocol's request id prefix, as a regular expression: the codec checks it by hand.
+    match = re.match(rb"@-?[0-9]+ ", line)
+    assert codec._id_prefix_end(line) == (match.end() if match else 0)
+    assert codec._strip_id(line) == (line[match.end() :] if match else line)
