@@ -6,10 +6,10 @@ most of it its ``__setattr__``, ``__delattr__``, ``__init__``, ``__repr__`` and 
 The dataclasses that every program imports are made without them:
 
 * a frozen one is declared with :func:`frozen_record` (to Python,
-  ``@dataclass(init=False, repr=False, eq=False)``; to a type checker,
-  ``@dataclass(frozen=True)``), writes its own ``__init__`` (setting its fields with
-  ``object.__setattr__``) and takes freezing, ``__repr__``, ``__eq__`` and ``__hash__``
-  from :class:`FrozenRecord`;
+  ``@dataclass(init=False, repr=False, eq=False)``, its parameters then saying it is
+  frozen; to a type checker, ``@dataclass(frozen=True)``), writes its own ``__init__``
+  (setting its fields with ``object.__setattr__``) and takes freezing, ``__repr__``,
+  ``__eq__`` and ``__hash__`` from :class:`FrozenRecord`;
 * a mutable one is declared ``@dataclass(init=False, repr=False, eq=False)``, writes its
   own ``__init__`` and takes ``__repr__`` and ``__eq__`` from :class:`Record` (and, as a
   mutable dataclass comparing its fields, no hash).
@@ -22,6 +22,7 @@ fields (the first time, for each class) and behave as the generated ones.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 from typing import TYPE_CHECKING, Any, ClassVar, TypeVar
 
@@ -74,7 +75,21 @@ else:
                 f"{cls.__qualname__} must define __init__, setting its fields with "
                 "object.__setattr__ (frozen_record generates none)"
             )
-        return dataclasses.dataclass(cls, init=False, repr=False, eq=False)
+        record = dataclasses.dataclass(cls, init=False, repr=False, eq=False)
+        _say_frozen(record)
+        return record
+
+
+def _say_frozen(cls: type) -> None:
+    """Record in ``cls``'s dataclass parameters that its instances are frozen.
+
+    They are, by :class:`FrozenRecord`; saying so lets a subclass be a frozen dataclass,
+    as a subclass of any frozen dataclass can (and not a mutable one). Where the
+    parameters cannot be changed (a later Python's), the record works the same, but
+    ``@dataclass(frozen=True)`` refuses to subclass it.
+    """
+    with contextlib.suppress(AttributeError):
+        cls.__dataclass_params__.frozen = True  # type: ignore[attr-defined]
 
 
 class Record:

@@ -19,8 +19,6 @@ from typing import Any
 
 import pytest
 
-from j5aio._records import FrozenRecord
-
 __all__ = ["assert_like_generated", "twin_of"]
 
 
@@ -97,9 +95,7 @@ def assert_like_generated(
     twin = twin_of(cls, frozen=frozen)
     params = dataclasses.fields(cls)
     assert dataclasses.is_dataclass(cls)
-    # Frozen by the decorator, or (made without the generated methods) by FrozenRecord.
-    is_frozen = cls.__dataclass_params__.frozen or issubclass(cls, FrozenRecord)  # type: ignore[attr-defined]
-    assert is_frozen == frozen
+    assert cls.__dataclass_params__.frozen == frozen  # type: ignore[attr-defined]
     assert [(p.name, p.kind) for p in inspect.signature(cls).parameters.values()] == [
         (p.name, p.kind) for p in inspect.signature(twin).parameters.values()
     ]

@@ -11,6 +11,7 @@ from typing import Any
 
 import pytest
 
+from j5aio import _records
 from j5aio._records import FrozenRecord, Record, frozen_record
 from tests.dataclass_twins import assert_like_generated
 
@@ -199,3 +200,44 @@ def test_frozen_record_wants_a_frozen_record_with_its_own_init() -> None:
         frozen_record(NotARecord)
     with pytest.raises(TypeError, match="NoInit must define __init__"):
         frozen_record(NoInit)
+
+
+def test_a_record_says_it_is_frozen_and_so_can_be_subclassed_as_a_frozen_dataclass() -> None:
+    assert Point.__dataclass_params__.frozen  # type: ignore[attr-defined]
+
+    @dataclass(frozen=True)
+    class Point3(Point):
+        z: float = 0.0
+
+    point = Point3(1.0, 2.0, 3.0)
+    assert repr(point).endswith("Point3(x=1.0, y=2.0, z=3.0)")
+    assert point == Point3(1.0, 2.0, 3.0) != Point3(1.0, 2.0)
+    assert hash(point) == hash((1.0, 2.0, 3.0))
+    with pytest.raises(dataclasses.FrozenInstanceError, match="cannot assign to field 'x'"):
+        point.x = 0.0  # type: ignore[misc]
+    # As of any frozen dataclass, a mutable one cannot be made of it.
+    with pytest.raises(TypeError, match="cannot inherit non-frozen dataclass from a frozen one"):
+
+        @dataclass
+        class Mutable(Point):  # type: ignore[misc]
+            z: float = 0.0
+
+
+def test_a_record_whose_parameters_cannot_say_so_still_works_frozen() -> None:
+    class FixedParameters:  # (a Python whose dataclass parameters cannot be changed)
+        __slots__ = ()
+        frozen = False
+
+    class Fixed(FrozenRecord):
+        __dataclass_params__ = FixedParameters()
+        x: int
+
+        def __init__(self, x: int) -> None:
+            object.__setattr__(self, "x", x)
+
+    _records._say_frozen(Fixed)  # does not raise
+    assert Fixed.__dataclass_params__.frozen is False
+    made = frozen_record(Fixed)  # (the decorator makes its own parameters, which it can change)
+    assert made.__dataclass_params__.frozen
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        made(1).x = 2

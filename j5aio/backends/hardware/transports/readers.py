@@ -124,12 +124,15 @@ class LineReader(ReplyReader[bytes], FrozenRecord):
     def __init__(
         self, terminator: bytes = b"\n", keep_ends: bool = False, max_length: int = DEFAULT_MAX_LINE
     ) -> None:
-        if not terminator:
-            raise ValueError("the line terminator must not be empty")
         set_field = object.__setattr__
         set_field(self, "terminator", terminator)
         set_field(self, "keep_ends", keep_ends)
         set_field(self, "max_length", max_length)
+        self.__post_init__()
+
+    def __post_init__(self) -> None:
+        if not self.terminator:
+            raise ValueError("the line terminator must not be empty")
 
     def parse(self, buffer: bytes | bytearray) -> tuple[bytes, int] | None:
         """Return the first line of ``buffer``, if it is complete."""
@@ -174,16 +177,19 @@ class LinesUntilReader(ReplyReader[list[bytes]], FrozenRecord):
         max_lines: int = 64,
         max_length: int = DEFAULT_MAX_LINE,
     ) -> None:
-        if not terminator:
-            raise ValueError("the line terminator must not be empty")
-        if max_lines < 1:
-            raise ValueError(f"max_lines must be at least 1, not {max_lines}")
         set_field = object.__setattr__
         set_field(self, "predicate", predicate)
         set_field(self, "terminator", terminator)
         set_field(self, "keep_ends", keep_ends)
         set_field(self, "max_lines", max_lines)
         set_field(self, "max_length", max_length)
+        self.__post_init__()
+
+    def __post_init__(self) -> None:
+        if not self.terminator:
+            raise ValueError("the line terminator must not be empty")
+        if self.max_lines < 1:
+            raise ValueError(f"max_lines must be at least 1, not {self.max_lines}")
 
     def parse(self, buffer: bytes | bytearray) -> tuple[list[bytes], int] | None:
         """Return the lines of ``buffer`` up to the final one, once it has arrived."""
