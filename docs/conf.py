@@ -126,14 +126,14 @@ def _keep_constants(
 def _hide_record_base(
     app: object, name: str, obj: object, options: object, bases: list[type]
 ) -> None:
-    """Leave j5aio's private ``FrozenRecord`` out of a class's listed bases.
+    """Leave j5aio's private ``Record`` and ``FrozenRecord`` out of a class's listed bases.
 
-    It only supplies ``repr``/``==``/``hash`` to a few frozen dataclasses that write their
-    own ``__init__`` (a start-up saving); to a reader they are plain dataclasses.
+    They only supply the methods ``@dataclass`` would generate to a few dataclasses that
+    write their own ``__init__`` (a start-up saving); to a reader they are plain dataclasses.
     """
-    from j5aio._records import FrozenRecord
+    from j5aio._records import FrozenRecord, Record
 
-    bases[:] = [base for base in bases if base is not FrozenRecord] or [object]
+    bases[:] = [base for base in bases if base not in (Record, FrozenRecord)] or [object]
 
 
 def setup(app: object) -> None:

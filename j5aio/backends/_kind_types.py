@@ -8,11 +8,11 @@ without importing the registry that loads them.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import field
 from types import MappingProxyType
 from typing import Any, Final, Literal, cast, overload
 
-from j5aio._records import FrozenRecord
+from j5aio._records import FrozenRecord, frozen_record
 from j5aio.backends.backend import Backend
 from j5aio.boards.board import Board
 from j5aio.import_paths import check_import_path, import_class
@@ -55,10 +55,11 @@ say)."""
 
 _TRANSPORTS: Final = ("serial", "usb", "other")
 
-# The dataclasses below write their own ``__init__`` and take ``__repr__``, ``__eq__`` and
-# ``__hash__`` from FrozenRecord (as ``@dataclass(frozen=True)`` would make them): every
-# program imports this module, and the generated ones cost a quarter of a millisecond a
-# class to make. A test checks each against the dataclass the decorator alone would make.
+# The dataclasses below write their own ``__init__`` and take freezing, ``__repr__``,
+# ``__eq__`` and ``__hash__`` from FrozenRecord (as ``@dataclass(frozen=True)`` would make
+# them): every program imports this module, and the generated ones cost a quarter of a
+# millisecond a class to make. A test checks each against the dataclass the decorator
+# alone would make.
 
 
 class _NewDict:
@@ -134,7 +135,7 @@ class SimulatorClass:
         return f"SimulatorClass({self.path!r}{extras})"
 
 
-@dataclass(frozen=True, init=False, repr=False, eq=False)
+@frozen_record
 class SimulatorEntry(FrozenRecord):
     """A simulator of a board kind, as the command line and the simulated kits know it.
 
@@ -272,7 +273,7 @@ def _check_board(kind: str, board: object) -> None:
         raise TypeError(f"board kind {kind!r}: board must be a Board subclass")
 
 
-@dataclass(frozen=True, init=False, repr=False, eq=False)
+@frozen_record
 class BoardKind(FrozenRecord):
     """One generation of one board, and everything that drives or stands in for it.
 
@@ -399,7 +400,7 @@ class BoardKind(FrozenRecord):
             )
 
 
-@dataclass(frozen=True, init=False, repr=False, eq=False)
+@frozen_record
 class KitDefinition(FrozenRecord):
     """A named simulated kit: how many boards of each simulator it has, and how they are wired.
 

@@ -21,10 +21,9 @@ and no motor is driven; when power comes the controller boots.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import ClassVar, Final
 
-from j5aio._records import FrozenRecord
+from j5aio._records import FrozenRecord, frozen_record
 
 from .loads import MOTOR_BOARD_IDLE_CURRENT, MOTOR_FULL_POWER_CURRENT
 from .sr_motor import MotorDrive, SRMotorBoardSimulator
@@ -53,11 +52,11 @@ _BOOTLOADER_REPLY: Final = b"Entering bootloader\n"
 MotorMode = MotorDrive
 
 
-# (It writes its own ``__init__`` and takes ``__repr__``, ``__eq__`` and ``__hash__`` from
-# FrozenRecord, as ``@dataclass(frozen=True)`` would make them: the default kit imports
+# (It writes its own ``__init__`` and takes freezing, ``__repr__``, ``__eq__`` and ``__hash__``
+# from FrozenRecord, as ``@dataclass(frozen=True)`` would make them: the default kit imports
 # it, and making the generated ones costs a quarter of a millisecond. A test checks them
 # against those.)
-@dataclass(frozen=True, init=False, repr=False, eq=False)
+@frozen_record
 class MotorOutput(FrozenRecord):
     """The state of one motor output: its mode and, when driving, the speed step ``|s|``."""
 

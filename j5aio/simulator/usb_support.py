@@ -10,10 +10,9 @@ from __future__ import annotations
 import array
 import errno
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, TypeAlias
 
-from j5aio._records import FrozenRecord
+from j5aio._records import FrozenRecord, frozen_record
 
 if TYPE_CHECKING:  # (pyusb is imported when an error is made: a kit's start makes none)
     import usb.core
@@ -84,13 +83,13 @@ def as_payload(data_or_wlength: ControlData) -> bytes:
     return bytes(data_or_wlength)
 
 
-# The two dataclasses below write their own ``__init__`` and take ``__repr__``, ``__eq__``
-# and ``__hash__`` from FrozenRecord, as ``@dataclass(frozen=True)`` would make them: every
-# simulated kit with a USB board imports them, and making the generated ones costs a
-# quarter of a millisecond a class. A test checks them against the generated ones.
+# The two dataclasses below write their own ``__init__`` and take freezing, ``__repr__``,
+# ``__eq__`` and ``__hash__`` from FrozenRecord, as ``@dataclass(frozen=True)`` would make
+# them: every simulated kit with a USB board imports them, and making the generated ones
+# costs a quarter of a millisecond a class. A test checks them against the generated ones.
 
 
-@dataclass(frozen=True, init=False, repr=False, eq=False)
+@frozen_record
 class SimulatedInterface(FrozenRecord):
     """The subset of a pyusb ``Interface`` that discovery code looks at."""
 
@@ -129,7 +128,7 @@ DFU_RUNTIME_INTERFACE = SimulatedInterface(
 )
 
 
-@dataclass(frozen=True, init=False, repr=False, eq=False)
+@frozen_record
 class SimulatedConfiguration(FrozenRecord):
     """The subset of a pyusb ``Configuration``: its value and its interfaces."""
 

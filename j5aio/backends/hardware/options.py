@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 from collections.abc import Awaitable, Callable, Iterable
-from dataclasses import dataclass
 
+from j5aio._records import FrozenRecord, frozen_record
 from j5aio.backends.hardware.transports.discovery import ComPortLike, USBFinder
 from j5aio.backends.hardware.transports.stream import ByteStream
 
@@ -15,8 +15,12 @@ StreamOpener = Callable[[str, int], Awaitable[ByteStream]]
 :func:`~j5aio.backends.hardware.transports.serial_stream.open_serial_stream` by default."""
 
 
-@dataclass(frozen=True)
-class DiscoveryOptions:
+# (It writes its own ``__init__`` and takes freezing, ``__repr__``, ``__eq__`` and
+# ``__hash__`` from FrozenRecord, as ``@dataclass(frozen=True)`` would make them: every
+# program imports it, and making the generated ones costs a third of a millisecond. A
+# test checks them against those.)
+@frozen_record
+class DiscoveryOptions(FrozenRecord):
     """Where discovery looks for boards, and how patiently it waits for them.
 
     Every field has the real thing as its default, so ``DiscoveryOptions()`` is what
@@ -39,6 +43,24 @@ class DiscoveryOptions:
     #: rather than trying every matching port as the kind asked for. Off where the ports
     #: listed are known to be of the kind asked for (a simulated kit's).
     identify_shared_ports: bool = True
+
+    def __init__(
+        self,
+        port_source: Callable[[], Iterable[ComPortLike]] | None = None,
+        usb_finder: USBFinder | None = None,
+        opener: StreamOpener | None = None,
+        time_scale: float = 1.0,
+        skip_failures: bool = False,
+        identify_shared_ports: bool = True,
+    ) -> None:
+        set_field = object.__setattr__
+        set_field(self, "port_source", port_source)
+        set_field(self, "usb_finder", usb_finder)
+        set_field(self, "opener", opener)
+        set_field(self, "time_scale", time_scale)
+        set_field(self, "skip_failures", skip_failures)
+        set_field(self, "identify_shared_ports", identify_shared_ports)
+        self.__post_init__()
 
     def __post_init__(self) -> None:
         if not self.time_scale >= 0:

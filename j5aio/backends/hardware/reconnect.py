@@ -34,11 +34,11 @@ import logging
 import math
 from abc import abstractmethod
 from collections.abc import Awaitable, Callable
-from dataclasses import dataclass
 from typing import ClassVar, TypeVar
 
 import anyio
 
+from j5aio._records import FrozenRecord, frozen_record
 from j5aio.errors import BoardDisconnectionError
 from j5aio.safety.safe_state_pass import claim_attempt
 
@@ -49,8 +49,12 @@ _log = logging.getLogger(__name__)
 T = TypeVar("T")
 
 
-@dataclass(frozen=True)
-class ReconnectPolicy:
+# (It writes its own ``__init__`` and takes freezing, ``__repr__``, ``__eq__`` and
+# ``__hash__`` from FrozenRecord, as ``@dataclass(frozen=True)`` would make them: every
+# program imports it, and making the generated ones costs a third of a millisecond. A
+# test checks them against those.)
+@frozen_record
+class ReconnectPolicy(FrozenRecord):
     """How a hardware backend copes with its board vanishing and coming back.
 
     :param enabled: look for the board again at all; if false a lost board stays lost
@@ -66,6 +70,20 @@ class ReconnectPolicy:
     interval: float = 0.1
     retry_idempotent: bool = True
     retry_wait: float = 0.0
+
+    def __init__(
+        self,
+        enabled: bool = True,
+        interval: float = 0.1,
+        retry_idempotent: bool = True,
+        retry_wait: float = 0.0,
+    ) -> None:
+        set_field = object.__setattr__
+        set_field(self, "enabled", enabled)
+        set_field(self, "interval", interval)
+        set_field(self, "retry_idempotent", retry_idempotent)
+        set_field(self, "retry_wait", retry_wait)
+        self.__post_init__()
 
     def __post_init__(self) -> None:
         for name in ("interval", "retry_wait"):
@@ -214,7 +232,9 @@ class Reconnecting:
                 self._mark_lost()
                 policy = self.reconnect_policy
                 if (
-                    idempotent and policy.enabled and policy.retry_idempotent
+                    idempotent
+                    and policy.enabled
+                    and policy.retry_idempotent
                     and await self._wait_for_return(policy.retry_wait)
                 ):
                     return await call()

@@ -9,6 +9,7 @@ from hypothesis import strategies as st
 from j5aio.backends.hardware.sb import arduino_2019_codec as codec
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
+from tests.dataclass_twins import assert_like_generated
 
 
 def test_request_vectors() -> None:
@@ -111,7 +112,19 @@ def test_unsupported_versions(version: str) -> None:
 # -- strict parsing: hostile values and arbitrary bytes -------------------------------
 
 HOSTILE_NUMBERS = [
-    "inf", "nan", "-inf", "1e20", "9" * 400, "-1", "+5", " 12 ", "1_000", "0x10", "١٢", "", "1.5",
+    "inf",
+    "nan",
+    "-inf",
+    "1e20",
+    "9" * 400,
+    "-1",
+    "+5",
+    " 12 ",
+    "1_000",
+    "0x10",
+    "١٢",
+    "",
+    "1.5",
 ]
 
 
@@ -231,3 +244,26 @@ def test_number_checks_take_what_the_firmware_grammar_takes(text: str) -> None:
     assert codec._is_decimal(text, 10, 2) == bool(
         re.fullmatch(r"[0-9]{1,10}(?:\.[0-9]{1,2})?", text)
     )
+
+
+def test_a_reply_is_the_generated_dataclass() -> None:
+    assert_like_generated(codec.Reply, [(((),), {}), ((("1", "2"),), {}), ((), {"data": ("x",)})])
+
+
+@settings(max_examples=500, deadline=None)
+@given(
+    st.one_of(
+        st.binary(max_size=12),
+        st.builds(
+            lambda sign, digits, rest: b"@" + sign + digits + rest,
+            st.sampled_from([b"", b"-", b"--", b"+"]),
+            st.text("0123456789 x", max_size=6).map(str.encode),
+            st.binary(max_size=6),
+        ),
+    )
+)
+def test_a_request_id_prefix_is_the_one_the_protocol_writes(line: bytes) -> None:
+    # The protocol's request id prefix, as a regular expression: the codec checks it by hand.
+    match = re.match(rb"@-?[0-9]+ ", line)
+    assert codec._id_prefix_end(line) == (match.end() if match else 0)
+    assert codec._strip_id(line) == (line[match.end() :] if match else line)

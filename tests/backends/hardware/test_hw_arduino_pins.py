@@ -7,6 +7,7 @@ import pytest
 from j5aio.backends.hardware.arduino_pins import ArduinoPins, DigitalPinState, wire_mode
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import NotSupportedByHardwareError
+from tests.dataclass_twins import assert_like_generated
 
 
 def test_analogue_pins_stay_analogue_unless_the_firmware_drives_them() -> None:
@@ -87,3 +88,14 @@ def test_reset_returns_to_power_on_under_the_same_rules(
         pins.mode(20)
     with pytest.raises(TypeError, match="must be an int, not bool"):
         pins.mode(True)
+
+
+def test_a_digital_pin_state_is_the_generated_dataclass() -> None:
+    assert_like_generated(
+        DigitalPinState,
+        [((), {}), ((GPIOPinMode.DIGITAL_OUTPUT, True), {}), ((), {"level": True})],
+        frozen=False,
+    )
+    state = DigitalPinState()
+    state.level = True
+    assert state == DigitalPinState(level=True) != DigitalPinState()

@@ -16,6 +16,7 @@ from j5aio.backends.hardware.sr.v4 import (
     SRV4RuggeduinoHardwareBackend,
     SRV4ServoBoardHardwareBackend,
 )
+from j5aio.backends.hardware.transports.discovery import PortInfo
 from j5aio.backends.hardware.transports.memory import SimulatorStream
 from j5aio.backends.hardware.transports.stream import ByteStream
 from j5aio.backends.hardware.usb_backend import USBHardwareBackend, device_key
@@ -31,6 +32,7 @@ from j5aio.simulator.sr_motor_fw3 import SRMotorBoardFw3Simulator
 from j5aio.simulator.sr_power_fw3 import SRPowerBoardFw3Simulator
 from j5aio.simulator.sr_servo_fw2 import SRServoBoardFw2Simulator
 from j5aio.testing.transports import ScriptedStream
+from tests.dataclass_twins import assert_like_generated
 
 
 def motor_port(device: str, serial_number: str | None) -> SimpleNamespace:
@@ -107,7 +109,9 @@ async def test_a_failing_board_raises_or_is_skipped(caplog: pytest.LogCaptureFix
     ports = [motor_port("/dev/m1", "M1"), motor_port("/dev/m2", "M2")]
     # Only the firmware 3 backend: the scripted port knows nothing of the fw 4 probe.
     options = DiscoveryOptions(
-        port_source=lambda: ports, opener=opener, identify_shared_ports=False,
+        port_source=lambda: ports,
+        opener=opener,
+        identify_shared_ports=False,
     )
     with pytest.raises(UnsupportedFirmwareError, match="'2'"):
         await SRV4MotorBoardHardwareBackend.discover(options=options)
@@ -115,7 +119,9 @@ async def test_a_failing_board_raises_or_is_skipped(caplog: pytest.LogCaptureFix
     assert held is not None
     await held.close()
     skipping = DiscoveryOptions(
-        port_source=lambda: ports, opener=opener, skip_failures=True,
+        port_source=lambda: ports,
+        opener=opener,
+        skip_failures=True,
         identify_shared_ports=False,
     )
     with caplog.at_level(logging.WARNING):
@@ -219,3 +225,28 @@ async def test_usb_backends_cannot_attach_to_a_port() -> None:
 
     with pytest.raises(NotSupportedByHardwareError, match="cannot attach"):
         await SRV4PowerBoardHardwareBackend.attach("/dev/ttyACM0")
+
+
+def test_discovery_options_are_the_generated_dataclass() -> None:
+    assert_like_generated(
+        DiscoveryOptions,
+        [
+            ((), {}),
+            ((list, None, None, 0.5, True, False), {}),
+            ((), {"time_scale": 0, "skip_failures": True}),
+        ],
+    )
+    for scale in (-1.0, float("nan")):
+        with pytest.raises(ValueError, match=r"time_scale must be a number >= 0, not"):
+            DiscoveryOptions(time_scale=scale)
+
+
+def test_port_info_is_the_generated_dataclass() -> None:
+    assert_like_generated(
+        PortInfo,
+        [
+            (("/dev/ttyACM0",), {}),
+            (("/dev/ttyUSB0", 0x0403, 0x6001, "SR0A", "FTDI", "MCV4B", "a motor board"), {}),
+            (("COM3",), {"vid": 0x2341, "description": "Uno"}),
+        ],
+    )

@@ -8,6 +8,7 @@ import pytest
 
 from j5aio.backends.hardware.sr.v4 import power_fw3_codec as codec
 from j5aio.errors import NotSupportedByHardwareError, UnexpectedReplyError
+from tests.dataclass_twins import assert_like_generated
 
 
 def test_read_commands() -> None:
@@ -90,3 +91,10 @@ def test_the_battery_reading_is_a_dataclass_of_the_codec_made_on_first_use() -> 
         [sys.executable, "-c", program], capture_output=True, text=True, check=True, timeout=60
     )
     assert done.stdout.split() == ["False", "0.0", "True"]
+
+
+def test_a_read_command_is_the_generated_dataclass() -> None:
+    assert_like_generated(
+        codec.ReadCommand, [((7, 8), {}), ((8, 4), {}), ((), {"index": 9, "length": 4})]
+    )
+    assert codec.BATTERY == codec.ReadCommand(7, 8) != codec.BUTTON

@@ -38,6 +38,7 @@ from j5aio.simulator import (
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kit import KitConfig, use_kit
 from j5aio.testing.transports import FaultyStream
+from tests.dataclass_twins import assert_like_generated
 from tests.testing.reliability_rig import BACKEND_NAMES, replug_trials
 
 QUICK = ReconnectPolicy(interval=0.0)
@@ -390,8 +391,11 @@ def usb_port(
 
 async def test_a_replugged_fw4_motor_board_forgets_what_it_sent_and_works_again() -> None:
     sim = SRMotorBoardFw4Simulator("srM1")
-    ports = [usb_port("/dev/ttyUSB0", "srM1", 0x0403, 0x6001,
-                      manufacturer="Student Robotics", product="MCV4B")]
+    ports = [
+        usb_port(
+            "/dev/ttyUSB0", "srM1", 0x0403, 0x6001, manufacturer="Student Robotics", product="MCV4B"
+        )
+    ]
 
     async def opener(port: str, baudrate: int) -> Any:
         return SimulatorStream(sim, time_scale=0)
@@ -410,8 +414,11 @@ async def test_a_replugged_fw4_motor_board_forgets_what_it_sent_and_works_again(
     ports.clear()
     with pytest.raises(BoardDisconnectionError):
         await board.motors[1].get_power()
-    ports.append(usb_port("/dev/ttyUSB1", "srM1", 0x0403, 0x6001,
-                          manufacturer="Student Robotics", product="MCV4B"))
+    ports.append(
+        usb_port(
+            "/dev/ttyUSB1", "srM1", 0x0403, 0x6001, manufacturer="Student Robotics", product="MCV4B"
+        )
+    )
     sim.plug()
     await board.motors[1].set_power(0.25)
     assert backend.port == "/dev/ttyUSB1"
@@ -454,8 +461,11 @@ async def test_a_replugged_sb2024_arduino_forgets_its_pins_and_works_again() -> 
 async def test_a_board_back_just_before_the_end_is_still_made_safe() -> None:
     """The program ends at once after the failed call: the rate limit must not stop make_safe."""
     sim = SRMotorBoardFw4Simulator("srM2")
-    ports = [usb_port("/dev/ttyUSB0", "srM2", 0x0403, 0x6001,
-                      manufacturer="Student Robotics", product="MCV4B")]
+    ports = [
+        usb_port(
+            "/dev/ttyUSB0", "srM2", 0x0403, 0x6001, manufacturer="Student Robotics", product="MCV4B"
+        )
+    ]
 
     async def opener(port: str, baudrate: int) -> Any:
         return SimulatorStream(sim, time_scale=0)
@@ -556,8 +566,11 @@ async def test_a_brown_out_on_the_fw4_hot_paths_retries_what_may_be_repeated() -
     # that vanished under them is handled as any guarded call: found again, and the
     # call retried if it may be repeated.
     sim = SRMotorBoardFw4Simulator("srM2")
-    ports = [usb_port("/dev/ttyUSB0", "srM2", 0x0403, 0x6001,
-                      manufacturer="Student Robotics", product="MCV4B")]
+    ports = [
+        usb_port(
+            "/dev/ttyUSB0", "srM2", 0x0403, 0x6001, manufacturer="Student Robotics", product="MCV4B"
+        )
+    ]
 
     async def opener(port: str, baudrate: int) -> Any:
         return SimulatorStream(sim, time_scale=0)
@@ -642,3 +655,18 @@ async def test_a_brown_out_under_a_fw3_button_wait_is_retried() -> None:
         await board.start_button.wait_until_pressed()  # a lost board is looked for first
     assert backend.is_connected and backend.reconnections == 2
     await board.close()
+
+
+def test_the_reconnect_policy_is_the_generated_dataclass() -> None:
+    assert_like_generated(
+        ReconnectPolicy,
+        [((), {}), ((False, 0.5, False, 2.0), {}), ((), {"interval": 0, "retry_wait": 1})],
+    )
+    bad: list[tuple[str, Any]] = [
+        ("interval", -0.1),
+        ("retry_wait", float("inf")),
+        ("interval", "1"),
+    ]
+    for name, value in bad:
+        with pytest.raises(ValueError, match=f"{name} must be a finite number of seconds >= 0"):
+            ReconnectPolicy(**{name: value})

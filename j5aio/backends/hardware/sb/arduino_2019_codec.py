@@ -9,10 +9,9 @@ This module does no I/O: the hardware backend and the SB Arduino simulator both 
 
 from __future__ import annotations
 
-import re
-from dataclasses import dataclass
 from typing import Final
 
+from j5aio._records import FrozenRecord, frozen_record
 from j5aio._timedelta import timedelta
 from j5aio.backends.hardware.transports import readers
 from j5aio.backends.hardware.transports.readers import LinesUntilReader, read_lines_until
@@ -70,11 +69,22 @@ _SERVO_MAX = 550
 #: The largest request id (the firmware holds it in a 16-bit signed int; 0 means none).
 MAX_REQUEST_ID: Final = 32767
 
-_ID_PREFIX = re.compile(rb"@-?[0-9]+ ")
+
+# The numbers in replies are plain ASCII digits, and request ids too: checked with str
+# and bytes methods rather than a regular expression each, which a start would compile
+# whether it reads them or not.
+def _id_prefix_end(line: bytes) -> int:
+    """Where ``line``'s request id prefix ends, or 0 if it has none.
+
+    The prefix is ``@``, an optional ``-``, ASCII digits and a space (``@12 ``).
+    """
+    if not line.startswith(b"@"):
+        return 0
+    space = line.find(b" ", 1)
+    number = line[2:space] if line.startswith(b"@-") else line[1:space]
+    return space + 1 if space > 0 and number.isdigit() else 0
 
 
-# The numbers in replies are plain ASCII digits: checked with str methods rather than a
-# regular expression each, which a start would compile whether it reads them or not.
 def _is_digits(text: str, most: int) -> bool:
     """Whether ``text`` is 1 to ``most`` ASCII digits (no sign, space or point)."""
     return 0 < len(text) <= most and text.isascii() and text.isdigit()
@@ -94,11 +104,18 @@ class ArduinoError(CommunicationError):
     """The Arduino answered a command with ``- Error…``."""
 
 
-@dataclass(frozen=True)
-class Reply:
+# (It writes its own ``__init__`` and takes freezing, ``__repr__``, ``__eq__`` and
+# ``__hash__`` from FrozenRecord, as ``@dataclass(frozen=True)`` would make them: the
+# default kit imports it, and making the generated ones costs a quarter of a millisecond.
+# A test checks them against those.)
+@frozen_record
+class Reply(FrozenRecord):
     """A successful reply: the data of its ``>`` lines, in order."""
 
     data: tuple[str, ...]
+
+    def __init__(self, data: tuple[str, ...]) -> None:
+        object.__setattr__(self, "data", data)
 
 
 def encode_command(letter: str, *args: object, request_id: int | None = None) -> bytes:
@@ -131,10 +148,7 @@ def with_request_id(request: bytes, request_id: int) -> bytes:
 
 
 def _strip_id(line: bytes) -> bytes:
-    if not line.startswith(b"@"):
-        return line
-    match = _ID_PREFIX.match(line)
-    return line[match.end() :] if match else line
+    return line[_id_prefix_end(line) :]
 
 
 def encode_pin_state(pin: int, mode: GPIOPinMode, state: bool) -> bytes:
@@ -218,16 +232,14 @@ def reply_to(request: bytes) -> readers.MatchingReader[list[bytes]]:
     :raises ValueError: ``request`` has no request id.
     """
     line = request.strip()
-    match = _ID_PREFIX.match(line)
-    if match is None:
+    end = _id_prefix_end(line)
+    if not end:
         raise ValueError(f"{request!r} has no request id; see with_request_id")
     echo = b"# " + b" ".join(line.split())
-    prefix = match.group()
+    prefix = line[:end]
 
     def answers_request(lines: list[bytes]) -> bool:
-        return lines[-1].strip().startswith(prefix) or any(
-            item.strip() == echo for item in lines
-        )
+        return lines[-1].strip().startswith(prefix) or any(item.strip() == echo for item in lines)
 
     answers_request.__name__ = f"answers {line.decode('ascii', 'replace')!r}"
     # (looked up on the module: the readers module makes its matching reader on first use)

@@ -15,7 +15,9 @@ from j5aio.backends.hardware.transports import (
     read_lines,
     read_lines_until,
 )
+from j5aio.backends.hardware.transports.readers import LineReader, LinesUntilReader
 from j5aio.errors import UnexpectedReplyError
+from tests.dataclass_twins import assert_like_generated
 
 
 def test_read_line_waits_for_the_terminator() -> None:
@@ -140,3 +142,20 @@ def test_importing_the_readers_does_not_make_the_rarer_ones() -> None:
         [sys.executable, "-c", program], capture_output=True, text=True, check=True, timeout=60
     )
     assert done.stdout.split() == ["False", "True", "LinesReader"]
+
+
+def test_the_line_readers_are_the_generated_dataclasses() -> None:
+    assert_like_generated(
+        LineReader, [((), {}), ((b"\r",), {}), ((b"\n", True, 10), {}), ((), {"max_length": 9})]
+    )
+    until = line_starts_with(b"+")
+    assert_like_generated(
+        LinesUntilReader,
+        [((until,), {}), ((until, b"\r", True, 3, 50), {}), ((bool,), {"max_lines": 1})],
+    )
+    assert read_line() == read_line() and hash(read_line()) == hash(read_line())
+    assert read_lines_until(until) == read_lines_until(until) != read_lines_until(bool)
+    with pytest.raises(ValueError, match="max_lines must be at least 1, not 0"):
+        LinesUntilReader(until, max_lines=0)
+    with pytest.raises(ValueError, match="the line terminator must not be empty"):
+        LinesUntilReader(until, terminator=b"")
