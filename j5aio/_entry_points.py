@@ -141,7 +141,8 @@ def _other_finders() -> bool:
 def _scan(group: str, holders: list[str] | None = None) -> list[PluginEntryPoint] | None:
     """The entry points read from the path's folders, or None if the path holds more.
 
-    :param holders: if given, the paths of the files that named the group are added to it.
+    :param holders: if given, the paths of the files that name the group (even if they
+        give none of its entry points) are added to it.
     """
     seen: set[str] = set()
     found: list[PluginEntryPoint] = []
@@ -162,11 +163,7 @@ def _scan(group: str, holders: list[str] | None = None) -> list[PluginEntryPoint
             if key in seen:
                 continue
             seen.add(key)
-            distribution = f"{folder}{os.sep}{name}"
-            read = _read(distribution, group)
-            if read and holders is not None:
-                holders.append(f"{distribution}{os.sep}entry_points.txt")
-            found += read
+            found += _read(f"{folder}{os.sep}{name}", group, holders)
     return found
 
 
@@ -176,13 +173,17 @@ def _path_finder() -> object:
     return PathFinder
 
 
-def _read(distribution: str, group: str) -> list[PluginEntryPoint]:
+def _read(
+    distribution: str, group: str, holders: list[str] | None = None
+) -> list[PluginEntryPoint]:
     path = f"{distribution}{os.sep}entry_points.txt"
     # (most distributions have none: asking is cheaper than failing to open it)
     data = _bytes(path) if os.access(path, os.R_OK) else None
     # Most of those that have one list other groups: their files are not decoded.
     if not data or group.encode("utf-8") not in data:
         return []
+    if holders is not None:
+        holders.append(path)
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError:
@@ -315,7 +316,7 @@ def _header(group: str, folders: list[str]) -> list[str]:
 
 def _remembered(cache: str, group: str, folders: list[str]) -> list[PluginEntryPoint] | None:
     """The answer remembered in ``cache``, if it was read from the path as it is now."""
-    data = _bytes(cache)
+    data = _own_bytes(cache)
     if data is None:
         return None
     try:
@@ -324,19 +325,47 @@ def _remembered(cache: str, group: str, folders: list[str]) -> list[PluginEntryP
         if lines[: len(header)] != header:
             return None
         at = len(header)
-        count = int(lines[at])
-        for line in lines[at + 1 : at + 1 + count]:
+        holders = lines[at + 1 : at + 1 + int(lines[at])]
+        at += 1 + len(holders)
+        entries = lines[at + 1 : at + 1 + int(lines[at])]
+        if int(lines[at]) != len(entries) or lines[at + 1 + len(entries) :] != [""]:
+            return None  # (cut short, or more than it says)
+        for line in holders:
             path, _, state = line.partition("\t")
             if _file_state(path) != state:
                 return None
-        at += 1 + count
         found = []
-        for line in lines[at + 1 : at + 1 + int(lines[at])]:
+        for line in entries:
             name, value, package = line.split("\t")
             found.append(PluginEntryPoint(name, value, package))
-    except (ValueError, IndexError):  # (a file of another layout, or cut short)
+    except (ValueError, IndexError):  # (a file of another layout)
         return None
     return found
+
+
+def _own_bytes(path: str) -> bytes | None:
+    """The bytes of a file of this user's that no one else may write, else None.
+
+    (What a remembered answer names is imported: a file another user could have written
+    is not read.)
+    """
+    try:
+        descriptor = os.open(path, os.O_RDONLY)
+    except OSError:
+        return None
+    try:
+        status = os.fstat(descriptor)
+        getuid = getattr(os, "getuid", None)
+        if getuid is not None and (status.st_uid != getuid() or status.st_mode & 0o022):
+            return None
+        chunks = []
+        while chunk := os.read(descriptor, 65536):
+            chunks.append(chunk)
+    except OSError:
+        return None
+    finally:
+        os.close(descriptor)
+    return b"".join(chunks)
 
 
 def _remember(
@@ -360,10 +389,11 @@ def _remember(
     entries = [f"{e.name}\t{e.value}\t{e.package}" for e in found]
     lines = [*_header(group, folders), str(len(files)), *files, str(len(entries)), *entries]
     text = "\n".join(lines) + "\n"
-    partial = f"{cache}.{os.getpid()}.tmp"
+    partial = f"{cache}.{os.getpid()}.{time.monotonic_ns()}.tmp"  # (one per writer)
     try:
         os.makedirs(os.path.dirname(cache), exist_ok=True)
-        with open(partial, "w", encoding="utf-8") as file:
+        descriptor = os.open(partial, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
+        with open(descriptor, "w", encoding="utf-8") as file:
             file.write(text)
         os.replace(partial, cache)  # (whole or not at all, for a program reading it now)
     except (OSError, ValueError):

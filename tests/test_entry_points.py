@@ -369,6 +369,10 @@ def test_remembering_can_be_turned_off(
         "j5aio entry points 1\ntest.group\n4\n{folders}\n0\nlots\n",
         "j5aio entry points 1\ntest.group\n4\n{folders}\n"
         "0\n2\none\tplugin_for_test:entries\tbee-kit\n",
+        "j5aio entry points 1\ntest.group\n4\n{folders}\n"
+        "0\n2\none\tplugin_for_test:entries\tbee-kit\ntwo\tplugin_for_test:entries\tbee-kit",
+        "j5aio entry points 1\ntest.group\n4\n{folders}\n"
+        "0\n1\none\tplugin_for_test:entries\tbee-kit\nmore\n",
     ],
 )
 def test_a_cache_file_that_does_not_read_back_is_written_again(
@@ -437,3 +441,45 @@ def test_the_cache_folder_is_the_users_cache_folder_unless_chosen(
     assert _entry_points._cache_folder() == os.path.abspath("relative")
     one, other = _entry_points._cache_file("a.group"), _entry_points._cache_file("b.group")
     assert one is not None and other is not None and one != other
+
+
+def test_a_file_naming_the_group_without_entries_yet_is_watched(path: Path, cache: Path) -> None:
+    nameless = path / "second" / "nameless-2.0.dist-info" / "entry_points.txt"
+    nameless.write_text("[test.group]\n# none yet\n", encoding="utf-8")
+    settle(path)
+    assert [e.name for e in find("test.group")] == ["one", "two"]
+    nameless.write_text("[test.group]\nthree = plugin_for_test\n", encoding="utf-8")
+    os.utime(nameless, (LONG_AGO, LONG_AGO))  # (its size tells it apart)
+    assert [e.name for e in find("test.group")] == ["one", "two", "three"]
+
+
+@pytest.mark.skipif(not hasattr(os, "getuid"), reason="file owners are POSIX's")
+def test_a_cache_file_others_may_write_is_not_read(
+    path: Path, cache: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    settle(path)
+    find("test.group")
+    (remembered,) = cache.iterdir()
+    remembered.chmod(0o666)
+    seen = scans(monkeypatch)
+    assert [e.name for e in find("test.group")] == ["one", "two", "three"]
+    assert seen == ["test.group"]  # (scanned, and written again: this user's alone)
+    assert remembered.stat().st_mode & 0o022 == 0
+    monkeypatch.setattr(os, "getuid", lambda: remembered.stat().st_uid + 1)
+    assert [e.name for e in find("test.group")] == ["one", "two", "three"]
+    assert seen == ["test.group", "test.group"]
+
+
+def test_a_folder_where_the_cache_file_should_be_is_passed_over(
+    path: Path, cache: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    settle(path)
+    find("test.group")
+    (remembered,) = cache.iterdir()
+    remembered.unlink()
+    remembered.mkdir()
+    seen = scans(monkeypatch)
+    assert [e.name for e in find("test.group")] == ["one", "two", "three"]
+    assert [e.name for e in find("test.group")] == ["one", "two", "three"]
+    assert seen == ["test.group", "test.group"]
+    assert sorted(item.name for item in cache.iterdir()) == [remembered.name]  # (no leftovers)
