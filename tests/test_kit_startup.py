@@ -83,6 +83,8 @@ NOT_NEEDED_TO_START = {
     "j5aio.competition.start": "nothing waits for the start",
     "j5aio.simulator._kit_config": "the kit is a named one, not one made from counts",
     "j5aio.components._first": "nothing waits for the start button",
+    "j5aio._timedelta": "no duration is given or read (a piezo's, an ultrasound echo's)",
+    "_datetime": "no duration is given or read (timedelta's C module)",
 }
 
 STARTED_ROBOT = (
@@ -212,6 +214,8 @@ LEFT_TO_THEIR_USERS = {
     "j5aio.components.string_command": "a Ruggeduino",
     "j5aio.boards.arduino.all_digital": "an SR Arduino or a SourceBots Arduino of 2024",
     "j5aio.components._first": "waiting for the start button",
+    "j5aio._timedelta": "a piezo's note, or an ultrasound sensor's echo",
+    "_datetime": "a piezo's note, or an ultrasound sensor's echo (timedelta's C module)",
 }
 
 SYNC_ROBOT = (
@@ -262,3 +266,26 @@ def test_what_is_left_to_its_users_is_loaded_when_a_kit_uses_it(
     modules, output = _modules_of(USING_THEM, kit)
     assert f"USED {expected}" in output
     assert used in modules
+
+
+BUZZING = (
+    "import anyio, sys\n"
+    "from j5aio.kit import KitRobot\n\n"
+    "async def main() -> None:\n"
+    "    async with KitRobot() as robot:\n"
+    "        before = '_datetime' in sys.modules\n"
+    "        await robot.power_board.piezo.buzz(0.25, 1760)\n"
+    "        from datetime import timedelta\n"
+    "        from j5aio.components.piezo import Duration, PiezoInterface\n"
+    "        step = robot.power_board.piezo._backend.DURATION_STEP\n"
+    "        one_ms = step == PiezoInterface.DURATION_STEP == timedelta(milliseconds=1)\n"
+    "        print('BUZZED', before, one_ms, Duration == int | float | timedelta, flush=True)\n\n"
+    "anyio.run(main)\n" + REPORT
+)
+
+
+def test_a_note_brings_timedelta_when_it_is_played(bare_modules: set[str]) -> None:
+    modules, output = _modules_of(BUZZING)
+    before = "True" if "_datetime" in bare_modules else "False"
+    assert f"BUZZED {before} True True" in output
+    assert {"j5aio._timedelta", "_datetime"} <= modules

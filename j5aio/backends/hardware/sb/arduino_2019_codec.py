@@ -11,13 +11,15 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from typing import Final
+from typing import TYPE_CHECKING, Final
 
-from j5aio._timedelta import timedelta
 from j5aio.backends.hardware.transports import readers
 from j5aio.backends.hardware.transports.readers import LinesUntilReader, read_lines_until
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
+
+if TYPE_CHECKING:
+    from j5aio._timedelta import timedelta
 
 __all__ = [
     "ANALOGUE_CHANNELS",
@@ -225,9 +227,7 @@ def reply_to(request: bytes) -> readers.MatchingReader[list[bytes]]:
     prefix = match.group()
 
     def answers_request(lines: list[bytes]) -> bool:
-        return lines[-1].strip().startswith(prefix) or any(
-            item.strip() == echo for item in lines
-        )
+        return lines[-1].strip().startswith(prefix) or any(item.strip() == echo for item in lines)
 
     answers_request.__name__ = f"answers {line.decode('ascii', 'replace')!r}"
     # (looked up on the module: the readers module makes its matching reader on first use)
@@ -318,6 +318,8 @@ def parse_ultrasound_pulse(reply: Reply) -> timedelta | None:
     if not _is_decimal(value, 10, 2) or float(value) > _UINT32_MAX:
         raise _bad("ultrasound pulse", value, "microseconds, 0 to 4294967295")
     microseconds = float(value)
+    from j5aio._timedelta import timedelta  # (its C module is loaded at a first reading)
+
     return None if microseconds == 0 else timedelta(microseconds=microseconds)
 
 
