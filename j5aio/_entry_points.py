@@ -296,17 +296,18 @@ def _cache_folder() -> str | None:
 
 
 def _cache_file(group: str) -> str | None:
-    """The file remembering ``group``'s entry points for this interpreter, if any.
+    """The file remembering ``group``'s entry points for this interpreter and path, if any.
 
-    (One file per interpreter and group: a program run with another path replaces it.)
+    (One file per interpreter, group and path but its first folder, the program's own: a
+    program run from another folder replaces it, so that their number stays small.)
     """
     folder = _cache_folder()
     if folder is None:
         return None
-    # FNV-1a, which needs no module: a short, stable name for the interpreter and group.
-    digest = 0xCBF29CE484222325
-    for byte in f"{sys.prefix}\0{sys.executable}\0{group}".encode("utf-8", "replace"):
-        digest = ((digest ^ byte) * 0x100000001B3) & 0xFFFFFFFFFFFFFFFF
+    key = "\0".join([sys.prefix, sys.executable, group, *sys.path[1:]])
+    # A short, stable name, needing no module: the key's bytes as a number, modulo the
+    # prime 2**61 - 1 (a name shared by chance only means that the answer is read again).
+    digest = int.from_bytes(key.encode("utf-8", "replace"), "big") % 0x1FFFFFFFFFFFFFFF
     return os.path.join(folder, f"entry-points-{digest:016x}.txt")
 
 

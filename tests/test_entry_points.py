@@ -441,6 +441,11 @@ def test_the_cache_folder_is_the_users_cache_folder_unless_chosen(
     assert _entry_points._cache_folder() == os.path.abspath("relative")
     one, other = _entry_points._cache_file("a.group"), _entry_points._cache_file("b.group")
     assert one is not None and other is not None and one != other
+    # Another path has a file of its own, but not another program's folder.
+    monkeypatch.setattr(sys, "path", ["program", *sys.path[1:], "more"])
+    assert _entry_points._cache_file("a.group") not in {one, None}
+    monkeypatch.setattr(sys, "path", ["another program", *sys.path[1:-1]])
+    assert _entry_points._cache_file("a.group") == one
 
 
 def test_a_file_naming_the_group_without_entries_yet_is_watched(path: Path, cache: Path) -> None:
