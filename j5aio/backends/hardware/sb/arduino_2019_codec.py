@@ -227,7 +227,9 @@ def reply_to(request: bytes) -> readers.MatchingReader[list[bytes]]:
     prefix = match.group()
 
     def answers_request(lines: list[bytes]) -> bool:
-        return lines[-1].strip().startswith(prefix) or any(item.strip() == echo for item in lines)
+        return lines[-1].strip().startswith(prefix) or any(
+            item.strip() == echo for item in lines
+        )
 
     answers_request.__name__ = f"answers {line.decode('ascii', 'replace')!r}"
     # (looked up on the module: the readers module makes its matching reader on first use)
