@@ -260,7 +260,10 @@ def _folder_states() -> list[str] | None:
     """
     lines = []
     for entry in sys.path:
-        folder = os.path.abspath(entry or ".")
+        try:
+            folder = os.path.abspath(entry or ".")
+        except OSError:  # (the working folder is gone)
+            folder = entry or "."
         try:
             status = os.stat(folder)
         except (OSError, ValueError):

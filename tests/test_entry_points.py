@@ -488,3 +488,15 @@ def test_a_folder_where_the_cache_file_should_be_is_passed_over(
     assert [e.name for e in find("test.group")] == ["one", "two", "three"]
     assert seen == ["test.group", "test.group"]
     assert sorted(item.name for item in cache.iterdir()) == [remembered.name]  # (no leftovers)
+
+
+def test_a_working_folder_that_is_gone_is_passed_over(
+    path: Path, cache: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    def gone() -> str:
+        raise FileNotFoundError("the working folder was removed")
+
+    settle(path)
+    monkeypatch.setattr(sys, "path", ["", *sys.path])
+    monkeypatch.setattr(os, "getcwd", gone)
+    assert [e.name for e in find("test.group")] == ["one", "two", "three"]
