@@ -21,8 +21,10 @@ from j5aio.components.identified import IdentifiedComponent
 
 if TYPE_CHECKING:
     from j5aio._timedelta import timedelta
-elif "_datetime" in sys.modules:  # (loaded already, so free: annotations read at run time
-    from j5aio._timedelta import timedelta  # then name the class, as the docs' do)
+elif "_datetime" in sys.modules:
+    # Loaded already (by the program, or by the docs' build): binding it costs nothing,
+    # and annotations read at run time (typing.get_type_hints) then resolve.
+    from j5aio._timedelta import timedelta
 
 __all__ = ["Duration", "Note", "Piezo", "PiezoInterface", "Pitch"]
 
@@ -106,6 +108,9 @@ else:
 
         value = globals()["Duration"] = int | float | timedelta
         return value
+
+    def __dir__() -> list[str]:
+        return sorted({*globals(), *__all__})
 
 
 _DURATION_ALLOWED = "a number of seconds greater than zero, or a datetime.timedelta"
