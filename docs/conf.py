@@ -18,8 +18,8 @@ intersphinx_mapping: dict[str, tuple[str, None]] = {}
 # classes name is listed here, and nothing else is ignored. A new foreign name in a
 # signature fails the build until it is added below, on purpose.
 nitpick_ignore = [
-    # The standard library. ``Path`` and ``datetime`` are how the string annotations of
-    # modules with ``from __future__ import annotations`` name them.
+    # The standard library. ``Path``, ``datetime`` and ``timedelta`` are how the string
+    # annotations of modules with ``from __future__ import annotations`` name them.
     ("py:class", "Path"),
     ("py:class", "abc.ABC"),
     ("py:class", "abc.ABCMeta"),
@@ -41,6 +41,7 @@ nitpick_ignore = [
     ("py:class", "collections.abc.ValuesView"),
     ("py:class", "datetime"),
     ("py:class", "datetime.timedelta"),
+    ("py:class", "timedelta"),
     ("py:class", "Enum"),
     ("py:class", "enum.Enum"),
     ("py:class", "enum.IntEnum"),

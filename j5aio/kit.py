@@ -32,7 +32,6 @@ import anyio
 
 from j5aio import kit_power
 from j5aio.backends.environment import Environment
-from j5aio.boards.arduino.all_digital import AllDigitalUno
 from j5aio.boards.arduino.uno import ArduinoUno
 from j5aio.boards.board import Board
 from j5aio.boards.board_group import BoardGroup
@@ -44,6 +43,7 @@ from j5aio.environments import get_default_environment, hint_no_hardware
 from j5aio.robot import BaseRobot
 
 if TYPE_CHECKING:
+    from j5aio.boards.arduino.all_digital import AllDigitalUno
     from j5aio.boards.sr.kch import KCHBoard
     from j5aio.boards.sr.v4 import ServoBoardFw4
     from j5aio.view import LiveView
@@ -52,6 +52,8 @@ BoardT = TypeVar("BoardT", bound=Board)
 
 #: The KCH's board class, by its path (imported where a KCH may be found).
 _KCH_BOARD = "j5aio.boards.sr.kch:KCHBoard"
+#: The all-digital Arduinos' board class, by its path (imported where one may be found).
+_ALL_DIGITAL_UNO = "j5aio.boards.arduino.all_digital:AllDigitalUno"
 
 __all__ = ["KitRobot"]
 
@@ -309,7 +311,9 @@ class KitRobot(BaseRobot):
         groups: list[BoardGroup[Any]] = [await environment.get_board_group(SBArduinoBoard)]
         # (an environment that finds one board of each class asked, the console, is
         # asked for the SourceBots Arduino alone, as before)
-        if environment.gather and environment.might_find(AllDigitalUno):
+        if environment.gather and environment._might_find_named(_ALL_DIGITAL_UNO):
+            from j5aio.boards.arduino.all_digital import AllDigitalUno
+
             groups.append(await environment.get_board_group(AllDigitalUno))
         return BoardGroup.of_groups(ArduinoUno, groups)
 

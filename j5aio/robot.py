@@ -16,12 +16,12 @@ from typing import TYPE_CHECKING, Any, ClassVar, Final, Self
 
 import anyio
 
-from j5aio import lifetime
 from j5aio.boards.board import Board
 from j5aio.competition import service_state
 from j5aio.competition.clock import MatchClock
 from j5aio.components._checks import check_timeout
 from j5aio.errors import UnableToObtainLock
+from j5aio.safety import hooks as safety_hooks
 from j5aio.safety import make_all_safe_uncancellably
 
 if TYPE_CHECKING:
@@ -108,7 +108,7 @@ class BaseRobot:
         robot._watch_error = None
         robot._service = None
         robot._obtain_lock()
-        lifetime.install()
+        safety_hooks.install()
         return robot
 
     def __init__(self, *, wait_for_start: bool = False) -> None:
@@ -150,7 +150,7 @@ class BaseRobot:
         self._sigterm_scope = anyio.CancelScope()
         self._sigterm_scope.__enter__()
         self._terminated_by: int | None = None
-        self._stop_handling_signals = lifetime.on_terminate(
+        self._stop_handling_signals = safety_hooks.on_terminate(
             asyncio.get_running_loop(), self._on_terminate
         )
         try:
@@ -200,7 +200,7 @@ class BaseRobot:
         return bool(swallowed)
 
     def _on_terminate(self, signum: int) -> None:
-        """SIGTERM / SIGHUP (from :mod:`j5aio.lifetime`): stop the block, then exit."""
+        """SIGTERM / SIGHUP (from :mod:`j5aio.safety.hooks`): stop the block, then exit."""
         self._terminated_by = signum
         self._sigterm_scope.cancel()
 

@@ -25,9 +25,18 @@ REPORT = (
     "print('MODULES', json.dumps(_loaded))\n"
 )
 
-BARE = "import anyio\n\nasync def main() -> None:\n    pass\n\nanyio.run(main)\n" + REPORT
+#: What every program here runs first: it forgets datetime, which the interpreter's start
+#: may have loaded (coverage's subprocess hook does), so that what is counted is whether
+#: the program itself brings it back.
+FORGET_DATETIME = (
+    "import sys\nfor _name in ('datetime', '_datetime'):\n    sys.modules.pop(_name, None)\n"
+)
 
-ASYNC_ROBOT = (
+BARE = (
+    FORGET_DATETIME + "import anyio\n\nasync def main() -> None:\n    pass\n\nanyio.run(main)\n"
+) + REPORT
+
+ASYNC_ROBOT = FORGET_DATETIME + (
     "import anyio\n"
     "from j5aio.kit import KitRobot\n\n"
     "async def main() -> None:\n"
@@ -65,6 +74,9 @@ NOT_NEEDED = {
     "j5aio.vision.calibration": "the camera's calibration is read at its first look",
     "j5aio.service": "nothing configures the robot service: its client is not imported",
     "numbers": "the numbers given are ints and floats, which need no number ABCs",
+    "j5aio.lifetime": "the safety net's former home: j5aio's own code uses j5aio.safety",
+    "j5aio.components.string_command": "the default kit has no Ruggeduino to send commands",
+    "j5aio.boards.arduino.all_digital": "the default kit has no all-digital Arduino",
 }
 
 #: Modules a robot on the default simulated kit has no use for until it does something
@@ -79,9 +91,12 @@ NOT_NEEDED_TO_START = {
     "j5aio.competition.timer": "no match is started",
     "j5aio.competition.start": "nothing waits for the start",
     "j5aio.simulator._kit_config": "the kit is a named one, not one made from counts",
+    "j5aio.components._first": "nothing waits for the start button",
+    "j5aio._timedelta": "no duration is given or read (a piezo's, an ultrasound echo's)",
+    "_datetime": "no duration is given or read (timedelta's C module)",
 }
 
-STARTED_ROBOT = (
+STARTED_ROBOT = FORGET_DATETIME + (
     "import anyio\n"
     "from j5aio.kit import KitRobot\n\n"
     "async def main() -> None:\n"
@@ -115,8 +130,12 @@ def _modules_of(program: str, kit: str | None = None) -> tuple[set[str], str]:
         PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])),
     )
     done = subprocess.run(
-        [sys.executable, "-c", program], env=env, capture_output=True, text=True,
-        timeout=120, check=False,
+        [sys.executable, "-c", program],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
     )
     assert done.returncode == 0, done.stderr[-3000:]
     line = next(line for line in done.stdout.splitlines() if line.startswith("MODULES "))
@@ -136,9 +155,7 @@ def test_a_robot_on_the_simulated_kit_imports_only_what_it_uses(bare_modules: se
     modules, output = _modules_of(ASYNC_ROBOT)
     assert "BOARDS 2 1" in output  # the default kit's motor boards and its camera
     loaded = {
-        name: why
-        for name, why in NOT_NEEDED.items()
-        if _loaded(modules - bare_modules, name)
+        name: why for name, why in NOT_NEEDED.items() if _loaded(modules - bare_modules, name)
     }
     assert loaded == {}
 
@@ -197,3 +214,86 @@ def test_a_named_kit_imports_the_backends_and_simulators_of_its_own_boards_only(
         name: board for name, board in OTHER_KITS_BACKENDS[kit].items() if _loaded(modules, name)
     }
     assert loaded == {}
+
+
+#: Modules a start leaves to the code that uses them (imported inside it), each with what
+#: loads it.
+LEFT_TO_THEIR_USERS = {
+    "j5aio.lifetime": "code written against the safety net's former home",
+    "j5aio.components.string_command": "a Ruggeduino",
+    "j5aio.boards.arduino.all_digital": "an SR Arduino or a SourceBots Arduino of 2024",
+    "j5aio.components._first": "waiting for the start button",
+    "j5aio._timedelta": "a piezo's note, or an ultrasound sensor's echo",
+    "_datetime": "a piezo's note, or an ultrasound sensor's echo (timedelta's C module)",
+}
+
+SYNC_ROBOT = FORGET_DATETIME + (
+    "from j5aio.sync import KitRobot\n\n"
+    "robot = KitRobot()\n"
+    "print('BOARDS', len(robot.motor_boards), len(robot.cameras), flush=True)\n" + REPORT
+)
+
+
+def test_a_sync_robot_loads_what_is_left_to_its_users_no_sooner(bare_modules: set[str]) -> None:
+    modules, output = _modules_of(SYNC_ROBOT)
+    assert "BOARDS 2 1" in output
+    loaded = {
+        name: why
+        for name, why in LEFT_TO_THEIR_USERS.items()
+        if _loaded(modules - bare_modules, name)
+    }
+    assert loaded == {}
+
+
+USING_THEM = FORGET_DATETIME + (
+    "import anyio, sys\n"
+    "from j5aio.kit import KitRobot\n\n"
+    "async def main() -> None:\n"
+    "    async with KitRobot() as robot:\n"
+    "        arduinos = [type(board).__name__ for board in robot.arduinos]\n"
+    "        ruggeduinos = [type(board.command).__name__ for board in robot.ruggeduinos]\n"
+    "        print('USED', arduinos, ruggeduinos, flush=True)\n\n"
+    "anyio.run(main)\n" + REPORT
+)
+
+
+@pytest.mark.parametrize(
+    ("kit", "used", "expected"),
+    [
+        ("sr2019", "j5aio.components.string_command", "[] ['StringCommandComponent']"),
+        (
+            "sr2023",
+            "j5aio.boards.arduino.all_digital",
+            "['SRArduinoBoard'] ['StringCommandComponent']",
+        ),
+        ("sb2024", "j5aio.boards.arduino.all_digital", "['SBArduino2024Board'] []"),
+    ],
+)
+def test_what_is_left_to_its_users_is_loaded_when_a_kit_uses_it(
+    kit: str, used: str, expected: str
+) -> None:
+    modules, output = _modules_of(USING_THEM, kit)
+    assert f"USED {expected}" in output
+    assert used in modules
+
+
+BUZZING = FORGET_DATETIME + (
+    "import anyio, sys\n"
+    "from j5aio.kit import KitRobot\n\n"
+    "async def main() -> None:\n"
+    "    async with KitRobot() as robot:\n"
+    "        before = '_datetime' in sys.modules\n"
+    "        await robot.power_board.piezo.buzz(0.25, 1760)\n"
+    "        from datetime import timedelta\n"
+    "        from j5aio.components.piezo import Duration, PiezoInterface\n"
+    "        step = robot.power_board.piezo._backend.DURATION_STEP\n"
+    "        one_ms = step == PiezoInterface.DURATION_STEP == timedelta(milliseconds=1)\n"
+    "        print('BUZZED', before, one_ms, Duration == int | float | timedelta, flush=True)\n\n"
+    "anyio.run(main)\n" + REPORT
+)
+
+
+def test_a_note_brings_timedelta_when_it_is_played() -> None:
+    modules, output = _modules_of(BUZZING)
+    assert "BUZZED False True True" in output  # (not loaded until the note)
+    assert {"j5aio._timedelta", "_datetime"} <= modules

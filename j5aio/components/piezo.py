@@ -1,18 +1,30 @@
-"""Piezo sounders: a buzzer that plays a pitch for a duration."""
+"""Piezo sounders: a buzzer that plays a pitch for a duration.
+
+(:class:`datetime.timedelta`, in which durations are given, is imported when a duration
+is first handled: a program that starts a robot and never buzzes does not load its C
+module.)
+"""
 
 from __future__ import annotations
 
 import math
+import sys
 from abc import abstractmethod
 from enum import Enum
-from typing import ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import anyio
 
-from j5aio._timedelta import timedelta
 from j5aio.components._checks import describe
 from j5aio.components.component import Interface
 from j5aio.components.identified import IdentifiedComponent
+
+if TYPE_CHECKING:
+    from j5aio._timedelta import timedelta
+elif "_datetime" in sys.modules:
+    # Loaded already (by the program, or by the docs' build): binding it costs nothing,
+    # and annotations read at run time (typing.get_type_hints) then resolve.
+    from j5aio._timedelta import timedelta
 
 __all__ = ["Duration", "Note", "Piezo", "PiezoInterface", "Pitch"]
 
@@ -44,6 +56,20 @@ Pitch = int | float | Note
 """A pitch: a frequency in hertz, or a :class:`Note`."""
 
 
+class _Milliseconds:
+    """A class attribute worth ``timedelta(milliseconds=count)``, made when it is read."""
+
+    __slots__ = ("_count",)
+
+    def __init__(self, count: int) -> None:
+        self._count = count
+
+    def __get__(self, instance: object, owner: type | None = None) -> timedelta:
+        from j5aio._timedelta import timedelta
+
+        return timedelta(milliseconds=self._count)
+
+
 class PiezoInterface(Interface):
     """The coroutines a backend implements to drive piezo sounders.
 
@@ -52,9 +78,12 @@ class PiezoInterface(Interface):
     :class:`Piezo` refuses a note that rounds to zero steps, before anything is sent.
     """
 
-    #: The smallest duration step the board plays; a duration is rounded to a whole
-    #: number of steps (half to even), and one that rounds to zero is refused.
-    DURATION_STEP: ClassVar[timedelta] = timedelta(milliseconds=1)
+    if TYPE_CHECKING:
+        #: The smallest duration step the board plays; a duration is rounded to a whole
+        #: number of steps (half to even), and one that rounds to zero is refused.
+        DURATION_STEP: ClassVar[timedelta] = timedelta(milliseconds=1)
+    else:
+        DURATION_STEP = _Milliseconds(1)
     #: The smallest pitch step the board plays, in hertz; rounded like the duration.
     PITCH_STEP: ClassVar[float] = 1.0
 
@@ -67,8 +96,22 @@ class PiezoInterface(Interface):
         raise NotImplementedError
 
 
-Duration = int | float | timedelta
-"""How long to buzz: a number of seconds, or a :class:`datetime.timedelta`."""
+if TYPE_CHECKING:
+    Duration = int | float | timedelta
+    """How long to buzz: a number of seconds, or a :class:`datetime.timedelta`."""
+else:
+
+    def __getattr__(name: str) -> Any:  # PEP 562: Duration, made when first looked up
+        if name != "Duration":
+            raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+        from j5aio._timedelta import timedelta
+
+        value = globals()["Duration"] = int | float | timedelta
+        return value
+
+    def __dir__() -> list[str]:
+        return sorted({*globals(), *__all__})
+
 
 _DURATION_ALLOWED = "a number of seconds greater than zero, or a datetime.timedelta"
 _PITCH_ALLOWED = "a frequency in hertz greater than zero (an int or a float), or a Note"
@@ -90,7 +133,9 @@ class Piezo(IdentifiedComponent[PiezoInterface]):
         """The interface a backend implements to drive piezos: :class:`PiezoInterface`."""
         return PiezoInterface
 
-    async def buzz(self, duration: Duration, pitch: Pitch, *, blocking: bool = False) -> None:
+    async def buzz(
+        self, duration: int | float | timedelta, pitch: Pitch, *, blocking: bool = False
+    ) -> None:
         """Play ``pitch`` for ``duration``.
 
         By default this returns as soon as the board has accepted the note, while the
@@ -159,6 +204,8 @@ class Piezo(IdentifiedComponent[PiezoInterface]):
         :raises TypeError: ``duration`` is not a ``datetime.timedelta``.
         :raises ValueError: ``duration`` is zero or negative.
         """
+        from j5aio._timedelta import timedelta
+
         if not isinstance(duration, timedelta):
             raise TypeError(
                 f"piezo duration must be a datetime.timedelta; got {describe(duration)}",
@@ -167,8 +214,10 @@ class Piezo(IdentifiedComponent[PiezoInterface]):
             raise ValueError(f"piezo duration must be greater than zero; got {duration!r}")
 
     @staticmethod
-    def _as_timedelta(duration: Duration) -> timedelta:
+    def _as_timedelta(duration: int | float | timedelta) -> timedelta:
         """Turn a number of seconds into a timedelta; leave a timedelta as it is."""
+        from j5aio._timedelta import timedelta
+
         if isinstance(duration, timedelta):
             return duration
         if isinstance(duration, bool) or not isinstance(duration, int | float):

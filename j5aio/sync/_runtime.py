@@ -27,7 +27,7 @@ Three things matter more than anything else here:
   it started never runs. An interrupt that lands just after the call finished finds it
   finished and does not wait. A main thread that runs the loop gets its signals at the
   call's boundary, never inside the loop (:mod:`j5aio.sync._deferral`).
-* **Exit.** :func:`shutdown` is an exit step of the safety net (:mod:`j5aio.lifetime`):
+* **Exit.** :func:`shutdown` is an exit step of the safety net (:mod:`j5aio.safety.hooks`):
   when the program ends, every board is made safe and its port closed through the loop,
   whoever was running it, the loop stops, and the net then catches any board that was
   left. A beginner who never closes anything still gets a prompt exit.
@@ -50,8 +50,8 @@ from typing import TYPE_CHECKING, Any, Final, ParamSpec, TypeVar
 
 import anyio
 
-from j5aio import lifetime
 from j5aio.boards.board import Board
+from j5aio.safety import hooks as safety_hooks
 from j5aio.safety import make_all_safe_uncancellably
 from j5aio.sync._calls import CANCEL_GRACE, DONE, Call, new_done_lock
 from j5aio.sync._driven import NESTED_CALL, DrivenLoop
@@ -100,8 +100,8 @@ def _get_portal() -> DrivenLoop | LoopThread:
         return _portal
     with _lock:
         if _portal is None:
-            lifetime.install()
-            lifetime.add_exit_step(shutdown)
+            safety_hooks.install()
+            safety_hooks.add_exit_step(shutdown)
             if CALLER_DRIVES:  # its loop hears of signals itself: no watcher thread
                 _portal = DrivenLoop(on_signal=_wake_waiting_callers)
             else:
@@ -165,7 +165,7 @@ def _wait(portal: DrivenLoop | LoopThread, request: Call) -> Any:
             # Whether the loop has released it yet or will later, this lock is spent.
             _per_thread.done = new_done_lock()
         if request.state != DONE:  # not finished, so the lock is not ours: cancel, wait
-            with lifetime.quiet_interrupts():
+            with safety_hooks.quiet_interrupts():
                 portal.cancel(request)
                 _wait_for_cancellation(request)
         raise
@@ -217,7 +217,7 @@ async def _make_safe_and_close() -> None:
 def shutdown() -> None:
     """Make every board safe, close every board's port, then stop the loop (and its thread).
 
-    Runs by itself when the program ends (an exit step of :mod:`j5aio.lifetime`); calling
+    Runs by itself when the program ends (an exit step of :mod:`j5aio.safety.hooks`); calling
     it earlier is allowed, after which the next blocking call makes a new loop.
     """
     global _portal

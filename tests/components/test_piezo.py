@@ -18,7 +18,8 @@ from .component_fakes import RecordingBackend
     ],
 )
 async def test_buzz_sends_the_duration_as_a_timedelta(
-    duration: float | timedelta, expected: timedelta,
+    duration: float | timedelta,
+    expected: timedelta,
 ) -> None:
     backend = RecordingBackend()
     await Piezo(1, backend).buzz(duration, 440.0)
@@ -62,7 +63,8 @@ async def test_buzz_refuses_a_duration_of_the_wrong_type(duration: object) -> No
 
 
 @pytest.mark.parametrize(
-    "duration", [0, -1, 0.0, timedelta(0), timedelta(seconds=-1), 1e-9],
+    "duration",
+    [0, -1, 0.0, timedelta(0), timedelta(seconds=-1), 1e-9],
 )
 async def test_buzz_refuses_a_duration_that_is_not_positive(
     duration: float | timedelta,
@@ -197,3 +199,18 @@ async def test_buzz_uses_the_backends_steps() -> None:
         await Piezo(0, backend).buzz(0.5, 40)
     await Piezo(0, backend).buzz(0.006, 60)
     assert len(backend.calls) == 1
+
+
+def test_the_default_duration_step_is_one_millisecond_read_from_class_or_backend() -> None:
+    from_class, from_backend = PiezoInterface.DURATION_STEP, RecordingBackend().DURATION_STEP
+    assert from_class == from_backend == timedelta(milliseconds=1)
+    assert isinstance(from_class, timedelta)
+
+
+def test_the_duration_alias_is_made_when_looked_up_and_other_names_are_missing() -> None:
+    from j5aio.components import piezo
+
+    assert piezo.Duration == int | float | timedelta
+    assert {"Duration", "Note", "Pitch"} <= set(dir(piezo))
+    with pytest.raises(AttributeError, match="has no attribute 'Durations'"):
+        getattr(piezo, "Durations")  # noqa: B009 - a name type checkers know is missing

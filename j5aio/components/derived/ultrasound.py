@@ -5,7 +5,6 @@ from __future__ import annotations
 from abc import abstractmethod
 from typing import TYPE_CHECKING
 
-from j5aio._timedelta import timedelta
 from j5aio.components.component import DerivedComponent, Interface
 from j5aio.components.distance_sensor import Rangefinder
 from j5aio.components.gpio_pin import GPIOPin
@@ -13,6 +12,7 @@ from j5aio.components.identified import checked_backend
 from j5aio.errors import NotSupportedByComponentError
 
 if TYPE_CHECKING:
+    from j5aio._timedelta import timedelta
     from j5aio.backends.backend import Backend
 
 __all__ = ["UltrasoundInterface", "UltrasoundSensor"]
@@ -23,14 +23,18 @@ class UltrasoundInterface(Interface):
 
     @abstractmethod
     async def get_ultrasound_pulse(
-        self, trigger_pin_identifier: int, echo_pin_identifier: int,
+        self,
+        trigger_pin_identifier: int,
+        echo_pin_identifier: int,
     ) -> timedelta | None:
         """Return how long the echo took, or ``None`` if no echo came back."""
         raise NotImplementedError
 
     @abstractmethod
     async def get_ultrasound_distance(
-        self, trigger_pin_identifier: int, echo_pin_identifier: int,
+        self,
+        trigger_pin_identifier: int,
+        echo_pin_identifier: int,
     ) -> float | None:
         """Return the distance to the nearest object in metres, or ``None`` if no echo."""
         raise NotImplementedError
@@ -96,7 +100,8 @@ class UltrasoundSensor(DerivedComponent, Rangefinder):
         :raises CommunicationError: the board did not answer, or answered wrongly.
         """
         return await self._backend.get_ultrasound_pulse(
-            self._gpio_trigger.identifier, self._gpio_echo.identifier,
+            self._gpio_trigger.identifier,
+            self._gpio_echo.identifier,
         )
 
     async def distance(self) -> float | None:
@@ -114,7 +119,8 @@ class UltrasoundSensor(DerivedComponent, Rangefinder):
                 "measure a distance; use pulse() to get the echo time instead",
             )
         return await self._backend.get_ultrasound_distance(
-            self._gpio_trigger.identifier, self._gpio_echo.identifier,
+            self._gpio_trigger.identifier,
+            self._gpio_echo.identifier,
         )
 
     async def distance_mm(self) -> float | None:

@@ -19,12 +19,11 @@ tagged request's reply has come, the line is clean and requests go plain again.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import anyio
 
 import j5aio.backends.hardware.sb.arduino_2019_codec as codec
-from j5aio._timedelta import timedelta
 from j5aio.backends.hardware.arduino import ArduinoHardwareBackend
 from j5aio.backends.hardware.arduino_pins import DIGITAL_PINS, DigitalPinState
 from j5aio.backends.hardware.serial_backend import scaled
@@ -40,11 +39,16 @@ from j5aio.errors import (
     UnexpectedReplyError,
 )
 
+if TYPE_CHECKING:
+    from j5aio._timedelta import timedelta
+
 __all__ = ["SBArduinoHardwareBackend"]
 
 
 class SBArduinoHardwareBackend(
-    ServoInterface, UltrasoundInterface, ArduinoHardwareBackend[SBArduinoBoard],
+    ServoInterface,
+    UltrasoundInterface,
+    ArduinoHardwareBackend[SBArduinoBoard],
 ):
     """Drives a SourceBots Arduino over the 2019 line protocol."""
 
@@ -130,9 +134,7 @@ class SBArduinoHardwareBackend(
         if acknowledged_only:
             await self.command(request, codec.REPLY, timeout, then=parse, when_dirty=tagged)
             return codec.Reply(())
-        return await self.exchange(
-            request, codec.REPLY, timeout, then=parse, when_dirty=tagged
-        )
+        return await self.exchange(request, codec.REPLY, timeout, then=parse, when_dirty=tagged)
 
     async def _apply_pin(
         self, identifier: int, wanted: DigitalPinState, *, mode_changed: bool

@@ -9,14 +9,16 @@ This module does no I/O: the hardware backend and the SB Arduino simulator both 
 
 from __future__ import annotations
 
-from typing import Final
+from typing import TYPE_CHECKING, Final
 
 from j5aio._records import FrozenRecord, frozen_record
-from j5aio._timedelta import timedelta
 from j5aio.backends.hardware.transports import readers
 from j5aio.backends.hardware.transports.readers import LinesUntilReader, read_lines_until
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
+
+if TYPE_CHECKING:
+    from j5aio._timedelta import timedelta
 
 __all__ = [
     "ANALOGUE_CHANNELS",
@@ -330,6 +332,8 @@ def parse_ultrasound_pulse(reply: Reply) -> timedelta | None:
     if not _is_decimal(value, 10, 2) or float(value) > _UINT32_MAX:
         raise _bad("ultrasound pulse", value, "microseconds, 0 to 4294967295")
     microseconds = float(value)
+    from j5aio._timedelta import timedelta  # (its C module is loaded at a first reading)
+
     return None if microseconds == 0 else timedelta(microseconds=microseconds)
 
 

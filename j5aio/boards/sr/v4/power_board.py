@@ -11,7 +11,6 @@ import anyio
 
 from j5aio.boards.board import Board
 from j5aio.components._checks import check_timeout
-from j5aio.components._first import first_of
 from j5aio.components.battery_sensor import BatterySensor
 from j5aio.components.button import Button, ButtonInterface
 from j5aio.components.led import LED
@@ -70,8 +69,7 @@ class PowerBoard(Board):
     def __init__(self, serial_number: str, backend: Backend) -> None:
         super().__init__(serial_number, backend)
         outputs: dict[PowerOutputPosition, PowerOutput] = {
-            position: PowerOutput(position.value, backend)
-            for position in PowerOutputPosition
+            position: PowerOutput(position.value, backend) for position in PowerOutputPosition
         }
         self._outputs: Mapping[PowerOutputPosition, PowerOutput] = MappingProxyType(outputs)
         self._output_group = PowerOutputGroup(self._outputs)
@@ -140,8 +138,12 @@ class PowerBoard(Board):
                 await self._look_until_pressed()
             # One look first, as j5 does; then the backend says when it is pressed.
             elif not await self._start_button.get_is_pressed():
+                # (imported here: a program that never waits for the start loads none of it)
+                from j5aio.components._first import first_of
+
                 await first_of(
-                    [self._start_button.wait_until_pressed], beside=[self._flash_run_led],
+                    [self._start_button.wait_until_pressed],
+                    beside=[self._flash_run_led],
                 )
         if scope.cancelled_caught:
             raise TimeoutError(

@@ -7,13 +7,11 @@ from typing import TYPE_CHECKING, ClassVar
 from j5aio.boards.arduino.uno import ArduinoUno
 from j5aio.components.gpio_pin import GPIOPin, GPIOPinMode
 from j5aio.components.led import LED
-from j5aio.components.string_command import (
-    StringCommandComponent,
-)
 
 if TYPE_CHECKING:
     from j5aio.backends.backend import Backend
     from j5aio.components.component import Component
+    from j5aio.components.string_command import StringCommandComponent
 
 __all__ = ["Ruggeduino"]
 
@@ -36,9 +34,13 @@ class Ruggeduino(ArduinoUno):
     }
 
     def __init__(self, serial_number: str, backend: Backend) -> None:
+        # (imported here: a program on a kit without a Ruggeduino loads none of it)
+        from j5aio.components.string_command import StringCommandComponent
+
         super().__init__(serial_number, backend)
         self._command = StringCommandComponent(
-            0, backend,
+            0,
+            backend,
         )
 
     @property
@@ -49,4 +51,6 @@ class Ruggeduino(ArduinoUno):
     @staticmethod
     def supported_components() -> set[type[Component]]:
         """The component classes on a Ruggeduino."""
+        from j5aio.components.string_command import StringCommandComponent
+
         return {GPIOPin, LED, StringCommandComponent}

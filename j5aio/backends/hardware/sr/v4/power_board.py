@@ -10,10 +10,9 @@ from __future__ import annotations
 
 import time
 from collections.abc import Awaitable, Callable
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import j5aio.backends.hardware.sr.v4.power_fw3_codec as codec
-from j5aio._timedelta import timedelta
 from j5aio.backends.hardware.transports.usb_link import USBLink
 from j5aio.backends.hardware.usb_backend import USBHardwareBackend
 from j5aio.backends.press_watch import PressWatch
@@ -24,6 +23,9 @@ from j5aio.components.led import LEDInterface
 from j5aio.components.piezo import PiezoInterface
 from j5aio.components.power_output import PowerOutputInterface
 from j5aio.errors import BoardDisconnectionError, UnsupportedFirmwareError
+
+if TYPE_CHECKING:
+    from j5aio._timedelta import timedelta
 
 __all__ = ["SRV4PowerBoardHardwareBackend"]
 
@@ -158,16 +160,22 @@ class SRV4PowerBoardHardwareBackend(
         # The button is a level, not a latch: ``fresh`` has nothing to forget.
         def poll() -> Awaitable[bytes]:  # the link is looked up anew for a retry
             return self._link.poll_control_read(
-                codec.BUTTON.index, codec.BUTTON.length, _button_held,
-                interval=self.BUTTON_POLL_INTERVAL, then=lambda _reply: report(),
+                codec.BUTTON.index,
+                codec.BUTTON.length,
+                _button_held,
+                interval=self.BUTTON_POLL_INTERVAL,
+                then=lambda _reply: report(),
             )
 
         try:  # the steps of _guarded, written out: one call fewer to the first poll
             if self._lost or self._closed_for_good:
                 await self._check_connected()
             await self._link.poll_control_read(
-                codec.BUTTON.index, codec.BUTTON.length, _button_held,
-                interval=self.BUTTON_POLL_INTERVAL, then=lambda _reply: report(),
+                codec.BUTTON.index,
+                codec.BUTTON.length,
+                _button_held,
+                interval=self.BUTTON_POLL_INTERVAL,
+                then=lambda _reply: report(),
             )
         except BoardDisconnectionError as error:
             await self._retry_after(error, poll, idempotent=True)

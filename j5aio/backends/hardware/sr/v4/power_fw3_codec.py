@@ -15,10 +15,10 @@ from typing import TYPE_CHECKING, Final
 
 from j5aio._lazy import lazy_exports
 from j5aio._records import FrozenRecord, frozen_record
-from j5aio._timedelta import timedelta
 from j5aio.errors import NotSupportedByHardwareError, UnexpectedReplyError
 
 if TYPE_CHECKING:
+    from j5aio._timedelta import timedelta
     from j5aio.backends.hardware.sr.v4._power_fw3_battery import BatteryReading as BatteryReading
 
 __all__ = [
@@ -161,6 +161,8 @@ def encode_piezo_note(duration: timedelta, frequency: float) -> bytes:
         in 16 bits (at most 65535 Hz and 65535 ms).
     :raises ValueError: a negative frequency or duration.
     """
+    from j5aio._timedelta import timedelta  # (its C module is loaded at a first note)
+
     duration_ms = round(duration / timedelta(milliseconds=1))
     frequency_hz = round(frequency)
     if duration_ms < 0 or frequency_hz < 0:
