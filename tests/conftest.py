@@ -7,6 +7,7 @@ import random
 import signal
 import socket
 import sys
+import tempfile
 from collections.abc import AsyncIterator, Iterator
 
 import pytest
@@ -71,6 +72,13 @@ def _free_lock_port() -> int:
 # runs going on side by side on one machine (and a real robot program) do not take each
 # other's lock. Subprocesses started by the tests inherit it.
 os.environ["J5AIO_LOCK_PORT"] = str(_free_lock_port())
+
+# The programs the tests start remember the plugins' entry points in a cache folder of
+# the session's own (many run with a path of their own, each remembered in its own
+# file), not in the user's: a test run leaves nothing behind. Removed at the session's
+# end; tests of the remembering itself set their own folder.
+_CACHE_FOLDER = tempfile.TemporaryDirectory(prefix="j5aio-test-cache-")
+os.environ["J5AIO_CACHE_DIR"] = _CACHE_FOLDER.name
 
 
 def _ignore_in_this_process_only(signum: int, frame: object) -> None:
