@@ -8,7 +8,8 @@ reports its 12 V missing and moves no servo. The Arduinos and the KCH are powere
 USB and are never fed.
 
 A :class:`KitWiring` joins a power board simulator to the boards it feeds. Each time
-one of them may have changed (a command from the host, an output switched), it:
+one of them may have changed (a command from the host, an output switched) and what the
+wiring follows did change (an output on or off, a fed board's power or current), it:
 
 - powers each fed board from its output (:attr:`PowerFed.powered`);
 - tells the power board what each output supplies (the sum of
@@ -174,10 +175,13 @@ class KitWiring:
         self._lock = threading.RLock()
         self._syncing = False
         self._again = False
+        # What the wiring follows (see _state) as the last update left it: a board's
+        # change that leaves it so needs no update.
+        self._settled: tuple[object, ...] | None = None
         self._stops: list[Callable[[], None]] = []
-        self._stops.append(power_board.listen(self.sync))
+        self._stops.append(power_board.listen(self._changed))
         for simulator, _ in self._feeds:
-            self._stops.append(simulator.listen(self.sync))
+            self._stops.append(simulator.listen(self._changed))
         self.sync()
 
     @property
@@ -203,21 +207,39 @@ class KitWiring:
     def sync(self) -> None:
         """Bring every fed board's power and the power board's loads up to date.
 
-        Called whenever one of the boards may have changed; safe to call at any time.
+        Safe to call at any time. The boards' changes call it when what the wiring
+        follows has changed since the last update: the power board's outputs, or a fed
+        board's power or the current it draws (a command that changes neither, a
+        reading say, needs no update).
         """
         with self._lock:
             if self._syncing:  # a change made by this very update: go round again
                 self._again = True
                 return
             self._syncing = True
+            self._settled = None  # (until an update changes nothing more)
             try:
                 for _ in range(_MAX_ROUNDS):
                     self._again = False
                     self._update()
                     if not self._again:
+                        self._settled = self._state()
                         break
             finally:
                 self._syncing = False
+
+    def _changed(self) -> None:
+        """A board may have changed: update if what the wiring follows did."""
+        with self._lock:
+            if self._syncing or self._state() != self._settled:
+                self.sync()
+
+    def _state(self) -> tuple[object, ...]:
+        """All an update reads: the outputs, and each fed board's power and current."""
+        return (
+            self._power_board.outputs,
+            *[(fed.powered, fed.supply_current()) for fed, _ in self._feeds],
+        )
 
     def _update(self) -> None:
         board = self._power_board
