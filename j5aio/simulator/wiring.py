@@ -30,6 +30,7 @@ feeds a board, boards share them in the same order. L2 is the brain's and feeds 
 
 from __future__ import annotations
 
+import functools
 import sys
 import threading
 from collections.abc import Callable, Iterable, Sequence
@@ -95,6 +96,11 @@ class PowerBoardSimulator(Protocol):
 
     def listen(self, listener: Callable[[], None]) -> Callable[[], None]:
         """Call ``listener`` whenever it may have changed; return what stops the calls."""
+
+
+def _fed_state(fed: PowerFed) -> tuple[bool, float]:
+    """What the wiring follows of a fed board: its power, and the current it draws."""
+    return fed.powered, fed.supply_current()
 
 
 def _is_motor_board(simulator: object) -> bool:
@@ -175,13 +181,17 @@ class KitWiring:
         self._lock = threading.RLock()
         self._syncing = False
         self._again = False
-        # What the wiring follows (see _state) as the last update left it: a board's
-        # change that leaves it so needs no update.
-        self._settled: tuple[object, ...] | None = None
+        # What the wiring follows, as the last update left it: the outputs, and each fed
+        # board's power and current. A board's change that leaves its own so needs no
+        # update (each board tells of its own changes).
+        self._settled_outputs: tuple[bool, ...] | None = None
+        self._settled_feeds: list[tuple[bool, float] | None] = [None] * len(self._feeds)
         self._stops: list[Callable[[], None]] = []
-        self._stops.append(power_board.listen(self._changed))
-        for simulator, _ in self._feeds:
-            self._stops.append(simulator.listen(self._changed))
+        self._stops.append(power_board.listen(self._outputs_may_have_changed))
+        for index, (simulator, _) in enumerate(self._feeds):
+            self._stops.append(
+                simulator.listen(functools.partial(self._fed_may_have_changed, index))
+            )
         self.sync()
 
     @property
@@ -207,39 +217,43 @@ class KitWiring:
     def sync(self) -> None:
         """Bring every fed board's power and the power board's loads up to date.
 
-        Safe to call at any time. The boards' changes call it when what the wiring
-        follows has changed since the last update: the power board's outputs, or a fed
-        board's power or the current it draws (a command that changes neither, a
-        reading say, needs no update).
+        Safe to call at any time. A board's change calls it when what the wiring
+        follows of that board has changed since the last update: the power board's
+        outputs, or a fed board's power or the current it draws (a command that changes
+        neither, a reading say, needs no update).
         """
         with self._lock:
             if self._syncing:  # a change made by this very update: go round again
                 self._again = True
                 return
             self._syncing = True
-            self._settled = None  # (until an update changes nothing more)
+            self._settled_outputs = None  # (until an update changes nothing more)
             try:
                 for _ in range(_MAX_ROUNDS):
                     self._again = False
                     self._update()
                     if not self._again:
-                        self._settled = self._state()
+                        self._settled_outputs = self._power_board.outputs
+                        self._settled_feeds = [_fed_state(fed) for fed, _ in self._feeds]
                         break
             finally:
                 self._syncing = False
 
-    def _changed(self) -> None:
-        """A board may have changed: update if what the wiring follows did."""
+    def _outputs_may_have_changed(self) -> None:
+        """The power board may have changed: update if its outputs did."""
         with self._lock:
-            if self._syncing or self._state() != self._settled:
+            if self._syncing or self._power_board.outputs != self._settled_outputs:
                 self.sync()
 
-    def _state(self) -> tuple[object, ...]:
-        """All an update reads: the outputs, and each fed board's power and current."""
-        return (
-            self._power_board.outputs,
-            *[(fed.powered, fed.supply_current()) for fed, _ in self._feeds],
-        )
+    def _fed_may_have_changed(self, index: int) -> None:
+        """The fed board ``index`` may have changed: update if its power or current did."""
+        with self._lock:
+            if (
+                self._syncing
+                or self._settled_outputs is None
+                or _fed_state(self._feeds[index][0]) != self._settled_feeds[index]
+            ):
+                self.sync()
 
     def _update(self) -> None:
         board = self._power_board

@@ -310,14 +310,34 @@ def test_each_change_of_an_output_or_a_load_updates_the_wiring() -> None:
     assert _reported_ma(power, 0) == 0
 
 
-def test_a_load_changed_without_a_word_shows_at_the_boards_next_change() -> None:
+def test_a_motor_told_what_it_draws_loads_its_output_at_once() -> None:
     power, motor, _ = _counted_kit()
     power.receive(b"OUT:0:SET:1\n")
     motor.receive(b"MOT:0:SET:1000\n")
-    motor.set_motor_current(0, 5.0)  # (a test's stalled motor: the board says nothing)
-    motor.receive(b"*IDN?\n")
+    motor.set_motor_current(0, 5.0)  # (a test's stalled motor)
     assert motor.supply_current() == pytest.approx(5.0 + MOTOR_BOARD_IDLE_CURRENT)
     assert _reported_ma(power, 0) == round(motor.supply_current() * 1000)
+    fw3 = SRMotorBoardFw3Simulator("MB3")
+    heard: list[bool] = []
+    fw3.listen(lambda: heard.append(True))
+    fw3.set_motor_current(0, 2.0)
+    assert heard == [True]
+
+
+def test_only_the_board_that_changed_is_looked_at() -> None:
+    power = _CountingPowerBoard("PB")
+    motors = [SRMotorBoardFw4Simulator(f"MB{i}") for i in range(2)]
+    KitWiring(power, [(motors[0], 0), (motors[1], 1)])
+    power.receive(b"OUT:0:SET:1\n")
+    power.receive(b"OUT:1:SET:1\n")
+    motors[0].receive(b"MOT:0:SET:1000\n")
+    power.load_updates = 0
+    motors[1].receive(b"*IDN?\n")  # the other board: unchanged
+    power.receive(b"BATT:I?\n")
+    assert power.load_updates == 0
+    motors[1].receive(b"MOT:1:SET:-500\n")
+    assert power.load_updates == power.OUTPUT_COUNT
+    assert _reported_ma(power, 1) == round(motors[1].supply_current() * 1000)
 
 
 def test_sync_updates_even_when_nothing_seems_changed() -> None:
