@@ -13,6 +13,7 @@ from j5aio.simulator.loads import (
     BATTERY_INTERNAL_RESISTANCE,
     MOTOR_BOARD_IDLE_CURRENT,
     MOTOR_FULL_POWER_CURRENT,
+    SERVO_BOARD_IDLE_CURRENT,
     SERVO_HOLDING_CURRENT,
 )
 from j5aio.simulator.sr_motor_fw3 import MotorMode, SRMotorBoardFw3Simulator
@@ -108,6 +109,8 @@ def test_a_servo_board_without_power_answers_but_reports_it_and_moves_nothing() 
 
 def test_a_firmware_2_servo_board_without_power_hangs_and_pulses_nothing() -> None:
     board = SRServoBoardFw2Simulator("SB", has_12v=True)
+    assert board.pulse_widths_us == (None,) * board.SERVO_COUNT  # not initialised yet
+    assert board.supply_current() == pytest.approx(SERVO_BOARD_IDLE_CURRENT)
     board.ctrl_transfer(0x00, 64, 0, 12)  # initialise
     board.ctrl_transfer(0x00, 64, 50, 0)
     assert board.pulse_widths_us[0] == 1750
@@ -118,6 +121,7 @@ def test_a_firmware_2_servo_board_without_power_hangs_and_pulses_nothing() -> No
     assert board.supply_current() == 0.0
     board.powered = True
     assert board.pulse_widths_us[0] == 1750
+    assert board.supply_current() == pytest.approx(12 * SERVO_HOLDING_CURRENT)
 
 
 # --- the kit's wiring ---
