@@ -261,7 +261,12 @@ class KitWiring:
         for fed, output in self._feeds:
             if fed.powered != outputs[output]:
                 fed.powered = outputs[output]
-        loads = [self.output_current(output) for output in range(board.OUTPUT_COUNT)]
+        # What each output supplies, as output_current says, in one pass over the feeds.
+        loads = [0.0] * board.OUTPUT_COUNT
+        now_on = board.outputs
+        for fed, output in self._feeds:
+            if now_on[output]:
+                loads[output] += fed.supply_current()
         for output, amps in enumerate(loads):
             board.set_supplied_current(output, amps)
         for output, amps in enumerate(loads):
