@@ -32,6 +32,7 @@ gives no boards without being imported or asked (a group made then keeps finding
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
@@ -47,6 +48,7 @@ if TYPE_CHECKING:
         kit_discovery_options,
         port_name,
     )
+    from .kit import SimulatedKit
     from .sim_backends import (
         SBArduinoSimulatedBackend,
         SRV4MotorBoardSimulatedBackend,
@@ -92,6 +94,7 @@ _EXPORTS: dict[str, str] = {
     ),
 }
 
+
 def _has_simulated_backend(kind: BoardKind) -> bool:
     """Whether ``kind`` names a simulated backend, importing nothing."""
     return kind.backend_reference("simulated") is not None
@@ -126,14 +129,25 @@ def _idle(kind: BoardKind) -> Callable[[], bool] | None:
     """
     if not kind.simulators:
         return None
+    names = tuple(entry.name for entry in kind.simulators)
 
     def idle() -> bool:
-        from .kit import current_kit
-
-        kit = current_kit()
-        return not any(kit.simulators(entry.name) for entry in kind.simulators)
+        kit = _current_kit_function()()
+        return not any(kit.simulators(name) for name in names)
 
     return idle
+
+
+@functools.cache
+def _current_kit_function() -> Callable[[], SimulatedKit]:
+    """:func:`~j5aio.simulator.kit.current_kit`, its module imported on the first call.
+
+    (Kept: an environment asks each kind whether it is idle at each search, and importing
+    a name from a module again costs each time.)
+    """
+    from .kit import current_kit
+
+    return current_kit
 
 
 def _make_environment() -> Environment:

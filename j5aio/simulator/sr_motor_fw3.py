@@ -113,8 +113,12 @@ class SRMotorBoardFw3Simulator(SRMotorBoardSimulator):
         ]
 
     def set_motor_current(self, motor: int, amps: float | None) -> None:
-        """Make ``motor`` draw ``amps`` while it is driven (``None``: the load model's figure)."""
+        """Make ``motor`` draw ``amps`` while it is driven (``None``: the load model's figure).
+
+        The board's listeners hear of it (a kit's wiring loads the output feeding it).
+        """
         self._motor_currents[motor] = amps
+        self._tell_listeners()
 
     def supply_current(self) -> float:
         """The amps the board draws from its 12 V input now (see :mod:`.loads`)."""

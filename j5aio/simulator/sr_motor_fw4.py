@@ -77,7 +77,11 @@ class SRMotorBoardFw4Simulator(SRMotorBoardSimulator):
     MOTOR_COUNT: ClassVar[int] = _MOTOR_COUNT
 
     def __init__(
-        self, serial_number: str, *, version: str = "4.4.1", input_voltage: float = 12.0,
+        self,
+        serial_number: str,
+        *,
+        version: str = "4.4.1",
+        input_voltage: float = 12.0,
     ) -> None:
         super().__init__(serial_number)
         self.version = version
@@ -111,8 +115,12 @@ class SRMotorBoardFw4Simulator(SRMotorBoardSimulator):
         return total / 1000
 
     def set_motor_current(self, motor: int, amps: float) -> None:
-        """Make ``motor`` draw ``amps`` while its driver is enabled."""
+        """Make ``motor`` draw ``amps`` while its driver is enabled.
+
+        The board's listeners hear of it (a kit's wiring loads the output feeding it).
+        """
         self._load_ma[motor] = round(amps * 1000)
+        self._tell_listeners()
 
     def set_fault(self, motor: int, fault: bool = True) -> None:
         """Make the driver of ``motor`` report a fault (or clear it)."""

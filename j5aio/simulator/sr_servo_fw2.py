@@ -117,7 +117,8 @@ class SRServoBoardFw2Simulator(SRUsbBoardSimulator):
         """The amps the board draws from its 12 V input now (see :mod:`.loads`)."""
         if not self._has_12v:
             return 0.0
-        pulsing = sum(width is not None for width in self.pulse_widths_us)
+        # (every servo is pulsed once the board is initialised: see pulse_widths_us)
+        pulsing = self.SERVO_COUNT if self._initialised else 0
         return SERVO_BOARD_IDLE_CURRENT + pulsing * SERVO_HOLDING_CURRENT
 
     def power_cycle(self) -> None:

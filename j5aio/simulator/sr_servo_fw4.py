@@ -144,7 +144,7 @@ class SRServoBoardFw4Simulator(SerialBoardSimulator):
         """The amps the board draws from its 12 V input now (see :mod:`.loads`)."""
         if not self._powered:
             return 0.0
-        pulsing = sum(width is not None for width in self.pulse_widths)
+        pulsing = sum(ticks is not None for ticks in self._ticks)  # (pulse_widths's)
         return SERVO_BOARD_IDLE_CURRENT + pulsing * SERVO_HOLDING_CURRENT
 
     def set_supply(self, *, voltage: float | None = None, current: float | None = None) -> None:

@@ -8,7 +8,8 @@ reports its 12 V missing and moves no servo. The Arduinos and the KCH are powere
 USB and are never fed.
 
 A :class:`KitWiring` joins a power board simulator to the boards it feeds. Each time
-one of them may have changed (a command from the host, an output switched), it:
+one of them may have changed (a command from the host, an output switched) and what the
+wiring follows did change (an output on or off, a fed board's power or current), it:
 
 - powers each fed board from its output (:attr:`PowerFed.powered`);
 - tells the power board what each output supplies (the sum of
@@ -29,6 +30,7 @@ feeds a board, boards share them in the same order. L2 is the brain's and feeds 
 
 from __future__ import annotations
 
+import functools
 import sys
 import threading
 from collections.abc import Callable, Iterable, Sequence
@@ -94,6 +96,11 @@ class PowerBoardSimulator(Protocol):
 
     def listen(self, listener: Callable[[], None]) -> Callable[[], None]:
         """Call ``listener`` whenever it may have changed; return what stops the calls."""
+
+
+def _fed_state(fed: PowerFed) -> tuple[bool, float]:
+    """What the wiring follows of a fed board: its power, and the current it draws."""
+    return fed.powered, fed.supply_current()
 
 
 def _is_motor_board(simulator: object) -> bool:
@@ -174,10 +181,17 @@ class KitWiring:
         self._lock = threading.RLock()
         self._syncing = False
         self._again = False
+        # What the wiring follows, as the last update left it: the outputs, and each fed
+        # board's power and current. A board's change that leaves its own so needs no
+        # update (each board tells of its own changes).
+        self._settled_outputs: tuple[bool, ...] | None = None
+        self._settled_feeds: list[tuple[bool, float] | None] = [None] * len(self._feeds)
         self._stops: list[Callable[[], None]] = []
-        self._stops.append(power_board.listen(self.sync))
-        for simulator, _ in self._feeds:
-            self._stops.append(simulator.listen(self.sync))
+        self._stops.append(power_board.listen(self._outputs_may_have_changed))
+        for index, (simulator, _) in enumerate(self._feeds):
+            self._stops.append(
+                simulator.listen(functools.partial(self._fed_may_have_changed, index))
+            )
         self.sync()
 
     @property
@@ -203,21 +217,43 @@ class KitWiring:
     def sync(self) -> None:
         """Bring every fed board's power and the power board's loads up to date.
 
-        Called whenever one of the boards may have changed; safe to call at any time.
+        Safe to call at any time. A board's change calls it when what the wiring
+        follows of that board has changed since the last update: the power board's
+        outputs, or a fed board's power or the current it draws (a command that changes
+        neither, a reading say, needs no update).
         """
         with self._lock:
             if self._syncing:  # a change made by this very update: go round again
                 self._again = True
                 return
             self._syncing = True
+            self._settled_outputs = None  # (until an update changes nothing more)
             try:
                 for _ in range(_MAX_ROUNDS):
                     self._again = False
                     self._update()
                     if not self._again:
+                        self._settled_outputs = self._power_board.outputs
+                        self._settled_feeds = [_fed_state(fed) for fed, _ in self._feeds]
                         break
             finally:
                 self._syncing = False
+
+    def _outputs_may_have_changed(self) -> None:
+        """The power board may have changed: update if its outputs did."""
+        with self._lock:
+            if self._syncing or self._power_board.outputs != self._settled_outputs:
+                self.sync()
+
+    def _fed_may_have_changed(self, index: int) -> None:
+        """The fed board ``index`` may have changed: update if its power or current did."""
+        with self._lock:
+            if (
+                self._syncing
+                or self._settled_outputs is None
+                or _fed_state(self._feeds[index][0]) != self._settled_feeds[index]
+            ):
+                self.sync()
 
     def _update(self) -> None:
         board = self._power_board
@@ -225,7 +261,12 @@ class KitWiring:
         for fed, output in self._feeds:
             if fed.powered != outputs[output]:
                 fed.powered = outputs[output]
-        loads = [self.output_current(output) for output in range(board.OUTPUT_COUNT)]
+        # What each output supplies, as output_current says, in one pass over the feeds.
+        loads = [0.0] * board.OUTPUT_COUNT
+        now_on = board.outputs
+        for fed, output in self._feeds:
+            if now_on[output]:
+                loads[output] += fed.supply_current()
         for output, amps in enumerate(loads):
             board.set_supplied_current(output, amps)
         for output, amps in enumerate(loads):

@@ -11,7 +11,9 @@ from j5aio.power_outputs import BRAIN_OUTPUT
 from j5aio.simulator.kit import KitConfig, SimulatedKit
 from j5aio.simulator.loads import (
     BATTERY_INTERNAL_RESISTANCE,
+    MOTOR_BOARD_IDLE_CURRENT,
     MOTOR_FULL_POWER_CURRENT,
+    SERVO_BOARD_IDLE_CURRENT,
     SERVO_HOLDING_CURRENT,
 )
 from j5aio.simulator.sr_motor_fw3 import MotorMode, SRMotorBoardFw3Simulator
@@ -107,6 +109,8 @@ def test_a_servo_board_without_power_answers_but_reports_it_and_moves_nothing() 
 
 def test_a_firmware_2_servo_board_without_power_hangs_and_pulses_nothing() -> None:
     board = SRServoBoardFw2Simulator("SB", has_12v=True)
+    assert board.pulse_widths_us == (None,) * board.SERVO_COUNT  # not initialised yet
+    assert board.supply_current() == pytest.approx(SERVO_BOARD_IDLE_CURRENT)
     board.ctrl_transfer(0x00, 64, 0, 12)  # initialise
     board.ctrl_transfer(0x00, 64, 50, 0)
     assert board.pulse_widths_us[0] == 1750
@@ -117,6 +121,7 @@ def test_a_firmware_2_servo_board_without_power_hangs_and_pulses_nothing() -> No
     assert board.supply_current() == 0.0
     board.powered = True
     assert board.pulse_widths_us[0] == 1750
+    assert board.supply_current() == pytest.approx(12 * SERVO_HOLDING_CURRENT)
 
 
 # --- the kit's wiring ---
@@ -219,7 +224,9 @@ def test_an_output_over_its_limit_trips_and_latches() -> None:
 
 def test_the_whole_board_over_its_limit_switches_every_output_off() -> None:
     definition = KitDefinition(
-        "three", "three motor boards", {"sr-power-fw4": 1, "sr-motor-fw4": 3},
+        "three",
+        "three motor boards",
+        {"sr-power-fw4": 1, "sr-motor-fw4": 3},
         wiring={"sr-motor-fw4": ("H0", "H1", "L0")},
     )
     kit = SimulatedKit(definition, wired=True)
@@ -260,6 +267,93 @@ def test_unplugging_a_fw4_power_board_cuts_its_boards() -> None:
     assert not motor.powered
 
 
+class _CountingPowerBoard(SRPowerBoardFw4Simulator):
+    """A firmware 4 power board that counts the wiring's updates of its loads."""
+
+    def __init__(self, serial: str) -> None:
+        self.load_updates = 0
+        super().__init__(serial)
+
+    def set_supplied_current(self, output: int, amps: float) -> None:
+        self.load_updates += 1
+        super().set_supplied_current(output, amps)
+
+
+def _reported_ma(power: SRPowerBoardFw4Simulator, output: int) -> int:
+    """The current the board reports on ``output``, in mA (as the host reads it)."""
+    return int(power.receive(f"OUT:{output}:I?\n".encode()))
+
+
+def _counted_kit() -> tuple[_CountingPowerBoard, SRMotorBoardFw4Simulator, KitWiring]:
+    power = _CountingPowerBoard("PB")
+    motor = SRMotorBoardFw4Simulator("MB")
+    return power, motor, KitWiring(power, [(motor, 0)])
+
+
+def test_a_change_that_leaves_outputs_power_and_loads_alone_updates_nothing() -> None:
+    power, motor, _ = _counted_kit()
+    power.receive(b"OUT:0:SET:1\n")
+    assert motor.powered
+    power.load_updates = 0
+    power.receive(b"BATT:V?\n")  # readings: nothing the wiring follows changes
+    motor.receive(b"*IDN?\n")
+    motor.receive(b"MOT:0:SET:0\n")  # a motor at 0 draws nothing more
+    assert power.load_updates == 0
+
+
+def test_each_change_of_an_output_or_a_load_updates_the_wiring() -> None:
+    power, motor, wiring = _counted_kit()
+    power.receive(b"OUT:0:SET:1\n")
+    power.load_updates = 0
+    motor.receive(b"MOT:0:SET:1000\n")  # the motor draws: the load changes
+    assert power.load_updates == power.OUTPUT_COUNT
+    assert wiring.output_current(0) == pytest.approx(motor.supply_current())
+    assert _reported_ma(power, 0) == round(motor.supply_current() * 1000)
+    power.receive(b"OUT:0:SET:0\n")  # the output goes off: the board loses its power
+    assert not motor.powered
+    assert _reported_ma(power, 0) == 0
+
+
+def test_a_motor_told_what_it_draws_loads_its_output_at_once() -> None:
+    power, motor, _ = _counted_kit()
+    power.receive(b"OUT:0:SET:1\n")
+    motor.receive(b"MOT:0:SET:1000\n")
+    motor.set_motor_current(0, 5.0)  # (a test's stalled motor)
+    assert motor.supply_current() == pytest.approx(5.0 + MOTOR_BOARD_IDLE_CURRENT)
+    assert _reported_ma(power, 0) == round(motor.supply_current() * 1000)
+    fw3 = SRMotorBoardFw3Simulator("MB3")
+    heard: list[bool] = []
+    fw3.listen(lambda: heard.append(True))
+    fw3.set_motor_current(0, 2.0)
+    assert heard == [True]
+
+
+def test_only_the_board_that_changed_is_looked_at() -> None:
+    power = _CountingPowerBoard("PB")
+    motors = [SRMotorBoardFw4Simulator(f"MB{i}") for i in range(2)]
+    KitWiring(power, [(motors[0], 0), (motors[1], 1)])
+    power.receive(b"OUT:0:SET:1\n")
+    power.receive(b"OUT:1:SET:1\n")
+    motors[0].receive(b"MOT:0:SET:1000\n")
+    power.load_updates = 0
+    motors[1].receive(b"*IDN?\n")  # the other board: unchanged
+    power.receive(b"BATT:I?\n")
+    assert power.load_updates == 0
+    motors[1].receive(b"MOT:1:SET:-500\n")
+    assert power.load_updates == power.OUTPUT_COUNT
+    assert _reported_ma(power, 1) == round(motors[1].supply_current() * 1000)
+
+
+def test_sync_updates_even_when_nothing_seems_changed() -> None:
+    power, motor, wiring = _counted_kit()
+    power.receive(b"OUT:0:SET:1\n")
+    power.set_supplied_current(0, 9.0)  # set behind the wiring's back
+    power.load_updates = 0
+    wiring.sync()
+    assert power.load_updates == power.OUTPUT_COUNT
+    assert _reported_ma(power, 0) == round(motor.supply_current() * 1000)
+
+
 def test_closing_the_wiring_stops_following_the_boards() -> None:
     kit = SimulatedKit(wired=True)
     assert kit.wiring is not None
@@ -292,7 +386,9 @@ def test_the_default_wiring_puts_motors_on_h_and_servos_on_l_outputs() -> None:
 
 def test_a_kit_definition_wires_and_numbers_its_boards() -> None:
     definition = KitDefinition(
-        "ours", "our robot", {"sr-power-fw4": 1, "sr-motor-fw4": 2, "sr-servo-fw4": 1},
+        "ours",
+        "our robot",
+        {"sr-power-fw4": 1, "sr-motor-fw4": 2, "sr-servo-fw4": 1},
         wiring={"sr-motor-fw4": ("L1", 5)},
         serials={"sr-motor-fw4": ("SR0UK1L", "SR0AB12"), "sr-power-fw4": ("SRPB1",)},
     )
@@ -307,8 +403,10 @@ def test_a_kit_definition_wires_and_numbers_its_boards() -> None:
 
 def test_wiring_to_an_output_the_power_board_lacks_is_an_error() -> None:
     definition = KitDefinition(
-        "five-volt", "a motor board on the 5 V rail of a fw 3 board",
-        {"sr-power": 1, "sr-motor": 1}, wiring={"sr-motor": ("5V",)},
+        "five-volt",
+        "a motor board on the 5 V rail of a fw 3 board",
+        {"sr-power": 1, "sr-motor": 1},
+        wiring={"sr-motor": ("5V",)},
     )
     with pytest.raises(ValueError, match="no output '5V'"):
         SimulatedKit(definition, wired=True)
@@ -329,8 +427,10 @@ def test_kit_wiring_checks_its_outputs() -> None:
 
 def test_two_boards_with_one_serial_number_are_an_error() -> None:
     definition = KitDefinition(
-        "twins", "a given serial number that another board makes",
-        {"sr-motor-fw4": 1, "sr-servo-fw4": 1}, serials={"sr-motor-fw4": ("SIMSB0",)},
+        "twins",
+        "a given serial number that another board makes",
+        {"sr-motor-fw4": 1, "sr-servo-fw4": 1},
+        serials={"sr-motor-fw4": ("SIMSB0",)},
     )
     with pytest.raises(ValueError, match="serial number 'SIMSB0'"):
         SimulatedKit(definition)

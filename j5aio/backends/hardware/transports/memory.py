@@ -8,6 +8,7 @@ runs the real hardware backends and protocol codecs without hardware.
 
 from __future__ import annotations
 
+import asyncio
 import time
 from collections import deque
 from typing import Protocol, runtime_checkable
@@ -243,23 +244,58 @@ class SimulatorStream(ByteStream):
         if max_bytes < 1:
             raise ValueError(f"max_bytes must be at least 1, not {max_bytes}")
         await anyio.lowlevel.checkpoint()
+        return await self._receive_after_checkpoint(max_bytes)
+
+    async def receive_by(self, deadline: float, max_bytes: int = 4096) -> bytes | None:
+        """As :meth:`receive`, but ``None`` if nothing has come by ``deadline``.
+
+        See :meth:`.ByteStream.receive_by`. A reply already due when the caller's turn
+        comes back (the usual case: a simulator answers at once) is returned with no
+        cancel scope; a wait for one runs in a scope with that deadline, as the default's.
+        """
+        if max_bytes < 1:
+            raise ValueError(f"max_bytes must be at least 1, not {max_bytes}")
+        await anyio.lowlevel.checkpoint()
+        if asyncio.get_running_loop().time() >= deadline:
+            return None  # (as the default's scope, whose deadline has passed, would say)
+        due = self._take_if_due(max_bytes)
+        if due is not None:
+            return due
+        with anyio.CancelScope(deadline=deadline):
+            return await self._receive_after_checkpoint(max_bytes)
+        return None
+
+    def _take_if_due(self, max_bytes: int) -> bytes | None:
+        """Up to ``max_bytes`` of the output due now, or ``None`` if none is.
+
+        :raises BoardDisconnectionError: the simulated board is disconnected, or the
+            stream is closed.
+        """
         simulator = self._simulator
-        while True:
-            if (
-                self._closed
-                or not simulator.connected
-                or getattr(simulator, "connection", None) != self._connection
-            ):
-                self._check_usable()  # raises, saying why
+        if (
+            self._closed
+            or not simulator.connected
+            or getattr(simulator, "connection", None) != self._connection
+        ):
+            self._check_usable()  # raises, saying why
+        pending = self._pending
+        if pending:
             now = time.monotonic()
-            pending = self._pending
-            if pending and pending[0][0] <= now:
+            if pending[0][0] <= now:
                 if len(pending) == 1 and len(pending[0][1]) <= max_bytes:
                     return bytes(pending.popleft()[1])  # one reply, whole (the usual case)
                 return self._take_due(now, max_bytes)
+        return None
+
+    async def _receive_after_checkpoint(self, max_bytes: int) -> bytes:
+        """:meth:`receive` once its checkpoint is passed: wait until output is due."""
+        while True:
+            due = self._take_if_due(max_bytes)
+            if due is not None:
+                return due
             wait = self._poll_interval
             if self._pending:
-                wait = min(wait, self._pending[0][0] - now)
+                wait = min(wait, self._pending[0][0] - time.monotonic())
             self._wakeup = anyio.Event()
             with anyio.move_on_after(wait):
                 await self._wakeup.wait()

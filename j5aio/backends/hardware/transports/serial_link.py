@@ -407,32 +407,71 @@ class SerialLink(AsyncResource):
         await anyio.lowlevel.checkpoint_if_cancelled()  # a cancelled caller takes nothing
         await self._lock.acquire()
         try:
-            with anyio.CancelScope(shield=True):
-                if self.unconfirmed is not None:
-                    await self._confirm_locked()
-                if self._closed:
-                    raise BoardDisconnectionError(f"{self._name}: the link is closed")
-                finished = False
-                try:
-                    if self._dirty and self._can_resync:
-                        await self._resync_locked()
-                    with anyio.move_on_after(seconds):
-                        await self._write(data)
-                        finished = True
-                    if not finished:
-                        raise CommunicationTimeoutError(
-                            f"{self._name}: could not send {_preview(data)} within {seconds} s"
-                        )
-                finally:
-                    if not finished:
-                        self._dirty = True
+            if (
+                data
+                and self.unconfirmed is None
+                and not self._dirty
+                and not self._closed
+                and self._send_at_once(data)
+            ):
+                # (a link in step, on a stream that took the bytes with no wait: nothing
+                # was awaited, so nothing needed a shield or a deadline)
                 if then is not None:
                     then()
+            else:
+                await self._send_held(data, seconds, then)
         finally:
             self._lock.release()
         # Writing does not wait, so yield here: like every call to the board, a send is a
         # checkpoint, and a loop of sends leaves the event loop (signals, other tasks) room.
         await anyio.lowlevel.checkpoint()
+
+    def _send_at_once(self, data: bytes) -> bool:
+        """Write ``data`` if the stream takes it with no wait (lock held, link in step).
+
+        ``False``: nothing was sent (the stream would have to wait).
+
+        :raises BoardDisconnectionError: the port has gone.
+        :raises CommunicationError: writing failed (the link is then out of step).
+        """
+        try:
+            sent = self._stream.send_nowait(data)
+        except BaseException as exc:
+            self._dirty = True  # a stream sends all or nothing, but be safe
+            if self._wire.isEnabledFor(TRACE):
+                log_wire(self._wire, "->", data)
+            if isinstance(exc, _WRITE_ERRORS) and not isinstance(exc, CommunicationError):
+                raise self._write_failed(exc, data) from exc
+            raise
+        if sent and self._wire.isEnabledFor(TRACE):
+            log_wire(self._wire, "->", data)
+        return sent
+
+    async def _send_held(
+        self, data: bytes, seconds: float, then: Callable[[], None] | None
+    ) -> None:
+        """:meth:`send` with the lock held, when the bytes did not go at once."""
+        with anyio.CancelScope(shield=True):
+            if self.unconfirmed is not None:
+                await self._confirm_locked()
+            if self._closed:
+                raise BoardDisconnectionError(f"{self._name}: the link is closed")
+            finished = False
+            try:
+                if self._dirty and self._can_resync:
+                    await self._resync_locked()
+                with anyio.move_on_after(seconds):
+                    await self._write(data)
+                    finished = True
+                if not finished:
+                    raise CommunicationTimeoutError(
+                        f"{self._name}: could not send {_preview(data)} within {seconds} s"
+                    )
+            finally:
+                if not finished:
+                    self._dirty = True
+            if then is not None:
+                then()
 
     @overload
     async def exchange(

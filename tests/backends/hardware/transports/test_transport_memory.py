@@ -426,3 +426,39 @@ async def test_a_simulator_stream_sends_synchronously() -> None:
     stream.close_now()
     with pytest.raises(BoardDisconnectionError, match="closed"):
         stream.send_now(b"x", 0.1)
+
+
+async def test_simulator_stream_receive_by_takes_a_due_reply_after_a_checkpoint() -> None:
+    stream = SimulatorStream(EchoSimulator(banner=b""), time_scale=0)
+    stream.send_nowait(b"ping\n")
+    with anyio.CancelScope() as scope:
+        scope.cancel()  # a checkpoint comes first: a cancelled caller takes nothing
+        await stream.receive_by(anyio.current_time() + 1)
+    assert await stream.receive_by(anyio.current_time() + 1, 2) == b"PI"
+    assert await stream.receive_by(anyio.current_time() + 1) == b"NG\n"
+
+
+async def test_simulator_stream_receive_by_waits_for_output_not_yet_due() -> None:
+    simulator = EchoSimulator(banner=b"", baudrate=10_000)  # 1 ms a byte
+    stream = SimulatorStream(simulator, uart_timing=True)
+    stream.send_nowait(b"0123456789")
+    assert await stream.receive_by(anyio.current_time() + 0.001) is None  # not yet
+    assert await stream.receive_by(anyio.current_time() + 5) == b"0123456789"
+
+
+async def test_simulator_stream_receive_by_says_none_once_its_deadline_has_passed() -> None:
+    stream = SimulatorStream(EchoSimulator(banner=b""), time_scale=0)
+    stream.send_nowait(b"late\n")
+    assert await stream.receive_by(anyio.current_time() - 1) is None  # as the default says
+    assert await stream.receive_by(anyio.current_time() + 1) == b"LATE\n"  # still there
+    assert await stream.receive_by(anyio.current_time() + 0.01) is None  # nothing more
+
+
+async def test_simulator_stream_receive_by_refuses_bad_sizes_and_dead_boards() -> None:
+    simulator = EchoSimulator(banner=b"")
+    stream = SimulatorStream(simulator)
+    with pytest.raises(ValueError, match="max_bytes"):
+        await stream.receive_by(anyio.current_time() + 1, 0)
+    simulator.unplug()
+    with pytest.raises(BoardDisconnectionError, match="disconnected"):
+        await stream.receive_by(anyio.current_time() + 1)

@@ -437,6 +437,19 @@ async def test_an_exchange_whose_bytes_fail_at_once_is_logged_and_mapped(
     assert [r.getMessage() for r in records] == ["-> b'x\\n'"]
 
 
+async def test_a_send_whose_bytes_fail_at_once_is_logged_and_leaves_the_link_dirty(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    link = SerialLink(BrokenNowaitStream(OSError(5, "Input/output error"), on_send=True), name="s")
+    caplog.set_level(TRACE, logger="j5aio.wire")
+    ran: list[bool] = []
+    with pytest.raises(CommunicationError, match="Input/output error"):
+        await link.send(b"x\n", timeout=1, then=lambda: ran.append(True))
+    assert link.is_dirty
+    assert not ran  # nothing went: what a backend remembers is not updated
+    assert [r.getMessage() for r in caplog.records if r.name == "j5aio.wire.s"] == ["-> b'x\\n'"]
+
+
 async def _write_by(link: SerialLink, how: str) -> None:
     """Write ``x`` through one of the paths that write without reading a reply."""
     if how == "send":
