@@ -94,6 +94,7 @@ NOT_NEEDED_TO_START = {
     "j5aio.components._first": "nothing waits for the start button",
     "j5aio._timedelta": "no duration is given or read (a piezo's, an ultrasound echo's)",
     "_datetime": "no duration is given or read (timedelta's C module)",
+    "j5aio.components._notes": "no note is named (the piezo's Note enum is made on first use)",
 }
 
 STARTED_ROBOT = FORGET_DATETIME + (
@@ -225,6 +226,7 @@ LEFT_TO_THEIR_USERS = {
     "j5aio.components._first": "waiting for the start button",
     "j5aio._timedelta": "a piezo's note, or an ultrasound sensor's echo",
     "_datetime": "a piezo's note, or an ultrasound sensor's echo (timedelta's C module)",
+    "j5aio.components._notes": "a program naming a note (Note.A6)",
 }
 
 SYNC_ROBOT = FORGET_DATETIME + (

@@ -1,8 +1,9 @@
 """Piezo sounders: a buzzer that plays a pitch for a duration.
 
 (:class:`datetime.timedelta`, in which durations are given, is imported when a duration
-is first handled: a program that starts a robot and never buzzes does not load its C
-module.)
+is first handled, and :class:`Note` is made when it is first looked up: a program that
+starts a robot and never buzzes does not load the one's C module or make the other's
+fifteen enum members.)
 """
 
 from __future__ import annotations
@@ -10,7 +11,6 @@ from __future__ import annotations
 import math
 import sys
 from abc import abstractmethod
-from enum import Enum
 from typing import TYPE_CHECKING, Any, ClassVar
 
 import anyio
@@ -21,39 +21,13 @@ from j5aio.components.identified import IdentifiedComponent
 
 if TYPE_CHECKING:
     from j5aio._timedelta import timedelta
+    from j5aio.components._notes import Note
 elif "_datetime" in sys.modules:
     # Loaded already (by the program, or by the docs' build): binding it costs nothing,
     # and annotations read at run time (typing.get_type_hints) then resolve.
     from j5aio._timedelta import timedelta
 
 __all__ = ["Duration", "Note", "Piezo", "PiezoInterface", "Pitch"]
-
-
-class Note(float, Enum):
-    """Musical notes in the sixth and seventh octaves, in hertz (with j5's values)."""
-
-    C6 = 1047.0
-    D6 = 1174.7
-    E6 = 1318.5
-    F6 = 1396.9
-    G6 = 1568.0
-    A6 = 1760.0
-    B6 = 1975.5
-    C7 = 2093.0
-    D7 = 2349.3
-    E7 = 2637.0
-    F7 = 2793.8
-    G7 = 3136.0
-    A7 = 3520.0
-    B7 = 3951.1
-    C8 = 4186.0
-
-    def __str__(self) -> str:
-        return self.name
-
-
-Pitch = int | float | Note
-"""A pitch: a frequency in hertz, or a :class:`Note`."""
 
 
 class _Milliseconds:
@@ -99,14 +73,25 @@ class PiezoInterface(Interface):
 if TYPE_CHECKING:
     Duration = int | float | timedelta
     """How long to buzz: a number of seconds, or a :class:`datetime.timedelta`."""
+
+    Pitch = int | float | Note
+    """A pitch: a frequency in hertz, or a :class:`Note`."""
 else:
 
-    def __getattr__(name: str) -> Any:  # PEP 562: Duration, made when first looked up
-        if name != "Duration":
-            raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-        from j5aio._timedelta import timedelta
+    def __getattr__(name: str) -> Any:  # PEP 562: Note and the aliases, made when looked up
+        if name == "Note":
+            from j5aio.components._notes import Note
 
-        value = globals()["Duration"] = int | float | timedelta
+            value = Note
+        elif name == "Pitch":
+            value = int | float | __getattr__("Note")
+        elif name == "Duration":
+            from j5aio._timedelta import timedelta
+
+            value = int | float | timedelta
+        else:
+            raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+        globals()[name] = value
         return value
 
     def __dir__() -> list[str]:
@@ -157,6 +142,8 @@ class Piezo(IdentifiedComponent[PiezoInterface]):
         length = self._as_timedelta(duration)
         self.verify_duration(length)
         self.verify_pitch(pitch)
+        from j5aio.components._notes import Note  # (loaded already if pitch is one)
+
         frequency = pitch if isinstance(pitch, Note) else float(pitch)
         self._check_playable(length, frequency)
         await self._backend.buzz(self._identifier, length, frequency)

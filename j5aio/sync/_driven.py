@@ -59,7 +59,11 @@ from j5aio.sync._signals import keep_signals_for_the_main_thread, watch_signals_
 
 __all__ = ["GRACE", "LOOK_AGAIN", "NESTED_CALL", "DrivenLoop"]
 
-LOGGER = logging.getLogger("j5aio.sync")
+
+def _logger() -> logging.Logger:
+    """The facade's logger, looked up when something goes wrong: a start makes none."""
+    return logging.getLogger("j5aio.sync")
+
 
 #: How long the loop may stay idle (the program in its own code) before the keeper runs it.
 GRACE: Final = 0.015
@@ -324,7 +328,7 @@ class DrivenLoop:
                 expiry.cancel()
         if request.state != DONE:
             self._driven = None  # the keeper runs it on to its end
-            LOGGER.error("A cancelled board call did not stop within %.1f s.", CANCEL_GRACE)
+            _logger().error("A cancelled board call did not stop within %.1f s.", CANCEL_GRACE)
 
     def _leave(self, main: bool) -> None:
         """Leave the loop idle; wake the keeper if calls of other threads are waiting."""
@@ -459,9 +463,9 @@ class DrivenLoop:
                 try:
                     self.loop.run_forever()
                 except Exception:  # pragma: no cover - asyncio handles callbacks' errors
-                    LOGGER.exception("The sync facade's event loop failed")
+                    _logger().exception("The sync facade's event loop failed")
                 except BaseException as exc:  # a task raised SystemExit, say
-                    LOGGER.error("The sync facade's event loop was stopped by %r", exc)
+                    _logger().error("The sync facade's event loop was stopped by %r", exc)
                 with self._mutex:
                     if self._stop_asked or self._closing:
                         break  # (a stop nobody asked for, a stale one: drive on)

@@ -70,7 +70,11 @@ __all__ = [
     "shutdown",
 ]
 
-LOGGER = logging.getLogger(__name__)
+
+def _logger() -> logging.Logger:
+    """The runtime's logger, looked up when something goes wrong: a start makes none."""
+    return logging.getLogger(__name__)
+
 
 P = ParamSpec("P")
 T = TypeVar("T")
@@ -181,7 +185,7 @@ def _wait(portal: DrivenLoop | LoopThread, request: Call) -> Any:
 
 def _wait_for_cancellation(request: Call) -> None:
     if not _wait_done(request, CANCEL_GRACE):
-        LOGGER.error("A cancelled board call did not stop within %.1f s.", CANCEL_GRACE)
+        _logger().error("A cancelled board call did not stop within %.1f s.", CANCEL_GRACE)
 
 
 def _wait_done(request: Call, timeout: float) -> bool:
@@ -207,7 +211,7 @@ async def _make_safe_and_close() -> None:
             try:
                 await board.close()
             except Exception as exc:
-                LOGGER.error("Could not close %s: %r", board, exc)
+                _logger().error("Could not close %s: %r", board, exc)
 
     async with anyio.create_task_group() as group:
         for board in list(Board.BOARDS):
@@ -236,9 +240,9 @@ def shutdown() -> None:
     try:
         request = portal.submit(_make_safe_and_close())
         if not _wait_done(request, 3 * SHUTDOWN_TIMEOUT):
-            LOGGER.error("Boards were not made safe within %.1f s.", 3 * SHUTDOWN_TIMEOUT)
+            _logger().error("Boards were not made safe within %.1f s.", 3 * SHUTDOWN_TIMEOUT)
         elif request.error is not None:
-            LOGGER.error("Could not make the boards safe: %r", request.error)
+            _logger().error("Could not make the boards safe: %r", request.error)
     finally:
         portal.stop(SHUTDOWN_TIMEOUT)
 
@@ -248,7 +252,7 @@ def _close_driven(portal: DrivenLoop) -> None:
     try:
         error = portal.close(_make_safe_and_close(), 3 * SHUTDOWN_TIMEOUT)
     except TimeoutError:
-        LOGGER.error("Boards were not made safe within %.1f s.", 3 * SHUTDOWN_TIMEOUT)
+        _logger().error("Boards were not made safe within %.1f s.", 3 * SHUTDOWN_TIMEOUT)
     else:
         if error is not None:
-            LOGGER.error("Could not make the boards safe: %r", error)
+            _logger().error("Could not make the boards safe: %r", error)

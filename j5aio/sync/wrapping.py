@@ -45,7 +45,6 @@ __all__ = [
 ]
 
 K = TypeVar("K")
-W = TypeVar("W", bound="SyncWrapper")
 V = TypeVar("V")
 
 #: core class -> wrapper class (subclasses of a registered class are added on first use).
@@ -105,6 +104,10 @@ class SyncWrapper:
 
     def __repr__(self) -> str:
         return f"<sync {self._core!r}>"
+
+
+#: (Bound to the class itself, defined above: a bound named by a string is compiled.)
+W = TypeVar("W", bound=SyncWrapper)
 
 
 def _no_such_attribute(wrapper: SyncWrapper, name: str) -> str:
@@ -175,9 +178,7 @@ def _import_wrapper_modules(cls: type) -> bool:
     return bool(modules)
 
 
-def _register_pending(
-    *, importing: bool = False, only: Collection[type] | None = None
-) -> None:
+def _register_pending(*, importing: bool = False, only: Collection[type] | None = None) -> None:
     """Register the classes of :func:`register_later` whose modules are imported.
 
     :param importing: import the modules of the others first.

@@ -30,6 +30,8 @@ A function whose signature uses a type variable bound to a wrapped class
 ``beekit.sync.BeeBoard``, get a ``BoardGroup[BeeBoard]``), with one extra ``@overload``
 per core class of the module being generated (pass ``j5aio.boards.sr.v4.MotorBoard``, get
 a ``BoardGroup[j5aio.sync.MotorBoard]``), so that the type checker knows the exact wrapper.
+The overloads are written under ``if TYPE_CHECKING:``: they are for type checkers alone,
+and a module importing the facade does not make a function for each of them.
 
 The generator is a package of small private modules, one job each: ``_scope`` (what to
 wrap), ``_discovery`` (finding it), ``_namespace`` (resolving annotations), ``_renderer``

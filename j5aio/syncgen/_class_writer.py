@@ -146,9 +146,7 @@ class _ClassWriter:
             "class": f"{self.r.core_ref(self.cls)}.{name}",
             "static": f"{self.r.core_ref(self.cls)}.{name}",
         }[kind]
-        decorator = {"instance": [], "class": ["@classmethod"], "static": ["@staticmethod"]}[
-            kind
-        ]
+        decorator = {"instance": [], "class": ["@classmethod"], "static": ["@staticmethod"]}[kind]
         hints = self.hints(func)
         found: set[typing.TypeVar] = set()
         for key, annotation in hints.items():
@@ -165,18 +163,28 @@ class _ClassWriter:
             # here, then the bound's core class for any other core class.
             bound = typing.cast(type, var.__bound__)
             choices: list[Any] = [
-                _SyncVar(var), *self.wrapped_typevar_choices(var), bound,
+                _SyncVar(var),
+                *self.wrapped_typevar_choices(var),
+                bound,
             ]
+            # The overloads are for type checkers alone: at run time the class would only
+            # make (and the typing module record) a function per board class at import.
+            lines.append(f"    if {self.r.typing_ref('TYPE_CHECKING')}:")
             for choice in choices:
                 decls, _call, returns = self.signature(
-                    func, skip_first=skip_first, subst={var: choice},
+                    func,
+                    skip_first=skip_first,
+                    subst={var: choice},
                 )
-                lines.append(f"    @{self.r.typing_ref('overload')}")
-                lines += [f"    {d}" for d in decorator]
+                lines.append(f"        @{self.r.typing_ref('overload')}")
+                lines += [f"        {d}" for d in decorator]
                 lines += self.def_line(
-                    "    ", name, first + decls, self.r.render(returns, subst={var: choice}),
+                    "        ",
+                    name,
+                    first + decls,
+                    self.r.render(returns, subst={var: choice}),
                 )
-                lines.append("        ...")
+                lines.append("            ...")
                 lines.append("")
             subst: dict[Any, Any] = {var: _Either(bound)}
         else:
@@ -192,7 +200,13 @@ class _ClassWriter:
         return lines
 
     def property_lines(
-        self, name: str, returns: Any, doc: str, expr: str, *, kept: bool = False,
+        self,
+        name: str,
+        returns: Any,
+        doc: str,
+        expr: str,
+        *,
+        kept: bool = False,
     ) -> list[str]:
         """A read-only property ``name`` returning ``expr`` (wrapped if it must be).
 
@@ -214,7 +228,10 @@ class _ClassWriter:
         value = f"_unwrap({value_name})" if self.r.mentions_wrapped(annotation) else value_name
         lines = ["", f"    @{name}.setter"]
         lines += self.def_line(
-            "    ", name, ["self", f"{value_name}: {self.r.render(annotation)}"], "None",
+            "    ",
+            name,
+            ["self", f"{value_name}: {self.r.render(annotation)}"],
+            "None",
         )
         lines.append("        " + body.format(value=value))
         return lines

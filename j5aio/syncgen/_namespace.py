@@ -52,7 +52,26 @@ def _type_checking_imports(module: types.ModuleType) -> dict[str, Any]:
                     _bind_import(statement, namespace)
                 elif isinstance(statement, ast.ImportFrom):
                     _bind_import_from(statement, module, namespace)
+                elif isinstance(statement, ast.Assign | ast.AnnAssign):
+                    _bind_assigned(statement, module, namespace)
     return namespace
+
+
+def _bind_assigned(
+    statement: ast.Assign | ast.AnnAssign,
+    module: types.ModuleType,
+    namespace: dict[str, Any],
+) -> None:
+    """Bind a name assigned for type checkers that the module gives at run time on demand.
+
+    An alias a module makes only when it is first looked up (PEP 562's ``__getattr__``;
+    ``Duration`` and ``Pitch`` of :mod:`j5aio.components.piezo`) is written for type
+    checkers as a plain assignment; looking it up makes it.
+    """
+    targets = statement.targets if isinstance(statement, ast.Assign) else [statement.target]
+    for target in targets:
+        if isinstance(target, ast.Name) and hasattr(module, target.id):  # (else: types only)
+            namespace[target.id] = getattr(module, target.id)
 
 
 def _bind_import(statement: ast.Import, namespace: dict[str, Any]) -> None:
@@ -67,7 +86,9 @@ def _bind_import(statement: ast.Import, namespace: dict[str, Any]) -> None:
 
 
 def _bind_import_from(
-    statement: ast.ImportFrom, module: types.ModuleType, namespace: dict[str, Any],
+    statement: ast.ImportFrom,
+    module: types.ModuleType,
+    namespace: dict[str, Any],
 ) -> None:
     """Bind the names of ``from m import x [as y]`` (relative to ``module`` if need be)."""
     relative = "." * statement.level + (statement.module or "")
@@ -98,6 +119,9 @@ def evaluate(annotation: str, namespace: dict[str, Any]) -> Any:
         return None
     holder = type("Annotation", (), {"__annotations__": {"value": annotation}})
     hints = typing.get_type_hints(
-        holder, globalns=namespace, localns=namespace, include_extras=True,
+        holder,
+        globalns=namespace,
+        localns=namespace,
+        include_extras=True,
     )
     return hints["value"]

@@ -214,3 +214,33 @@ def test_the_duration_alias_is_made_when_looked_up_and_other_names_are_missing()
     assert {"Duration", "Note", "Pitch"} <= set(dir(piezo))
     with pytest.raises(AttributeError, match="has no attribute 'Durations'"):
         getattr(piezo, "Durations")  # noqa: B009 - a name type checkers know is missing
+
+
+def test_note_made_on_first_lookup_is_the_same_enum_everywhere() -> None:
+    import pickle
+    from enum import Enum
+
+    from j5aio import components
+    from j5aio.components import _notes, piezo
+
+    assert piezo.Note is _notes.Note is components.Note is Note
+    assert issubclass(Note, float) and issubclass(Note, Enum)
+    # found, documented and pickled under the name programs import it by
+    assert (Note.__module__, Note.__qualname__) == ("j5aio.components.piezo", "Note")
+    assert pickle.loads(pickle.dumps(Note.A6)) is Note.A6
+    assert str(Note.C8) == "C8" and Note.A6 == 1760.0 and len(Note) == 15
+    assert piezo.Pitch == int | float | Note
+    assert "Note" in vars(piezo) and "Pitch" in vars(piezo)  # made once, then kept
+
+
+async def test_a_pitch_that_is_a_float_enum_but_not_a_note_is_sent_as_a_float() -> None:
+    from enum import Enum
+
+    class Other(float, Enum):
+        LA = 440.0
+
+    backend = RecordingBackend()
+    await Piezo(0, backend).buzz(1, Other.LA)
+    [(_, (_, _, pitch))] = backend.calls
+    assert type(pitch) is float
+    assert pitch == 440.0

@@ -14,7 +14,7 @@ from j5aio.syncgen import _namespace as namespace
 
 from .sync_fakes import ROOT, child_env
 
-SOURCE = '''\
+SOURCE = """\
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -23,7 +23,16 @@ if TYPE_CHECKING:
     from . import sibling
     from .sibling import Thing as Renamed
     from .deeper import leaf
-'''
+
+    Alias = int | str
+    Hidden: type[int] = int
+
+
+def __getattr__(name):  # the alias is made when looked up (Hidden is for types only)
+    if name == "Alias":
+        return int | str
+    raise AttributeError(name)
+"""
 
 
 @pytest.fixture
@@ -55,6 +64,9 @@ def test_the_names_imported_for_type_checkers_are_bound_as_the_imports_would(
     assert bound["Renamed"] is bound["sibling"].Thing
     assert bound["leaf"].VALUE == 1  # a submodule nobody had imported yet
     assert "TYPE_CHECKING" not in bound
+    # an alias assigned for type checkers is bound when the module gives it on demand
+    assert bound["Alias"] == int | str
+    assert "Hidden" not in bound
 
 
 def test_a_module_without_source_binds_nothing() -> None:
@@ -87,8 +99,13 @@ def test_the_package_loads_its_parts_on_first_use() -> None:
         "    print(error)\n"
     )
     result = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, timeout=60,
-        cwd=ROOT, env=child_env(), check=False,
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        cwd=ROOT,
+        env=child_env(),
+        check=False,
     )
     assert result.returncode == 0, result.stderr
     first, second = result.stdout.splitlines()
@@ -99,7 +116,26 @@ def test_the_package_loads_its_parts_on_first_use() -> None:
 def test_python_m_j5aio_syncgen_is_the_command_line(tmp_path: Path) -> None:
     result = subprocess.run(
         [sys.executable, "-m", "j5aio.syncgen", "no_such_module_here", "-o", str(tmp_path / "x")],
-        capture_output=True, text=True, timeout=60, cwd=ROOT, env=child_env(), check=False,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        cwd=ROOT,
+        env=child_env(),
+        check=False,
     )
     assert result.returncode == 2
     assert "sync-gen: " in result.stderr and "no_such_module_here" in result.stderr
+
+
+def test_overloads_are_written_for_type_checkers_only() -> None:
+    import typing
+
+    from j5aio.sync import BoardGroup, KitRobot
+
+    source = (ROOT / "j5aio" / "sync" / "_generated" / "robot.py").read_text(encoding="utf-8")
+    assert "    if TYPE_CHECKING:\n        @overload\n" in source
+    assert "\n    @overload" not in source  # none at class level, made at run time
+    # nothing is recorded at run time; the implementation is what runs
+    assert typing.get_overloads(BoardGroup.get_board_group) == []
+    assert typing.get_overloads(KitRobot.board_group) == []
+    assert callable(BoardGroup.get_board_group)

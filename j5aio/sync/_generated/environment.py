@@ -233,112 +233,116 @@ class Environment(_SyncWrapper):
         """
         return self._core.might_find(_unwrap(board))
 
-    @overload
-    def get_board_group(self, board: type[SyncBoardT]) -> BoardGroup[SyncBoardT]:
-        ...
+    if TYPE_CHECKING:
+        @overload
+        def get_board_group(self, board: type[SyncBoardT]) -> BoardGroup[SyncBoardT]:
+            ...
 
-    @overload
-    def get_board_group(
-        self,
-        board: type[_boards_sr_v4_arduino.SRArduinoBoard],
-    ) -> BoardGroup[SRArduinoBoard]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_sr_v4_arduino.SRArduinoBoard],
+        ) -> BoardGroup[SRArduinoBoard]:
+            ...
 
-    @overload
-    def get_board_group(
-        self,
-        board: type[_boards_sb_arduino_2024.SBArduino2024Board],
-    ) -> BoardGroup[SBArduino2024Board]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_sb_arduino_2024.SBArduino2024Board],
+        ) -> BoardGroup[SBArduino2024Board]:
+            ...
 
-    @overload
-    def get_board_group(
-        self,
-        board: type[_boards_sb_servo_board.SBServoBoard],
-    ) -> BoardGroup[SBServoBoard]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_sb_servo_board.SBServoBoard],
+        ) -> BoardGroup[SBServoBoard]:
+            ...
 
-    @overload
-    def get_board_group(
-        self,
-        board: type[_boards_arduino_all_digital.AllDigitalUno],
-    ) -> BoardGroup[AllDigitalUno]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_arduino_all_digital.AllDigitalUno],
+        ) -> BoardGroup[AllDigitalUno]:
+            ...
 
-    @overload
-    def get_board_group(
-        self,
-        board: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
-    ) -> BoardGroup[MotorBoardFw4]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
+        ) -> BoardGroup[MotorBoardFw4]:
+            ...
 
-    @overload
-    def get_board_group(
-        self,
-        board: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
-    ) -> BoardGroup[PowerBoardFw4]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
+        ) -> BoardGroup[PowerBoardFw4]:
+            ...
 
-    @overload
-    def get_board_group(
-        self,
-        board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
-    ) -> BoardGroup[Ruggeduino]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
+        ) -> BoardGroup[Ruggeduino]:
+            ...
 
-    @overload
-    def get_board_group(
-        self,
-        board: type[_boards_sb_arduino.SBArduinoBoard],
-    ) -> BoardGroup[SBArduinoBoard]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_sb_arduino.SBArduinoBoard],
+        ) -> BoardGroup[SBArduinoBoard]:
+            ...
 
-    @overload
-    def get_board_group(
-        self,
-        board: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
-    ) -> BoardGroup[ServoBoardFw4]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
+        ) -> BoardGroup[ServoBoardFw4]:
+            ...
 
-    @overload
-    def get_board_group(
-        self,
-        board: type[_boards_arduino_uno.ArduinoUno],
-    ) -> BoardGroup[ArduinoUno]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_arduino_uno.ArduinoUno],
+        ) -> BoardGroup[ArduinoUno]:
+            ...
 
-    @overload
-    def get_board_group(self, board: type[_boards_camera.CameraBoard]) -> BoardGroup[CameraBoard]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_camera.CameraBoard],
+        ) -> BoardGroup[CameraBoard]:
+            ...
 
-    @overload
-    def get_board_group(self, board: type[_boards_sr_kch.KCHBoard]) -> BoardGroup[KCHBoard]:
-        ...
+        @overload
+        def get_board_group(self, board: type[_boards_sr_kch.KCHBoard]) -> BoardGroup[KCHBoard]:
+            ...
 
-    @overload
-    def get_board_group(
-        self,
-        board: type[_boards_sr_v4_motor_board.MotorBoard],
-    ) -> BoardGroup[MotorBoard]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_sr_v4_motor_board.MotorBoard],
+        ) -> BoardGroup[MotorBoard]:
+            ...
 
-    @overload
-    def get_board_group(
-        self,
-        board: type[_boards_sr_v4_power_board.PowerBoard],
-    ) -> BoardGroup[PowerBoard]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_sr_v4_power_board.PowerBoard],
+        ) -> BoardGroup[PowerBoard]:
+            ...
 
-    @overload
-    def get_board_group(
-        self,
-        board: type[_boards_sr_v4_servo_board.ServoBoard],
-    ) -> BoardGroup[ServoBoard]:
-        ...
+        @overload
+        def get_board_group(
+            self,
+            board: type[_boards_sr_v4_servo_board.ServoBoard],
+        ) -> BoardGroup[ServoBoard]:
+            ...
 
-    @overload
-    def get_board_group(self, board: type[_boards_board.Board]) -> BoardGroup[Board]:
-        ...
+        @overload
+        def get_board_group(self, board: type[_boards_board.Board]) -> BoardGroup[Board]:
+            ...
 
     def get_board_group(self, board: type[_boards_board.Board | Board]) -> BoardGroup[Board]:
         """Find every ``board`` through each backend this environment has for it.

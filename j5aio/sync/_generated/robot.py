@@ -379,192 +379,193 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
 
     _core: _boards_board_group.BoardGroup[Any]
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[SyncBoardT],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[SyncBoardT]:
-        ...
+    if TYPE_CHECKING:
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[SyncBoardT],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[SyncBoardT]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_sr_v4_arduino.SRArduinoBoard],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[SRArduinoBoard]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_sr_v4_arduino.SRArduinoBoard],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[SRArduinoBoard]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_sb_arduino_2024.SBArduino2024Board],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[SBArduino2024Board]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_sb_arduino_2024.SBArduino2024Board],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[SBArduino2024Board]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_sb_servo_board.SBServoBoard],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[SBServoBoard]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_sb_servo_board.SBServoBoard],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[SBServoBoard]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_arduino_all_digital.AllDigitalUno],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[AllDigitalUno]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_arduino_all_digital.AllDigitalUno],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[AllDigitalUno]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[MotorBoardFw4]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[MotorBoardFw4]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[PowerBoardFw4]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[PowerBoardFw4]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[Ruggeduino]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[Ruggeduino]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_sb_arduino.SBArduinoBoard],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[SBArduinoBoard]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_sb_arduino.SBArduinoBoard],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[SBArduinoBoard]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[ServoBoardFw4]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[ServoBoardFw4]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_arduino_uno.ArduinoUno],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[ArduinoUno]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_arduino_uno.ArduinoUno],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[ArduinoUno]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_camera.CameraBoard],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[CameraBoard]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_camera.CameraBoard],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[CameraBoard]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_sr_kch.KCHBoard],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[KCHBoard]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_sr_kch.KCHBoard],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[KCHBoard]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_sr_v4_motor_board.MotorBoard],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[MotorBoard]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_sr_v4_motor_board.MotorBoard],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[MotorBoard]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_sr_v4_power_board.PowerBoard],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[PowerBoard]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_sr_v4_power_board.PowerBoard],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[PowerBoard]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_sr_v4_servo_board.ServoBoard],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[ServoBoard]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_sr_v4_servo_board.ServoBoard],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[ServoBoard]:
+            ...
 
-    @overload
-    @classmethod
-    def get_board_group(
-        cls,
-        board: type[_boards_board.Board],
-        backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
-        *,
-        ports: Sequence[str] = (),
-    ) -> BoardGroup[Board]:
-        ...
+        @overload
+        @classmethod
+        def get_board_group(
+            cls,
+            board: type[_boards_board.Board],
+            backend: type[_backends_backend.Backend] | Sequence[type[_backends_backend.Backend]],
+            *,
+            ports: Sequence[str] = (),
+        ) -> BoardGroup[Board]:
+            ...
 
     @classmethod
     def get_board_group(
@@ -591,158 +592,159 @@ class BoardGroup(_SyncWrapper, Generic[BoardT]):
         """
         return cast("BoardGroup[Board]", _wrap(_call(_boards_board_group.BoardGroup.get_board_group, _unwrap(board), backend, ports=ports)))
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[SyncBoardT],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+    if TYPE_CHECKING:
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[SyncBoardT],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_sr_v4_arduino.SRArduinoBoard],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_sr_v4_arduino.SRArduinoBoard],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_sb_arduino_2024.SBArduino2024Board],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_sb_arduino_2024.SBArduino2024Board],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_sb_servo_board.SBServoBoard],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_sb_servo_board.SBServoBoard],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_arduino_all_digital.AllDigitalUno],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_arduino_all_digital.AllDigitalUno],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_sr_v4_ruggeduino.Ruggeduino],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_sr_v4_ruggeduino.Ruggeduino],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_sb_arduino.SBArduinoBoard],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_sb_arduino.SBArduinoBoard],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_arduino_uno.ArduinoUno],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_arduino_uno.ArduinoUno],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_camera.CameraBoard],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_camera.CameraBoard],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_sr_kch.KCHBoard],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_sr_kch.KCHBoard],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_sr_v4_motor_board.MotorBoard],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_sr_v4_motor_board.MotorBoard],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_sr_v4_power_board.PowerBoard],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_sr_v4_power_board.PowerBoard],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_sr_v4_servo_board.ServoBoard],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_sr_v4_servo_board.ServoBoard],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
-    @overload
-    @classmethod
-    def of_groups(
-        cls,
-        board_type: type[_boards_board.Board],
-        groups: Sequence[BoardGroup[Any]],
-    ) -> BoardGroup[Any]:
-        ...
+        @overload
+        @classmethod
+        def of_groups(
+            cls,
+            board_type: type[_boards_board.Board],
+            groups: Sequence[BoardGroup[Any]],
+        ) -> BoardGroup[Any]:
+            ...
 
     @classmethod
     def of_groups(
@@ -941,109 +943,113 @@ class KitRobot(BaseRobot):
         """
         _call(self._core.setup)
 
-    @overload
-    def board_group(self, board: type[SyncBoardT]) -> BoardGroup[SyncBoardT]:
-        ...
+    if TYPE_CHECKING:
+        @overload
+        def board_group(self, board: type[SyncBoardT]) -> BoardGroup[SyncBoardT]:
+            ...
 
-    @overload
-    def board_group(
-        self,
-        board: type[_boards_sr_v4_arduino.SRArduinoBoard],
-    ) -> BoardGroup[SRArduinoBoard]:
-        ...
+        @overload
+        def board_group(
+            self,
+            board: type[_boards_sr_v4_arduino.SRArduinoBoard],
+        ) -> BoardGroup[SRArduinoBoard]:
+            ...
 
-    @overload
-    def board_group(
-        self,
-        board: type[_boards_sb_arduino_2024.SBArduino2024Board],
-    ) -> BoardGroup[SBArduino2024Board]:
-        ...
+        @overload
+        def board_group(
+            self,
+            board: type[_boards_sb_arduino_2024.SBArduino2024Board],
+        ) -> BoardGroup[SBArduino2024Board]:
+            ...
 
-    @overload
-    def board_group(
-        self,
-        board: type[_boards_sb_servo_board.SBServoBoard],
-    ) -> BoardGroup[SBServoBoard]:
-        ...
+        @overload
+        def board_group(
+            self,
+            board: type[_boards_sb_servo_board.SBServoBoard],
+        ) -> BoardGroup[SBServoBoard]:
+            ...
 
-    @overload
-    def board_group(
-        self,
-        board: type[_boards_arduino_all_digital.AllDigitalUno],
-    ) -> BoardGroup[AllDigitalUno]:
-        ...
+        @overload
+        def board_group(
+            self,
+            board: type[_boards_arduino_all_digital.AllDigitalUno],
+        ) -> BoardGroup[AllDigitalUno]:
+            ...
 
-    @overload
-    def board_group(
-        self,
-        board: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
-    ) -> BoardGroup[MotorBoardFw4]:
-        ...
+        @overload
+        def board_group(
+            self,
+            board: type[_boards_sr_v4_motor_board_fw4.MotorBoardFw4],
+        ) -> BoardGroup[MotorBoardFw4]:
+            ...
 
-    @overload
-    def board_group(
-        self,
-        board: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
-    ) -> BoardGroup[PowerBoardFw4]:
-        ...
+        @overload
+        def board_group(
+            self,
+            board: type[_boards_sr_v4_power_board_fw4.PowerBoardFw4],
+        ) -> BoardGroup[PowerBoardFw4]:
+            ...
 
-    @overload
-    def board_group(
-        self,
-        board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
-    ) -> BoardGroup[Ruggeduino]:
-        ...
+        @overload
+        def board_group(
+            self,
+            board: type[_boards_sr_v4_ruggeduino.Ruggeduino],
+        ) -> BoardGroup[Ruggeduino]:
+            ...
 
-    @overload
-    def board_group(
-        self,
-        board: type[_boards_sb_arduino.SBArduinoBoard],
-    ) -> BoardGroup[SBArduinoBoard]:
-        ...
+        @overload
+        def board_group(
+            self,
+            board: type[_boards_sb_arduino.SBArduinoBoard],
+        ) -> BoardGroup[SBArduinoBoard]:
+            ...
 
-    @overload
-    def board_group(
-        self,
-        board: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
-    ) -> BoardGroup[ServoBoardFw4]:
-        ...
+        @overload
+        def board_group(
+            self,
+            board: type[_boards_sr_v4_servo_board_fw4.ServoBoardFw4],
+        ) -> BoardGroup[ServoBoardFw4]:
+            ...
 
-    @overload
-    def board_group(self, board: type[_boards_arduino_uno.ArduinoUno]) -> BoardGroup[ArduinoUno]:
-        ...
+        @overload
+        def board_group(
+            self,
+            board: type[_boards_arduino_uno.ArduinoUno],
+        ) -> BoardGroup[ArduinoUno]:
+            ...
 
-    @overload
-    def board_group(self, board: type[_boards_camera.CameraBoard]) -> BoardGroup[CameraBoard]:
-        ...
+        @overload
+        def board_group(self, board: type[_boards_camera.CameraBoard]) -> BoardGroup[CameraBoard]:
+            ...
 
-    @overload
-    def board_group(self, board: type[_boards_sr_kch.KCHBoard]) -> BoardGroup[KCHBoard]:
-        ...
+        @overload
+        def board_group(self, board: type[_boards_sr_kch.KCHBoard]) -> BoardGroup[KCHBoard]:
+            ...
 
-    @overload
-    def board_group(
-        self,
-        board: type[_boards_sr_v4_motor_board.MotorBoard],
-    ) -> BoardGroup[MotorBoard]:
-        ...
+        @overload
+        def board_group(
+            self,
+            board: type[_boards_sr_v4_motor_board.MotorBoard],
+        ) -> BoardGroup[MotorBoard]:
+            ...
 
-    @overload
-    def board_group(
-        self,
-        board: type[_boards_sr_v4_power_board.PowerBoard],
-    ) -> BoardGroup[PowerBoard]:
-        ...
+        @overload
+        def board_group(
+            self,
+            board: type[_boards_sr_v4_power_board.PowerBoard],
+        ) -> BoardGroup[PowerBoard]:
+            ...
 
-    @overload
-    def board_group(
-        self,
-        board: type[_boards_sr_v4_servo_board.ServoBoard],
-    ) -> BoardGroup[ServoBoard]:
-        ...
+        @overload
+        def board_group(
+            self,
+            board: type[_boards_sr_v4_servo_board.ServoBoard],
+        ) -> BoardGroup[ServoBoard]:
+            ...
 
-    @overload
-    def board_group(self, board: type[_boards_board.Board]) -> BoardGroup[Board]:
-        ...
+        @overload
+        def board_group(self, board: type[_boards_board.Board]) -> BoardGroup[Board]:
+            ...
 
     def board_group(self, board: type[_boards_board.Board | Board]) -> BoardGroup[Board]:
         """Return the group of ``board`` that ``boards=`` asked the robot to hold.
