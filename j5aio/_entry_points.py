@@ -220,17 +220,21 @@ def _package_name(distribution: str) -> str:
     return os.path.basename(distribution).rpartition(".")[0].split("-", 1)[0]
 
 
-def _bytes(path: str) -> bytes | None:
+def _bytes(path: str, *, own: bool = False) -> bytes | None:
     """The file's bytes, or None if it cannot be read.
 
     (Read through the file descriptor: a file object costs more than the read, and a
     program reads every distribution's entry points at its start.)
+
+    :param own: read it only if it is a file of this user's that no one else may write.
     """
     try:
         descriptor = os.open(path, os.O_RDONLY)
     except OSError:
         return None
     try:
+        if own and not _owned_by_us_alone(os.fstat(descriptor)):
+            return None
         chunks = []
         while chunk := os.read(descriptor, 65536):
             chunks.append(chunk)
@@ -239,6 +243,12 @@ def _bytes(path: str) -> bytes | None:
     finally:
         os.close(descriptor)
     return b"".join(chunks)
+
+
+def _owned_by_us_alone(status: os.stat_result) -> bool:
+    """Whether a file is this user's and no one else may write it (where users exist)."""
+    getuid = getattr(os, "getuid", None)
+    return getuid is None or (status.st_uid == getuid() and not status.st_mode & 0o022)
 
 
 def _text(path: str) -> str | None:
@@ -353,23 +363,7 @@ def _own_bytes(path: str) -> bytes | None:
     (What a remembered answer names is imported: a file another user could have written
     is not read.)
     """
-    try:
-        descriptor = os.open(path, os.O_RDONLY)
-    except OSError:
-        return None
-    try:
-        status = os.fstat(descriptor)
-        getuid = getattr(os, "getuid", None)
-        if getuid is not None and (status.st_uid != getuid() or status.st_mode & 0o022):
-            return None
-        chunks = []
-        while chunk := os.read(descriptor, 65536):
-            chunks.append(chunk)
-    except OSError:
-        return None
-    finally:
-        os.close(descriptor)
-    return b"".join(chunks)
+    return _bytes(path, own=True)
 
 
 def _remember(

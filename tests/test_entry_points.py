@@ -103,15 +103,20 @@ def test_an_entry_point_naming_nothing_fails_to_load() -> None:
         PluginEntryPoint("x", "json:no_such_function", "pkg").load()
 
 
-def test_a_zip_on_the_path_is_left_to_importlib_metadata(
-    path: Path,
-    monkeypatch: pytest.MonkeyPatch,
-) -> None:
+def put_a_zipped_plugin_on_the_path(path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A zip file holding a distribution with one entry point of test.group, on the path."""
     archive = path / "plugins.zip"
     with zipfile.ZipFile(archive, "w") as zipped:
         zipped.writestr("zipped-1.0.dist-info/entry_points.txt", "[test.group]\nz = zmod:z\n")
         zipped.writestr("zipped-1.0.dist-info/METADATA", "Name: zipped\nVersion: 1.0\n")
     monkeypatch.setattr(sys, "path", [*sys.path, str(archive)])
+
+
+def test_a_zip_on_the_path_is_left_to_importlib_metadata(
+    path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    put_a_zipped_plugin_on_the_path(path, monkeypatch)
     assert ("z", "zmod:z", "zipped") in as_tuples(find("test.group"))
 
 
@@ -313,11 +318,7 @@ def test_a_folder_that_became_a_file_while_being_read_is_left_to_importlib_metad
     path: Path,
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    archive = path / "plugins.zip"
-    with zipfile.ZipFile(archive, "w") as zipped:
-        zipped.writestr("zipped-1.0.dist-info/entry_points.txt", "[test.group]\nz = zmod:z\n")
-        zipped.writestr("zipped-1.0.dist-info/METADATA", "Name: zipped\nVersion: 1.0\n")
-    monkeypatch.setattr(sys, "path", [*sys.path, str(archive)])
+    put_a_zipped_plugin_on_the_path(path, monkeypatch)
     monkeypatch.setattr(_entry_points, "_folder_states", lambda: [])  # (seen as a folder)
     assert ("z", "zmod:z", "zipped") in as_tuples(find("test.group"))
 
