@@ -147,6 +147,11 @@ def _loaded(modules: set[str], name: str) -> bool:
     return any(module == name or module.startswith(f"{name}.") for module in modules)
 
 
+def _those_loaded(table: dict[str, str], modules: set[str]) -> dict[str, str]:
+    """The entries of ``table`` (module: why) whose module, or a submodule, was loaded."""
+    return {name: why for name, why in table.items() if _loaded(modules, name)}
+
+
 @pytest.fixture(scope="module")
 def bare_modules() -> set[str]:
     return _modules_of(BARE)[0]
@@ -155,21 +160,13 @@ def bare_modules() -> set[str]:
 def test_a_robot_on_the_simulated_kit_imports_only_what_it_uses(bare_modules: set[str]) -> None:
     modules, output = _modules_of(ASYNC_ROBOT)
     assert "BOARDS 2 1" in output  # the default kit's motor boards and its camera
-    loaded = {
-        name: why for name, why in NOT_NEEDED.items() if _loaded(modules - bare_modules, name)
-    }
-    assert loaded == {}
+    assert _those_loaded(NOT_NEEDED, modules - bare_modules) == {}
 
 
 def test_a_robot_that_only_starts_loads_no_arena_nor_match(bare_modules: set[str]) -> None:
     modules, output = _modules_of(STARTED_ROBOT)
     assert "BOARDS 2 1" in output
-    loaded = {
-        name: why
-        for name, why in NOT_NEEDED_TO_START.items()
-        if _loaded(modules - bare_modules, name)
-    }
-    assert loaded == {}
+    assert _those_loaded(NOT_NEEDED_TO_START, modules - bare_modules) == {}
 
 
 def test_the_bare_program_is_a_fair_baseline(bare_modules: set[str]) -> None:
@@ -211,10 +208,7 @@ OTHER_KITS_BACKENDS = {
 def test_a_named_kit_imports_the_backends_and_simulators_of_its_own_boards_only(kit: str) -> None:
     modules, output = _modules_of(STARTED_ROBOT, kit)
     assert "BOARDS 1 1" in output
-    loaded = {
-        name: board for name, board in OTHER_KITS_BACKENDS[kit].items() if _loaded(modules, name)
-    }
-    assert loaded == {}
+    assert _those_loaded(OTHER_KITS_BACKENDS[kit], modules) == {}
 
 
 #: Modules a start leaves to the code that uses them (imported inside it), each with what
@@ -239,12 +233,7 @@ SYNC_ROBOT = FORGET_DATETIME + (
 def test_a_sync_robot_loads_what_is_left_to_its_users_no_sooner(bare_modules: set[str]) -> None:
     modules, output = _modules_of(SYNC_ROBOT)
     assert "BOARDS 2 1" in output
-    loaded = {
-        name: why
-        for name, why in LEFT_TO_THEIR_USERS.items()
-        if _loaded(modules - bare_modules, name)
-    }
-    assert loaded == {}
+    assert _those_loaded(LEFT_TO_THEIR_USERS, modules - bare_modules) == {}
 
 
 USING_THEM = FORGET_DATETIME + (

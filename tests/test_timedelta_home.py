@@ -2,17 +2,11 @@
 
 from __future__ import annotations
 
-import subprocess
 import sys
 
 import pytest
 
-
-def _run(program: str) -> list[str]:
-    done = subprocess.run(
-        [sys.executable, "-c", program], capture_output=True, text=True, check=True, timeout=60
-    )
-    return done.stdout.split()
+from tests.fresh_interpreter import printed_words
 
 
 def test_it_is_the_class_of_the_datetime_module() -> None:
@@ -39,7 +33,7 @@ def test_a_start_does_not_run_the_datetime_module() -> None:
         "import datetime\n"
         "print(timedelta is datetime.timedelta)\n"
     )
-    assert _run(program) == ["False", "True"]
+    assert printed_words(program) == ["False", "True"]
 
 
 def test_without_the_c_module_it_comes_from_datetime() -> None:
@@ -50,4 +44,4 @@ def test_without_the_c_module_it_comes_from_datetime() -> None:
         "import datetime\n"
         "print(timedelta is datetime.timedelta, timedelta(seconds=1).total_seconds())\n"
     )
-    assert _run(program) == ["True", "1.0"]
+    assert printed_words(program) == ["True", "1.0"]

@@ -1,7 +1,5 @@
 import dataclasses
 import struct
-import subprocess
-import sys
 from datetime import timedelta
 
 import pytest
@@ -9,6 +7,7 @@ import pytest
 from j5aio.backends.hardware.sr.v4 import power_fw3_codec as codec
 from j5aio.errors import NotSupportedByHardwareError, UnexpectedReplyError
 from tests.dataclass_twins import assert_like_generated
+from tests.fresh_interpreter import printed_words
 
 
 def test_read_commands() -> None:
@@ -87,10 +86,7 @@ def test_the_battery_reading_is_a_dataclass_of_the_codec_made_on_first_use() -> 
         "print(battery in sys.modules)\n"
         "print(codec.parse_battery(bytes(8)).voltage, battery in sys.modules)\n"
     )
-    done = subprocess.run(
-        [sys.executable, "-c", program], capture_output=True, text=True, check=True, timeout=60
-    )
-    assert done.stdout.split() == ["False", "0.0", "True"]
+    assert printed_words(program) == ["False", "0.0", "True"]
 
 
 def test_a_read_command_is_the_generated_dataclass() -> None:

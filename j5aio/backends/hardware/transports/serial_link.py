@@ -128,7 +128,7 @@ import logging
 import math
 import sys
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, Final, NoReturn, TypeGuard, TypeVar, overload
+from typing import TYPE_CHECKING, Any, Final, TypeGuard, TypeVar, overload
 
 import anyio
 import anyio.lowlevel
@@ -437,23 +437,15 @@ class SerialLink(AsyncResource):
         try:
             sent = self._stream.send_nowait(data)
         except BaseException as exc:
-            self._send_nowait_failed(exc, data)
+            self._dirty = True  # a stream sends all or nothing, but be safe
+            if self._wire.isEnabledFor(TRACE):
+                log_wire(self._wire, "->", data)
+            if isinstance(exc, _WRITE_ERRORS) and not isinstance(exc, CommunicationError):
+                raise self._write_failed(exc, data) from exc
+            raise
         if sent and self._wire.isEnabledFor(TRACE):
             log_wire(self._wire, "->", data)
         return sent
-
-    def _send_nowait_failed(self, exc: BaseException, data: bytes) -> NoReturn:
-        """Raise for the stream's failure to take ``data`` at once (the link is then dirty).
-
-        A write error becomes a :class:`~j5aio.errors.CommunicationError` that says
-        which bytes failed (chained to it); anything else is raised as it came.
-        """
-        self._dirty = True  # a stream sends all or nothing, but be safe
-        if self._wire.isEnabledFor(TRACE):
-            log_wire(self._wire, "->", data)
-        if isinstance(exc, _WRITE_ERRORS) and not isinstance(exc, CommunicationError):
-            raise self._write_failed(exc, data) from exc
-        raise exc
 
     async def _send_held(
         self, data: bytes, seconds: float, then: Callable[[], None] | None
@@ -776,15 +768,7 @@ class SerialLink(AsyncResource):
         if not request or self._dirty or self._owed or self._buffer or self._closed:
             return None
         deadline = asyncio.get_running_loop().time() + seconds
-        try:
-            written = self._stream.send_nowait(request)
-        except BaseException as exc:
-            self._send_nowait_failed(exc, request)
-        if not written:
-            return None
-        if self._wire.isEnabledFor(TRACE):
-            log_wire(self._wire, "->", request)
-        return deadline
+        return deadline if self._send_at_once(request) else None
 
     async def _reply_unshielded(
         self,

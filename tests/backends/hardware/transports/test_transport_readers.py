@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-import subprocess
-import sys
 
 import pytest
 
@@ -18,6 +16,7 @@ from j5aio.backends.hardware.transports import (
 from j5aio.backends.hardware.transports.readers import LineReader, LinesUntilReader
 from j5aio.errors import UnexpectedReplyError
 from tests.dataclass_twins import assert_like_generated
+from tests.fresh_interpreter import printed_words
 
 
 def test_read_line_waits_for_the_terminator() -> None:
@@ -138,10 +137,7 @@ def test_importing_the_readers_does_not_make_the_rarer_ones() -> None:
         "from j5aio.backends.hardware.transports.readers import LinesReader\n"
         "print(more in sys.modules, LinesReader.__name__)\n"
     )
-    done = subprocess.run(
-        [sys.executable, "-c", program], capture_output=True, text=True, check=True, timeout=60
-    )
-    assert done.stdout.split() == ["False", "True", "LinesReader"]
+    assert printed_words(program) == ["False", "True", "LinesReader"]
 
 
 def test_the_line_readers_are_the_generated_dataclasses() -> None:
