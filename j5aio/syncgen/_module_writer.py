@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+import ast
 import re
-from collections.abc import Mapping, Sequence, Set
+from collections.abc import Iterable, Mapping, Sequence, Set
 
 from j5aio.syncgen._class_writer import _ClassWriter
 from j5aio.syncgen._discovery import Discovery, discover, existing_wrappers
@@ -101,6 +102,38 @@ def _from_import(module: str, names: list[str], indent: str) -> list[str]:
     return [f"{indent}from {module} import (", *wrapped, f"{indent})"]
 
 
+def _names_read_at_run_time(sources: Iterable[str]) -> set[str]:
+    """The names that the code of ``sources`` reads when it runs, outside its annotations.
+
+    The generated modules start with ``from __future__ import annotations``: an
+    annotation is kept as a string and never evaluated, so a name read by annotations
+    alone is needed by type checkers only.
+    """
+    read: set[str] = set()
+    for source in sources:
+        tree = ast.parse(source)
+        in_annotations: set[int] = set()
+        for node in ast.walk(tree):
+            annotations: list[ast.expr | None] = []
+            if isinstance(node, ast.arg):
+                annotations.append(node.annotation)
+            elif isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
+                annotations.append(node.returns)
+            elif isinstance(node, ast.AnnAssign):
+                annotations.append(node.annotation)
+            for annotation in annotations:
+                if annotation is not None:
+                    in_annotations.update(map(id, ast.walk(annotation)))
+        read.update(
+            node.id
+            for node in ast.walk(tree)
+            if isinstance(node, ast.Name)
+            and isinstance(node.ctx, ast.Load)
+            and id(node) not in in_annotations
+        )
+    return read
+
+
 def _write_class(renderer: _Renderer, cls: type, tables: dict[type, dict[str, str]]) -> str:
     """The source of the wrapper of ``cls``; its members go into ``tables`` for subclasses."""
     inherited: dict[str, str] = {}
@@ -175,6 +208,19 @@ def _assemble(
     wrappers_typed: dict[str, list[str]] = {}
     for name, module in sorted(renderer.wrapper_imports.items()):
         (wrappers_now if name in eager else wrappers_typed).setdefault(module, []).append(name)
+    own_names: dict[str, set[str]] = {}  # names imported from j5aio's own modules
+    for name, module in renderer.name_imports.items():
+        if module.startswith("j5aio."):
+            own_names.setdefault(module, set()).add(name)
+    # In j5aio's own facade, a name of the core read by annotations alone (a
+    # ``timedelta``, say) is imported for type checkers only: its module is not loaded
+    # with the wrappers. (A kit's module imports them all.)
+    read = _names_read_at_run_time([*bodies, *functions]) if discovery.scope.is_core else None
+    for module, names in own_names.items():
+        typed_only = sorted(names - read) if read is not None else []
+        if typed_only:
+            names.difference_update(typed_only)
+            wrappers_typed.setdefault(module, []).extend(typed_only)
     if lazy or environment_decls or wrappers_typed:
         renderer.used_typing.add("TYPE_CHECKING")
     future = "from __future__ import annotations"
@@ -182,10 +228,9 @@ def _assemble(
     by_module: dict[str, set[str]] = {}
     if renderer.used_typing:
         by_module["typing"] = set(renderer.used_typing)
-    own_names: dict[str, set[str]] = {}  # names imported from j5aio's own modules
     for name, module in renderer.name_imports.items():
-        into = own_names if module.startswith("j5aio.") else by_module
-        into.setdefault(module, set()).add(name)
+        if not module.startswith("j5aio."):
+            by_module.setdefault(module, set()).add(name)
     for module, names in sorted(by_module.items()):
         ordered = sorted(names, key=_export_order)
         out.append(f"from {module} import {', '.join(ordered)}")
@@ -193,7 +238,7 @@ def _assemble(
     for module, alias in sorted(renderer.module_aliases.items()):
         if alias not in lazy:
             out.append(f"import {module} as {alias}")
-    own_imports: dict[str, list[str]] = {m: sorted(n) for m, n in own_names.items()}
+    own_imports: dict[str, list[str]] = {m: sorted(n) for m, n in own_names.items() if n}
     if lazy:
         own_imports.setdefault("j5aio._lazy", []).append("lazy_modules as _lazy_modules")
     for module, imported in wrappers_now.items():

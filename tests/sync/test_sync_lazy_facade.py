@@ -146,3 +146,30 @@ def test_a_class_without_a_wrapper_module_is_left_as_it_is() -> None:
         pass
 
     assert wrapping.wrap(plain := Plain()) is plain
+
+
+def test_the_component_wrappers_load_no_module_their_annotations_alone_name() -> None:
+    # ``timedelta`` is named by the piezo's and the ultrasound sensor's annotations only:
+    # the wrappers load neither it nor the C module it comes from.
+    loaded = _run(
+        "import sys\n"
+        "from j5aio.sync import Piezo, UltrasoundSensor\n"
+        "print(sorted(m for m in ('_datetime', 'datetime', 'j5aio._timedelta')"
+        " if m in sys.modules))\n"
+    )
+    assert loaded == "[]"
+
+
+def test_only_names_read_outside_annotations_are_read_at_run_time() -> None:
+    from j5aio.syncgen._module_writer import _names_read_at_run_time
+
+    source = (
+        "class Wrapper(Base):\n"
+        "    LIMIT: ClassVar[Span] = Default.LIMIT\n"
+        "    def play(self, duration: Span | int = NONE, *more: Extra, **kw: Keyed) -> Result:\n"
+        "        value: Local = convert(duration)\n"
+        "        return cast('Result', value)\n"
+    )
+    assert _names_read_at_run_time([source]) == {
+        "Base", "Default", "NONE", "convert", "cast", "value", "duration",
+    }

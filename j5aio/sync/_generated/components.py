@@ -14,7 +14,6 @@ from collections.abc import Iterator, Mapping, Set
 from typing import TYPE_CHECKING, Any, ClassVar, Generic, TypeVar, cast
 
 from j5aio._lazy import lazy_modules as _lazy_modules
-from j5aio._timedelta import timedelta
 from j5aio.sync._generated.robot import Component, DerivedComponent, IdentifiedComponent
 from j5aio.sync.wrapping import SyncWrapper as _SyncWrapper
 from j5aio.sync.wrapping import adopt_into as _adopt_into
@@ -37,6 +36,7 @@ if TYPE_CHECKING:
     import j5aio.components.power_output as _components_power_output
     import j5aio.components.servo as _components_servo
     import j5aio.components.string_command as _components_string_command
+    from j5aio._timedelta import timedelta
 else:
     _lazy_modules(globals(), {
         "_backends_backend": "j5aio.backends.backend",
