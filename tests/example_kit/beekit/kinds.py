@@ -5,8 +5,6 @@ from __future__ import annotations
 
 from j5aio.board_kinds import BoardKind, KitDefinition, SimulatorClass, SimulatorEntry
 
-from .boards import BeeBoard
-
 __all__ = ["entries"]
 
 
@@ -15,10 +13,11 @@ def entries() -> list[BoardKind | KitDefinition]:
     return [
         BoardKind(
             name="bee-fw2",
-            board=BeeBoard,
+            board="beekit.boards:BeeBoard",
             description="Bee Board, firmware 2 (two motors, an LED and a button; serial)",
-            # Backends and simulators named by import path are imported only when a
-            # program uses a Bee Board, not by every j5aio program that loads the plugins.
+            # The board, backends and simulators named by import path are imported only
+            # when a program uses a Bee Board, not by every j5aio program that loads the
+            # plugins.
             hardware="beekit.backend:BeeBackend",
             console="beekit.console:BeeConsoleBackend",
             simulated="beekit.sim_backend:BeeSimulatedBackend",
