@@ -5,6 +5,7 @@ from __future__ import annotations
 import functools
 import inspect
 import logging
+import weakref
 from abc import ABCMeta, abstractmethod
 from collections.abc import Callable, Coroutine, Sequence
 from typing import Any, ClassVar, Generic
@@ -100,37 +101,10 @@ def _logged(
     method_name: str,
     logger: logging.Logger,
 ) -> Callable[..., Coroutine[Any, Any, Any]]:
-    # The signature is worked out the first time a call is observed or logged, not when
-    # the class is made: that is rare, and every backend class made on a start would pay
-    # for it.
-    signature: inspect.Signature | None = None
-
-    def signature_of() -> inspect.Signature:
-        nonlocal signature
-        if signature is None:
-            signature = inspect.signature(method)
-        return signature
-
-    async def observed(args: tuple[Any, ...], kwargs: dict[str, Any]) -> Any:
-        backend = args[0]
-        if backend._acknowledges_later and backend._link.unconfirmed is not None:
-            # An earlier command's reply is still to be read (it was confirmed later): read
-            # it first, so that what the backend remembers of its board is up to date.
-            await backend.confirm_acknowledgement()
-        try:
-            result = await method(*args, **kwargs)
-        except Exception as error:
-            if CALL_OBSERVERS:
-                _tell_observers(signature_of, method_name, args, kwargs, None, error)
-            raise
-        if CALL_OBSERVERS:
-            _tell_observers(signature_of, method_name, args, kwargs, result, None)
-        if logger.isEnabledFor(logging.DEBUG):
-            arguments = signature_of().bind(*args, **kwargs).arguments
-            shown = ", ".join(f"{k}={v!r}" for k, v in arguments.items() if k != "self")
-            suffix = f" -> {result!r}" if result is not None else ""
-            logger.debug("%s(%s)%s", method_name, shown, suffix)
-        return result
+    # One function per interface method, and no more: what a call does round the backend's
+    # coroutine, when it does anything, is _observed's (every backend class made on a
+    # start wraps each of its interface methods, so each closure made here is paid for
+    # on every start, once per method).
 
     # Not a coroutine function itself: when there is nothing to do round the call (no
     # acknowledgement owed, no observer, no debug log) it hands over the backend's own
@@ -144,7 +118,7 @@ def _logged(
             or (backend._acknowledges_later and backend._link.unconfirmed is not None)
             or logger.isEnabledFor(logging.DEBUG)
         ):
-            return observed(args, kwargs)
+            return _observed(method, method_name, logger, args, kwargs)
         return method(*args, **kwargs)
 
     if _mark_coroutine_function is not None:  # (Python 3.12 and later)
@@ -153,8 +127,52 @@ def _logged(
     return logged_method
 
 
+async def _observed(
+    method: Callable[..., Coroutine[Any, Any, Any]],
+    method_name: str,
+    logger: logging.Logger,
+    args: tuple[Any, ...],
+    kwargs: dict[str, Any],
+) -> Any:
+    """Call ``method`` for an interface call that is observed, logged or owes a reply first."""
+    backend = args[0]
+    if backend._acknowledges_later and backend._link.unconfirmed is not None:
+        # An earlier command's reply is still to be read (it was confirmed later): read
+        # it first, so that what the backend remembers of its board is up to date.
+        await backend.confirm_acknowledgement()
+    try:
+        result = await method(*args, **kwargs)
+    except Exception as error:
+        if CALL_OBSERVERS:
+            _tell_observers(method, method_name, args, kwargs, None, error)
+        raise
+    if CALL_OBSERVERS:
+        _tell_observers(method, method_name, args, kwargs, result, None)
+    if logger.isEnabledFor(logging.DEBUG):
+        arguments = _signature_of(method).bind(*args, **kwargs).arguments
+        shown = ", ".join(f"{k}={v!r}" for k, v in arguments.items() if k != "self")
+        suffix = f" -> {result!r}" if result is not None else ""
+        logger.debug("%s(%s)%s", method_name, shown, suffix)
+    return result
+
+
+#: The signature of each interface method whose calls were observed or logged, read then
+#: (when a call is first bound to its parameter names), not when its class is made: that
+#: is rare, and every backend class made on a start would pay for it.
+_SIGNATURES: weakref.WeakKeyDictionary[Callable[..., Any], inspect.Signature] = (
+    weakref.WeakKeyDictionary()
+)
+
+
+def _signature_of(method: Callable[..., Any]) -> inspect.Signature:
+    signature = _SIGNATURES.get(method)
+    if signature is None:
+        signature = _SIGNATURES[method] = inspect.signature(method)
+    return signature
+
+
 def _tell_observers(
-    signature_of: Callable[[], inspect.Signature],
+    method: Callable[..., Any],
     method_name: str,
     args: tuple[Any, ...],
     kwargs: dict[str, Any],
@@ -163,7 +181,7 @@ def _tell_observers(
 ) -> None:
     arguments = args[1:]
     if kwargs:
-        arguments = tuple(signature_of().bind(*args, **kwargs).arguments.values())[1:]
+        arguments = tuple(_signature_of(method).bind(*args, **kwargs).arguments.values())[1:]
     for observer in list(CALL_OBSERVERS):
         try:
             observer(args[0], method_name, arguments, result, error)

@@ -159,3 +159,47 @@ def test_interface_methods_are_still_known_as_coroutine_functions() -> None:
     backend_class = _make_backend_class()
     assert inspect.iscoroutinefunction(inspect.unwrap(backend_class.set_led_state))
     assert _is_coroutine_function(backend_class.set_led_state)
+
+
+async def test_the_signature_is_read_once_for_every_observed_call(
+    monkeypatch: pytest.MonkeyPatch, calls: list[tuple[Any, ...]]
+) -> None:
+    read: list[object] = []
+    real_signature = inspect.signature
+
+    def counting_signature(target: Any, *args: Any, **kwargs: Any) -> inspect.Signature:
+        read.append(target)
+        return real_signature(target, *args, **kwargs)
+
+    monkeypatch.setattr(inspect, "signature", counting_signature)
+    backend_class = _make_backend_class()
+    backend = backend_class()
+    await backend.set_led_state(state=True, identifier=7)
+    await backend.set_led_state(identifier=8, state=False)
+    await backend_class().set_led_state(state=True, identifier=9)
+    assert read == [inspect.unwrap(backend_class.set_led_state)]
+    assert [call[2] for call in calls] == [(7, True), (8, False), (9, True)]
+
+
+def test_each_wrapper_is_one_function_holding_no_other() -> None:
+    # (every backend class made on a start wraps each of its interface methods: what each
+    # wrapper holds is paid for once per method on every start)
+    backend_class = _make_backend_class()
+    for name in ("get_led_state", "set_led_state"):
+        wrapper = getattr(backend_class, name)
+        held = [cell.cell_contents for cell in wrapper.__closure__ or ()]
+        functions = [value for value in held if inspect.isfunction(value)]
+        assert functions == [inspect.unwrap(wrapper)]
+
+
+async def test_an_observer_is_told_of_a_failed_call_with_its_keyword_arguments(
+    calls: list[tuple[Any, ...]],
+) -> None:
+    backend = _make_backend_class()()
+
+    backend.states = None  # (the call then fails)
+    with pytest.raises(TypeError):
+        await backend.set_led_state(state=True, identifier=10)
+    assert len(calls) == 1
+    assert calls[0][:3] == (backend, "set_led_state", (10, True))
+    assert calls[0][3] is None and isinstance(calls[0][4], TypeError)
