@@ -35,7 +35,10 @@ __all__ = ["LazyModule", "lazy_exports", "lazy_modules"]
 
 
 def lazy_exports(
-    package: str, exports: Mapping[str, Iterable[str]], *, own: Collection[str] = (),
+    package: str,
+    exports: Mapping[str, Iterable[str]],
+    *,
+    own: Collection[str] = (),
 ) -> tuple[Callable[[str], Any], Callable[[], list[str]]]:
     """Return a module ``__getattr__`` and ``__dir__`` for ``package``'s lazy exports.
 
@@ -50,20 +53,25 @@ def lazy_exports(
     :param own: names the package defines itself that its ``__all__`` lists too.
     :raises ValueError: a name is exported from two modules.
     """
-    where: dict[str, tuple[str, str]] = {}
+    # (Each exported name maps to its module's name, the table's own string, and only a
+    # renamed one to an attribute besides: every package imported on a start builds its
+    # table, so a tuple per name would be paid for on every start.)
+    where: dict[str, str] = {}
+    renamed: dict[str, str] = {}
     for module, names in exports.items():
         for spec in names:
             name, _, attribute = spec.partition(":")
             if name in where:
                 raise ValueError(f"{package} exports {name!r} from two modules")
-            where[name] = (module, attribute or name)
+            where[name] = module
+            if attribute:
+                renamed[name] = attribute
 
     def __getattr__(name: str) -> Any:  # noqa: N807 - a module __getattr__ (PEP 562)
         namespace = sys.modules[package].__dict__
-        found = where.get(name)
-        if found is not None:
-            module, attribute = found
-            value = getattr(importlib.import_module(module), attribute)
+        module = where.get(name)
+        if module is not None:
+            value = getattr(importlib.import_module(module), renamed.get(name, name))
         elif name == "__all__":
             value = sorted({*where, *own})
         elif name.startswith("__"):

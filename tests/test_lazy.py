@@ -46,7 +46,11 @@ def imported_by(statement: str) -> list[str]:
     path = os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])
     env = {**os.environ, "PYTHONPATH": path}
     done = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True,
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        env=env,
+        check=True,
         timeout=120,
     )
     modules: list[str] = json.loads(done.stdout.splitlines()[-1])
@@ -55,13 +59,15 @@ def imported_by(statement: str) -> list[str]:
 
 def heavy_in(modules: list[str]) -> list[str]:
     return [
-        name for name in modules
+        name
+        for name in modules
         if any(name == heavy or name.startswith(heavy + ".") for heavy in HEAVY)
     ]
 
 
 @pytest.mark.parametrize(
-    "statement", ["import j5aio", "import j5aio.sync", "import j5aio.sync, j5aio"],
+    "statement",
+    ["import j5aio", "import j5aio.sync", "import j5aio.sync, j5aio"],
 )
 def test_importing_the_package_loads_nothing_heavy(statement: str) -> None:
     modules = imported_by(statement)
@@ -213,7 +219,8 @@ def test_a_name_may_be_exported_under_another_name() -> None:
     name = "j5aio_lazy_test_package"
     package = type(sys)(name)
     vars(package)["__getattr__"], vars(package)["__dir__"] = lazy_exports(
-        name, {"os.path": ["joined:join"]},
+        name,
+        {"os.path": ["joined:join"]},
     )
     sys.modules[name] = package
     try:
@@ -224,12 +231,30 @@ def test_a_name_may_be_exported_under_another_name() -> None:
         del sys.modules[name]
 
 
+def test_the_table_holds_each_module_name_once_and_nothing_per_plain_name() -> None:
+    # (every package imported on a start builds its table: a tuple per name would be
+    # paid for on every start)
+    module = "os.path"
+    getter, _ = lazy_exports("pkg", {module: ["join", "split", "joined:join"]})
+    tables = [
+        cell.cell_contents
+        for cell in getter.__closure__ or ()
+        if isinstance(cell.cell_contents, dict)
+    ]
+    where = next(table for table in tables if "split" in table)
+    assert all(value is module for value in where.values())
+    renamed = next(table for table in tables if table is not where)
+    assert renamed == {"joined": "join"}
+
+
 def test_an_import_error_inside_a_submodule_is_not_hidden(tmp_path: Path) -> None:
     (tmp_path / "lazypkg").mkdir()
-    (tmp_path / "lazypkg" / "__init__.py").write_text(textwrap.dedent("""
+    (tmp_path / "lazypkg" / "__init__.py").write_text(
+        textwrap.dedent("""
         from j5aio._lazy import lazy_exports
         __getattr__, __dir__ = lazy_exports(__name__, {})
-    """))
+    """)
+    )
     (tmp_path / "lazypkg" / "broken.py").write_text("import no_such_module_here\n")
     sys.path.insert(0, str(tmp_path))
     try:
@@ -262,7 +287,9 @@ def test_all_is_made_from_the_table_and_the_packages_own_names() -> None:
     name = "j5aio_lazy_test_all"
     package = type(sys)(name)
     vars(package)["__getattr__"], vars(package)["__dir__"] = lazy_exports(
-        name, {"os.path": ["join", "joined:join"], "json": ["dumps"]}, own=("VERSION",),
+        name,
+        {"os.path": ["join", "joined:join"], "json": ["dumps"]},
+        own=("VERSION",),
     )
     vars(package)["VERSION"] = "1"
     sys.modules[name] = package
@@ -281,7 +308,8 @@ def test_a_package_that_lists_its_own_all_keeps_it() -> None:
     name = "j5aio_lazy_test_own_all"
     package = type(sys)(name)
     vars(package)["__getattr__"], vars(package)["__dir__"] = lazy_exports(
-        name, {"json": ["dumps", "loads"]},
+        name,
+        {"json": ["dumps", "loads"]},
     )
     vars(package)["__all__"] = ["dumps"]
     sys.modules[name] = package
