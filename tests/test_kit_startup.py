@@ -92,6 +92,7 @@ NOT_NEEDED_TO_START = {
     "j5aio.competition.start": "nothing waits for the start",
     "j5aio.simulator._kit_config": "the kit is a named one, not one made from counts",
     "j5aio.components._first": "nothing waits for the start button",
+    "j5aio.backends.press_watch": "nothing waits for the start button (the power board's watch)",
     "j5aio._timedelta": "no duration is given or read (a piezo's, an ultrasound echo's)",
     "_datetime": "no duration is given or read (timedelta's C module)",
     "j5aio.components._notes": "no note is named (the piezo's Note enum is made on first use)",

@@ -8,6 +8,7 @@ enumerates the board).
 
 from __future__ import annotations
 
+import functools
 import time
 from collections.abc import Awaitable, Callable
 from typing import TYPE_CHECKING, ClassVar
@@ -15,7 +16,6 @@ from typing import TYPE_CHECKING, ClassVar
 import j5aio.backends.hardware.sr.v4.power_fw3_codec as codec
 from j5aio.backends.hardware.transports.usb_link import USBLink
 from j5aio.backends.hardware.usb_backend import USBHardwareBackend
-from j5aio.backends.press_watch import PressWatch
 from j5aio.boards.sr.v4.power_board import PowerBoard
 from j5aio.components.battery_sensor import BatterySensorInterface
 from j5aio.components.button import ButtonInterface
@@ -26,6 +26,7 @@ from j5aio.errors import BoardDisconnectionError, UnsupportedFirmwareError
 
 if TYPE_CHECKING:
     from j5aio._timedelta import timedelta
+    from j5aio.backends.press_watch import PressWatch
 
 __all__ = ["SRV4PowerBoardHardwareBackend"]
 
@@ -72,7 +73,6 @@ class SRV4PowerBoardHardwareBackend(
         super().__init__(link, key=key)
         self._outputs = [False] * codec.OUTPUT_COUNT
         self._leds = [True, False]
-        self._presses = PressWatch(self._poll_button)
 
     def reset_board_state(self) -> None:
         """Forget what was remembered: the board is at its power-up state again."""
@@ -145,6 +145,17 @@ class SRV4PowerBoardHardwareBackend(
         """Return whether the start button is held down now (it is not latched)."""
         self._check_single(identifier, "button")
         return codec.parse_u32(await self._read_command(codec.BUTTON)) != 0
+
+    @functools.cached_property
+    def _presses(self) -> PressWatch:
+        """The start button's presses, watched for every waiter (made at the first wait).
+
+        (Its module is imported then: a program that never waits for the button, or
+        waits only at match time, does not load it at start.)
+        """
+        from j5aio.backends.press_watch import PressWatch
+
+        return PressWatch(self._poll_button)
 
     async def wait_until_button_pressed(self, identifier: int) -> None:
         """Return once the start button is seen down (read every 15 ms while anyone waits).

@@ -10,8 +10,9 @@ cached state but the identity.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import anyio
 
@@ -20,7 +21,6 @@ from j5aio._timedelta import timedelta
 from j5aio.backends.hardware.sr.v4.text_backend import SRTextBackend
 from j5aio.backends.hardware.sr.v4.text_protocol import Identity, NackError
 from j5aio.backends.hardware.transports.serial_link import SerialLink
-from j5aio.backends.press_watch import PressWatch
 from j5aio.boards.sr.v4.power_board_fw4 import BoardResetInterface, PowerBoardFw4
 from j5aio.components.battery_sensor import BatterySensorInterface
 from j5aio.components.button import ButtonInterface
@@ -31,6 +31,9 @@ from j5aio.components.protected_power_output import ProtectedPowerOutputInterfac
 from j5aio.components.temperature_sensor import TemperatureSensorInterface
 from j5aio.components.voltage_sensor import VoltageSensorInterface
 from j5aio.errors import UnsupportedFirmwareError
+
+if TYPE_CHECKING:
+    from j5aio.backends.press_watch import PressWatch
 
 __all__ = ["SRV4PowerBoardFw4HardwareBackend"]
 
@@ -63,7 +66,6 @@ class SRV4PowerBoardFw4HardwareBackend(
         super().__init__(link, port=port)
         #: The identity the board gave in the handshake (the backend's only cached state).
         self.identity: Identity | None = None
-        self._presses = PressWatch(self._poll_button)
 
     @property
     def asset_tag(self) -> str | None:
@@ -146,6 +148,17 @@ class SRV4PowerBoardFw4HardwareBackend(
         self._check_single(identifier, "start button")
         return codec.parse_button(self.board.name, await self._query(codec.BUTTON)).pressed
 
+    @functools.cached_property
+    def _presses(self) -> PressWatch:
+        """The start button's presses, watched for every waiter (made at the first wait).
+
+        (Its module is imported then: a program that never waits for the button, or
+        waits only at match time, does not load it at start.)
+        """
+        from j5aio.backends.press_watch import PressWatch
+
+        return PressWatch(self._poll_button)
+
     async def wait_until_button_pressed(self, identifier: int) -> None:
         """Return once a start button is pressed; a press before the wait does not count.
 
@@ -185,7 +198,10 @@ class SRV4PowerBoardFw4HardwareBackend(
         self._check_single(identifier, "battery sensor")
         reply = await self._query(codec.BATTERY_CURRENT)
         milliamps = codec.parse_current_ma(
-            self.board.name, codec.BATTERY_CURRENT, reply, signed=True,
+            self.board.name,
+            codec.BATTERY_CURRENT,
+            reply,
+            signed=True,
         )
         return milliamps / 1000
 
