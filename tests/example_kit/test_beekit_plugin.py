@@ -87,6 +87,31 @@ def test_the_entry_point_registers_every_part() -> None:
     assert dict(get_kit("bee").boards) == {"sr-power": 1, "bee": 1}
 
 
+def test_a_start_that_uses_no_bee_board_imports_none_of_its_classes() -> None:
+    # Every start loads the installed plugins' kinds; the kind names its board, backends
+    # and simulators by import path, so a program on the default kit imports none of them.
+    program = textwrap.dedent(
+        """
+        import os, sys
+        os.environ["J5AIO_ENV"] = "sim"
+        from j5aio.sync import KitRobot
+        robot = KitRobot()
+        print(*sorted(name for name in sys.modules if name.startswith("beekit")))
+        """
+    )
+    environment = {
+        k: v for k, v in os.environ.items()
+        if not k.startswith("J5AIO_") or k in ("J5AIO_LOCK_PORT", "J5AIO_CACHE_DIR")
+    }
+    result = subprocess.run(
+        [sys.executable, "-c", program],
+        capture_output=True, text=True, timeout=60, env=environment, check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "beekit.kinds" in result.stdout.split()  # the plugin was loaded...
+    assert not {"beekit.boards", "beekit.backend", "beekit.simulator"} & set(result.stdout.split())
+
+
 def test_list_shows_the_bee_board_and_its_package() -> None:
     result = python_m_j5aio("list")
     assert result.returncode == 0, result.stderr
