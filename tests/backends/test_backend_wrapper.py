@@ -77,7 +77,9 @@ def calls() -> Iterator[list[tuple[Any, ...]]]:
         CALL_OBSERVERS.remove(observer)
 
 
-def test_making_a_backend_class_reads_no_signature(monkeypatch: pytest.MonkeyPatch) -> None:
+@pytest.fixture
+def signatures_read(monkeypatch: pytest.MonkeyPatch) -> list[object]:
+    """Every callable whose signature ``inspect.signature`` is asked for, in order."""
     read: list[object] = []
     real_signature = inspect.signature
 
@@ -86,8 +88,12 @@ def test_making_a_backend_class_reads_no_signature(monkeypatch: pytest.MonkeyPat
         return real_signature(target, *args, **kwargs)
 
     monkeypatch.setattr(inspect, "signature", counting_signature)
+    return read
+
+
+def test_making_a_backend_class_reads_no_signature(signatures_read: list[object]) -> None:
     backend_class = _make_backend_class()
-    assert read == []
+    assert signatures_read == []
     assert getattr(backend_class.set_led_state, "__j5aio_logged__", False)
 
 
@@ -162,22 +168,15 @@ def test_interface_methods_are_still_known_as_coroutine_functions() -> None:
 
 
 async def test_the_signature_is_read_once_for_every_observed_call(
-    monkeypatch: pytest.MonkeyPatch, calls: list[tuple[Any, ...]]
+    signatures_read: list[object], calls: list[tuple[Any, ...]]
 ) -> None:
-    read: list[object] = []
-    real_signature = inspect.signature
-
-    def counting_signature(target: Any, *args: Any, **kwargs: Any) -> inspect.Signature:
-        read.append(target)
-        return real_signature(target, *args, **kwargs)
-
-    monkeypatch.setattr(inspect, "signature", counting_signature)
+    signatures_read.clear()  # (what pytest read setting up the test's fixtures)
     backend_class = _make_backend_class()
     backend = backend_class()
     await backend.set_led_state(state=True, identifier=7)
     await backend.set_led_state(identifier=8, state=False)
     await backend_class().set_led_state(state=True, identifier=9)
-    assert read == [inspect.unwrap(backend_class.set_led_state)]
+    assert signatures_read == [inspect.unwrap(backend_class.set_led_state)]
     assert [call[2] for call in calls] == [(7, True), (8, False), (9, True)]
 
 
