@@ -35,6 +35,7 @@ from __future__ import annotations
 import argparse
 import functools
 import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -143,6 +144,18 @@ def imports_at_ready(case: Case, folder: str) -> tuple[int, int, int, int, float
     raise RuntimeError(f"{case.name}: no imports line:\n{done.stderr[-2000:]}")
 
 
+def paired_above(case: Case, floor: Case) -> tuple[float, float, float]:
+    """The first quartile, median and third quartile of ``case`` minus ``floor``, round by round.
+
+    Each round runs every case once, so the two values of a round met the same machine.
+    """
+    differences = [value - base for value, base in zip(case.values, floor.values, strict=True)]
+    if len(differences) < 2:
+        return differences[0], differences[0], differences[0]
+    low, middle, high = statistics.quantiles(differences, n=4)  # (middle: the median)
+    return low, middle, high
+
+
 def time_to_ready(case: Case, folder: str) -> float:
     """Seconds from starting ``case``'s process to reading its ready line; it is then ended.
 
@@ -234,6 +247,17 @@ def main() -> int:
         )
     sync_share = (cases[1].median - cases[0].median) * 1000
     print(f"  the sync runtime's share (sync - async): {sync_share:.1f} ms")
+    print(
+        "\npaired within each round (the case minus the floor of the same round: the "
+        "machine's drift between rounds falls out), median and quartiles:"
+    )
+    for case in cases:
+        if case.name.startswith("j5aio"):
+            low, middle, high = paired_above(case, floor)
+            print(
+                f"  {case.name:<40} floor + {middle * 1000:5.1f} ms  "
+                f"({low * 1000:5.1f} to {high * 1000:5.1f})"
+            )
     if imported:
         print(
             "\nimported when ready (modules: all, j5aio's; j5aio's dataclasses; "
