@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 from j5aio.backends.hardware.sb import arduino_2024_codec as codec
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import UnexpectedReplyError
+from tests.dataclass_twins import assert_like_generated
 
 
 def test_requests() -> None:
@@ -50,8 +51,15 @@ def test_identity() -> None:
 
 @pytest.mark.parametrize(
     "line",
-    [b"", b"SourceBots:Arduino:X", b"SourceBots:Arduino:X:2.0:extra", b"a::b:c",
-     b"SourceBots:Arduino:X:2.0\r", b"Source\xffBots:Arduino:X:2.0", b"NACK:Invalid command"],
+    [
+        b"",
+        b"SourceBots:Arduino:X",
+        b"SourceBots:Arduino:X:2.0:extra",
+        b"a::b:c",
+        b"SourceBots:Arduino:X:2.0\r",
+        b"Source\xffBots:Arduino:X:2.0",
+        b"NACK:Invalid command",
+    ],
 )
 def test_bad_identities(line: bytes) -> None:
     with pytest.raises(UnexpectedReplyError, match=r"SourceBots:Arduino:X:2\.0|NACK"):
@@ -84,13 +92,24 @@ def test_a_nack_is_named() -> None:
 
 @pytest.mark.parametrize(
     ("parse", "line"),
-    [(codec.parse_ack, b"ack"), (codec.parse_ack, b"ACK "), (codec.parse_mode, b"ANALOG"),
-     (codec.parse_digital, b"2"), (codec.parse_digital, b""), (codec.parse_analogue, b"1024"),
-     (codec.parse_analogue, b"-1"), (codec.parse_analogue, b"+5"), (codec.parse_analogue, b"05"),
-     (codec.parse_analogue, b"1_0"), (codec.parse_analogue, b" 5"),
-     (codec.parse_analogue, "٣".encode()),
-     (codec.parse_ultrasound, b"5650"), (codec.parse_ultrasound, b"-5650"),
-     (codec.parse_ultrasound, b"-0"), (codec.parse_ultrasound, b"1.5")],
+    [
+        (codec.parse_ack, b"ack"),
+        (codec.parse_ack, b"ACK "),
+        (codec.parse_mode, b"ANALOG"),
+        (codec.parse_digital, b"2"),
+        (codec.parse_digital, b""),
+        (codec.parse_analogue, b"1024"),
+        (codec.parse_analogue, b"-1"),
+        (codec.parse_analogue, b"+5"),
+        (codec.parse_analogue, b"05"),
+        (codec.parse_analogue, b"1_0"),
+        (codec.parse_analogue, b" 5"),
+        (codec.parse_analogue, "٣".encode()),
+        (codec.parse_ultrasound, b"5650"),
+        (codec.parse_ultrasound, b"-5650"),
+        (codec.parse_ultrasound, b"-0"),
+        (codec.parse_ultrasound, b"1.5"),
+    ],
 )
 def test_replies_the_firmware_cannot_send(parse: object, line: bytes) -> None:
     with pytest.raises(UnexpectedReplyError, match=re.escape(repr(line))):
@@ -116,3 +135,15 @@ def test_arbitrary_bytes_parse_or_raise_unexpected_reply(line: bytes) -> None:
     else:
         assert codec.MIN_ULTRASOUND_MM <= millimetres <= codec.MAX_ULTRASOUND_MM
         assert line == str(millimetres).encode()
+
+
+def test_the_identity_is_the_generated_dataclass() -> None:
+    assert_like_generated(
+        codec.Identity,
+        [
+            ((codec.MANUFACTURER, codec.BOARD_TYPE, "sbABC", "2024.0.0"), {}),
+            ((), {"manufacturer": "m", "board_type": "b", "asset_tag": "", "version": "v"}),
+        ],
+    )
+    assert codec.Identity(codec.MANUFACTURER, codec.BOARD_TYPE, "a", "v").is_sb_arduino
+    assert not codec.Identity("m", codec.BOARD_TYPE, "a", "v").is_sb_arduino

@@ -4,6 +4,7 @@ from j5aio.backends.hardware.sr.v4 import motor_fw4_codec as codec
 from j5aio.backends.hardware.sr.v4.text_protocol import NackError
 from j5aio.components.motor import MotorSpecialState
 from j5aio.errors import UnexpectedReplyError
+from tests.dataclass_twins import assert_like_generated
 
 BOARD = "SR Motor Board (fw 4)"
 
@@ -19,8 +20,15 @@ def test_identity() -> None:
 
 @pytest.mark.parametrize(
     ("version", "ok"),
-    [("4.4", True), ("4.4.1", True), ("4.5.0", True), ("4.5", True), ("3", False),
-     ("4.6", False), ("4.3", False)],
+    [
+        ("4.4", True),
+        ("4.4.1", True),
+        ("4.5.0", True),
+        ("4.5", True),
+        ("3", False),
+        ("4.6", False),
+        ("4.3", False),
+    ],
 )
 def test_versions(version: str, ok: bool) -> None:
     assert codec.is_supported_version(version) is ok
@@ -28,11 +36,20 @@ def test_versions(version: str, ok: bool) -> None:
 
 @pytest.mark.parametrize(
     ("state", "line"),
-    [(1.0, b"MOT:0:SET:1000\n"), (-1.0, b"MOT:0:SET:-1000\n"), (0.5, b"MOT:0:SET:500\n"),
-     (0.0, b"MOT:0:SET:0\n"), (0.0005, b"MOT:0:SET:0\n"), (0.0015, b"MOT:0:SET:2\n"),
-     (-0.123, b"MOT:0:SET:-123\n"), (MotorSpecialState.BRAKE, b"MOT:0:SET:0\n"),
-     (MotorSpecialState.COAST, b"MOT:0:DISABLE\n"), (1, b"MOT:0:SET:1000\n"),
-     (-1, b"MOT:0:SET:-1000\n"), (0, b"MOT:0:SET:0\n")],
+    [
+        (1.0, b"MOT:0:SET:1000\n"),
+        (-1.0, b"MOT:0:SET:-1000\n"),
+        (0.5, b"MOT:0:SET:500\n"),
+        (0.0, b"MOT:0:SET:0\n"),
+        (0.0005, b"MOT:0:SET:0\n"),
+        (0.0015, b"MOT:0:SET:2\n"),
+        (-0.123, b"MOT:0:SET:-123\n"),
+        (MotorSpecialState.BRAKE, b"MOT:0:SET:0\n"),
+        (MotorSpecialState.COAST, b"MOT:0:DISABLE\n"),
+        (1, b"MOT:0:SET:1000\n"),
+        (-1, b"MOT:0:SET:-1000\n"),
+        (0, b"MOT:0:SET:0\n"),
+    ],
 )
 def test_encode_set(state: float | MotorSpecialState, line: bytes) -> None:
     assert codec.encode_set(0, state) == line
@@ -104,3 +121,17 @@ def test_the_motor_check_names_what_is_allowed() -> None:
     codec.check_motor(1)
     with pytest.raises(ValueError, match="motors 0 and 1, not 2"):
         codec.check_motor(2)
+
+
+def test_the_replies_are_the_generated_dataclasses() -> None:
+    assert_like_generated(
+        codec.MotorReading,
+        [((True, 500), {}), ((False, 0), {}), ((), {"enabled": True, "value": -1})],
+    )
+    assert_like_generated(
+        codec.MotorStatus,
+        [(((False, True), 11_900), {}), (((), 0), {}), ((), {"faults": (True,), "input_mv": 12})],
+    )
+    assert (
+        codec.MotorReading(True, 5) == codec.MotorReading(True, 5) != codec.MotorReading(False, 5)
+    )

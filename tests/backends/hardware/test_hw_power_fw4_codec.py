@@ -11,6 +11,7 @@ from j5aio.backends.hardware.sr.v4.text_protocol import (
 )
 from j5aio.components.flashing_led import LEDMode
 from j5aio.errors import CommunicationError, NotSupportedByHardwareError, UnexpectedReplyError
+from tests.dataclass_twins import assert_like_generated
 
 BOARD = "SR Power Board (fw 4)"
 
@@ -18,7 +19,9 @@ BOARD = "SR Power Board (fw 4)"
 def test_identity_is_parsed() -> None:
     identity = codec.parse_identity_reply(BOARD, b"Student Robotics:PBv4B:srABC:4.4.2")
     assert (identity.board_type, identity.asset_tag, identity.version) == (
-        "PBv4B", "srABC", "4.4.2",
+        "PBv4B",
+        "srABC",
+        "4.4.2",
     )
 
 
@@ -42,8 +45,16 @@ def test_identity_of_another_board_is_refused(reply: bytes) -> None:
 
 @pytest.mark.parametrize(
     ("version", "ok"),
-    [("4.4", True), ("4.4.1", True), ("4.4.2", True), ("4.5", False), ("3", False),
-     ("4.4.x", False), ("4.4.1.2", False), ("5.4", False)],
+    [
+        ("4.4", True),
+        ("4.4.1", True),
+        ("4.4.2", True),
+        ("4.5", False),
+        ("3", False),
+        ("4.4.x", False),
+        ("4.4.1.2", False),
+        ("5.4", False),
+    ],
 )
 def test_supported_versions(version: str, ok: bool) -> None:
     assert codec.is_supported_version(version) is ok
@@ -95,8 +106,12 @@ def test_leds() -> None:
 
 @pytest.mark.parametrize(
     ("seconds", "hertz", "line"),
-    [(0.1, 1760.0, b"NOTE:1760:100\n"), (1.0, 8.0, b"NOTE:8:1000\n"),
-     (0.0025, 10000.4, b"NOTE:10000:2\n"), (0.5, 440.5, b"NOTE:440:500\n")],
+    [
+        (0.1, 1760.0, b"NOTE:1760:100\n"),
+        (1.0, 8.0, b"NOTE:8:1000\n"),
+        (0.0025, 10000.4, b"NOTE:10000:2\n"),
+        (0.5, 440.5, b"NOTE:440:500\n"),
+    ],
 )
 def test_note(seconds: float, hertz: float, line: bytes) -> None:
     assert codec.encode_note(timedelta(seconds=seconds), hertz) == line
@@ -123,16 +138,25 @@ def test_button() -> None:
 def test_status() -> None:
     status = codec.parse_status(BOARD, b"0,1,0,0,0,0,1:34:1:5012")
     assert status == codec.PowerStatus(
-        (False, True, False, False, False, False, True), 34, True, 5012,
+        (False, True, False, False, False, False, True),
+        34,
+        True,
+        5012,
     )
     assert codec.parse_status(BOARD, b"0,0,0,0,0,0,0:-5:0:0").temperature == -5
 
 
 @pytest.mark.parametrize(
     "reply",
-    [b"0,0,0,0,0,0:30:0:5000", b"0,0,0,0,0,0,0:30:0", b"0,0,0,0,0,0,2:30:0:5000",
-     b"0,0,0,0,0,0,0:hot:0:5000", b"0,0,0,0,0,0,0:30:2:5000", b"0,0,0,0,0,0,0:30:0:-1",
-     b"0,0,0,0,0,0,0:30:0:5000:1"],
+    [
+        b"0,0,0,0,0,0:30:0:5000",
+        b"0,0,0,0,0,0,0:30:0",
+        b"0,0,0,0,0,0,2:30:0:5000",
+        b"0,0,0,0,0,0,0:hot:0:5000",
+        b"0,0,0,0,0,0,0:30:2:5000",
+        b"0,0,0,0,0,0,0:30:0:-1",
+        b"0,0,0,0,0,0,0:30:0:5000:1",
+    ],
 )
 def test_malformed_status(reply: bytes) -> None:
     with pytest.raises(UnexpectedReplyError, match=r"\*STATUS\?") as info:
@@ -177,3 +201,20 @@ def test_the_output_check_names_what_is_allowed() -> None:
         codec.check_output(output)
     with pytest.raises(ValueError, match="outputs 0 to 6"):
         codec.check_output(codec.OUTPUT_COUNT)
+
+
+def test_the_replies_are_the_generated_dataclasses() -> None:
+    assert_like_generated(
+        codec.PowerStatus,
+        [
+            (((False,) * 7, 25, False, 5_000), {}),
+            (((True, False), -3, True, 4_990), {}),
+            ((), {"overcurrent": (), "temperature": 0, "fan": True, "regulator_mv": 1}),
+        ],
+    )
+    assert_like_generated(
+        codec.ButtonLatches,
+        [((True, False), {}), ((False, False), {}), ((), {"internal": False, "external": True})],
+    )
+    assert codec.ButtonLatches(False, True).pressed
+    assert not codec.ButtonLatches(internal=False, external=False).pressed

@@ -3,6 +3,7 @@ import pytest
 from j5aio.backends.hardware.sr.v4 import ruggeduino_fw1_codec as codec
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import UnexpectedReplyError
+from tests.dataclass_twins import assert_like_generated
 
 
 def test_pin_letters() -> None:
@@ -65,3 +66,12 @@ def test_parse_analogue() -> None:
     for bad in (b"", b"abc", b"1024", b"-1"):
         with pytest.raises(UnexpectedReplyError, match="0 to 1023"):
             codec.parse_analogue(bad)
+
+
+def test_the_version_is_the_generated_dataclass() -> None:
+    assert_like_generated(
+        codec.RuggeduinoVersion,
+        [((codec.OFFICIAL_FIRMWARE_NAME, "1"), {}), ((), {"name": "custom", "version": "2.0"})],
+    )
+    assert codec.RuggeduinoVersion(codec.OFFICIAL_FIRMWARE_NAME, "1").is_official
+    assert not codec.RuggeduinoVersion("custom", "1").is_official

@@ -2,6 +2,7 @@ import pytest
 
 from j5aio.backends.hardware.sr.v4 import servo_fw4_codec as codec
 from j5aio.errors import CommunicationError, UnexpectedReplyError, UnsupportedFirmwareError
+from tests.dataclass_twins import assert_like_generated
 
 BOARD = "Servo Board"
 SR = codec.FIRMWARES["4.3"]
@@ -66,8 +67,9 @@ def test_encoders() -> None:
         (SR, 0, False, TypeError),
     ],
 )
-def test_encode_set_refuses(firmware: codec.Firmware, servo: object, pulse: object,
-                            error: type[Exception]) -> None:
+def test_encode_set_refuses(
+    firmware: codec.Firmware, servo: object, pulse: object, error: type[Exception]
+) -> None:
     with pytest.raises(error):
         codec.encode_set(firmware, servo, pulse)  # type: ignore[arg-type]
 
@@ -98,8 +100,18 @@ def test_parse_pulse() -> None:
 
 @pytest.mark.parametrize(
     ("reply", "firmware"),
-    [(b"1497", SR), (b"495", SR), (b"295", SB), (b"4005", SR), (b"-5", SR), (b"01500", SR),
-     (b"", SR), (b"1500 ", SR), (b"+1500", SR), (b"12345678901", SR)],
+    [
+        (b"1497", SR),
+        (b"495", SR),
+        (b"295", SB),
+        (b"4005", SR),
+        (b"-5", SR),
+        (b"01500", SR),
+        (b"", SR),
+        (b"1500 ", SR),
+        (b"+1500", SR),
+        (b"12345678901", SR),
+    ],
 )
 def test_parse_pulse_is_strict(reply: bytes, firmware: codec.Firmware) -> None:
     with pytest.raises(UnexpectedReplyError, match="answered 'c'"):
@@ -141,3 +153,32 @@ def test_the_servo_check_names_what_is_allowed() -> None:
         codec.check_servo(firmware, firmware.servo_count)
     with pytest.raises(TypeError, match="must be an int"):
         codec.check_servo(firmware, True)
+
+
+def test_the_records_are_the_generated_dataclasses() -> None:
+    assert_like_generated(
+        codec.Firmware,
+        [
+            (("4.3", "Student Robotics", 12, 500, 4000), {}),
+            (
+                ("4.4", "SourceBots"),
+                {
+                    "servo_count": 8,
+                    "min_pulse": 300,
+                    "max_pulse": 4000,
+                    "default_limits": (350, 1980),
+                },
+            ),
+        ],
+    )
+    assert codec.Firmware("9", "x", 1, 2, 3).default_limits == codec.DEFAULT_PULSE_LIMITS
+    assert_like_generated(
+        codec.Identity,
+        [
+            (("Student Robotics", "SBv4B", "srABC", "4.3"), {}),
+            ((), {"manufacturer": "m", "board_type": "b", "asset_tag": "a", "version": "v"}),
+        ],
+    )
+    assert_like_generated(
+        codec.Status, [((False, True), {}), ((), {"watchdog_failed": True, "power_good": False})]
+    )

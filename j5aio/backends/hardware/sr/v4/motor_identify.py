@@ -17,10 +17,9 @@ The probe only works at the baud rate the firmware listens at: open the port at
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import j5aio.backends.hardware.sr.v4.motor_fw3_codec as fw3
 import j5aio.backends.hardware.sr.v4.motor_fw4_codec as fw4
+from j5aio._records import FrozenRecord, frozen_record
 from j5aio.backends.hardware.transports.readers import read_line, read_lines_until
 from j5aio.backends.hardware.transports.serial_link import SerialLink
 from j5aio.backends.hardware.transports.stream import ByteStream
@@ -39,8 +38,12 @@ _FW4_PROBE_REPLY = read_lines_until(_not_a_nack, max_lines=3, max_length=128)
 _FW3_VERSION = read_line(max_length=64)
 
 
-@dataclass(frozen=True)
-class MotorBoardIdentity:
+# (The records here write their own ``__init__`` and take freezing, ``__repr__``, ``__eq__``
+# and ``__hash__`` from FrozenRecord, as ``@dataclass(frozen=True)`` would make them: a
+# kit with this board makes them at start-up, and making the generated ones costs a
+# quarter of a millisecond a class. A test checks them against those.)
+@frozen_record
+class MotorBoardIdentity(FrozenRecord):
     """Which firmware a motor board runs, as it said."""
 
     generation: int
@@ -49,6 +52,12 @@ class MotorBoardIdentity:
     """The version the board reported (``"3"``, ``"4.4.1"``, ``"4.5.0"``...)."""
     asset_tag: str | None
     """The asset tag from ``*IDN?`` (firmware 4 only)."""
+
+    def __init__(self, generation: int, version: str, asset_tag: str | None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "generation", generation)
+        set_field(self, "version", version)
+        set_field(self, "asset_tag", asset_tag)
 
 
 async def probe_fw4_identity(link: SerialLink, *, board: str = _BOARD) -> MotorBoardIdentity:
@@ -63,7 +72,10 @@ async def probe_fw4_identity(link: SerialLink, *, board: str = _BOARD) -> MotorB
 
 
 async def identify_motor_board(
-    stream: ByteStream, *, port: str | None = None, timeout: float = 0.25,
+    stream: ByteStream,
+    *,
+    port: str | None = None,
+    timeout: float = 0.25,
 ) -> MotorBoardIdentity:
     """Return which firmware the motor board on ``stream`` runs, by what it answers.
 

@@ -16,9 +16,9 @@ naming the board and the reply.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Final
 
+from j5aio._records import FrozenRecord, frozen_record
 from j5aio._timedelta import timedelta
 from j5aio.backends.hardware.sr.v4.text_protocol import (
     IDENTIFY,
@@ -110,8 +110,12 @@ _MAX_MILLI: Final = 2**31 - 1
 _TEMPERATURE_RANGE: Final = (-273, 1000)
 
 
-@dataclass(frozen=True)
-class PowerStatus:
+# (The records here write their own ``__init__`` and take freezing, ``__repr__``, ``__eq__``
+# and ``__hash__`` from FrozenRecord, as ``@dataclass(frozen=True)`` would make them: a
+# kit with this board makes them at start-up, and making the generated ones costs a
+# quarter of a millisecond a class. A test checks them against those.)
+@frozen_record
+class PowerStatus(FrozenRecord):
     """The reply to ``*STATUS?``."""
 
     overcurrent: tuple[bool, ...]
@@ -123,13 +127,31 @@ class PowerStatus:
     regulator_mv: int
     """The 5 V regulator's voltage, in mV."""
 
+    def __init__(
+        self,
+        overcurrent: tuple[bool, ...],
+        temperature: int,
+        fan: bool,
+        regulator_mv: int,
+    ) -> None:
+        set_field = object.__setattr__
+        set_field(self, "overcurrent", overcurrent)
+        set_field(self, "temperature", temperature)
+        set_field(self, "fan", fan)
+        set_field(self, "regulator_mv", regulator_mv)
 
-@dataclass(frozen=True)
-class ButtonLatches:
+
+@frozen_record
+class ButtonLatches(FrozenRecord):
     """The reply to ``BTN:START:GET?``: which start buttons were pressed since the last read."""
 
     internal: bool
     external: bool
+
+    def __init__(self, internal: bool, external: bool) -> None:
+        set_field = object.__setattr__
+        set_field(self, "internal", internal)
+        set_field(self, "external", external)
 
     @property
     def pressed(self) -> bool:
@@ -282,8 +304,9 @@ def parse_status(board: str, reply: bytes) -> PowerStatus:
     if len(latches) != OUTPUT_COUNT or any(flag not in (b"0", b"1") for flag in latches):
         raise unexpected_reply(board, STATUS, reply, expected)
     try:
-        temperature = parse_int(board, STATUS, fields[1], low=_TEMPERATURE_RANGE[0],
-                                high=_TEMPERATURE_RANGE[1])
+        temperature = parse_int(
+            board, STATUS, fields[1], low=_TEMPERATURE_RANGE[0], high=_TEMPERATURE_RANGE[1]
+        )
         fan = parse_flag(board, STATUS, fields[2])
         regulator = parse_int(board, STATUS, fields[3], low=0, high=_MAX_MILLI)
     except UnexpectedReplyError:

@@ -11,9 +11,9 @@ This module does no I/O: the hardware backend and the Ruggeduino simulator both 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 from typing import Final
 
+from j5aio._records import FrozenRecord, frozen_record
 from j5aio.components.gpio_pin import GPIOPinMode
 from j5aio.errors import UnexpectedReplyError
 
@@ -55,12 +55,21 @@ _MODE_LETTERS: Final = {
 }
 
 
-@dataclass(frozen=True)
-class RuggeduinoVersion:
+# (The records here write their own ``__init__`` and take freezing, ``__repr__``, ``__eq__``
+# and ``__hash__`` from FrozenRecord, as ``@dataclass(frozen=True)`` would make them: a
+# kit with this board makes them at start-up, and making the generated ones costs a
+# quarter of a millisecond a class. A test checks them against those.)
+@frozen_record
+class RuggeduinoVersion(FrozenRecord):
     """The board's version line, split: ``<name>:<version>``."""
 
     name: str
     version: str
+
+    def __init__(self, name: str, version: str) -> None:
+        set_field = object.__setattr__
+        set_field(self, "name", name)
+        set_field(self, "version", version)
 
     @property
     def is_official(self) -> bool:

@@ -23,9 +23,9 @@ This module does no I/O.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 from typing import Final
 
+from j5aio._records import FrozenRecord, frozen_record
 from j5aio.components.pulse_servo import (
     DEFAULT_PULSE_LIMITS,
     PulseLimits,
@@ -103,8 +103,12 @@ _MAX_MILLI: Final = 65_535
 SB_DEFAULT_PULSE_LIMITS: Final[PulseLimits] = (350, 1980)
 
 
-@dataclass(frozen=True)
-class Firmware:
+# (The records here write their own ``__init__`` and take freezing, ``__repr__``, ``__eq__``
+# and ``__hash__`` from FrozenRecord, as ``@dataclass(frozen=True)`` would make them: a
+# kit with this board makes them at start-up, and making the generated ones costs a
+# quarter of a millisecond a class. A test checks them against those.)
+@frozen_record
+class Firmware(FrozenRecord):
     """What one servo board firmware can do.
 
     :param version: the version ``*IDN?`` reports.
@@ -123,22 +127,47 @@ class Firmware:
     max_pulse: int
     default_limits: PulseLimits = DEFAULT_PULSE_LIMITS
 
+    def __init__(
+        self,
+        version: str,
+        maker: str,
+        servo_count: int,
+        min_pulse: int,
+        max_pulse: int,
+        default_limits: PulseLimits = DEFAULT_PULSE_LIMITS,
+    ) -> None:
+        set_field = object.__setattr__
+        set_field(self, "version", version)
+        set_field(self, "maker", maker)
+        set_field(self, "servo_count", servo_count)
+        set_field(self, "min_pulse", min_pulse)
+        set_field(self, "max_pulse", max_pulse)
+        set_field(self, "default_limits", default_limits)
+
 
 #: The firmwares this codec speaks, by version.
 FIRMWARES: Final = {
     "4.3": Firmware(
-        "4.3", "Student Robotics", servo_count=12, min_pulse=500, max_pulse=4000,
+        "4.3",
+        "Student Robotics",
+        servo_count=12,
+        min_pulse=500,
+        max_pulse=4000,
         default_limits=DEFAULT_PULSE_LIMITS,  # sr-robot3's
     ),
     "4.4": Firmware(
-        "4.4", "SourceBots", servo_count=8, min_pulse=300, max_pulse=4000,
+        "4.4",
+        "SourceBots",
+        servo_count=8,
+        min_pulse=300,
+        max_pulse=4000,
         default_limits=SB_DEFAULT_PULSE_LIMITS,  # sbot's
     ),
 }
 
 
-@dataclass(frozen=True)
-class Identity:
+@frozen_record
+class Identity(FrozenRecord):
     """The parts of an ``*IDN?`` reply."""
 
     manufacturer: str
@@ -146,9 +175,16 @@ class Identity:
     asset_tag: str
     version: str
 
+    def __init__(self, manufacturer: str, board_type: str, asset_tag: str, version: str) -> None:
+        set_field = object.__setattr__
+        set_field(self, "manufacturer", manufacturer)
+        set_field(self, "board_type", board_type)
+        set_field(self, "asset_tag", asset_tag)
+        set_field(self, "version", version)
 
-@dataclass(frozen=True)
-class Status:
+
+@frozen_record
+class Status(FrozenRecord):
     """The parts of a ``*STATUS?`` reply.
 
     :param watchdog_failed: the I²C link to the pulse expander timed out (usually because
@@ -158,6 +194,11 @@ class Status:
 
     watchdog_failed: bool
     power_good: bool
+
+    def __init__(self, watchdog_failed: bool, power_good: bool) -> None:
+        set_field = object.__setattr__
+        set_field(self, "watchdog_failed", watchdog_failed)
+        set_field(self, "power_good", power_good)
 
 
 def _text(command: bytes) -> str:
@@ -172,7 +213,7 @@ def _bad(board: str, command: bytes, reply: bytes, why: str) -> UnexpectedReplyE
 
 def _check_not_nack(board: str, command: bytes, reply: bytes) -> None:
     if reply.startswith(_NACK):
-        reason = reply[len(_NACK):].decode("ascii", "replace")
+        reason = reply[len(_NACK) :].decode("ascii", "replace")
         raise CommunicationError(f"{board} refused {_text(command)!r}: {reason}")
 
 
@@ -192,8 +233,10 @@ def parse_identity(board: str, reply: bytes) -> Identity:
     manufacturer, board_type, asset_tag, version = fields
     if board_type != BOARD_TYPE:
         raise _bad(
-            board, IDENTIFY, reply, f"so it is a {board_type!r} board, not a servo board "
-            f"({BOARD_TYPE!r})",
+            board,
+            IDENTIFY,
+            reply,
+            f"so it is a {board_type!r} board, not a servo board ({BOARD_TYPE!r})",
         )
     if not _VERSION.fullmatch(version):
         raise _bad(board, IDENTIFY, reply, f"whose version {version!r} is not a dotted number")
@@ -221,8 +264,7 @@ def check_servo(firmware: Firmware, servo: int) -> None:
         raise TypeError(f"a servo number must be an int, not {servo!r}")
     if servo not in range(firmware.servo_count):
         raise ValueError(
-            f"firmware {firmware.version} has servos 0 to {firmware.servo_count - 1}, "
-            f"not {servo}",
+            f"firmware {firmware.version} has servos 0 to {firmware.servo_count - 1}, not {servo}",
         )
 
 
@@ -294,7 +336,9 @@ def parse_pulse(board: str, command: bytes, reply: bytes, firmware: Firmware) ->
     low = firmware.min_pulse - firmware.min_pulse % TICK_US
     if not low <= value <= firmware.max_pulse:
         raise _bad(
-            board, command, reply,
+            board,
+            command,
+            reply,
             f"outside the {firmware.min_pulse}-{firmware.max_pulse} µs of firmware "
             f"{firmware.version}",
         )
