@@ -22,8 +22,9 @@ The firmware answers a firmware 3 resync byte (``0x00``) as part of a line, so t
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import ClassVar, Final
+
+from j5aio._records import FrozenRecord, frozen_record
 
 from .loads import MOTOR_BOARD_IDLE_CURRENT, MOTOR_FULL_POWER_CURRENT
 from .sr_motor import MotorDrive, SRMotorBoardSimulator
@@ -37,13 +38,20 @@ _BLUE_LED_ABOVE_MA: Final = 5000
 _BOOTLOADER_REPLY: Final = b"ACK\n\n\n"
 
 
-@dataclass(frozen=True)
-class MotorChannel:
+# A frozen dataclass whose ``__init__`` is written here, the rest coming from FrozenRecord
+# as ``@dataclass(frozen=True)`` would make it: a simulated kit's start makes this module,
+# and making the generated methods costs a few hundred microseconds. A test checks it.
+@frozen_record
+class MotorChannel(FrozenRecord):
     """One motor output: whether its driver is enabled, and the value last set."""
 
     enabled: bool = False
     value: int = 0
     """-1000 to 1000; 0 while disabled."""
+
+    def __init__(self, enabled: bool = False, value: int = 0) -> None:
+        object.__setattr__(self, "enabled", enabled)
+        object.__setattr__(self, "value", value)
 
     @property
     def drive(self) -> MotorDrive:

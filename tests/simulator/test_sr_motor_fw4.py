@@ -3,7 +3,8 @@ the motor board's page of the internals docs (docs/internals/sr-motor-board.rst)
 
 import pytest
 
-from j5aio.simulator import MotorDrive, SRMotorBoardFw4Simulator
+from j5aio.simulator import MotorChannel, MotorDrive, SRMotorBoardFw4Simulator
+from tests.dataclass_twins import assert_like_generated
 
 
 def ask(sim: SRMotorBoardFw4Simulator, line: bytes) -> bytes:
@@ -99,3 +100,13 @@ def test_unplugging_changes_nothing(sim: SRMotorBoardFw4Simulator) -> None:
     sim.unplug()
     sim.plug()
     assert sim.motors[0].value == 500
+
+
+def test_a_motor_channel_is_the_generated_dataclass(sim: SRMotorBoardFw4Simulator) -> None:
+    assert_like_generated(
+        MotorChannel, [((), {}), ((True, -500), {}), ((), {"value": 7}), ((True,), {})]
+    )
+    assert sim.motors == (MotorChannel(), MotorChannel(False, 0))
+    assert ask(sim, b"MOT:1:SET:-250") == b"ACK\n"
+    assert sim.motors[1] == MotorChannel(enabled=True, value=-250) != MotorChannel(True, 250)
+    assert sim.motors[1].power == -0.25

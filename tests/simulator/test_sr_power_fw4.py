@@ -3,8 +3,9 @@ the power board's page of the internals docs (docs/internals/sr-power-board.rst)
 
 import pytest
 
-from j5aio.simulator import SRPowerBoardFw4Simulator
+from j5aio.simulator import BuzzerNote, SRPowerBoardFw4Simulator
 from j5aio.simulator.base import SimulatorUnpluggedError
+from tests.dataclass_twins import assert_like_generated
 
 
 def ask(sim: SRPowerBoardFw4Simulator, line: bytes) -> bytes:
@@ -101,8 +102,13 @@ def test_overcurrent_latch_and_status(sim: SRPowerBoardFw4Simulator) -> None:
 
 
 def test_reset_is_the_safe_state(sim: SRPowerBoardFw4Simulator) -> None:
-    for line in (b"OUT:0:SET:1", b"OUT:6:SET:1", b"LED:RUN:SET:F", b"LED:ERR:SET:1",
-                 b"NOTE:440:5000"):
+    for line in (
+        b"OUT:0:SET:1",
+        b"OUT:6:SET:1",
+        b"LED:RUN:SET:F",
+        b"LED:ERR:SET:1",
+        b"NOTE:440:5000",
+    ):
         assert ask(sim, line) == b"ACK\n"
     sim.click_start()
     assert ask(sim, b"*RESET") == b"ACK\n"
@@ -199,3 +205,12 @@ def test_partial_line_is_kept_until_its_newline(sim: SRPowerBoardFw4Simulator) -
     assert sim._input.pending == b"OUT:0:"
     assert sim.receive(b"GET?\n") == b"0\n"
     assert sim._input.pending == b""
+
+
+def test_a_buzzer_note_is_the_generated_dataclass(sim: SRPowerBoardFw4Simulator) -> None:
+    assert_like_generated(
+        BuzzerNote, [((523, 150), {}), ((440, 150), {}), ((), {"frequency": 1, "duration_ms": 0})]
+    )
+    assert ask(sim, b"NOTE:440:100") == b"ACK\n"
+    assert sim.playing == BuzzerNote(440, 100) != BuzzerNote(440, 101)
+    assert sim.note_history[-1] == BuzzerNote(frequency=440, duration_ms=100)

@@ -15,6 +15,7 @@ from j5aio.boards.sr.kch import Colour, KCHBoard
 from j5aio.components.flashing_led import LEDMode
 from j5aio.components.rgb_led import RGBChannel
 from j5aio.errors import CommunicationError
+from tests.dataclass_twins import assert_like_generated
 
 
 def make_hat(directory: Path, vendor: str, product: str, asset: str) -> Path:
@@ -92,7 +93,8 @@ def test_read_hat(tmp_path: Path) -> None:
 
 
 async def test_without_a_kch_discovery_finds_none_and_open_says_so(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     monkeypatch.setattr(KCHHardwareBackend, "hat_directory", tmp_path / "missing")
     assert await KCHHardwareBackend.discover() == []
@@ -106,7 +108,8 @@ async def test_without_a_kch_discovery_finds_none_and_open_says_so(
 
 
 async def test_a_kch_without_usable_gpio_is_a_clear_error(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     hat = make_hat(tmp_path / "hat", "Student Robotics", "KCH V1 Rev B", "SR0ABC")
     monkeypatch.setattr(KCHHardwareBackend, "hat_directory", hat)
@@ -141,3 +144,14 @@ async def test_make_safe_now_darkens_the_start_led_synchronously(
     assert backend.make_safe_now(0.5) is False
     backend.close_now()  # idempotent
     await board.close()
+
+
+def test_hat_info_is_the_generated_dataclass() -> None:
+    assert_like_generated(
+        HatInfo,
+        [
+            (("Student Robotics", "KCH V1 Rev B", "SR0ABC"), {}),
+            (("Student Robotics", "KCH V1 Rev B", "SR0ABD"), {}),
+            ((), {"vendor": "Other", "product": "HAT", "asset_code": ""}),
+        ],
+    )

@@ -10,9 +10,9 @@ name it all point there.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import ClassVar
 
+from j5aio._records import FrozenRecord, frozen_record
 from j5aio.errors import UnexpectedReplyError
 
 from .readers import (
@@ -29,9 +29,14 @@ __all__ = ["ExactReader", "LinesReader", "MatchingReader", "matching", "read_exa
 #: Where these names are documented and looked up (see the module's docstring).
 _HOME = "j5aio.backends.hardware.transports.readers"
 
+# These readers write their own ``__init__`` and take freezing, ``__repr__``, ``__eq__``
+# and ``__hash__`` from FrozenRecord, as ``@dataclass(frozen=True)`` would make them (as
+# the line readers do): a start that uses one should not pay a third of a millisecond a
+# class for making the generated methods. A test checks them against those.
 
-@dataclass(frozen=True)
-class LinesReader(ReplyReader[list[bytes]]):
+
+@frozen_record
+class LinesReader(ReplyReader[list[bytes]], FrozenRecord):
     """A fixed number of lines; see :func:`read_lines`."""
 
     __module__ = _HOME
@@ -40,6 +45,20 @@ class LinesReader(ReplyReader[list[bytes]]):
     terminator: bytes = b"\n"
     keep_ends: bool = False
     max_length: int = DEFAULT_MAX_LINE
+
+    def __init__(
+        self,
+        count: int,
+        terminator: bytes = b"\n",
+        keep_ends: bool = False,
+        max_length: int = DEFAULT_MAX_LINE,
+    ) -> None:
+        set_field = object.__setattr__
+        set_field(self, "count", count)
+        set_field(self, "terminator", terminator)
+        set_field(self, "keep_ends", keep_ends)
+        set_field(self, "max_length", max_length)
+        self.__post_init__()
 
     def __post_init__(self) -> None:
         if not self.terminator:
@@ -64,13 +83,17 @@ class LinesReader(ReplyReader[list[bytes]]):
         return f"{self.count} lines ending {self.terminator!r}"
 
 
-@dataclass(frozen=True)
-class ExactReader(ReplyReader[bytes]):
+@frozen_record
+class ExactReader(ReplyReader[bytes], FrozenRecord):
     """A fixed number of bytes; see :func:`read_exactly`."""
 
     __module__ = _HOME
 
     count: int
+
+    def __init__(self, count: int) -> None:
+        object.__setattr__(self, "count", count)
+        self.__post_init__()
 
     def __post_init__(self) -> None:
         if self.count < 1:
@@ -108,8 +131,8 @@ def read_exactly(count: int) -> ExactReader:
     return ExactReader(count)
 
 
-@dataclass(frozen=True)
-class MatchingReader(ReplyReader[T_co]):
+@frozen_record
+class MatchingReader(ReplyReader[T_co], FrozenRecord):
     """Replies of ``reader`` that ``belongs`` accepts; others are skipped whole.
 
     See :func:`matching`. Its :attr:`~ReplyReader.correlates` is always true: foreign
@@ -121,6 +144,17 @@ class MatchingReader(ReplyReader[T_co]):
     reader: ReplyReader[T_co]
     belongs: Callable[[T_co], bool]
     max_skipped: int = DEFAULT_MAX_SKIPPED
+
+    def __init__(
+        self,
+        reader: ReplyReader[T_co],
+        belongs: Callable[[T_co], bool],
+        max_skipped: int = DEFAULT_MAX_SKIPPED,
+    ) -> None:
+        set_field = object.__setattr__
+        set_field(self, "reader", reader)
+        set_field(self, "belongs", belongs)
+        set_field(self, "max_skipped", max_skipped)
 
     def parse(self, buffer: bytes | bytearray) -> tuple[T_co, int] | None:
         """Return the first reply in ``buffer`` that belongs to this request."""

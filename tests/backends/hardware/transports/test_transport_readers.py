@@ -155,3 +155,34 @@ def test_the_line_readers_are_the_generated_dataclasses() -> None:
         LinesUntilReader(until, max_lines=0)
     with pytest.raises(ValueError, match="the line terminator must not be empty"):
         LinesUntilReader(until, terminator=b"")
+
+
+def test_the_rarer_readers_are_the_generated_dataclasses() -> None:
+    from j5aio.backends.hardware.transports.readers import (
+        ExactReader,
+        LinesReader,
+        MatchingReader,
+    )
+
+    assert_like_generated(
+        LinesReader,
+        [((2,), {}), ((3, b"\r", True, 10), {}), ((1,), {"keep_ends": True, "max_length": 9})],
+    )
+    assert_like_generated(ExactReader, [((1,), {}), ((3,), {}), ((), {"count": 8})])
+    line = read_line()
+    assert_like_generated(
+        MatchingReader,
+        [((line, bool), {}), ((read_lines(2), bool, 0), {}), ((line,), {"belongs": bytes.isdigit})],
+    )
+    # Their checks run however they are made (replace makes a new one too).
+    with pytest.raises(ValueError, match="the line count must be at least 1, not 0"):
+        dataclasses.replace(LinesReader(2), count=0)
+    with pytest.raises(ValueError, match="the line terminator must not be empty"):
+        LinesReader(2, terminator=b"")
+    with pytest.raises(ValueError, match="the byte count must be at least 1, not -1"):
+        ExactReader(-1)
+    # A reader made through its subscripted class is the same reader.
+    subscripted = MatchingReader[bytes](line, bool)
+    assert subscripted == MatchingReader(line, bool) != MatchingReader(line, bytes.isdigit)
+    assert subscripted.correlates is True and MatchingReader.correlates is True
+    assert hash(read_exactly(3)) == hash(ExactReader(3))
