@@ -13,15 +13,11 @@ from types import ModuleType
 
 import pytest
 
+from tests.module_from_file import ROOT, load_module
+
 
 def load_bench() -> ModuleType:
-    path = Path(__file__).resolve().parents[1] / "bench" / "bench_call_path.py"
-    spec = importlib.util.spec_from_file_location("bench_call_path", path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
+    return load_module("bench_call_path", ROOT / "bench" / "bench_call_path.py", register=True)
 
 
 bench = load_bench()

@@ -13,22 +13,16 @@ liveness.
 
 from __future__ import annotations
 
-import importlib.util
 import sys
-from pathlib import Path
 from types import ModuleType
 
 import pytest
 
+from tests.module_from_file import ROOT, load_module
+
 
 def load_bench() -> ModuleType:
-    path = Path(__file__).resolve().parents[1] / "bench" / "bench_game_over.py"
-    spec = importlib.util.spec_from_file_location("bench_game_over", path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
+    return load_module("bench_game_over", ROOT / "bench" / "bench_game_over.py", register=True)
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="the match supervisor needs POSIX")

@@ -2,24 +2,18 @@
 
 from __future__ import annotations
 
-import importlib.util
 import sys
-from pathlib import Path
 from types import ModuleType
 
 import pytest
+
+from tests.module_from_file import ROOT, load_module
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 
 
 def load_bench() -> ModuleType:
-    path = Path(__file__).resolve().parents[1] / "bench" / "bench_signals.py"
-    spec = importlib.util.spec_from_file_location("bench_signals", path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
+    return load_module("bench_signals", ROOT / "bench" / "bench_signals.py", register=True)
 
 
 def test_busy_programs_are_braked_soon_after_a_signal(capsys: pytest.CaptureFixture[str]) -> None:

@@ -2,22 +2,17 @@
 
 from __future__ import annotations
 
-import importlib.util
 import statistics
-from pathlib import Path
 from types import ModuleType
 from typing import Any
 
 import pytest
 
+from tests.module_from_file import ROOT, load_module
+
 
 def load_bench() -> ModuleType:
-    path = Path(__file__).resolve().parents[1] / "bench" / "bench_startup.py"
-    spec = importlib.util.spec_from_file_location("bench_startup", path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_module("bench_startup", ROOT / "bench" / "bench_startup.py")
 
 
 BENCH = load_bench()

@@ -3,7 +3,6 @@ as ``python -m j5aio run --sim`` runs them."""
 
 from __future__ import annotations
 
-import importlib.util
 import subprocess
 import sys
 from pathlib import Path
@@ -17,17 +16,14 @@ from j5aio.kit import KitRobot
 from j5aio.simulator.environment import SIMULATED_ENVIRONMENT
 from j5aio.simulator.kit import KitConfig, SimulatedKit, use_kit
 from j5aio.simulator.sr_motor_fw3 import MotorMode
+from tests.module_from_file import load_module
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 
 
 def load(name: str) -> ModuleType:
-    spec = importlib.util.spec_from_file_location(name, EXAMPLES / f"{name}.py")
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_module(name, EXAMPLES / f"{name}.py")
 
 
 @pytest.fixture

@@ -12,6 +12,7 @@ import pytest
 
 from j5aio import lifetime, syncgen
 from j5aio.sync import _generated
+from tests.module_from_file import load_module
 
 from .sync_fakes import ROOT
 
@@ -19,12 +20,7 @@ TOOL_PATH = ROOT / "tools" / "gen_sync.py"
 
 
 def load_tool() -> types.ModuleType:
-    spec = importlib.util.spec_from_file_location("gen_sync_under_test", TOOL_PATH)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
+    return load_module("gen_sync_under_test", TOOL_PATH, register=True)
 
 
 @pytest.fixture(scope="module")

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import contextlib
 import functools
-import importlib.util
 import io
 import json
 import math
@@ -16,7 +15,6 @@ import time
 import urllib.error
 import urllib.request
 from collections.abc import AsyncIterator, Callable, Iterator
-from pathlib import Path
 from typing import Any
 
 import anyio
@@ -28,16 +26,12 @@ from j5aio.simulator.kit import KitConfig, use_kit
 from j5aio.view.describe import board_components, component_id
 from j5aio.vision.arena_map import ArenaMap
 from j5aio.vision.track import PositionTracker
+from tests.module_from_file import ROOT, load_module
 
 
 def _load_tool() -> Any:
     """tools/view_screenshot.py: the chromium launcher, shared with the screenshot script."""
-    path = Path(__file__).resolve().parents[2] / "tools" / "view_screenshot.py"
-    spec = importlib.util.spec_from_file_location("view_screenshot_tool", path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_module("view_screenshot_tool", ROOT / "tools" / "view_screenshot.py")
 
 
 TOOL = _load_tool()
