@@ -36,6 +36,7 @@ import functools
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from j5aio._lazy import lazy_exports
 from j5aio.backends.environment import Environment
 from j5aio.board_kinds import BoardKind, board_kinds
 
@@ -77,22 +78,24 @@ __all__ = [
 ]
 
 # Where the names this module exports live; each is imported when first looked up here.
-_EXPORTS: dict[str, str] = {
-    **dict.fromkeys(
-        ("MINIMUM_TIMEOUT_SCALE", "SimulatedUSBDevice", "kit_discovery_options", "port_name"),
-        "j5aio.simulator.discovery",
-    ),
-    **dict.fromkeys(
-        (
+_exported, _ = lazy_exports(
+    __name__,
+    {
+        "j5aio.simulator.discovery": [
+            "MINIMUM_TIMEOUT_SCALE",
+            "SimulatedUSBDevice",
+            "kit_discovery_options",
+            "port_name",
+        ],
+        "j5aio.simulator.sim_backends": [
             "SBArduinoSimulatedBackend",
             "SRV4MotorBoardSimulatedBackend",
             "SRV4PowerBoardSimulatedBackend",
             "SRV4RuggeduinoSimulatedBackend",
             "SRV4ServoBoardSimulatedBackend",
-        ),
-        "j5aio.simulator.sim_backends",
-    ),
-}
+        ],
+    },
+)
 
 
 def _has_simulated_backend(kind: BoardKind) -> bool:
@@ -168,15 +171,9 @@ SIMULATED_ENVIRONMENT = _make_environment()
 
 
 def __getattr__(name: str) -> Any:  # PEP 562: the exports above, imported on first use
-    if name == "SIMULATED_BACKENDS":
-        value: Any = tuple(SIMULATED_ENVIRONMENT.backends)
-    elif name in _EXPORTS:
-        import importlib
-
-        value = getattr(importlib.import_module(_EXPORTS[name]), name)
-    else:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    globals()[name] = value
+    if name != "SIMULATED_BACKENDS":
+        return _exported(name)
+    value = globals()[name] = tuple(SIMULATED_ENVIRONMENT.backends)
     return value
 
 
