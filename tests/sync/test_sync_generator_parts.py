@@ -84,6 +84,19 @@ def test_annotations_are_evaluated_without_eval() -> None:
         namespace.evaluate("Missing", names)
 
 
+def _python(*arguments: str) -> subprocess.CompletedProcess[str]:
+    """Run this Python with ``arguments`` from the checkout, as a student's shell would."""
+    return subprocess.run(
+        [sys.executable, *arguments],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        cwd=ROOT,
+        env=child_env(),
+        check=False,
+    )
+
+
 def test_the_package_loads_its_parts_on_first_use() -> None:
     code = (
         "import sys, j5aio.syncgen as g\n"
@@ -98,15 +111,7 @@ def test_the_package_loads_its_parts_on_first_use() -> None:
         "except AttributeError as error:\n"
         "    print(error)\n"
     )
-    result = subprocess.run(
-        [sys.executable, "-c", code],
-        capture_output=True,
-        text=True,
-        timeout=60,
-        cwd=ROOT,
-        env=child_env(),
-        check=False,
-    )
+    result = _python("-c", code)
     assert result.returncode == 0, result.stderr
     first, second = result.stdout.splitlines()
     assert first == "[] ['j5aio.syncgen._cli'] True"
@@ -114,15 +119,7 @@ def test_the_package_loads_its_parts_on_first_use() -> None:
 
 
 def test_python_m_j5aio_syncgen_is_the_command_line(tmp_path: Path) -> None:
-    result = subprocess.run(
-        [sys.executable, "-m", "j5aio.syncgen", "no_such_module_here", "-o", str(tmp_path / "x")],
-        capture_output=True,
-        text=True,
-        timeout=60,
-        cwd=ROOT,
-        env=child_env(),
-        check=False,
-    )
+    result = _python("-m", "j5aio.syncgen", "no_such_module_here", "-o", str(tmp_path / "x"))
     assert result.returncode == 2
     assert "sync-gen: " in result.stderr and "no_such_module_here" in result.stderr
 
